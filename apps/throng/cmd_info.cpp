@@ -1,0 +1,75 @@
+// `throng info FILE.sqlite` — summarises a recording (read-only): scenario, seed, agents, frames,
+// fps, duration, whether the run completed, populations and format version.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "output.hpp"
+#include "throng/io/recorder.hpp"
+
+namespace throng::cli {
+
+CLI::App* addInfoCommand(CLI::App& app, InfoOptions& options) {
+  CLI::App* cmd = app.add_subcommand("info", "Show what a recording holds");
+  cmd->description(
+      "Show what a recording holds: scenario name, seed, agents, frames, frame rate, duration,\n"
+      "whether the run completed (false when interrupted or killed), populations and format version.");
+  cmd->add_option("recording", options.recording, "Recording written by 'throng run'")
+      ->required()
+      ->type_name("FILE.sqlite");
+  cmd->add_flag("--json", options.json, "Print the summary as one JSON object");
+  return cmd;
+}
+
+int runInfo(const InfoOptions& options) {
+  auto missing = checkInputFile(options.recording, "recording");
+  if (!missing.empty()) {
+    printDiagnostics(missing);
+    return kExitFailure;
+  }
+  auto summary = io::readRecordingSummary(options.recording);
+  if (!summary) {
+    printDiagnostics(summary.errors());
+    return kExitFailure;
+  }
+  const io::RecordingSummary& s = *summary;
+  if (options.json) {
+    auto populations = nlohmann::json::array();
+    for (const auto& [id, count] : s.populations) populations.push_back({{"id", id}, {"agents", count}});
+    nlohmann::json out{{"path", s.path.empty() ? options.recording : s.path},
+                       {"scenario", s.scenarioName},
+                       {"seed", s.seed},
+                       {"agents", s.agents},
+                       {"frames", s.frames},
+                       {"fps", s.fps},
+                       {"duration_s", s.duration},
+                       {"completed", s.completed},
+                       {"rows", s.rows},
+                       {"events", s.events},
+                       {"populations", populations},
+                       {"format_version", s.formatVersion},
+                       {"throng_version", s.throngVersion}};
+    printLine(stdout, out.dump());
+    return kExitOk;
+  }
+  std::string populations;
+  for (const auto& [id, count] : s.populations) {
+    if (!populations.empty()) populations += ", ";
+    populations += fmt::format("{} ({} agents)", id, count);
+  }
+  if (populations.empty()) populations = "none";
+  printLine(stdout, fmt::format("recording    {}", options.recording));
+  printLine(stdout, fmt::format("scenario     {}", s.scenarioName));
+  printLine(stdout, fmt::format("seed         {}", s.seed));
+  printLine(stdout, fmt::format("agents       {}", s.agents));
+  printLine(stdout, fmt::format("frames       {} at {:g} fps ({:.2f} s)", s.frames, s.fps, s.duration));
+  printLine(stdout, fmt::format("completed    {}", s.completed ? "yes" : "no (interrupted or killed)"));
+  printLine(stdout, fmt::format("populations  {}", populations));
+  printLine(stdout, fmt::format("rows         {} trajectory rows, {} events", s.rows, s.events));
+  printLine(stdout, fmt::format("format       JuPedSim trajectory version {}{}", s.formatVersion,
+                                s.throngVersion.empty() ? "" : fmt::format(", written by throng {}", s.throngVersion)));
+  return kExitOk;
+}
+
+}  // namespace throng::cli

@@ -1,0 +1,290 @@
+// `throng run SCENARIO.json` — loads and validates a scenario, opens the recording, then steps the
+// World until the duration is reached, every agent has left, or SIGINT/SIGTERM arrives. Frame 0 is
+// the state before the first tick; then every k-th tick is recorded (k from --fps and dt). Reads
+// the scenario file; writes one SQLite recording, a progress line on stderr (terminal only) and a
+// summary on stdout.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "output.hpp"
+#include "progress.hpp"
+#include "signal.hpp"
+#include "throng/core/parallel.hpp"
+#include "throng/io/recorder.hpp"
+#include "throng/io/scenario_loader.hpp"
+#include "throng/sim/world.hpp"
+
+namespace throng::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// How often frames are recorded: every `stride` ticks, which is `fps` frames per second.
+struct FramePlan {
+  std::uint64_t stride = 1;  ///< ticks between recorded frames [>= 1]
+  double fps = 10.0;         ///< the rate actually recorded [Hz]
+  bool exact = true;         ///< false when the requested rate was rounded
+};
+
+FramePlan planFrames(double requestedFps, double dt) {
+  const double ratio = 1.0 / (requestedFps * dt);
+  FramePlan plan;
+  plan.stride = static_cast<std::uint64_t>(std::max(1.0, std::round(ratio)));
+  plan.fps = 1.0 / (static_cast<double>(plan.stride) * dt);
+  plan.exact = std::fabs(ratio - static_cast<double>(plan.stride)) <= 1e-6 * ratio;
+  return plan;
+}
+
+enum class RunEnd { Duration, Finished, Interrupted };
+
+const char* endName(RunEnd end) {
+  switch (end) {
+    case RunEnd::Duration: return "duration";
+    case RunEnd::Finished: return "finished";
+    case RunEnd::Interrupted: return "interrupted";
+  }
+  return "?";
+}
+
+struct LoopResult {
+  RunEnd end = RunEnd::Duration;
+  double wallSeconds = 0.0;
+};
+
+/// Steps the world and pushes every `plan.stride`-th frame. Stops at `totalTicks`, when the world
+/// is finished, or on a signal; except after a signal it steps on to the next multiple of the
+/// stride so the last frame carries every event (an empty world steps in no time).
+LoopResult simulate(sim::World& world, io::Recorder& recorder, const core::TaskSystem& tasks,
+                    std::uint64_t totalTicks, const FramePlan& plan, double duration, ProgressLine& progress) {
+  LoopResult result;
+  const auto start = Clock::now();
+  recorder.push(world.snapshot());  // frame 0: the initial state at tick 0
+  std::uint64_t tick = 0;
+  while (true) {
+    if (InterruptGuard::requested()) {
+      result.end = RunEnd::Interrupted;
+      break;
+    }
+    const bool atFrame = tick % plan.stride == 0;
+    if (atFrame && world.finished()) {
+      result.end = RunEnd::Finished;
+      break;
+    }
+    if (atFrame && tick >= totalTicks) {
+      result.end = RunEnd::Duration;
+      break;
+    }
+    world.step(tasks);
+    ++tick;
+    if (tick % plan.stride == 0) recorder.push(world.snapshot());
+    if (progress.due()) {
+      const auto& s = world.stats();
+      progress.draw(formatRunProgress({s.time, duration, s.active, s.exited, secondsSince(start)}, progress.width()));
+    }
+  }
+  result.wallSeconds = secondsSince(start);
+  return result;
+}
+
+struct RunSummary {
+  std::string scenario;
+  std::uint64_t seed = 0;
+  RunEnd end = RunEnd::Duration;
+  sim::WorldStats stats;
+  bool hasExit = false;
+  double wallSeconds = 0.0;
+  double setupSeconds = 0.0;
+  std::string recording;
+  std::uint64_t frames = 0;
+  double fps = 0.0;
+};
+
+/// Time until the last agent left, when every agent has left through an exit; < 0 otherwise.
+double evacuationTime(const RunSummary& r) {
+  const bool everyoneOut = r.stats.active == 0 && r.stats.scheduled == 0 && r.stats.exited > 0;
+  return r.hasExit && everyoneOut ? r.stats.lastExitTime : -1.0;
+}
+
+double agentStepsPerSecond(const RunSummary& r) {
+  return r.wallSeconds > 0 ? static_cast<double>(r.stats.agentSteps) / r.wallSeconds : 0.0;
+}
+
+void printSummaryJson(const RunSummary& r) {
+  const double evac = evacuationTime(r);
+  nlohmann::json out{{"scenario", r.scenario},
+                     {"seed", r.seed},
+                     {"status", endName(r.end)},
+                     {"interrupted", r.end == RunEnd::Interrupted},
+                     {"agents_spawned", r.stats.spawned},
+                     {"agents_exited", r.stats.exited},
+                     {"agents_active", r.stats.active},
+                     {"agents_scheduled", r.stats.scheduled},
+                     {"ticks", r.stats.tick},
+                     {"simulated_time_s", r.stats.time},
+                     {"evacuation_time_s", evac >= 0 ? nlohmann::json(evac) : nlohmann::json(nullptr)},
+                     {"mean_walking_speed_mps", r.stats.meanWalkingSpeed()},
+                     {"wall_time_s", r.wallSeconds},
+                     {"setup_time_s", r.setupSeconds},
+                     {"agent_steps", r.stats.agentSteps},
+                     {"agent_steps_per_s", agentStepsPerSecond(r)},
+                     {"recording", {{"path", r.recording}, {"frames", r.frames}, {"fps", r.fps}}}};
+  printLine(stdout, out.dump());
+}
+
+void printSummaryText(const RunSummary& r) {
+  const auto& s = r.stats;
+  auto row = [](const char* key, const std::string& value) { printLine(stdout, fmt::format("{:<14}{}", key, value)); };
+  row("scenario", fmt::format("{} (seed {})", r.scenario, r.seed));
+  row("status", r.end == RunEnd::Interrupted ? "interrupted (recording closed, marked not completed)"
+                : r.end == RunEnd::Finished  ? "finished (no agent left to simulate)"
+                                             : "duration reached");
+  row("agents", fmt::format("{} spawned, {} exited, {} still inside", s.spawned, s.exited, s.active));
+  row("simulated", fmt::format("{:.2f} s ({} ticks)", s.time, s.tick));
+  if (r.hasExit) {
+    const double evac = evacuationTime(r);
+    if (evac >= 0) row("evacuation", fmt::format("{:.2f} s (last agent out)", evac));
+    else row("evacuation", fmt::format("incomplete: {} agents inside, {} not spawned yet", s.active, s.scheduled));
+  }
+  row("mean speed", fmt::format("{:.2f} m/s (walking agents)", s.meanWalkingSpeed()));
+  const double realTime = r.wallSeconds > 0 ? s.time / r.wallSeconds : 0.0;
+  row("wall time", fmt::format("{} ({:.1f}x real time; setup {})", formatSeconds(r.wallSeconds), realTime,
+                               formatSeconds(r.setupSeconds)));
+  row("throughput", fmt::format("{} agent-steps/s", formatSi(agentStepsPerSecond(r))));
+  row("recording", fmt::format("{} ({} frames at {:g} fps)", r.recording, r.frames, r.fps));
+}
+
+std::string defaultOutput(const std::string& scenarioPath) {
+  return std::filesystem::path(scenarioPath).stem().string() + ".sqlite";
+}
+
+}  // namespace
+
+CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
+  CLI::App* cmd = app.add_subcommand("run", "Simulate a scenario and record the trajectories");
+  cmd->description(
+      "Simulate a scenario and record the trajectories to SQLite (JuPedSim trajectory format v2).\n"
+      "The scenario is validated first (every problem reported, exit 1, no file written), then the\n"
+      "recording is opened, then the crowd is simulated until --duration or until every agent has\n"
+      "left. Ctrl-C stops cleanly: the recording is closed as a valid file marked not completed,\n"
+      "and the exit code is 130.");
+  cmd->add_option("scenario", options.scenario, "Scenario JSON file")->required()->type_name("SCENARIO.json");
+  cmd->add_option("--seed", options.seed, "Random seed; overrides the scenario's \"seed\"")->type_name("N");
+  cmd->add_option("--duration", options.duration,
+                  "Simulated time [s]; overrides the scenario's \"duration\". The run also ends once every "
+                  "agent has left")
+      ->type_name("S")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--threads", options.threads, "Worker threads; 0 = all hardware threads. Results do not depend on it")
+      ->type_name("N")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--out", options.out,
+                  "Recording file; default: <scenario file name without .json>.sqlite in the current directory")
+      ->type_name("FILE.sqlite");
+  cmd->add_flag("--force", options.force, "Overwrite an existing recording file");
+  cmd->add_option("--fps", options.fps,
+                  "Recorded frames per second [Hz]: every k-th tick is written, k = round(1/(fps*dt)) >= 1; "
+                  "the rate actually used is stored in the recording")
+      ->type_name("F")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_flag("--quiet,-q", options.quiet, "Print nothing but errors (no progress, no warnings, no text summary)");
+  cmd->add_flag("--json", options.json, "Print the summary as one JSON object on stdout (also with --quiet)");
+  return cmd;
+}
+
+int runRun(const RunOptions& options) {
+  const auto setupStart = Clock::now();
+  auto warn = [&](const std::string& message) {
+    if (!options.quiet) printLine(stderr, "throng: warning: " + message);
+  };
+
+  // 1. Load and validate: nothing is written when the scenario is bad.
+  if (auto missing = checkInputFile(options.scenario, "scenario"); !missing.empty()) {
+    printDiagnostics(missing);
+    return kExitFailure;
+  }
+  auto loaded = io::loadScenarioFile(options.scenario);
+  if (!loaded) {
+    printDiagnostics(loaded.errors());
+    return kExitFailure;
+  }
+  sim::ScenarioDesc& desc = loaded->desc;
+  if (options.seed) desc.seed = *options.seed;
+  if (options.duration) desc.duration = static_cast<float>(*options.duration);
+
+  const FramePlan plan = planFrames(options.fps, desc.dt);
+  if (!plan.exact) {
+    warn(fmt::format("--fps {:g} does not divide the tick rate {:g} Hz (dt = {:g} s); recording every {} ticks "
+                     "= {:.4g} fps",
+                     options.fps, 1.0 / desc.dt, desc.dt, plan.stride, plan.fps));
+  }
+
+  auto world = sim::World::create(desc, loaded->navmesh);
+  if (!world) {
+    printDiagnostics(world.errors());
+    return kExitFailure;
+  }
+
+  // 2. Open the recording: a bad or existing path fails before any simulation.
+  io::RecordingOptions recording;
+  recording.path = options.out.empty() ? defaultOutput(options.scenario) : options.out;
+  recording.force = options.force;
+  recording.fps = plan.fps;
+  recording.seed = desc.seed;
+  recording.scenarioText = loaded->text;
+  auto recorder = io::Recorder::open(desc, recording);
+  if (!recorder) {
+    printDiagnostics(recorder.errors());
+    return kExitFailure;
+  }
+
+  // 3. Simulate.
+  const core::TaskSystem tasks(options.threads);
+  const auto totalTicks = static_cast<std::uint64_t>(std::max(0LL, std::llround(static_cast<double>(desc.duration) / desc.dt)));
+  RunSummary summary;
+  summary.setupSeconds = secondsSince(setupStart);
+  LoopResult loop;
+  {
+    InterruptGuard interrupts;
+    ProgressLine progress(stderr, !options.quiet);
+    loop = simulate(**world, **recorder, tasks, totalTicks, plan, desc.duration, progress);
+  }
+  const core::Status closed = (*recorder)->close(loop.end != RunEnd::Interrupted);
+  if (!closed) {
+    printDiagnostics(closed.errors());
+    return kExitFailure;
+  }
+
+  summary.scenario = desc.name;
+  summary.seed = desc.seed;
+  summary.end = loop.end;
+  summary.stats = (*world)->stats();
+  summary.hasExit = desc.hasExit();
+  summary.wallSeconds = loop.wallSeconds;
+  summary.recording = recording.path;
+  summary.frames = (*recorder)->framesWritten();
+  summary.fps = plan.fps;
+  if (options.json) printSummaryJson(summary);
+  else if (!options.quiet) printSummaryText(summary);
+  if (loop.end == RunEnd::Interrupted) {
+    if (options.quiet && !options.json) {
+      printLine(stderr, fmt::format("throng: interrupted at t = {:.2f} s; {} is closed and marked not completed",
+                                    summary.stats.time, recording.path));
+    }
+    return kExitInterrupted;
+  }
+  return kExitOk;
+}
+
+}  // namespace throng::cli

@@ -1,0 +1,67 @@
+// throng CLI subcommands — each subcommand registers its flags on a CLI::App and runs from a plain
+// options struct (one file per subcommand: cmd_run.cpp, cmd_check.cpp, cmd_info.cpp,
+// cmd_bench.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
+// interrupted by SIGINT/SIGTERM.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace throng::cli {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;
+inline constexpr int kExitUsage = 2;
+inline constexpr int kExitInterrupted = 130;
+
+struct RunOptions {
+  std::string scenario;                 ///< scenario JSON path
+  std::optional<std::uint64_t> seed;    ///< overrides the scenario's seed
+  std::optional<double> duration;       ///< overrides the scenario's duration [s]
+  int threads = 0;                      ///< 0 = all hardware threads
+  std::string out;                      ///< recording path; empty = <scenario stem>.sqlite
+  bool force = false;                   ///< overwrite an existing recording
+  double fps = 10.0;                    ///< recorded frames per second [Hz]
+  bool quiet = false;                   ///< only errors
+  bool json = false;                    ///< summary as one JSON object
+};
+
+struct CheckOptions {
+  std::string scenario;
+  bool json = false;
+};
+
+struct InfoOptions {
+  std::string recording;
+  bool json = false;
+};
+
+struct BenchOptions {
+  std::vector<std::size_t> agents;      ///< agent counts; empty = 1000,10000,100000
+  std::vector<int> threads;             ///< thread counts; empty = 1,2
+  std::string scenario = "random";      ///< "random" or "navmesh"
+  int ticks = 0;                        ///< timed ticks per configuration; 0 = about 3 s each
+  int warmup = 20;                      ///< untimed ticks before timing
+  std::uint64_t seed = 1;
+  bool json = false;                    ///< one JSON object per line
+  bool noBaseline = false;              ///< skip DetourCrowd
+  std::size_t baselineMax = 20000;      ///< largest agent count DetourCrowd runs at
+};
+
+/// Each registers its subcommand (flags bound to `options`, which must outlive parsing) and returns it.
+CLI::App* addRunCommand(CLI::App& app, RunOptions& options);
+CLI::App* addCheckCommand(CLI::App& app, CheckOptions& options);
+CLI::App* addInfoCommand(CLI::App& app, InfoOptions& options);
+CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options);
+
+int runRun(const RunOptions& options);
+int runCheck(const CheckOptions& options);
+int runInfo(const InfoOptions& options);
+int runBench(const BenchOptions& options);
+
+}  // namespace throng::cli

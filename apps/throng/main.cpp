@@ -1,0 +1,63 @@
+// throng — command-line front end: run, check, info and bench subcommands (CLI11). Parses flags,
+// dispatches to the subcommand and turns every failure into a message and an exit code:
+// 0 success, 1 bad input or failure, 2 bad flags or unknown subcommand, 130 interrupted.
+#include <cstdio>
+#include <exception>
+#include <new>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "commands.hpp"
+
+namespace {
+
+int dispatch(int argc, char** argv) {
+  using namespace throng::cli;
+  CLI::App app{"throng — a crowd engine for shared virtual worlds.\n"
+               "Simulates crowds described by a scenario JSON file and records their trajectories.",
+               "throng"};
+  app.set_version_flag("--version", THRONG_VERSION, "Print the version and exit");
+  app.require_subcommand(1);
+  app.footer("Run 'throng COMMAND --help' for the flags of a command.\n"
+             "Exit codes: 0 ok, 1 bad input or failure, 2 bad flags, 130 interrupted.");
+
+  RunOptions runOptions;
+  CheckOptions checkOptions;
+  InfoOptions infoOptions;
+  BenchOptions benchOptions;
+  CLI::App* run = addRunCommand(app, runOptions);
+  CLI::App* check = addCheckCommand(app, checkOptions);
+  CLI::App* info = addInfoCommand(app, infoOptions);
+  CLI::App* bench = addBenchCommand(app, benchOptions);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version are "errors" with exit code 0; every real parse error exits 2.
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitUsage;
+  }
+
+  if (run->parsed()) return runRun(runOptions);
+  if (check->parsed()) return runCheck(checkOptions);
+  if (info->parsed()) return runInfo(infoOptions);
+  if (bench->parsed()) return runBench(benchOptions);
+  std::fputs("throng: no command given; run 'throng --help'\n", stderr);
+  return kExitUsage;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return dispatch(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::fputs("throng: error: out of memory\n", stderr);
+  } catch (const std::exception& e) {
+    std::fputs(fmt::format("throng: error: {}\n", e.what()).c_str(), stderr);
+  } catch (...) {
+    std::fputs("throng: error: unknown failure\n", stderr);
+  }
+  return throng::cli::kExitFailure;
+}

@@ -1,0 +1,40 @@
+// throng::core::TaskSystem — the threads a World runs on, injected by the application (after
+// Box2D's enqueueTask and Jolt's JobSystem). parallelFor splits [0, n) into fixed chunks of
+// `grain`; each index is visited exactly once, and because phases only write the row of the index
+// they visit, the result never depends on how chunks land on threads.
+#pragma once
+#include <cstddef>
+#include <functional>
+#include <memory>
+
+namespace throng::core {
+
+class TaskSystem {
+ public:
+  /// threads = 1 runs everything on the calling thread; 0 means all hardware threads.
+  explicit TaskSystem(int threads = 1);
+  ~TaskSystem();
+  TaskSystem(const TaskSystem&) = delete;
+  TaskSystem& operator=(const TaskSystem&) = delete;
+
+  [[nodiscard]] int threads() const { return threads_; }
+
+  /// Calls body(begin, end) over fixed chunks [k*grain, min(n,(k+1)*grain)).
+  void parallelFor(std::size_t n, std::size_t grain,
+                   const std::function<void(std::size_t begin, std::size_t end)>& body) const;
+
+  /// Number of fixed chunks parallelFor(n, grain) uses; reductions keep one slot per chunk and
+  /// combine them in chunk order, so sums are identical for any thread count.
+  /// Index of the calling worker in [0, threads()), for per-thread scratch (query objects,
+  /// buffers). Scratch must never change results, only where they are computed.
+  [[nodiscard]] int workerIndex() const;
+
+  static std::size_t chunkCount(std::size_t n, std::size_t grain) { return grain == 0 ? 0 : (n + grain - 1) / grain; }
+
+ private:
+  int threads_;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace throng::core

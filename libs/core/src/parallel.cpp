@@ -1,0 +1,51 @@
+// TaskSystem over oneTBB: a task_arena limited to the requested thread count, static chunking.
+#include "throng/core/parallel.hpp"
+
+#include <oneapi/tbb/blocked_range.h>
+#include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/partitioner.h>
+#include <oneapi/tbb/task_arena.h>
+
+#include <thread>
+
+namespace throng::core {
+
+struct TaskSystem::Impl {
+  explicit Impl(int threads) : arena(threads) {}
+  tbb::task_arena arena;
+};
+
+TaskSystem::TaskSystem(int threads) {
+  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  threads_ = threads;
+  if (threads_ > 1) impl_ = std::make_unique<Impl>(threads_);
+}
+
+TaskSystem::~TaskSystem() = default;
+
+void TaskSystem::parallelFor(std::size_t n, std::size_t grain,
+                             const std::function<void(std::size_t, std::size_t)>& body) const {
+  if (n == 0) return;
+  if (grain == 0) grain = 1;
+  const std::size_t chunks = chunkCount(n, grain);
+  if (!impl_ || chunks == 1) {
+    for (std::size_t c = 0; c < chunks; ++c) body(c * grain, std::min(n, (c + 1) * grain));
+    return;
+  }
+  impl_->arena.execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, chunks, 1),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+          for (std::size_t c = r.begin(); c < r.end(); ++c) body(c * grain, std::min(n, (c + 1) * grain));
+        },
+        tbb::simple_partitioner());
+  });
+}
+
+int TaskSystem::workerIndex() const {
+  if (!impl_) return 0;
+  const int index = tbb::this_task_arena::current_thread_index();
+  return (index < 0 || index >= threads_) ? 0 : index;
+}
+
+}  // namespace throng::core

@@ -1,0 +1,71 @@
+// throng::io::Recorder — writes frames to SQLite in JuPedSim's trajectory format (version 2) plus
+// throng's own tables, on its own thread, in batched WAL transactions. Lossless with backpressure:
+// push() blocks while the queue is full. A killed process leaves a valid file holding everything
+// up to the last committed batch; close() (also on Ctrl-C) leaves a complete single file.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "throng/core/result.hpp"
+#include "throng/sim/frame.hpp"
+#include "throng/sim/scenario.hpp"
+
+namespace throng::io {
+
+struct RecordingOptions {
+  std::string path;                ///< output file (.sqlite)
+  bool force = false;              ///< overwrite an existing file
+  double fps = 10.0;               ///< frames per second written (metadata `fps`)
+  std::uint64_t seed = 0;          ///< seed actually used
+  std::string scenarioText;        ///< the scenario JSON, stored for provenance
+  std::size_t framesPerBatch = 50; ///< frames per transaction [Limit: >= 1]
+  std::size_t queueFrames = 64;    ///< frames queued before push() blocks [Limit: >= 1]
+};
+
+class Recorder {
+ public:
+  /// Checks the path (exists without force, unwritable directory) and creates the file with its
+  /// schema and metadata. Call before simulating so bad paths are reported before any work.
+  static core::Result<std::unique_ptr<Recorder>> open(const sim::ScenarioDesc& scenario,
+                                                      const RecordingOptions& options);
+  ~Recorder();  ///< closes if still open
+
+  /// Queues a frame (blocks while the queue is full). Frame numbers are assigned in push order
+  /// starting at 0.
+  void push(sim::FramePtr frame);
+
+  /// Flushes everything, writes the final metadata (frames, duration, finished flag), checkpoints
+  /// the WAL into the main file and closes. Returns the first write error, if any.
+  core::Status close(bool completed);
+
+  [[nodiscard]] std::uint64_t framesWritten() const;
+
+ private:
+  Recorder();
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// What a recording holds (for `throng info`).
+struct RecordingSummary {
+  std::string path;
+  int formatVersion = 0;          ///< JuPedSim trajectory format version (2)
+  std::string scenarioName;
+  std::uint64_t seed = 0;
+  double fps = 0.0;
+  std::uint64_t frames = 0;
+  std::uint64_t agents = 0;       ///< distinct agent ids
+  std::uint64_t rows = 0;         ///< trajectory rows
+  double duration = 0.0;          ///< frames / fps [s]
+  bool completed = false;         ///< false when the run was cut short (killed or interrupted)
+  std::string throngVersion;
+  std::vector<std::pair<std::string, std::uint64_t>> populations;  ///< id → agents
+  std::uint64_t events = 0;
+};
+
+/// Opens a recording read-only and summarises it; bad or foreign files give a diagnostic.
+core::Result<RecordingSummary> readRecordingSummary(const std::string& path);
+
+}  // namespace throng::io

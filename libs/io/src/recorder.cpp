@@ -1,0 +1,574 @@
+// throng::io::Recorder — writes frames to SQLite (JuPedSim trajectory format v2 + throng_*
+// tables, see recording_schema.hpp and docs/recording-format.md). open() checks the path and
+// creates the schema on the caller's thread; push() hands frames to a bounded queue; a worker
+// thread writes them in WAL transactions of framesPerBatch frames; close() drains, writes the
+// final metadata, checkpoints and leaves a single self-contained file.
+//
+// The file is written at its final path from the start: WAL makes it valid after every commit,
+// so a killed process leaves the path holding everything up to the last committed batch (plus a
+// -wal file that the next opener folds in).
+#include "throng/io/recorder.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <condition_variable>
+#include <deque>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <system_error>
+#include <thread>
+#include <unordered_set>
+
+#include "recording_schema.hpp"
+#include "recording_text.hpp"
+#include "walkable_area_wkt.hpp"
+
+#ifndef THRONG_VERSION
+#define THRONG_VERSION "unknown"
+#endif
+
+namespace throng::io {
+namespace {
+
+namespace fs = std::filesystem;
+using recording::Statement;
+
+core::Diagnostic diag(const std::string& path, std::string what, std::string expected = {},
+                      std::string hint = {}) {
+  core::Diagnostic d;
+  d.source = path;
+  d.what = std::move(what);
+  d.expected = std::move(expected);
+  d.hint = std::move(hint);
+  return d;
+}
+
+/// Removes `path` and SQLite's companion files; ignores what is not there.
+void removeWithCompanions(const std::string& path) {
+  std::error_code ec;
+  for (const char* suffix : {"", "-wal", "-shm", "-journal"}) fs::remove(path + suffix, ec);
+}
+
+/// Refuses an existing output without force and an unusable directory, before any work.
+core::Status checkOutputPath(const RecordingOptions& options) {
+  const std::string& path = options.path;
+  if (path.empty()) return diag("<recording>", "empty output path", "a file path ending in .sqlite");
+  std::error_code ec;
+  const fs::path p(path);
+  const fs::file_status st = fs::symlink_status(p, ec);
+  if (fs::is_directory(st)) {
+    return diag(path, "is a directory", "a file path for the recording");
+  }
+  if (fs::exists(st) && !options.force) {
+    return diag(path, "file exists", "a new path", "pass --force to overwrite");
+  }
+  fs::path dir = p.parent_path();
+  if (dir.empty()) dir = ".";
+  const fs::file_status dst = fs::status(dir, ec);
+  if (!fs::exists(dst)) {
+    return diag(path, "directory \"" + dir.string() + "\" does not exist",
+                "an existing, writable directory");
+  }
+  if (!fs::is_directory(dst)) {
+    return diag(path, "\"" + dir.string() + "\" is not a directory", "an existing, writable directory");
+  }
+  if (::access(dir.c_str(), W_OK | X_OK) != 0) {
+    return diag(path, "directory \"" + dir.string() + "\" is not writable",
+                "an existing, writable directory");
+  }
+  return core::Ok{};
+}
+
+const char* eventKindText(sim::EventKind kind) {
+  switch (kind) {
+    case sim::EventKind::Spawn: return "spawn";
+    case sim::EventKind::Exit: return "exit";
+    case sim::EventKind::GoalReached: return "goal_reached";
+    case sim::EventKind::ActionStart: return "action_start";
+    case sim::EventKind::ActionEnd: return "action_end";
+    case sim::EventKind::PathPartial: return "path_partial";
+  }
+  return "unknown";
+}
+
+const char* pointKindText(sim::PointKind kind) {
+  switch (kind) {
+    case sim::PointKind::Interest: return "interest";
+    case sim::PointKind::Action: return "action";
+    case sim::PointKind::Exit: return "exit";
+  }
+  return "unknown";
+}
+
+std::string jsonString(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      static const char* kHex = "0123456789abcdef";
+      out += "\\u00";
+      out += kHex[(c >> 4) & 0xf];
+      out += kHex[c & 0xf];
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+void bindText(sqlite3_stmt* s, int i, const std::string& v) {
+  sqlite3_bind_text(s, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
+}
+void bindInt(sqlite3_stmt* s, int i, std::int64_t v) { sqlite3_bind_int64(s, i, v); }
+void bindReal(sqlite3_stmt* s, int i, double v) { sqlite3_bind_double(s, i, v); }
+
+/// Agent ids below this are tracked in a bitmap (ids are dense spawn order); a stray larger id
+/// goes to a hash set instead of growing the bitmap.
+constexpr std::uint32_t kMaxTrackedAgentId = 1u << 26;
+
+}  // namespace
+
+struct Recorder::Impl {
+  RecordingOptions options;
+  sqlite3* db = nullptr;
+  std::int64_t geometryHash = 0;
+  std::vector<std::string> populationIds;
+
+  Statement begin, commit, rollback, insertRow, insertFrameData, insertFrame, insertEvent,
+      insertAgent, insertAgentSeen, updateExit, upsertMeta;
+
+  // Queue shared by push() and the worker.
+  std::mutex mutex;
+  std::condition_variable notEmpty, notFull;
+  std::deque<sim::FramePtr> queue;
+  bool stopping = false;
+  std::thread worker;
+
+  // Worker-only state (read by close() after join).
+  std::uint64_t nextFrame = 0;
+  std::uint64_t pendingFrames = 0;
+  bool inTransaction = false;
+  std::vector<bool> seenAgents;               ///< ids below kMaxTrackedAgentId already recorded
+  std::unordered_set<std::uint32_t> seenHugeIds;  ///< the rest
+  std::uint64_t agentCount = 0;
+  std::optional<core::Diagnostic> error;
+
+  std::atomic<std::uint64_t> committed{0};
+  bool closed = false;
+  std::optional<core::Status> closeResult;
+
+  ~Impl() {
+    if (db != nullptr) {
+      // Statements must be finalized before sqlite3_close.
+      for (Statement* s : {&begin, &commit, &rollback, &insertRow, &insertFrameData, &insertFrame,
+                           &insertEvent, &insertAgent, &insertAgentSeen, &updateExit, &upsertMeta}) {
+        *s = Statement();
+      }
+      sqlite3_close(db);
+    }
+  }
+
+  /// Records the first write error; returns false for `return fail(...)`.
+  bool fail(std::string what) {
+    if (!error) error = diag(options.path, std::move(what), "a writable recording");
+    return false;
+  }
+  std::string sqliteMessage() const { return db ? sqlite3_errmsg(db) : "cannot open database"; }
+
+  bool exec(const char* sql) {
+    char* msg = nullptr;
+    if (sqlite3_exec(db, sql, nullptr, nullptr, &msg) != SQLITE_OK) {
+      fail(std::string("SQLite: ") + (msg ? msg : sqliteMessage()));
+      sqlite3_free(msg);
+      return false;
+    }
+    return true;
+  }
+
+  /// Steps a statement once and resets it; records the first failure.
+  bool run(const Statement& s) {
+    const int rc = sqlite3_step(s.get());
+    const bool ok = rc == SQLITE_DONE || rc == SQLITE_ROW;
+    if (!ok) fail("SQLite: " + sqliteMessage());
+    sqlite3_reset(s.get());
+    sqlite3_clear_bindings(s.get());
+    return ok;
+  }
+
+  bool prepare(Statement& s, const char* sql) {
+    s = Statement(db, sql);
+    if (!s.ok()) fail(std::string("SQLite: ") + sqliteMessage() + " in " + sql);
+    return s.ok();
+  }
+
+  bool putMeta(const std::string& key, const std::string& value) {
+    bindText(upsertMeta.get(), 1, key);
+    bindText(upsertMeta.get(), 2, value);
+    return run(upsertMeta);
+  }
+
+  bool prepareAll() {
+    return prepare(begin, "BEGIN") && prepare(commit, "COMMIT") && prepare(rollback, "ROLLBACK") &&
+           prepare(insertRow, "INSERT INTO trajectory_data VALUES(?, ?, ?, ?, ?, ?)") &&
+           prepare(insertFrameData, "INSERT INTO frame_data VALUES(?, ?)") &&
+           prepare(insertFrame, "INSERT INTO throng_frames VALUES(?, ?, ?, ?)") &&
+           prepare(insertEvent, "INSERT INTO throng_events VALUES(?, ?, ?, ?, ?, ?)") &&
+           prepare(insertAgent,
+                   "INSERT OR REPLACE INTO throng_agents(id, population, population_id, group_id, "
+                   "spawn_frame, spawn_tick) VALUES(?, ?, ?, ?, ?, ?)") &&
+           prepare(insertAgentSeen, "INSERT OR IGNORE INTO throng_agents(id, spawn_frame) VALUES(?, ?)") &&
+           prepare(updateExit, "UPDATE throng_agents SET exit_frame = ?, exit_tick = ? WHERE id = ?") &&
+           prepare(upsertMeta, "INSERT OR REPLACE INTO metadata(key, value) VALUES(?, ?)");
+  }
+
+  bool writeScenario(const sim::ScenarioDesc& scenario);
+  bool writeFrame(const sim::Frame& frame);
+  bool markSeen(std::uint32_t id);
+  void workerLoop();
+  bool commitBatch();
+  void writeFinal(bool completed);
+};
+
+bool Recorder::Impl::writeScenario(const sim::ScenarioDesc& scenario) {
+  using namespace recording;
+  const WalkableAreaWkt area = walkableAreaWkt(scenario.walkable, scenario.obstacles);
+  geometryHash = recording::geometryHash(area.wkt);
+  for (const auto& pop : scenario.populations) populationIds.push_back(pop.id);
+
+  if (!exec("BEGIN") || !exec(kCreateJuPedSim) || !exec(kCreateThrong) || !prepareAll()) return false;
+
+  // metadata: JuPedSim's keys (values as Python's str() writes them), then throng's.
+  bool ok = putMeta(kKeyVersion, std::to_string(kFormatVersion)) &&
+            putMeta(kKeyFps, pythonFloatText(options.fps)) &&
+            putMeta(kKeyXMin, pythonFloatText(area.minX)) && putMeta(kKeyXMax, pythonFloatText(area.maxX)) &&
+            putMeta(kKeyYMin, pythonFloatText(area.minY)) && putMeta(kKeyYMax, pythonFloatText(area.maxY)) &&
+            putMeta(kKeyThrongVersion, THRONG_VERSION) && putMeta(kKeySchema, kSchemaNote) &&
+            putMeta(kKeyScenarioName, scenario.name) && putMeta(kKeyScenario, options.scenarioText) &&
+            putMeta(kKeySeed, std::to_string(options.seed)) &&
+            putMeta(kKeyDt, pythonFloatText(floatAsDecimal(scenario.dt))) &&
+            putMeta(kKeyCompleted, "0") && putMeta(kKeyFrames, "0") && putMeta(kKeyDuration, "0.0") &&
+            putMeta(kKeyAgents, "0");
+  if (!ok) return false;
+
+  {
+    Statement geo(db, "INSERT INTO geometry VALUES(?, ?)");
+    if (!geo.ok()) return fail("SQLite: " + sqliteMessage());
+    bindInt(geo.get(), 1, geometryHash);
+    bindText(geo.get(), 2, area.wkt);
+    if (!run(geo)) return false;
+  }
+  {
+    Statement pt(db, "INSERT INTO throng_points VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+    if (!pt.ok()) return fail("SQLite: " + sqliteMessage());
+    for (std::size_t i = 0; i < scenario.points.size(); ++i) {
+      const sim::PointDesc& p = scenario.points[i];
+      sqlite3_stmt* s = pt.get();
+      bindInt(s, 1, static_cast<std::int64_t>(i));
+      bindText(s, 2, p.id);
+      bindText(s, 3, pointKindText(p.kind));
+      bindReal(s, 4, floatAsDecimal(p.position.x));
+      bindReal(s, 5, floatAsDecimal(p.position.y));
+      bindReal(s, 6, floatAsDecimal(p.radius));
+      if (p.polygon.empty()) sqlite3_bind_null(s, 7); else bindText(s, 7, polygonWkt(p.polygon));
+      bindInt(s, 8, p.stop ? 1 : 0);
+      bindReal(s, 9, floatAsDecimal(p.orientation.x));
+      bindReal(s, 10, floatAsDecimal(p.orientation.y));
+      bindText(s, 11, p.action);
+      bindReal(s, 12, floatAsDecimal(p.actionDuration));
+      if (!run(pt)) return false;
+    }
+  }
+  {
+    Statement pop(db, "INSERT INTO throng_populations VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+    if (!pop.ok()) return fail("SQLite: " + sqliteMessage());
+    for (std::size_t i = 0; i < scenario.populations.size(); ++i) {
+      const sim::PopulationDesc& p = scenario.populations[i];
+      sqlite3_stmt* s = pop.get();
+      std::string goals = "[";
+      for (std::size_t g = 0; g < p.goals.size(); ++g) {
+        if (g > 0) goals += ",";
+        const std::uint32_t idx = p.goals[g];
+        goals += idx < scenario.points.size() ? jsonString(scenario.points[idx].id) : std::to_string(idx);
+      }
+      goals += "]";
+      bindInt(s, 1, static_cast<std::int64_t>(i));
+      bindText(s, 2, p.id);
+      bindInt(s, 3, p.groups);
+      bindInt(s, 4, p.sizeMin);
+      bindInt(s, 5, p.sizeMax);
+      bindReal(s, 6, floatAsDecimal(p.start));
+      bindReal(s, 7, floatAsDecimal(p.speedMean));
+      bindReal(s, 8, floatAsDecimal(p.speedSd));
+      bindReal(s, 9, floatAsDecimal(p.speedMin));
+      bindReal(s, 10, floatAsDecimal(p.speedMax));
+      bindReal(s, 11, floatAsDecimal(p.radius));
+      bindInt(s, 12, p.wander ? 1 : 0);
+      bindText(s, 13, goals);
+      switch (p.spawn.kind) {
+        case sim::SpawnKind::Polygon:
+          bindText(s, 14, "polygon");
+          bindText(s, 15, polygonWkt(p.spawn.polygon));
+          break;
+        case sim::SpawnKind::Position:
+          bindText(s, 14, "position");
+          bindText(s, 15, "POINT (" + shortestText(floatAsDecimal(p.spawn.position.x)) + " " +
+                              shortestText(floatAsDecimal(p.spawn.position.y)) + ")");
+          break;
+        case sim::SpawnKind::Point:
+          bindText(s, 14, "point");
+          if (p.spawn.point < scenario.points.size()) {
+            const core::Vec2 at = scenario.points[p.spawn.point].position;
+            bindText(s, 15, "POINT (" + shortestText(floatAsDecimal(at.x)) + " " +
+                                shortestText(floatAsDecimal(at.y)) + ")");
+          } else {
+            sqlite3_bind_null(s, 15);
+          }
+          break;
+      }
+      if (!run(pop)) return false;
+    }
+  }
+  return exec("COMMIT");
+}
+
+bool Recorder::Impl::markSeen(std::uint32_t id) {
+  if (id < kMaxTrackedAgentId) {
+    if (id >= seenAgents.size()) seenAgents.resize(static_cast<std::size_t>(id) + 1024, false);
+    if (seenAgents[id]) return true;
+    seenAgents[id] = true;
+  } else if (!seenHugeIds.insert(id).second) {
+    return true;
+  }
+  ++agentCount;
+  return false;
+}
+
+bool Recorder::Impl::writeFrame(const sim::Frame& f) {
+  const auto frame = static_cast<std::int64_t>(nextFrame);
+  // Events first: a Spawn names the agent's population and group before its first row.
+  for (const sim::Event& e : f.events) {
+    sqlite3_stmt* s = insertEvent.get();
+    bindInt(s, 1, frame);
+    bindInt(s, 2, static_cast<std::int64_t>(e.tick));
+    bindInt(s, 3, e.agent);
+    bindText(s, 4, eventKindText(e.kind));
+    bindInt(s, 5, e.a);
+    bindInt(s, 6, e.b);
+    if (!run(insertEvent)) return false;
+    if (e.kind == sim::EventKind::Spawn) {
+      s = insertAgent.get();
+      bindInt(s, 1, e.agent);
+      bindInt(s, 2, e.a);
+      if (e.a < populationIds.size()) bindText(s, 3, populationIds[e.a]); else sqlite3_bind_null(s, 3);
+      bindInt(s, 4, e.b);
+      bindInt(s, 5, frame);
+      bindInt(s, 6, static_cast<std::int64_t>(e.tick));
+      if (!run(insertAgent)) return false;
+      markSeen(e.agent);
+    } else if (e.kind == sim::EventKind::Exit) {
+      s = updateExit.get();
+      bindInt(s, 1, frame);
+      bindInt(s, 2, static_cast<std::int64_t>(e.tick));
+      bindInt(s, 3, e.agent);
+      if (!run(updateExit)) return false;
+    }
+  }
+
+  const std::size_t n = f.ids.size();
+  if (f.posX.size() < n || f.posY.size() < n) {
+    return fail("frame " + std::to_string(frame) + ": " + std::to_string(n) + " ids but " +
+                std::to_string(std::min(f.posX.size(), f.posY.size())) + " positions");
+  }
+  const bool hasOri = f.oriX.size() >= n && f.oriY.size() >= n;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = f.posX[i], y = f.posY[i];
+    const double ox = hasOri ? f.oriX[i] : 1.0, oy = hasOri ? f.oriY[i] : 0.0;
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(ox) || !std::isfinite(oy)) {
+      return fail("frame " + std::to_string(frame) + " agent " + std::to_string(f.ids[i]) +
+                  ": position or orientation is not finite");
+    }
+    if (!markSeen(f.ids[i])) {
+      sqlite3_stmt* s = insertAgentSeen.get();
+      bindInt(s, 1, f.ids[i]);
+      bindInt(s, 2, frame);
+      if (!run(insertAgentSeen)) return false;
+    }
+    sqlite3_stmt* s = insertRow.get();
+    bindInt(s, 1, frame);
+    bindInt(s, 2, f.ids[i]);
+    bindReal(s, 3, x);
+    bindReal(s, 4, y);
+    bindReal(s, 5, ox);
+    bindReal(s, 6, oy);
+    if (!run(insertRow)) return false;
+  }
+
+  bindInt(insertFrameData.get(), 1, frame);
+  bindInt(insertFrameData.get(), 2, geometryHash);
+  if (!run(insertFrameData)) return false;
+  sqlite3_stmt* s = insertFrame.get();
+  bindInt(s, 1, frame);
+  bindInt(s, 2, static_cast<std::int64_t>(f.tick));
+  bindReal(s, 3, f.time);
+  bindInt(s, 4, static_cast<std::int64_t>(n));
+  return run(insertFrame);
+}
+
+bool Recorder::Impl::commitBatch() {
+  if (!inTransaction) return true;
+  const bool ok = putMeta(recording::kKeyFrames, std::to_string(nextFrame)) &&
+                  putMeta(recording::kKeyAgents, std::to_string(agentCount)) && run(commit);
+  if (!ok) {
+    run(rollback);
+  } else {
+    committed.store(nextFrame, std::memory_order_release);
+  }
+  inTransaction = false;
+  pendingFrames = 0;
+  return ok;
+}
+
+void Recorder::Impl::workerLoop() {
+  for (;;) {
+    sim::FramePtr frame;
+    {
+      std::unique_lock lock(mutex);
+      notEmpty.wait(lock, [&] { return !queue.empty() || stopping; });
+      if (queue.empty()) break;  // stopping and drained
+      frame = std::move(queue.front());
+      queue.pop_front();
+    }
+    notFull.notify_one();
+    if (error || !frame) continue;  // keep draining so push() never blocks forever
+    try {
+      if (!inTransaction) {
+        if (!run(begin)) continue;
+        inTransaction = true;
+      }
+      if (!writeFrame(*frame)) {
+        run(rollback);
+        inTransaction = false;
+        continue;
+      }
+      ++nextFrame;
+      if (++pendingFrames >= options.framesPerBatch) commitBatch();
+    } catch (const std::exception& e) {
+      fail(std::string("recorder: ") + e.what());
+    }
+  }
+  if (!error) commitBatch();
+}
+
+void Recorder::Impl::writeFinal(bool completed) {
+  // Best effort even after an error, so the file says it is incomplete.
+  const bool wasOk = !error;
+  if (!exec("BEGIN")) return;
+  const bool ok = putMeta(recording::kKeyCompleted, completed && wasOk ? "1" : "0") &&
+                  putMeta(recording::kKeyFrames, std::to_string(committed.load())) &&
+                  putMeta(recording::kKeyDuration,
+                          recording::pythonFloatText(static_cast<double>(committed.load()) / options.fps)) &&
+                  putMeta(recording::kKeyAgents, std::to_string(agentCount));
+  if (ok) exec("COMMIT"); else exec("ROLLBACK");
+}
+
+Recorder::Recorder() : impl_(std::make_unique<Impl>()) {}
+
+Recorder::~Recorder() {
+  if (impl_ && !impl_->closed) (void)close(false);
+}
+
+core::Result<std::unique_ptr<Recorder>> Recorder::open(const sim::ScenarioDesc& scenario,
+                                                       const RecordingOptions& options) {
+  core::Diagnostics problems;
+  if (!(std::isfinite(options.fps) && options.fps > 0.0)) {
+    problems.push_back(diag(options.path, "fps is " + recording::shortestText(options.fps),
+                            "a frame rate > 0 [1/s]"));
+  }
+  if (options.framesPerBatch < 1) problems.push_back(diag(options.path, "framesPerBatch is 0", ">= 1"));
+  if (options.queueFrames < 1) problems.push_back(diag(options.path, "queueFrames is 0", ">= 1"));
+  if (auto st = checkOutputPath(options); !st) {
+    for (const auto& d : st.errors()) problems.push_back(d);
+  }
+  if (!problems.empty()) return problems;
+
+  try {
+    if (options.force) removeWithCompanions(options.path);
+    std::unique_ptr<Recorder> rec(new Recorder());
+    Impl& impl = *rec->impl_;
+    impl.options = options;
+    const int rc = sqlite3_open_v2(options.path.c_str(), &impl.db,
+                                   SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX, nullptr);
+    bool ok = rc == SQLITE_OK;
+    if (!ok) impl.fail("cannot create the recording: " + impl.sqliteMessage());
+    // WAL: readers see every committed batch and a killed writer loses only the open batch.
+    // NORMAL sync: commits are not fsync'd one by one (durable against a process kill; a power
+    // loss may drop the last batches but never corrupts the file).
+    ok = ok && impl.exec("PRAGMA journal_mode=WAL") && impl.exec("PRAGMA synchronous=NORMAL") &&
+         impl.writeScenario(scenario);
+    if (!ok) {
+      core::Diagnostic d = impl.error ? *impl.error : diag(options.path, "cannot create the recording");
+      rec->impl_->closed = true;
+      rec.reset();  // closes the connection before removing the file
+      removeWithCompanions(options.path);
+      return d;
+    }
+    impl.worker = std::thread([&impl] { impl.workerLoop(); });
+    return rec;
+  } catch (const std::exception& e) {
+    removeWithCompanions(options.path);
+    return diag(options.path, std::string("cannot create the recording: ") + e.what());
+  }
+}
+
+void Recorder::push(sim::FramePtr frame) {
+  if (!impl_ || impl_->closed || !frame) return;
+  {
+    std::unique_lock lock(impl_->mutex);
+    impl_->notFull.wait(lock, [&] { return impl_->queue.size() < impl_->options.queueFrames || impl_->stopping; });
+    if (impl_->stopping) return;
+    impl_->queue.push_back(std::move(frame));
+  }
+  impl_->notEmpty.notify_one();
+}
+
+core::Status Recorder::close(bool completed) {
+  Impl& impl = *impl_;
+  if (impl.closed) return impl.closeResult ? *impl.closeResult : core::Status(core::Ok{});
+  impl.closed = true;
+  {
+    std::lock_guard lock(impl.mutex);
+    impl.stopping = true;
+  }
+  impl.notEmpty.notify_all();
+  impl.notFull.notify_all();
+  if (impl.worker.joinable()) impl.worker.join();
+
+  if (impl.inTransaction) {  // only after an error: drop the failed batch
+    impl.run(impl.rollback);
+    impl.inTransaction = false;
+  }
+  impl.writeFinal(completed);
+  // Fold the WAL into the main file and leave rollback-journal mode: one self-contained file.
+  impl.exec("PRAGMA wal_checkpoint(TRUNCATE)");
+  impl.exec("PRAGMA journal_mode=DELETE");
+  for (Statement* s : {&impl.begin, &impl.commit, &impl.rollback, &impl.insertRow, &impl.insertFrameData,
+                       &impl.insertFrame, &impl.insertEvent, &impl.insertAgent, &impl.insertAgentSeen,
+                       &impl.updateExit, &impl.upsertMeta}) {
+    *s = Statement();
+  }
+  if (impl.db != nullptr && sqlite3_close(impl.db) != SQLITE_OK) impl.fail("SQLite: cannot close the recording");
+  impl.db = nullptr;
+  impl.closeResult = impl.error ? core::Status(*impl.error) : core::Status(core::Ok{});
+  return *impl.closeResult;
+}
+
+std::uint64_t Recorder::framesWritten() const {
+  return impl_ ? impl_->committed.load(std::memory_order_acquire) : 0;
+}
+
+}  // namespace throng::io

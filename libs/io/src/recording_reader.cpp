@@ -1,0 +1,206 @@
+// throng::io recording reader — readRecordingSummary: opens a recording read-only and summarises
+// it (format version, frames, agents, rows, fps, throng's provenance). Accepts any JuPedSim
+// trajectory file (versions 1–3); throng's own tables are optional. Any other file, however
+// damaged, gives one diagnostic naming the file and what was expected; nothing is written.
+#include <sqlite3.h>
+
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "recording_schema.hpp"
+#include "recording_text.hpp"
+#include "throng/io/recorder.hpp"
+
+namespace throng::io {
+namespace {
+
+using recording::Statement;
+
+constexpr const char* kExpectedFile = "a JuPedSim trajectory file (SQLite, format version 1, 2 or 3)";
+
+/// Bounds the work one query may do (SQLite VM steps, checked every kProgressPeriod): a hostile
+/// file cannot make the reader spin forever. Generous enough for recordings of 10^8 rows.
+constexpr int kProgressPeriod = 10000;
+constexpr std::uint64_t kMaxProgressCalls = 2'000'000;
+
+core::Diagnostic diag(const std::string& path, std::string what, std::string expected = kExpectedFile) {
+  core::Diagnostic d;
+  d.source = path;
+  d.what = std::move(what);
+  d.expected = std::move(expected);
+  return d;
+}
+
+class ReadOnlyDb {
+ public:
+  explicit ReadOnlyDb(const std::string& path) {
+    rc_ = sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX, nullptr);
+    if (rc_ == SQLITE_OK) {
+      // Untrusted content: no schema-defined functions with side effects, no writable schema.
+      sqlite3_db_config(db_, SQLITE_DBCONFIG_TRUSTED_SCHEMA, 0, nullptr);
+      sqlite3_db_config(db_, SQLITE_DBCONFIG_DEFENSIVE, 1, nullptr);
+      sqlite3_progress_handler(db_, kProgressPeriod, &ReadOnlyDb::onProgress, this);
+    }
+  }
+  ~ReadOnlyDb() { sqlite3_close(db_); }
+  ReadOnlyDb(const ReadOnlyDb&) = delete;
+  ReadOnlyDb& operator=(const ReadOnlyDb&) = delete;
+
+  [[nodiscard]] bool ok() const { return rc_ == SQLITE_OK; }
+  [[nodiscard]] sqlite3* get() const { return db_; }
+  [[nodiscard]] std::string message() const { return db_ ? sqlite3_errmsg(db_) : "out of memory"; }
+  [[nodiscard]] bool interrupted() const { return progressCalls_ > kMaxProgressCalls; }
+
+ private:
+  static int onProgress(void* self) {
+    auto* db = static_cast<ReadOnlyDb*>(self);
+    return ++db->progressCalls_ > kMaxProgressCalls ? 1 : 0;
+  }
+  sqlite3* db_ = nullptr;
+  int rc_ = SQLITE_ERROR;
+  std::uint64_t progressCalls_ = 0;
+};
+
+/// A query's outcome: no row is not an error; a failed step is.
+struct Cell {
+  bool failed = false;
+  bool present = false;
+  std::int64_t integer = 0;
+  std::string text;
+};
+
+Cell queryOne(const ReadOnlyDb& db, const std::string& sql, const std::string& bindText = {}) {
+  Cell cell;
+  Statement s(db.get(), sql);
+  if (!s.ok()) {
+    cell.failed = true;
+    return cell;
+  }
+  if (!bindText.empty()) {
+    sqlite3_bind_text(s.get(), 1, bindText.data(), static_cast<int>(bindText.size()), SQLITE_TRANSIENT);
+  }
+  const int rc = sqlite3_step(s.get());
+  if (rc == SQLITE_ROW) {
+    cell.present = sqlite3_column_type(s.get(), 0) != SQLITE_NULL;
+    cell.integer = sqlite3_column_int64(s.get(), 0);
+    const unsigned char* t = sqlite3_column_text(s.get(), 0);
+    if (t != nullptr) cell.text.assign(reinterpret_cast<const char*>(t), static_cast<std::size_t>(sqlite3_column_bytes(s.get(), 0)));
+  } else if (rc != SQLITE_DONE) {
+    cell.failed = true;
+  }
+  return cell;
+}
+
+/// True when `name` is a real table (not a view: a view could compute anything).
+std::optional<bool> hasTable(const ReadOnlyDb& db, const char* name) {
+  const Cell c = queryOne(db, "SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = ?", name);
+  if (c.failed) return std::nullopt;
+  return c.integer > 0;
+}
+
+std::string failure(const ReadOnlyDb& db) {
+  if (db.interrupted()) return "the file is too large or too complex to summarise";
+  return db.message();
+}
+
+}  // namespace
+
+core::Result<RecordingSummary> readRecordingSummary(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (!fs::exists(st)) return diag(path, "no such file", kExpectedFile);
+  if (!fs::is_regular_file(st)) return diag(path, "not a regular file", kExpectedFile);
+
+  try {
+    ReadOnlyDb db(path);
+    if (!db.ok()) return diag(path, "cannot open: " + db.message());
+
+    // The first query reads the header: a non-SQLite file fails here.
+    for (const char* table : {"trajectory_data", "metadata"}) {
+      const auto has = hasTable(db, table);
+      if (!has) return diag(path, "not a readable SQLite database (" + failure(db) + ")");
+      if (!*has) return diag(path, std::string("SQLite database without a '") + table + "' table");
+    }
+
+    RecordingSummary sum;
+    sum.path = path;
+    auto meta = [&](const char* key) { return queryOne(db, "SELECT value FROM metadata WHERE key = ?", key); };
+
+    const Cell version = meta(recording::kKeyVersion);
+    if (version.failed) return diag(path, "cannot read metadata (" + failure(db) + ")");
+    if (!version.present) return diag(path, "metadata has no 'version'");
+    const auto v = recording::parseInt(version.text);
+    if (!v || *v < recording::kMinReadVersion || *v > recording::kMaxReadVersion) {
+      return diag(path, "unsupported format version '" + version.text.substr(0, 40) + "'");
+    }
+    sum.formatVersion = static_cast<int>(*v);
+
+    const Cell fps = meta(recording::kKeyFps);
+    if (fps.failed || !fps.present) return diag(path, "metadata has no 'fps'");
+    const auto fpsValue = recording::parseDouble(fps.text);
+    if (!fpsValue || !std::isfinite(*fpsValue) || *fpsValue <= 0.0) {
+      return diag(path, "metadata 'fps' is '" + fps.text.substr(0, 40) + "'", "a frame rate > 0 [1/s]");
+    }
+    sum.fps = *fpsValue;
+
+    const Cell rows = queryOne(db, "SELECT count(*) FROM trajectory_data");
+    if (rows.failed) return diag(path, "cannot read trajectory_data (" + failure(db) + ")");
+    sum.rows = static_cast<std::uint64_t>(std::max<std::int64_t>(0, rows.integer));
+
+    // Frames: one frame_data row per frame (versions 2 and 3); version 1 has only trajectories.
+    const auto hasFrameData = hasTable(db, "frame_data");
+    Cell frames;
+    if (hasFrameData.value_or(false)) {
+      frames = queryOne(db, "SELECT count(*) FROM frame_data");
+    } else {
+      frames = queryOne(db, "SELECT count(DISTINCT frame) FROM trajectory_data");
+    }
+    if (frames.failed) return diag(path, "cannot count frames (" + failure(db) + ")");
+    sum.frames = static_cast<std::uint64_t>(std::max<std::int64_t>(0, frames.integer));
+    sum.duration = static_cast<double>(sum.frames) / sum.fps;
+
+    // throng's provenance (absent in files from other writers).
+    sum.throngVersion = meta(recording::kKeyThrongVersion).text;
+    sum.scenarioName = meta(recording::kKeyScenarioName).text;
+    if (const auto seed = recording::parseInt(meta(recording::kKeySeed).text)) {
+      sum.seed = static_cast<std::uint64_t>(*seed);
+    }
+    sum.completed = meta(recording::kKeyCompleted).text == "1";
+
+    const bool hasAgents = hasTable(db, "throng_agents").value_or(false);
+    const Cell agents = hasAgents ? queryOne(db, "SELECT count(*) FROM throng_agents")
+                                  : queryOne(db, "SELECT count(DISTINCT id) FROM trajectory_data");
+    if (agents.failed) return diag(path, "cannot count agents (" + failure(db) + ")");
+    sum.agents = static_cast<std::uint64_t>(std::max<std::int64_t>(0, agents.integer));
+
+    if (hasAgents) {
+      Statement s(db.get(),
+                  "SELECT coalesce(population_id, '?'), count(*) FROM throng_agents "
+                  "GROUP BY population ORDER BY population");
+      if (!s.ok()) return diag(path, "cannot read throng_agents (" + failure(db) + ")");
+      int rc = SQLITE_ROW;
+      while ((rc = sqlite3_step(s.get())) == SQLITE_ROW) {
+        const unsigned char* t = sqlite3_column_text(s.get(), 0);
+        std::string name = t ? std::string(reinterpret_cast<const char*>(t),
+                                           static_cast<std::size_t>(sqlite3_column_bytes(s.get(), 0)))
+                             : std::string("?");
+        sum.populations.emplace_back(std::move(name),
+                                     static_cast<std::uint64_t>(std::max<sqlite3_int64>(0, sqlite3_column_int64(s.get(), 1))));
+      }
+      if (rc != SQLITE_DONE) return diag(path, "cannot read throng_agents (" + failure(db) + ")");
+    }
+    if (hasTable(db, "throng_events").value_or(false)) {
+      const Cell events = queryOne(db, "SELECT count(*) FROM throng_events");
+      if (events.failed) return diag(path, "cannot read throng_events (" + failure(db) + ")");
+      sum.events = static_cast<std::uint64_t>(std::max<std::int64_t>(0, events.integer));
+    }
+    return sum;
+  } catch (const std::exception& e) {
+    return diag(path, std::string("cannot read: ") + e.what());
+  }
+}
+
+}  // namespace throng::io

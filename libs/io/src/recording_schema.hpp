@@ -1,0 +1,156 @@
+// throng::io recording schema — the table layout shared by the recorder (writes) and the
+// recording reader (reads): JuPedSim's SQLite trajectory format, version 2, plus throng's own
+// `throng_*` tables. docs/recording-format.md documents every table; keep the two in step.
+//
+// The JuPedSim part reproduces python_modules/jupedsim/jupedsim/sqlite_serialization.py as it
+// was while DATABASE_VERSION was 2 (column types, NOT NULL, index names, metadata keys), because
+// PedPy's loaders (pedpy/io/jupedsim_loader.py) read versions 1 and 2 only.
+#pragma once
+#include <sqlite3.h>
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace throng::io::recording {
+
+inline constexpr int kFormatVersion = 2;  ///< metadata `version` written
+inline constexpr int kMinReadVersion = 1; ///< versions the reader accepts
+inline constexpr int kMaxReadVersion = 3;
+
+// Metadata keys (JuPedSim's first, then throng's).
+inline constexpr const char* kKeyVersion = "version";
+inline constexpr const char* kKeyFps = "fps";
+inline constexpr const char* kKeyXMin = "xmin";
+inline constexpr const char* kKeyXMax = "xmax";
+inline constexpr const char* kKeyYMin = "ymin";
+inline constexpr const char* kKeyYMax = "ymax";
+inline constexpr const char* kKeyThrongVersion = "throng_version";
+inline constexpr const char* kKeySchema = "throng_schema";
+inline constexpr const char* kKeyScenarioName = "throng_scenario_name";
+inline constexpr const char* kKeyScenario = "throng_scenario";
+inline constexpr const char* kKeySeed = "throng_seed";
+inline constexpr const char* kKeyDt = "throng_dt";
+inline constexpr const char* kKeyCompleted = "throng_completed";
+inline constexpr const char* kKeyFrames = "throng_frames";
+inline constexpr const char* kKeyDuration = "throng_duration";
+inline constexpr const char* kKeyAgents = "throng_agents";
+
+inline constexpr const char* kSchemaNote =
+    "JuPedSim trajectory format version 2 (trajectory_data, metadata, geometry, frame_data) "
+    "plus throng_* tables; see docs/recording-format.md";
+
+/// JuPedSim v2 tables, byte for byte the column definitions of its writer.
+inline constexpr const char* kCreateJuPedSim =
+    "CREATE TABLE trajectory_data ("
+    "   frame INTEGER NOT NULL,"
+    "   id INTEGER NOT NULL,"
+    "   pos_x REAL NOT NULL,"
+    "   pos_y REAL NOT NULL,"
+    "   ori_x REAL NOT NULL,"
+    "   ori_y REAL NOT NULL);"
+    "CREATE TABLE metadata(key TEXT NOT NULL UNIQUE PRIMARY KEY, value TEXT NOT NULL);"
+    "CREATE TABLE geometry("
+    "   hash INTEGER NOT NULL, "
+    "   wkt TEXT NOT NULL);"
+    "CREATE UNIQUE INDEX geometry_hash on geometry( hash);"
+    "CREATE TABLE frame_data("
+    "   frame INTEGER NOT NULL,"
+    "   geometry_hash INTEGER NOT NULL);"
+    "CREATE INDEX frame_id_idx ON trajectory_data(frame, id);";
+
+/// throng's own tables; JuPedSim's and PedPy's readers ignore them.
+inline constexpr const char* kCreateThrong =
+    "CREATE TABLE throng_frames("
+    "   frame INTEGER NOT NULL PRIMARY KEY,"
+    "   tick INTEGER NOT NULL,"
+    "   time REAL NOT NULL,"
+    "   agents INTEGER NOT NULL);"
+    "CREATE TABLE throng_agents("
+    "   id INTEGER NOT NULL PRIMARY KEY,"
+    "   population INTEGER,"
+    "   population_id TEXT,"
+    "   group_id INTEGER,"
+    "   spawn_frame INTEGER NOT NULL,"
+    "   spawn_tick INTEGER,"
+    "   exit_frame INTEGER,"
+    "   exit_tick INTEGER);"
+    "CREATE TABLE throng_events("
+    "   frame INTEGER NOT NULL,"
+    "   tick INTEGER NOT NULL,"
+    "   agent INTEGER NOT NULL,"
+    "   kind TEXT NOT NULL,"
+    "   a INTEGER NOT NULL,"
+    "   b INTEGER NOT NULL);"
+    "CREATE INDEX throng_events_frame_idx ON throng_events(frame);"
+    "CREATE TABLE throng_points("
+    "   idx INTEGER NOT NULL PRIMARY KEY,"
+    "   id TEXT NOT NULL,"
+    "   kind TEXT NOT NULL,"
+    "   x REAL NOT NULL,"
+    "   y REAL NOT NULL,"
+    "   radius REAL NOT NULL,"
+    "   wkt TEXT,"
+    "   stop INTEGER NOT NULL,"
+    "   ori_x REAL NOT NULL,"
+    "   ori_y REAL NOT NULL,"
+    "   action TEXT NOT NULL,"
+    "   action_duration REAL NOT NULL);"
+    "CREATE TABLE throng_populations("
+    "   idx INTEGER NOT NULL PRIMARY KEY,"
+    "   id TEXT NOT NULL,"
+    "   groups INTEGER NOT NULL,"
+    "   size_min INTEGER NOT NULL,"
+    "   size_max INTEGER NOT NULL,"
+    "   start REAL NOT NULL,"
+    "   speed_mean REAL NOT NULL,"
+    "   speed_sd REAL NOT NULL,"
+    "   speed_min REAL NOT NULL,"
+    "   speed_max REAL NOT NULL,"
+    "   radius REAL NOT NULL,"
+    "   wander INTEGER NOT NULL,"
+    "   goals TEXT NOT NULL,"
+    "   spawn_kind TEXT NOT NULL,"
+    "   spawn_wkt TEXT);";
+
+/// Owns a prepared statement; finalized on destruction.
+class Statement {
+ public:
+  Statement() = default;
+  Statement(sqlite3* db, std::string_view sql) {
+    rc_ = sqlite3_prepare_v2(db, sql.data(), static_cast<int>(sql.size()), &stmt_, nullptr);
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+  Statement(Statement&& o) noexcept : stmt_(o.stmt_), rc_(o.rc_) { o.stmt_ = nullptr; }
+  Statement& operator=(Statement&& o) noexcept {
+    if (this != &o) {
+      sqlite3_finalize(stmt_);
+      stmt_ = o.stmt_;
+      rc_ = o.rc_;
+      o.stmt_ = nullptr;
+    }
+    return *this;
+  }
+
+  [[nodiscard]] bool ok() const { return rc_ == SQLITE_OK && stmt_ != nullptr; }
+  [[nodiscard]] sqlite3_stmt* get() const { return stmt_; }
+
+ private:
+  sqlite3_stmt* stmt_ = nullptr;
+  int rc_ = SQLITE_ERROR;
+};
+
+/// FNV-1a (64 bit) of the WKT, as a signed integer: the `geometry.hash` key. JuPedSim uses
+/// Python's salted hash(); readers only join on it, so any stable 64-bit value fits.
+inline std::int64_t geometryHash(std::string_view wkt) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const unsigned char c : wkt) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return static_cast<std::int64_t>(h);
+}
+
+}  // namespace throng::io::recording

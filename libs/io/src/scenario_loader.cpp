@@ -1,0 +1,54 @@
+// throng::io scenario loading — the public entry points: text (or a file) → JsonDocument →
+// ParsedScenario → validated LoadedScenario. Reads the file; writes nothing. No exception escapes:
+// even an internal failure becomes a diagnostic.
+#include "throng/io/scenario_loader.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "json_document.hpp"
+#include "scenario_parser.hpp"
+#include "scenario_validator.hpp"
+
+namespace throng::io {
+
+core::Result<LoadedScenario> parseScenario(std::string_view text, const std::string& source,
+                                           const LoadOptions& options) {
+  try {
+    auto doc = JsonDocument::parse(text, source);
+    if (!doc.ok()) return std::move(doc).takeErrors();
+    core::Diagnostics diagnostics;
+    ParsedScenario parsed = parseScenarioJson(doc.value(), diagnostics);
+    std::shared_ptr<const nav::NavMesh> navmesh;
+    if (doc.value().root().is_object()) validateScenario(doc.value(), parsed, options, diagnostics, navmesh);
+    if (!diagnostics.empty()) {
+      // Report in file order: that is how people fix them.
+      std::stable_sort(diagnostics.begin(), diagnostics.end(), [](const core::Diagnostic& a, const core::Diagnostic& b) {
+        return a.line != b.line ? a.line < b.line : a.column < b.column;
+      });
+      return diagnostics;
+    }
+    return LoadedScenario{std::move(parsed.desc), std::move(navmesh), std::string(text)};
+  } catch (const std::exception& e) {
+    return core::Diagnostic{source, 0, 0, "", std::string("internal error while loading the scenario: ") + e.what(), "", ""};
+  }
+}
+
+core::Result<LoadedScenario> loadScenarioFile(const std::string& path, const LoadOptions& options) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    return core::Diagnostic{path, 0, 0, "", std::string("cannot open file: ") + std::strerror(errno),
+                            "a readable scenario file", ""};
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) {
+    return core::Diagnostic{path, 0, 0, "", "cannot read file", "a readable scenario file", ""};
+  }
+  return parseScenario(text.str(), path, options);
+}
+
+}  // namespace throng::io

@@ -1,0 +1,36 @@
+// throng::io scenario parser — JSON document → sim::ScenarioDesc, checking keys, types, ranges
+// and each polygon on its own (simple, non-degenerate). Cross-element checks (spawn inside the
+// walkable area, capacity, reachability) belong to scenario_validator. Reads a JsonDocument;
+// writes a ScenarioDesc and diagnostics. Private to throng_io.
+#pragma once
+#include <vector>
+
+#include "json_document.hpp"
+#include "throng/sim/scenario.hpp"
+
+namespace throng::io {
+
+/// The description plus which of its parts parsed cleanly. Every array element of the JSON is
+/// kept (with defaults where a field was bad) so that desc indices equal JSON array indices and
+/// "/points/3" names desc.points[3].
+struct ParsedScenario {
+  sim::ScenarioDesc desc;
+  std::vector<bool> walkableOk;    ///< per walkable polygon: a simple polygon with area
+  std::vector<bool> obstaclesOk;   ///< per obstacle polygon
+  std::vector<bool> pointsOk;      ///< per point: region parsed and valid
+  std::vector<bool> populationsOk; ///< per population: every field parsed (spawn and goals resolved)
+  bool structureOk = false;        ///< no diagnostic at all from the parser
+};
+
+/// Largest coordinate magnitude accepted [m]: float positions keep ~1 cm precision up to here.
+inline constexpr double kMaxCoordinate = 100000.0;
+/// Most agents a scenario may spawn in total (groups × largest group size, summed).
+inline constexpr double kMaxAgents = 10000000.0;
+
+[[nodiscard]] ParsedScenario parseScenarioJson(const JsonDocument& doc, core::Diagnostics& diagnostics);
+
+/// Removes a closing vertex equal to the first and consecutive duplicates; `original` receives,
+/// for each kept vertex, its index in the input.
+[[nodiscard]] core::Polygon normalizePolygon(const core::Polygon& poly, std::vector<std::size_t>& original);
+
+}  // namespace throng::io

@@ -1,0 +1,286 @@
+// throng::io scenario validator — cross-element checks on a parsed scenario, with Boost.Geometry
+// for polygon sets (walkable union minus obstacles) and the navmesh for reachability. Reads a
+// ParsedScenario; writes diagnostics (and the navmesh it built).
+#include "scenario_validator.hpp"
+
+#include <boost/geometry.hpp>
+#include <boost/geometry/geometries/multi_polygon.hpp>
+#include <boost/geometry/geometries/point_xy.hpp>
+#include <boost/geometry/geometries/polygon.hpp>
+#include <boost/geometry/algorithms/point_on_surface.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+namespace throng::io {
+
+namespace {
+
+namespace bg = boost::geometry;
+using BPoint = bg::model::d2::point_xy<double>;
+using BPolygon = bg::model::polygon<BPoint, false, true>;  // counter-clockwise, closed
+using BMulti = bg::model::multi_polygon<BPolygon>;
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+BPolygon toBoost(const core::Polygon& poly) {
+  BPolygon out;
+  for (const core::Vec2 p : poly) out.outer().emplace_back(p.x, p.y);
+  bg::correct(out);  // closes the ring and fixes the winding
+  return out;
+}
+
+BPolygon disc(core::Vec2 c, double r) {
+  constexpr int kSides = 24;
+  core::Polygon poly;
+  for (int i = 0; i < kSides; ++i) {
+    const double a = 2.0 * std::numbers::pi * i / kSides;
+    poly.emplace_back(static_cast<float>(c.x + r * std::cos(a)), static_cast<float>(c.y + r * std::sin(a)));
+  }
+  return toBoost(poly);
+}
+
+/// Where agents of one population appear: a region (polygon or disc) or one position.
+struct SpawnRegion {
+  bool isPosition = false;
+  BPolygon region;
+  core::Vec2 position;
+  std::string pointer;  ///< the JSON value that defines it
+};
+
+class Validator {
+ public:
+  Validator(const JsonDocument& doc, const ParsedScenario& parsed, core::Diagnostics& diags)
+      : doc_(doc), parsed_(parsed), desc_(parsed.desc), diags_(diags) {}
+
+  void run(const LoadOptions& options, std::shared_ptr<const nav::NavMesh>& navmesh) {
+    const bool geometryOk = !desc_.walkable.empty() &&
+                            std::all_of(parsed_.walkableOk.begin(), parsed_.walkableOk.end(), [](bool b) { return b; }) &&
+                            std::all_of(parsed_.obstaclesOk.begin(), parsed_.obstaclesOk.end(), [](bool b) { return b; });
+    if (!geometryOk) return;  // the parser already said why
+    if (!buildAreas()) return;
+    std::vector<std::optional<core::Vec2>> starts(desc_.populations.size());
+    for (std::size_t i = 0; i < desc_.populations.size(); ++i) {
+      if (i < parsed_.populationsOk.size() && parsed_.populationsOk[i]) starts[i] = checkSpawn(i);
+    }
+    if (options.checkReachability && diags_.empty()) checkReachability(starts, navmesh);
+  }
+
+ private:
+  void error(const std::string& ptr, std::string what, std::string expected, std::string hint = {}) {
+    diags_.push_back(doc_.diagnostic(ptr, std::move(what), std::move(expected), std::move(hint)));
+  }
+
+  bool buildAreas() {
+    try {
+      for (const auto& poly : desc_.walkable) {
+        BMulti next;
+        bg::union_(walk_, toBoost(poly), next);
+        walk_ = std::move(next);
+      }
+      free_ = walk_;
+      for (const auto& poly : desc_.obstacles) {
+        obstacles_.push_back(toBoost(poly));
+        BMulti next;
+        bg::difference(free_, obstacles_.back(), next);
+        free_ = std::move(next);
+      }
+    } catch (const std::exception& e) {
+      error("/walkable", std::string("cannot combine the walkable and obstacle polygons: ") + e.what(),
+            "simple polygons with well-separated vertices");
+      return false;
+    }
+    if (bg::area(free_) < 1e-6) {
+      error(desc_.obstacles.empty() ? "/walkable" : "/obstacles", "nothing walkable remains after removing obstacles",
+            "walkable area not entirely covered by /obstacles");
+      return false;
+    }
+    return true;
+  }
+
+  SpawnRegion spawnRegion(std::size_t i) const {
+    const sim::PopulationDesc& pop = desc_.populations[i];
+    const std::string base = "/populations/" + std::to_string(i) + "/spawn";
+    SpawnRegion s;
+    switch (pop.spawn.kind) {
+      case sim::SpawnKind::Polygon:
+        s.region = toBoost(pop.spawn.polygon);
+        s.pointer = base + "/polygon";
+        break;
+      case sim::SpawnKind::Position:
+        s.isPosition = true;
+        s.position = pop.spawn.position;
+        s.pointer = base + "/position";
+        break;
+      case sim::SpawnKind::Point: {
+        const sim::PointDesc& p = desc_.points[pop.spawn.point];
+        s.pointer = base + "/point";
+        if (!p.polygon.empty()) s.region = toBoost(p.polygon);
+        else s.region = disc(p.position, p.radius);
+        break;
+      }
+    }
+    return s;
+  }
+
+  /// Checks one population's spawn; returns a point inside it to start reachability from.
+  std::optional<core::Vec2> checkSpawn(std::size_t i) {
+    const sim::PopulationDesc& pop = desc_.populations[i];
+    if (pop.spawn.kind == sim::SpawnKind::Point &&
+        (pop.spawn.point >= parsed_.pointsOk.size() || !parsed_.pointsOk[pop.spawn.point])) {
+      return std::nullopt;  // the point's own diagnostic explains it
+    }
+    const SpawnRegion s = spawnRegion(i);
+    const std::string expected = "a spawn inside /walkable and clear of /obstacles";
+    if (s.isPosition) {
+      const BPoint p(s.position.x, s.position.y);
+      const std::string where = "(" + num(s.position.x) + ", " + num(s.position.y) + ")";
+      if (!bg::within(p, walk_)) {
+        error(s.pointer, "spawn position " + where + " is outside the walkable area", expected);
+        return std::nullopt;
+      }
+      for (std::size_t k = 0; k < obstacles_.size(); ++k) {
+        if (bg::within(p, obstacles_[k])) {
+          error(s.pointer, "spawn position " + where + " is inside obstacle /obstacles/" + std::to_string(k), expected);
+          return std::nullopt;
+        }
+      }
+      return s.position;
+    }
+    BMulti inWalk, inFree;
+    bg::intersection(s.region, walk_, inWalk);
+    bg::intersection(s.region, free_, inFree);
+    const double area = bg::area(s.region);
+    const double walkArea = bg::area(inWalk);
+    const double freeArea = bg::area(inFree);
+    const double tolerance = std::max(1e-6, 0.01 * area);
+    if (area - walkArea > tolerance) {
+      error(s.pointer,
+            "spawn area lies " + std::string(walkArea < 1e-6 ? "entirely" : "partly") + " outside the walkable area (" +
+                num(area - walkArea) + " of " + num(area) + " m² outside)",
+            expected);
+    } else if (walkArea - freeArea > tolerance) {
+      std::string which;
+      for (std::size_t k = 0; k < obstacles_.size(); ++k) {
+        BMulti overlap;
+        bg::intersection(s.region, obstacles_[k], overlap);
+        if (bg::area(overlap) > 1e-9) which += (which.empty() ? "/obstacles/" : ", /obstacles/") + std::to_string(k);
+      }
+      error(s.pointer,
+            "spawn area overlaps obstacle " + which + " (" + num(walkArea - freeArea) + " of " + num(area) + " m² covered)",
+            expected);
+    }
+    if (freeArea < 1e-6) return std::nullopt;
+    const double agents = double(pop.groups) * pop.sizeMax;
+    const double needed = agents * std::numbers::pi * double(pop.radius) * pop.radius / kSpawnPackingFactor;
+    if (freeArea < needed) {
+      error(s.pointer,
+            "spawn area of " + num(freeArea) + " m² is too small for " + num(agents) + " agents of radius " +
+                num(pop.radius) + " m",
+            "at least " + num(needed) + " m² (agents × π r² / packing factor " + num(kSpawnPackingFactor) + ")",
+            "enlarge the spawn area or spawn fewer groups");
+    }
+    BPoint inside;
+    try {
+      bg::point_on_surface(inFree, inside);
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+    return core::Vec2(static_cast<float>(inside.x()), static_cast<float>(inside.y()));
+  }
+
+  /// A point inside a goal's region to route to.
+  core::Vec2 goalTarget(const sim::PointDesc& p) const {
+    if (p.polygon.empty() || core::pointInPolygon(p.polygon, p.position)) return p.position;
+    BPoint inside;
+    try {
+      bg::point_on_surface(toBoost(p.polygon), inside);
+    } catch (const std::exception&) {
+      return p.position;
+    }
+    return core::Vec2(static_cast<float>(inside.x()), static_cast<float>(inside.y()));
+  }
+
+  void checkReachability(const std::vector<std::optional<core::Vec2>>& starts, std::shared_ptr<const nav::NavMesh>& navmesh) {
+    nav::NavMeshConfig config;
+    config.agentRadius = desc_.maxRadius();
+    config.cellSize = desc_.navCellSize;
+    auto built = nav::NavMesh::build(desc_.walkable, desc_.obstacles, config);
+    if (!built.ok()) {
+      for (core::Diagnostic d : built.errors()) {
+        if (d.source.empty()) {
+          const SourcePos pos = doc_.position("/walkable");
+          d.source = doc_.source();
+          d.line = pos.line;
+          d.column = pos.column;
+          if (d.pointer.empty()) d.pointer = "/walkable";
+        }
+        diags_.push_back(std::move(d));
+      }
+      return;
+    }
+    navmesh = built.value();
+    nav::NavQuery query(navmesh);
+    const float width = 2.0f * config.agentRadius;
+    for (std::size_t i = 0; i < desc_.populations.size(); ++i) {
+      if (!starts[i]) continue;
+      const sim::PopulationDesc& pop = desc_.populations[i];
+      const std::string ptr = "/populations/" + std::to_string(i);
+      const SpawnRegion s = spawnRegion(i);
+      double searchRadius = 1.0;
+      if (!s.isPosition) {
+        const auto box = bg::return_envelope<bg::model::box<BPoint>>(s.region);
+        searchRadius = std::max(searchRadius, bg::distance(box.min_corner(), box.max_corner()));
+      }
+      const auto start = query.nearest(*starts[i], static_cast<float>(searchRadius));
+      if (!start) {
+        error(s.pointer, "no walkable area at least " + num(width) + " m wide (2 × agent radius " + num(config.agentRadius) +
+                             " m) near the spawn",
+              "a spawn on or next to walkable area wide enough for the agents");
+        continue;
+      }
+      for (std::size_t g = 0; g < pop.goals.size(); ++g) {
+        const sim::PointDesc& goal = desc_.points[pop.goals[g]];
+        const std::string gptr = ptr + "/goals/" + std::to_string(g);
+        const float reach = std::max(goal.radius, 0.5f * static_cast<float>(core::length(core::bounds(goal.polygon).max -
+                                                                                        core::bounds(goal.polygon).min))) +
+                            1.0f;
+        const auto target = query.nearest(goalTarget(goal), goal.polygon.empty() ? reach : std::max(reach, 1.0f));
+        if (!target || !query.reachable(start->first, target->first)) {
+          error(gptr,
+                "point \"" + goal.id + "\" cannot be reached from the spawn area of population \"" + pop.id + "\"",
+                "a goal connected to the spawn by walkable area at least " + num(width) + " m wide (2 × agent radius)",
+                "check /obstacles for walls closing the way");
+        }
+      }
+    }
+  }
+
+  const JsonDocument& doc_;
+  const ParsedScenario& parsed_;
+  const sim::ScenarioDesc& desc_;
+  core::Diagnostics& diags_;
+  BMulti walk_;
+  BMulti free_;
+  std::vector<BPolygon> obstacles_;
+};
+
+}  // namespace
+
+void validateScenario(const JsonDocument& doc, const ParsedScenario& parsed, const LoadOptions& options,
+                      core::Diagnostics& diagnostics, std::shared_ptr<const nav::NavMesh>& navmesh) {
+  core::Diagnostics own;
+  try {
+    Validator(doc, parsed, own).run(options, navmesh);
+  } catch (const std::exception& e) {
+    own.push_back(doc.diagnostic("", std::string("cannot validate the geometry: ") + e.what(), "simple polygons"));
+  }
+  diagnostics.insert(diagnostics.end(), own.begin(), own.end());
+}
+
+}  // namespace throng::io

@@ -1,0 +1,25 @@
+// throng::io scenario validator — the semantic checks that need several parts of a parsed
+// scenario at once: spawns inside the walkable area and clear of obstacles, spawn areas large
+// enough for their agents, and (optionally) every goal reachable on the navmesh from its spawn.
+// Reads ParsedScenario and the JsonDocument (for positions); writes diagnostics and the navmesh.
+// Private to throng_io.
+#pragma once
+#include <memory>
+
+#include "json_document.hpp"
+#include "scenario_parser.hpp"
+#include "throng/io/scenario_loader.hpp"
+
+namespace throng::io {
+
+/// Packing factor for spawn capacity: at most this fraction of a spawn area is covered by bodies
+/// (random non-overlapping placement jams near 0.55; 0.5 leaves the spawner room).
+inline constexpr double kSpawnPackingFactor = 0.5;
+
+/// Appends one diagnostic per problem. Runs each check only where its inputs parsed cleanly;
+/// builds the navmesh (stored in `navmesh`) only when reachability is asked for and nothing else
+/// is wrong.
+void validateScenario(const JsonDocument& doc, const ParsedScenario& parsed, const LoadOptions& options,
+                      core::Diagnostics& diagnostics, std::shared_ptr<const nav::NavMesh>& navmesh);
+
+}  // namespace throng::io

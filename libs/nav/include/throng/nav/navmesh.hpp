@@ -1,0 +1,102 @@
+// throng::nav::NavMesh — the walkable area as a Recast/Detour navigation mesh, eroded by the agent
+// radius, tiled so that large worlds (hundreds of metres, 10^5..10^6 agents) fit. Built once when
+// a World is built; read-only afterwards, so any number of NavQuery objects (one per thread) can
+// query it at once.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "throng/core/geometry.hpp"
+#include "throng/core/result.hpp"
+
+class dtNavMesh;
+class dtNavMeshQuery;
+class dtQueryFilter;
+
+namespace throng::nav {
+
+using core::Polygon;
+using core::Vec2;
+
+/// Detour polygon reference (opaque); 0 = none.
+using PolyRef = std::uint64_t;
+
+struct NavMeshConfig {
+  float agentRadius = 0.2f;  ///< erosion radius [m] [Limit: >= 0]
+  float cellSize = 0.0f;     ///< voxel size [m]; 0 = agentRadius/2 clamped to [0.05, 0.3]
+  float tileSize = 48.0f;    ///< tile edge [m] [Limit: > 4 * cellSize]
+};
+
+class NavMesh {
+ public:
+  /// Builds from walkable polygons (any winding) minus obstacle polygons. Fails with a
+  /// diagnostic when nothing walkable remains after erosion. `source` names the input in diagnostics.
+  static core::Result<std::shared_ptr<const NavMesh>> build(std::span<const Polygon> walkable,
+                                                            std::span<const Polygon> obstacles,
+                                                            const NavMeshConfig& config);
+  ~NavMesh();
+  NavMesh(const NavMesh&) = delete;
+  NavMesh& operator=(const NavMesh&) = delete;
+
+  [[nodiscard]] const dtNavMesh* detour() const { return mesh_; }
+  [[nodiscard]] const NavMeshConfig& config() const { return config_; }
+  [[nodiscard]] core::Aabb bounds() const { return bounds_; }
+  [[nodiscard]] std::size_t polygonCount() const;
+  /// Outline of every polygon (for viewers and debugging), in the plane.
+  [[nodiscard]] std::vector<Polygon> polygons() const;
+
+ private:
+  NavMesh() = default;
+  dtNavMesh* mesh_ = nullptr;
+  NavMeshConfig config_;
+  core::Aabb bounds_;
+};
+
+enum class PathStatus : std::uint8_t {
+  Complete,  ///< the path reaches the target
+  Partial,   ///< target unreachable: the path ends at the closest reachable point (an answer, not a failure)
+  Failed,    ///< start not on the mesh
+};
+
+/// Queries on one NavMesh. Not thread-safe: use one per thread. Results are a pure function of the
+/// inputs, so which thread's query answers never changes a trajectory.
+class NavQuery {
+ public:
+  explicit NavQuery(std::shared_ptr<const NavMesh> mesh, int maxNodes = 4096);
+  ~NavQuery();
+  NavQuery(const NavQuery&) = delete;
+  NavQuery& operator=(const NavQuery&) = delete;
+
+  /// Nearest point on the mesh within `searchRadius` metres of p (horizontal), if any.
+  [[nodiscard]] std::optional<std::pair<Vec2, PolyRef>> nearest(Vec2 p, float searchRadius = 2.0f) const;
+
+  /// String-pulled path from `from` to `to`: `corners` receives the turning points after `from`,
+  /// ending with the (possibly clamped) target.
+  PathStatus findPath(Vec2 from, Vec2 to, std::vector<Vec2>& corners) const;
+
+  /// Moves from `from` (on polygon `ref`) toward `to`, sliding along the mesh boundary (Detour's
+  /// moveAlongSurface); returns the reached point and updates `ref`. Keeps agents inside the mesh.
+  Vec2 moveAlongSurface(Vec2 from, Vec2 to, PolyRef& ref) const;
+
+  /// Whether `to` is reachable from `from` (both snapped within 2 m).
+  [[nodiscard]] bool reachable(Vec2 from, Vec2 to) const;
+
+  /// True when the straight segment a→b stays on the mesh (Detour raycast).
+  [[nodiscard]] bool visible(Vec2 a, Vec2 b) const;
+
+  /// Uniformly random point on the mesh (area-weighted), drawn from `r01` values in [0,1):
+  /// deterministic for given inputs.
+  [[nodiscard]] std::optional<Vec2> randomPoint(float r0, float r1, float r2) const;
+
+  [[nodiscard]] const NavMesh& mesh() const { return *mesh_; }
+
+ private:
+  std::shared_ptr<const NavMesh> mesh_;
+  dtNavMeshQuery* query_ = nullptr;
+  dtQueryFilter* filter_ = nullptr;
+};
+
+}  // namespace throng::nav

@@ -1,0 +1,44 @@
+// throng::nav::PathQueue — time-sliced path planning (after DetourPathQueue): requests queue up and
+// each tick's `update` spends at most a fixed budget of search iterations, so thousands of agents
+// re-planning in one tick never stall it. Results are polled by ticket; unread ones expire.
+// Requests are served strictly in submission order, so the outcome is deterministic.
+#pragma once
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <vector>
+
+#include "throng/nav/navmesh.hpp"
+
+namespace throng::nav {
+
+using PathTicket = std::uint64_t;  ///< 0 = none
+
+enum class TicketState : std::uint8_t { Unknown, Pending, Done };
+
+struct PathResult {
+  PathStatus status = PathStatus::Failed;
+  std::vector<Vec2> corners;
+};
+
+class PathQueue {
+ public:
+  explicit PathQueue(std::shared_ptr<const NavMesh> mesh, int maxNodes = 4096);
+  ~PathQueue();
+
+  /// Queues a request; returns its ticket.
+  PathTicket request(Vec2 from, Vec2 to);
+  /// Runs queued searches until `iterationBudget` Detour node expansions are spent (at least one
+  /// request progresses per call). Returns how many requests completed.
+  int update(int iterationBudget);
+  [[nodiscard]] TicketState state(PathTicket ticket) const;
+  /// Takes a finished result (the ticket is then forgotten). Precondition: state == Done.
+  PathResult take(PathTicket ticket);
+  [[nodiscard]] std::size_t pending() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace throng::nav

@@ -1,0 +1,246 @@
+// throng::nav::NavMesh — builds the tiled Recast/Detour navmesh of the walkable area (walkable
+// polygons minus obstacles, eroded by the agent radius) on the plane y = 0. Reads the polygons and
+// config once; the result is immutable. Tiles build in parallel (oneTBB) and are added to the
+// dtNavMesh in tile order, so polygon references are identical for any thread count.
+#include "throng/nav/navmesh.hpp"
+
+#include <DetourAlloc.h>
+#include <DetourCommon.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "navmesh_data.hpp"
+#include "tile_builder.hpp"
+
+namespace throng::nav {
+namespace {
+
+constexpr const char* kSource = "navmesh";
+// Detour packs tile index, polygon index and a salt into a dtPolyRef; the salt needs >= 10 bits.
+constexpr int kRefBits = static_cast<int>(sizeof(dtPolyRef) * 8);
+constexpr int kMinSaltBits = 10;
+
+core::Diagnostic diag(std::string pointer, std::string what, std::string expected, std::string hint = {}) {
+  core::Diagnostic d;
+  d.source = kSource;
+  d.pointer = std::move(pointer);
+  d.what = std::move(what);
+  d.expected = std::move(expected);
+  d.hint = std::move(hint);
+  return d;
+}
+
+std::string metres(float v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g m", static_cast<double>(v));
+  return buf;
+}
+
+int ilog2Ceil(unsigned v) {
+  int bits = 0;
+  while ((1u << bits) < v) ++bits;
+  return bits;
+}
+
+void validatePolygons(std::span<const Polygon> polys, const char* name, core::Diagnostics& errors) {
+  for (std::size_t i = 0; i < polys.size(); ++i) {
+    const std::string pointer = std::string("/") + name + "/" + std::to_string(i);
+    if (polys[i].size() < 3) {
+      errors.push_back(diag(pointer, "polygon has " + std::to_string(polys[i].size()) + " vertices",
+                            "at least 3 vertices"));
+      continue;
+    }
+    for (const Vec2& p : polys[i]) {
+      if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
+        errors.push_back(diag(pointer, "polygon has a non-finite coordinate", "finite coordinates in metres"));
+        break;
+      }
+    }
+  }
+}
+
+// Area of polygon `poly` of `tile` in the xz-plane [m²].
+double polyArea(const dtMeshTile& tile, const dtPoly& poly) {
+  double area = 0.0;
+  for (int k = 0, j = poly.vertCount - 1; k < poly.vertCount; j = k++) {
+    const float* a = &tile.verts[poly.verts[j] * 3];
+    const float* b = &tile.verts[poly.verts[k] * 3];
+    area += static_cast<double>(a[0]) * b[2] - static_cast<double>(b[0]) * a[2];
+  }
+  return std::abs(area) * 0.5;
+}
+
+}  // namespace
+
+core::Result<std::shared_ptr<const NavMesh>> NavMesh::build(std::span<const Polygon> walkable,
+                                                          std::span<const Polygon> obstacles,
+                                                          const NavMeshConfig& config) {
+  core::Diagnostics errors;
+  NavMeshConfig cfg = config;
+  if (!std::isfinite(cfg.agentRadius) || cfg.agentRadius < 0.0f)
+    errors.push_back(diag("/agentRadius", "agent radius is " + metres(cfg.agentRadius), "a radius >= 0 m"));
+  if (cfg.cellSize == 0.0f) cfg.cellSize = std::clamp(cfg.agentRadius * 0.5f, 0.05f, 0.3f);
+  if (!std::isfinite(cfg.cellSize) || cfg.cellSize < 0.01f)
+    errors.push_back(diag("/cellSize", "cell size is " + metres(cfg.cellSize), "a cell size >= 0.01 m (0 = automatic)"));
+  else if (!std::isfinite(cfg.tileSize) || cfg.tileSize <= 4.0f * cfg.cellSize)
+    errors.push_back(diag("/tileSize", "tile size is " + metres(cfg.tileSize),
+                          "a tile size > 4 cell sizes (" + metres(4.0f * cfg.cellSize) + ")"));
+  if (walkable.empty()) errors.push_back(diag("/walkable", "no walkable polygons", "at least one walkable polygon"));
+  validatePolygons(walkable, "walkable", errors);
+  validatePolygons(obstacles, "obstacles", errors);
+  if (!errors.empty()) return errors;
+
+  const float cs = cfg.cellSize;
+  const int radiusCells = static_cast<int>(std::ceil(cfg.agentRadius / cs - 1e-4f));
+  if (radiusCells >= 250) {
+    return diag("/agentRadius", "agent radius " + metres(cfg.agentRadius) + " is " + std::to_string(radiusCells) +
+                                    " cells of " + metres(cs),
+                "fewer than 250 cells", "raise the cell size");
+  }
+
+  core::Aabb box;
+  for (const Polygon& poly : walkable) {
+    for (const Vec2& p : poly) {
+      box.min = {std::min(box.min.x, p.x), std::min(box.min.y, p.y)};
+      box.max = {std::max(box.max.x, p.x), std::max(box.max.y, p.y)};
+    }
+  }
+  detail::TileSettings settings;
+  settings.cellSize = cs;
+  settings.tileCells = std::max(8, static_cast<int>(std::floor(cfg.tileSize / cs)));
+  settings.borderCells = radiusCells + 3;
+  settings.radiusCells = radiusCells;
+  settings.agentRadius = cfg.agentRadius;
+  settings.originX = box.min.x;
+  settings.originY = box.min.y;
+  const float tileWidth = static_cast<float>(settings.tileCells) * cs;
+  const int tilesX = std::max(1, static_cast<int>(std::ceil((box.max.x - box.min.x) / tileWidth)));
+  const int tilesY = std::max(1, static_cast<int>(std::ceil((box.max.y - box.min.y) / tileWidth)));
+  const long long tileCount = static_cast<long long>(tilesX) * tilesY;
+  const int tileBits = ilog2Ceil(static_cast<unsigned>(std::min<long long>(tileCount, 1u << 30)));
+  if (tileBits > kRefBits - kMinSaltBits - 4) {
+    return diag("/tileSize", "the world needs " + std::to_string(tilesX) + " x " + std::to_string(tilesY) +
+                                 " tiles of " + metres(tileWidth) + ", too many for Detour's " +
+                                 std::to_string(kRefBits) + "-bit polygon references",
+                "at most " + std::to_string(1 << (kRefBits - kMinSaltBits - 4)) + " tiles", "raise tileSize");
+  }
+
+  const auto walkRaster = detail::prepare(walkable);
+  const auto obstacleRaster = detail::prepare(obstacles);
+  std::vector<detail::TileOutput> tiles(static_cast<std::size_t>(tileCount));
+  tbb::parallel_for(std::size_t{0}, tiles.size(), [&](std::size_t i) {
+    const int tx = static_cast<int>(i % static_cast<std::size_t>(tilesX));
+    const int ty = static_cast<int>(i / static_cast<std::size_t>(tilesX));
+    tiles[i] = detail::buildTile(settings, tx, ty, walkRaster, obstacleRaster);
+  });
+  auto freeAll = [&tiles] {
+    for (auto& t : tiles) {
+      if (t.data) dtFree(t.data);
+      t.data = nullptr;
+    }
+  };
+
+  int maxPolys = 0;
+  std::size_t usedTiles = 0;
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    if (!tiles[i].error.empty()) {
+      errors.push_back(diag("", "tile (" + std::to_string(i % tilesX) + ", " + std::to_string(i / tilesX) +
+                                    "): " + tiles[i].error,
+                            "a successful Recast build"));
+    }
+    maxPolys = std::max(maxPolys, tiles[i].polyCount);
+    if (tiles[i].data) ++usedTiles;
+  }
+  if (!errors.empty()) {
+    freeAll();
+    return errors;
+  }
+  if (usedTiles == 0) {
+    return diag("/walkable",
+                "nothing walkable remains after eroding by the agent radius " + metres(cfg.agentRadius),
+                "walkable areas wider than " + metres(2.0f * cfg.agentRadius));
+  }
+  const int polyBits = std::max(1, ilog2Ceil(static_cast<unsigned>(maxPolys)));
+  if (tileBits + polyBits > kRefBits - kMinSaltBits) {
+    freeAll();
+    return diag("/tileSize",
+                "a tile holds up to " + std::to_string(maxPolys) + " polygons and there are " +
+                    std::to_string(tileCount) + " tiles: too many for Detour's " + std::to_string(kRefBits) +
+                    "-bit polygon references",
+                "tile bits + polygon bits <= " + std::to_string(kRefBits - kMinSaltBits),
+                "change tileSize (smaller tiles hold fewer polygons, larger tiles mean fewer tiles)");
+  }
+
+  auto* mesh = new detail::NavMeshData();
+  dtNavMeshParams params{};
+  params.orig[0] = settings.originX;
+  params.orig[1] = 0.0f;
+  params.orig[2] = settings.originY;
+  params.tileWidth = tileWidth;
+  params.tileHeight = tileWidth;
+  params.maxTiles = 1 << tileBits;
+  params.maxPolys = 1 << polyBits;
+  if (dtStatusFailed(mesh->init(&params))) {
+    delete mesh;
+    freeAll();
+    return diag("", "Detour could not initialise a navmesh of " + std::to_string(tileCount) + " tiles",
+                "a successful dtNavMesh::init");
+  }
+  for (auto& t : tiles) {
+    if (!t.data) continue;
+    if (dtStatusFailed(mesh->addTile(t.data, t.size, DT_TILE_FREE_DATA, 0, nullptr))) {
+      delete mesh;
+      freeAll();
+      return diag("", "Detour rejected a tile", "a successful dtNavMesh::addTile");
+    }
+    t.data = nullptr;  // owned by the mesh now
+  }
+
+  // Area table for randomPoint, in tile-index then polygon-index order.
+  const dtNavMesh& constMesh = *mesh;
+  double total = 0.0;
+  for (int i = 0; i < constMesh.getMaxTiles(); ++i) {
+    const dtMeshTile* tile = constMesh.getTile(i);
+    if (!tile || !tile->header) continue;
+    const dtPolyRef base = constMesh.getPolyRefBase(tile);
+    for (int p = 0; p < tile->header->polyCount; ++p) {
+      const dtPoly& poly = tile->polys[p];
+      if (poly.getType() != DT_POLYTYPE_GROUND) continue;
+      total += polyArea(*tile, poly);
+      mesh->areas.push_back({base | static_cast<dtPolyRef>(p), total});
+    }
+  }
+
+  std::shared_ptr<NavMesh> out(new NavMesh());
+  out->mesh_ = mesh;
+  out->config_ = cfg;
+  out->bounds_ = box;
+  return std::shared_ptr<const NavMesh>(std::move(out));
+}
+
+NavMesh::~NavMesh() { delete static_cast<detail::NavMeshData*>(mesh_); }
+
+std::size_t NavMesh::polygonCount() const { return detail::data(*this).areas.size(); }
+
+std::vector<Polygon> NavMesh::polygons() const {
+  std::vector<Polygon> out;
+  const dtNavMesh& mesh = *mesh_;
+  for (int i = 0; i < mesh.getMaxTiles(); ++i) {
+    const dtMeshTile* tile = mesh.getTile(i);
+    if (!tile || !tile->header) continue;
+    for (int p = 0; p < tile->header->polyCount; ++p) {
+      const dtPoly& poly = tile->polys[p];
+      if (poly.getType() != DT_POLYTYPE_GROUND) continue;
+      Polygon outline;
+      outline.reserve(poly.vertCount);
+      for (int k = 0; k < poly.vertCount; ++k) outline.push_back(detail::fromRecast(&tile->verts[poly.verts[k] * 3]));
+      out.push_back(std::move(outline));
+    }
+  }
+  return out;
+}
+
+}  // namespace throng::nav

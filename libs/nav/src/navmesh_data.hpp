@@ -1,0 +1,54 @@
+// throng::nav (private) — what a built NavMesh owns besides Detour's tiles: the area-weighted
+// polygon table randomPoint draws from. The public NavMesh holds only a dtNavMesh*; the object
+// behind it is a NavMeshData, so this table is built once with the mesh and shared read-only by
+// every NavQuery (constructing a NavQuery stays cheap). Also the helpers shared by NavQuery and
+// PathQueue, so a queued path is exactly the path NavQuery::findPath would return.
+#pragma once
+#include <DetourNavMesh.h>
+#include <DetourNavMeshQuery.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "throng/nav/navmesh.hpp"
+
+namespace throng::nav::detail {
+
+/// One walkable polygon, in deterministic (tile index, polygon index) order.
+struct AreaEntry {
+  dtPolyRef ref = 0;
+  double cumulativeArea = 0.0;  ///< sum of areas of this and all earlier polygons [m²]
+};
+
+struct NavMeshData : dtNavMesh {
+  std::vector<AreaEntry> areas;  ///< cumulative areas, increasing; back().cumulativeArea = total
+};
+
+inline const NavMeshData& data(const NavMesh& mesh) {
+  return *static_cast<const NavMeshData*>(mesh.detour());
+}
+
+/// Half extents used to snap path ends onto the mesh: 2 m horizontally, 1 m vertically.
+inline constexpr float kSnapExtents[3] = {2.0f, 1.0f, 2.0f};
+/// Longest polygon corridor a path may have; longer searches return Partial.
+inline constexpr int kMaxPathPolys = 4096;
+/// Most corners a straight path may have.
+inline constexpr int kMaxStraightCorners = 1024;
+
+inline void toRecast(Vec2 p, float out[3]) {
+  out[0] = p.x;
+  out[1] = 0.0f;
+  out[2] = p.y;
+}
+inline Vec2 fromRecast(const float* v) { return {v[0], v[2]}; }
+
+/// Nearest polygon to p within the half extents; 0 when none. `snapped` receives the point on it.
+dtPolyRef snap(const dtNavMeshQuery& query, const dtQueryFilter& filter, Vec2 p, const float extents[3],
+               float snapped[3]);
+
+/// String-pulls a polygon corridor from `start` (on path[0]) toward `end` into corners (start
+/// excluded). `partial` is whether the corridor failed to reach the target polygon.
+PathStatus straighten(const dtNavMeshQuery& query, const float start[3], const float end[3],
+                      const dtPolyRef* path, int pathCount, bool partial, std::vector<Vec2>& corners);
+
+}  // namespace throng::nav::detail

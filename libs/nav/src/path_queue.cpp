@@ -1,0 +1,155 @@
+// throng::nav::PathQueue — time-sliced path planning (after DetourPathQueue). Requests wait in a
+// FIFO; update() runs Detour's sliced A* (init/update/finalizeSlicedFindPath) on the oldest one,
+// spending at most the iteration budget across as many requests as it covers, then string-pulls the
+// corridor exactly as NavQuery::findPath does, so a queued result equals a direct query.
+//
+// Result lifetime: a finished result stays until take() or until kResultLifetimeUpdates (64)
+// further update() calls have passed without it being taken; then its ticket becomes Unknown.
+// Writes only its own queue, Detour node pool and results; deterministic (FIFO order, no clocks).
+#include "throng/nav/path_queue.hpp"
+
+#include <algorithm>
+#include <map>
+
+#include "navmesh_data.hpp"
+
+namespace throng::nav {
+namespace {
+
+/// Updates an unread result survives before it expires.
+constexpr std::uint64_t kResultLifetimeUpdates = 64;
+
+struct Request {
+  PathTicket ticket = 0;
+  Vec2 from;
+  Vec2 to;
+};
+
+struct Finished {
+  PathResult result;
+  std::uint64_t doneAtUpdate = 0;
+};
+
+}  // namespace
+
+struct PathQueue::Impl {
+  std::shared_ptr<const NavMesh> mesh;
+  dtNavMeshQuery* query = nullptr;
+  dtQueryFilter filter;
+  std::deque<Request> waiting;
+  // The search in progress (sliced), if any.
+  bool active = false;
+  Request current;
+  float start[3] = {};
+  float end[3] = {};
+  dtPolyRef endRef = 0;
+  std::map<PathTicket, Finished> finished;
+  PathTicket nextTicket = 1;
+  std::uint64_t updates = 0;
+  std::vector<dtPolyRef> polys = std::vector<dtPolyRef>(detail::kMaxPathPolys);
+
+  ~Impl() { dtFreeNavMeshQuery(query); }
+
+  void finish(PathTicket ticket, PathResult result) {
+    finished[ticket] = Finished{std::move(result), updates};
+  }
+
+  // Starts the oldest waiting request. Returns false when it finished at once (not on the mesh).
+  bool begin() {
+    current = waiting.front();
+    waiting.pop_front();
+    const dtPolyRef startRef = detail::snap(*query, filter, current.from, detail::kSnapExtents, start);
+    if (startRef == 0) {
+      finish(current.ticket, PathResult{PathStatus::Failed, {}});
+      return false;
+    }
+    endRef = detail::snap(*query, filter, current.to, detail::kSnapExtents, end);
+    if (endRef == 0) {
+      finish(current.ticket, PathResult{PathStatus::Partial, {detail::fromRecast(start)}});
+      return false;
+    }
+    if (dtStatusFailed(query->initSlicedFindPath(startRef, endRef, start, end, &filter, 0))) {
+      finish(current.ticket, PathResult{PathStatus::Failed, {}});
+      return false;
+    }
+    active = true;
+    return true;
+  }
+
+  void complete(dtStatus searchStatus) {
+    active = false;
+    PathResult result;
+    int count = 0;
+    const dtStatus status = query->finalizeSlicedFindPath(polys.data(), &count, detail::kMaxPathPolys);
+    if (dtStatusFailed(searchStatus) || dtStatusFailed(status) || count == 0) {
+      finish(current.ticket, std::move(result));
+      return;
+    }
+    const bool partial = dtStatusDetail(status, DT_PARTIAL_RESULT) || polys[count - 1] != endRef;
+    result.status = detail::straighten(*query, start, end, polys.data(), count, partial, result.corners);
+    finish(current.ticket, std::move(result));
+  }
+};
+
+PathQueue::PathQueue(std::shared_ptr<const NavMesh> mesh, int maxNodes) : impl_(std::make_unique<Impl>()) {
+  impl_->mesh = std::move(mesh);
+  impl_->query = dtAllocNavMeshQuery();
+  impl_->query->init(impl_->mesh->detour(), std::clamp(maxNodes, 16, 65535));
+}
+
+PathQueue::~PathQueue() = default;
+
+PathTicket PathQueue::request(Vec2 from, Vec2 to) {
+  const PathTicket ticket = impl_->nextTicket++;
+  impl_->waiting.push_back(Request{ticket, from, to});
+  return ticket;
+}
+
+int PathQueue::update(int iterationBudget) {
+  Impl& q = *impl_;
+  ++q.updates;
+  // Expire results nobody took.
+  for (auto it = q.finished.begin(); it != q.finished.end();) {
+    if (q.updates - it->second.doneAtUpdate > kResultLifetimeUpdates)
+      it = q.finished.erase(it);
+    else
+      ++it;
+  }
+  int completed = 0;
+  int budget = std::max(iterationBudget, 1);  // always progress
+  while (budget > 0 && (q.active || !q.waiting.empty())) {
+    if (!q.active && !q.begin()) {  // finished at once: an end is off the mesh
+      ++completed;
+      continue;
+    }
+    int done = 0;
+    const dtStatus status = q.query->updateSlicedFindPath(budget, &done);
+    budget -= std::max(done, 1);
+    if (dtStatusInProgress(status)) continue;
+    q.complete(status);
+    ++completed;
+  }
+  return completed;
+}
+
+TicketState PathQueue::state(PathTicket ticket) const {
+  const Impl& q = *impl_;
+  if (q.finished.count(ticket)) return TicketState::Done;
+  if (q.active && q.current.ticket == ticket) return TicketState::Pending;
+  // Waiting tickets are increasing from front to back.
+  if (!q.waiting.empty() && ticket >= q.waiting.front().ticket && ticket <= q.waiting.back().ticket)
+    return TicketState::Pending;
+  return TicketState::Unknown;
+}
+
+PathResult PathQueue::take(PathTicket ticket) {
+  auto it = impl_->finished.find(ticket);
+  if (it == impl_->finished.end()) return PathResult{};  // precondition violated: Failed, no corners
+  PathResult result = std::move(it->second.result);
+  impl_->finished.erase(it);
+  return result;
+}
+
+std::size_t PathQueue::pending() const { return impl_->waiting.size() + (impl_->active ? 1u : 0u); }
+
+}  // namespace throng::nav

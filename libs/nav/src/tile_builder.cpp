@@ -1,0 +1,154 @@
+// throng::nav (private) — one tile of the Recast pipeline; see tile_builder.hpp.
+#include "tile_builder.hpp"
+
+#include <DetourAlloc.h>
+#include <DetourNavMeshBuilder.h>
+#include <Recast.h>
+
+#include <cmath>
+#include <cstdarg>
+#include <memory>
+
+namespace throng::nav::detail {
+namespace {
+
+/// Collects Recast's error messages instead of printing them.
+class CollectingContext final : public rcContext {
+ public:
+  CollectingContext() : rcContext(true) { enableTimer(false); }
+  std::string errors;
+
+ protected:
+  void doLog(const rcLogCategory category, const char* msg, const int len) override {
+    if (category != RC_LOG_ERROR) return;
+    if (!errors.empty()) errors += "; ";
+    errors.append(msg, static_cast<std::size_t>(len));
+  }
+};
+
+struct HeightfieldDeleter { void operator()(rcHeightfield* p) const { rcFreeHeightField(p); } };
+struct CompactDeleter { void operator()(rcCompactHeightfield* p) const { rcFreeCompactHeightfield(p); } };
+struct ContourDeleter { void operator()(rcContourSet* p) const { rcFreeContourSet(p); } };
+struct PolyMeshDeleter { void operator()(rcPolyMesh* p) const { rcFreePolyMesh(p); } };
+struct DetailDeleter { void operator()(rcPolyMeshDetail* p) const { rcFreePolyMeshDetail(p); } };
+
+// Vertical resolution: the floor is flat at y = 0, so only the clearance matters.
+constexpr float kCellHeight = 0.2f;        // [m]
+constexpr int kWalkableHeightCells = 10;   // 2 m of clearance above the floor
+constexpr int kWalkableClimbCells = 1;
+constexpr float kMaxEdgeError = 1.1f;      // contour simplification [cells]
+constexpr float kMaxEdgeLength = 12.0f;    // longest border edge [m]
+constexpr float kMinIslandArea = 0.25f;    // isolated islands smaller than this are dropped [m²]
+constexpr float kMergeRegionArea = 4.0f;   // regions smaller than this merge into neighbours [m²]
+constexpr int kMaxVertsPerPoly = 6;
+constexpr float kDetailSampleDist = 8.0f;  // [m]
+
+TileOutput fail(std::string what, const CollectingContext& ctx) {
+  TileOutput out;
+  out.error = std::move(what);
+  if (!ctx.errors.empty()) out.error += " (Recast: " + ctx.errors + ")";
+  return out;
+}
+
+}  // namespace
+
+TileOutput buildTile(const TileSettings& s, int tileX, int tileY, const std::vector<RasterPolygon>& walkable,
+                     const std::vector<RasterPolygon>& obstacles) {
+  CollectingContext ctx;
+  const float cs = s.cellSize;
+  const int size = s.tileCells + 2 * s.borderCells;
+  const float tileWidth = static_cast<float>(s.tileCells) * cs;
+  const float minX = s.originX + static_cast<float>(tileX) * tileWidth - static_cast<float>(s.borderCells) * cs;
+  const float minY = s.originY + static_cast<float>(tileY) * tileWidth - static_cast<float>(s.borderCells) * cs;
+  const float maxX = minX + static_cast<float>(size) * cs;
+  const float maxY = minY + static_cast<float>(size) * cs;
+
+  const auto walk = overlapping(walkable, minX, minY, maxX, maxY);
+  if (walk.empty()) return {};
+  const auto obs = overlapping(obstacles, minX, minY, maxX, maxY);
+  const std::vector<std::uint8_t> cells = rasterizeWalkable(walk, obs, minX, minY, cs, size, size);
+
+  // Recast is y-up: our (x, y) is Recast's (x, z). The floor span occupies [-ch, 0] so the
+  // walkable surface is at height 0.
+  const float bmin[3] = {minX, -kCellHeight, minY};
+  const float bmax[3] = {maxX, 4.0f, maxY};
+  std::unique_ptr<rcHeightfield, HeightfieldDeleter> hf(rcAllocHeightfield());
+  if (!hf || !rcCreateHeightfield(&ctx, *hf, size, size, bmin, bmax, cs, kCellHeight))
+    return fail("could not allocate the heightfield", ctx);
+  bool anyWalkable = false;
+  for (int row = 0; row < size; ++row) {
+    for (int col = 0; col < size; ++col) {
+      if (!cells[static_cast<std::size_t>(row) * size + col]) continue;
+      anyWalkable = true;
+      if (!rcAddSpan(&ctx, *hf, col, row, 0, 1, RC_WALKABLE_AREA, kWalkableClimbCells))
+        return fail("could not add a heightfield span", ctx);
+    }
+  }
+  if (!anyWalkable) return {};
+
+  std::unique_ptr<rcCompactHeightfield, CompactDeleter> chf(rcAllocCompactHeightfield());
+  if (!chf || !rcBuildCompactHeightfield(&ctx, kWalkableHeightCells, kWalkableClimbCells, *hf, *chf))
+    return fail("could not build the compact heightfield", ctx);
+  hf.reset();
+  if (s.radiusCells > 0 && !rcErodeWalkableArea(&ctx, s.radiusCells, *chf))
+    return fail("could not erode the walkable area", ctx);
+  if (!rcBuildDistanceField(&ctx, *chf)) return fail("could not build the distance field", ctx);
+  const int minRegion = static_cast<int>(std::ceil(kMinIslandArea / (cs * cs)));
+  const int mergeRegion = static_cast<int>(std::ceil(kMergeRegionArea / (cs * cs)));
+  if (!rcBuildRegions(&ctx, *chf, s.borderCells, minRegion, mergeRegion))
+    return fail("could not partition the walkable area into regions", ctx);
+
+  std::unique_ptr<rcContourSet, ContourDeleter> cset(rcAllocContourSet());
+  const int maxEdgeCells = static_cast<int>(kMaxEdgeLength / cs);
+  if (!cset || !rcBuildContours(&ctx, *chf, kMaxEdgeError, maxEdgeCells, *cset))
+    return fail("could not trace contours", ctx);
+  if (cset->nconts == 0) return {};
+  std::unique_ptr<rcPolyMesh, PolyMeshDeleter> pmesh(rcAllocPolyMesh());
+  if (!pmesh || !rcBuildPolyMesh(&ctx, *cset, kMaxVertsPerPoly, *pmesh))
+    return fail("could not build the polygon mesh", ctx);
+  std::unique_ptr<rcPolyMeshDetail, DetailDeleter> dmesh(rcAllocPolyMeshDetail());
+  // Flat floor: height samples add nothing, so they are sparse. (Sample distance 0 would skip them
+  // but crashes Debian's 2021 Recast snapshot inside rcBuildPolyMeshDetail.)
+  if (!dmesh || !rcBuildPolyMeshDetail(&ctx, *pmesh, *chf, kDetailSampleDist, kCellHeight, *dmesh))
+    return fail("could not build the detail mesh", ctx);
+  if (pmesh->npolys == 0) return {};
+  if (pmesh->nverts >= 0xffff) return fail("the tile has more than 65534 vertices; use a smaller tileSize", ctx);
+
+  for (int i = 0; i < pmesh->npolys; ++i) {
+    pmesh->flags[i] = 1;  // walkable: passes the default query filter
+    pmesh->areas[i] = 0;
+  }
+  dtNavMeshCreateParams params{};
+  params.verts = pmesh->verts;
+  params.vertCount = pmesh->nverts;
+  params.polys = pmesh->polys;
+  params.polyAreas = pmesh->areas;
+  params.polyFlags = pmesh->flags;
+  params.polyCount = pmesh->npolys;
+  params.nvp = pmesh->nvp;
+  params.detailMeshes = dmesh->meshes;
+  params.detailVerts = dmesh->verts;
+  params.detailVertsCount = dmesh->nverts;
+  params.detailTris = dmesh->tris;
+  params.detailTriCount = dmesh->ntris;
+  params.tileX = tileX;
+  params.tileY = tileY;
+  params.tileLayer = 0;
+  for (int k = 0; k < 3; ++k) {
+    params.bmin[k] = pmesh->bmin[k];
+    params.bmax[k] = pmesh->bmax[k];
+  }
+  params.walkableHeight = static_cast<float>(kWalkableHeightCells) * kCellHeight;
+  params.walkableRadius = s.agentRadius;
+  params.walkableClimb = static_cast<float>(kWalkableClimbCells) * kCellHeight;
+  params.cs = cs;
+  params.ch = kCellHeight;
+  params.buildBvTree = true;
+
+  TileOutput out;
+  if (!dtCreateNavMeshData(&params, &out.data, &out.size)) return fail("could not pack the Detour tile data", ctx);
+  out.polyCount = pmesh->npolys;
+  return out;
+}
+
+}  // namespace throng::nav::detail

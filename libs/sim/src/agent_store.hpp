@@ -1,0 +1,85 @@
+// AgentStore — the agents' hot data as structure of arrays: one dense row per agent present,
+// rows always in ascending stable-id order (new agents get the next id and are appended; removal
+// is a stable compaction in the emit phase). Phases read columns and write only their own row.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "throng/core/vec2.hpp"
+#include "throng/nav/navmesh.hpp"
+#include "throng/nav/path_queue.hpp"
+#include "throng/sim/frame.hpp"
+
+namespace throng::sim {
+
+/// Where an agent is in its goal list.
+enum class GoalState : std::uint8_t {
+  Seeking = 0,  ///< walking to the current goal's target
+  Acting = 1,   ///< stopped at an action point until actionEndTick
+  Done = 2,     ///< every goal visited, nothing more to do
+  Exited = 3,   ///< reached an exit: removed in this tick's emit phase
+};
+
+struct AgentStore {
+  // Identity.
+  std::vector<std::uint32_t> id;          ///< stable spawn-order id
+  std::vector<std::uint32_t> group;       ///< stable group id
+  std::vector<std::uint16_t> population;  ///< index into ScenarioDesc::populations
+  // Kinematics [m], [m/s].
+  std::vector<float> posX, posY, velX, velY;
+  std::vector<float> prefVelX, prefVelY;  ///< written by steer (preferred velocity)
+  std::vector<float> newVelX, newVelY;    ///< written by steer (ORCA result), committed by integrate
+  std::vector<float> oriX, oriY;          ///< unit heading
+  std::vector<float> radius;              ///< body radius [m]
+  std::vector<float> speed;               ///< desired walking speed [m/s]
+  std::vector<AgentMode> mode;
+  // Goals and navigation.
+  std::vector<GoalState> goalState;
+  std::vector<std::uint32_t> goalCursor;  ///< index into the population's goals; == size: past the last
+  std::vector<float> targetX, targetY;    ///< where the agent is heading inside the goal region
+  std::vector<std::uint32_t> targetDraws; ///< how many targets drawn (feeds the target RNG stream)
+  std::vector<std::uint8_t> needPath;     ///< decide asks plan for a new path
+  std::vector<nav::PathTicket> ticket;    ///< pending path request, 0 = none
+  std::vector<nav::PolyRef> polyRef;      ///< navmesh polygon under the agent
+  std::vector<std::uint32_t> cornerIndex; ///< next corner of `corners` to walk to
+  std::vector<std::vector<core::Vec2>> corners;  ///< cold: string-pulled path
+  std::vector<std::uint64_t> actionEndTick;
+  std::vector<float> progressDistance;    ///< distance to target at the last progress check [m]
+  // Neighbours found by sense: row indices, maxNeighbours slots per agent.
+  std::vector<std::uint32_t> neighbours;
+  std::vector<std::uint16_t> neighbourCount;
+
+  [[nodiscard]] std::size_t size() const { return id.size(); }
+
+  /// Applies f to every per-agent column (not the neighbour buffers, which sense rebuilds).
+  template <class F>
+  void forEachColumn(F&& f) {
+    f(id); f(group); f(population);
+    f(posX); f(posY); f(velX); f(velY); f(prefVelX); f(prefVelY); f(newVelX); f(newVelY);
+    f(oriX); f(oriY); f(radius); f(speed); f(mode);
+    f(goalState); f(goalCursor); f(targetX); f(targetY); f(targetDraws); f(needPath); f(ticket); f(polyRef);
+    f(cornerIndex); f(corners); f(actionEndTick); f(progressDistance);
+  }
+
+  /// Appends one default-initialised row and returns its index.
+  std::size_t addRow() {
+    forEachColumn([](auto& column) { column.emplace_back(); });
+    return size() - 1;
+  }
+
+  /// Keeps rows whose keep[row] is non-zero, in order.
+  void compact(const std::vector<std::uint8_t>& keep) {
+    forEachColumn([&](auto& column) {
+      std::size_t w = 0;
+      for (std::size_t r = 0; r < column.size(); ++r) {
+        if (keep[r]) {
+          if (w != r) column[w] = std::move(column[r]);
+          ++w;
+        }
+      }
+      column.resize(w);
+    });
+  }
+};
+
+}  // namespace throng::sim

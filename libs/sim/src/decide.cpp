@@ -1,0 +1,146 @@
+// decide — the goal state machine of every agent (parallel, each agent writes only its own row and
+// its chunk's event list): reaching a goal's region, stopping at action points, leaving through
+// exits, drawing the next target, asking `plan` for a path, and noticing agents that are stuck.
+#include <algorithm>
+#include <cmath>
+
+#include "world_impl.hpp"
+
+namespace throng::sim {
+namespace {
+
+/// Distance at which an agent counts as arrived at an action point's (or wander) target [m].
+constexpr float kArriveDistance = 0.3f;
+
+}  // namespace
+
+core::Vec2 World::Impl::drawTarget(std::size_t row, const PointDesc& point, const nav::NavQuery& query) {
+  core::Rng rng(desc.seed, (static_cast<std::uint64_t>(agents.id[row]) << 20) ^ agents.targetDraws[row]++,
+                core::RngPurpose::Target);
+  core::Vec2 p = point.position;
+  if (point.kind != PointKind::Action || !point.stop) {
+    // Somewhere in the region (interest points and exits are regions to pass through).
+    if (point.polygon.empty()) {
+      const double r = 0.5 * point.radius * std::sqrt(rng.uniform());
+      const double a = 6.283185307179586 * rng.uniform();
+      p = {point.position.x + static_cast<float>(r * std::cos(a)), point.position.y + static_cast<float>(r * std::sin(a))};
+    } else {
+      const core::Aabb& box = pointBounds[static_cast<std::size_t>(&point - desc.points.data())];
+      for (int i = 0; i < 32; ++i) {
+        const core::Vec2 q{static_cast<float>(rng.uniform(box.min.x, box.max.x)),
+                           static_cast<float>(rng.uniform(box.min.y, box.max.y))};
+        if (core::pointInPolygon(point.polygon, q)) { p = q; break; }
+      }
+    }
+  }
+  if (auto hit = query.nearest(p, 3.0f)) return hit->first;
+  if (auto hit = query.nearest(point.position, 10.0f)) return hit->first;
+  return p;
+}
+
+void World::Impl::advanceGoal(std::size_t row, const nav::NavQuery& query) {
+  const PopulationDesc& pop = desc.populations[agents.population[row]];
+  const std::uint32_t next = agents.goalCursor[row] + 1;  // wraps from -1 to 0 for "no goal yet"
+  agents.goalCursor[row] = next;
+  agents.corners[row].clear();
+  agents.cornerIndex[row] = 0;
+  agents.progressDistance[row] = 1e30f;
+  if (next < pop.goals.size()) {
+    const core::Vec2 t = drawTarget(row, desc.points[pop.goals[next]], query);
+    agents.targetX[row] = t.x;
+    agents.targetY[row] = t.y;
+    agents.needPath[row] = 1;
+    agents.goalState[row] = GoalState::Seeking;
+    agents.mode[row] = AgentMode::Walking;
+  } else if (pop.wander) {
+    core::Rng rng(desc.seed, (static_cast<std::uint64_t>(agents.id[row]) << 20) ^ agents.targetDraws[row]++,
+                  core::RngPurpose::Goal);
+    const float r0 = static_cast<float>(rng.uniform()), r1 = static_cast<float>(rng.uniform()),
+                r2 = static_cast<float>(rng.uniform());
+    const auto p = query.randomPoint(r0, r1, r2);
+    agents.targetX[row] = p ? p->x : agents.posX[row];
+    agents.targetY[row] = p ? p->y : agents.posY[row];
+    agents.needPath[row] = 1;
+    agents.goalState[row] = GoalState::Seeking;
+    agents.mode[row] = AgentMode::Walking;
+  } else {
+    agents.goalState[row] = GoalState::Done;
+    agents.mode[row] = AgentMode::Waiting;
+    agents.targetX[row] = agents.posX[row];
+    agents.targetY[row] = agents.posY[row];
+  }
+}
+
+void World::Impl::decide(const core::TaskSystem& tasks) {
+  const std::size_t n = agents.size();
+  const std::size_t grain = grainFor(n);
+  chunks.resize(std::max(chunks.size(), core::TaskSystem::chunkCount(n, grain)));
+  const std::uint64_t checkEvery = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(kProgressCheckPeriod / desc.dt));
+  tasks.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
+    ChunkOutput& out = chunks[begin / grain];
+    const nav::NavQuery& query = *worker(tasks).query;
+    for (std::size_t row = begin; row < end; ++row) {
+      const std::uint32_t id = agents.id[row];
+      const PopulationDesc& pop = desc.populations[agents.population[row]];
+      switch (agents.goalState[row]) {
+        case GoalState::Exited:
+        case GoalState::Done:
+          break;
+        case GoalState::Acting:
+          if (tick >= agents.actionEndTick[row]) {
+            out.events.push_back({tick, id, EventKind::ActionEnd, pop.goals[agents.goalCursor[row]], 0});
+            advanceGoal(row, query);
+          }
+          break;
+        case GoalState::Seeking: {
+          const float x = agents.posX[row], y = agents.posY[row];
+          const bool wandering = agents.goalCursor[row] >= pop.goals.size();
+          if (wandering) {
+            const float dx = agents.targetX[row] - x, dy = agents.targetY[row] - y;
+            if (dx * dx + dy * dy < kArriveDistance * kArriveDistance + agents.radius[row] * agents.radius[row]) {
+              advanceGoal(row, query);  // draws the next random target
+              agents.goalCursor[row] = static_cast<std::uint32_t>(pop.goals.size());
+            }
+            break;
+          }
+          const std::uint32_t pointIndex = pop.goals[agents.goalCursor[row]];
+          const PointDesc& point = desc.points[pointIndex];
+          bool arrived;
+          if (point.kind == PointKind::Action && point.stop) {
+            const float dx = agents.targetX[row] - x, dy = agents.targetY[row] - y;
+            arrived = dx * dx + dy * dy < kArriveDistance * kArriveDistance;
+          } else {
+            arrived = insideRegion(point, x, y);
+          }
+          if (arrived) {
+            if (point.kind == PointKind::Exit) {
+              agents.goalState[row] = GoalState::Exited;
+              out.events.push_back({tick, id, EventKind::Exit, pointIndex, 0});
+            } else if (point.kind == PointKind::Action && point.stop && point.actionDuration > 0.0f) {
+              agents.goalState[row] = GoalState::Acting;
+              agents.mode[row] = AgentMode::Acting;
+              agents.actionEndTick[row] = tick + static_cast<std::uint64_t>(std::lround(point.actionDuration / desc.dt));
+              agents.oriX[row] = point.orientation.x;
+              agents.oriY[row] = point.orientation.y;
+              out.events.push_back({tick, id, EventKind::ActionStart, pointIndex, 0});
+            } else {
+              out.events.push_back({tick, id, EventKind::GoalReached, pointIndex, 0});
+              advanceGoal(row, query);
+            }
+            break;
+          }
+          // Progress check: an agent that got no closer over a period re-plans from where it is.
+          if ((tick + id) % checkEvery == 0 && agents.ticket[row] == 0) {
+            const float d = std::sqrt((agents.targetX[row] - x) * (agents.targetX[row] - x) +
+                                      (agents.targetY[row] - y) * (agents.targetY[row] - y));
+            if (d > agents.progressDistance[row] - 0.5f) agents.needPath[row] = 1;
+            agents.progressDistance[row] = d;
+          }
+          break;
+        }
+      }
+    }
+  });
+}
+
+}  // namespace throng::sim

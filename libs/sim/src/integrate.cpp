@@ -1,0 +1,60 @@
+// integrate — commits the ORCA velocities: each agent moves by v·dt along the navmesh surface
+// (Detour's moveAlongSurface: nobody crosses a wall, whatever ORCA decided), its velocity becomes
+// the displacement actually made, its heading turns toward its motion, and walking distance and
+// time are summed per chunk (combined in chunk order by emit).
+#include <algorithm>
+#include <cmath>
+
+#include "world_impl.hpp"
+
+namespace throng::sim {
+namespace {
+
+/// Time constant of heading changes [s]: bodies do not snap to their velocity direction.
+constexpr float kTurnTime = 0.25f;
+/// Below this speed the heading stays as it is [m/s].
+constexpr float kTurnMinSpeed = 0.1f;
+
+}  // namespace
+
+void World::Impl::integrate(const core::TaskSystem& tasks) {
+  const std::size_t n = agents.size();
+  const std::size_t grain = grainFor(n);
+  const float h = desc.dt;
+  const float turn = std::min(1.0f, h / kTurnTime);
+  tasks.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
+    ChunkOutput& out = chunks[begin / grain];
+    const nav::NavQuery& query = *worker(tasks).query;
+    for (std::size_t row = begin; row < end; ++row) {
+      const core::Vec2 pos{agents.posX[row], agents.posY[row]};
+      core::Vec2 v{agents.newVelX[row], agents.newVelY[row]};
+      if (agents.goalState[row] == GoalState::Exited) v = {};
+      core::Vec2 next = pos;
+      if (core::lengthSq(v) > 1e-12f) {
+        next = query.moveAlongSurface(pos, pos + v * h, agents.polyRef[row]);
+      }
+      const core::Vec2 moved = next - pos;
+      agents.posX[row] = next.x;
+      agents.posY[row] = next.y;
+      agents.velX[row] = moved.x / h;
+      agents.velY[row] = moved.y / h;
+      if (agents.mode[row] == AgentMode::Walking) {
+        out.walkedDistance += core::length(moved);
+        out.walkingTime += h;
+      }
+      if (agents.goalState[row] != GoalState::Acting) {
+        const float speed = core::length(moved) / h;
+        if (speed > kTurnMinSpeed) {
+          const core::Vec2 dir = moved / (speed * h);
+          const core::Vec2 ori = core::normalize(core::Vec2{agents.oriX[row], agents.oriY[row]} + (dir - core::Vec2{agents.oriX[row], agents.oriY[row]}) * turn);
+          if (core::lengthSq(ori) > 0.0f) {
+            agents.oriX[row] = ori.x;
+            agents.oriY[row] = ori.y;
+          }
+        }
+      }
+    }
+  });
+}
+
+}  // namespace throng::sim

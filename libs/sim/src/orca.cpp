@@ -1,0 +1,244 @@
+// ORCA half-planes and the incremental 2D linear program that combines them.
+// Paper: van den Berg et al. 2011, §4 (ORCA for agents), §5 (linear programming), §6 (obstacles).
+#include "throng/sim/orca.hpp"
+
+#include "throng/core/geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace throng::sim {
+namespace {
+
+using core::cross;
+using core::dot;
+using core::lengthSq;
+using core::normalize;
+
+constexpr float kEpsilon = 1e-5f;
+
+/// Is v outside (violating) the half-plane of `line`?
+inline bool violates(const OrcaLine& line, Vec2 v) { return cross(line.direction, line.point - v) > 0.0f; }
+
+// §5.2: optimise along line `lineNo` subject to lines [0, lineNo) and the speed disc.
+bool solveOnLine(std::span<const OrcaLine> lines, std::size_t lineNo, float radius, Vec2 optVelocity,
+                 bool directionOpt, Vec2& result) {
+  const OrcaLine& line = lines[lineNo];
+  const float dotProduct = dot(line.point, line.direction);
+  const float discriminant = dotProduct * dotProduct + radius * radius - lengthSq(line.point);
+  if (discriminant < 0.0f) return false;  // the speed disc misses this line entirely
+
+  const float sqrtDiscriminant = std::sqrt(discriminant);
+  float tLeft = -dotProduct - sqrtDiscriminant;
+  float tRight = -dotProduct + sqrtDiscriminant;
+
+  for (std::size_t i = 0; i < lineNo; ++i) {
+    const float denominator = cross(line.direction, lines[i].direction);
+    const float numerator = cross(lines[i].direction, line.point - lines[i].point);
+    if (std::fabs(denominator) <= kEpsilon) {
+      if (numerator < 0.0f) return false;  // parallel and on the wrong side
+      continue;
+    }
+    const float t = numerator / denominator;
+    if (denominator >= 0.0f) {
+      tRight = std::min(tRight, t);
+    } else {
+      tLeft = std::max(tLeft, t);
+    }
+    if (tLeft > tRight) return false;
+  }
+
+  if (directionOpt) {
+    result = line.point + (dot(optVelocity, line.direction) > 0.0f ? tRight : tLeft) * line.direction;
+  } else {
+    const float t = std::clamp(dot(line.direction, optVelocity - line.point), tLeft, tRight);
+    result = line.point + t * line.direction;
+  }
+  return true;
+}
+
+// §5.2: incremental randomised-order-free LP; returns the index of the first line that could not
+// be satisfied, or lines.size() on success.
+std::size_t solvePlane(std::span<const OrcaLine> lines, float radius, Vec2 optVelocity, bool directionOpt,
+                       Vec2& result) {
+  if (directionOpt) {
+    result = optVelocity * radius;  // optVelocity is a unit direction here
+  } else if (lengthSq(optVelocity) > radius * radius) {
+    result = normalize(optVelocity) * radius;
+  } else {
+    result = optVelocity;
+  }
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (violates(lines[i], result)) {
+      const Vec2 previous = result;
+      if (!solveOnLine(lines, i, radius, optVelocity, directionOpt, result)) {
+        result = previous;
+        return i;
+      }
+    }
+  }
+  return lines.size();
+}
+
+// §5.3: infeasible — minimise the largest violation of the soft (agent) lines, walls stay hard.
+void solveInfeasible(std::span<const OrcaLine> lines, std::size_t numHard, std::size_t beginLine, float radius,
+                     Vec2& result, std::vector<OrcaLine>& projected) {
+  float distance = 0.0f;
+  for (std::size_t i = beginLine; i < lines.size(); ++i) {
+    if (cross(lines[i].direction, lines[i].point - result) <= distance) continue;
+    projected.assign(lines.begin(), lines.begin() + static_cast<std::ptrdiff_t>(numHard));
+    for (std::size_t j = numHard; j < i; ++j) {
+      OrcaLine line;
+      const float determinant = cross(lines[i].direction, lines[j].direction);
+      if (std::fabs(determinant) <= kEpsilon) {
+        if (dot(lines[i].direction, lines[j].direction) > 0.0f) continue;  // same direction
+        line.point = 0.5f * (lines[i].point + lines[j].point);             // opposite: midway
+      } else {
+        line.point = lines[i].point +
+                     (cross(lines[j].direction, lines[i].point - lines[j].point) / determinant) * lines[i].direction;
+      }
+      line.direction = normalize(lines[j].direction - lines[i].direction);
+      projected.push_back(line);
+    }
+    const Vec2 previous = result;
+    if (solvePlane(projected, radius, core::perp(lines[i].direction), true, result) < projected.size()) {
+      result = previous;  // numerical trouble: keep the best so far
+    }
+    distance = cross(lines[i].direction, lines[i].point - result);
+  }
+}
+
+}  // namespace
+
+OrcaLine agentOrcaLine(Vec2 relPos, Vec2 relVel, Vec2 selfVel, float combinedRadius, float timeHorizon, float dt) {
+  const float distSq = lengthSq(relPos);
+  const float combinedRadiusSq = combinedRadius * combinedRadius;
+  OrcaLine line;
+  Vec2 u;
+  if (distSq > combinedRadiusSq) {
+    const float invTimeHorizon = 1.0f / timeHorizon;
+    const Vec2 w = relVel - invTimeHorizon * relPos;  // from the cut-off centre to relVel
+    const float wLengthSq = lengthSq(w);
+    const float dotProduct = dot(w, relPos);
+    if (dotProduct < 0.0f && dotProduct * dotProduct > combinedRadiusSq * wLengthSq) {
+      // Closest boundary point is on the cut-off circle.
+      const float wLength = std::sqrt(wLengthSq);
+      const Vec2 unitW = w / wLength;
+      line.direction = Vec2{unitW.y, -unitW.x};
+      u = (combinedRadius * invTimeHorizon - wLength) * unitW;
+    } else {
+      // Closest boundary point is on a leg of the cone.
+      const float leg = std::sqrt(distSq - combinedRadiusSq);
+      if (cross(relPos, w) > 0.0f) {
+        line.direction = Vec2{relPos.x * leg - relPos.y * combinedRadius, relPos.x * combinedRadius + relPos.y * leg} / distSq;
+      } else {
+        line.direction = -Vec2{relPos.x * leg + relPos.y * combinedRadius, -relPos.x * combinedRadius + relPos.y * leg} / distSq;
+      }
+      u = dot(relVel, line.direction) * line.direction - relVel;
+    }
+  } else {
+    // Already overlapping: resolve within one step.
+    const float invTimeStep = 1.0f / dt;
+    const Vec2 w = relVel - invTimeStep * relPos;
+    const float wLength = core::length(w);
+    const Vec2 unitW = wLength > 0.0f ? w / wLength : Vec2{1.0f, 0.0f};
+    line.direction = Vec2{unitW.y, -unitW.x};
+    u = (combinedRadius * invTimeStep - wLength) * unitW;
+  }
+  line.point = selfVel + 0.5f * u;
+  return line;
+}
+
+bool segmentOrcaLine(Vec2 a, Vec2 b, Vec2 selfVel, float radius, float timeHorizon, float maxSpeed, OrcaLine& out) {
+  const Vec2 closest = core::closestPointOnSegment(Vec2{}, a, b);
+  const float closestDistSq = lengthSq(closest);
+  const float reach = timeHorizon * maxSpeed + radius;
+  if (closestDistSq > reach * reach) return false;
+
+  const float radiusSq = radius * radius;
+  if (closestDistSq <= radiusSq) {
+    // Touching the wall: forbid any velocity component towards it.
+    const Vec2 n = closestDistSq > 0.0f ? normalize(closest) : normalize(core::perp(b - a));
+    out.point = Vec2{};
+    out.direction = core::perp(n);
+    return true;
+  }
+
+  // Legs: tangents from the origin to the discs around each end; keep the outermost pair.
+  auto leftTangent = [&](Vec2 q) {
+    const float d2 = lengthSq(q);
+    const float leg = std::sqrt(std::max(0.0f, d2 - radiusSq));
+    return Vec2{q.x * leg - q.y * radius, q.x * radius + q.y * leg} / d2;
+  };
+  auto rightTangent = [&](Vec2 q) {
+    const float d2 = lengthSq(q);
+    const float leg = std::sqrt(std::max(0.0f, d2 - radiusSq));
+    return Vec2{q.x * leg + q.y * radius, -q.x * radius + q.y * leg} / d2;
+  };
+  const Vec2 leftA = leftTangent(a), leftB = leftTangent(b);
+  const Vec2 rightA = rightTangent(a), rightB = rightTangent(b);
+  const bool leftIsB = cross(leftA, leftB) > 0.0f;    // b's tangent is further counter-clockwise
+  const bool rightIsB = cross(rightA, rightB) < 0.0f; // b's tangent is further clockwise
+  const Vec2 leftLeg = leftIsB ? leftB : leftA;
+  const Vec2 rightLeg = rightIsB ? rightB : rightA;
+
+  const float invTimeHorizon = 1.0f / timeHorizon;
+  const Vec2 leftCutoff = invTimeHorizon * (leftIsB ? b : a);
+  const Vec2 rightCutoff = invTimeHorizon * (rightIsB ? b : a);
+  const float cutoffRadius = radius * invTimeHorizon;
+  const Vec2 cutoffVec = rightCutoff - leftCutoff;
+  const bool pointCutoff = lengthSq(cutoffVec) <= kEpsilon * kEpsilon;
+
+  const float t = pointCutoff ? 0.5f : dot(selfVel - leftCutoff, cutoffVec) / lengthSq(cutoffVec);
+  const float tLeft = dot(selfVel - leftCutoff, leftLeg);
+  const float tRight = dot(selfVel - rightCutoff, rightLeg);
+
+  auto onCutoffCircle = [&](Vec2 centre) {
+    Vec2 w = normalize(selfVel - centre);
+    if (lengthSq(w) == 0.0f) w = normalize(-centre);
+    out.direction = Vec2{w.y, -w.x};
+    out.point = centre + cutoffRadius * w;
+  };
+
+  if ((t < 0.0f && tLeft < 0.0f) || (pointCutoff && tLeft < 0.0f && tRight < 0.0f)) {
+    onCutoffCircle(leftCutoff);
+    return true;
+  }
+  if (t > 1.0f && tRight < 0.0f) {
+    onCutoffCircle(rightCutoff);
+    return true;
+  }
+
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  const float distCutoff = (t < 0.0f || t > 1.0f || pointCutoff) ? kInf : lengthSq(selfVel - (leftCutoff + t * cutoffVec));
+  const float distLeft = tLeft < 0.0f ? kInf : lengthSq(selfVel - (leftCutoff + tLeft * leftLeg));
+  const float distRight = tRight < 0.0f ? kInf : lengthSq(selfVel - (rightCutoff + tRight * rightLeg));
+
+  if (distCutoff <= distLeft && distCutoff <= distRight) {
+    // The flat front of the truncated cone; valid side faces the agent (the origin).
+    Vec2 n = normalize(core::perp(cutoffVec));
+    if (dot(n, -leftCutoff) < 0.0f) n = -n;
+    out.direction = Vec2{n.y, -n.x};
+    out.point = leftCutoff + cutoffRadius * n;
+    return true;
+  }
+  if (distLeft <= distRight) {
+    out.direction = leftLeg;
+    out.point = leftCutoff + cutoffRadius * Vec2{-leftLeg.y, leftLeg.x};
+    return true;
+  }
+  out.direction = -rightLeg;
+  out.point = rightCutoff + cutoffRadius * Vec2{rightLeg.y, -rightLeg.x};
+  return true;
+}
+
+Vec2 solveOrca(std::span<const OrcaLine> lines, std::size_t numHardLines, float maxSpeed, Vec2 prefVel,
+               std::vector<OrcaLine>& scratch) {
+  Vec2 result;
+  const std::size_t failed = solvePlane(lines, maxSpeed, prefVel, false, result);
+  if (failed < lines.size()) solveInfeasible(lines, numHardLines, failed, maxSpeed, result, scratch);
+  return result;
+}
+
+}  // namespace throng::sim

@@ -1,0 +1,39 @@
+// plan — budgeted path planning (serial, in row = stable id order, so deterministic): agents that
+// asked for a path submit a request to the nav::PathQueue; the queue spends at most
+// kPathIterationsPerTick node expansions; finished paths are handed to their agents. Until its path
+// arrives an agent walks straight at its target (as DetourCrowd does).
+#include <algorithm>
+
+#include "world_impl.hpp"
+
+namespace throng::sim {
+
+void World::Impl::plan() {
+  const std::size_t n = agents.size();
+  for (std::size_t row = 0; row < n; ++row) {
+    if (!agents.needPath[row]) continue;
+    agents.needPath[row] = 0;
+    agents.ticket[row] = pathQueue->request({agents.posX[row], agents.posY[row]}, {agents.targetX[row], agents.targetY[row]});
+  }
+  pathQueue->update(kPathIterationsPerTick);
+  for (std::size_t row = 0; row < n; ++row) {
+    const nav::PathTicket t = agents.ticket[row];
+    if (t == 0) continue;
+    const nav::TicketState state = pathQueue->state(t);
+    if (state == nav::TicketState::Pending) continue;
+    agents.ticket[row] = 0;
+    if (state != nav::TicketState::Done) continue;  // expired: the progress check will ask again
+    nav::PathResult result = pathQueue->take(t);
+    if (result.status == nav::PathStatus::Failed) continue;
+    if (result.status == nav::PathStatus::Partial) {
+      const PopulationDesc& pop = desc.populations[agents.population[row]];
+      const std::uint32_t cursor = agents.goalCursor[row];
+      const std::uint32_t point = cursor < pop.goals.size() ? pop.goals[cursor] : static_cast<std::uint32_t>(-1);
+      pendingEvents.push_back({tick, agents.id[row], EventKind::PathPartial, point, 0});
+    }
+    agents.corners[row] = std::move(result.corners);
+    agents.cornerIndex[row] = 0;
+  }
+}
+
+}  // namespace throng::sim

@@ -1,0 +1,202 @@
+// applyCommands — spawning. Populations due this tick enter the world in population order; groups
+// are placed together (members near a group anchor) on free spots of the spawn region, on the
+// navmesh, never closer than the sum of radii to anyone already there when room allows. Every
+// draw comes from a stream keyed by (seed, stable group or agent id, purpose).
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include "throng/core/assert.hpp"
+#include "world_impl.hpp"
+
+namespace throng::sim {
+namespace {
+
+constexpr float kSpawnGap = 0.02f;  // extra clearance between spawned bodies [m]
+
+/// Hash grid of occupied discs used while placing agents (only on ticks that spawn).
+class Occupancy {
+ public:
+  explicit Occupancy(float cell) : cell_(cell) {}
+  void add(core::Vec2 p, float r) { cells_[key(p)].push_back({p, r}); }
+  [[nodiscard]] bool free(core::Vec2 p, float r) const {
+    const int cx = static_cast<int>(std::floor(p.x / cell_)), cy = static_cast<int>(std::floor(p.y / cell_));
+    for (int y = cy - 1; y <= cy + 1; ++y) {
+      for (int x = cx - 1; x <= cx + 1; ++x) {
+        auto it = cells_.find(pack(x, y));
+        if (it == cells_.end()) continue;
+        for (const auto& [q, rq] : it->second) {
+          const float d = r + rq + kSpawnGap;
+          if (core::lengthSq(p - q) < d * d) return false;
+        }
+      }
+    }
+    return true;
+  }
+
+ private:
+  static std::uint64_t pack(int x, int y) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) << 32) | static_cast<std::uint32_t>(y);
+  }
+  [[nodiscard]] std::uint64_t key(core::Vec2 p) const {
+    return pack(static_cast<int>(std::floor(p.x / cell_)), static_cast<int>(std::floor(p.y / cell_)));
+  }
+  float cell_;
+  std::unordered_map<std::uint64_t, std::vector<std::pair<core::Vec2, float>>> cells_;
+};
+
+/// Uniform point in a polygon by rejection from its bounding box (nullopt after many misses).
+std::optional<core::Vec2> samplePolygon(const Polygon& poly, const core::Aabb& box, core::Rng& rng) {
+  for (int i = 0; i < 64; ++i) {
+    const core::Vec2 p{static_cast<float>(rng.uniform(box.min.x, box.max.x)),
+                       static_cast<float>(rng.uniform(box.min.y, box.max.y))};
+    if (core::pointInPolygon(poly, p)) return p;
+  }
+  return std::nullopt;
+}
+
+core::Vec2 sampleDisc(core::Vec2 centre, float radius, core::Rng& rng) {
+  const double r = radius * std::sqrt(rng.uniform());
+  const double a = 6.283185307179586 * rng.uniform();
+  return {centre.x + static_cast<float>(r * std::cos(a)), centre.y + static_cast<float>(r * std::sin(a))};
+}
+
+}  // namespace
+
+void World::Impl::planPopulations() {
+  std::uint32_t scheduled = 0;
+  std::uint32_t groupId = 0;
+  for (std::size_t p = 0; p < desc.populations.size(); ++p) {
+    const PopulationDesc& pop = desc.populations[p];
+    firstGroupId.push_back(groupId);
+    std::vector<std::uint32_t> sizes(pop.groups);
+    for (std::uint32_t g = 0; g < pop.groups; ++g) {
+      core::Rng rng(desc.seed, groupId + g, core::RngPurpose::GroupSize);
+      sizes[g] = pop.sizeMin == pop.sizeMax ? pop.sizeMin : rng.uniformInt(pop.sizeMin, pop.sizeMax);
+      scheduled += sizes[g];
+    }
+    groupId += pop.groups;
+    groupSizes.push_back(std::move(sizes));
+  }
+  stats.scheduled = scheduled;
+}
+
+void World::Impl::applyCommands() {
+  for (std::size_t p = 0; p < desc.populations.size(); ++p) {
+    if (!populationSpawned[p] && populationStartTick[p] <= tick) spawnPopulation(p);
+  }
+}
+
+void World::Impl::spawnPopulation(std::size_t populationIndex) {
+  const PopulationDesc& pop = desc.populations[populationIndex];
+  populationSpawned[populationIndex] = 1;
+  const nav::NavQuery& query = *mainQuery;
+
+  // Region the population spawns in.
+  const Polygon* regionPoly = nullptr;
+  core::Vec2 regionCentre;
+  float regionRadius = 0.0f;
+  switch (pop.spawn.kind) {
+    case SpawnKind::Polygon: regionPoly = &pop.spawn.polygon; break;
+    case SpawnKind::Position: regionCentre = pop.spawn.position; break;
+    case SpawnKind::Point: {
+      const PointDesc& point = desc.points[pop.spawn.point];
+      if (!point.polygon.empty()) regionPoly = &point.polygon;
+      regionCentre = point.position;
+      regionRadius = point.radius;
+      break;
+    }
+  }
+  const core::Aabb box = regionPoly ? core::bounds(*regionPoly) : core::Aabb{};
+  std::uint32_t total = 0;
+  for (std::uint32_t s : groupSizes[populationIndex]) total += s;
+  // A position spawn grows a disc big enough for everyone at half packing density.
+  if (pop.spawn.kind == SpawnKind::Position) {
+    regionRadius = std::sqrt(static_cast<float>(total) * pop.radius * pop.radius / 0.5f) + pop.radius;
+  }
+
+  Occupancy occupancy(std::max(0.5f, 4.0f * desc.maxRadius()));
+  for (std::size_t r = 0; r < agents.size(); ++r) occupancy.add({agents.posX[r], agents.posY[r]}, agents.radius[r]);
+
+  auto onMesh = [&](core::Vec2 p) -> std::optional<std::pair<core::Vec2, nav::PolyRef>> {
+    auto hit = query.nearest(p, 0.5f);
+    if (!hit || core::lengthSq(hit->first - p) > 1e-4f) return std::nullopt;
+    return hit;
+  };
+  auto sampleRegion = [&](core::Rng& rng) -> std::optional<core::Vec2> {
+    if (regionPoly) return samplePolygon(*regionPoly, box, rng);
+    return sampleDisc(regionCentre, regionRadius, rng);
+  };
+
+  const std::vector<std::uint32_t>& sizes = groupSizes[populationIndex];
+  for (std::uint32_t g = 0; g < sizes.size(); ++g) {
+    const std::uint32_t groupId = firstGroupId[populationIndex] + g;
+    core::Rng groupRng(desc.seed, groupId, core::RngPurpose::Spawn);
+    // Group anchor: a free point on the mesh inside the region.
+    core::Vec2 anchor = regionCentre;
+    for (int attempt = 0; attempt < 200; ++attempt) {
+      auto p = sampleRegion(groupRng);
+      if (p && onMesh(*p) && occupancy.free(*p, pop.radius)) { anchor = *p; break; }
+    }
+    const float groupSpread = 0.4f + 0.5f * std::sqrt(static_cast<float>(sizes[g]));
+    for (std::uint32_t m = 0; m < sizes[g]; ++m) {
+      const std::uint32_t agentId = nextAgentId++;
+      core::Rng rng(desc.seed, agentId, core::RngPurpose::Spawn);
+      std::optional<std::pair<core::Vec2, nav::PolyRef>> placed;
+      // Near the anchor first, then anywhere in the region, then (crowded) the best effort.
+      for (int attempt = 0; attempt < 400 && !placed; ++attempt) {
+        std::optional<core::Vec2> p;
+        if (attempt < 100) {
+          p = sampleDisc(anchor, groupSpread * (1.0f + 0.02f * static_cast<float>(attempt)), rng);
+          if (regionPoly && !core::pointInPolygon(*regionPoly, *p)) p.reset();
+        } else {
+          p = sampleRegion(rng);
+        }
+        if (!p || !occupancy.free(*p, pop.radius)) continue;
+        placed = onMesh(*p);
+      }
+      if (!placed) placed = query.nearest(anchor, 5.0f);
+      if (!placed) placed = std::make_pair(anchor, nav::PolyRef{0});
+      occupancy.add(placed->first, pop.radius);
+
+      const std::size_t row = agents.addRow();
+      agents.id[row] = agentId;
+      agents.group[row] = groupId;
+      agents.population[row] = static_cast<std::uint16_t>(populationIndex);
+      agents.posX[row] = placed->first.x;
+      agents.posY[row] = placed->first.y;
+      agents.polyRef[row] = placed->second;
+      agents.radius[row] = pop.radius;
+      core::Rng speedRng(desc.seed, agentId, core::RngPurpose::Speed);
+      const double v = pop.speedSd > 0 ? speedRng.normal(pop.speedMean, pop.speedSd) : pop.speedMean;
+      agents.speed[row] = static_cast<float>(std::clamp(v, static_cast<double>(pop.speedMin), static_cast<double>(pop.speedMax)));
+      agents.oriX[row] = 1.0f;
+      agents.oriY[row] = 0.0f;
+      agents.mode[row] = AgentMode::Waiting;
+      agents.goalState[row] = GoalState::Seeking;
+      agents.goalCursor[row] = 0;
+      pendingEvents.push_back({tick, agentId, EventKind::Spawn, static_cast<std::uint32_t>(populationIndex), groupId});
+      ++stats.spawned;
+      --stats.scheduled;
+      // First goal (cursor 0), or wandering / done when the list is empty.
+      agents.goalCursor[row] = 0;
+      if (!pop.goals.empty()) {
+        const core::Vec2 t = drawTarget(row, desc.points[pop.goals[0]], query);
+        agents.targetX[row] = t.x;
+        agents.targetY[row] = t.y;
+        agents.needPath[row] = 1;
+        agents.mode[row] = AgentMode::Walking;
+      } else {
+        agents.goalCursor[row] = static_cast<std::uint32_t>(-1);  // advanceGoal wraps to 0 = past the (empty) list
+        advanceGoal(row, query);
+      }
+      // Face the first target.
+      const core::Vec2 dir = core::normalize(core::Vec2{agents.targetX[row] - agents.posX[row], agents.targetY[row] - agents.posY[row]});
+      if (core::lengthSq(dir) > 0.0f) { agents.oriX[row] = dir.x; agents.oriY[row] = dir.y; }
+      agents.progressDistance[row] = 1e30f;
+    }
+  }
+  stats.active = static_cast<std::uint32_t>(agents.size());
+}
+
+}  // namespace throng::sim

@@ -1,0 +1,86 @@
+// steer — preferred velocity along the path (walk to the next corner at the desired speed, relaxed
+// over steering.accelerationTime), then ORCA against the neighbours from `sense` and the nearby
+// walls (parallel; each agent writes only prefVel/newVel of its own row).
+#include <algorithm>
+#include <cmath>
+
+#include "world_impl.hpp"
+
+namespace throng::sim {
+namespace {
+
+/// Distance at which a path corner counts as passed [m].
+constexpr float kCornerReach = 0.5f;
+/// Approaching a stop (action point, last goal), agents slow down over this time [s].
+constexpr float kArrivalTime = 0.5f;
+
+}  // namespace
+
+void World::Impl::steer(const core::TaskSystem& tasks) {
+  const std::size_t n = agents.size();
+  const SteeringDesc& s = desc.steering;
+  const float dtLocal = desc.dt;
+  const float relax = std::min(1.0f, dtLocal / std::max(dtLocal, s.accelerationTime));
+  const std::size_t k = s.maxNeighbours;
+  tasks.parallelFor(n, grainFor(n), [&](std::size_t begin, std::size_t end) {
+    WorkerScratch& ws = worker(tasks);
+    for (std::size_t row = begin; row < end; ++row) {
+      const core::Vec2 pos{agents.posX[row], agents.posY[row]};
+      const core::Vec2 vel{agents.velX[row], agents.velY[row]};
+      const float maxSpeed = agents.speed[row];
+
+      // 1. Desired velocity.
+      core::Vec2 desired;
+      if (agents.goalState[row] == GoalState::Seeking) {
+        std::vector<core::Vec2>& corners = agents.corners[row];
+        std::uint32_t& ci = agents.cornerIndex[row];
+        const core::Vec2 target{agents.targetX[row], agents.targetY[row]};
+        while (ci + 1 < corners.size() && core::lengthSq(corners[ci] - pos) < kCornerReach * kCornerReach) ++ci;
+        const core::Vec2 aim = ci < corners.size() ? corners[ci] : target;
+        const core::Vec2 toAim = aim - pos;
+        const float dist = core::length(toAim);
+        if (dist > 1e-4f) {
+          float v = maxSpeed;
+          const bool lastLeg = ci + 1 >= corners.size();
+          const PopulationDesc& pop = desc.populations[agents.population[row]];
+          const std::uint32_t cursor = agents.goalCursor[row];
+          const bool stopsThere = cursor >= pop.goals.size()
+                                      ? !pop.wander
+                                      : (desc.points[pop.goals[cursor]].kind == PointKind::Action && desc.points[pop.goals[cursor]].stop);
+          if (lastLeg && stopsThere) v = std::min(v, dist / kArrivalTime);
+          desired = toAim * (v / dist);
+        }
+      }
+      const core::Vec2 pref = vel + (desired - vel) * relax;
+      agents.prefVelX[row] = pref.x;
+      agents.prefVelY[row] = pref.y;
+
+      // 2. ORCA: walls first (hard), then neighbours.
+      auto& lines = ws.lines;
+      lines.clear();
+      const float wallReach = s.timeHorizonObstacle * maxSpeed + kWallMargin;
+      ws.wallIds.clear();
+      walls.query(pos.x, pos.y, wallReach, ws.wallIds);
+      for (std::uint32_t w : ws.wallIds) {
+        const core::Segment& seg = walls.segments()[w];
+        OrcaLine line;
+        if (segmentOrcaLine(seg.a - pos, seg.b - pos, vel, kWallMargin, s.timeHorizonObstacle, maxSpeed, line)) {
+          lines.push_back(line);
+        }
+      }
+      const std::size_t numWallLines = lines.size();
+      const std::uint32_t* nb = &agents.neighbours[row * k];
+      for (std::size_t i = 0; i < agents.neighbourCount[row]; ++i) {
+        const std::uint32_t o = nb[i];
+        const core::Vec2 relPos{agents.posX[o] - pos.x, agents.posY[o] - pos.y};
+        const core::Vec2 relVel{vel.x - agents.velX[o], vel.y - agents.velY[o]};
+        lines.push_back(agentOrcaLine(relPos, relVel, vel, agents.radius[row] + agents.radius[o], s.timeHorizon, dtLocal));
+      }
+      const core::Vec2 v = solveOrca(lines, numWallLines, maxSpeed, pref, ws.projected);
+      agents.newVelX[row] = v.x;
+      agents.newVelY[row] = v.y;
+    }
+  });
+}
+
+}  // namespace throng::sim

@@ -1,0 +1,92 @@
+#include "walls.hpp"
+
+#include <DetourNavMesh.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace throng::sim {
+
+std::vector<core::Segment> navMeshBoundary(const nav::NavMesh& mesh) {
+  std::vector<core::Segment> out;
+  const dtNavMesh* nav = mesh.detour();
+  if (nav == nullptr) return out;
+  for (int t = 0; t < nav->getMaxTiles(); ++t) {
+    const dtMeshTile* tile = nav->getTile(t);
+    if (tile == nullptr || tile->header == nullptr) continue;
+    for (int p = 0; p < tile->header->polyCount; ++p) {
+      const dtPoly& poly = tile->polys[p];
+      if (poly.getType() != DT_POLYTYPE_GROUND) continue;
+      for (int e = 0; e < poly.vertCount; ++e) {
+        bool boundary;
+        if (poly.neis[e] & DT_EXT_LINK) {
+          // Tile border: a wall only where no link crosses this edge.
+          boundary = true;
+          for (unsigned int k = poly.firstLink; k != DT_NULL_LINK; k = tile->links[k].next) {
+            if (tile->links[k].edge == e) { boundary = false; break; }
+          }
+        } else {
+          boundary = poly.neis[e] == 0;
+        }
+        if (!boundary) continue;
+        const float* va = &tile->verts[poly.verts[e] * 3];
+        const float* vb = &tile->verts[poly.verts[(e + 1) % poly.vertCount] * 3];
+        // Recast is y-up: our plane is (x, z).
+        out.push_back({core::Vec2{va[0], va[2]}, core::Vec2{vb[0], vb[2]}});
+      }
+    }
+  }
+  return out;
+}
+
+void Walls::build(const nav::NavMesh& mesh, float cellSize) {
+  segments_ = navMeshBoundary(mesh);
+  const core::Aabb b = mesh.bounds();
+  originX_ = b.min.x;
+  originY_ = b.min.y;
+  invCell_ = 1.0f / cellSize;
+  nx_ = std::max(1, static_cast<int>(std::ceil((b.max.x - b.min.x) * invCell_)));
+  ny_ = std::max(1, static_cast<int>(std::ceil((b.max.y - b.min.y) * invCell_)));
+  auto cx = [&](float x) { return std::clamp(static_cast<int>(std::floor((x - originX_) * invCell_)), 0, nx_ - 1); };
+  auto cy = [&](float y) { return std::clamp(static_cast<int>(std::floor((y - originY_) * invCell_)), 0, ny_ - 1); };
+  // Two passes (count, fill) over the cells each segment's bounding box covers.
+  const std::size_t cells = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
+  cellStart_.assign(cells + 1, 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<std::uint32_t> cursor;
+    if (pass == 1) {
+      for (std::size_t c = 1; c <= cells; ++c) cellStart_[c] += cellStart_[c - 1];
+      items_.resize(cellStart_[cells]);
+      cursor.assign(cellStart_.begin(), cellStart_.end() - 1);
+    }
+    for (std::uint32_t s = 0; s < segments_.size(); ++s) {
+      const core::Segment& seg = segments_[s];
+      const int x0 = cx(std::min(seg.a.x, seg.b.x)), x1 = cx(std::max(seg.a.x, seg.b.x));
+      const int y0 = cy(std::min(seg.a.y, seg.b.y)), y1 = cy(std::max(seg.a.y, seg.b.y));
+      for (int y = y0; y <= y1; ++y) {
+        for (int x = x0; x <= x1; ++x) {
+          const std::size_t c = static_cast<std::size_t>(y) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(x);
+          if (pass == 0) ++cellStart_[c + 1];
+          else items_[cursor[c]++] = s;
+        }
+      }
+    }
+  }
+}
+
+void Walls::query(float x, float y, float r, std::vector<std::uint32_t>& out) const {
+  const std::size_t first = out.size();
+  auto cx = [&](float v) { return std::clamp(static_cast<int>(std::floor((v - originX_) * invCell_)), 0, nx_ - 1); };
+  auto cy = [&](float v) { return std::clamp(static_cast<int>(std::floor((v - originY_) * invCell_)), 0, ny_ - 1); };
+  const int x0 = cx(x - r), x1 = cx(x + r), y0 = cy(y - r), y1 = cy(y + r);
+  for (int yy = y0; yy <= y1; ++yy) {
+    for (int xx = x0; xx <= x1; ++xx) {
+      const std::size_t c = static_cast<std::size_t>(yy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(xx);
+      out.insert(out.end(), items_.begin() + cellStart_[c], items_.begin() + cellStart_[c + 1]);
+    }
+  }
+  std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
+  out.erase(std::unique(out.begin() + static_cast<std::ptrdiff_t>(first), out.end()), out.end());
+}
+
+}  // namespace throng::sim

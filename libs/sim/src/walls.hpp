@@ -1,0 +1,35 @@
+// Walls — the boundary of the walkable area as line segments, for ORCA's wall half-planes.
+// Taken from the navigation mesh's outer edges (edges with no neighbouring polygon), so walls are
+// right however walkable polygons touch or overlap and however obstacles cross them. The navmesh is
+// already eroded by the body radius, so the segments bound agent centres. Built once; read-only.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "throng/core/geometry.hpp"
+#include "throng/nav/navmesh.hpp"
+
+namespace throng::sim {
+
+class Walls {
+ public:
+  void build(const nav::NavMesh& mesh, float cellSize);
+
+  /// Appends to `out` the index of every segment whose cell range overlaps the disc (x, y, r),
+  /// ascending and without duplicates.
+  void query(float x, float y, float r, std::vector<std::uint32_t>& out) const;
+
+  [[nodiscard]] const std::vector<core::Segment>& segments() const { return segments_; }
+
+ private:
+  std::vector<core::Segment> segments_;
+  float originX_ = 0, originY_ = 0, invCell_ = 1;
+  int nx_ = 1, ny_ = 1;
+  std::vector<std::uint32_t> cellStart_;
+  std::vector<std::uint32_t> items_;
+};
+
+/// Outer edges of the navmesh polygons (no neighbour, no cross-tile link).
+std::vector<core::Segment> navMeshBoundary(const nav::NavMesh& mesh);
+
+}  // namespace throng::sim

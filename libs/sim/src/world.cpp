@@ -1,0 +1,173 @@
+// World — creation, the tick's phase order, the emit phase (removal, statistics) and snapshots.
+#include "throng/sim/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "throng/core/assert.hpp"
+#include "world_impl.hpp"
+
+namespace throng::sim {
+
+World::World() : impl_(std::make_unique<Impl>()) {}
+World::~World() = default;
+
+core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
+                                                    std::shared_ptr<const nav::NavMesh> navmesh) {
+  if (!navmesh) {
+    nav::NavMeshConfig config;
+    config.agentRadius = desc.maxRadius();
+    config.cellSize = desc.navCellSize;
+    auto built = nav::NavMesh::build(desc.walkable, desc.obstacles, config);
+    if (!built) return std::move(built).takeErrors();
+    navmesh = std::move(built).value();
+  }
+  std::unique_ptr<World> world(new World());
+  Impl& w = *world->impl_;
+  w.desc = desc;
+  w.navmesh = navmesh;
+  w.pathQueue = std::make_unique<nav::PathQueue>(navmesh);
+  w.mainQuery = std::make_unique<nav::NavQuery>(navmesh);
+  const SteeringDesc& s = desc.steering;
+  const float wallCell = std::max(2.0f, s.timeHorizonObstacle * 2.5f + 0.5f);
+  w.walls.build(*navmesh, wallCell);
+  core::Aabb gridBounds = navmesh->bounds();
+  w.grid.configure(gridBounds, std::max(0.5f, s.neighbourDistance));
+  for (const PopulationDesc& pop : desc.populations) {
+    w.populationStartTick.push_back(static_cast<std::uint64_t>(std::ceil(pop.start / desc.dt - 1e-6)));
+    w.populationSpawned.push_back(0);
+  }
+  for (const PointDesc& p : desc.points) {
+    w.pointBounds.push_back(p.polygon.empty()
+                                ? core::Aabb{{p.position.x - p.radius, p.position.y - p.radius},
+                                             {p.position.x + p.radius, p.position.y + p.radius}}
+                                : core::bounds(p.polygon));
+  }
+  w.planPopulations();
+  w.applyCommands();  // populations starting at t = 0 are present in the first snapshot
+  return world;
+}
+
+void World::step(const core::TaskSystem& tasks, PhaseObserver* observer) {
+  Impl& w = *impl_;
+  w.ensureScratch(tasks);
+  struct Scope {
+    PhaseObserver* o;
+    std::string_view name;
+    Scope(PhaseObserver* obs, std::string_view n) : o(obs), name(n) { if (o) o->phaseBegin(name); }
+    ~Scope() { if (o) o->phaseEnd(name); }
+  };
+  { Scope s(observer, "applyCommands"); if (w.tick > 0) w.applyCommands(); }
+  { Scope s(observer, "sense"); w.sense(tasks); }
+  { Scope s(observer, "decide"); w.decide(tasks); }
+  { Scope s(observer, "plan"); w.plan(); }
+  { Scope s(observer, "steer"); w.steer(tasks); }
+  { Scope s(observer, "integrate"); w.integrate(tasks); }
+  { Scope s(observer, "emit"); w.emit(); }
+}
+
+void World::Impl::ensureScratch(const core::TaskSystem& tasks) {
+  const std::size_t needed = static_cast<std::size_t>(tasks.threads());
+  while (scratch.size() < needed) {
+    WorkerScratch ws;
+    ws.query = std::make_unique<nav::NavQuery>(navmesh);
+    scratch.push_back(std::move(ws));
+  }
+}
+
+WorkerScratch& World::Impl::worker(const core::TaskSystem& tasks) {
+  const auto index = static_cast<std::size_t>(tasks.workerIndex());
+  THRONG_ASSERT(index < scratch.size());
+  return scratch[index];
+}
+
+void World::Impl::emit() {
+  // Merge per-chunk outputs in chunk order.
+  for (ChunkOutput& c : chunks) {
+    for (const Event& e : c.events) {
+      if (e.kind == EventKind::Exit) {
+        ++stats.exited;
+        stats.lastExitTime = static_cast<double>(tick + 1) * desc.dt;
+      }
+    }
+    pendingEvents.insert(pendingEvents.end(), c.events.begin(), c.events.end());
+    stats.walkedDistance += c.walkedDistance;
+    stats.walkingTime += c.walkingTime;
+    c.events.clear();
+    c.walkedDistance = c.walkingTime = 0.0;
+  }
+  stats.agentSteps += agents.size();
+  // Remove agents that exited (stable compaction keeps rows in id order).
+  bool anyExit = false;
+  for (GoalState g : agents.goalState) anyExit |= g == GoalState::Exited;
+  if (anyExit) {
+    std::vector<std::uint8_t> keep(agents.size());
+    for (std::size_t r = 0; r < agents.size(); ++r) keep[r] = agents.goalState[r] != GoalState::Exited;
+    agents.compact(keep);
+  }
+  ++tick;
+  stats.tick = tick;
+  stats.time = static_cast<double>(tick) * desc.dt;
+  stats.active = static_cast<std::uint32_t>(agents.size());
+}
+
+FramePtr World::snapshot() {
+  Impl& w = *impl_;
+  auto frame = std::make_shared<Frame>();
+  const AgentStore& a = w.agents;
+  frame->tick = w.tick;
+  frame->time = static_cast<double>(w.tick) * w.desc.dt;
+  frame->ids = a.id;
+  frame->posX = a.posX;
+  frame->posY = a.posY;
+  frame->velX = a.velX;
+  frame->velY = a.velY;
+  frame->oriX = a.oriX;
+  frame->oriY = a.oriY;
+  frame->mode = a.mode;
+  frame->events = std::move(w.pendingEvents);
+  w.pendingEvents.clear();
+  return frame;
+}
+
+bool World::finished() const {
+  const Impl& w = *impl_;
+  if (w.stats.scheduled > 0) return false;
+  for (std::uint8_t spawned : w.populationSpawned) if (!spawned) return false;
+  for (std::size_t r = 0; r < w.agents.size(); ++r) {
+    if (w.agents.goalState[r] != GoalState::Done) return false;
+  }
+  return true;
+}
+
+const WorldStats& World::stats() const { return impl_->stats; }
+const ScenarioDesc& World::desc() const { return impl_->desc; }
+const nav::NavMesh& World::navMesh() const { return *impl_->navmesh; }
+
+std::uint64_t World::stateHash() const {
+  const AgentStore& a = impl_->agents;
+  std::uint64_t h = 14695981039346656037ull;
+  auto mix = [&](const void* p, std::size_t n) {
+    const auto* b = static_cast<const unsigned char*>(p);
+    for (std::size_t i = 0; i < n; ++i) { h ^= b[i]; h *= 1099511628211ull; }
+  };
+  for (std::size_t r = 0; r < a.size(); ++r) {
+    mix(&a.id[r], sizeof(std::uint32_t));
+    mix(&a.posX[r], sizeof(float));
+    mix(&a.posY[r], sizeof(float));
+    mix(&a.velX[r], sizeof(float));
+    mix(&a.velY[r], sizeof(float));
+  }
+  return h;
+}
+
+bool World::Impl::insideRegion(const PointDesc& point, float x, float y) const {
+  if (point.polygon.empty()) {
+    const float dx = x - point.position.x, dy = y - point.position.y;
+    return dx * dx + dy * dy <= point.radius * point.radius;
+  }
+  return core::pointInPolygon(point.polygon, core::Vec2{x, y});
+}
+
+}  // namespace throng::sim

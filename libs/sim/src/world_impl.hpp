@@ -1,0 +1,98 @@
+// World::Impl — the world's state and its phases. Each phase lives in its own file:
+//   spawn.cpp      applyCommands: populations due this tick enter the world
+//   sense.cpp      grid rebuild and k-nearest neighbours
+//   decide.cpp     goal logic: regions reached, actions, exits, new targets
+//   plan.cpp       budgeted path planning through nav::PathQueue
+//   steer.cpp      preferred velocity along the path, then ORCA
+//   integrate.cpp  commit velocities, move along the navmesh, headings, statistics
+//   world.cpp      the tick, emit (removal, frame), creation
+#pragma once
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "agent_store.hpp"
+#include "spatial_grid.hpp"
+#include "walls.hpp"
+#include "throng/core/rng.hpp"
+#include "throng/nav/navmesh.hpp"
+#include "throng/nav/path_queue.hpp"
+#include "throng/sim/orca.hpp"
+#include "throng/sim/world.hpp"
+
+namespace throng::sim {
+
+/// Margin kept between agent centres and the eroded navmesh boundary by ORCA [m].
+inline constexpr float kWallMargin = 0.05f;
+/// Detour node expansions the plan phase may spend per tick (time-slicing, as dtPathQueue).
+inline constexpr int kPathIterationsPerTick = 20000;
+/// Period of the progress check that triggers a re-plan for an agent that is stuck [s].
+inline constexpr float kProgressCheckPeriod = 4.0f;
+
+/// Per-worker scratch: navmesh queries and buffers reused across agents (never shared by threads).
+struct WorkerScratch {
+  std::unique_ptr<nav::NavQuery> query;
+  std::vector<OrcaLine> lines;
+  std::vector<OrcaLine> projected;
+  std::vector<std::uint32_t> wallIds;
+  std::vector<std::pair<float, std::uint32_t>> candidates;
+};
+
+/// Per-chunk outputs merged in chunk order (deterministic for any thread count).
+struct ChunkOutput {
+  std::vector<Event> events;
+  double walkedDistance = 0.0;
+  double walkingTime = 0.0;
+};
+
+struct World::Impl {
+  ScenarioDesc desc;
+  std::shared_ptr<const nav::NavMesh> navmesh;
+  std::unique_ptr<nav::PathQueue> pathQueue;
+  std::unique_ptr<nav::NavQuery> mainQuery;  // serial phases
+  Walls walls;
+  SpatialGrid grid;
+  AgentStore agents;
+  WorldStats stats;
+  std::uint64_t tick = 0;
+
+  // Spawning.
+  std::vector<std::uint64_t> populationStartTick;
+  std::vector<std::uint8_t> populationSpawned;
+  std::vector<std::vector<std::uint32_t>> groupSizes;  // per population, drawn at creation
+  std::vector<std::uint32_t> firstGroupId;             // per population
+  std::uint32_t nextAgentId = 0;
+  std::uint32_t nextGroupId = 0;
+
+  // Per-point cached geometry.
+  std::vector<core::Aabb> pointBounds;
+
+  // Threads.
+  mutable std::vector<WorkerScratch> scratch;
+  std::vector<ChunkOutput> chunks;
+  std::vector<Event> pendingEvents;  // since the last snapshot
+
+  // Phases.
+  void planPopulations();
+  void applyCommands();
+  void spawnPopulation(std::size_t populationIndex);
+  void sense(const core::TaskSystem& tasks);
+  void decide(const core::TaskSystem& tasks);
+  void plan();
+  void steer(const core::TaskSystem& tasks);
+  void integrate(const core::TaskSystem& tasks);
+  void emit();
+
+  // Helpers shared by phases.
+  WorkerScratch& worker(const core::TaskSystem& tasks);
+  void ensureScratch(const core::TaskSystem& tasks);
+  [[nodiscard]] bool insideRegion(const PointDesc& point, float x, float y) const;
+  /// Chooses a target inside the point's region (on the navmesh) for agent `row`.
+  core::Vec2 drawTarget(std::size_t row, const PointDesc& point, const nav::NavQuery& query);
+  /// Moves `row` on to its next goal (or wandering, or Done).
+  void advanceGoal(std::size_t row, const nav::NavQuery& query);
+  [[nodiscard]] float dt() const { return desc.dt; }
+  [[nodiscard]] std::size_t grainFor(std::size_t n) const { return n < 4096 ? 256 : 1024; }
+};
+
+}  // namespace throng::sim

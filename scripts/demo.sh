@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# The README's first command: install what is missing, build everything (Release), run the
+# flagship demo scenario with a progress bar, and say where the recording went.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$root/scripts/deps.sh"
+throng_install_deps
+throng_build "$root"
+mkdir -p "$root/out"
+"$root/build/apps/throng/throng" run "$root/scenarios/plaza.json" --out "$root/out/plaza.sqlite" --force "$@"
+echo
+echo "Inspect it:    build/apps/throng/throng info out/plaza.sqlite"
+echo "Other scenes:  ls scenarios/   (build/apps/throng/throng run scenarios/bottleneck.json)"

@@ -1,0 +1,27 @@
+// Every bundled scenario (scenarios/**/*.json except scenarios/schema/) loads without a
+// diagnostic, reachability included. Passes trivially while there are none.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "throng/io/scenario_loader.hpp"
+
+namespace fs = std::filesystem;
+
+TEST(ScenarioFiles, EveryBundledScenarioValidates) {
+  const fs::path root = fs::path(THRONG_SOURCE_DIR) / "scenarios";
+  if (!fs::exists(root)) GTEST_SKIP() << "no scenarios/ directory";
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    if (!entry.is_regular_file() || entry.path().extension() != ".json") continue;
+    if (fs::relative(entry.path(), root).begin()->string() == "schema") continue;
+    files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  for (const auto& file : files) {
+    SCOPED_TRACE(file.string());
+    auto r = throng::io::loadScenarioFile(file.string());
+    EXPECT_TRUE(r.ok()) << (r.ok() ? "" : throng::core::formatAll(r.errors()));
+  }
+  RecordProperty("scenarios", static_cast<int>(files.size()));
+}

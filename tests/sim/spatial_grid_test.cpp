@@ -1,0 +1,36 @@
+// Tests for libs/sim/src/spatial_grid.cpp.
+#include "spatial_grid.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "throng/core/rng.hpp"
+
+using namespace throng;
+
+TEST(SpatialGrid, FindsEveryAgentWithinRangeAndClampsOutsiders) {
+  sim::SpatialGrid grid;
+  grid.configure(core::Aabb{{0, 0}, {20, 20}}, 2.0f);
+  std::vector<float> xs, ys;
+  core::Rng rng(1, 0, core::RngPurpose::Bench);
+  for (int i = 0; i < 500; ++i) {
+    xs.push_back(static_cast<float>(rng.uniform(-2, 22)));  // some outside the bounds
+    ys.push_back(static_cast<float>(rng.uniform(-2, 22)));
+  }
+  core::TaskSystem tasks(2);
+  grid.rebuild(xs, ys, tasks);
+  for (int q = 0; q < 50; ++q) {
+    const float x = static_cast<float>(rng.uniform(0, 20)), y = static_cast<float>(rng.uniform(0, 20)), r = 2.5f;
+    std::set<std::uint32_t> found;
+    std::vector<std::uint32_t> order;
+    grid.forEachNear(x, y, r, [&](std::uint32_t row) { found.insert(row); order.push_back(row); });
+    for (std::uint32_t i = 0; i < xs.size(); ++i) {
+      const float dx = xs[i] - x, dy = ys[i] - y;
+      if (dx * dx + dy * dy <= r * r) EXPECT_TRUE(found.count(i)) << "row " << i << " missed";
+    }
+    EXPECT_EQ(found.size(), order.size()) << "a row was visited twice";
+  }
+  EXPECT_EQ(grid.rowsInCellOrder().size(), xs.size());
+}
