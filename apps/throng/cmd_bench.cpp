@@ -21,6 +21,7 @@
 #include "output.hpp"
 #include "progress.hpp"
 #include "signal.hpp"
+#include "validators.hpp"
 #include "throng/core/parallel.hpp"
 #include "throng/sim/world.hpp"
 #if THRONG_HAVE_BASELINES
@@ -32,7 +33,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr double kTargetSecondsPerConfig = 3.0;  ///< auto --ticks aims at this much timed work
+constexpr double kTargetSecondsPerConfig = 3.0;  ///< without --ticks, time ticks until this much work [s]
 constexpr int kMinAutoTicks = 10;
 constexpr int kMaxAutoTicks = 3000;
 
@@ -125,32 +126,30 @@ std::optional<Measurement> BenchRunner::timeThrong(const sim::ScenarioDesc& desc
   const core::TaskSystem tasks(threads);
   sim::World& w = **world;
 
-  std::vector<double> warmupMs;
   for (int i = 0; i < options_.warmup && !InterruptGuard::requested(); ++i) {
-    const auto t0 = Clock::now();
     w.step(tasks);
-    warmupMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
     status(fmt::format("{}: warm-up {}/{}", label, i + 1, options_.warmup));
   }
   const double bytesPerAgent = n > 0 ? std::max(0.0, currentRss() - rssBefore) / static_cast<double>(n) : 0.0;
-  if (ticks <= 0) {
-    // Aim at kTargetSecondsPerConfig of timed work from the warm-up's typical tick.
-    const double msPerTick = std::max(1e-3, percentile(warmupMs, 0.5));
-    ticks = std::clamp(static_cast<int>(kTargetSecondsPerConfig * 1000.0 / msPerTick), kMinAutoTicks, kMaxAutoTicks);
-  }
 
+  // Fixed --ticks, or (ticks <= 0) as many as fit in kTargetSecondsPerConfig, within the limits.
+  const bool fixed = ticks > 0;
   std::vector<double> ms;
-  ms.reserve(static_cast<std::size_t>(ticks));
   const std::uint64_t stepsBefore = w.stats().agentSteps;
   double totalSeconds = 0.0;
-  for (int i = 0; i < ticks && !InterruptGuard::requested(); ++i) {
+  for (int i = 0; !InterruptGuard::requested(); ++i) {
+    if (fixed ? i >= ticks : (i >= kMaxAutoTicks || (i >= kMinAutoTicks && totalSeconds >= kTargetSecondsPerConfig))) {
+      break;
+    }
     const auto t0 = Clock::now();
     w.step(tasks);
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     totalSeconds += seconds;
     ms.push_back(seconds * 1000.0);
-    status(fmt::format("{}: tick {}/{}", label, i + 1, ticks));
+    status(fixed ? fmt::format("{}: tick {}/{}", label, i + 1, ticks)
+                 : fmt::format("{}: tick {} ({:.1f}/{:.0f} s)", label, i + 1, totalSeconds, kTargetSecondsPerConfig));
   }
+  ticks = static_cast<int>(ms.size());
   if (InterruptGuard::requested()) return std::nullopt;
 
   Measurement m;
@@ -224,7 +223,7 @@ void BenchRunner::print(const Measurement& m) {
                         {"threads", m.threads},
                         {"ticks", m.ticks},
                         {"warmup_ticks", options_.warmup},
-                        {"dt_s", kBenchDt},
+                        {"dt_s", std::round(static_cast<double>(kBenchDt) * 1e6) / 1e6},
                         {"agent_steps_per_s", m.agentStepsPerSec},
                         {"ms_per_tick_median", m.msMedian},
                         {"ms_per_tick_p99", m.msP99},
@@ -321,7 +320,7 @@ int BenchRunner::run() {
 
 CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
   CLI::App* cmd = app.add_subcommand("bench", "Measure simulation speed and memory against DetourCrowd");
-  cmd->description(
+  cmd->footer(
       "Measure simulation speed and memory. For each agent count and thread count it builds the scenario\n"
       "in memory, runs untimed warm-up ticks, then times every tick and prints agent-steps per second,\n"
       "milliseconds per tick (median, p99), peak RSS and bytes per agent; then runs DetourCrowd on the same\n"
@@ -330,24 +329,25 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
                   "Agent counts, repeatable or comma-separated; default 1000,10000,100000")
       ->delimiter(',')
       ->type_name("N[,N...]")
-      ->check(CLI::PositiveNumber);
+      ->check(integerRange(1, 10'000'000));
   cmd->add_option("--threads", options.threads,
                   "Thread counts, repeatable or comma-separated; 0 = all hardware threads; default 1,2")
       ->delimiter(',')
       ->type_name("T[,T...]")
-      ->check(CLI::NonNegativeNumber);
+      ->check(integerRange(0, 1024));
   cmd->add_option("--scenario", options.scenario,
                   "random: open square, 1 agent/m², agents wander; navmesh: the same plus 1 m pillars every 8 m")
       ->check(CLI::IsMember({"random", "navmesh"}))
       ->capture_default_str();
   cmd->add_option("--ticks", options.ticks,
-                  "Timed ticks per configuration (dt = 0.1 s); 0 = about 3 s of work each, from the warm-up")
+                  "Timed ticks per configuration (dt = 0.1 s); 0 = as many as fit in 3 s (10 to 3000); DetourCrowd "
+                  "runs as many as throng's first thread count")
       ->type_name("N")
-      ->check(CLI::NonNegativeNumber)
+      ->check(integerRange(0, 1'000'000))
       ->capture_default_str();
   cmd->add_option("--warmup", options.warmup, "Untimed ticks before timing")
       ->type_name("N")
-      ->check(CLI::NonNegativeNumber)
+      ->check(integerRange(0, 100'000))
       ->capture_default_str();
   cmd->add_option("--seed", options.seed, "Random seed for spawns and goals")->type_name("N")->capture_default_str();
   cmd->add_flag("--json", options.json,

@@ -38,7 +38,7 @@ int reportProblems(const core::Diagnostics& diagnostics, bool json) {
 
 CLI::App* addCheckCommand(CLI::App& app, CheckOptions& options) {
   CLI::App* cmd = app.add_subcommand("check", "Validate a scenario without running it");
-  cmd->description(
+  cmd->footer(
       "Validate a scenario without running it: parse the JSON, check every value, build the\n"
       "navmesh and check that spawns and goals are reachable. Prints every problem, one line each\n"
       "(file:line:column JSON-pointer: what; expected ...), and exits 1 if there is any.");

@@ -12,7 +12,7 @@ namespace throng::cli {
 
 CLI::App* addInfoCommand(CLI::App& app, InfoOptions& options) {
   CLI::App* cmd = app.add_subcommand("info", "Show what a recording holds");
-  cmd->description(
+  cmd->footer(
       "Show what a recording holds: scenario name, seed, agents, frames, frame rate, duration,\n"
       "whether the run completed (false when interrupted or killed), populations and format version.");
   cmd->add_option("recording", options.recording, "Recording written by 'throng run'")

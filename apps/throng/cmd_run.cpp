@@ -15,6 +15,7 @@
 #include "output.hpp"
 #include "progress.hpp"
 #include "signal.hpp"
+#include "validators.hpp"
 #include "throng/core/parallel.hpp"
 #include "throng/io/recorder.hpp"
 #include "throng/io/scenario_loader.hpp"
@@ -40,8 +41,9 @@ FramePlan planFrames(double requestedFps, double dt) {
   const double ratio = 1.0 / (requestedFps * dt);
   FramePlan plan;
   plan.stride = static_cast<std::uint64_t>(std::max(1.0, std::round(ratio)));
-  plan.fps = 1.0 / (static_cast<double>(plan.stride) * dt);
   plan.exact = std::fabs(ratio - static_cast<double>(plan.stride)) <= 1e-6 * ratio;
+  // dt is single precision (0.05f is not 0.05): keep the requested rate when it divides the tick rate.
+  plan.fps = plan.exact ? requestedFps : 1.0 / (static_cast<double>(plan.stride) * dt);
   return plan;
 }
 
@@ -171,7 +173,7 @@ std::string defaultOutput(const std::string& scenarioPath) {
 
 CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
   CLI::App* cmd = app.add_subcommand("run", "Simulate a scenario and record the trajectories");
-  cmd->description(
+  cmd->footer(
       "Simulate a scenario and record the trajectories to SQLite (JuPedSim trajectory format v2).\n"
       "The scenario is validated first (every problem reported, exit 1, no file written), then the\n"
       "recording is opened, then the crowd is simulated until --duration or until every agent has\n"
@@ -183,10 +185,10 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
                   "Simulated time [s]; overrides the scenario's \"duration\". The run also ends once every "
                   "agent has left")
       ->type_name("S")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber("s"));
   cmd->add_option("--threads", options.threads, "Worker threads; 0 = all hardware threads. Results do not depend on it")
       ->type_name("N")
-      ->check(CLI::NonNegativeNumber)
+      ->check(integerRange(0, 1024))
       ->capture_default_str();
   cmd->add_option("--out", options.out,
                   "Recording file; default: <scenario file name without .json>.sqlite in the current directory")
@@ -196,7 +198,7 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
                   "Recorded frames per second [Hz]: every k-th tick is written, k = round(1/(fps*dt)) >= 1; "
                   "the rate actually used is stored in the recording")
       ->type_name("F")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveNumber("Hz"))
       ->capture_default_str();
   cmd->add_flag("--quiet,-q", options.quiet, "Print nothing but errors (no progress, no warnings, no text summary)");
   cmd->add_flag("--json", options.json, "Print the summary as one JSON object on stdout (also with --quiet)");
@@ -205,6 +207,8 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
 
 int runRun(const RunOptions& options) {
   const auto setupStart = Clock::now();
+  // Installed first so Ctrl-C during a long load is handled too (before any file exists).
+  InterruptGuard interrupts;
   auto warn = [&](const std::string& message) {
     if (!options.quiet) printLine(stderr, "throng: warning: " + message);
   };
@@ -236,6 +240,11 @@ int runRun(const RunOptions& options) {
     return kExitFailure;
   }
 
+  if (InterruptGuard::requested()) {
+    printLine(stderr, "throng: interrupted before simulating; nothing written");
+    return kExitInterrupted;
+  }
+
   // 2. Open the recording: a bad or existing path fails before any simulation.
   io::RecordingOptions recording;
   recording.path = options.out.empty() ? defaultOutput(options.scenario) : options.out;
@@ -256,8 +265,7 @@ int runRun(const RunOptions& options) {
   summary.setupSeconds = secondsSince(setupStart);
   LoopResult loop;
   {
-    InterruptGuard interrupts;
-    ProgressLine progress(stderr, !options.quiet);
+    ProgressLine progress(stderr, !options.quiet);  // cleared when it goes out of scope
     loop = simulate(**world, **recorder, tasks, totalTicks, plan, desc.duration, progress);
   }
   const core::Status closed = (*recorder)->close(loop.end != RunEnd::Interrupted);

@@ -4,11 +4,13 @@
 #include <cstdio>
 #include <exception>
 #include <new>
+#include <string>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "throng/core/diagnostic.hpp"
 
 namespace {
 
@@ -31,6 +33,22 @@ int dispatch(int argc, char** argv) {
   CLI::App* info = addInfoCommand(app, infoOptions);
   CLI::App* bench = addBenchCommand(app, benchOptions);
 
+  // CLI11 reports an unknown command as "A subcommand is required"; name it instead.
+  const auto isCommand = [&](const char* word) {
+    for (const CLI::App* sub : {run, check, info, bench}) {
+      if (sub->check_name(word)) return true;
+    }
+    return false;
+  };
+  if (argc > 1 && argv[1][0] != '-' && !isCommand(argv[1])) {
+    const std::string hint = throng::core::closestMatch(argv[1], {"run", "check", "info", "bench"});
+    std::fputs(fmt::format("throng: unknown command '{}'; expected run, check, info or bench{}\n"
+                           "Run 'throng --help' for more information.\n",
+                           argv[1], hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint))
+                   .c_str(),
+               stderr);
+    return kExitUsage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

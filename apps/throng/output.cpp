@@ -51,6 +51,7 @@ core::Diagnostics checkInputFile(const std::string& path, const char* what) {
 
 std::string formatSeconds(double seconds) {
   if (!std::isfinite(seconds)) return "?";
+  if (seconds < 0.1) return fmt::format("{:.1f} ms", seconds * 1000.0);
   if (seconds < 60.0) return fmt::format("{:.2f} s", seconds);
   const auto total = static_cast<long long>(std::llround(seconds));
   if (total < 3600) return fmt::format("{} min {:02} s", total / 60, total % 60);

@@ -20,7 +20,7 @@ void printDiagnostics(const core::Diagnostics& diagnostics);
 /// `what` names the kind of file in the message ("scenario", "recording").
 [[nodiscard]] core::Diagnostics checkInputFile(const std::string& path, const char* what);
 
-/// "1.23 s", "4 min 05 s", "1 h 02 min" for a duration in seconds.
+/// "12.3 ms", "1.23 s", "4 min 05 s", "1 h 02 min" for a duration in seconds.
 [[nodiscard]] std::string formatSeconds(double seconds);
 /// "12.3 k", "4.56 M" — three significant digits with an SI prefix.
 [[nodiscard]] std::string formatSi(double value);

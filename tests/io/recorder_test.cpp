@@ -319,6 +319,7 @@ TEST(Recorder, ExistingFileIsNotOverwrittenWithoutForce) {
   EXPECT_EQ(d.what, "file exists");
   EXPECT_EQ(d.expected, "a new path");
   EXPECT_EQ(d.hint, "pass --force to overwrite");
+  EXPECT_EQ(d.format(), path + ": file exists; expected a new path (pass --force to overwrite)");
   std::ifstream in(path);
   std::string content;
   std::getline(in, content);

@@ -83,7 +83,7 @@ TEST(ScenarioLoader, GroupSizeRangeSpeedNumberAndExtras) {
   auto r = load(R"({"format": "throng/1", "dt": 0.02, "navCellSize": 0.1,
     "steering": {"timeHorizon": 3, "timeHorizonObstacle": 1, "neighbourDistance": 5, "maxNeighbours": 16, "accelerationTime": 0.4},
     "walkable": [[[0,0],[30,0],[30,30],[0,30]]],
-    "points": [{"id": "bench", "kind": "action", "position": [20, 20], "radius": 1, "stop": false,
+    "points": [{"id": "bench", "kind": "action", "position": [20, 20], "radius": 3, "stop": false,
                 "orientation": [0, 2], "action": "sit", "duration": 12.5}],
     "populations": [{"id": "fam", "groups": 10, "size": [2, 4], "spawn": {"point": "bench"}, "start": 5,
                      "speed": 1.1, "radius": 0.25, "wander": true},

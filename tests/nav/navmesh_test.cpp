@@ -17,7 +17,7 @@ TEST(NavMesh, BuildsRoomAndReportsBoundsAndPolygons) {
   EXPECT_EQ(mesh->polygons().size(), mesh->polygonCount());
   EXPECT_FLOAT_EQ(mesh->bounds().min.x, 0.0f);
   EXPECT_FLOAT_EQ(mesh->bounds().max.y, 10.0f);
-  EXPECT_FLOAT_EQ(mesh->config().cellSize, 0.1f);  // agentRadius / 2
+  EXPECT_FLOAT_EQ(mesh->config().cellSize, 0.05f);  // agentRadius / 4 (automatic)
   for (const Polygon& poly : mesh->polygons()) {
     EXPECT_GE(poly.size(), 3u);
     for (Vec2 p : poly) {

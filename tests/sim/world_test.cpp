@@ -9,7 +9,7 @@ using namespace throng;
 
 namespace {
 
-sim::ScenarioDesc corridor(float length, float width, int agents) {
+sim::ScenarioDesc corridor(float length, float width, int agents, float spawnLength = 2.5f) {
   sim::ScenarioDesc d;
   d.name = "corridor";
   d.seed = 3;
@@ -24,7 +24,7 @@ sim::ScenarioDesc corridor(float length, float width, int agents) {
   p.id = "walkers";
   p.groups = static_cast<std::uint32_t>(agents);
   p.spawn.kind = sim::SpawnKind::Polygon;
-  p.spawn.polygon = {{0.5f, 0.3f}, {3, 0.3f}, {3, width - 0.3f}, {0.5f, width - 0.3f}};
+  p.spawn.polygon = {{0.5f, 0.3f}, {0.5f + spawnLength, 0.3f}, {0.5f + spawnLength, width - 0.3f}, {0.5f, width - 0.3f}};
   p.goals = {0};
   p.speedMean = 1.33f;
   p.radius = 0.2f;
@@ -32,20 +32,20 @@ sim::ScenarioDesc corridor(float length, float width, int agents) {
   return d;
 }
 
-struct Run {
+struct RunResult {
   double exitTime = -1;
   double meanSpeed = 0;
   std::uint64_t hash = 0;
   float minGap = 1e9f;  // smallest centre distance minus radii seen
 };
 
-Run simulate(const sim::ScenarioDesc& d, int threads, double maxTime) {
+RunResult simulate(const sim::ScenarioDesc& d, int threads, double maxTime) {
   auto created = sim::World::create(d);
   EXPECT_TRUE(created.ok()) << (created.ok() ? "" : core::formatAll(created.errors()));
   if (!created.ok()) return {};
   sim::World& w = *created.value();
   core::TaskSystem tasks(threads);
-  Run run;
+  RunResult run;
   while (!w.finished() && w.stats().time < maxTime) {
     w.step(tasks);
     const auto f = w.snapshot();
@@ -65,7 +65,7 @@ Run simulate(const sim::ScenarioDesc& d, int threads, double maxTime) {
 }  // namespace
 
 TEST(World, FreeWalkerKeepsDesiredSpeed) {
-  const Run r = simulate(corridor(40, 2, 1), 1, 120);
+  const RunResult r = simulate(corridor(40, 2, 1), 1, 120);
   EXPECT_NEAR(r.meanSpeed, 1.33, 1.33 * 0.05);
   // RiMEA test 1: 40 m at 1.33 m/s takes 26..34 s (here from x≈1.75 to the exit region at 39 m).
   EXPECT_GT(r.exitTime, 20.0);
@@ -84,24 +84,24 @@ TEST(World, HeadOnAgentsPassWithoutOverlap) {
   sim::PopulationDesc b = a;
   b.id = "b"; b.spawn.position = {17, 2}; b.goals = {0};
   d.populations = {a, b};
-  const Run r = simulate(d, 1, 60);
+  const RunResult r = simulate(d, 1, 60);
   EXPECT_GT(r.exitTime, 0.0) << "both reached their exits";
   EXPECT_GT(r.minGap, -0.02f) << "bodies overlapped by more than 2 cm";
 }
 
 TEST(World, ModerateDensityHasNoDeepOverlap) {
-  const Run r = simulate(corridor(30, 4, 40), 2, 90);
+  const RunResult r = simulate(corridor(30, 4, 40, 8.0f), 2, 90);
   EXPECT_GT(r.exitTime, 0.0);
   EXPECT_GT(r.minGap, -0.05f);
 }
 
 TEST(World, IdenticalTrajectoriesForAnyThreadCount) {
-  sim::ScenarioDesc d = corridor(30, 6, 80);
+  sim::ScenarioDesc d = corridor(30, 6, 80, 8.0f);
   d.populations[0].speedSd = 0.2f;
-  const Run r1 = simulate(d, 1, 20);
-  const Run r2 = simulate(d, 2, 20);
-  const Run r3 = simulate(d, 3, 20);
-  const Run r8 = simulate(d, 8, 20);
+  const RunResult r1 = simulate(d, 1, 20);
+  const RunResult r2 = simulate(d, 2, 20);
+  const RunResult r3 = simulate(d, 3, 20);
+  const RunResult r8 = simulate(d, 8, 20);
   EXPECT_EQ(r1.hash, r2.hash);
   EXPECT_EQ(r1.hash, r3.hash);
   EXPECT_EQ(r1.hash, r8.hash);
@@ -110,10 +110,10 @@ TEST(World, IdenticalTrajectoriesForAnyThreadCount) {
 TEST(World, SameSeedSameRunDifferentSeedDifferentRun) {
   sim::ScenarioDesc d = corridor(20, 6, 30);
   d.populations[0].speedSd = 0.2f;
-  const Run a = simulate(d, 1, 10);
-  const Run b = simulate(d, 1, 10);
+  const RunResult a = simulate(d, 1, 10);
+  const RunResult b = simulate(d, 1, 10);
   d.seed = 99;
-  const Run c = simulate(d, 1, 10);
+  const RunResult c = simulate(d, 1, 10);
   EXPECT_EQ(a.hash, b.hash);
   EXPECT_NE(a.hash, c.hash);
 }

@@ -22,6 +22,7 @@
 #include <thread>
 #include <unordered_set>
 
+#include "recording_scenario.hpp"
 #include "recording_schema.hpp"
 #include "recording_text.hpp"
 #include "walkable_area_wkt.hpp"
@@ -35,6 +36,10 @@ namespace {
 
 namespace fs = std::filesystem;
 using recording::Statement;
+using recording::bindInt;
+using recording::bindReal;
+using recording::bindText;
+using recording::writeScenarioTables;
 
 core::Diagnostic diag(const std::string& path, std::string what, std::string expected = {},
                       std::string hint = {}) {
@@ -94,39 +99,6 @@ const char* eventKindText(sim::EventKind kind) {
   return "unknown";
 }
 
-const char* pointKindText(sim::PointKind kind) {
-  switch (kind) {
-    case sim::PointKind::Interest: return "interest";
-    case sim::PointKind::Action: return "action";
-    case sim::PointKind::Exit: return "exit";
-  }
-  return "unknown";
-}
-
-std::string jsonString(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      static const char* kHex = "0123456789abcdef";
-      out += "\\u00";
-      out += kHex[(c >> 4) & 0xf];
-      out += kHex[c & 0xf];
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
-void bindText(sqlite3_stmt* s, int i, const std::string& v) {
-  sqlite3_bind_text(s, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
-}
-void bindInt(sqlite3_stmt* s, int i, std::int64_t v) { sqlite3_bind_int64(s, i, v); }
-void bindReal(sqlite3_stmt* s, int i, double v) { sqlite3_bind_double(s, i, v); }
-
 /// Agent ids below this are tracked in a bitmap (ids are dense spawn order); a stray larger id
 /// goes to a hash set instead of growing the bitmap.
 constexpr std::uint32_t kMaxTrackedAgentId = 1u << 26;
@@ -159,7 +131,7 @@ struct Recorder::Impl {
   std::optional<core::Diagnostic> error;
 
   std::atomic<std::uint64_t> committed{0};
-  bool closed = false;
+  std::atomic<bool> closed{false};  ///< push() after close() is ignored
   std::optional<core::Status> closeResult;
 
   ~Impl() {
@@ -262,77 +234,7 @@ bool Recorder::Impl::writeScenario(const sim::ScenarioDesc& scenario) {
     bindText(geo.get(), 2, area.wkt);
     if (!run(geo)) return false;
   }
-  {
-    Statement pt(db, "INSERT INTO throng_points VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-    if (!pt.ok()) return fail("SQLite: " + sqliteMessage());
-    for (std::size_t i = 0; i < scenario.points.size(); ++i) {
-      const sim::PointDesc& p = scenario.points[i];
-      sqlite3_stmt* s = pt.get();
-      bindInt(s, 1, static_cast<std::int64_t>(i));
-      bindText(s, 2, p.id);
-      bindText(s, 3, pointKindText(p.kind));
-      bindReal(s, 4, floatAsDecimal(p.position.x));
-      bindReal(s, 5, floatAsDecimal(p.position.y));
-      bindReal(s, 6, floatAsDecimal(p.radius));
-      if (p.polygon.empty()) sqlite3_bind_null(s, 7); else bindText(s, 7, polygonWkt(p.polygon));
-      bindInt(s, 8, p.stop ? 1 : 0);
-      bindReal(s, 9, floatAsDecimal(p.orientation.x));
-      bindReal(s, 10, floatAsDecimal(p.orientation.y));
-      bindText(s, 11, p.action);
-      bindReal(s, 12, floatAsDecimal(p.actionDuration));
-      if (!run(pt)) return false;
-    }
-  }
-  {
-    Statement pop(db, "INSERT INTO throng_populations VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-    if (!pop.ok()) return fail("SQLite: " + sqliteMessage());
-    for (std::size_t i = 0; i < scenario.populations.size(); ++i) {
-      const sim::PopulationDesc& p = scenario.populations[i];
-      sqlite3_stmt* s = pop.get();
-      std::string goals = "[";
-      for (std::size_t g = 0; g < p.goals.size(); ++g) {
-        if (g > 0) goals += ",";
-        const std::uint32_t idx = p.goals[g];
-        goals += idx < scenario.points.size() ? jsonString(scenario.points[idx].id) : std::to_string(idx);
-      }
-      goals += "]";
-      bindInt(s, 1, static_cast<std::int64_t>(i));
-      bindText(s, 2, p.id);
-      bindInt(s, 3, p.groups);
-      bindInt(s, 4, p.sizeMin);
-      bindInt(s, 5, p.sizeMax);
-      bindReal(s, 6, floatAsDecimal(p.start));
-      bindReal(s, 7, floatAsDecimal(p.speedMean));
-      bindReal(s, 8, floatAsDecimal(p.speedSd));
-      bindReal(s, 9, floatAsDecimal(p.speedMin));
-      bindReal(s, 10, floatAsDecimal(p.speedMax));
-      bindReal(s, 11, floatAsDecimal(p.radius));
-      bindInt(s, 12, p.wander ? 1 : 0);
-      bindText(s, 13, goals);
-      switch (p.spawn.kind) {
-        case sim::SpawnKind::Polygon:
-          bindText(s, 14, "polygon");
-          bindText(s, 15, polygonWkt(p.spawn.polygon));
-          break;
-        case sim::SpawnKind::Position:
-          bindText(s, 14, "position");
-          bindText(s, 15, "POINT (" + shortestText(floatAsDecimal(p.spawn.position.x)) + " " +
-                              shortestText(floatAsDecimal(p.spawn.position.y)) + ")");
-          break;
-        case sim::SpawnKind::Point:
-          bindText(s, 14, "point");
-          if (p.spawn.point < scenario.points.size()) {
-            const core::Vec2 at = scenario.points[p.spawn.point].position;
-            bindText(s, 15, "POINT (" + shortestText(floatAsDecimal(at.x)) + " " +
-                                shortestText(floatAsDecimal(at.y)) + ")");
-          } else {
-            sqlite3_bind_null(s, 15);
-          }
-          break;
-      }
-      if (!run(pop)) return false;
-    }
-  }
+  if (const std::string msg = writeScenarioTables(db, scenario); !msg.empty()) return fail("SQLite: " + msg);
   return exec("COMMIT");
 }
 

@@ -142,6 +142,12 @@ class Statement {
   int rc_ = SQLITE_ERROR;
 };
 
+inline void bindText(sqlite3_stmt* s, int i, std::string_view v) {
+  sqlite3_bind_text(s, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
+}
+inline void bindInt(sqlite3_stmt* s, int i, std::int64_t v) { sqlite3_bind_int64(s, i, v); }
+inline void bindReal(sqlite3_stmt* s, int i, double v) { sqlite3_bind_double(s, i, v); }
+
 /// FNV-1a (64 bit) of the WKT, as a signed integer: the `geometry.hash` key. JuPedSim uses
 /// Python's salted hash(); readers only join on it, so any stable 64-bit value fits.
 inline std::int64_t geometryHash(std::string_view wkt) {

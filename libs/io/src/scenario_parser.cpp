@@ -41,6 +41,7 @@ struct Range {
     const std::string u = unit.empty() ? "" : " " + unit;
     if (hi == kInf) return noun + (loOpen ? " > " : " >= ") + num(lo) + u;
     if (lo == -kInf) return noun + " <= " + num(hi) + u;
+    if (loOpen) return noun + " > " + num(lo) + " and <= " + num(hi) + u;
     return noun + " from " + num(lo) + (loOpen ? " (exclusive)" : "") + " to " + num(hi) + u;
   }
 };
@@ -193,11 +194,15 @@ bool Parser::readPolygon(const Json& v, const std::string& ptr, core::Polygon& o
           "at least 3 distinct points");
     return false;
   }
-  const double area = std::abs(core::signedArea(out));
-  if (area < kMinPolygonArea) {
+  const auto zeroArea = [&] {
     error(ptr, "degenerate polygon: zero area (all points on one line)", "a polygon enclosing an area > 0 m²");
     return false;
+  };
+  bool collinear = true;
+  for (std::size_t i = 2; i < out.size() && collinear; ++i) {
+    collinear = std::abs(core::cross(out[1] - out[0], out[i] - out[0])) < 1e-9f;
   }
+  if (collinear) return zeroArea();
   if (const auto hit = core::findSelfIntersection(out)) {
     const std::size_t n = out.size();
     const auto edge = [&](std::size_t e) {
@@ -209,6 +214,7 @@ bool Parser::readPolygon(const Json& v, const std::string& ptr, core::Polygon& o
           "split it into several polygons or reorder the points");
     return false;
   }
+  if (std::abs(core::signedArea(out)) < kMinPolygonArea) return zeroArea();
   return true;
 }
 

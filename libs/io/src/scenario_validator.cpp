@@ -213,13 +213,14 @@ class Validator {
     auto built = nav::NavMesh::build(desc_.walkable, desc_.obstacles, config);
     if (!built.ok()) {
       for (core::Diagnostic d : built.errors()) {
-        if (d.source.empty()) {
-          const SourcePos pos = doc_.position("/walkable");
-          d.source = doc_.source();
-          d.line = pos.line;
-          d.column = pos.column;
-          if (d.pointer.empty()) d.pointer = "/walkable";
-        }
+        // The navmesh names its own inputs ("navmesh", "/cellSize"); in a scenario the problem
+        // is the walkable area (or navCellSize), so point there.
+        const std::string pointer = d.pointer == "/cellSize" ? "/navCellSize" : "/walkable";
+        const SourcePos pos = doc_.position(pointer);
+        d.source = doc_.source();
+        d.line = pos.line;
+        d.column = pos.column;
+        d.pointer = pointer;
         diags_.push_back(std::move(d));
       }
       return;
@@ -247,10 +248,13 @@ class Validator {
       for (std::size_t g = 0; g < pop.goals.size(); ++g) {
         const sim::PointDesc& goal = desc_.points[pop.goals[g]];
         const std::string gptr = ptr + "/goals/" + std::to_string(g);
-        const float reach = std::max(goal.radius, 0.5f * static_cast<float>(core::length(core::bounds(goal.polygon).max -
-                                                                                        core::bounds(goal.polygon).min))) +
-                            1.0f;
-        const auto target = query.nearest(goalTarget(goal), goal.polygon.empty() ? reach : std::max(reach, 1.0f));
+        // Search around the goal as far as its region extends, plus a margin for the erosion.
+        float reach = goal.radius;
+        if (!goal.polygon.empty()) {
+          const core::Aabb box = core::bounds(goal.polygon);
+          reach = 0.5f * core::length(box.max - box.min);
+        }
+        const auto target = query.nearest(goalTarget(goal), reach + 1.0f);
         if (!target || !query.reachable(start->first, target->first)) {
           error(gptr,
                 "point \"" + goal.id + "\" cannot be reached from the spawn area of population \"" + pop.id + "\"",

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "navmesh_data.hpp"
@@ -82,7 +83,17 @@ core::Result<std::shared_ptr<const NavMesh>> NavMesh::build(std::span<const Poly
   NavMeshConfig cfg = config;
   if (!std::isfinite(cfg.agentRadius) || cfg.agentRadius < 0.0f)
     errors.push_back(diag("/agentRadius", "agent radius is " + metres(cfg.agentRadius), "a radius >= 0 m"));
-  if (cfg.cellSize == 0.0f) cfg.cellSize = std::clamp(cfg.agentRadius * 0.5f, 0.05f, 0.3f);
+  if (cfg.cellSize == 0.0f) {
+    // Automatic: a quarter of the radius (erosion error is about one cell, so a 1 m door keeps
+    // 0.5 m for agent centres at r = 0.2 m), coarser for huge worlds so the raster stays near
+    // 40 million cells (a 1 km square builds in seconds).
+    double area = 0.0;
+    core::Aabb box;
+    for (const Polygon& p : walkable) for (const Vec2& v : p) box.extend(v);
+    if (box.valid()) area = static_cast<double>(box.max.x - box.min.x) * static_cast<double>(box.max.y - box.min.y);
+    const float bySize = static_cast<float>(std::sqrt(area / 4.0e7));
+    cfg.cellSize = std::clamp(std::max(cfg.agentRadius * 0.25f, bySize), 0.03f, 0.3f);
+  }
   if (!std::isfinite(cfg.cellSize) || cfg.cellSize < 0.01f)
     errors.push_back(diag("/cellSize", "cell size is " + metres(cfg.cellSize), "a cell size >= 0.01 m (0 = automatic)"));
   else if (!std::isfinite(cfg.tileSize) || cfg.tileSize <= 4.0f * cfg.cellSize)
@@ -94,7 +105,13 @@ core::Result<std::shared_ptr<const NavMesh>> NavMesh::build(std::span<const Poly
   if (!errors.empty()) return errors;
 
   const float cs = cfg.cellSize;
-  const int radiusCells = static_cast<int>(std::ceil(cfg.agentRadius / cs - 1e-4f));
+  // One cell more than the radius: cells count as walkable when their centre is, and contour
+  // simplification moves edges up to ~1 cell, so eroding by ceil(r / cs) alone lets the mesh reach
+  // up to ~1.5 cells closer than r to a wall (measured: 0.1 m into obstacles at cs = r = 0.2 m).
+  // With the extra cell the mesh keeps >= ~r/2 from every wall at cs = r/2 (and >= r from straight
+  // walls); a doorway then needs to be wider than about 2 * (r + cs) to stay open.
+  const int radiusCells =
+      cfg.agentRadius > 0.0f ? static_cast<int>(std::ceil(cfg.agentRadius / cs - 1e-4f)) + 1 : 0;
   if (radiusCells >= 250) {
     return diag("/agentRadius", "agent radius " + metres(cfg.agentRadius) + " is " + std::to_string(radiusCells) +
                                     " cells of " + metres(cs),

@@ -30,7 +30,6 @@ struct HeightfieldDeleter { void operator()(rcHeightfield* p) const { rcFreeHeig
 struct CompactDeleter { void operator()(rcCompactHeightfield* p) const { rcFreeCompactHeightfield(p); } };
 struct ContourDeleter { void operator()(rcContourSet* p) const { rcFreeContourSet(p); } };
 struct PolyMeshDeleter { void operator()(rcPolyMesh* p) const { rcFreePolyMesh(p); } };
-struct DetailDeleter { void operator()(rcPolyMeshDetail* p) const { rcFreePolyMeshDetail(p); } };
 
 // Vertical resolution: the floor is flat at y = 0, so only the clearance matters.
 constexpr float kCellHeight = 0.2f;        // [m]
@@ -41,7 +40,6 @@ constexpr float kMaxEdgeLength = 12.0f;    // longest border edge [m]
 constexpr float kMinIslandArea = 0.25f;    // isolated islands smaller than this are dropped [m²]
 constexpr float kMergeRegionArea = 4.0f;   // regions smaller than this merge into neighbours [m²]
 constexpr int kMaxVertsPerPoly = 6;
-constexpr float kDetailSampleDist = 8.0f;  // [m]
 
 TileOutput fail(std::string what, const CollectingContext& ctx) {
   TileOutput out;
@@ -92,10 +90,13 @@ TileOutput buildTile(const TileSettings& s, int tileX, int tileY, const std::vec
   hf.reset();
   if (s.radiusCells > 0 && !rcErodeWalkableArea(&ctx, s.radiusCells, *chf))
     return fail("could not erode the walkable area", ctx);
-  if (!rcBuildDistanceField(&ctx, *chf)) return fail("could not build the distance field", ctx);
+  // Monotone partitioning: no distance field, and its regions have no holes, so contours stay
+  // small. Measured on a 300 m pillar field at cs 0.125 m, 48 m tiles (CPU time): monotone 0.38 s,
+  // watershed 0.99 s, layers 1.64 s (layer regions wrap many pillars; rcBuildPolyMesh's ear
+  // clipping is superlinear in contour size). Its slivers are bounded by the tile size.
   const int minRegion = static_cast<int>(std::ceil(kMinIslandArea / (cs * cs)));
   const int mergeRegion = static_cast<int>(std::ceil(kMergeRegionArea / (cs * cs)));
-  if (!rcBuildRegions(&ctx, *chf, s.borderCells, minRegion, mergeRegion))
+  if (!rcBuildRegionsMonotone(&ctx, *chf, s.borderCells, minRegion, mergeRegion))
     return fail("could not partition the walkable area into regions", ctx);
 
   std::unique_ptr<rcContourSet, ContourDeleter> cset(rcAllocContourSet());
@@ -106,11 +107,6 @@ TileOutput buildTile(const TileSettings& s, int tileX, int tileY, const std::vec
   std::unique_ptr<rcPolyMesh, PolyMeshDeleter> pmesh(rcAllocPolyMesh());
   if (!pmesh || !rcBuildPolyMesh(&ctx, *cset, kMaxVertsPerPoly, *pmesh))
     return fail("could not build the polygon mesh", ctx);
-  std::unique_ptr<rcPolyMeshDetail, DetailDeleter> dmesh(rcAllocPolyMeshDetail());
-  // Flat floor: height samples add nothing, so they are sparse. (Sample distance 0 would skip them
-  // but crashes Debian's 2021 Recast snapshot inside rcBuildPolyMeshDetail.)
-  if (!dmesh || !rcBuildPolyMeshDetail(&ctx, *pmesh, *chf, kDetailSampleDist, kCellHeight, *dmesh))
-    return fail("could not build the detail mesh", ctx);
   if (pmesh->npolys == 0) return {};
   if (pmesh->nverts >= 0xffff) return fail("the tile has more than 65534 vertices; use a smaller tileSize", ctx);
 
@@ -126,11 +122,9 @@ TileOutput buildTile(const TileSettings& s, int tileX, int tileY, const std::vec
   params.polyFlags = pmesh->flags;
   params.polyCount = pmesh->npolys;
   params.nvp = pmesh->nvp;
-  params.detailMeshes = dmesh->meshes;
-  params.detailVerts = dmesh->verts;
-  params.detailVertsCount = dmesh->nverts;
-  params.detailTris = dmesh->tris;
-  params.detailTriCount = dmesh->ntris;
+  // No detail mesh: the floor is flat, so Detour's own fan triangulation of each polygon is exact.
+  // (rcBuildPolyMeshDetail cost ~10% of the build, and with sample distance 0 it crashes Debian's
+  // 2021 Recast snapshot.)
   params.tileX = tileX;
   params.tileY = tileY;
   params.tileLayer = 0;

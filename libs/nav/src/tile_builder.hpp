@@ -1,6 +1,6 @@
 // throng::nav (private) — builds one Detour tile of the flat floor: rasterize the walkable cells
 // (walkable_raster), erode by the agent radius, partition into regions, trace contours, build the
-// polygon and detail meshes, and pack them with dtCreateNavMeshData. Reads polygons; writes the
+// polygon mesh, and pack them with dtCreateNavMeshData. Reads polygons; writes the
 // tile's Detour data. Tiles are independent, so they build in parallel.
 #pragma once
 #include <string>

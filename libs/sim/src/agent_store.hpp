@@ -45,6 +45,7 @@ struct AgentStore {
   std::vector<std::vector<core::Vec2>> corners;  ///< cold: string-pulled path
   std::vector<std::uint64_t> actionEndTick;
   std::vector<float> progressDistance;    ///< distance to target at the last progress check [m]
+  std::vector<float> stuckTime;           ///< how long the agent has wanted to walk but barely moved [s]
   // Neighbours found by sense: row indices, maxNeighbours slots per agent.
   std::vector<std::uint32_t> neighbours;
   std::vector<std::uint16_t> neighbourCount;
@@ -58,7 +59,7 @@ struct AgentStore {
     f(posX); f(posY); f(velX); f(velY); f(prefVelX); f(prefVelY); f(newVelX); f(newVelY);
     f(oriX); f(oriY); f(radius); f(speed); f(mode);
     f(goalState); f(goalCursor); f(targetX); f(targetY); f(targetDraws); f(needPath); f(ticket); f(polyRef);
-    f(cornerIndex); f(corners); f(actionEndTick); f(progressDistance);
+    f(cornerIndex); f(corners); f(actionEndTick); f(progressDistance); f(stuckTime);
   }
 
   /// Appends one default-initialised row and returns its index.

@@ -41,6 +41,11 @@ void World::Impl::integrate(const core::TaskSystem& tasks) {
       if (agents.mode[row] == AgentMode::Walking) {
         out.walkedDistance += core::length(moved);
         out.walkingTime += h;
+        // Wanting to walk (a preferred velocity) but barely moving: count toward deadlock breaking.
+        const bool stuck = agents.goalState[row] == GoalState::Seeking && core::length(moved) < 0.1f * agents.speed[row] * h;
+        agents.stuckTime[row] = stuck ? agents.stuckTime[row] + h : 0.0f;
+      } else {
+        agents.stuckTime[row] = 0.0f;
       }
       if (agents.goalState[row] != GoalState::Acting) {
         const float speed = core::length(moved) / h;

@@ -143,19 +143,22 @@ void World::Impl::spawnPopulation(std::size_t populationIndex) {
       const std::uint32_t agentId = nextAgentId++;
       core::Rng rng(desc.seed, agentId, core::RngPurpose::Spawn);
       std::optional<std::pair<core::Vec2, nav::PolyRef>> placed;
-      // Near the anchor first, then anywhere in the region, then (crowded) the best effort.
-      for (int attempt = 0; attempt < 400 && !placed; ++attempt) {
+      // Near the anchor first, then anywhere in the region, then (an overfull region) in a
+      // widening disc around the anchor beyond the region, and only then wherever the mesh is.
+      for (int attempt = 0; attempt < 700 && !placed; ++attempt) {
         std::optional<core::Vec2> p;
         if (attempt < 100) {
           p = sampleDisc(anchor, groupSpread * (1.0f + 0.02f * static_cast<float>(attempt)), rng);
           if (regionPoly && !core::pointInPolygon(*regionPoly, *p)) p.reset();
-        } else {
+        } else if (attempt < 400) {
           p = sampleRegion(rng);
+        } else {
+          p = sampleDisc(anchor, groupSpread + 0.05f * static_cast<float>(attempt - 400), rng);
         }
         if (!p || !occupancy.free(*p, pop.radius)) continue;
         placed = onMesh(*p);
       }
-      if (!placed) placed = query.nearest(anchor, 5.0f);
+      if (!placed) placed = query.nearest(sampleDisc(anchor, groupSpread, rng), 5.0f);
       if (!placed) placed = std::make_pair(anchor, nav::PolyRef{0});
       occupancy.add(placed->first, pop.radius);
 

@@ -13,6 +13,33 @@ namespace {
 constexpr float kCornerReach = 0.5f;
 /// Approaching a stop (action point, last goal), agents slow down over this time [s].
 constexpr float kArrivalTime = 0.5f;
+/// An agent that wanted to walk but barely moved for this long tries to get out of a deadlock [s].
+constexpr float kStuckPatience = 1.0f;
+/// Length of one deadlock-breaking attempt [s]; each attempt draws a new direction.
+constexpr float kStuckAttempt = 0.8f;
+
+/// Deadlock breaking (ORCA is symmetric: two agents wedged in a door mouth wait for each other
+/// forever). A stuck agent turns its desired velocity aside or back for a moment; the turn is drawn
+/// from (seed, id, attempt), so two wedged agents almost never choose mirror-image moves.
+core::Vec2 unstick(core::Vec2 desired, std::uint64_t seed, std::uint32_t id, float stuckTime) {
+  const auto attempt = static_cast<std::uint64_t>((stuckTime - kStuckPatience) / kStuckAttempt);
+  const std::uint64_t h = core::mix64(seed ^ core::mix64((static_cast<std::uint64_t>(id) << 16) ^ attempt));
+  // Angles of ±100° (aside and a little back) or 180° (step back), at half speed.
+  static constexpr float kCos[3] = {-0.17364818f, -0.17364818f, -1.0f};
+  static constexpr float kSin[3] = {0.98480775f, -0.98480775f, 0.0f};
+  const std::size_t k = h % 3;
+  return core::Vec2{desired.x * kCos[k] - desired.y * kSin[k], desired.x * kSin[k] + desired.y * kCos[k]} * 0.5f;
+}
+
+/// Two centres in the same spot give ORCA no direction to push apart; pick one from the pair's ids
+/// (opposite for the two agents, so they separate).
+core::Vec2 separationAxis(std::uint32_t self, std::uint32_t other) {
+  const std::uint32_t lo = std::min(self, other), hi = std::max(self, other);
+  const std::uint64_t h = core::mix64((static_cast<std::uint64_t>(lo) << 32) | hi);
+  const float angle = static_cast<float>(h % 6283u) * 0.001f;
+  const float sign = self < other ? 1.0f : -1.0f;
+  return core::Vec2{std::cos(angle), std::sin(angle)} * (1e-4f * sign);
+}
 
 }  // namespace
 
@@ -49,6 +76,7 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
                                       : (desc.points[pop.goals[cursor]].kind == PointKind::Action && desc.points[pop.goals[cursor]].stop);
           if (lastLeg && stopsThere) v = std::min(v, dist / kArrivalTime);
           desired = toAim * (v / dist);
+          if (agents.stuckTime[row] > kStuckPatience) desired = unstick(desired, desc.seed, agents.id[row], agents.stuckTime[row]);
         }
       }
       const core::Vec2 pref = vel + (desired - vel) * relax;
@@ -72,7 +100,8 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
       const std::uint32_t* nb = &agents.neighbours[row * k];
       for (std::size_t i = 0; i < agents.neighbourCount[row]; ++i) {
         const std::uint32_t o = nb[i];
-        const core::Vec2 relPos{agents.posX[o] - pos.x, agents.posY[o] - pos.y};
+        core::Vec2 relPos{agents.posX[o] - pos.x, agents.posY[o] - pos.y};
+        if (core::lengthSq(relPos) < 1e-10f) relPos = separationAxis(agents.id[row], agents.id[o]);
         const core::Vec2 relVel{vel.x - agents.velX[o], vel.y - agents.velY[o]};
         lines.push_back(agentOrcaLine(relPos, relVel, vel, agents.radius[row] + agents.radius[o], s.timeHorizon, dtLocal));
       }

@@ -23,7 +23,7 @@
 namespace throng::sim {
 
 /// Margin kept between agent centres and the eroded navmesh boundary by ORCA [m].
-inline constexpr float kWallMargin = 0.05f;
+inline constexpr float kWallMargin = 0.01f;
 /// Detour node expansions the plan phase may spend per tick (time-slicing, as dtPathQueue).
 inline constexpr int kPathIterationsPerTick = 20000;
 /// Period of the progress check that triggers a re-plan for an agent that is stuck [s].

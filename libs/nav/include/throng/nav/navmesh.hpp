@@ -26,8 +26,10 @@ using PolyRef = std::uint64_t;
 
 struct NavMeshConfig {
   float agentRadius = 0.2f;  ///< erosion radius [m] [Limit: >= 0]
-  float cellSize = 0.0f;     ///< voxel size [m]; 0 = agentRadius/2 clamped to [0.05, 0.3]
-  float tileSize = 48.0f;    ///< tile edge [m] [Limit: > 4 * cellSize]
+  float cellSize = 0.0f;     ///< voxel size [m]; 0 = max(agentRadius/4, sqrt(bounding area / 4e7)) clamped to [0.03, 0.3]
+  float tileSize = 24.0f;    ///< tile edge [m] [Limit: > 4 * cellSize]. Smaller tiles mean smaller polygons and
+                             ///< closer-to-shortest A* paths (300 m pillar field: mean path/straight ratio
+                             ///< 1.026 at 24 m, 1.073 at 48 m) for ~10% more build time.
 };
 
 class NavMesh {

@@ -1,0 +1,54 @@
+// Fuzz target for throng::io::readRecordingSummary (libs/io/src/recording_reader.cpp): the input
+// bytes become a file on disk (SQLite reads files, not buffers) and are summarised read-only.
+// Any input must give a summary or a diagnostic: no crash, hang, leak or write.
+// Corpus: fuzz/corpus/recording_reader/ (tiny valid recordings and junk).
+#include <unistd.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "throng/io/recorder.hpp"
+
+namespace {
+
+std::string& tempDir() {
+  static std::string dir;
+  return dir;
+}
+
+/// One private directory per fuzzing process, holding the current input as a file; removed at exit.
+const std::string& inputPath() {
+  static const std::string path = [] {
+    std::string dir = "/tmp/throng-fuzz-recording-XXXXXX";
+    if (::mkdtemp(dir.data()) == nullptr) std::abort();
+    tempDir() = dir;
+    std::atexit([] { ::rmdir(tempDir().c_str()); });
+    return dir + "/input.sqlite";
+  }();
+  return path;
+}
+
+void removeFiles(const std::string& path) {
+  for (const char* suffix : {"", "-wal", "-shm", "-journal"}) std::remove((path + suffix).c_str());
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size > (1u << 20)) return 0;  // recordings in the corpus are a few KB; skip huge inputs
+  const std::string& path = inputPath();
+  removeFiles(path);
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (f == nullptr) std::abort();
+  if (size > 0 && std::fwrite(data, 1, size, f) != size) std::abort();
+  std::fclose(f);
+
+  const auto summary = throng::io::readRecordingSummary(path);
+  if (!summary.ok() && summary.errors().empty()) std::abort();  // a failure must say why
+  if (summary.ok() && summary->fps <= 0.0) std::abort();       // the reader validates fps
+  removeFiles(path);
+  return 0;
+}

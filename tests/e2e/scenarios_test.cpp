@@ -1,0 +1,160 @@
+// Every bundled scenario, end to end through the CLI as a user runs it, with the behavioural checks
+// from the literature on the recordings: free walking speed and RiMEA test 1 in the corridor, flow
+// through the 1 m door, everyone out of the evacuation room, identical recordings for any --threads.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sqlite3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cli_runner.hpp"
+
+namespace fs = std::filesystem;
+using throng::e2e::runThrong;
+using throng::e2e::ScratchDir;
+
+namespace {
+
+fs::path scenario(const std::string& name) { return fs::path(THRONG_SOURCE_DIR) / "scenarios" / (name + ".json"); }
+
+/// Runs a bundled scenario with --json and returns the parsed summary.
+nlohmann::json runScenario(const std::string& name, const fs::path& out, const std::vector<std::string>& extra = {}) {
+  std::vector<std::string> args{"run", scenario(name).string(), "--out", out.string(), "--force", "--json"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const auto r = runThrong(args, out.parent_path());
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  if (r.exitCode != 0) return {};
+  return nlohmann::json::parse(r.out);
+}
+
+/// Rows of a query on a recording, as doubles.
+std::vector<std::vector<double>> query(const fs::path& db, const std::string& sql) {
+  std::vector<std::vector<double>> rows;
+  sqlite3* h = nullptr;
+  if (sqlite3_open_v2(db.c_str(), &h, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
+    ADD_FAILURE() << "cannot open " << db;
+    sqlite3_close(h);
+    return rows;
+  }
+  sqlite3_stmt* st = nullptr;
+  if (sqlite3_prepare_v2(h, sql.c_str(), -1, &st, nullptr) != SQLITE_OK) {
+    ADD_FAILURE() << sqlite3_errmsg(h) << " in " << sql;
+  } else {
+    while (sqlite3_step(st) == SQLITE_ROW) {
+      std::vector<double> row;
+      for (int c = 0; c < sqlite3_column_count(st); ++c) row.push_back(sqlite3_column_double(st, c));
+      rows.push_back(row);
+    }
+  }
+  sqlite3_finalize(st);
+  sqlite3_close(h);
+  return rows;
+}
+
+double fps(const fs::path& db) {
+  const auto rows = query(db, "SELECT value FROM metadata WHERE key = 'fps'");
+  return rows.empty() ? 0.0 : rows[0][0];
+}
+
+}  // namespace
+
+TEST(Scenarios, CorridorFreeWalkingAndRimeaTest1) {
+  ScratchDir dir("corridor");
+  const auto s = runScenario("corridor", dir / "corridor.sqlite");
+  ASSERT_FALSE(s.is_null());
+  EXPECT_EQ(s["agents_spawned"], 1);
+  EXPECT_EQ(s["agents_exited"], 1);
+  // Free walking speed within 5% of the desired 1.33 m/s.
+  EXPECT_NEAR(s["mean_walking_speed_mps"].get<double>(), 1.33, 1.33 * 0.05);
+  // RiMEA test 1: 40 m at 1.33 m/s must take 26..34 s.
+  const double t = s["evacuation_time_s"].get<double>();
+  EXPECT_GE(t, 26.0);
+  EXPECT_LE(t, 34.0);
+}
+
+TEST(Scenarios, BottleneckFlowThroughOneMetreDoor) {
+  ScratchDir dir("bottleneck");
+  const fs::path db = dir / "bottleneck.sqlite";
+  const auto s = runScenario("bottleneck", db);
+  ASSERT_FALSE(s.is_null());
+  EXPECT_EQ(s["agents_spawned"], 100);
+  EXPECT_EQ(s["agents_exited"], 100);
+  // Passing times through the door (x = 10 m, the downstream face of the wall).
+  const auto rows = query(db, "SELECT id, MIN(frame) FROM trajectory_data WHERE pos_x > 10.0 GROUP BY id ORDER BY 2");
+  ASSERT_EQ(rows.size(), 100u);
+  const double f = fps(db);
+  ASSERT_GT(f, 0.0);
+  // Steady flow: between the 10th and the 90th person through.
+  const double t10 = rows[10][1] / f, t90 = rows[90][1] / f;
+  const double flow = 80.0 / (t90 - t10);
+  EXPECT_GE(flow, 1.0) << "persons/s";
+  EXPECT_LE(flow, 2.5) << "persons/s";
+  // Nobody walks through the walls: no recorded position inside either wall block.
+  const auto inside = query(db,
+                            "SELECT COUNT(*) FROM trajectory_data WHERE pos_x > 9.0 AND pos_x < 10.0 AND "
+                            "(pos_y < 4.5 OR pos_y > 5.5)");
+  EXPECT_EQ(inside[0][0], 0.0);
+}
+
+TEST(Scenarios, CrossingStreamsBothArrive) {
+  ScratchDir dir("crossing");
+  const auto s = runScenario("crossing", dir / "crossing.sqlite");
+  ASSERT_FALSE(s.is_null());
+  EXPECT_EQ(s["agents_spawned"], 100);
+  EXPECT_EQ(s["agents_exited"], 100);
+}
+
+TEST(Scenarios, EvacuationEmptiesTheRoom) {
+  ScratchDir dir("evacuation");
+  const fs::path db = dir / "evacuation.sqlite";
+  const auto s = runScenario("evacuation", db);
+  ASSERT_FALSE(s.is_null());
+  EXPECT_EQ(s["agents_spawned"], 200);
+  EXPECT_EQ(s["agents_exited"], 200);
+  EXPECT_GT(s["evacuation_time_s"].get<double>(), 20.0);
+  EXPECT_LT(s["evacuation_time_s"].get<double>(), 200.0);
+  // No body overlaps another by more than 10 cm of its 0.4 m combined diameter in any frame.
+  const auto deep = query(db,
+                          "SELECT COUNT(*) FROM trajectory_data a JOIN trajectory_data b "
+                          "ON a.frame = b.frame AND a.id < b.id "
+                          "WHERE (a.pos_x - b.pos_x) * (a.pos_x - b.pos_x) + (a.pos_y - b.pos_y) * (a.pos_y - b.pos_y) < 0.09");
+  EXPECT_EQ(deep[0][0], 0.0) << "pairs closer than 0.3 m";
+}
+
+TEST(Scenarios, PlazaFlagshipRuns) {
+  ScratchDir dir("plaza");
+  const fs::path db = dir / "plaza.sqlite";
+  const auto s = runScenario("plaza", db);
+  ASSERT_FALSE(s.is_null());
+  EXPECT_GT(s["agents_spawned"].get<int>(), 400);
+  EXPECT_GT(s["agents_exited"].get<int>(), 0);
+  const auto info = runThrong({"info", db.string(), "--json"}, dir.path());
+  EXPECT_EQ(info.exitCode, 0) << info.err;
+}
+
+TEST(Scenarios, RecordingIdenticalForAnyThreadCount) {
+  ScratchDir dir("threads");
+  const fs::path a = dir / "t1.sqlite", b = dir / "t2.sqlite";
+  runScenario("bottleneck", a, {"--threads", "1", "--duration", "20"});
+  runScenario("bottleneck", b, {"--threads", "2", "--duration", "20"});
+  const std::string sql = "SELECT frame, id, pos_x, pos_y, ori_x, ori_y FROM trajectory_data ORDER BY frame, id";
+  const auto ra = query(a, sql), rb = query(b, sql);
+  ASSERT_GT(ra.size(), 1000u);
+  ASSERT_EQ(ra.size(), rb.size());
+  for (std::size_t i = 0; i < ra.size(); ++i) ASSERT_EQ(ra[i], rb[i]) << "row " << i;
+}
+
+TEST(Scenarios, EveryBundledScenarioPassesCheck) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(THRONG_SOURCE_DIR) / "scenarios")) {
+    if (entry.path().extension() != ".json") continue;
+    const auto r = runThrong({"check", entry.path().string()}, fs::temp_directory_path());
+    EXPECT_EQ(r.exitCode, 0) << entry.path() << "\n" << r.out << r.err;
+    ++count;
+  }
+  EXPECT_GE(count, 5);
+}
