@@ -72,6 +72,8 @@ def main():
     colours = plt.get_cmap("tab10")
     pop_index = {p: i for i, p in enumerate(sorted({v for v in population.values() if v}))}
     track = {}
+    last_frame = max((r[0] for r in rows), default=0)
+    present = {aid for frame, aid, x, y in rows if frame == last_frame}
     for frame, aid, x, y in rows:
         if frame % args.every == 0:
             track.setdefault(aid, ([], []))
@@ -84,7 +86,8 @@ def main():
         label = pop if pop and pop not in labelled else None
         labelled.add(pop)
         ax.plot(xs, ys, lw=0.6, alpha=0.55, color=c, label=label, zorder=2)
-        ax.plot(xs[-1:], ys[-1:], "o", ms=2.0, color=c, zorder=3)
+        if aid in present:  # where the agents still in the world stand at the end
+            ax.plot(xs[-1:], ys[-1:], "o", ms=2.0, color=c, zorder=3)
     if "throng_points" in tables:
         for pid, kind, x, y in db.execute("SELECT id, kind, x, y FROM throng_points"):
             marker = {"exit": "s", "action": "*", "interest": "^"}.get(kind, "o")

@@ -107,7 +107,7 @@ TEST(RecordingReader, SummarisesAThrongRecording) {
   EXPECT_EQ(s->frames, 10u);
   EXPECT_EQ(s->agents, 3u);
   EXPECT_EQ(s->rows, 5u * 2 + 5u * 3);
-  EXPECT_DOUBLE_EQ(s->duration, 0.5);
+  EXPECT_DOUBLE_EQ(s->duration, 0.45);  // 10 frames at 20 fps span 9 intervals
   EXPECT_TRUE(s->completed);
   EXPECT_FALSE(s->throngVersion.empty());
   EXPECT_EQ(s->events, 3u);
@@ -149,7 +149,7 @@ TEST(RecordingReader, ReadsForeignJuPedSimFilesOfVersions1To3) {
   ASSERT_TRUE(s.ok()) << core::formatAll(s.errors());
   EXPECT_EQ(s->formatVersion, 3);
   EXPECT_EQ(s->frames, 2u);
-  EXPECT_DOUBLE_EQ(s->duration, 0.8);
+  EXPECT_DOUBLE_EQ(s->duration, 0.4);
 }
 
 TEST(RecordingReader, MissingFileAndDirectory) {

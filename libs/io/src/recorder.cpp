@@ -373,7 +373,7 @@ void Recorder::Impl::writeFinal(bool completed) {
   const bool ok = putMeta(recording::kKeyCompleted, completed && wasOk ? "1" : "0") &&
                   putMeta(recording::kKeyFrames, std::to_string(committed.load())) &&
                   putMeta(recording::kKeyDuration,
-                          recording::pythonFloatText(static_cast<double>(committed.load()) / options.fps)) &&
+                          recording::pythonFloatText(committed.load() > 1 ? static_cast<double>(committed.load() - 1) / options.fps : 0.0)) &&
                   putMeta(recording::kKeyAgents, std::to_string(agentCount));
   if (ok) exec("COMMIT"); else exec("ROLLBACK");
 }

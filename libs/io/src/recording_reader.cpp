@@ -160,7 +160,7 @@ core::Result<RecordingSummary> readRecordingSummary(const std::string& path) {
     }
     if (frames.failed) return diag(path, "cannot count frames (" + failure(db) + ")");
     sum.frames = static_cast<std::uint64_t>(std::max<std::int64_t>(0, frames.integer));
-    sum.duration = static_cast<double>(sum.frames) / sum.fps;
+    sum.duration = sum.frames > 1 ? static_cast<double>(sum.frames - 1) / sum.fps : 0.0;  // first to last frame
 
     // throng's provenance (absent in files from other writers).
     sum.throngVersion = meta(recording::kKeyThrongVersion).text;

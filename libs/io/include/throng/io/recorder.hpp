@@ -58,7 +58,7 @@ struct RecordingSummary {
   std::uint64_t frames = 0;
   std::uint64_t agents = 0;       ///< distinct agent ids
   std::uint64_t rows = 0;         ///< trajectory rows
-  double duration = 0.0;          ///< frames / fps [s]
+  double duration = 0.0;          ///< time from the first to the last frame, (frames - 1) / fps [s]
   bool completed = false;         ///< false when the run was cut short (killed or interrupted)
   std::string throngVersion;
   std::vector<std::pair<std::string, std::uint64_t>> populations;  ///< id → agents
