@@ -34,3 +34,34 @@ TEST(SpatialGrid, FindsEveryAgentWithinRangeAndClampsOutsiders) {
   }
   EXPECT_EQ(grid.rowsInCellOrder().size(), xs.size());
 }
+
+TEST(SpatialGrid, NearestMatchesBruteForce) {
+  sim::SpatialGrid grid;
+  grid.configure(core::Aabb{{0, 0}, {30, 30}}, 1.0f);
+  std::vector<float> xs, ys;
+  core::Rng rng(2, 0, core::RngPurpose::Bench);
+  for (int i = 0; i < 900; ++i) {
+    xs.push_back(static_cast<float>(rng.uniform(0, 30)));
+    ys.push_back(static_cast<float>(rng.uniform(0, 30)));
+  }
+  core::TaskSystem tasks(1);
+  grid.rebuild(xs, ys, tasks);
+  std::vector<std::pair<float, std::uint32_t>> scratch;
+  for (std::uint32_t self = 0; self < xs.size(); self += 7) {
+    for (std::size_t k : {1u, 5u, 10u}) {
+      for (float range : {0.5f, 2.0f, 3.0f}) {
+        std::vector<std::uint32_t> out(k);
+        const std::size_t n = grid.nearest(xs[self], ys[self], range, k, self, xs.data(), ys.data(), scratch, out.data());
+        std::vector<std::pair<float, std::uint32_t>> all;
+        for (std::uint32_t i = 0; i < xs.size(); ++i) {
+          if (i == self) continue;
+          const float dx = xs[i] - xs[self], dy = ys[i] - ys[self];
+          if (dx * dx + dy * dy < range * range) all.push_back({dx * dx + dy * dy, i});
+        }
+        std::sort(all.begin(), all.end());
+        ASSERT_EQ(n, std::min(k, all.size()));
+        for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(out[i], all[i].second) << "self " << self << " k " << k;
+      }
+    }
+  }
+}

@@ -34,6 +34,13 @@ class SpatialGrid {
     }
   }
 
+  /// The k nearest rows to (x, y) within `range` (excluding `self`), nearest first, ties by row.
+  /// Cells are searched ring by ring outward and the search stops once no unvisited cell can hold
+  /// anything closer than the current k-th neighbour. `best` is caller scratch; returns the count
+  /// written to `out` (at most k).
+  std::size_t nearest(float x, float y, float range, std::size_t k, std::uint32_t self, const float* posX,
+                      const float* posY, std::vector<std::pair<float, std::uint32_t>>& best, std::uint32_t* out) const;
+
   [[nodiscard]] int cellX(float x) const { return clampCell(static_cast<int>(std::floor((x - originX_) * invCell_)), nx_); }
   [[nodiscard]] int cellY(float y) const { return clampCell(static_cast<int>(std::floor((y - originY_) * invCell_)), ny_); }
   [[nodiscard]] float cellSize() const { return cellSize_; }
@@ -46,6 +53,11 @@ class SpatialGrid {
   int nx_ = 1, ny_ = 1;
   std::vector<std::uint32_t> cellStart_;  // size nx*ny + 1
   std::vector<std::uint32_t> rows_;       // rows sorted by cell
+  struct Entry {
+    float x, y;
+    std::uint32_t row;
+  };
+  std::vector<Entry> entries_;            // positions packed in cell order (nearest() reads these)
   std::vector<std::uint32_t> cellOfRow_;
   std::vector<std::uint32_t> cursor_;
 };

@@ -33,7 +33,9 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   const float wallCell = std::max(2.0f, s.timeHorizonObstacle * 2.5f + 0.5f);
   w.walls.build(*navmesh, wallCell);
   core::Aabb gridBounds = navmesh->bounds();
-  w.grid.configure(gridBounds, std::max(0.5f, s.neighbourDistance));
+  // ~1 m cells searched ring by ring (SpatialGrid::nearest): a handful of agents per cell at
+  // pedestrian densities, and the search stops at the k-th neighbour.
+  w.grid.configure(gridBounds, std::clamp(s.neighbourDistance / 3.0f, 0.5f, 2.0f));
   for (const PopulationDesc& pop : desc.populations) {
     w.populationStartTick.push_back(static_cast<std::uint64_t>(std::ceil(pop.start / desc.dt - 1e-6)));
     w.populationSpawned.push_back(0);
