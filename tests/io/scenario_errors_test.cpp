@@ -261,6 +261,19 @@ TEST(ScenarioErrors, UnreachableGoal) {
   EXPECT_TRUE(contains(d.expected, "0.4 m wide")) << d.format();
 }
 
+TEST(ScenarioErrors, PointOutsideTheWalkableArea) {
+  // A typo in a point's coordinates puts it in the void: named even when no population uses it.
+  const std::string text = edit(kBottleneck, R"({"id": "exit", "kind": "exit", "polygon": [[19,4],[20,4],[20,6],[19,6]]})",
+                                R"({"id": "exit", "kind": "exit", "polygon": [[19,4],[20,4],[20,6],[19,6]]},
+    {"id": "island", "kind": "interest", "position": [50, 50], "radius": 1})");
+  const auto ds = errorsOf(text, true);
+  ASSERT_EQ(ds.size(), 1u) << core::formatAll(ds);
+  const auto d = at(ds, "/points/2");
+  EXPECT_TRUE(contains(d.what, "\"island\" at (50, 50) lies outside the walkable area")) << d.format();
+  EXPECT_EQ(d.expected, "a region that overlaps /walkable");
+  EXPECT_GT(d.line, 0);
+}
+
 TEST(ScenarioErrors, ReachableScenarioBuildsNavmesh) {
   auto r = load(kBottleneck, true);
   ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());

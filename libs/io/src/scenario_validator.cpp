@@ -24,7 +24,11 @@ using BMulti = bg::model::multi_polygon<BPolygon>;
 
 std::string num(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
+  if (v == std::floor(v) && std::fabs(v) < 1e12) {
+    std::snprintf(buf, sizeof buf, "%.0f", v);  // counts and whole metres: never "1e+03"
+  } else {
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+  }
   return buf;
 }
 
@@ -228,6 +232,22 @@ class Validator {
     navmesh = built.value();
     nav::NavQuery query(navmesh);
     const float width = 2.0f * config.agentRadius;
+    // Every point must touch the walkable area, used as a goal or not: a point out in the void is
+    // a typo in its coordinates.
+    for (std::size_t i = 0; i < desc_.points.size(); ++i) {
+      const sim::PointDesc& point = desc_.points[i];
+      float reach = point.radius;
+      if (!point.polygon.empty()) {
+        const core::Aabb box = core::bounds(point.polygon);
+        reach = 0.5f * core::length(box.max - box.min);
+      }
+      if (!query.nearest(goalTarget(point), reach + 1.0f)) {
+        error("/points/" + std::to_string(i),
+              "point \"" + point.id + "\" at (" + num(point.position.x) + ", " + num(point.position.y) +
+                  ") lies outside the walkable area (no walkable ground within " + num(reach + 1.0f) + " m)",
+              "a region that overlaps /walkable");
+      }
+    }
     for (std::size_t i = 0; i < desc_.populations.size(); ++i) {
       if (!starts[i]) continue;
       const sim::PopulationDesc& pop = desc_.populations[i];
