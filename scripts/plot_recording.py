@@ -57,7 +57,9 @@ def main():
     tables = {r[0] for r in db.execute("SELECT name FROM sqlite_master WHERE type='table'")}
     population = {}
     if "throng_agents" in tables:
-        population = dict(db.execute("SELECT id, population_id FROM throng_agents").fetchall())
+        # Colour by population family: "commuters-wave3" and "commuters-wave4" share a colour.
+        population = {aid: re.sub(r"[-_ ]?[A-Za-z]*\d+$", "", pid or "") or pid
+                      for aid, pid in db.execute("SELECT id, population_id FROM throng_agents").fetchall()}
     name = args.title
     if name is None:
         meta = dict(db.execute("SELECT key, value FROM metadata").fetchall())
@@ -98,7 +100,7 @@ def main():
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_title(f"{name}: {len(track)} agents")
-    if pop_index:
+    if 0 < len(pop_index) <= 10:
         ax.legend(loc="upper right", fontsize=7, framealpha=0.85)
     out = args.out or (args.recording.rsplit(".", 1)[0] + ".png")
     fig.tight_layout()
