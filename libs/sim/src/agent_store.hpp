@@ -18,7 +18,10 @@ enum class GoalState : std::uint8_t {
   Acting = 1,   ///< stopped at an action point until actionEndTick
   Done = 2,     ///< every goal visited, nothing more to do
   Exited = 3,   ///< reached an exit: removed in this tick's emit phase
+  WaitingForGroup = 4,  ///< at its group's goal, waiting until the others arrive (flocking rule 4)
 };
+
+inline constexpr std::uint32_t kNoAgent = 0xffffffffu;
 
 struct AgentStore {
   // Identity.
@@ -46,6 +49,11 @@ struct AgentStore {
   std::vector<std::uint64_t> actionEndTick;
   std::vector<float> progressDistance;    ///< distance to target at the last progress check [m]
   std::vector<float> stuckTime;           ///< how long the agent has wanted to walk but barely moved [s]
+  std::vector<float> formVelX, formVelY;  ///< formation correction from the group pass [m/s]
+  std::vector<std::uint32_t> followAgent; ///< sociological: stable id of the agent followed, kNoAgent if none
+  std::vector<std::uint64_t> followUntil; ///< tick that following ends
+  std::vector<std::uint32_t> socialEffect;///< decide → group pass: 0 none, 1 join, 2 follow (+ other agent in socialOther)
+  std::vector<std::uint32_t> socialOther; ///< the agent met
   // Neighbours found by sense: row indices, maxNeighbours slots per agent.
   std::vector<std::uint32_t> neighbours;
   std::vector<std::uint16_t> neighbourCount;
@@ -60,6 +68,7 @@ struct AgentStore {
     f(oriX); f(oriY); f(radius); f(speed); f(mode);
     f(goalState); f(goalCursor); f(targetX); f(targetY); f(targetDraws); f(needPath); f(ticket); f(polyRef);
     f(cornerIndex); f(corners); f(actionEndTick); f(progressDistance); f(stuckTime);
+    f(formVelX); f(formVelY); f(followAgent); f(followUntil); f(socialEffect); f(socialOther);
   }
 
   /// Appends one default-initialised row and returns its index.

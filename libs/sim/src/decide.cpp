@@ -39,14 +39,19 @@ core::Vec2 World::Impl::drawTarget(std::size_t row, const PointDesc& point, cons
 }
 
 void World::Impl::advanceGoal(std::size_t row, const nav::NavQuery& query) {
-  const PopulationDesc& pop = desc.populations[agents.population[row]];
-  const std::uint32_t next = agents.goalCursor[row] + 1;  // wraps from -1 to 0 for "no goal yet"
-  agents.goalCursor[row] = next;
+  setGoal(row, agents.goalCursor[row] + 1, query);
+}
+
+void World::Impl::setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQuery& query) {
+  const GroupState& g = groups[agents.group[row]];
+  const PopulationDesc& pop = desc.populations[g.population];
+  const std::vector<std::uint32_t>& goals = activeGoals(g);
+  agents.goalCursor[row] = cursor;
   agents.corners[row].clear();
   agents.cornerIndex[row] = 0;
   agents.progressDistance[row] = 1e30f;
-  if (next < pop.goals.size()) {
-    const core::Vec2 t = drawTarget(row, desc.points[pop.goals[next]], query);
+  if (cursor < goals.size()) {
+    const core::Vec2 t = drawTarget(row, desc.points[goals[cursor]], query);
     agents.targetX[row] = t.x;
     agents.targetY[row] = t.y;
     agents.needPath[row] = 1;
@@ -76,34 +81,52 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
   const std::size_t grain = grainFor(n);
   chunks.resize(std::max(chunks.size(), core::TaskSystem::chunkCount(n, grain)));
   const std::uint64_t checkEvery = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(kProgressCheckPeriod / desc.dt));
+  const std::size_t k = desc.steering.maxNeighbours;
   tasks.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
     ChunkOutput& out = chunks[begin / grain];
     const nav::NavQuery& query = *worker(tasks).query;
     for (std::size_t row = begin; row < end; ++row) {
       const std::uint32_t id = agents.id[row];
-      const PopulationDesc& pop = desc.populations[agents.population[row]];
+      const GroupState& g = groups[agents.group[row]];
+      const PopulationDesc& pop = desc.populations[g.population];
+      const std::vector<std::uint32_t>& goals = activeGoals(g);
+      // Flocking rule 4: a member that reached the group's goal waits there for the others.
+      auto arrive = [&](std::uint32_t pointIndex) {
+        if (g.flocks(pop) && g.members.size() >= 2 && agents.goalCursor[row] == g.cursor) {
+          agents.goalState[row] = GoalState::WaitingForGroup;
+          agents.mode[row] = AgentMode::Waiting;
+          agents.targetX[row] = agents.posX[row];
+          agents.targetY[row] = agents.posY[row];
+          agents.corners[row].clear();
+          (void)pointIndex;
+        } else {
+          advanceGoal(row, query);
+        }
+      };
       switch (agents.goalState[row]) {
         case GoalState::Exited:
         case GoalState::Done:
+        case GoalState::WaitingForGroup:
           break;
         case GoalState::Acting:
           if (tick >= agents.actionEndTick[row]) {
-            out.events.push_back({tick, id, EventKind::ActionEnd, pop.goals[agents.goalCursor[row]], 0});
-            advanceGoal(row, query);
+            const std::uint32_t point = agents.goalCursor[row] < goals.size() ? goals[agents.goalCursor[row]] : 0;
+            out.events.push_back({tick, id, EventKind::ActionEnd, point, 0});
+            arrive(point);
           }
           break;
         case GoalState::Seeking: {
+          // Guided groups and agents following another agent get their targets from the group pass.
+          if (g.guided || agents.followAgent[row] != kNoAgent) break;
           const float x = agents.posX[row], y = agents.posY[row];
-          const bool wandering = agents.goalCursor[row] >= pop.goals.size();
-          if (wandering) {
+          if (agents.goalCursor[row] >= goals.size()) {  // wandering
             const float dx = agents.targetX[row] - x, dy = agents.targetY[row] - y;
             if (dx * dx + dy * dy < kArriveDistance * kArriveDistance + agents.radius[row] * agents.radius[row]) {
-              advanceGoal(row, query);  // draws the next random target
-              agents.goalCursor[row] = static_cast<std::uint32_t>(pop.goals.size());
+              setGoal(row, static_cast<std::uint32_t>(goals.size()), query);  // draws the next random target
             }
             break;
           }
-          const std::uint32_t pointIndex = pop.goals[agents.goalCursor[row]];
+          const std::uint32_t pointIndex = goals[agents.goalCursor[row]];
           const PointDesc& point = desc.points[pointIndex];
           bool arrived;
           if (point.kind == PointKind::Action && point.stop) {
@@ -125,7 +148,7 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
               out.events.push_back({tick, id, EventKind::ActionStart, pointIndex, 0});
             } else {
               out.events.push_back({tick, id, EventKind::GoalReached, pointIndex, 0});
-              advanceGoal(row, query);
+              arrive(pointIndex);
             }
             break;
           }
@@ -139,8 +162,37 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
           break;
         }
       }
+      // Sociological model: meeting an agent of another group may make this one join that group
+      // or follow that agent for a while (rates per second, one draw per meeting pair and tick).
+      agents.socialEffect[row] = 0;
+      const SociologicalDesc& social = pop.sociological;
+      if (social.enabled && agents.goalState[row] == GoalState::Seeking && agents.followAgent[row] == kNoAgent &&
+          !g.guided) {
+        const std::uint32_t* nb = &agents.neighbours[row * k];
+        for (std::size_t i = 0; i < agents.neighbourCount[row]; ++i) {
+          const std::uint32_t o = nb[i];
+          if (agents.group[o] == agents.group[row]) continue;
+          const float dx = agents.posX[o] - agents.posX[row], dy = agents.posY[o] - agents.posY[row];
+          if (dx * dx + dy * dy > social.meetDistance * social.meetDistance) break;  // nearest first
+          core::Rng rng(desc.seed, core::mix64((static_cast<std::uint64_t>(id) << 32) ^ agents.id[o]) ^ tick,
+                        core::RngPurpose::Behaviour);
+          const double u = rng.uniform();
+          const double pJoin = social.changeGroupRate * social.sociability * desc.dt;
+          const double pFollow = social.followAgentRate * social.sociability * desc.dt;
+          if (u < pJoin) {
+            agents.socialEffect[row] = 1;
+          } else if (u < pJoin + pFollow) {
+            agents.socialEffect[row] = 2;
+          }
+          if (agents.socialEffect[row] != 0) {
+            agents.socialOther[row] = agents.id[o];
+            break;
+          }
+        }
+      }
     }
   });
+  decideGroups();
 }
 
 }  // namespace throng::sim

@@ -111,7 +111,8 @@ void solveInfeasible(std::span<const OrcaLine> lines, std::size_t numHard, std::
 
 }  // namespace
 
-OrcaLine agentOrcaLine(Vec2 relPos, Vec2 relVel, Vec2 selfVel, float combinedRadius, float timeHorizon, float dt) {
+OrcaLine agentOrcaLine(Vec2 relPos, Vec2 relVel, Vec2 selfVel, float combinedRadius, float timeHorizon, float dt,
+                       float responsibility) {
   const float distSq = lengthSq(relPos);
   const float combinedRadiusSq = combinedRadius * combinedRadius;
   OrcaLine line;
@@ -146,7 +147,7 @@ OrcaLine agentOrcaLine(Vec2 relPos, Vec2 relVel, Vec2 selfVel, float combinedRad
     line.direction = Vec2{unitW.y, -unitW.x};
     u = (combinedRadius * invTimeStep - wLength) * unitW;
   }
-  line.point = selfVel + 0.5f * u;
+  line.point = selfVel + responsibility * u;
   return line;
 }
 

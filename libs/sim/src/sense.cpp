@@ -14,11 +14,15 @@ void World::Impl::sense(const core::TaskSystem& tasks) {
   agents.neighbours.resize(n * k);
   agents.neighbourCount.resize(n);
   const float range = desc.steering.neighbourDistance;
+  const float dense = std::min(desc.steering.denseNeighbourDistance, range);
   tasks.parallelFor(n, grainFor(n), [&](std::size_t begin, std::size_t end) {
     auto& best = worker(tasks).candidates;
     for (std::size_t row = begin; row < end; ++row) {
+      // Density-dependent detection range (Musse et al. §3.2.4): d in dense places, D elsewhere.
+      float r = range;
+      if (dense > 0.0f && grid.density(agents.posX[row], agents.posY[row]) >= desc.steering.denseThreshold) r = dense;
       agents.neighbourCount[row] = static_cast<std::uint16_t>(
-          grid.nearest(agents.posX[row], agents.posY[row], range, k, static_cast<std::uint32_t>(row), agents.posX.data(),
+          grid.nearest(agents.posX[row], agents.posY[row], r, k, static_cast<std::uint32_t>(row), agents.posX.data(),
                        agents.posY.data(), best, &agents.neighbours[row * k]));
     }
   });

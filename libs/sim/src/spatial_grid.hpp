@@ -3,6 +3,8 @@
 // fixed order and ties break by row (= stable id order). Agents outside the bounds are clamped into
 // the border cells, so nobody is ever lost.
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -40,6 +42,21 @@ class SpatialGrid {
   /// written to `out` (at most k).
   std::size_t nearest(float x, float y, float range, std::size_t k, std::uint32_t self, const float* posX,
                       const float* posY, std::vector<std::pair<float, std::uint32_t>>& best, std::uint32_t* out) const;
+
+  /// Agents per m² in the 3×3 cells around (x, y) (Musse et al. §3.2.4's density measure).
+  [[nodiscard]] float density(float x, float y) const {
+    const int cx = cellX(x), cy = cellY(y);
+    std::uint32_t count = 0;
+    int cells = 0;
+    for (int gy = std::max(0, cy - 1); gy <= std::min(ny_ - 1, cy + 1); ++gy) {
+      for (int gx = std::max(0, cx - 1); gx <= std::min(nx_ - 1, cx + 1); ++gx) {
+        const std::size_t c = static_cast<std::size_t>(gy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(gx);
+        count += cellStart_[c + 1] - cellStart_[c];
+        ++cells;
+      }
+    }
+    return static_cast<float>(count) / (static_cast<float>(cells) * cellSize_ * cellSize_);
+  }
 
   [[nodiscard]] int cellX(float x) const { return clampCell(static_cast<int>(std::floor((x - originX_) * invCell_)), nx_); }
   [[nodiscard]] int cellY(float y) const { return clampCell(static_cast<int>(std::floor((y - originY_) * invCell_)), ny_); }

@@ -74,11 +74,27 @@ void World::Impl::planPopulations() {
       core::Rng rng(desc.seed, groupId + g, core::RngPurpose::GroupSize);
       sizes[g] = pop.sizeMin == pop.sizeMax ? pop.sizeMin : rng.uniformInt(pop.sizeMin, pop.sizeMax);
       scheduled += sizes[g];
+      GroupState state;
+      state.population = static_cast<std::uint16_t>(p);
+      state.expected = sizes[g];
+      state.goals = pop.goals;
+      // Flocking rule 2: one walking speed per group, drawn from the population's distribution.
+      core::Rng speedRng(desc.seed, groupId + g, core::RngPurpose::Speed);
+      const double v = pop.speedSd > 0 ? speedRng.normal(pop.speedMean, pop.speedSd) : pop.speedMean;
+      state.speed = static_cast<float>(std::clamp(v, static_cast<double>(pop.speedMin), static_cast<double>(pop.speedMax)));
+      groups.push_back(std::move(state));
+      groupHandles.push_back(groupSlots.insert(groupId + g));
     }
     groupId += pop.groups;
     groupSizes.push_back(std::move(sizes));
   }
   stats.scheduled = scheduled;
+  for (GroupState& g : groups) {
+    const FollowDesc& f = desc.populations[g.population].follow;
+    if (f.mode != FollowMode::None && f.population < firstGroupId.size() && f.group < desc.populations[f.population].groups) {
+      g.followGroup = firstGroupId[f.population] + f.group;
+    }
+  }
 }
 
 void World::Impl::applyCommands() {
@@ -181,18 +197,13 @@ void World::Impl::spawnPopulation(std::size_t populationIndex) {
       pendingEvents.push_back({tick, agentId, EventKind::Spawn, static_cast<std::uint32_t>(populationIndex), groupId});
       ++stats.spawned;
       --stats.scheduled;
-      // First goal (cursor 0), or wandering / done when the list is empty.
-      agents.goalCursor[row] = 0;
-      if (!pop.goals.empty()) {
-        const core::Vec2 t = drawTarget(row, desc.points[pop.goals[0]], query);
-        agents.targetX[row] = t.x;
-        agents.targetY[row] = t.y;
-        agents.needPath[row] = 1;
-        agents.mode[row] = AgentMode::Walking;
-      } else {
-        agents.goalCursor[row] = static_cast<std::uint32_t>(-1);  // advanceGoal wraps to 0 = past the (empty) list
-        advanceGoal(row, query);
-      }
+      agents.followAgent[row] = kNoAgent;
+      // Join the group (flocking: everyone walks at the group's speed) and head for its current goal.
+      GroupState& group = groups[groupId];
+      group.members.push_back(agentId);
+      if (group.leader == kNoAgent) group.leader = agentId;
+      if (group.flocks(pop)) agents.speed[row] = group.speed;
+      setGoal(row, group.cursor, query);
       // Face the first target.
       const core::Vec2 dir = core::normalize(core::Vec2{agents.targetX[row] - agents.posX[row], agents.targetY[row] - agents.posY[row]});
       if (core::lengthSq(dir) > 0.0f) { agents.oriX[row] = dir.x; agents.oriY[row] = dir.y; }

@@ -13,6 +13,15 @@ namespace {
 constexpr float kCornerReach = 0.5f;
 /// Approaching a stop (action point, last goal), agents slow down over this time [s].
 constexpr float kArrivalTime = 0.5f;
+/// Members catching up with their group may walk this much faster than the group's speed.
+constexpr float kFormationSpeedUp = 1.25f;
+/// Relationship (i) of Musse et al. §3.2.1: when two agents meet head on, the one with lower
+/// priority (smaller group, then higher group id) changes its path: it takes this share of the
+/// avoidance instead of half.
+constexpr float kYieldResponsibility = 0.8f;
+/// Neighbours considered by the cheap steering used far from every viewer (multiresolution).
+constexpr std::size_t kLodNeighbours = 4;
+
 /// An agent that wanted to walk but barely moved for this long tries to get out of a deadlock [s].
 constexpr float kStuckPatience = 1.0f;
 /// Length of one deadlock-breaking attempt [s]; each attempt draws a new direction.
@@ -76,6 +85,10 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
                                       : (desc.points[pop.goals[cursor]].kind == PointKind::Action && desc.points[pop.goals[cursor]].stop);
           if (lastLeg && stopsThere) v = std::min(v, dist / kArrivalTime);
           desired = toAim * (v / dist);
+          // Flocking: the group pass's correction toward the member's slot beside the others.
+          desired += core::Vec2{agents.formVelX[row], agents.formVelY[row]};
+          const float cap = maxSpeed * kFormationSpeedUp;
+          if (core::lengthSq(desired) > cap * cap) desired = core::normalize(desired) * cap;
           if (agents.stuckTime[row] > kStuckPatience) desired = unstick(desired, desc.seed, agents.id[row], agents.stuckTime[row]);
         }
       }
@@ -83,12 +96,19 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
       agents.prefVelX[row] = pref.x;
       agents.prefVelY[row] = pref.y;
 
-      // 2. ORCA: walls first (hard), then neighbours.
+      // 2. ORCA: walls first (hard), then neighbours. Far from every viewer (multiresolution,
+      // §3.2.4) fewer neighbours and no wall half-planes: the navmesh still keeps agents inside.
+      bool cheap = false;
+      if (s.lodDistance > 0.0f && !viewers.empty()) {
+        float nearest = 1e30f;
+        for (const core::Vec2& v : viewers) nearest = std::min(nearest, core::lengthSq(v - pos));
+        cheap = nearest > s.lodDistance * s.lodDistance;
+      }
       auto& lines = ws.lines;
       lines.clear();
       const float wallReach = s.timeHorizonObstacle * maxSpeed + kWallMargin;
       ws.wallIds.clear();
-      walls.query(pos.x, pos.y, wallReach, ws.wallIds);
+      if (!cheap) walls.query(pos.x, pos.y, wallReach, ws.wallIds);
       for (std::uint32_t w : ws.wallIds) {
         const core::Segment& seg = walls.segments()[w];
         OrcaLine line;
@@ -98,12 +118,23 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
       }
       const std::size_t numWallLines = lines.size();
       const std::uint32_t* nb = &agents.neighbours[row * k];
-      for (std::size_t i = 0; i < agents.neighbourCount[row]; ++i) {
+      const std::size_t count = cheap ? std::min<std::size_t>(agents.neighbourCount[row], kLodNeighbours) : agents.neighbourCount[row];
+      const GroupState& mine = groups[agents.group[row]];
+      for (std::size_t i = 0; i < count; ++i) {
         const std::uint32_t o = nb[i];
         core::Vec2 relPos{agents.posX[o] - pos.x, agents.posY[o] - pos.y};
         if (core::lengthSq(relPos) < 1e-10f) relPos = separationAxis(agents.id[row], agents.id[o]);
-        const core::Vec2 relVel{vel.x - agents.velX[o], vel.y - agents.velY[o]};
-        lines.push_back(agentOrcaLine(relPos, relVel, vel, agents.radius[row] + agents.radius[o], s.timeHorizon, dtLocal));
+        const core::Vec2 otherVel{agents.velX[o], agents.velY[o]};
+        const core::Vec2 relVel = vel - otherVel;
+        float responsibility = 0.5f;
+        if (core::dot(vel, otherVel) < -0.5f * core::length(vel) * core::length(otherVel) && agents.group[row] != agents.group[o]) {
+          const GroupState& theirs = groups[agents.group[o]];
+          const bool yields = mine.members.size() != theirs.members.size() ? mine.members.size() < theirs.members.size()
+                                                                            : agents.group[row] > agents.group[o];
+          responsibility = yields ? kYieldResponsibility : 1.0f - kYieldResponsibility;
+        }
+        lines.push_back(agentOrcaLine(relPos, relVel, vel, agents.radius[row] + agents.radius[o], s.timeHorizon, dtLocal,
+                                      responsibility));
       }
       const core::Vec2 v = solveOrca(lines, numWallLines, maxSpeed, pref, ws.projected);
       agents.newVelX[row] = v.x;

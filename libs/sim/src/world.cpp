@@ -143,6 +143,59 @@ bool World::finished() const {
   return true;
 }
 
+GroupId World::group(std::string_view population, std::uint32_t index) const {
+  const Impl& w = *impl_;
+  for (std::size_t p = 0; p < w.desc.populations.size(); ++p) {
+    if (w.desc.populations[p].id == population && index < w.desc.populations[p].groups) {
+      return w.groupHandles[w.firstGroupId[p] + index];
+    }
+  }
+  return {};
+}
+
+GroupId World::groupById(std::uint32_t id) const {
+  return id < impl_->groupHandles.size() ? impl_->groupHandles[id] : GroupId{};
+}
+
+std::size_t World::groupCount() const { return impl_->groups.size(); }
+
+std::optional<GroupInfo> World::groupInfo(GroupId handle) const {
+  const Impl& w = *impl_;
+  const auto id = w.groupSlots.find(handle);
+  if (!id) return std::nullopt;
+  const GroupState& g = w.groups[*id];
+  GroupInfo info;
+  info.id = *id;
+  info.population = g.population;
+  info.members = g.members;
+  info.leader = g.leader;
+  info.goalIndex = g.cursor;
+  const std::vector<std::uint32_t>& goals = w.activeGoals(g);
+  info.goalPoint = g.cursor < goals.size() ? goals[g.cursor] : kNoAgent;
+  info.waiting = g.waiting;
+  info.guided = g.guided;
+  info.guide = g.guide;
+  info.following = g.following;
+  info.followedGroup = g.following ? g.followGroup : kNoAgent;
+  return info;
+}
+
+bool World::guide(GroupId handle, core::Vec2 position) {
+  const auto id = impl_->groupSlots.find(handle);
+  if (!id) return false;
+  impl_->commands.push_back({*id, true, position});
+  return true;
+}
+
+bool World::release(GroupId handle) {
+  const auto id = impl_->groupSlots.find(handle);
+  if (!id) return false;
+  impl_->commands.push_back({*id, false, {}});
+  return true;
+}
+
+void World::setViewers(std::vector<core::Vec2> viewers) { impl_->viewers = std::move(viewers); }
+
 const WorldStats& World::stats() const { return impl_->stats; }
 const ScenarioDesc& World::desc() const { return impl_->desc; }
 const nav::NavMesh& World::navMesh() const { return *impl_->navmesh; }

@@ -29,6 +29,43 @@ inline constexpr int kPathIterationsPerTick = 20000;
 /// Period of the progress check that triggers a re-plan for an agent that is stuck [s].
 inline constexpr float kProgressCheckPeriod = 4.0f;
 
+/// One social group (Musse et al. §3.1.2: a crowd is a set of groups). Cold data, indexed by the
+/// stable group id; written only by the serial group pass (groups.cpp) and by spawning.
+struct GroupState {
+  std::uint16_t population = 0;
+  std::vector<std::uint32_t> members;  ///< stable ids present in the world, ascending
+  std::uint32_t expected = 0;          ///< members that will be spawned
+  std::uint32_t leader = kNoAgent;
+  std::vector<std::uint32_t> goals;    ///< own goal list (point indices)
+  std::uint32_t cursor = 0;            ///< goal the group is heading for (index into the active list)
+  float speed = 1.34f;                 ///< shared walking speed when flocking [m/s]
+  // Waiting (flocking rule 4).
+  bool waiting = false;
+  std::uint64_t waitStart = 0;
+  // Formation.
+  core::Vec2 centroid, heading{1.0f, 0.0f};
+  // Following (§3.2.5).
+  std::uint32_t followGroup = kNoAgent;  ///< group followed while `following`
+  bool following = false;
+  std::uint64_t followToggle = 0;        ///< tick the current (temporary) period ends
+  std::uint32_t ownCursor = 0;           ///< own cursor saved while following temporarily
+  std::uint32_t syncedCursor = kNoAgent; ///< the followed group's cursor last copied
+  // Guidance (§3.2.6).
+  bool guided = false;
+  bool guidedByApi = false;
+  core::Vec2 guide;
+  core::Vec2 guidePlanned{1e30f, 1e30f};  ///< guide position the members' paths were planned for
+
+  [[nodiscard]] bool flocks(const PopulationDesc& pop) const { return pop.flocking && expected >= 2; }
+};
+
+/// A command from the World API, applied in order at the start of the next tick.
+struct GroupCommand {
+  std::uint32_t group = 0;
+  bool guide = false;  ///< false = release
+  core::Vec2 position;
+};
+
 /// Per-worker scratch: navmesh queries and buffers reused across agents (never shared by threads).
 struct WorkerScratch {
   std::unique_ptr<nav::NavQuery> query;
@@ -64,6 +101,14 @@ struct World::Impl {
   std::uint32_t nextAgentId = 0;
   std::uint32_t nextGroupId = 0;
 
+  // Groups.
+  std::vector<GroupState> groups;
+  core::SlotMap<GroupTag> groupSlots;       ///< handle → stable group id
+  std::vector<GroupId> groupHandles;        ///< stable group id → handle
+  std::vector<GroupCommand> commands;
+  std::vector<core::Vec2> viewers;
+  std::vector<std::uint32_t> rowOfId;       ///< stable id → row, rebuilt by the group pass (kNoAgent if gone)
+
   // Per-point cached geometry.
   std::vector<core::Aabb> pointBounds;
 
@@ -78,6 +123,7 @@ struct World::Impl {
   void spawnPopulation(std::size_t populationIndex);
   void sense(const core::TaskSystem& tasks);
   void decide(const core::TaskSystem& tasks);
+  void decideGroups();  ///< serial group pass (groups.cpp), after the parallel agent part of decide
   void plan();
   void steer(const core::TaskSystem& tasks);
   void integrate(const core::TaskSystem& tasks);
@@ -91,6 +137,20 @@ struct World::Impl {
   core::Vec2 drawTarget(std::size_t row, const PointDesc& point, const nav::NavQuery& query);
   /// Moves `row` on to its next goal (or wandering, or Done).
   void advanceGoal(std::size_t row, const nav::NavQuery& query);
+  /// Points `row` at goal `cursor` of its group's active goal list (or wandering / Done past it).
+  void setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQuery& query);
+  /// The goal list a group follows now: its own, or the followed group's while following.
+  [[nodiscard]] const std::vector<std::uint32_t>& activeGoals(const GroupState& g) const {
+    return g.following && g.followGroup != kNoAgent ? groups[g.followGroup].goals : g.goals;
+  }
+  // Group pass steps (groups.cpp).
+  void applyGroupCommands();
+  void updateGroupShapes();
+  void updateWaiting();
+  void updateFollowing();
+  void updateGuidance();
+  void applySocialEffects();
+  void updateLeaders();
   [[nodiscard]] float dt() const { return desc.dt; }
   [[nodiscard]] std::size_t grainFor(std::size_t n) const { return n < 4096 ? 256 : 1024; }
 };

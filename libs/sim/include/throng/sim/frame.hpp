@@ -22,6 +22,18 @@ enum class EventKind : std::uint8_t {
   ActionStart = 3,  ///< a = point index
   ActionEnd = 4,    ///< a = point index
   PathPartial = 5,  ///< a = point index the agent could not fully reach; it walks to the closest point
+  GroupWaitStart = 6,  ///< first member of a group arrived and waits; a = point, b = group
+  GroupRelease = 7,    ///< every member arrived, the group goes on; a = point, b = group
+  GroupTimeout = 8,    ///< the wait timed out, present members go on; a = point, b = members missing
+  FollowStart = 9,     ///< agent = leader of the following group; a = following group, b = followed group
+  FollowEnd = 10,      ///< a = following group, b = followed group
+  GuideStart = 11,     ///< agent = the group's leader; a = group
+  GuideEnd = 12,       ///< a = group
+  JoinGroup = 13,      ///< sociological: agent changed group; a = old group, b = new group
+  FollowAgent = 14,    ///< sociological: agent follows another agent for a while; a = that agent's id
+  FollowAgentEnd = 15, ///< a = the agent it followed
+  LeaderChange = 16,   ///< agent = new leader; a = group
+  PathFallback = 17,   ///< no valid Bézier curve: the navmesh path is used; a = point index
 };
 
 struct Event {

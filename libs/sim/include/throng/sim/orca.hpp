@@ -21,10 +21,12 @@ struct OrcaLine {
   Vec2 direction;
 };
 
-/// Half-plane for a neighbour agent, taking half the responsibility (the reciprocal part).
-/// relPos = other.pos - self.pos, relVel = self.vel - other.vel, selfVel = self.vel.
-/// `dt` is the step used when the two already overlap (push apart within one step).
-OrcaLine agentOrcaLine(Vec2 relPos, Vec2 relVel, Vec2 selfVel, float combinedRadius, float timeHorizon, float dt);
+/// Half-plane for a neighbour agent. relPos = other.pos - self.pos, relVel = self.vel - other.vel,
+/// selfVel = self.vel. `dt` is the step used when the two already overlap (push apart within one
+/// step). `responsibility` is this agent's share of the avoidance (0.5 = reciprocal; the two shares
+/// of a pair must add up to 1 for the collision-free guarantee).
+OrcaLine agentOrcaLine(Vec2 relPos, Vec2 relVel, Vec2 selfVel, float combinedRadius, float timeHorizon, float dt,
+                       float responsibility = 0.5f);
 
 /// Half-plane for a static wall segment [a, b] given relative to the agent (a - pos, b - pos),
 /// inflated by `radius`. The agent takes full responsibility. Returns false when the segment is

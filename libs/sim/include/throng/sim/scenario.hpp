@@ -28,8 +28,12 @@ struct PointDesc {
   Polygon polygon;         ///< polygon region; empty for a disc
   bool stop = false;       ///< Action only: agents stop here
   Vec2 orientation{1, 0};  ///< Action only: facing direction while stopped (unit vector)
-  std::string action;      ///< Action only: name of the action played (a motion clip)
-  float actionDuration = 0.0f;  ///< Action only: how long the stop lasts [s]
+  std::string action;      ///< Action only: name of the action played (a motion clip); defaults
+                           ///< to the clip's name (file stem) when a clip is given
+  float actionDuration = 0.0f;  ///< Action only: how long the stop lasts [s]; defaults to the
+                                ///< clip's duration when a clip is given
+  std::string clip;        ///< Action only: motion clip (BVH) path as written in the scenario,
+                           ///< relative to its directory; empty for none. io loads the clip.
 };
 
 enum class SpawnKind : std::uint8_t { Polygon, Position, Point };
@@ -39,6 +43,44 @@ struct SpawnDesc {
   Polygon polygon;         ///< SpawnKind::Polygon
   Vec2 position;           ///< SpawnKind::Position
   std::uint32_t point = 0; ///< SpawnKind::Point: index into ScenarioDesc::points
+};
+
+/// Following (Musse et al. §3.2.5): a group adopts another group's goals, for good (permanent)
+/// or during random periods (temporary).
+enum class FollowMode : std::uint8_t { None, Permanent, Temporary };
+
+struct FollowDesc {
+  FollowMode mode = FollowMode::None;
+  std::uint32_t population = 0;  ///< index of the population whose group is followed
+  std::uint32_t group = 0;       ///< which group of it (0-based)
+  float onMin = 10.0f, onMax = 30.0f;   ///< temporary: length of a following period [s]
+  float offMin = 10.0f, offMax = 30.0f; ///< temporary: length of a period on its own goals [s]
+};
+
+/// A scripted guide (Musse et al. §3.2.6): a position that moves along timed waypoints; the
+/// population's groups follow it as a dynamic goal. The server sets guides through the World API.
+struct GuideWaypoint {
+  float time = 0.0f;  ///< [s]
+  Vec2 position;
+};
+
+struct GuideDesc {
+  std::vector<GuideWaypoint> script;  ///< ascending times; empty = not scripted
+  float distance = 1.5f;              ///< how far behind the guide the group keeps [m] [Limit: >= 0]
+  float release = -1.0f;              ///< time the guide lets go [s]; < 0 = holds at its last waypoint
+};
+
+/// The sociological model (Musse & Thalmann 1997, Musse et al. §3.2.1 iii): when agents of
+/// different groups meet, social effects happen at these rates (per second of meeting).
+struct SociologicalDesc {
+  bool enabled = false;
+  float meetDistance = 1.2f;        ///< agents closer than this meet [m]
+  float changeGroupRate = 0.02f;    ///< an agent leaves its group and joins the other's [1/s]
+  float followAgentRate = 0.02f;    ///< an agent follows the agent it met for a while [1/s]
+  float followDuration = 15.0f;     ///< how long such a following lasts [s]
+  float leaderChangeRate = 0.01f;   ///< a group's leadership passes to its most dominant member [1/s]
+  float sociability = 1.0f;         ///< scales this population's join/follow rates [Limit: >= 0]
+  float domination = 0.5f;          ///< leadership weight of its members [0, 1]
 };
 
 struct PopulationDesc {
@@ -56,6 +98,13 @@ struct PopulationDesc {
   float speedMin = 0.3f;
   float speedMax = 2.5f;
   float radius = 0.2f;            ///< body radius [m]
+  // The Musse crowd model.
+  bool flocking = true;           ///< groups of 2+ walk together and wait for each other (§3.2.3)
+  float waitTimeout = 30.0f;      ///< a member waits at most this long for the missing ones [s]
+  float groupSpacing = 0.75f;     ///< lateral distance between members walking abreast [m]
+  FollowDesc follow;
+  GuideDesc guide;
+  SociologicalDesc sociological;
 };
 
 /// Tunables of the operational model; every value has units and limits (after Recast's rcConfig).
@@ -65,6 +114,14 @@ struct SteeringDesc {
   float neighbourDistance = 3.0f;    ///< radius for neighbour search [m] [Limit: > 0]
   std::uint32_t maxNeighbours = 10;  ///< nearest agents considered by ORCA [Limit: >= 1]
   float accelerationTime = 0.5f;     ///< relaxation time towards preferred velocity [s] [Limit: >= dt]
+  /// Density-dependent detection range (Musse et al. §3.2.4): where the local density is at least
+  /// `denseThreshold`, neighbours are searched only within `denseNeighbourDistance` (d < D =
+  /// neighbourDistance). 0 disables.
+  float denseNeighbourDistance = 1.5f;  ///< d [m]
+  float denseThreshold = 2.0f;          ///< [agents/m²]
+  /// Multiresolution: agents farther than this from every viewer (World::setViewers) steer with a
+  /// cheaper method (4 neighbours, no wall half-planes; the navmesh still holds them). 0 = off.
+  float lodDistance = 0.0f;             ///< [m]
 };
 
 struct ScenarioDesc {

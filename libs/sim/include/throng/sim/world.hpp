@@ -6,8 +6,11 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string_view>
+#include <vector>
 
+#include "throng/core/handle.hpp"
 #include "throng/core/parallel.hpp"
 #include "throng/core/result.hpp"
 #include "throng/nav/navmesh.hpp"
@@ -33,6 +36,25 @@ struct WorldStats {
   [[nodiscard]] double meanWalkingSpeed() const { return walkingTime > 0 ? walkedDistance / walkingTime : 0.0; }
 };
 
+struct GroupTag {};
+/// Generational handle of a group (zero = null; a stale handle never resolves).
+using GroupId = core::Handle<GroupTag>;
+
+/// A read-only view of one group (for viewers, the server, tests).
+struct GroupInfo {
+  std::uint32_t id = 0;                ///< stable group id (spawn order of groups)
+  std::uint32_t population = 0;        ///< index into ScenarioDesc::populations
+  std::vector<std::uint32_t> members;  ///< stable ids of members present, ascending
+  std::uint32_t leader = 0xffffffffu;  ///< stable id of the leader (0xffffffff when none present)
+  std::uint32_t goalIndex = 0;         ///< position in the goal list the group is heading for
+  std::uint32_t goalPoint = 0xffffffffu;  ///< index of that point in ScenarioDesc::points, or none
+  bool waiting = false;                ///< members are waiting at a goal for the others
+  bool guided = false;                 ///< following a dynamic goal (guide)
+  core::Vec2 guide;                    ///< the guide's position while guided
+  bool following = false;              ///< adopting another group's goals right now
+  std::uint32_t followedGroup = 0xffffffffu;
+};
+
 /// Receives each phase's duration; the app passes one in (the core reads no clock itself).
 class PhaseObserver {
  public:
@@ -53,6 +75,23 @@ class World {
 
   /// Advances one tick of dt seconds. Threads come from `tasks`; the result does not depend on them.
   void step(const core::TaskSystem& tasks, PhaseObserver* observer = nullptr);
+
+  // Groups and crowd control (Musse et al. §3.2.6). Commands are queued and applied at the start
+  // of the next tick in the order they were given, so they never race with a tick.
+
+  /// Handle of group `index` (0-based) of the population with id `population`; null if none.
+  [[nodiscard]] GroupId group(std::string_view population, std::uint32_t index) const;
+  /// Handle of the group with stable id `id`; null if none.
+  [[nodiscard]] GroupId groupById(std::uint32_t id) const;
+  [[nodiscard]] std::optional<GroupInfo> groupInfo(GroupId group) const;
+  [[nodiscard]] std::size_t groupCount() const;
+  /// The group becomes guided: `position` (an avatar's, say) is its dynamic goal until released.
+  /// Returns false for a stale or null handle.
+  bool guide(GroupId group, core::Vec2 position);
+  /// Guidance ends; the group resumes its own goals where it left them.
+  bool release(GroupId group);
+  /// Viewer positions for multiresolution steering (SteeringDesc::lodDistance).
+  void setViewers(std::vector<core::Vec2> viewers);
 
   /// Snapshot of the current state plus the events since the previous snapshot.
   [[nodiscard]] FramePtr snapshot();

@@ -1,0 +1,346 @@
+// decideGroups — the serial group pass that runs after the parallel, per-agent part of `decide`.
+// It owns everything that couples agents of a group (Musse et al. §3.2):
+//   API commands (guide / release) → guidance (dynamic goals, §3.2.6) → following (§3.2.5) →
+//   sociological effects (§3.2.1 iii) → the wait rule (flocking rule 4, §3.2.3) → leaders →
+//   formation (members walk abreast; the cohesion behind flocking rules 1–3).
+// Groups are visited in stable-id order and agents in row order, so the result never depends on
+// threads. Effects on agents go through setGoal/needPath; paths are then planned by `plan`.
+#include <algorithm>
+#include <cmath>
+
+#include "world_impl.hpp"
+
+namespace throng::sim {
+namespace {
+
+/// Gain of the formation correction: how fast a member closes the gap to its slot [1/s].
+constexpr float kFormationGain = 0.8f;
+/// Largest formation correction added to a member's desired velocity [m/s].
+constexpr float kFormationMaxSpeed = 0.5f;
+/// Members walking abreast per row; larger groups form rows behind each other.
+constexpr std::size_t kAbreast = 3;
+/// Distance between rows of a large group [m].
+constexpr float kRowSpacing = 0.8f;
+/// A guided group re-plans when its guide has moved this far since the last plan [m].
+constexpr float kGuideReplan = 1.0f;
+/// Agents following another agent (sociological model) keep this far behind it [m].
+constexpr float kFollowAgentGap = 1.0f;
+
+core::Vec2 interpolateGuide(const std::vector<GuideWaypoint>& script, float t) {
+  if (t <= script.front().time) return script.front().position;
+  for (std::size_t i = 1; i < script.size(); ++i) {
+    if (t <= script[i].time) {
+      const GuideWaypoint& a = script[i - 1];
+      const GuideWaypoint& b = script[i];
+      const float span = b.time - a.time;
+      const float u = span > 0.0f ? (t - a.time) / span : 1.0f;
+      return a.position + (b.position - a.position) * u;
+    }
+  }
+  return script.back().position;
+}
+
+}  // namespace
+
+void World::Impl::decideGroups() {
+  rowOfId.assign(nextAgentId, kNoAgent);
+  for (std::size_t r = 0; r < agents.size(); ++r) rowOfId[agents.id[r]] = static_cast<std::uint32_t>(r);
+  // Members that left (exits) are dropped from their groups.
+  for (GroupState& g : groups) {
+    std::erase_if(g.members, [&](std::uint32_t id) {
+      const std::uint32_t r = rowOfId[id];
+      return r == kNoAgent || agents.goalState[r] == GoalState::Exited;
+    });
+  }
+  applyGroupCommands();
+  updateGuidance();
+  updateFollowing();
+  applySocialEffects();
+  updateWaiting();
+  updateLeaders();
+  updateGroupShapes();
+}
+
+void World::Impl::applyGroupCommands() {
+  for (const GroupCommand& c : commands) {
+    GroupState& g = groups[c.group];
+    if (c.guide) {
+      g.guidedByApi = true;
+      g.guide = c.position;
+    } else {
+      g.guidedByApi = false;
+    }
+  }
+  commands.clear();
+}
+
+void World::Impl::updateGuidance() {
+  const nav::NavQuery& query = *mainQuery;
+  const float now = static_cast<float>(static_cast<double>(tick) * desc.dt);
+  for (std::uint32_t gid = 0; gid < groups.size(); ++gid) {
+    GroupState& g = groups[gid];
+    const PopulationDesc& pop = desc.populations[g.population];
+    const GuideDesc& script = pop.guide;
+    bool guided = g.guidedByApi;
+    if (!guided && !script.script.empty() && now >= script.script.front().time && (script.release < 0.0f || now < script.release)) {
+      guided = true;
+      g.guide = interpolateGuide(script.script, now);
+    }
+    if (guided != g.guided) {
+      g.guided = guided;
+      const std::uint32_t leader = g.leader == kNoAgent ? 0 : g.leader;
+      pendingEvents.push_back({tick, leader, guided ? EventKind::GuideStart : EventKind::GuideEnd, gid, 0});
+      g.guidePlanned = {1e30f, 1e30f};
+      if (!guided) {
+        // Guidance over: back to the group's own goals, where it left them.
+        for (std::uint32_t id : g.members) {
+          const std::uint32_t r = rowOfId[id];
+          if (agents.goalState[r] != GoalState::Exited && agents.goalState[r] != GoalState::Acting) setGoal(r, g.cursor, query);
+        }
+      }
+    }
+    if (!g.guided || g.members.empty()) continue;
+    if (core::lengthSq(g.guide - g.guidePlanned) < kGuideReplan * kGuideReplan) continue;
+    // Dynamic goal: a spot `distance` behind the guide (on the side the group comes from), one
+    // lateral slot per member so they stand beside each other.
+    g.guidePlanned = g.guide;
+    core::Vec2 back = core::normalize(g.centroid - g.guide);
+    if (core::lengthSq(back) == 0.0f) back = -g.heading;
+    const core::Vec2 lateral = core::perp(back);
+    const float n = static_cast<float>(g.members.size());
+    for (std::size_t i = 0; i < g.members.size(); ++i) {
+      const std::uint32_t r = rowOfId[g.members[i]];
+      if (agents.goalState[r] == GoalState::Exited || agents.goalState[r] == GoalState::Acting) continue;
+      const float slot = (static_cast<float>(i) - 0.5f * (n - 1.0f)) * pop.groupSpacing;
+      core::Vec2 target = g.guide + back * script.distance + lateral * slot;
+      if (auto hit = query.nearest(target, 3.0f)) target = hit->first;
+      agents.targetX[r] = target.x;
+      agents.targetY[r] = target.y;
+      agents.goalState[r] = GoalState::Seeking;
+      agents.mode[r] = AgentMode::Walking;
+      agents.needPath[r] = 1;
+      agents.corners[r].clear();
+    }
+  }
+}
+
+void World::Impl::updateFollowing() {
+  const nav::NavQuery& query = *mainQuery;
+  for (std::uint32_t gid = 0; gid < groups.size(); ++gid) {
+    GroupState& g = groups[gid];
+    if (g.followGroup == kNoAgent || g.guided) continue;
+    const FollowDesc& f = desc.populations[g.population].follow;
+    const GroupState& leader = groups[g.followGroup];
+    bool following = g.following;
+    if (f.mode == FollowMode::Permanent) {
+      following = !leader.members.empty() || leader.cursor > 0;
+    } else if (tick >= g.followToggle) {
+      // Temporary following: alternate periods on and off, lengths drawn per group and period.
+      core::Rng rng(desc.seed, (static_cast<std::uint64_t>(gid) << 24) ^ tick, core::RngPurpose::Behaviour);
+      following = !g.following && (!leader.members.empty() || leader.cursor > 0);
+      const float lo = following ? f.onMin : f.offMin, hi = following ? f.onMax : f.offMax;
+      g.followToggle = tick + static_cast<std::uint64_t>(std::lround(rng.uniform(lo, hi) / desc.dt));
+    }
+    if (following != g.following) {
+      const std::uint32_t who = g.leader == kNoAgent ? 0 : g.leader;
+      pendingEvents.push_back({tick, who, following ? EventKind::FollowStart : EventKind::FollowEnd, gid, g.followGroup});
+      if (following) {
+        g.ownCursor = g.cursor;
+        g.following = true;
+        g.syncedCursor = kNoAgent;  // copy the leader's goal below
+      } else {
+        g.following = false;
+        g.cursor = g.ownCursor;
+        g.waiting = false;
+        for (std::uint32_t id : g.members) {
+          const std::uint32_t r = rowOfId[id];
+          if (agents.goalState[r] != GoalState::Exited && agents.goalState[r] != GoalState::Acting) setGoal(r, g.cursor, query);
+        }
+      }
+    }
+    // While following, the group heads for whatever goal the followed group heads for.
+    if (g.following && g.syncedCursor != leader.cursor) {
+      g.syncedCursor = leader.cursor;
+      g.cursor = leader.cursor;
+      g.waiting = false;
+      for (std::uint32_t id : g.members) {
+        const std::uint32_t r = rowOfId[id];
+        if (agents.goalState[r] != GoalState::Exited && agents.goalState[r] != GoalState::Acting) setGoal(r, g.cursor, query);
+      }
+    }
+  }
+}
+
+void World::Impl::applySocialEffects() {
+  const nav::NavQuery& query = *mainQuery;
+  for (std::size_t r = 0; r < agents.size(); ++r) {
+    // Ongoing following of another agent: chase it, end it when time is up or it left.
+    if (agents.followAgent[r] != kNoAgent) {
+      const std::uint32_t other = agents.followAgent[r] < rowOfId.size() ? rowOfId[agents.followAgent[r]] : kNoAgent;
+      if (other == kNoAgent || tick >= agents.followUntil[r] || agents.goalState[r] == GoalState::Exited) {
+        pendingEvents.push_back({tick, agents.id[r], EventKind::FollowAgentEnd, agents.followAgent[r], 0});
+        agents.followAgent[r] = kNoAgent;
+        if (agents.goalState[r] != GoalState::Exited) setGoal(r, agents.goalCursor[r], query);
+      } else {
+        const core::Vec2 them{agents.posX[other], agents.posY[other]};
+        const core::Vec2 me{agents.posX[r], agents.posY[r]};
+        const core::Vec2 target = them + core::normalize(me - them) * kFollowAgentGap;
+        if (core::lengthSq(target - core::Vec2{agents.targetX[r], agents.targetY[r]}) > 1.0f) {
+          agents.targetX[r] = target.x;
+          agents.targetY[r] = target.y;
+          agents.needPath[r] = 1;
+        }
+      }
+    }
+    const std::uint32_t effect = agents.socialEffect[r];
+    if (effect == 0) continue;
+    agents.socialEffect[r] = 0;
+    const std::uint32_t other = agents.socialOther[r] < rowOfId.size() ? rowOfId[agents.socialOther[r]] : kNoAgent;
+    if (other == kNoAgent) continue;
+    const SociologicalDesc& social = desc.populations[agents.population[r]].sociological;
+    if (effect == 1) {
+      // Join the other agent's group: adopt its goals and speed.
+      const std::uint32_t from = agents.group[r], to = agents.group[other];
+      if (from == to || groups[to].guided) continue;
+      std::erase(groups[from].members, agents.id[r]);
+      if (groups[from].leader == agents.id[r]) groups[from].leader = groups[from].members.empty() ? kNoAgent : groups[from].members.front();
+      auto& members = groups[to].members;
+      members.insert(std::upper_bound(members.begin(), members.end(), agents.id[r]), agents.id[r]);
+      agents.group[r] = to;
+      if (groups[to].flocks(desc.populations[groups[to].population])) agents.speed[r] = groups[to].speed;
+      pendingEvents.push_back({tick, agents.id[r], EventKind::JoinGroup, from, to});
+      if (agents.goalState[r] != GoalState::Acting) setGoal(r, groups[to].cursor, query);
+    } else if (effect == 2) {
+      agents.followAgent[r] = agents.id[other];
+      agents.followUntil[r] = tick + static_cast<std::uint64_t>(std::lround(social.followDuration / desc.dt));
+      agents.goalState[r] = GoalState::Seeking;
+      agents.mode[r] = AgentMode::Walking;
+      pendingEvents.push_back({tick, agents.id[r], EventKind::FollowAgent, agents.id[other], 0});
+    }
+  }
+}
+
+void World::Impl::updateWaiting() {
+  const nav::NavQuery& query = *mainQuery;
+  for (std::uint32_t gid = 0; gid < groups.size(); ++gid) {
+    GroupState& g = groups[gid];
+    const PopulationDesc& pop = desc.populations[g.population];
+    if (!g.flocks(pop) || g.guided) {
+      // Without flocking the group's position in its goal list is its leader's.
+      if (g.leader != kNoAgent && rowOfId[g.leader] != kNoAgent) g.cursor = agents.goalCursor[rowOfId[g.leader]];
+      continue;
+    }
+    std::uint32_t waiting = 0;
+    for (std::uint32_t id : g.members) waiting += agents.goalState[rowOfId[id]] == GoalState::WaitingForGroup;
+    if (waiting == 0) continue;
+    const std::vector<std::uint32_t>& goals = activeGoals(g);
+    const std::uint32_t point = g.cursor < goals.size() ? goals[g.cursor] : kNoAgent;
+    if (!g.waiting) {
+      g.waiting = true;
+      g.waitStart = tick;
+      pendingEvents.push_back({tick, g.members.front(), EventKind::GroupWaitStart, point, gid});
+    }
+    // A following group waits at the followed group's goal until that group moves on
+    // (updateFollowing re-targets it then), never by the clock.
+    if (g.following) continue;
+    const bool everyone = waiting == g.members.size();
+    const bool timedOut = static_cast<double>(tick - g.waitStart) * desc.dt >= pop.waitTimeout;
+    if (!everyone && !timedOut) continue;
+    const std::uint32_t missing = static_cast<std::uint32_t>(g.expected > waiting ? g.expected - waiting : 0);
+    pendingEvents.push_back({tick, g.members.front(), everyone ? EventKind::GroupRelease : EventKind::GroupTimeout, point,
+                             everyone ? gid : missing});
+    g.waiting = false;
+    ++g.cursor;
+    for (std::uint32_t id : g.members) {
+      const std::uint32_t r = rowOfId[id];
+      if (agents.goalState[r] == GoalState::WaitingForGroup) setGoal(r, g.cursor, query);
+    }
+  }
+}
+
+void World::Impl::updateLeaders() {
+  for (std::uint32_t gid = 0; gid < groups.size(); ++gid) {
+    GroupState& g = groups[gid];
+    if (g.members.empty()) {
+      g.leader = kNoAgent;
+      continue;
+    }
+    if (g.leader == kNoAgent || !std::binary_search(g.members.begin(), g.members.end(), g.leader)) g.leader = g.members.front();
+    const SociologicalDesc& social = desc.populations[g.population].sociological;
+    if (!social.enabled || g.members.size() < 2) continue;
+    core::Rng rng(desc.seed, (static_cast<std::uint64_t>(gid) << 24) ^ tick, core::RngPurpose::Behaviour);
+    if (rng.uniform() >= social.leaderChangeRate * desc.dt) continue;
+    // Leadership passes to the most dominant member (members of other populations may have joined);
+    // among equals, one drawn at random — never the current leader.
+    float best = -1.0f;
+    std::vector<std::uint32_t> candidates;
+    for (std::uint32_t id : g.members) {
+      if (id == g.leader) continue;
+      const float d = desc.populations[agents.population[rowOfId[id]]].sociological.domination;
+      if (d > best + 1e-6f) { best = d; candidates.clear(); }
+      if (std::fabs(d - best) <= 1e-6f) candidates.push_back(id);
+    }
+    if (candidates.empty()) continue;
+    g.leader = candidates[rng.uniformInt(0, static_cast<std::uint32_t>(candidates.size() - 1))];
+    pendingEvents.push_back({tick, g.leader, EventKind::LeaderChange, gid, 0});
+  }
+}
+
+void World::Impl::updateGroupShapes() {
+  for (std::size_t r = 0; r < agents.size(); ++r) agents.formVelX[r] = agents.formVelY[r] = 0.0f;
+  std::vector<std::pair<float, std::uint32_t>> order;  // (coordinate, row)
+  for (GroupState& g : groups) {
+    if (g.members.empty()) continue;
+    // Centroid and heading of the members walking with the group.
+    core::Vec2 sum, vel;
+    std::uint32_t count = 0;
+    for (std::uint32_t id : g.members) {
+      const std::uint32_t r = rowOfId[id];
+      sum += core::Vec2{agents.posX[r], agents.posY[r]};
+      vel += core::Vec2{agents.velX[r], agents.velY[r]};
+      ++count;
+    }
+    g.centroid = sum / static_cast<float>(count);
+    if (core::lengthSq(vel) > 0.04f * static_cast<float>(count * count)) g.heading = core::normalize(vel);
+    const PopulationDesc& pop = desc.populations[g.population];
+    if (!g.flocks(pop) || count < 2) continue;
+    // Members walking toward the group's goal take slots abreast (Moussaïd et al. 2010: small groups
+    // walk side by side, larger ones in rows), ordered by where they already are so nobody crosses.
+    order.clear();
+    for (std::uint32_t id : g.members) {
+      const std::uint32_t r = rowOfId[id];
+      if (agents.goalState[r] != GoalState::Seeking || agents.followAgent[r] != kNoAgent) continue;
+      if (agents.goalCursor[r] != g.cursor && !g.guided) continue;
+      const core::Vec2 rel = core::Vec2{agents.posX[r], agents.posY[r]} - g.centroid;
+      order.push_back({core::dot(rel, g.heading), r});
+    }
+    if (order.size() < 2) continue;
+    std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
+    const core::Vec2 lateral = core::perp(g.heading);
+    const std::size_t rows = (order.size() + kAbreast - 1) / kAbreast;
+    for (std::size_t row0 = 0; row0 < rows; ++row0) {
+      const std::size_t first = row0 * kAbreast, last = std::min(order.size(), first + kAbreast);
+      std::vector<std::pair<float, std::uint32_t>> line(order.begin() + static_cast<std::ptrdiff_t>(first),
+                                                         order.begin() + static_cast<std::ptrdiff_t>(last));
+      for (auto& e : line) {
+        const core::Vec2 rel = core::Vec2{agents.posX[e.second], agents.posY[e.second]} - g.centroid;
+        e.first = core::dot(rel, lateral);
+      }
+      std::sort(line.begin(), line.end());
+      const float along = (0.5f * static_cast<float>(rows - 1) - static_cast<float>(row0)) * kRowSpacing;
+      for (std::size_t i = 0; i < line.size(); ++i) {
+        const std::uint32_t r = line[i].second;
+        const float slot = (static_cast<float>(i) - 0.5f * static_cast<float>(line.size() - 1)) * pop.groupSpacing;
+        const core::Vec2 rel = core::Vec2{agents.posX[r], agents.posY[r]} - g.centroid;
+        const float lat = core::dot(rel, lateral), lon = core::dot(rel, g.heading);
+        core::Vec2 corr = lateral * ((slot - lat) * kFormationGain) + g.heading * ((along - lon) * kFormationGain);
+        const float m = core::length(corr);
+        if (m > kFormationMaxSpeed) corr *= kFormationMaxSpeed / m;
+        agents.formVelX[r] = corr.x;
+        agents.formVelY[r] = corr.y;
+      }
+    }
+  }
+}
+
+}  // namespace throng::sim
