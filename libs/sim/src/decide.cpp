@@ -174,6 +174,7 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
           if (agents.group[o] == agents.group[row]) continue;
           const float dx = agents.posX[o] - agents.posX[row], dy = agents.posY[o] - agents.posY[row];
           if (dx * dx + dy * dy > social.meetDistance * social.meetDistance) break;  // nearest first
+          ++out.socialMeetings;
           core::Rng rng(desc.seed, core::mix64((static_cast<std::uint64_t>(id) << 32) ^ agents.id[o]) ^ tick,
                         core::RngPurpose::Behaviour);
           const double u = rng.uniform();

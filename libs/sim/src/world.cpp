@@ -96,8 +96,10 @@ void World::Impl::emit() {
     pendingEvents.insert(pendingEvents.end(), c.events.begin(), c.events.end());
     stats.walkedDistance += c.walkedDistance;
     stats.walkingTime += c.walkingTime;
+    stats.socialMeetings += c.socialMeetings;
     c.events.clear();
     c.walkedDistance = c.walkingTime = 0.0;
+    c.socialMeetings = 0;
   }
   stats.agentSteps += agents.size();
   // Remove agents that exited (stable compaction keeps rows in id order).

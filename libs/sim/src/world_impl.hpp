@@ -80,6 +80,7 @@ struct ChunkOutput {
   std::vector<Event> events;
   double walkedDistance = 0.0;
   double walkingTime = 0.0;
+  std::uint64_t socialMeetings = 0;
 };
 
 struct World::Impl {

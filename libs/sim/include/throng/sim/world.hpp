@@ -31,6 +31,7 @@ struct WorldStats {
   double walkedDistance = 0.0;       ///< summed over agents [m]
   double walkingTime = 0.0;          ///< agent-seconds spent walking (mode Walking) [s]
   std::uint64_t agentSteps = 0;      ///< sum over ticks of active agents
+  std::uint64_t socialMeetings = 0;  ///< sociological model: meeting rolls made (agent, other-group agent, tick)
 
   /// Mean walking speed over all agents and time spent walking [m/s].
   [[nodiscard]] double meanWalkingSpeed() const { return walkingTime > 0 ? walkedDistance / walkingTime : 0.0; }
