@@ -51,10 +51,20 @@ bool verifyCurve(std::span<const Vec2> control, const WalkableTest& test, int ma
   return ok;
 }
 
-BezierCurve makeBentCubic(Vec2 from, Vec2 to, float bend1, float bend2) {
+namespace {
+
+/// Control points of makeBentCubic, on the stack: candidates that fail allocate nothing.
+std::array<Vec2, 4> bentCubic(Vec2 from, Vec2 to, float bend1, float bend2) {
   const Vec2 d = to - from;
   const Vec2 side = core::perp(d);  // |side| = chord length, to the left of from→to
-  return BezierCurve{{from, from + d * (1.0f / 3.0f) + side * bend1, from + d * (2.0f / 3.0f) + side * bend2, to}};
+  return {from, from + d * (1.0f / 3.0f) + side * bend1, from + d * (2.0f / 3.0f) + side * bend2, to};
+}
+
+}  // namespace
+
+BezierCurve makeBentCubic(Vec2 from, Vec2 to, float bend1, float bend2) {
+  const auto c = bentCubic(from, to, bend1, bend2);
+  return BezierCurve{{c.begin(), c.end()}};
 }
 
 std::optional<BezierCurve> buildPath(Vec2 from, Vec2 to, const WalkableTest& test, const BezierPathParams& params,
@@ -65,11 +75,26 @@ std::optional<BezierCurve> buildPath(Vec2 from, Vec2 to, const WalkableTest& tes
   const float b1 = static_cast<float>(rng.uniform(-1.0, 1.0)) * params.maxBend;
   const float b2 = static_cast<float>(rng.uniform(-1.0, 1.0)) * params.maxBend;
   if (!test.pointInside(from) || !test.pointInside(to)) return std::nullopt;
-  if (core::distance(from, to) >= params.minLength && params.maxBend > 0.0f) {
+  if (core::distance(from, to) >= params.minLength && params.maxBend > 0.0f && params.attempts > 0) {
+    auto tryCubic = [&](float bend1, float bend2) -> std::optional<BezierCurve> {
+      const auto c = bentCubic(from, to, bend1, bend2);
+      if (!verifyCurve(c, test, params.maxDepth)) return std::nullopt;
+      return BezierCurve{{c.begin(), c.end()}};
+    };
+    // Each scale tries the drawn bend, then its mirror image (the other side of the chord), so
+    // that an obstacle on the straight line is passed on whichever side is free.
     float scale = 1.0f;
     for (int k = 0; k < params.attempts; ++k, scale *= params.shrink) {
-      BezierCurve c = makeBentCubic(from, to, b1 * scale, b2 * scale);
-      if (verifyCurve(c.points, test, params.maxDepth)) return c;
+      for (const float side : {1.0f, -1.0f}) {
+        if (auto c = tryCubic(side * b1 * scale, side * b2 * scale)) return c;
+      }
+    }
+    // A drawn bend near zero (or an S) can stay on an obstacle lying across the chord: try the two
+    // symmetric arcs (C shapes) at full and at one shrunk bend before giving up on curves.
+    for (const float bend : {params.maxBend, params.maxBend * params.shrink}) {
+      for (const float side : {1.0f, -1.0f}) {
+        if (auto c = tryCubic(side * bend, side * bend)) return c;
+      }
     }
   }
   // Eq. 3.2.2.1: the straight line, checked exactly.

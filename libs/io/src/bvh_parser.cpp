@@ -21,6 +21,7 @@ namespace throng::io {
 namespace {
 
 constexpr std::size_t kMaxRowDiagnostics = 50;  ///< frame row errors reported before giving up
+constexpr std::size_t kMaxDiagnostics = 100;    ///< problems of any kind reported before giving up
 
 constexpr std::array<std::string_view, 6> kChannelNames = {"Xposition", "Yposition", "Zposition",
                                                            "Xrotation", "Yrotation", "Zrotation"};
@@ -142,6 +143,11 @@ class BvhParser {
 
  private:
   void error(Pos p, std::string what, std::string expected, std::string hint = {}) {
+    if (diags_.size() >= kMaxDiagnostics) {
+      diags_.push_back(core::Diagnostic{source_, p.line, p.column, "", "too many problems; stopped here",
+                                        "at most " + std::to_string(kMaxDiagnostics) + " reported", ""});
+      throw Stop{};
+    }
     diags_.push_back(core::Diagnostic{source_, p.line, p.column, "", std::move(what), std::move(expected), std::move(hint)});
   }
 
@@ -221,7 +227,10 @@ class BvhParser {
       }
       const auto it = std::find(kChannelNames.begin(), kChannelNames.end(), t.text);
       if (it == kChannelNames.end()) {
-        const std::string match = core::closestMatch(std::string(t.text), names);
+        std::string match = core::closestMatch(std::string(t.text), names);
+        for (std::size_t c = 0; match.empty() && t.text.size() >= 2 && c < names.size(); ++c) {
+          if (names[c].compare(0, t.text.size(), t.text) == 0) match = names[c];  // "Xrot" → "Xrotation"
+        }
         error(t.pos, "unknown channel " + quote(t.text), "one of: " + list,
               match.empty() ? "" : "did you mean \"" + match + "\"?");
         joint.channels.push_back(MotionChannel::Xposition);  // keeps the column count right

@@ -95,6 +95,18 @@ const char* eventKindText(sim::EventKind kind) {
     case sim::EventKind::ActionStart: return "action_start";
     case sim::EventKind::ActionEnd: return "action_end";
     case sim::EventKind::PathPartial: return "path_partial";
+    case sim::EventKind::GroupWaitStart: return "group_wait_start";
+    case sim::EventKind::GroupRelease: return "group_release";
+    case sim::EventKind::GroupTimeout: return "group_timeout";
+    case sim::EventKind::FollowStart: return "follow_start";
+    case sim::EventKind::FollowEnd: return "follow_end";
+    case sim::EventKind::GuideStart: return "guide_start";
+    case sim::EventKind::GuideEnd: return "guide_end";
+    case sim::EventKind::JoinGroup: return "join_group";
+    case sim::EventKind::FollowAgent: return "follow_agent";
+    case sim::EventKind::FollowAgentEnd: return "follow_agent_end";
+    case sim::EventKind::LeaderChange: return "leader_change";
+    case sim::EventKind::PathFallback: return "path_fallback";
   }
   return "unknown";
 }
@@ -112,7 +124,7 @@ struct Recorder::Impl {
   std::vector<std::string> populationIds;
 
   Statement begin, commit, rollback, insertRow, insertFrameData, insertFrame, insertEvent,
-      insertAgent, insertAgentSeen, updateExit, upsertMeta;
+      insertAgent, insertAgentSeen, updateExit, upsertMeta, insertAnimation;
 
   // Queue shared by push() and the worker.
   std::mutex mutex;
@@ -138,7 +150,7 @@ struct Recorder::Impl {
     if (db != nullptr) {
       // Statements must be finalized before sqlite3_close.
       for (Statement* s : {&begin, &commit, &rollback, &insertRow, &insertFrameData, &insertFrame,
-                           &insertEvent, &insertAgent, &insertAgentSeen, &updateExit, &upsertMeta}) {
+                           &insertEvent, &insertAgent, &insertAgentSeen, &updateExit, &upsertMeta, &insertAnimation}) {
         *s = Statement();
       }
       sqlite3_close(db);
@@ -195,7 +207,8 @@ struct Recorder::Impl {
                    "spawn_frame, spawn_tick) VALUES(?, ?, ?, ?, ?, ?)") &&
            prepare(insertAgentSeen, "INSERT OR IGNORE INTO throng_agents(id, spawn_frame) VALUES(?, ?)") &&
            prepare(updateExit, "UPDATE throng_agents SET exit_frame = ?, exit_tick = ? WHERE id = ?") &&
-           prepare(upsertMeta, "INSERT OR REPLACE INTO metadata(key, value) VALUES(?, ?)");
+           prepare(upsertMeta, "INSERT OR REPLACE INTO metadata(key, value) VALUES(?, ?)") &&
+           prepare(insertAnimation, "INSERT INTO throng_animation VALUES(?, ?, ?, ?)");
   }
 
   bool writeScenario(const sim::ScenarioDesc& scenario);
@@ -287,6 +300,7 @@ bool Recorder::Impl::writeFrame(const sim::Frame& f) {
                 std::to_string(std::min(f.posX.size(), f.posY.size())) + " positions");
   }
   const bool hasOri = f.oriX.size() >= n && f.oriY.size() >= n;
+  const bool hasAnimation = f.clip.size() >= n && f.phase.size() >= n;
   for (std::size_t i = 0; i < n; ++i) {
     const double x = f.posX[i], y = f.posY[i];
     const double ox = hasOri ? f.oriX[i] : 1.0, oy = hasOri ? f.oriY[i] : 0.0;
@@ -308,6 +322,14 @@ bool Recorder::Impl::writeFrame(const sim::Frame& f) {
     bindReal(s, 5, ox);
     bindReal(s, 6, oy);
     if (!run(insertRow)) return false;
+    if (hasAnimation) {
+      s = insertAnimation.get();
+      bindInt(s, 1, frame);
+      bindInt(s, 2, f.ids[i]);
+      bindInt(s, 3, f.clip[i]);
+      bindReal(s, 4, static_cast<double>(f.phase[i]));
+      if (!run(insertAnimation)) return false;
+    }
   }
 
   bindInt(insertFrameData.get(), 1, frame);
@@ -460,7 +482,7 @@ core::Status Recorder::close(bool completed) {
   impl.exec("PRAGMA journal_mode=DELETE");
   for (Statement* s : {&impl.begin, &impl.commit, &impl.rollback, &impl.insertRow, &impl.insertFrameData,
                        &impl.insertFrame, &impl.insertEvent, &impl.insertAgent, &impl.insertAgentSeen,
-                       &impl.updateExit, &impl.upsertMeta}) {
+                       &impl.updateExit, &impl.upsertMeta, &impl.insertAnimation}) {
     *s = Statement();
   }
   if (impl.db != nullptr && sqlite3_close(impl.db) != SQLITE_OK) impl.fail("SQLite: cannot close the recording");

@@ -3,6 +3,8 @@
 // when a recording is created. Reads the ScenarioDesc; writes rows in the caller's transaction.
 #include "recording_scenario.hpp"
 
+#include "throng/sim/animation.hpp"
+
 #include "recording_schema.hpp"
 #include "recording_text.hpp"
 #include "walkable_area_wkt.hpp"
@@ -48,6 +50,21 @@ bool step(const Statement& s) {
 }  // namespace
 
 std::string writeScenarioTables(sqlite3* db, const sim::ScenarioDesc& scenario) {
+  {
+    // The motion clips that throng_animation's `clip` column indexes.
+    Statement clip(db, "INSERT INTO throng_clips VALUES(?, ?, ?, ?, ?)");
+    if (!clip.ok()) return sqlite3_errmsg(db);
+    const std::vector<sim::ClipInfo> clips = sim::animationClips(scenario);
+    for (std::size_t i = 0; i < clips.size(); ++i) {
+      sqlite3_stmt* s = clip.get();
+      bindInt(s, 1, static_cast<std::int64_t>(i));
+      bindText(s, 2, clips[i].name);
+      bindText(s, 3, clips[i].file);
+      bindReal(s, 4, floatAsDecimal(clips[i].duration));
+      bindInt(s, 5, clips[i].loops ? 1 : 0);
+      if (!step(clip)) return sqlite3_errmsg(db);
+    }
+  }
   {
     Statement pt(db, "INSERT INTO throng_points VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
     if (!pt.ok()) return sqlite3_errmsg(db);

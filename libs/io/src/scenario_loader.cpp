@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "json_document.hpp"
+#include "scenario_clips.hpp"
 #include "scenario_parser.hpp"
 #include "scenario_validator.hpp"
 
@@ -22,16 +23,22 @@ core::Result<LoadedScenario> parseScenario(std::string_view text, const std::str
     if (!doc.ok()) return std::move(doc).takeErrors();
     core::Diagnostics diagnostics;
     ParsedScenario parsed = parseScenarioJson(doc.value(), diagnostics);
+    MotionClips clips = loadScenarioClips(doc.value(), parsed, diagnostics);
     std::shared_ptr<const nav::NavMesh> navmesh;
     if (doc.value().root().is_object()) validateScenario(doc.value(), parsed, options, diagnostics, navmesh);
     if (!diagnostics.empty()) {
-      // Report in file order: that is how people fix them.
-      std::stable_sort(diagnostics.begin(), diagnostics.end(), [](const core::Diagnostic& a, const core::Diagnostic& b) {
-        return a.line != b.line ? a.line < b.line : a.column < b.column;
-      });
+      // Report in file order: that is how people fix them. The scenario's own come first, then
+      // those of its motion clips, file by file.
+      std::stable_sort(diagnostics.begin(), diagnostics.end(),
+                       [&source](const core::Diagnostic& a, const core::Diagnostic& b) {
+                         const bool aOwn = a.source == source, bOwn = b.source == source;
+                         if (aOwn != bOwn) return aOwn;
+                         if (a.source != b.source) return a.source < b.source;
+                         return a.line != b.line ? a.line < b.line : a.column < b.column;
+                       });
       return diagnostics;
     }
-    return LoadedScenario{std::move(parsed.desc), std::move(navmesh), std::string(text)};
+    return LoadedScenario{std::move(parsed.desc), std::move(navmesh), std::string(text), std::move(clips)};
   } catch (const std::exception& e) {
     return core::Diagnostic{source, 0, 0, "", std::string("internal error while loading the scenario: ") + e.what(), "", ""};
   }

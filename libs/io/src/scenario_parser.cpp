@@ -147,6 +147,18 @@ class Parser {
     return true;
   }
 
+  /// A motion clip path: a non-empty relative path (resolved against the scenario's directory).
+  void readClipPath(const Json& v, const std::string& ptr, std::string& out) {
+    const std::string expected = "a BVH file path relative to the scenario (\"motions/look.bvh\")";
+    std::string path;
+    if (!readString(v, ptr, expected, path)) return;
+    if (path.empty()) error(ptr, "empty clip path", expected);
+    else if (path.front() == '/' || path.front() == '\\' || (path.size() > 1 && path[1] == ':'))
+      error(ptr, "absolute clip path " + quote(path), expected, "scenarios stay portable with relative paths");
+    else if (path.find('\0') != std::string::npos) error(ptr, "clip path contains a NUL character", expected);
+    else out = path;
+  }
+
   bool readVec2(const Json& v, const std::string& ptr, core::Vec2& out) {
     const std::string expected = "a point [x, y] of two numbers in metres, |x|, |y| <= " + num(kMaxCoordinate);
     if (!v.is_array() || v.size() != 2) {
@@ -253,7 +265,8 @@ void Parser::readSteering(const Json& v, const std::string& ptr, sim::SteeringDe
 
 bool Parser::readPoint(const Json& v, const std::string& ptr, sim::PointDesc& p) {
   if (!isObject(v, ptr, "a point object {\"id\", \"kind\", \"position\"+\"radius\" or \"polygon\"}")) return false;
-  checkKeys(v, ptr, {"id", "kind", "position", "radius", "polygon", "stop", "orientation", "action", "duration"},
+  checkKeys(v, ptr,
+            {"id", "kind", "position", "radius", "polygon", "stop", "orientation", "action", "duration", "clip"},
             "a point");
   bool ok = true;
   if (auto* id = require(v, ptr, "id", "a unique non-empty string id")) {
@@ -293,10 +306,10 @@ bool Parser::readPoint(const Json& v, const std::string& ptr, sim::PointDesc& p)
     error(ptr, "point has no region", regionExpected);
     ok = false;
   }
-  // Action-only keys: stop, orientation, action, duration.
+  // Action-only keys: stop, orientation, action, duration, clip (loaded by scenario_clips).
   const bool action = p.kind == sim::PointKind::Action;
   if (action) p.stop = true;
-  for (const char* key : {"stop", "orientation", "action", "duration"}) {
+  for (const char* key : {"stop", "orientation", "action", "duration", "clip"}) {
     const Json* x = optional(v, key);
     if (x == nullptr) continue;
     const std::string kptr = ptr + "/" + key;
@@ -309,6 +322,7 @@ bool Parser::readPoint(const Json& v, const std::string& ptr, sim::PointDesc& p)
     if (k == "stop") readBool(*x, kptr, p.stop);
     else if (k == "action") readString(*x, kptr, "the name of an action (a string)", p.action);
     else if (k == "duration") readFloat(*x, kptr, {0, 86400, false, "s"}, p.actionDuration);
+    else if (k == "clip") readClipPath(*x, kptr, p.clip);
     else if (readVec2(*x, kptr, p.orientation)) {
       if (core::length(p.orientation) < 1e-6f) error(kptr, "zero orientation vector", "a non-zero direction [x, y]");
       else p.orientation = core::normalize(p.orientation);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "throng/sim/animation.hpp"
 #include "world_impl.hpp"
 
 namespace throng::sim {
@@ -18,6 +19,14 @@ constexpr float kTurnMinSpeed = 0.1f;
 }  // namespace
 
 void World::Impl::integrate(const core::TaskSystem& tasks) {
+  auto setClip = [&](std::size_t row, std::uint16_t clip, float phase) {
+    if (clip != agents.animClip[row]) {
+      // A new clip starts at its beginning, except walk and idle, which keep their cycle.
+      if (clip != kClipWalk && clip != kClipIdle) phase = 0.0f;
+      agents.animClip[row] = clip;
+    }
+    agents.animPhase[row] = phase - std::floor(phase);
+  };
   const std::size_t n = agents.size();
   const std::size_t grain = grainFor(n);
   const float h = desc.dt;
@@ -46,6 +55,21 @@ void World::Impl::integrate(const core::TaskSystem& tasks) {
         agents.stuckTime[row] = stuck ? agents.stuckTime[row] + h : 0.0f;
       } else {
         agents.stuckTime[row] = 0.0f;
+      }
+      // Animation: the walk cycle advances with distance, idle with time, an action with its clock.
+      const float step = core::length(moved);
+      if (agents.goalState[row] == GoalState::Acting) {
+        const GroupState& g = groups[agents.group[row]];
+        const std::vector<std::uint32_t>& goals = activeGoals(g);
+        const std::uint32_t cursor = agents.goalCursor[row];
+        const std::uint32_t point = cursor < goals.size() ? goals[cursor] : 0;
+        const float total = std::max(h, desc.points[point].actionDuration);
+        const float left = static_cast<float>(agents.actionEndTick[row] > tick ? agents.actionEndTick[row] - tick : 0) * h;
+        setClip(row, pointClip[point], std::clamp(1.0f - left / total, 0.0f, 0.999f));
+      } else if (step > 0.1f * h) {
+        setClip(row, kClipWalk, agents.animPhase[row] + step / kWalkCycleLength);
+      } else {
+        setClip(row, kClipIdle, agents.animPhase[row] + h / kIdleCycle);
       }
       if (agents.goalState[row] != GoalState::Acting) {
         const float speed = core::length(moved) / h;

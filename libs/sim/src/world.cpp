@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "throng/core/assert.hpp"
+#include "throng/sim/animation.hpp"
 #include "world_impl.hpp"
 
 namespace throng::sim {
@@ -46,6 +47,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
                                              {p.position.x + p.radius, p.position.y + p.radius}}
                                 : core::bounds(p.polygon));
   }
+  w.pointClip = pointClips(desc);
   w.planPopulations();
   w.applyCommands();  // populations starting at t = 0 are present in the first snapshot
   return world;
@@ -130,6 +132,8 @@ FramePtr World::snapshot() {
   frame->oriX = a.oriX;
   frame->oriY = a.oriY;
   frame->mode = a.mode;
+  frame->clip = a.animClip;
+  frame->phase = a.animPhase;
   frame->events = std::move(w.pendingEvents);
   w.pendingEvents.clear();
   return frame;

@@ -110,8 +110,9 @@ struct World::Impl {
   std::vector<core::Vec2> viewers;
   std::vector<std::uint32_t> rowOfId;       ///< stable id → row, rebuilt by the group pass (kNoAgent if gone)
 
-  // Per-point cached geometry.
+  // Per-point cached geometry and action clips.
   std::vector<core::Aabb> pointBounds;
+  std::vector<std::uint16_t> pointClip;
 
   // Threads.
   mutable std::vector<WorkerScratch> scratch;

@@ -42,11 +42,16 @@ struct BezierPathParams {
 /// Builds a walkable seek-goal curve from `from` to `to` (§3.2.2):
 ///   1. draw two bends b1, b2 uniform in [-maxBend, maxBend] from `rng` (always exactly two draws,
 ///      so the stream advances the same whatever the outcome);
-///   2. for k = 0 .. attempts-1: the cubic makeBentCubic(from, to, b1·shrink^k, b2·shrink^k); return
-///      the first that verifyCurve accepts ("recompute it until it lies inside");
-///   3. else the straight line (degree 1, eq. 3.2.2.1) when its segment is walkable;
-///   4. else std::nullopt: no Bézier path (the caller falls back to the navigation-mesh path and
+///   2. for k = 0 .. attempts-1, side = +1, -1: the cubic makeBentCubic(from, to, side·b1·shrink^k,
+///      side·b2·shrink^k) (the drawn bend, then its mirror image); return the first that
+///      verifyCurve accepts ("recompute it until it lies inside");
+///   3. then the symmetric arcs (C shapes) with bends ±maxBend and ±maxBend·shrink, which pass an
+///      obstacle lying across the chord when the drawn bend was small or an S;
+///   4. else the straight line (degree 1, eq. 3.2.2.1) when its segment is walkable;
+///   5. else std::nullopt: no Bézier path (the caller falls back to the navigation-mesh path and
 ///      records an event). Start or target off the surface always gives nullopt.
+/// Steps 2-3 are skipped when attempts = 0, maxBend = 0 or the chord is shorter than minLength. At most
+/// 2·attempts + 4 curve checks of at most 2^(maxDepth+1) - 1 box tests each.
 [[nodiscard]] std::optional<BezierCurve> buildPath(Vec2 from, Vec2 to, const WalkableTest& test,
                                                    const BezierPathParams& params, core::Rng& rng);
 

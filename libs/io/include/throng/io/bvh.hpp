@@ -69,7 +69,8 @@ struct MotionClip {
 
 /// Parses BVH text. `source` names the text in diagnostics (usually its path); the clip's name is
 /// the stem of `source`. Every diagnostic has source:line:column, what was found and what was
-/// expected; structural errors stop the parse, row and value errors are all reported (up to 50).
+/// expected; structural errors stop the parse, other problems are all reported (up to 50 bad frame
+/// rows, 100 problems in all).
 core::Result<MotionClip> parseBvh(std::string_view text, const std::string& source);
 
 /// Reads a BVH file (a regular file of at most kMaxBvhBytes) and parses it. A missing or unreadable

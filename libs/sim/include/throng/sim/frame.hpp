@@ -52,6 +52,8 @@ struct Frame {
   std::vector<float> velX, velY;   ///< [m/s]
   std::vector<float> oriX, oriY;   ///< unit heading
   std::vector<AgentMode> mode;
+  std::vector<std::uint16_t> clip; ///< motion clip playing: index into animationClips(scenario)
+  std::vector<float> phase;        ///< position in that clip, [0, 1)
   std::vector<Event> events;       ///< everything that happened since the previous frame, in order
 
   [[nodiscard]] std::size_t size() const { return ids.size(); }
