@@ -14,28 +14,34 @@ constexpr float kArriveDistance = 0.3f;
 
 }  // namespace
 
+void World::Impl::releaseTarget(std::size_t row) {
+  if (agents.targetSub[row] >= 0) {
+    --subOccupancy[static_cast<std::size_t>(agents.targetSub[row])];
+    agents.targetSub[row] = -1;
+  }
+}
+
 core::Vec2 World::Impl::drawTarget(std::size_t row, const PointDesc& point, const nav::NavQuery& query) {
+  // Sub-regions (Musse et al. §3.1.3): the target lies in a sub-region of the goal's region picked
+  // by proximity and by how many agents already target it, so group members take similar but never
+  // identical paths and spread over the region. Serial (group pass / spawning): occupancy is shared.
   core::Rng rng(desc.seed, (static_cast<std::uint64_t>(agents.id[row]) << 20) ^ agents.targetDraws[row]++,
                 core::RngPurpose::Target);
-  core::Vec2 p = point.position;
-  if (point.kind != PointKind::Action || !point.stop) {
-    // Somewhere in the region (interest points and exits are regions to pass through).
-    if (point.polygon.empty()) {
-      const double r = 0.5 * point.radius * std::sqrt(rng.uniform());
-      const double a = 6.283185307179586 * rng.uniform();
-      p = {point.position.x + static_cast<float>(r * std::cos(a)), point.position.y + static_cast<float>(r * std::sin(a))};
-    } else {
-      const core::Aabb& box = pointBounds[static_cast<std::size_t>(&point - desc.points.data())];
-      for (int i = 0; i < 32; ++i) {
-        const core::Vec2 q{static_cast<float>(rng.uniform(box.min.x, box.max.x)),
-                           static_cast<float>(rng.uniform(box.min.y, box.max.y))};
-        if (core::pointInPolygon(point.polygon, q)) { p = q; break; }
-      }
-    }
+  releaseTarget(row);
+  const auto p = static_cast<std::size_t>(&point - desc.points.data());
+  const std::uint32_t first = subOffset[p], last = subOffset[p + 1];
+  core::Vec2 target = point.position;
+  if (last > first) {
+    const std::span<const crowd::Subregion> subs(subregions.data() + first, last - first);
+    const std::span<const std::uint32_t> occupancy(subOccupancy.data() + first, last - first);
+    const std::size_t k = crowd::pickSubregion(subs, core::Vec2{agents.posX[row], agents.posY[row]}, occupancy, rng);
+    target = crowd::samplePoint(subs[k], rng);
+    agents.targetSub[row] = static_cast<std::int32_t>(first + k);
+    ++subOccupancy[first + k];
   }
-  if (auto hit = query.nearest(p, 3.0f)) return hit->first;
+  if (auto hit = query.nearest(target, 3.0f)) return hit->first;
   if (auto hit = query.nearest(point.position, 10.0f)) return hit->first;
-  return p;
+  return target;
 }
 
 void World::Impl::advanceGoal(std::size_t row, const nav::NavQuery& query) {
@@ -47,6 +53,7 @@ void World::Impl::setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQ
   const PopulationDesc& pop = desc.populations[g.population];
   const std::vector<std::uint32_t>& goals = activeGoals(g);
   agents.goalCursor[row] = cursor;
+  agents.ticket[row] = 0;  // a path still queued for the old goal expires unread
   agents.corners[row].clear();
   agents.cornerIndex[row] = 0;
   agents.progressDistance[row] = 1e30f;
@@ -57,6 +64,7 @@ void World::Impl::setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQ
     agents.needPath[row] = 1;
     agents.goalState[row] = GoalState::Seeking;
     agents.mode[row] = AgentMode::Walking;
+    if (pop.bezierPaths) bezierPath(row, query);
   } else if (pop.wander) {
     core::Rng rng(desc.seed, (static_cast<std::uint64_t>(agents.id[row]) << 20) ^ agents.targetDraws[row]++,
                   core::RngPurpose::Goal);
@@ -69,6 +77,7 @@ void World::Impl::setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQ
     agents.goalState[row] = GoalState::Seeking;
     agents.mode[row] = AgentMode::Walking;
   } else {
+    releaseTarget(row);
     agents.goalState[row] = GoalState::Done;
     agents.mode[row] = AgentMode::Waiting;
     agents.targetX[row] = agents.posX[row];
@@ -84,7 +93,6 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
   const std::size_t k = desc.steering.maxNeighbours;
   tasks.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
     ChunkOutput& out = chunks[begin / grain];
-    const nav::NavQuery& query = *worker(tasks).query;
     for (std::size_t row = begin; row < end; ++row) {
       const std::uint32_t id = agents.id[row];
       const GroupState& g = groups[agents.group[row]];
@@ -100,7 +108,7 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
           agents.corners[row].clear();
           (void)pointIndex;
         } else {
-          advanceGoal(row, query);
+          agents.goalPending[row] = 1;  // the group pass moves it on (target draws are serial)
         }
       };
       switch (agents.goalState[row]) {
@@ -122,7 +130,7 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
           if (agents.goalCursor[row] >= goals.size()) {  // wandering
             const float dx = agents.targetX[row] - x, dy = agents.targetY[row] - y;
             if (dx * dx + dy * dy < kArriveDistance * kArriveDistance + agents.radius[row] * agents.radius[row]) {
-              setGoal(row, static_cast<std::uint32_t>(goals.size()), query);  // draws the next random target
+              agents.goalPending[row] = 2;  // the group pass draws the next random target
             }
             break;
           }

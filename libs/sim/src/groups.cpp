@@ -8,6 +8,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "throng/crowd/bezier_path.hpp"
+#include "throng/crowd/path_reconstruction.hpp"
+#include "throng/crowd/walkable.hpp"
 #include "world_impl.hpp"
 
 namespace throng::sim {
@@ -52,6 +55,7 @@ void World::Impl::decideGroups() {
       return r == kNoAgent || agents.goalState[r] == GoalState::Exited;
     });
   }
+  applyPendingGoals();
   applyGroupCommands();
   updateGuidance();
   updateFollowing();
@@ -59,6 +63,78 @@ void World::Impl::decideGroups() {
   updateWaiting();
   updateLeaders();
   updateGroupShapes();
+}
+
+void World::Impl::applyPendingGoals() {
+  const nav::NavQuery& query = *mainQuery;
+  for (std::size_t r = 0; r < agents.size(); ++r) {
+    const std::uint8_t pending = agents.goalPending[r];
+    if (pending == 0) continue;
+    agents.goalPending[r] = 0;
+    if (pending == 1) {
+      advanceGoal(r, query);
+    } else {
+      setGoal(r, static_cast<std::uint32_t>(activeGoals(groups[agents.group[r]]).size()), query);
+    }
+  }
+}
+
+void World::Impl::bezierPath(std::size_t row, const nav::NavQuery& query) {
+  // Seek goal with a Bézier curve (Musse et al. §3.2.2), verified inside the walkable surface by
+  // the control boxes' convex-hull property; where no curve fits, the navmesh path is used and the
+  // fallback is recorded.
+  const core::Vec2 from{agents.posX[row], agents.posY[row]};
+  const core::Vec2 to{agents.targetX[row], agents.targetY[row]};
+  const crowd::NavMeshWalkable walkable(query);
+  core::Rng rng(desc.seed, (static_cast<std::uint64_t>(agents.id[row]) << 20) ^ agents.targetDraws[row],
+                core::RngPurpose::Behaviour);
+  const auto curve = crowd::buildPath(from, to, walkable, crowd::BezierPathParams{}, rng);
+  const std::vector<std::uint32_t>& goals = activeGoals(groups[agents.group[row]]);
+  const std::uint32_t cursor = agents.goalCursor[row];
+  if (!curve) {
+    pendingEvents.push_back({tick, agents.id[row], EventKind::PathFallback, cursor < goals.size() ? goals[cursor] : kNoAgent, 0});
+    return;  // needPath stays set: plan asks the navmesh
+  }
+  std::vector<core::Vec2> points;
+  crowd::sample(curve->points, 0.1f, points);
+  if (!points.empty() && core::lengthSq(points.front() - from) < 1e-6f) points.erase(points.begin());
+  agents.corners[row] = std::move(points);
+  agents.cornerIndex[row] = 0;
+  agents.needPath[row] = 0;
+}
+
+void World::Impl::reconstructGoals(std::uint32_t gid, core::Vec2 anchor) {
+  // Paths automatic reconstruction (Musse et al. §3.1.2): a random final action point, a Bézier
+  // curve from the group's initial position to it, and every interest point near the curve
+  // becomes a goal on the way, in the order the curve passes them.
+  GroupState& g = groups[gid];
+  const PopulationDesc& pop = desc.populations[g.population];
+  std::vector<std::uint32_t> actions, interests;
+  std::vector<crowd::Region> regions;
+  for (std::uint32_t p = 0; p < desc.points.size(); ++p) {
+    const PointDesc& point = desc.points[p];
+    if (point.kind == PointKind::Action) actions.push_back(p);
+    if (point.kind == PointKind::Interest) {
+      interests.push_back(p);
+      regions.push_back(point.polygon.empty() ? crowd::Region::disc(point.position, point.radius) : crowd::Region::poly(point.polygon));
+    }
+  }
+  if (actions.empty()) return;  // validation requires one; keep the explicit list otherwise
+  core::Rng rng(desc.seed, gid, core::RngPurpose::Goal);
+  const std::uint32_t final = actions[rng.uniformInt(0, static_cast<std::uint32_t>(actions.size() - 1))];
+  const crowd::NavMeshWalkable walkable(*mainQuery);
+  const auto path = crowd::reconstructPath(anchor, desc.points[final].position, regions, pop.autoNearDistance,
+                                           crowd::ReconstructParams{}, rng, &walkable);
+  g.goals.clear();
+  if (path) {
+    for (std::uint32_t ip : path->visited) {
+      const std::uint32_t point = interests[ip];
+      if (g.goals.empty() || g.goals.back() != point) g.goals.push_back(point);
+    }
+  } else {
+    pendingEvents.push_back({tick, kNoAgent, EventKind::PathFallback, final, gid});
+  }
+  g.goals.push_back(final);
 }
 
 void World::Impl::applyGroupCommands() {

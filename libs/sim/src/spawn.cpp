@@ -154,6 +154,7 @@ void World::Impl::spawnPopulation(std::size_t populationIndex) {
       auto p = sampleRegion(groupRng);
       if (p && onMesh(*p) && occupancy.free(*p, pop.radius)) { anchor = *p; break; }
     }
+    if (pop.autoGoals) reconstructGoals(groupId, anchor);
     const float groupSpread = 0.4f + 0.5f * std::sqrt(static_cast<float>(sizes[g]));
     for (std::uint32_t m = 0; m < sizes[g]; ++m) {
       const std::uint32_t agentId = nextAgentId++;

@@ -71,7 +71,12 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
         std::vector<core::Vec2>& corners = agents.corners[row];
         std::uint32_t& ci = agents.cornerIndex[row];
         const core::Vec2 target{agents.targetX[row], agents.targetY[row]};
-        while (ci + 1 < corners.size() && core::lengthSq(corners[ci] - pos) < kCornerReach * kCornerReach) ++ci;
+        // Move on to the next corner once near this one — but only if the next is in line of sight:
+        // skipping a corner of a wall before rounding it walks straight into the wall.
+        while (ci + 1 < corners.size() && core::lengthSq(corners[ci] - pos) < kCornerReach * kCornerReach &&
+               ws.query->visible(pos, corners[ci + 1])) {
+          ++ci;
+        }
         const core::Vec2 aim = ci < corners.size() ? corners[ci] : target;
         const core::Vec2 toAim = aim - pos;
         const float dist = core::length(toAim);

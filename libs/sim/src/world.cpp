@@ -48,6 +48,14 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
                                 : core::bounds(p.polygon));
   }
   w.pointClip = pointClips(desc);
+  w.subOffset.push_back(0);
+  for (const PointDesc& p : desc.points) {
+    const crowd::Region region = p.polygon.empty() ? crowd::Region::disc(p.position, p.radius) : crowd::Region::poly(p.polygon);
+    std::vector<crowd::Subregion> subs = crowd::divideRegion(region);
+    w.subregions.insert(w.subregions.end(), std::make_move_iterator(subs.begin()), std::make_move_iterator(subs.end()));
+    w.subOffset.push_back(static_cast<std::uint32_t>(w.subregions.size()));
+  }
+  w.subOccupancy.assign(w.subregions.size(), 0);
   w.planPopulations();
   w.applyCommands();  // populations starting at t = 0 are present in the first snapshot
   return world;
@@ -109,7 +117,10 @@ void World::Impl::emit() {
   for (GoalState g : agents.goalState) anyExit |= g == GoalState::Exited;
   if (anyExit) {
     std::vector<std::uint8_t> keep(agents.size());
-    for (std::size_t r = 0; r < agents.size(); ++r) keep[r] = agents.goalState[r] != GoalState::Exited;
+    for (std::size_t r = 0; r < agents.size(); ++r) {
+      keep[r] = agents.goalState[r] != GoalState::Exited;
+      if (!keep[r]) releaseTarget(r);
+    }
     agents.compact(keep);
   }
   ++tick;

@@ -15,6 +15,7 @@
 #include "spatial_grid.hpp"
 #include "walls.hpp"
 #include "throng/core/rng.hpp"
+#include "throng/crowd/subregions.hpp"
 #include "throng/nav/navmesh.hpp"
 #include "throng/nav/path_queue.hpp"
 #include "throng/sim/orca.hpp"
@@ -113,6 +114,11 @@ struct World::Impl {
   // Per-point cached geometry and action clips.
   std::vector<core::Aabb> pointBounds;
   std::vector<std::uint16_t> pointClip;
+  // Sub-regions of every point's region (Musse et al. §3.1.3), flattened: point p owns
+  // [subOffset[p], subOffset[p + 1]); occupancy = agents whose current target lies in it.
+  std::vector<crowd::Subregion> subregions;
+  std::vector<std::uint32_t> subOffset;
+  std::vector<std::uint32_t> subOccupancy;
 
   // Threads.
   mutable std::vector<WorkerScratch> scratch;
@@ -146,6 +152,13 @@ struct World::Impl {
     return g.following && g.followGroup != kNoAgent ? groups[g.followGroup].goals : g.goals;
   }
   // Group pass steps (groups.cpp).
+  void applyPendingGoals();
+  /// Releases the sub-region `row` was targeting (its occupancy drops).
+  void releaseTarget(std::size_t row);
+  /// Replaces the navmesh request of `row` by a Bézier path when its population asks for one.
+  void bezierPath(std::size_t row, const nav::NavQuery& query);
+  /// Automatic goals for a group spawning around `anchor` (groups.cpp).
+  void reconstructGoals(std::uint32_t group, core::Vec2 anchor);
   void applyGroupCommands();
   void updateGroupShapes();
   void updateWaiting();

@@ -99,6 +99,14 @@ struct PopulationDesc {
   float speedMax = 2.5f;
   float radius = 0.2f;            ///< body radius [m]
   // The Musse crowd model.
+  /// Paths between goals: navmesh corners (straight segments), or Bézier curves (Musse et al.
+  /// §3.2.2) checked inside the walkable surface, falling back to the navmesh where none fits.
+  bool bezierPaths = false;
+  /// Goals chosen automatically per group (§3.1.2 "paths automatic reconstruction"): a random
+  /// final action point, a Bézier curve from the group's spawn to it, and every interest point the
+  /// curve passes near (within autoNearDistance) becomes a goal on the way. `goals` is then ignored.
+  bool autoGoals = false;
+  float autoNearDistance = 3.0f;  ///< [m]
   bool flocking = true;           ///< groups of 2+ walk together and wait for each other (§3.2.3)
   float waitTimeout = 30.0f;      ///< a member waits at most this long for the missing ones [s]
   float groupSpacing = 0.75f;     ///< lateral distance between members walking abreast [m]
