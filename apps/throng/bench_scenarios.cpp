@@ -68,12 +68,22 @@ float benchSide(std::size_t agents) {
 sim::ScenarioDesc makeBenchScenario(BenchLayout layout, std::size_t agents, std::uint64_t seed) {
   const float side = benchSide(agents);
   sim::ScenarioDesc desc;
-  desc.name = fmt::format("bench-{}-{}", layout == BenchLayout::Random ? "random" : "navmesh", agents);
+  desc.name = fmt::format("bench-{}-{}", layout == BenchLayout::Random ? "random" : layout == BenchLayout::Musse ? "musse" : "navmesh", agents);
   desc.seed = seed;
   desc.duration = 1.0e6f;  // wanderers never finish; bench stops after its ticks
   desc.dt = kBenchDt;
   desc.navCellSize = kBenchCellSize;
   desc.walkable.push_back(rect(0, 0, side, side));
+  if (layout == BenchLayout::Musse) {
+    // The crowd model on: flocking groups of three (shared speed, walking abreast, waiting for each
+    // other) wandering together between random points; the remainder walks alone.
+    const auto area = rect(kBenchRadius, kBenchRadius, side - kBenchRadius, side - kBenchRadius);
+    sim::PopulationDesc groups = wanderers("groups", area, static_cast<std::uint32_t>(agents / 3));
+    groups.sizeMin = groups.sizeMax = 3;
+    if (groups.groups > 0) desc.populations.push_back(groups);
+    if (agents % 3 != 0) desc.populations.push_back(wanderers("singles", area, static_cast<std::uint32_t>(agents % 3)));
+    return desc;
+  }
   if (layout == BenchLayout::Random) {
     desc.populations.push_back(wanderers("crowd", rect(kBenchRadius, kBenchRadius, side - kBenchRadius,
                                                        side - kBenchRadius),

@@ -14,7 +14,7 @@
 
 namespace throng::cli {
 
-enum class BenchLayout { Random, Navmesh };
+enum class BenchLayout { Random, Navmesh, Musse };
 
 inline constexpr float kBenchDensity = 1.0f;         ///< agents per m² of the square
 inline constexpr float kBenchRadius = 0.25f;         ///< body radius [m]

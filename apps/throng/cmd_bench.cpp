@@ -65,10 +65,10 @@ struct Measurement {
   std::optional<double> speedup;  ///< throng / DetourCrowd agent-steps/s, same agent count
 };
 
-/// Agents in a bench scenario (groups of one).
+/// Agents in a bench scenario (groups of a fixed size).
 std::size_t agentCount(const sim::ScenarioDesc& desc) {
   std::size_t total = 0;
-  for (const auto& p : desc.populations) total += p.groups;
+  for (const auto& p : desc.populations) total += static_cast<std::size_t>(p.groups) * p.sizeMin;
   return total;
 }
 
@@ -83,7 +83,9 @@ class BenchRunner {
  public:
   explicit BenchRunner(const BenchOptions& options)
       : options_(options),
-        layout_(options.scenario == "navmesh" ? BenchLayout::Navmesh : BenchLayout::Random),
+        layout_(options.scenario == "navmesh" ? BenchLayout::Navmesh
+                : options.scenario == "musse" ? BenchLayout::Musse
+                                              : BenchLayout::Random),
         progress_(stderr, true) {}
 
   int run();
@@ -336,8 +338,8 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
       ->type_name("T[,T...]")
       ->check(integerRange(0, 1024));
   cmd->add_option("--scenario", options.scenario,
-                  "random: open square, 1 agent/m², agents wander; navmesh: the same plus 1 m pillars every 8 m")
-      ->check(CLI::IsMember({"random", "navmesh"}))
+                  "random: open square, 1 agent/m², agents wander; navmesh: the same plus 1 m pillars every 8 m; musse: random with the crowd model on (flocking groups of 3)")
+      ->check(CLI::IsMember({"random", "navmesh", "musse"}))
       ->capture_default_str();
   cmd->add_option("--ticks", options.ticks,
                   "Timed ticks per configuration (dt = 0.1 s); 0 = as many as fit in 3 s (10 to 3000); DetourCrowd "

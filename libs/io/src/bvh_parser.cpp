@@ -166,7 +166,7 @@ class BvhParser {
   /// Parses a number token; reports a bad one (not a number, not finite, too large) and returns false.
   bool parseNumber(const Token& t, const std::string& expected, double& out) {
     std::string_view s = t.text;
-    if (s.size() > 1 && s[0] == '+') s.remove_prefix(1);
+    if (s.size() > 1 && s[0] == '+' && s[1] != '-') s.remove_prefix(1);
     double v = 0.0;
     const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
     if (s.empty() || end != s.data() + s.size() || (ec != std::errc() && ec != std::errc::result_out_of_range)) {
@@ -186,7 +186,7 @@ class BvhParser {
     return true;
   }
 
-  /// "OFFSET x y z": the keyword is checked by the caller's expectation.
+  /// "OFFSET x y z"; a misspelled keyword or a missing number stops the parse.
   std::array<float, 3> readOffset() {
     const std::string expected = "\"OFFSET\" followed by 3 numbers";
     const Token key = cur_.next();

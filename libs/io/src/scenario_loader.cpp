@@ -1,6 +1,7 @@
 // throng::io scenario loading — the public entry points: text (or a file) → JsonDocument →
-// ParsedScenario → validated LoadedScenario. Reads the file; writes nothing. No exception escapes:
-// even an internal failure becomes a diagnostic.
+// ParsedScenario (+ motion clips, scenario_clips) → validated LoadedScenario. Reads the file and
+// the BVH clips it names; writes nothing. No exception escapes: even an internal failure becomes a
+// diagnostic.
 #include "throng/io/scenario_loader.hpp"
 
 #include <algorithm>

@@ -66,8 +66,13 @@ void World::Impl::setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQ
     agents.mode[row] = AgentMode::Walking;
     if (pop.bezierPaths) bezierPath(row, query);
   } else if (pop.wander) {
-    core::Rng rng(desc.seed, (static_cast<std::uint64_t>(agents.id[row]) << 20) ^ agents.targetDraws[row]++,
-                  core::RngPurpose::Goal);
+    // Random points of the walkable area; a flocking group shares one per release (its cursor).
+    const bool together = g.flocks(pop) && g.expected >= 2;
+    const std::uint32_t gid = agents.group[row];
+    core::Rng rng = together ? core::Rng(desc.seed, (static_cast<std::uint64_t>(gid) << 32) ^ cursor ^ 0x5a5a0000u, core::RngPurpose::Goal)
+                             : core::Rng(desc.seed, (static_cast<std::uint64_t>(agents.id[row]) << 20) ^ agents.targetDraws[row]++,
+                                         core::RngPurpose::Goal);
+    releaseTarget(row);
     const float r0 = static_cast<float>(rng.uniform()), r1 = static_cast<float>(rng.uniform()),
                 r2 = static_cast<float>(rng.uniform());
     const auto p = query.randomPoint(r0, r1, r2);
@@ -109,6 +114,7 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
           (void)pointIndex;
         } else {
           agents.goalPending[row] = 1;  // the group pass moves it on (target draws are serial)
+          out.pendingRows.push_back(static_cast<std::uint32_t>(row));
         }
       };
       switch (agents.goalState[row]) {
@@ -129,8 +135,18 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
           const float x = agents.posX[row], y = agents.posY[row];
           if (agents.goalCursor[row] >= goals.size()) {  // wandering
             const float dx = agents.targetX[row] - x, dy = agents.targetY[row] - y;
-            if (dx * dx + dy * dy < kArriveDistance * kArriveDistance + agents.radius[row] * agents.radius[row]) {
-              agents.goalPending[row] = 2;  // the group pass draws the next random target
+            // A flocking group wanders to one shared point: close enough is within the group's width.
+            const bool together = g.flocks(pop) && g.members.size() >= 2;
+            const float reach = together ? kArriveDistance + pop.groupSpacing * static_cast<float>(g.members.size())
+                                         : std::sqrt(kArriveDistance * kArriveDistance + agents.radius[row] * agents.radius[row]);
+            if (dx * dx + dy * dy < reach * reach) {
+              if (together && agents.goalCursor[row] == g.cursor) {
+                agents.goalState[row] = GoalState::WaitingForGroup;  // released together, to a new point
+                agents.mode[row] = AgentMode::Waiting;
+              } else {
+                agents.goalPending[row] = 2;  // the group pass draws the next random target
+                out.pendingRows.push_back(static_cast<std::uint32_t>(row));
+              }
             }
             break;
           }
@@ -201,7 +217,7 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
       }
     }
   });
-  decideGroups();
+  decideGroups(tasks);
 }
 
 }  // namespace throng::sim

@@ -45,37 +45,36 @@ core::Vec2 interpolateGuide(const std::vector<GuideWaypoint>& script, float t) {
 
 }  // namespace
 
-void World::Impl::decideGroups() {
-  rowOfId.assign(nextAgentId, kNoAgent);
-  for (std::size_t r = 0; r < agents.size(); ++r) rowOfId[agents.id[r]] = static_cast<std::uint32_t>(r);
-  // Members that left (exits) are dropped from their groups.
-  for (GroupState& g : groups) {
-    std::erase_if(g.members, [&](std::uint32_t id) {
-      const std::uint32_t r = rowOfId[id];
-      return r == kNoAgent || agents.goalState[r] == GoalState::Exited;
-    });
+void World::Impl::decideGroups(const core::TaskSystem& tasks) {
+  if (rowsChanged) {
+    rowOfId.assign(nextAgentId, kNoAgent);
+    for (std::size_t r = 0; r < agents.size(); ++r) rowOfId[agents.id[r]] = static_cast<std::uint32_t>(r);
+    rowsChanged = false;
   }
   applyPendingGoals();
   applyGroupCommands();
   updateGuidance();
   updateFollowing();
-  applySocialEffects();
+  if (anySocial) applySocialEffects();
   updateWaiting();
   updateLeaders();
-  updateGroupShapes();
+  updateGroupShapes(tasks);
 }
 
 void World::Impl::applyPendingGoals() {
+  // Rows flagged by decide, chunk by chunk: ascending row order, whatever the threads.
   const nav::NavQuery& query = *mainQuery;
-  for (std::size_t r = 0; r < agents.size(); ++r) {
-    const std::uint8_t pending = agents.goalPending[r];
-    if (pending == 0) continue;
-    agents.goalPending[r] = 0;
-    if (pending == 1) {
-      advanceGoal(r, query);
-    } else {
-      setGoal(r, static_cast<std::uint32_t>(activeGoals(groups[agents.group[r]]).size()), query);
+  for (ChunkOutput& c : chunks) {
+    for (const std::uint32_t r : c.pendingRows) {
+      const std::uint8_t pending = agents.goalPending[r];
+      agents.goalPending[r] = 0;
+      if (pending == 1) {
+        advanceGoal(r, query);
+      } else if (pending == 2) {
+        setGoal(r, static_cast<std::uint32_t>(activeGoals(groups[agents.group[r]]).size()), query);
+      }
     }
+    c.pendingRows.clear();
   }
 }
 
@@ -250,6 +249,7 @@ void World::Impl::updateFollowing() {
 void World::Impl::applySocialEffects() {
   const nav::NavQuery& query = *mainQuery;
   for (std::size_t r = 0; r < agents.size(); ++r) {
+    if (agents.followAgent[r] == kNoAgent && agents.socialEffect[r] == 0) continue;
     // Ongoing following of another agent: chase it, end it when time is up or it left.
     if (agents.followAgent[r] != kNoAgent) {
       const std::uint32_t other = agents.followAgent[r] < rowOfId.size() ? rowOfId[agents.followAgent[r]] : kNoAgent;
@@ -362,59 +362,69 @@ void World::Impl::updateLeaders() {
   }
 }
 
-void World::Impl::updateGroupShapes() {
-  for (std::size_t r = 0; r < agents.size(); ++r) agents.formVelX[r] = agents.formVelY[r] = 0.0f;
-  std::vector<std::pair<float, std::uint32_t>> order;  // (coordinate, row)
-  for (GroupState& g : groups) {
-    if (g.members.empty()) continue;
-    // Centroid and heading of the members walking with the group.
-    core::Vec2 sum, vel;
-    std::uint32_t count = 0;
-    for (std::uint32_t id : g.members) {
-      const std::uint32_t r = rowOfId[id];
-      sum += core::Vec2{agents.posX[r], agents.posY[r]};
-      vel += core::Vec2{agents.velX[r], agents.velY[r]};
-      ++count;
+void World::Impl::updateGroupShapes(const core::TaskSystem& tasks) {
+  // Parallel over groups: a group writes its own centroid and heading and its members' rows only.
+  tasks.parallelFor(groups.size(), 512, [&](std::size_t begin, std::size_t end) {
+    WorkerScratch& ws = worker(tasks);
+    for (std::size_t gi = begin; gi < end; ++gi) shapeGroup(groups[gi], ws);
+  });
+}
+
+void World::Impl::shapeGroup(GroupState& g, WorkerScratch& ws) {
+  const PopulationDesc& pop = desc.populations[g.population];
+  if (g.members.empty()) return;
+  const bool flocking = g.flocks(pop) && g.members.size() >= 2;
+  if (!flocking && !g.guided) {
+    for (std::uint32_t id : g.members) agents.formVelX[rowOfId[id]] = agents.formVelY[rowOfId[id]] = 0.0f;
+    return;
+  }
+  // Centroid and heading of the members.
+  core::Vec2 sum, vel;
+  for (std::uint32_t id : g.members) {
+    const std::uint32_t r = rowOfId[id];
+    sum += core::Vec2{agents.posX[r], agents.posY[r]};
+    vel += core::Vec2{agents.velX[r], agents.velY[r]};
+    agents.formVelX[r] = agents.formVelY[r] = 0.0f;
+  }
+  const auto count = static_cast<float>(g.members.size());
+  g.centroid = sum / count;
+  if (core::lengthSq(vel) > 0.04f * count * count) g.heading = core::normalize(vel);
+  if (!flocking) return;
+  // Members walking toward the group's goal take slots abreast (Moussaïd et al. 2010: small groups
+  // walk side by side, larger ones in rows), ordered by where they already are so nobody crosses.
+  auto& order = ws.order;
+  order.clear();
+  for (std::uint32_t id : g.members) {
+    const std::uint32_t r = rowOfId[id];
+    if (agents.goalState[r] != GoalState::Seeking || agents.followAgent[r] != kNoAgent) continue;
+    if (agents.goalCursor[r] != g.cursor && !g.guided) continue;
+    const core::Vec2 rel = core::Vec2{agents.posX[r], agents.posY[r]} - g.centroid;
+    order.push_back({core::dot(rel, g.heading), r});
+  }
+  if (order.size() < 2) return;
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
+  const core::Vec2 lateral = core::perp(g.heading);
+  const std::size_t rows = (order.size() + kAbreast - 1) / kAbreast;
+  auto& line = ws.line;
+  for (std::size_t row0 = 0; row0 < rows; ++row0) {
+    const std::size_t first = row0 * kAbreast, last = std::min(order.size(), first + kAbreast);
+    line.assign(order.begin() + static_cast<std::ptrdiff_t>(first), order.begin() + static_cast<std::ptrdiff_t>(last));
+    for (auto& e : line) {
+      const core::Vec2 rel = core::Vec2{agents.posX[e.second], agents.posY[e.second]} - g.centroid;
+      e.first = core::dot(rel, lateral);
     }
-    g.centroid = sum / static_cast<float>(count);
-    if (core::lengthSq(vel) > 0.04f * static_cast<float>(count * count)) g.heading = core::normalize(vel);
-    const PopulationDesc& pop = desc.populations[g.population];
-    if (!g.flocks(pop) || count < 2) continue;
-    // Members walking toward the group's goal take slots abreast (Moussaïd et al. 2010: small groups
-    // walk side by side, larger ones in rows), ordered by where they already are so nobody crosses.
-    order.clear();
-    for (std::uint32_t id : g.members) {
-      const std::uint32_t r = rowOfId[id];
-      if (agents.goalState[r] != GoalState::Seeking || agents.followAgent[r] != kNoAgent) continue;
-      if (agents.goalCursor[r] != g.cursor && !g.guided) continue;
+    std::sort(line.begin(), line.end());
+    const float along = (0.5f * static_cast<float>(rows - 1) - static_cast<float>(row0)) * kRowSpacing;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const std::uint32_t r = line[i].second;
+      const float slot = (static_cast<float>(i) - 0.5f * static_cast<float>(line.size() - 1)) * pop.groupSpacing;
       const core::Vec2 rel = core::Vec2{agents.posX[r], agents.posY[r]} - g.centroid;
-      order.push_back({core::dot(rel, g.heading), r});
-    }
-    if (order.size() < 2) continue;
-    std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
-    const core::Vec2 lateral = core::perp(g.heading);
-    const std::size_t rows = (order.size() + kAbreast - 1) / kAbreast;
-    for (std::size_t row0 = 0; row0 < rows; ++row0) {
-      const std::size_t first = row0 * kAbreast, last = std::min(order.size(), first + kAbreast);
-      std::vector<std::pair<float, std::uint32_t>> line(order.begin() + static_cast<std::ptrdiff_t>(first),
-                                                         order.begin() + static_cast<std::ptrdiff_t>(last));
-      for (auto& e : line) {
-        const core::Vec2 rel = core::Vec2{agents.posX[e.second], agents.posY[e.second]} - g.centroid;
-        e.first = core::dot(rel, lateral);
-      }
-      std::sort(line.begin(), line.end());
-      const float along = (0.5f * static_cast<float>(rows - 1) - static_cast<float>(row0)) * kRowSpacing;
-      for (std::size_t i = 0; i < line.size(); ++i) {
-        const std::uint32_t r = line[i].second;
-        const float slot = (static_cast<float>(i) - 0.5f * static_cast<float>(line.size() - 1)) * pop.groupSpacing;
-        const core::Vec2 rel = core::Vec2{agents.posX[r], agents.posY[r]} - g.centroid;
-        const float lat = core::dot(rel, lateral), lon = core::dot(rel, g.heading);
-        core::Vec2 corr = lateral * ((slot - lat) * kFormationGain) + g.heading * ((along - lon) * kFormationGain);
-        const float m = core::length(corr);
-        if (m > kFormationMaxSpeed) corr *= kFormationMaxSpeed / m;
-        agents.formVelX[r] = corr.x;
-        agents.formVelY[r] = corr.y;
-      }
+      const float lat = core::dot(rel, lateral), lon = core::dot(rel, g.heading);
+      core::Vec2 corr = lateral * ((slot - lat) * kFormationGain) + g.heading * ((along - lon) * kFormationGain);
+      const float m = core::length(corr);
+      if (m > kFormationMaxSpeed) corr *= kFormationMaxSpeed / m;
+      agents.formVelX[r] = corr.x;
+      agents.formVelY[r] = corr.y;
     }
   }
 }

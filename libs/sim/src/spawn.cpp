@@ -199,6 +199,7 @@ void World::Impl::spawnPopulation(std::size_t populationIndex) {
       ++stats.spawned;
       --stats.scheduled;
       agents.followAgent[row] = kNoAgent;
+      agents.targetSub[row] = -1;
       // Join the group (flocking: everyone walks at the group's speed) and head for its current goal.
       GroupState& group = groups[groupId];
       group.members.push_back(agentId);
@@ -212,6 +213,7 @@ void World::Impl::spawnPopulation(std::size_t populationIndex) {
     }
   }
   stats.active = static_cast<std::uint32_t>(agents.size());
+  rowsChanged = true;
 }
 
 }  // namespace throng::sim

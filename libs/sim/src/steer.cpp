@@ -132,7 +132,9 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
         const core::Vec2 otherVel{agents.velX[o], agents.velY[o]};
         const core::Vec2 relVel = vel - otherVel;
         float responsibility = 0.5f;
-        if (core::dot(vel, otherVel) < -0.5f * core::length(vel) * core::length(otherVel) && agents.group[row] != agents.group[o]) {
+        // Head on: velocities more than 120° apart (cos < -0.5), tested without square roots.
+        const float d = core::dot(vel, otherVel);
+        if (d < 0.0f && d * d > 0.25f * core::lengthSq(vel) * core::lengthSq(otherVel) && agents.group[row] != agents.group[o]) {
           const GroupState& theirs = groups[agents.group[o]];
           const bool yields = mine.members.size() != theirs.members.size() ? mine.members.size() < theirs.members.size()
                                                                             : agents.group[row] > agents.group[o];

@@ -57,6 +57,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   }
   w.subOccupancy.assign(w.subregions.size(), 0);
   w.planPopulations();
+  for (const PopulationDesc& pop : desc.populations) w.anySocial = w.anySocial || pop.sociological.enabled;
   w.applyCommands();  // populations starting at t = 0 are present in the first snapshot
   return world;
 }
@@ -119,9 +120,14 @@ void World::Impl::emit() {
     std::vector<std::uint8_t> keep(agents.size());
     for (std::size_t r = 0; r < agents.size(); ++r) {
       keep[r] = agents.goalState[r] != GoalState::Exited;
-      if (!keep[r]) releaseTarget(r);
+      if (keep[r]) continue;
+      releaseTarget(r);
+      GroupState& g = groups[agents.group[r]];
+      std::erase(g.members, agents.id[r]);
+      if (g.leader == agents.id[r]) g.leader = g.members.empty() ? kNoAgent : g.members.front();
     }
     agents.compact(keep);
+    rowsChanged = true;
   }
   ++tick;
   stats.tick = tick;

@@ -73,6 +73,7 @@ struct WorkerScratch {
   std::vector<OrcaLine> lines;
   std::vector<OrcaLine> projected;
   std::vector<std::uint32_t> wallIds;
+  std::vector<std::pair<float, std::uint32_t>> order, line;  // formation
   std::vector<std::pair<float, std::uint32_t>> candidates;
 };
 
@@ -82,6 +83,7 @@ struct ChunkOutput {
   double walkedDistance = 0.0;
   double walkingTime = 0.0;
   std::uint64_t socialMeetings = 0;
+  std::vector<std::uint32_t> pendingRows;  ///< rows whose goalPending was set, ascending
 };
 
 struct World::Impl {
@@ -109,7 +111,10 @@ struct World::Impl {
   std::vector<GroupId> groupHandles;        ///< stable group id → handle
   std::vector<GroupCommand> commands;
   std::vector<core::Vec2> viewers;
-  std::vector<std::uint32_t> rowOfId;       ///< stable id → row, rebuilt by the group pass (kNoAgent if gone)
+  std::vector<std::uint32_t> rowOfId;       ///< stable id → row (kNoAgent if gone), rebuilt when rows change
+  bool rowsChanged = true;                  ///< set by spawning and by removals
+  bool anySocial = false;                   ///< some population has the sociological model on
+  std::vector<std::uint32_t> followingRows; ///< rows following another agent (sociological), ascending
 
   // Per-point cached geometry and action clips.
   std::vector<core::Aabb> pointBounds;
@@ -131,7 +136,7 @@ struct World::Impl {
   void spawnPopulation(std::size_t populationIndex);
   void sense(const core::TaskSystem& tasks);
   void decide(const core::TaskSystem& tasks);
-  void decideGroups();  ///< serial group pass (groups.cpp), after the parallel agent part of decide
+  void decideGroups(const core::TaskSystem& tasks);  ///< group pass (groups.cpp), after the per-agent part of decide
   void plan();
   void steer(const core::TaskSystem& tasks);
   void integrate(const core::TaskSystem& tasks);
@@ -160,7 +165,8 @@ struct World::Impl {
   /// Automatic goals for a group spawning around `anchor` (groups.cpp).
   void reconstructGoals(std::uint32_t group, core::Vec2 anchor);
   void applyGroupCommands();
-  void updateGroupShapes();
+  void updateGroupShapes(const core::TaskSystem& tasks);
+  void shapeGroup(GroupState& g, WorkerScratch& ws);
   void updateWaiting();
   void updateFollowing();
   void updateGuidance();
