@@ -124,16 +124,18 @@ void World::Impl::reconstructGoals(std::uint32_t gid, core::Vec2 anchor) {
   const crowd::NavMeshWalkable walkable(*mainQuery);
   const auto path = crowd::reconstructPath(anchor, desc.points[final].position, regions, pop.autoNearDistance,
                                            crowd::ReconstructParams{}, rng, &walkable);
-  g.goals.clear();
+  std::vector<std::uint32_t> goals;
   if (path) {
     for (std::uint32_t ip : path->visited) {
       const std::uint32_t point = interests[ip];
-      if (g.goals.empty() || g.goals.back() != point) g.goals.push_back(point);
+      if (goals.empty() || goals.back() != point) goals.push_back(point);
     }
   } else {
     pendingEvents.push_back({tick, kNoAgent, EventKind::PathFallback, final, gid});
   }
-  g.goals.push_back(final);
+  goals.push_back(final);
+  g.goalList = static_cast<std::uint32_t>(goalLists.size());
+  goalLists.push_back(std::move(goals));
 }
 
 void World::Impl::applyGroupCommands() {

@@ -64,6 +64,7 @@ core::Vec2 sampleDisc(core::Vec2 centre, float radius, core::Rng& rng) {
 }  // namespace
 
 void World::Impl::planPopulations() {
+  for (const PopulationDesc& pop : desc.populations) goalLists.push_back(pop.goals);
   std::uint32_t scheduled = 0;
   std::uint32_t groupId = 0;
   for (std::size_t p = 0; p < desc.populations.size(); ++p) {
@@ -77,7 +78,7 @@ void World::Impl::planPopulations() {
       GroupState state;
       state.population = static_cast<std::uint16_t>(p);
       state.expected = sizes[g];
-      state.goals = pop.goals;
+      state.goalList = static_cast<std::uint32_t>(p);
       // Flocking rule 2: one walking speed per group, drawn from the population's distribution.
       core::Rng speedRng(desc.seed, groupId + g, core::RngPurpose::Speed);
       const double v = pop.speedSd > 0 ? speedRng.normal(pop.speedMean, pop.speedSd) : pop.speedMean;

@@ -37,7 +37,7 @@ struct GroupState {
   std::vector<std::uint32_t> members;  ///< stable ids present in the world, ascending
   std::uint32_t expected = 0;          ///< members that will be spawned
   std::uint32_t leader = kNoAgent;
-  std::vector<std::uint32_t> goals;    ///< own goal list (point indices)
+  std::uint32_t goalList = 0;          ///< own goal list: index into World::Impl::goalLists
   std::uint32_t cursor = 0;            ///< goal the group is heading for (index into the active list)
   float speed = 1.34f;                 ///< shared walking speed when flocking [m/s]
   // Waiting (flocking rule 4).
@@ -107,6 +107,8 @@ struct World::Impl {
 
   // Groups.
   std::vector<GroupState> groups;
+  /// Goal lists (point indices): one per population first, then one per automatic-goals group.
+  std::vector<std::vector<std::uint32_t>> goalLists;
   core::SlotMap<GroupTag> groupSlots;       ///< handle → stable group id
   std::vector<GroupId> groupHandles;        ///< stable group id → handle
   std::vector<GroupCommand> commands;
@@ -154,7 +156,7 @@ struct World::Impl {
   void setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQuery& query);
   /// The goal list a group follows now: its own, or the followed group's while following.
   [[nodiscard]] const std::vector<std::uint32_t>& activeGoals(const GroupState& g) const {
-    return g.following && g.followGroup != kNoAgent ? groups[g.followGroup].goals : g.goals;
+    return goalLists[g.following && g.followGroup != kNoAgent ? groups[g.followGroup].goalList : g.goalList];
   }
   // Group pass steps (groups.cpp).
   void applyPendingGoals();
