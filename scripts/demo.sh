@@ -7,7 +7,8 @@ source "$root/scripts/deps.sh"
 throng_install_deps
 throng_build "$root"
 mkdir -p "$root/out"
-"$root/build/apps/throng/throng" run "$root/scenarios/plaza.json" --out "$root/out/plaza.sqlite" --force "$@"
+"$root/build/apps/throng/throng" run "$root/scenarios/museum.json" --out "$root/out/museum.sqlite" --force "$@"
 echo
-echo "Inspect it:    build/apps/throng/throng info out/plaza.sqlite"
-echo "Other scenes:  ls scenarios/   (build/apps/throng/throng run scenarios/bottleneck.json)"
+echo "Inspect it:    build/apps/throng/throng info out/museum.sqlite"
+echo "Picture:       /usr/bin/python3 scripts/plot_recording.py out/museum.sqlite   (needs python3-matplotlib)"
+echo "Other scenes:  ls scenarios/   (for example build/apps/throng/throng run scenarios/plaza.json)"

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -157,4 +158,61 @@ TEST(Scenarios, EveryBundledScenarioPassesCheck) {
     ++count;
   }
   EXPECT_GE(count, 5);
+}
+
+TEST(Scenarios, MuseumEveryGroupVisitsItsPaintings) {
+  ScratchDir dir("museum");
+  const fs::path db = dir / "museum.sqlite";
+  const auto s = runScenario("museum", db);
+  ASSERT_FALSE(s.is_null());
+  const auto scenarioJson = nlohmann::json::parse(throng::e2e::readFile(scenario("museum")));
+  std::map<std::string, std::string> kindOf;
+  for (const auto& p : scenarioJson["points"]) kindOf[p["id"].get<std::string>()] = p["kind"].get<std::string>();
+  // Paintings each agent stood at (action_start), by population.
+  const auto rows = query(db,
+                          "SELECT e.agent, a.population, e.a FROM throng_events e JOIN throng_agents a ON a.id = e.agent "
+                          "WHERE e.kind = 'action_start'");
+  std::map<int, std::set<std::string>> visited;  // agent → painting ids
+  std::map<int, int> populationOf;
+  std::vector<std::string> pointIds;
+  for (const auto& p : scenarioJson["points"]) pointIds.push_back(p["id"].get<std::string>());
+  for (const auto& r : rows) {
+    visited[static_cast<int>(r[0])].insert(pointIds.at(static_cast<std::size_t>(r[2])));
+    populationOf[static_cast<int>(r[0])] = static_cast<int>(r[1]);
+  }
+  const auto agents = query(db, "SELECT id, population FROM throng_agents");
+  const auto& pops = scenarioJson["populations"];
+  for (const auto& a : agents) {
+    const auto& pop = pops.at(static_cast<std::size_t>(a[1]));
+    const std::string id = pop["id"].get<std::string>();
+    std::set<std::string> expected;
+    if (pop.contains("follow")) {
+      // A permanent follower goes where the followed group goes: the class's paintings.
+      for (const auto& p : pops) {
+        if (p["id"] == pop["follow"]["population"]) for (const auto& g : p["goals"]) if (kindOf[g] == "action") expected.insert(g);
+      }
+    } else if (pop["goals"].is_array() && !pop.contains("sociological") && !pop.contains("guide")) {
+      for (const auto& g : pop["goals"]) if (kindOf[g] == "action") expected.insert(g);
+    } else if (pop["goals"] == "auto") {
+      EXPECT_EQ(visited[static_cast<int>(a[0])].size(), 1u) << "automatic goals end at one action point: agent " << a[0];
+      continue;
+    } else {
+      continue;  // sociable visitors may change group; the guided tour goes where its guide leads
+    }
+    for (const std::string& painting : expected) {
+      EXPECT_TRUE(visited[static_cast<int>(a[0])].count(painting)) << id << " agent " << a[0] << " never looked at " << painting;
+    }
+  }
+  // The guided tour was guided, then released, and left with everyone else who had an exit to go to.
+  const auto guide = query(db, "SELECT COUNT(*) FROM throng_events WHERE kind IN ('guide_start', 'guide_end')");
+  EXPECT_GE(guide[0][0], 2.0);
+  const auto following = query(db, "SELECT COUNT(*) FROM throng_events WHERE kind = 'follow_start'");
+  EXPECT_GE(following[0][0], 1.0);
+  // Action clips play while looking: the animation table names the "look" clip with phases in [0, 1).
+  const auto look = query(db,
+                          "SELECT COUNT(*), MIN(phase), MAX(phase) FROM throng_animation n JOIN throng_clips c ON c.idx = n.clip "
+                          "WHERE c.name = 'look'");
+  EXPECT_GT(look[0][0], 100.0);
+  EXPECT_GE(look[0][1], 0.0);
+  EXPECT_LT(look[0][2], 1.0);
 }

@@ -228,25 +228,25 @@ TEST(Groups, PermanentFollowerAdoptsTheLeadersGoals) {
   const sim::GroupId leader = w->group("visitors", 0), follows = w->group("followers", 0);
   ASSERT_FALSE(leader.isNull());
   ASSERT_FALSE(follows.isNull());
-  int compared = 0, equal = 0;
-  bool followerVisitedNorth = false;
+  int compared = 0, ahead = 0;
+  std::vector<std::uint32_t> leaderVisits, followerVisits;
   while (w->stats().time < 150 && !w->finished()) {
     w->step(tasks);
-    for (const auto& e : w->snapshot()->events) {
-      if (e.kind == sim::EventKind::GoalReached && e.a == 2) {
-        const auto fi = w->groupInfo(follows);
-        if (fi && std::count(fi->members.begin(), fi->members.end(), e.agent)) followerVisitedNorth = true;
-      }
-    }
     const auto li = w->groupInfo(leader), fi = w->groupInfo(follows);
+    for (const auto& e : w->snapshot()->events) {
+      if (e.kind != sim::EventKind::GoalReached) continue;
+      auto& visits = std::count(li->members.begin(), li->members.end(), e.agent) ? leaderVisits : followerVisits;
+      if (visits.empty() || visits.back() != e.a) visits.push_back(e.a);
+    }
     if (!li || !fi || li->members.empty() || fi->members.empty()) continue;
     ++compared;
-    equal += li->goalPoint == fi->goalPoint;
     EXPECT_TRUE(fi->following);
+    ahead += fi->goalIndex > li->goalIndex;
   }
   ASSERT_GT(compared, 100);
-  EXPECT_GT(equal, compared * 95 / 100) << "the follower's goal equals its leader's";
-  EXPECT_TRUE(followerVisitedNorth) << "the follower went where its leader went, not only to its own exit";
+  EXPECT_EQ(ahead, 0) << "the follower never heads past the goal its leader heads for";
+  EXPECT_EQ(followerVisits, leaderVisits) << "the follower passes the leader's goals (north, middle), not its own list";
+  EXPECT_EQ(w->stats().exited, 4u);
 }
 
 TEST(Groups, TemporaryFollowingAlternates) {

@@ -1,6 +1,8 @@
 // throng::io scenario parser — JSON document → sim::ScenarioDesc, checking keys, types, ranges
-// and each polygon on its own (simple, non-degenerate). Cross-element checks (spawn inside the
-// walkable area, capacity, reachability) belong to scenario_validator. Reads a JsonDocument;
+// and each polygon on its own (simple, non-degenerate), id references (goals, spawn points, the
+// crowd model's "follow" population and group) and the crowd-model keys (Musse et al.).
+// Geometric cross-element checks (spawn and guide waypoints inside the walkable area, capacity,
+// reachability) belong to scenario_validator. Reads a JsonDocument;
 // writes a ScenarioDesc and diagnostics. Private to throng_io.
 #pragma once
 #include <vector>
@@ -18,7 +20,7 @@ struct ParsedScenario {
   std::vector<bool> walkableOk;    ///< per walkable polygon: a simple polygon with area
   std::vector<bool> obstaclesOk;   ///< per obstacle polygon
   std::vector<bool> pointsOk;      ///< per point: region parsed and valid
-  std::vector<bool> populationsOk; ///< per population: every field parsed (spawn and goals resolved)
+  std::vector<bool> populationsOk; ///< per population: every field parsed (spawn, goals and follow resolved)
   bool structureOk = false;        ///< no diagnostic at all from the parser
 };
 

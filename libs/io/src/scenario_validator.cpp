@@ -70,7 +70,10 @@ class Validator {
     if (!buildAreas()) return;
     std::vector<std::optional<core::Vec2>> starts(desc_.populations.size());
     for (std::size_t i = 0; i < desc_.populations.size(); ++i) {
-      if (i < parsed_.populationsOk.size() && parsed_.populationsOk[i]) starts[i] = checkSpawn(i);
+      if (i < parsed_.populationsOk.size() && parsed_.populationsOk[i]) {
+        starts[i] = checkSpawn(i);
+        checkGuide(i);
+      }
     }
     if (options.checkReachability && diags_.empty()) checkReachability(starts, navmesh);
   }
@@ -132,6 +135,30 @@ class Validator {
     return s;
   }
 
+  /// Empty when `p` lies strictly inside the walkable area and outside every obstacle; otherwise
+  /// "(x, y) is outside the walkable area" or "(x, y) is inside obstacle /obstacles/k".
+  std::string positionProblem(core::Vec2 p) const {
+    const BPoint b(p.x, p.y);
+    const std::string where = "(" + num(p.x) + ", " + num(p.y) + ")";
+    if (!bg::within(b, walk_)) return where + " is outside the walkable area";
+    for (std::size_t k = 0; k < obstacles_.size(); ++k) {
+      if (bg::within(b, obstacles_[k])) return where + " is inside obstacle /obstacles/" + std::to_string(k);
+    }
+    return {};
+  }
+
+  /// A scripted guide (Musse et al. §3.2.6) walks where the group can follow: every waypoint
+  /// inside the walkable area and clear of obstacles.
+  void checkGuide(std::size_t i) {
+    const auto& script = desc_.populations[i].guide.script;
+    for (std::size_t k = 0; k < script.size(); ++k) {
+      if (const std::string problem = positionProblem(script[k].position); !problem.empty()) {
+        error("/populations/" + std::to_string(i) + "/guide/script/" + std::to_string(k) + "/position",
+              "guide waypoint " + problem, "a waypoint inside /walkable and clear of /obstacles");
+      }
+    }
+  }
+
   /// Checks one population's spawn; returns a point inside it to start reachability from.
   std::optional<core::Vec2> checkSpawn(std::size_t i) {
     const sim::PopulationDesc& pop = desc_.populations[i];
@@ -142,17 +169,9 @@ class Validator {
     const SpawnRegion s = spawnRegion(i);
     const std::string expected = "a spawn inside /walkable and clear of /obstacles";
     if (s.isPosition) {
-      const BPoint p(s.position.x, s.position.y);
-      const std::string where = "(" + num(s.position.x) + ", " + num(s.position.y) + ")";
-      if (!bg::within(p, walk_)) {
-        error(s.pointer, "spawn position " + where + " is outside the walkable area", expected);
+      if (const std::string problem = positionProblem(s.position); !problem.empty()) {
+        error(s.pointer, "spawn position " + problem, expected);
         return std::nullopt;
-      }
-      for (std::size_t k = 0; k < obstacles_.size(); ++k) {
-        if (bg::within(p, obstacles_[k])) {
-          error(s.pointer, "spawn position " + where + " is inside obstacle /obstacles/" + std::to_string(k), expected);
-          return std::nullopt;
-        }
       }
       return s.position;
     }

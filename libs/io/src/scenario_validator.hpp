@@ -1,6 +1,7 @@
 // throng::io scenario validator — the semantic checks that need several parts of a parsed
 // scenario at once: spawns inside the walkable area and clear of obstacles, spawn areas large
-// enough for their agents, and (optionally) every goal reachable on the navmesh from its spawn.
+// enough for their agents, scripted guide waypoints (crowd model) on walkable ground clear of
+// obstacles, and (optionally) every goal reachable on the navmesh from its spawn.
 // Reads ParsedScenario and the JsonDocument (for positions); writes diagnostics and the navmesh.
 // Private to throng_io.
 #pragma once

@@ -222,9 +222,15 @@ void World::Impl::updateFollowing() {
       const std::uint32_t who = g.leader == kNoAgent ? 0 : g.leader;
       pendingEvents.push_back({tick, who, following ? EventKind::FollowStart : EventKind::FollowEnd, gid, g.followGroup});
       if (following) {
+        // Adopt the followed group's goal list from where that group is now.
         g.ownCursor = g.cursor;
         g.following = true;
-        g.syncedCursor = kNoAgent;  // copy the leader's goal below
+        g.cursor = leader.cursor;
+        g.waiting = false;
+        for (std::uint32_t id : g.members) {
+          const std::uint32_t r = rowOfId[id];
+          if (agents.goalState[r] != GoalState::Exited && agents.goalState[r] != GoalState::Acting) setGoal(r, g.cursor, query);
+        }
       } else {
         g.following = false;
         g.cursor = g.ownCursor;
@@ -233,16 +239,6 @@ void World::Impl::updateFollowing() {
           const std::uint32_t r = rowOfId[id];
           if (agents.goalState[r] != GoalState::Exited && agents.goalState[r] != GoalState::Acting) setGoal(r, g.cursor, query);
         }
-      }
-    }
-    // While following, the group heads for whatever goal the followed group heads for.
-    if (g.following && g.syncedCursor != leader.cursor) {
-      g.syncedCursor = leader.cursor;
-      g.cursor = leader.cursor;
-      g.waiting = false;
-      for (std::uint32_t id : g.members) {
-        const std::uint32_t r = rowOfId[id];
-        if (agents.goalState[r] != GoalState::Exited && agents.goalState[r] != GoalState::Acting) setGoal(r, g.cursor, query);
       }
     }
   }
@@ -318,12 +314,11 @@ void World::Impl::updateWaiting() {
       g.waitStart = tick;
       pendingEvents.push_back({tick, g.members.front(), EventKind::GroupWaitStart, point, gid});
     }
-    // A following group waits at the followed group's goal until that group moves on
-    // (updateFollowing re-targets it then), never by the clock.
-    if (g.following) continue;
     const bool everyone = waiting == g.members.size();
     const bool timedOut = static_cast<double>(tick - g.waitStart) * desc.dt >= pop.waitTimeout;
     if (!everyone && !timedOut) continue;
+    // A following group never overtakes: it leaves a goal only once the followed group has left it.
+    if (g.following && !groups[g.followGroup].members.empty() && groups[g.followGroup].cursor <= g.cursor) continue;
     const std::uint32_t missing = static_cast<std::uint32_t>(g.expected > waiting ? g.expected - waiting : 0);
     pendingEvents.push_back({tick, g.members.front(), everyone ? EventKind::GroupRelease : EventKind::GroupTimeout, point,
                              everyone ? gid : missing});

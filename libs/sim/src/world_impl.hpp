@@ -50,7 +50,6 @@ struct GroupState {
   bool following = false;
   std::uint64_t followToggle = 0;        ///< tick the current (temporary) period ends
   std::uint32_t ownCursor = 0;           ///< own cursor saved while following temporarily
-  std::uint32_t syncedCursor = kNoAgent; ///< the followed group's cursor last copied
   // Guidance (§3.2.6).
   bool guided = false;
   bool guidedByApi = false;
