@@ -375,3 +375,24 @@ TEST(Groups, DeterministicAcrossThreads) {
   EXPECT_EQ(h1, hash(2));
   EXPECT_EQ(h1, hash(3));
 }
+
+TEST(Groups, MultiresolutionSteeringFarFromViewersStaysSafe) {
+  // Far from every viewer agents steer with 4 neighbours and no wall half-planes (Musse et al.
+  // §3.2.4's multiresolution); the navmesh still holds them and they still reach their goals.
+  sim::ScenarioDesc d = hall(15, 2, true);
+  d.steering.lodDistance = 10.0f;
+  auto w = make(d);
+  ASSERT_TRUE(w);
+  w->setViewers({{-500.0f, -500.0f}});
+  core::TaskSystem tasks(2);
+  float minWallGap = 1e9f;
+  while (w->stats().time < 120 && !w->finished()) {
+    w->step(tasks);
+    const auto f = w->snapshot();
+    for (std::size_t i = 0; i < f->size(); ++i) {
+      minWallGap = std::min({minWallGap, f->posX[i], kRoomW - f->posX[i], f->posY[i], kRoomH - f->posY[i]});
+    }
+  }
+  EXPECT_EQ(w->stats().exited, w->stats().spawned);
+  EXPECT_GE(minWallGap, 0.2f) << "bodies never overlap the walls";
+}

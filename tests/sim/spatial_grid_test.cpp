@@ -65,3 +65,20 @@ TEST(SpatialGrid, NearestMatchesBruteForce) {
     }
   }
 }
+
+TEST(SpatialGrid, DensityCountsAgentsPerSquareMetreAround) {
+  // Musse et al. §3.2.4's density: agents in the 3 × 3 cells around a point over their area.
+  sim::SpatialGrid grid;
+  grid.configure(core::Aabb{{0, 0}, {10, 10}}, 1.0f);
+  std::vector<float> xs, ys;
+  for (int i = 0; i < 18; ++i) {  // 18 agents in the 3 m × 3 m block [4, 7)²: 2 per m²
+    xs.push_back(4.1f + 0.35f * static_cast<float>(i % 9) / 1.0f * 0.95f);
+    ys.push_back(4.1f + 1.4f * static_cast<float>(i / 9) + 0.2f);
+  }
+  xs.push_back(0.5f);  // one far away
+  ys.push_back(9.5f);
+  core::TaskSystem tasks(1);
+  grid.rebuild(xs, ys, tasks);
+  EXPECT_NEAR(grid.density(5.5f, 5.5f), 18.0f / 9.0f, 1e-5f);
+  EXPECT_NEAR(grid.density(0.5f, 9.5f), 1.0f / 4.0f, 1e-5f) << "a corner cell has 2 × 2 cells around it";
+}
