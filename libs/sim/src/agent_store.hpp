@@ -28,6 +28,7 @@ struct AgentStore {
   std::vector<std::uint32_t> id;          ///< stable spawn-order id
   std::vector<std::uint32_t> group;       ///< stable group id
   std::vector<std::uint16_t> population;  ///< index into ScenarioDesc::populations
+  std::vector<std::uint16_t> groupSize;   ///< size of its group (head-on priority in steer; no group lookup there)
   // Kinematics [m], [m/s].
   std::vector<float> posX, posY, velX, velY;
   std::vector<float> prefVelX, prefVelY;  ///< written by steer (preferred velocity)
@@ -67,7 +68,7 @@ struct AgentStore {
   /// Applies f to every per-agent column (not the neighbour buffers, which sense rebuilds).
   template <class F>
   void forEachColumn(F&& f) {
-    f(id); f(group); f(population);
+    f(id); f(group); f(population); f(groupSize);
     f(posX); f(posY); f(velX); f(velY); f(prefVelX); f(prefVelY); f(newVelX); f(newVelY);
     f(oriX); f(oriY); f(radius); f(speed); f(mode);
     f(goalState); f(goalCursor); f(targetX); f(targetY); f(targetDraws); f(needPath); f(ticket); f(polyRef);

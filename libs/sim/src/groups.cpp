@@ -53,6 +53,11 @@ void World::Impl::decideGroups(const core::TaskSystem& tasks) {
   }
   applyPendingGoals();
   applyGroupCommands();
+  if (busyDirty) {
+    busyGroups.clear();
+    for (std::uint32_t gid = 0; gid < groups.size(); ++gid) if (groupBusy[gid]) busyGroups.push_back(gid);
+    busyDirty = false;
+  }
   updateGuidance();
   updateFollowing();
   if (anySocial) applySocialEffects();
@@ -141,6 +146,7 @@ void World::Impl::reconstructGoals(std::uint32_t gid, core::Vec2 anchor) {
 void World::Impl::applyGroupCommands() {
   for (const GroupCommand& c : commands) {
     GroupState& g = groups[c.group];
+    markBusy(c.group);
     if (c.guide) {
       g.guidedByApi = true;
       g.guide = c.position;
@@ -154,7 +160,7 @@ void World::Impl::applyGroupCommands() {
 void World::Impl::updateGuidance() {
   const nav::NavQuery& query = *mainQuery;
   const float now = static_cast<float>(static_cast<double>(tick) * desc.dt);
-  for (std::uint32_t gid = 0; gid < groups.size(); ++gid) {
+  for (const std::uint32_t gid : busyGroups) {
     GroupState& g = groups[gid];
     const PopulationDesc& pop = desc.populations[g.population];
     const GuideDesc& script = pop.guide;
@@ -203,7 +209,7 @@ void World::Impl::updateGuidance() {
 
 void World::Impl::updateFollowing() {
   const nav::NavQuery& query = *mainQuery;
-  for (std::uint32_t gid = 0; gid < groups.size(); ++gid) {
+  for (const std::uint32_t gid : busyGroups) {
     GroupState& g = groups[gid];
     if (g.followGroup == kNoAgent || g.guided) continue;
     const FollowDesc& f = desc.populations[g.population].follow;
@@ -281,6 +287,8 @@ void World::Impl::applySocialEffects() {
       auto& members = groups[to].members;
       members.insert(std::upper_bound(members.begin(), members.end(), agents.id[r]), agents.id[r]);
       agents.group[r] = to;
+      agents.groupSize[r] = static_cast<std::uint16_t>(std::min<std::size_t>(members.size(), 0xffff));
+      markBusy(to);
       if (groups[to].flocks(desc.populations[groups[to].population])) agents.speed[r] = groups[to].speed;
       pendingEvents.push_back({tick, agents.id[r], EventKind::JoinGroup, from, to});
       if (agents.goalState[r] != GoalState::Acting) setGoal(r, groups[to].cursor, query);
@@ -296,7 +304,7 @@ void World::Impl::applySocialEffects() {
 
 void World::Impl::updateWaiting() {
   const nav::NavQuery& query = *mainQuery;
-  for (std::uint32_t gid = 0; gid < groups.size(); ++gid) {
+  for (const std::uint32_t gid : busyGroups) {
     GroupState& g = groups[gid];
     const PopulationDesc& pop = desc.populations[g.population];
     if (!g.flocks(pop) || g.guided) {
@@ -332,7 +340,7 @@ void World::Impl::updateWaiting() {
 }
 
 void World::Impl::updateLeaders() {
-  for (std::uint32_t gid = 0; gid < groups.size(); ++gid) {
+  for (const std::uint32_t gid : busyGroups) {
     GroupState& g = groups[gid];
     if (g.members.empty()) {
       g.leader = kNoAgent;
@@ -361,9 +369,9 @@ void World::Impl::updateLeaders() {
 
 void World::Impl::updateGroupShapes(const core::TaskSystem& tasks) {
   // Parallel over groups: a group writes its own centroid and heading and its members' rows only.
-  tasks.parallelFor(groups.size(), 512, [&](std::size_t begin, std::size_t end) {
+  tasks.parallelFor(busyGroups.size(), 512, [&](std::size_t begin, std::size_t end) {
     WorkerScratch& ws = worker(tasks);
-    for (std::size_t gi = begin; gi < end; ++gi) shapeGroup(groups[gi], ws);
+    for (std::size_t i = begin; i < end; ++i) shapeGroup(groups[busyGroups[i]], ws);
   });
 }
 

@@ -90,12 +90,19 @@ void World::Impl::planPopulations() {
     groupSizes.push_back(std::move(sizes));
   }
   stats.scheduled = scheduled;
-  for (GroupState& g : groups) {
-    const FollowDesc& f = desc.populations[g.population].follow;
+  groupBusy.assign(groups.size(), 0);
+  for (std::uint32_t gid = 0; gid < groups.size(); ++gid) {
+    GroupState& g = groups[gid];
+    const PopulationDesc& pop = desc.populations[g.population];
+    const FollowDesc& f = pop.follow;
     if (f.mode != FollowMode::None && f.population < firstGroupId.size() && f.group < desc.populations[f.population].groups) {
       g.followGroup = firstGroupId[f.population] + f.group;
+      groupBusy[g.followGroup] = 1;
+      groupBusy[gid] = 1;
     }
+    if ((pop.flocking && g.expected >= 2) || !pop.guide.script.empty() || pop.sociological.enabled) groupBusy[gid] = 1;
   }
+  busyDirty = true;
 }
 
 void World::Impl::applyCommands() {
@@ -184,6 +191,7 @@ void World::Impl::spawnPopulation(std::size_t populationIndex) {
       agents.id[row] = agentId;
       agents.group[row] = groupId;
       agents.population[row] = static_cast<std::uint16_t>(populationIndex);
+      agents.groupSize[row] = static_cast<std::uint16_t>(std::min<std::uint32_t>(sizes[g], 0xffff));
       agents.posX[row] = placed->first.x;
       agents.posY[row] = placed->first.y;
       agents.polyRef[row] = placed->second;

@@ -124,7 +124,6 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
       const std::size_t numWallLines = lines.size();
       const std::uint32_t* nb = &agents.neighbours[row * k];
       const std::size_t count = cheap ? std::min<std::size_t>(agents.neighbourCount[row], kLodNeighbours) : agents.neighbourCount[row];
-      const GroupState& mine = groups[agents.group[row]];
       for (std::size_t i = 0; i < count; ++i) {
         const std::uint32_t o = nb[i];
         core::Vec2 relPos{agents.posX[o] - pos.x, agents.posY[o] - pos.y};
@@ -135,8 +134,7 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
         // Head on: velocities more than 120° apart (cos < -0.5), tested without square roots.
         const float d = core::dot(vel, otherVel);
         if (d < 0.0f && d * d > 0.25f * core::lengthSq(vel) * core::lengthSq(otherVel) && agents.group[row] != agents.group[o]) {
-          const GroupState& theirs = groups[agents.group[o]];
-          const bool yields = mine.members.size() != theirs.members.size() ? mine.members.size() < theirs.members.size()
+          const bool yields = agents.groupSize[row] != agents.groupSize[o] ? agents.groupSize[row] < agents.groupSize[o]
                                                                             : agents.group[row] > agents.group[o];
           responsibility = yields ? kYieldResponsibility : 1.0f - kYieldResponsibility;
         }

@@ -111,6 +111,14 @@ struct World::Impl {
   core::SlotMap<GroupTag> groupSlots;       ///< handle → stable group id
   std::vector<GroupId> groupHandles;        ///< stable group id → handle
   std::vector<GroupCommand> commands;
+  /// Groups the group pass visits every tick: flocking groups of 2+, guided, following or followed,
+  /// or sociable ones. Lone agents with none of these need no per-tick group work.
+  std::vector<std::uint8_t> groupBusy;
+  std::vector<std::uint32_t> busyGroups;  ///< ascending
+  bool busyDirty = true;
+  void markBusy(std::uint32_t gid) {
+    if (!groupBusy[gid]) { groupBusy[gid] = 1; busyDirty = true; }
+  }
   std::vector<core::Vec2> viewers;
   std::vector<std::uint32_t> rowOfId;       ///< stable id → row (kNoAgent if gone), rebuilt when rows change
   bool rowsChanged = true;                  ///< set by spawning and by removals
