@@ -55,6 +55,7 @@ struct AgentStore {
   std::vector<std::uint64_t> followUntil; ///< tick that following ends
   std::vector<std::uint32_t> socialEffect;///< decide → group pass: 0 none, 1 join, 2 follow (+ other agent in socialOther)
   std::vector<std::uint32_t> socialOther; ///< the agent met
+  std::vector<std::uint8_t> dynamicTarget; ///< target set by a guide or a followed agent: approached slowing down
   std::vector<std::uint8_t> goalPending;  ///< decide → group pass: 1 = go on to the next goal, 2 = next wander target
   std::vector<std::int32_t> targetSub;    ///< sub-region holding the target (index into pointSubOffset space), -1 none
   std::vector<std::uint16_t> animClip;    ///< motion clip playing (animation.hpp)
@@ -74,7 +75,7 @@ struct AgentStore {
     f(goalState); f(goalCursor); f(targetX); f(targetY); f(targetDraws); f(needPath); f(ticket); f(polyRef);
     f(cornerIndex); f(corners); f(actionEndTick); f(progressDistance); f(stuckTime);
     f(formVelX); f(formVelY); f(followAgent); f(followUntil); f(socialEffect); f(socialOther);
-    f(animClip); f(animPhase); f(goalPending); f(targetSub);
+    f(animClip); f(animPhase); f(goalPending); f(targetSub); f(dynamicTarget);
   }
 
   /// Appends one default-initialised row and returns its index.

@@ -54,6 +54,7 @@ void World::Impl::setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQ
   const std::vector<std::uint32_t>& goals = activeGoals(g);
   agents.goalCursor[row] = cursor;
   agents.ticket[row] = 0;  // a path still queued for the old goal expires unread
+  agents.dynamicTarget[row] = 0;
   agents.corners[row].clear();
   agents.cornerIndex[row] = 0;
   agents.progressDistance[row] = 1e30f;

@@ -199,6 +199,7 @@ void World::Impl::updateGuidance() {
       if (auto hit = query.nearest(target, 3.0f)) target = hit->first;
       agents.targetX[r] = target.x;
       agents.targetY[r] = target.y;
+      agents.dynamicTarget[r] = 1;
       agents.goalState[r] = GoalState::Seeking;
       agents.mode[r] = AgentMode::Walking;
       agents.needPath[r] = 1;
@@ -268,6 +269,7 @@ void World::Impl::applySocialEffects() {
         if (core::lengthSq(target - core::Vec2{agents.targetX[r], agents.targetY[r]}) > 1.0f) {
           agents.targetX[r] = target.x;
           agents.targetY[r] = target.y;
+          agents.dynamicTarget[r] = 1;
           agents.needPath[r] = 1;
         }
       }

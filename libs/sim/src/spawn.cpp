@@ -65,6 +65,10 @@ core::Vec2 sampleDisc(core::Vec2 centre, float radius, core::Rng& rng) {
 
 void World::Impl::planPopulations() {
   for (const PopulationDesc& pop : desc.populations) goalLists.push_back(pop.goals);
+  std::size_t totalGroups = 0;
+  for (const PopulationDesc& pop : desc.populations) totalGroups += pop.groups;
+  groups.reserve(totalGroups);
+  groupHandles.reserve(totalGroups);
   std::uint32_t scheduled = 0;
   std::uint32_t groupId = 0;
   for (std::size_t p = 0; p < desc.populations.size(); ++p) {
@@ -90,6 +94,8 @@ void World::Impl::planPopulations() {
     groupSizes.push_back(std::move(sizes));
   }
   stats.scheduled = scheduled;
+  // Every agent that will ever exist is known: exact capacity, no doubling slack on the columns.
+  agents.forEachColumn([&](auto& column) { column.reserve(scheduled); });
   groupBusy.assign(groups.size(), 0);
   for (std::uint32_t gid = 0; gid < groups.size(); ++gid) {
     GroupState& g = groups[gid];

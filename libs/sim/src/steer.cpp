@@ -88,7 +88,7 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
           const bool stopsThere = cursor >= pop.goals.size()
                                       ? !pop.wander
                                       : (desc.points[pop.goals[cursor]].kind == PointKind::Action && desc.points[pop.goals[cursor]].stop);
-          if (lastLeg && stopsThere) v = std::min(v, dist / kArrivalTime);
+          if (lastLeg && (stopsThere || agents.dynamicTarget[row])) v = std::min(v, dist / kArrivalTime);
           desired = toAim * (v / dist);
           // Flocking: the group pass's correction toward the member's slot beside the others.
           desired += core::Vec2{agents.formVelX[row], agents.formVelY[row]};
