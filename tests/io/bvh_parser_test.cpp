@@ -6,8 +6,11 @@
 #include <string>
 
 #include "throng/io/bvh.hpp"
+#include "scenario_test_util.hpp"
 
 using namespace throng;
+using throng::io::test::posOf;
+using throng::io::test::contains;
 using io::MotionChannel;
 
 namespace {
@@ -46,23 +49,6 @@ std::string edit(std::string text, const std::string& from, const std::string& t
   return text;
 }
 
-/// 1-based line:col of the nth occurrence of `needle` (ASCII text).
-std::pair<int, int> posOf(const std::string& text, const std::string& needle, std::size_t nth = 0) {
-  std::size_t at = text.find(needle);
-  for (std::size_t k = 0; k < nth && at != std::string::npos; ++k) at = text.find(needle, at + 1);
-  EXPECT_NE(at, std::string::npos) << needle;
-  int line = 1, col = 1;
-  for (std::size_t i = 0; i < at && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return {line, col};
-}
-
 core::Diagnostics errorsOf(const std::string& text) {
   auto r = io::parseBvh(text, "t.bvh");
   EXPECT_FALSE(r.ok()) << "expected errors for:\n" << text;
@@ -80,8 +66,6 @@ core::Diagnostic onlyErrorAt(const std::string& text, const std::string& needle,
   EXPECT_EQ(ds[0].column, col) << ds[0].format();
   return ds[0];
 }
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 std::string bundled(const std::string& name) { return std::string(THRONG_SOURCE_DIR) + "/scenarios/motions/" + name; }
 

@@ -7,8 +7,11 @@
 #include <fstream>
 
 #include "throng/io/scenario_loader.hpp"
+#include "scenario_test_util.hpp"
 
 using namespace throng;
+using throng::io::test::posOf;
+using throng::io::test::contains;
 namespace fs = std::filesystem;
 
 namespace {
@@ -33,21 +36,6 @@ std::string edit(std::string text, const std::string& from, const std::string& t
   EXPECT_NE(at, std::string::npos) << from;
   if (at != std::string::npos) text.replace(at, from.size(), to);
   return text;
-}
-
-std::pair<int, int> posOf(const std::string& text, const std::string& needle) {
-  const std::size_t at = text.find(needle);
-  EXPECT_NE(at, std::string::npos) << needle;
-  int line = 1, col = 1;
-  for (std::size_t i = 0; i < at && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return {line, col};
 }
 
 void write(const fs::path& path, const std::string& text) {

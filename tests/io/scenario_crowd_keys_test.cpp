@@ -62,32 +62,6 @@ const char* kFollow = R"({"population": "leaders",
                 "on": [5, 15],
                 "off": [8, 12]})";
 
-/// 1-based line:col of the `nth` occurrence of `needle` in `text` (ASCII: columns count bytes).
-std::pair<int, int> posOf(const std::string& text, const std::string& needle, std::size_t nth = 0) {
-  std::size_t at = text.find(needle);
-  for (std::size_t k = 0; k < nth && at != std::string::npos; ++k) at = text.find(needle, at + 1);
-  EXPECT_NE(at, std::string::npos) << needle;
-  int line = 1, col = 1;
-  for (std::size_t i = 0; i < at && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return {line, col};
-}
-
-void expectAt(const core::Diagnostic& d, const std::string& text, const std::string& needle, std::size_t nth = 0) {
-  const auto [line, col] = posOf(text, needle, nth);
-  EXPECT_EQ(d.source, "t.json");
-  EXPECT_EQ(d.line, line) << d.format();
-  EXPECT_EQ(d.column, col) << d.format();
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
 /// The only diagnostic of `text`, which must fail with exactly one, at `pointer`.
 core::Diagnostic only(const std::string& text, const std::string& pointer, bool reachability = false) {
   const auto ds = errorsOf(text, reachability);

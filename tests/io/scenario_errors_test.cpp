@@ -9,33 +9,6 @@ using namespace throng::io::test;
 
 namespace {
 
-/// 1-based line:col of the first occurrence of `needle` in `text` (columns count bytes; the tests
-/// use ASCII only).
-std::pair<int, int> posOf(const std::string& text, const std::string& needle, std::size_t nth = 0) {
-  std::size_t at = text.find(needle);
-  for (std::size_t k = 0; k < nth && at != std::string::npos; ++k) at = text.find(needle, at + 1);
-  EXPECT_NE(at, std::string::npos) << needle;
-  int line = 1, col = 1;
-  for (std::size_t i = 0; i < at; ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return {line, col};
-}
-
-void expectAt(const core::Diagnostic& d, const std::string& text, const std::string& needle, std::size_t nth = 0) {
-  const auto [line, col] = posOf(text, needle, nth);
-  EXPECT_EQ(d.source, "t.json");
-  EXPECT_EQ(d.line, line) << d.format();
-  EXPECT_EQ(d.column, col) << d.format();
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
 }  // namespace
 
 TEST(ScenarioErrors, JsonSyntaxErrorHasLineAndColumn) {

@@ -3,10 +3,39 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 
 #include "throng/io/scenario_loader.hpp"
 
 namespace throng::io::test {
+
+/// 1-based line:column of the `nth` occurrence of `needle` in `text` (ASCII: columns count bytes).
+inline std::pair<int, int> posOf(const std::string& text, const std::string& needle, std::size_t nth = 0) {
+  std::size_t at = text.find(needle);
+  for (std::size_t k = 0; k < nth && at != std::string::npos; ++k) at = text.find(needle, at + 1);
+  EXPECT_NE(at, std::string::npos) << needle;
+  int line = 1, col = 1;
+  for (std::size_t i = 0; i < at && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
+  }
+  return {line, col};
+}
+
+/// The diagnostic points at the `nth` occurrence of `needle` in `text`, in file `source`.
+inline void expectAt(const core::Diagnostic& d, const std::string& text, const std::string& needle, std::size_t nth = 0,
+                     const std::string& source = "t.json") {
+  const auto [line, col] = posOf(text, needle, nth);
+  EXPECT_EQ(d.source, source);
+  EXPECT_EQ(d.line, line) << d.format();
+  EXPECT_EQ(d.column, col) << d.format();
+}
+
+inline bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 inline core::Result<LoadedScenario> load(const std::string& text, bool reachability = false) {
   return parseScenario(text, "t.json", LoadOptions{reachability});
