@@ -69,7 +69,7 @@ populations = [
      "speed": speed(1.1, 0.1), "radius": 0.2},
     {"id": "solo-visitors", "groups": 10, "size": [1, 2], "start": 30, "spawn": {"polygon": rect(1, 1, 12, 23)},
      "goals": ["hall", "door-b", "b1-water-lilies", "door-ab", "a2-night-watch", "door-ac", "c1-guernica", "exit"],
-     "sociological": {"enabled": True, "meetDistance": 1.2, "changeGroupRate": 0.03, "followAgentRate": 0.03,
+     "sociological": {"enabled": True, "meetDistance": 1.2, "changeGroupRate": 0.01, "followAgentRate": 0.015,
                       "followDuration": 12, "leaderChangeRate": 0.02},
      "speed": speed(1.25, 0.2), "radius": 0.2},
 ]
