@@ -1,0 +1,238 @@
+// throng::io scenario crowd parser — the Musse et al. crowd-model keys of a population: "goals"
+// (a list of point ids, or "auto": a final action point per group, interest points near the way),
+// "paths", "autoNearDistance", "flocking", "waitTimeout", "groupSpacing", "follow" (its population
+// id resolved once every population is read), "guide" (a timed waypoint script, its release) and
+// "sociological"; see docs/scenario-format.md "Crowd model". Reads a population's JSON object;
+// writes sim::PopulationDesc fields and diagnostics. Private to throng_io.
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scenario_reader.hpp"
+
+namespace throng::io::detail {
+
+bool ScenarioReader::readGoals(const Json& v, const std::string& ptr, sim::PopulationDesc& p) {
+  const std::string expected = "an array of point ids from /points, or \"auto\"";
+  if (v.is_string()) {
+    // Automatic goals (Musse et al. §3.1.2): a final action point drawn per group, the interest
+    // points near a curve to it on the way.
+    const std::string s = v.get<std::string>();
+    if (s != "auto") {
+      std::string hint;
+      if (std::find(pointIds_.begin(), pointIds_.end(), s) != pointIds_.end()) hint = "for one goal write [" + quote(s) + "]";
+      else if (!core::closestMatch(s, {"auto"}).empty()) hint = "did you mean \"auto\"?";
+      error(ptr, "unknown goals mode " + quote(s), expected, hint);
+      return false;
+    }
+    if (!hasActionPoint_) {
+      error(ptr, "\"goals\": \"auto\" needs at least one point of kind \"action\"",
+            "an action point in /points (each group's final goal is drawn among them)",
+            "add a point with \"kind\": \"action\", or list the goals");
+      return false;
+    }
+    p.autoGoals = true;
+    p.goals.clear();
+    return true;
+  }
+  if (!v.is_array()) {
+    error(ptr, "wrong type: " + describeType(v), expected);
+    return false;
+  }
+  bool ok = true;
+  for (std::size_t g = 0; g < v.size(); ++g) {
+    std::uint32_t index = 0;
+    if (resolvePoint(v[g], ptr + "/" + std::to_string(g), index)) p.goals.push_back(index);
+    else ok = false;
+  }
+  return ok;
+}
+
+/// The Musse et al. crowd-model keys of a population (group behaviour, paths, following,
+/// guidance, sociological effects); see docs/scenario-format.md "Crowd model".
+bool ScenarioReader::readCrowdKeys(const Json& v, const std::string& ptr, std::size_t index, sim::PopulationDesc& p) {
+  bool ok = readFloatKeys(v, ptr, {{"autoNearDistance", {0, 1000, true, "m"}, &p.autoNearDistance},
+                                   {"waitTimeout", {0, 1e6, true, "s"}, &p.waitTimeout},
+                                   {"groupSpacing", {0.3, 3, false, "m"}, &p.groupSpacing}});
+  if (auto* x = optional(v, "paths")) {
+    std::size_t kind = 0;
+    if (readChoice(*x, ptr + "/paths", {"navmesh", "bezier"}, "path kind", kind)) p.bezierPaths = kind == 1;
+    else ok = false;
+  }
+  if (auto* x = optional(v, "flocking")) ok = readBool(*x, ptr + "/flocking", p.flocking) && ok;
+  if (auto* x = optional(v, "follow")) ok = readFollow(*x, ptr + "/follow", index, p.follow) && ok;
+  if (auto* x = optional(v, "guide")) ok = readGuide(*x, ptr + "/guide", p.guide) && ok;
+  if (auto* x = optional(v, "sociological")) ok = readSociological(*x, ptr + "/sociological", p.sociological) && ok;
+  return ok;
+}
+
+bool ScenarioReader::readFollow(const Json& v, const std::string& ptr, std::size_t index, sim::FollowDesc& f) {
+  if (!isObject(v, ptr, "a follow object {\"population\", \"group\", \"mode\", \"on\", \"off\"}")) return false;
+  checkKeys(v, ptr, {"population", "group", "mode", "on", "off"}, "follow");
+  bool ok = true;
+  const std::string popExpected = "the id of another population in /populations (a string)";
+  if (auto* x = require(v, ptr, "population", popExpected)) {
+    std::string target;
+    if (readString(*x, ptr + "/population", popExpected, target)) follows_.push_back({index, target, ptr});
+    else ok = false;
+  } else {
+    ok = false;
+  }
+  f.mode = sim::FollowMode::Permanent;
+  bool modeOk = true;
+  if (auto* x = optional(v, "mode")) {
+    std::size_t mode = 0;
+    modeOk = readChoice(*x, ptr + "/mode", {"permanent", "temporary"}, "follow mode", mode);
+    if (mode == 1) f.mode = sim::FollowMode::Temporary;
+    ok = modeOk && ok;
+  }
+  if (auto* x = optional(v, "group")) {
+    double d;
+    // Checked against the followed population's "groups" by resolveFollows.
+    if (readInteger(*x, ptr + "/group", 0, kMaxAgents, "", d)) f.group = static_cast<std::uint32_t>(d);
+    else ok = false;
+  }
+  const Range period{0, 1e6, true, "s"};
+  for (const char* key : {"on", "off"}) {
+    const Json* x = optional(v, key);
+    if (x == nullptr || !modeOk) continue;
+    const std::string kptr = ptr + "/" + key;
+    if (f.mode != sim::FollowMode::Temporary) {
+      error(kptr, std::string("\"") + key + "\" only applies to temporary following",
+            std::string("\"mode\": \"temporary\" or no \"") + key + "\"", "", true);
+      ok = false;
+    } else if (std::string(key) == "on") {
+      ok = readInterval(*x, kptr, period, f.onMin, f.onMax) && ok;
+    } else {
+      ok = readInterval(*x, kptr, period, f.offMin, f.offMax) && ok;
+    }
+  }
+  return ok;
+}
+
+void ScenarioReader::resolveFollows(ParsedScenario& out) {
+  std::vector<std::string> ids;
+  for (const auto& p : out.desc.populations) ids.push_back(p.id);
+  for (const PendingFollow& pf : follows_) {
+    sim::PopulationDesc& pop = out.desc.populations[pf.population];
+    const std::string pptr = pf.pointer + "/population";
+    const auto it = std::find(ids.begin(), ids.end(), pf.target);
+    const std::size_t target = static_cast<std::size_t>(it - ids.begin());
+    bool ok = true;
+    if (it == ids.end()) {
+      std::vector<std::string> others = ids;
+      others.erase(others.begin() + static_cast<std::ptrdiff_t>(pf.population));
+      const std::string match = core::closestMatch(pf.target, others);
+      error(pptr, "unknown population " + quote(pf.target), "an id from /populations",
+            match.empty() ? "" : "did you mean " + quote(match) + "?");
+      ok = false;
+    } else if (target == pf.population) {
+      error(pptr, "a population cannot follow itself", "the id of another population in /populations");
+      ok = false;
+    } else if (out.populationsOk[target] && pop.follow.group >= out.desc.populations[target].groups) {
+      const std::uint32_t groups = out.desc.populations[target].groups;
+      error(pf.pointer + "/group",
+            "group " + std::to_string(pop.follow.group) + " is out of range: population " + quote(pf.target) + " has " +
+                std::to_string(groups) + (groups == 1 ? " group" : " groups"),
+            "a group index from 0 to " + std::to_string(groups - 1) + " (0-based)");
+      ok = false;
+    }
+    if (ok) {
+      pop.follow.population = static_cast<std::uint32_t>(target);
+    } else {
+      pop.follow = {};
+      out.populationsOk[pf.population] = false;
+    }
+  }
+}
+
+bool ScenarioReader::readGuide(const Json& v, const std::string& ptr, sim::GuideDesc& g) {
+  if (!isObject(v, ptr, "a guide object {\"script\", \"distance\", \"release\"}")) return false;
+  checkKeys(v, ptr, {"script", "distance", "release"}, "a guide");
+  bool ok = readFloatKeys(v, ptr, {{"distance", {0, 100, false, "m"}, &g.distance}});
+  const Json* script = optional(v, "script");
+  bool firstTimeOk = false;  // the release is checked against the first waypoint whenever it parsed
+  if (script != nullptr) ok = readGuideScript(*script, ptr + "/script", g.script, firstTimeOk) && ok;
+  if (auto* x = optional(v, "release")) {
+    const std::string rptr = ptr + "/release";
+    float release = 0.0f;
+    if (!readFloat(*x, rptr, {0, 1e6, false, "s"}, release)) {
+      ok = false;
+    } else if (script == nullptr) {
+      error(rptr, "\"release\" without a \"script\"", "a \"script\" of timed waypoints, or no \"release\"", "", true);
+      ok = false;
+    } else if (firstTimeOk && release < g.script.front().time) {
+      error(rptr,
+            "release at " + num(release) + " s is before the first waypoint at " + num(g.script.front().time) + " s",
+            "a time >= " + num(g.script.front().time) + " s (the first waypoint's time)");
+      ok = false;
+    } else {
+      g.release = release;
+    }
+  }
+  if (!ok) g.script.clear();
+  return ok;
+}
+
+bool ScenarioReader::readGuideScript(const Json& v, const std::string& ptr, std::vector<sim::GuideWaypoint>& out,
+                             bool& firstTimeOk) {
+  const std::string waypoint = "a waypoint {\"time\": seconds >= 0, \"position\": [x, y] in metres}";
+  if (!v.is_array()) {
+    error(ptr, "wrong type: " + describeType(v), "an array of waypoints, times strictly ascending");
+    return false;
+  }
+  if (v.empty()) {
+    error(ptr, "empty guide script", "at least one " + waypoint);
+    return false;
+  }
+  out.assign(v.size(), {});  // indices equal JSON indices: the validator points at /script/k
+  bool ok = true, previousOk = false;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const std::string wptr = ptr + "/" + std::to_string(k);
+    bool timeOk = false;
+    if (isObject(v[k], wptr, waypoint)) {
+      checkKeys(v[k], wptr, {"time", "position"}, "a guide waypoint");
+      if (auto* t = require(v[k], wptr, "time", "a time in seconds >= 0")) {
+        timeOk = readFloat(*t, wptr + "/time", {0, 1e6, false, "s"}, out[k].time);
+      }
+      if (auto* p = require(v[k], wptr, "position", "a point [x, y] in metres")) {
+        ok = readVec2(*p, wptr + "/position", out[k].position) && ok;
+      } else {
+        ok = false;
+      }
+    }
+    if (timeOk && previousOk && out[k].time <= out[k - 1].time) {
+      error(wptr + "/time",
+            "waypoint time " + num(out[k].time) + " s is not after the previous waypoint's " + num(out[k - 1].time) + " s",
+            "times strictly ascending along the script");
+      ok = false;
+    }
+    ok = timeOk && ok;
+    previousOk = timeOk;
+    if (k == 0) firstTimeOk = timeOk;
+  }
+  return ok;
+}
+
+bool ScenarioReader::readSociological(const Json& v, const std::string& ptr, sim::SociologicalDesc& s) {
+  if (!isObject(v, ptr, "an object of sociological-model parameters")) return false;
+  checkKeys(v, ptr,
+            {"enabled", "meetDistance", "changeGroupRate", "followAgentRate", "followDuration", "leaderChangeRate",
+             "sociability", "domination"},
+            "sociological");
+  s.enabled = true;  // giving the object turns the model on
+  bool ok = true;
+  if (auto* x = optional(v, "enabled")) ok = readBool(*x, ptr + "/enabled", s.enabled) && ok;
+  const Range rate{0, 100, false, "1/s"};
+  return readFloatKeys(v, ptr, {{"meetDistance", {0, 100, true, "m"}, &s.meetDistance},
+                                {"changeGroupRate", rate, &s.changeGroupRate},
+                                {"followAgentRate", rate, &s.followAgentRate},
+                                {"followDuration", {0, 1e6, true, "s"}, &s.followDuration},
+                                {"leaderChangeRate", rate, &s.leaderChangeRate},
+                                {"sociability", {0, 100, false, ""}, &s.sociability},
+                                {"domination", {0, 1, false, ""}, &s.domination}}) &&
+         ok;
+}
+
+}  // namespace throng::io::detail

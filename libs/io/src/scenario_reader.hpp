@@ -1,0 +1,268 @@
+// throng::io scenario reader — the scenario parser's shared state and typed value readers: the
+// document (for line:column positions), the diagnostics sink, key checks with "did you mean",
+// numbers, integers, booleans, strings, choices, intervals and points with their ranges and units,
+// plus the point ids and pending "follow" references gathered while reading. The reading of each
+// part of a scenario is split by concept: scenario_parser.cpp (structure, geometry, steering,
+// points, spawn, speed, populations) and scenario_crowd_parser.cpp (the Musse et al. crowd-model
+// keys of a population). Reads a JsonDocument; writes ParsedScenario fields and diagnostics.
+// Private to throng_io.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <initializer_list>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "json_document.hpp"
+#include "scenario_parser.hpp"
+
+namespace throng::io::detail {
+
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+
+inline std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+inline std::string quote(const std::string& s) {
+  std::string q = "\"";
+  for (const char c : s.substr(0, 80)) q += (static_cast<unsigned char>(c) < 0x20) ? '?' : c;
+  if (s.size() > 80) q += "...";
+  return q + "\"";
+}
+
+/// A closed or half-open interval of numbers with a unit ("s", "m", "m/s"; empty for counts).
+struct Range {
+  double lo = -kInf;
+  double hi = kInf;
+  bool loOpen = false;
+  std::string unit;
+
+  [[nodiscard]] bool contains(double v) const { return (loOpen ? v > lo : v >= lo) && v <= hi; }
+  [[nodiscard]] std::string describe(const std::string& noun) const {
+    const std::string u = unit.empty() ? "" : " " + unit;
+    if (hi == kInf) return noun + (loOpen ? " > " : " >= ") + num(lo) + u;
+    if (lo == -kInf) return noun + " <= " + num(hi) + u;
+    if (loOpen) return noun + " > " + num(lo) + " and <= " + num(hi) + u;
+    return noun + " from " + num(lo) + (loOpen ? " (exclusive)" : "") + " to " + num(hi) + u;
+  }
+};
+
+/// Reader state shared by all the read functions (defined in scenario_parser.cpp and
+/// scenario_crowd_parser.cpp): the document (for positions) and the output.
+class ScenarioReader {
+ public:
+  ScenarioReader(const JsonDocument& doc, core::Diagnostics& diags) : doc_(doc), diags_(diags) {}
+
+  ParsedScenario run();
+
+ private:
+  void error(const std::string& ptr, std::string what, std::string expected, std::string hint = {}, bool atKey = false) {
+    diags_.push_back(doc_.diagnostic(ptr, std::move(what), std::move(expected), std::move(hint), atKey));
+  }
+
+  /// Reports unknown keys of `obj` (at the key's position, with a "did you mean").
+  void checkKeys(const Json& obj, const std::string& ptr, const std::vector<std::string>& allowed, const std::string& what) {
+    for (const auto& [key, value] : obj.items()) {
+      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      const std::string match = core::closestMatch(key, allowed);
+      error(ptr + "/" + escapePointerToken(key), "unknown key " + quote(key) + " in " + what, "one of: " + list,
+            match.empty() ? "" : "did you mean " + quote(match) + "?", true);
+    }
+  }
+
+  bool isObject(const Json& v, const std::string& ptr, const std::string& expected) {
+    if (v.is_object()) return true;
+    error(ptr, "wrong type: " + describeType(v), expected);
+    return false;
+  }
+
+  const Json* require(const Json& obj, const std::string& ptr, const std::string& key, const std::string& expected) {
+    if (auto it = obj.find(key); it != obj.end()) return &*it;
+    error(ptr, "missing required key " + quote(key), expected);
+    return nullptr;
+  }
+
+  static const Json* optional(const Json& obj, const std::string& key) {
+    auto it = obj.find(key);
+    return it == obj.end() ? nullptr : &*it;
+  }
+
+  bool readNumber(const Json& v, const std::string& ptr, const Range& range, double& out) {
+    if (!v.is_number()) {
+      error(ptr, "wrong type: " + describeType(v), range.describe("a number"));
+      return false;
+    }
+    const double d = v.get<double>();
+    if (!range.contains(d)) {
+      error(ptr, "value " + num(d) + (range.unit.empty() ? "" : " " + range.unit) + " is out of range",
+            range.describe("a number"));
+      return false;
+    }
+    out = d;
+    return true;
+  }
+
+  bool readFloat(const Json& v, const std::string& ptr, const Range& range, float& out) {
+    double d;
+    if (!readNumber(v, ptr, range, d)) return false;
+    out = static_cast<float>(d);
+    return true;
+  }
+
+  /// An integer (JSON integers, or numbers with no fractional part) within [lo, hi].
+  bool readInteger(const Json& v, const std::string& ptr, double lo, double hi, const std::string& unit, double& out) {
+    const Range range{lo, hi, false, unit};
+    if (!v.is_number()) {
+      error(ptr, "wrong type: " + describeType(v), range.describe("an integer"));
+      return false;
+    }
+    const double d = v.get<double>();
+    if (d != std::floor(d)) {
+      error(ptr, "value " + num(d) + " is not a whole number", range.describe("an integer"));
+      return false;
+    }
+    if (!range.contains(d)) {
+      error(ptr, "value " + num(d) + (unit.empty() ? "" : " " + unit) + " is out of range", range.describe("an integer"));
+      return false;
+    }
+    out = d;
+    return true;
+  }
+
+  bool readBool(const Json& v, const std::string& ptr, bool& out) {
+    if (!v.is_boolean()) {
+      error(ptr, "wrong type: " + describeType(v), "true or false");
+      return false;
+    }
+    out = v.get<bool>();
+    return true;
+  }
+
+  bool readString(const Json& v, const std::string& ptr, const std::string& expected, std::string& out) {
+    if (!v.is_string()) {
+      error(ptr, "wrong type: " + describeType(v), expected);
+      return false;
+    }
+    out = v.get<std::string>();
+    return true;
+  }
+
+  /// A motion clip path: a non-empty relative path (resolved against the scenario's directory).
+  void readClipPath(const Json& v, const std::string& ptr, std::string& out) {
+    const std::string expected = "a BVH file path relative to the scenario (\"motions/look.bvh\")";
+    std::string path;
+    if (!readString(v, ptr, expected, path)) return;
+    if (path.empty()) error(ptr, "empty clip path", expected);
+    else if (path.front() == '/' || path.front() == '\\' || (path.size() > 1 && path[1] == ':'))
+      error(ptr, "absolute clip path " + quote(path), expected, "scenarios stay portable with relative paths");
+    else if (path.find('\0') != std::string::npos) error(ptr, "clip path contains a NUL character", expected);
+    else out = path;
+  }
+
+  /// One of `options` (a string); an unknown one gets a "did you mean". `out` is its index.
+  bool readChoice(const Json& v, const std::string& ptr, const std::vector<std::string>& options, const std::string& noun,
+                  std::size_t& out) {
+    std::string expected;
+    for (std::size_t i = 0; i < options.size(); ++i) {
+      expected += (i == 0 ? "" : i + 1 == options.size() ? " or " : ", ") + quote(options[i]);
+    }
+    std::string s;
+    if (!readString(v, ptr, expected, s)) return false;
+    if (const auto it = std::find(options.begin(), options.end(), s); it != options.end()) {
+      out = static_cast<std::size_t>(it - options.begin());
+      return true;
+    }
+    const std::string match = core::closestMatch(s, options);
+    error(ptr, "unknown " + noun + " " + quote(s), expected, match.empty() ? "" : "did you mean " + quote(match) + "?");
+    return false;
+  }
+
+  /// An interval [min, max] of two numbers, each within `range`, with min <= max.
+  bool readInterval(const Json& v, const std::string& ptr, const Range& range, float& lo, float& hi) {
+    const std::string expected = "[min, max] with min <= max, each " + range.describe("a number");
+    if (!v.is_array() || v.size() != 2) {
+      error(ptr, v.is_array() ? "interval has " + std::to_string(v.size()) + " entries" : "wrong type: " + describeType(v),
+            expected);
+      return false;
+    }
+    float a = lo, b = hi;
+    const bool aOk = readFloat(v[0], ptr + "/0", range, a);
+    const bool bOk = readFloat(v[1], ptr + "/1", range, b);
+    if (!aOk || !bOk) return false;
+    if (a > b) {
+      error(ptr, "interval [" + num(a) + ", " + num(b) + "] " + range.unit + " is empty", expected);
+      return false;
+    }
+    lo = a;
+    hi = b;
+    return true;
+  }
+
+  /// A float field of an object, read only when present.
+  struct FloatKey {
+    const char* key;
+    Range range;
+    float* out;
+  };
+  bool readFloatKeys(const Json& obj, const std::string& ptr, std::initializer_list<FloatKey> keys) {
+    bool ok = true;
+    for (const FloatKey& k : keys) {
+      if (auto* x = optional(obj, k.key)) ok = readFloat(*x, ptr + "/" + k.key, k.range, *k.out) && ok;
+    }
+    return ok;
+  }
+
+  bool readVec2(const Json& v, const std::string& ptr, core::Vec2& out) {
+    const std::string expected = "a point [x, y] of two numbers in metres, |x|, |y| <= " + num(kMaxCoordinate);
+    if (!v.is_array() || v.size() != 2) {
+      error(ptr, v.is_array() ? "point has " + std::to_string(v.size()) + " coordinates" : "wrong type: " + describeType(v),
+            expected);
+      return false;
+    }
+    bool ok = true;
+    double c[2] = {0, 0};
+    const Range r{-kMaxCoordinate, kMaxCoordinate, false, "m"};
+    for (int i = 0; i < 2; ++i) ok = readNumber(v[static_cast<std::size_t>(i)], ptr + "/" + std::to_string(i), r, c[i]) && ok;
+    out = core::Vec2(static_cast<float>(c[0]), static_cast<float>(c[1]));
+    return ok;
+  }
+
+  bool readPolygon(const Json& v, const std::string& ptr, core::Polygon& out);
+  void readSteering(const Json& v, const std::string& ptr, sim::SteeringDesc& s);
+  bool readPoint(const Json& v, const std::string& ptr, sim::PointDesc& p);
+  bool readPopulation(const Json& v, const std::string& ptr, std::size_t index, sim::PopulationDesc& p);
+  bool readSpawn(const Json& v, const std::string& ptr, sim::SpawnDesc& s);
+  bool readSpeed(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
+  bool readGoals(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
+  bool readCrowdKeys(const Json& v, const std::string& ptr, std::size_t index, sim::PopulationDesc& p);
+  bool readFollow(const Json& v, const std::string& ptr, std::size_t index, sim::FollowDesc& f);
+  bool readGuide(const Json& v, const std::string& ptr, sim::GuideDesc& g);
+  bool readGuideScript(const Json& v, const std::string& ptr, std::vector<sim::GuideWaypoint>& out, bool& firstTimeOk);
+  bool readSociological(const Json& v, const std::string& ptr, sim::SociologicalDesc& s);
+  void resolveFollows(ParsedScenario& out);
+  bool resolvePoint(const Json& v, const std::string& ptr, std::uint32_t& out);
+  void readPolygonList(const Json& root, const std::string& key, bool required, std::vector<core::Polygon>& out,
+                       std::vector<bool>& ok);
+
+  const JsonDocument& doc_;
+  core::Diagnostics& diags_;
+  std::vector<std::string> pointIds_;
+  bool hasActionPoint_ = false;  ///< "goals": "auto" draws its final goal among the action points
+  /// A "follow" whose population id is resolved once every population has been read.
+  struct PendingFollow {
+    std::size_t population;  ///< the following population
+    std::string target;      ///< id of the followed one
+    std::string pointer;     ///< of the "follow" object
+  };
+  std::vector<PendingFollow> follows_;
+};
+
+}  // namespace throng::io::detail
