@@ -1,1 +1,535 @@
-// (being written)
+// throng::social coordination planner — Park, Peng, Quek, Cao, Table 1 (the seven grounding
+// steps), Table 3 (micro-behaviour script, A3) and Table 5 (macro-behaviour script, M2). Reads a
+// CoordinationInput, the micro-behaviour and macro-plan databases and the clip lengths; writes an
+// ActionScript. The state machine is run forward in time: `now_` is the end of the last motion,
+// and every response starts there (t_{k+1} = t_k + f^{actor}_{motion}). A lost response costs the
+// initiator one timeout, then a retry: another allowed micro-behaviour, else moving closer to B;
+// a step that runs out of attempts fails the coordination and the fallback plan runs.
+#include "throng/social/coordination.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace throng::social {
+namespace {
+
+using core::Vec2;
+
+constexpr double kPi = std::numbers::pi;
+
+double wrapAngle(double a) {
+  while (a > kPi) a -= 2.0 * kPi;
+  while (a < -kPi) a += 2.0 * kPi;
+  return a;
+}
+
+/// B can see A after turning toward A: hearing-only relations gain sight.
+Relation withSight(Relation r) {
+  switch (r) {
+    case Relation::A4: return Relation::A2;
+    case Relation::A3:
+    case Relation::A6: return Relation::A5;
+    default: return r;
+  }
+}
+
+bool allows(const MicroBehaviour& b, Relation r) {
+  return std::find(b.allowedIn.begin(), b.allowedIn.end(), r) != b.allowedIn.end();
+}
+
+bool hasIntent(const MicroBehaviour& b, Intent i) {
+  return std::find(b.intents.begin(), b.intents.end(), i) != b.intents.end();
+}
+
+core::Diagnostic problem(std::string what, std::string expected) {
+  return core::Diagnostic{"coordination", 0, 0, "", std::move(what), std::move(expected), ""};
+}
+
+struct Pose {
+  Vec2 position{};
+  double heading = 0.0;
+  double speed = 1.0;
+};
+
+/// One run of the grounding state machine.
+class Planner {
+ public:
+  Planner(const CoordinationInput& in, const Databases& dbs, const ClipLengths& clips, const CoordinationParams& p)
+      : in_(in), micro_(*dbs.micro), macro_(*dbs.macro), clips_(clips), params_(p),
+        rngA_(in.seed, in.initiator.id, core::RngPurpose::Behaviour),
+        rngB_(in.seed, in.respondent.id, core::RngPurpose::Behaviour) {
+    pose_[0] = {in.initiator.position, in.initiator.heading, in.initiator.walkSpeed};
+    pose_[1] = {in.respondent.position, in.respondent.heading, in.respondent.walkSpeed};
+    relation_ = in.relation;
+    now_ = in.startTime;
+  }
+
+  core::Result<ActionScript> run() {
+    script_.startTime = in_.startTime;
+    std::optional<std::size_t> planIndex;
+    if (in_.forcedPlan) {
+      for (std::size_t i = 0; i < macro_.plans.size(); ++i) {
+        if (macro_.plans[i].kind == *in_.forcedPlan) planIndex = i;
+      }
+      if (!planIndex) {
+        return problem("forced plan \"" + std::string(planKindName(*in_.forcedPlan)) + "\" is not in the plan database",
+                       "a plan kind listed in macro_plans.json");
+      }
+    } else {
+      planIndex = selectPlan(macro_, in_.goal, core::distance(in_.goal.position, in_.respondent.position));
+    }
+    bool grounded = false;
+    if (planIndex) {
+      plan_ = macro_.plans[*planIndex].kind;
+      grounded = ground(macro_.plans[*planIndex]);
+    }
+    if (!errors_.empty()) return errors_;
+    script_.outcome = grounded ? Outcome::Grounded : Outcome::Failed;
+    script_.plan = grounded ? plan_ : macro_.failurePlan;
+    plan_ = script_.plan;
+    script_.executeTime = now_;
+    execute(script_.plan);
+    if (!errors_.empty()) return errors_;
+    double end = script_.executeTime;
+    for (const auto& list : script_.actors) {
+      for (const auto& e : list) end = std::max(end, e.end());
+    }
+    script_.endTime = end;
+    return std::move(script_);
+  }
+
+ private:
+  // --- the grounding steps (Table 1) ---
+
+  bool ground(const MacroPlan& plan) {
+    if (!initiate()) return false;                    // step 1
+    if (!requestAttention()) return false;            // steps 2 and 3
+    for (std::size_t k = 0; k < plan.proposal.size(); ++k) {  // steps 4 and 5, parts a, b, ...
+      if (!proposePart(plan.proposal[k], static_cast<int>(k) + 1)) return false;
+    }
+    return confirm();                                 // step 6; step 7 is execute()
+  }
+
+  bool initiate() {
+    if (!eligible(Intent::RequestAttention, relation_, {}).empty()) return true;  // already possible
+    const auto pick = chooseBehaviour(micro_, eligible(Intent::Initiate, relation_, {}), in_.initiatorStyle, rngA_);
+    if (!pick) {
+      moveCloser(GroundingStep::Initiate, 0);
+      return errors_.empty();
+    }
+    play(Actor::Initiator, micro_.behaviours[*pick], GroundingStep::Initiate, 0, 0, nullptr);
+    return errors_.empty();
+  }
+
+  bool requestAttention() {
+    std::vector<std::size_t> tried;
+    bool movedCloser = false;
+    for (int attempt = 0; attempt < params_.maxAttempts; ++attempt) {
+      auto candidates = eligible(Intent::RequestAttention, relation_, tried);
+      if (candidates.empty() && !movedCloser) {
+        moveCloser(GroundingStep::RequestAttention, attempt);
+        movedCloser = true;
+        candidates = eligible(Intent::RequestAttention, relation_, tried);
+      }
+      if (candidates.empty()) candidates = eligible(Intent::RequestAttention, relation_, {});  // repeat one
+      const auto pick = chooseBehaviour(micro_, candidates, in_.initiatorStyle, rngA_);
+      if (!pick) return false;
+      tried.push_back(*pick);
+      const ScriptEntry* signal = play(Actor::Initiator, micro_.behaviours[*pick], GroundingStep::RequestAttention, 0,
+                                       attempt, nullptr);
+      if (!errors_.empty()) return false;
+      if (respond(micro_.behaviours[*pick], Intent::GiveAttention, GroundingStep::GiveAttention, 0, attempt, signal)) {
+        relation_ = withSight(relation_);
+        return errors_.empty();
+      }
+      awaitResponse(GroundingStep::RequestAttention, 0, attempt);
+    }
+    return false;
+  }
+
+  bool proposePart(const std::string& name, int part) {
+    const auto index = micro_.find(name);
+    if (!index) {
+      errors_.push_back(problem("proposal behaviour \"" + name + "\" is not in the micro-behaviour database",
+                                "a behaviour name from micro_behaviours.json"));
+      return false;
+    }
+    const MicroBehaviour& b = micro_.behaviours[*index];
+    if (!allows(b, relation_)) moveCloser(GroundingStep::Propose, 0);
+    if (!allows(b, relation_)) return false;
+    for (int attempt = 0; attempt < params_.maxAttempts; ++attempt) {
+      const ScriptEntry* gesture = play(Actor::Initiator, b, GroundingStep::Propose, part, attempt, nullptr);
+      if (!errors_.empty()) return false;
+      if (respond(b, Intent::Acknowledge, GroundingStep::Acknowledge, part, attempt, gesture)) return errors_.empty();
+      awaitResponse(GroundingStep::Propose, part, attempt);
+    }
+    return false;
+  }
+
+  bool confirm() {
+    const auto pick = chooseBehaviour(micro_, eligible(Intent::Confirm, relation_, {}), in_.initiatorStyle, rngA_);
+    if (!pick) return false;
+    play(Actor::Initiator, micro_.behaviours[*pick], GroundingStep::Confirm, 0, 0, nullptr);
+    return errors_.empty();
+  }
+
+  /// B answers `signal` with one of its responses that has `intent` and is allowed now, unless the
+  /// response is lost. Returns whether B responded.
+  bool respond(const MicroBehaviour& signal, Intent intent, GroundingStep step, int part, int attempt,
+               const ScriptEntry* signalEntry) {
+    std::vector<std::size_t> candidates;
+    for (const auto& name : signal.responses) {
+      const auto i = micro_.find(name);
+      if (i && hasIntent(micro_.behaviours[*i], intent) && allows(micro_.behaviours[*i], relation_)) candidates.push_back(*i);
+    }
+    const auto pick = chooseBehaviour(micro_, candidates, in_.respondentStyle, rngB_);
+    if (!pick || !responseArrives()) return false;
+    play(Actor::Respondent, micro_.behaviours[*pick], step, part, attempt, signalEntry);
+    return true;
+  }
+
+  bool responseArrives() {
+    if (in_.respondentAbsent) return false;
+    if (nextResponse_ < in_.lostResponses.size()) return !in_.lostResponses[nextResponse_++];
+    return true;
+  }
+
+  /// Behaviours for `intent` allowed in `r` whose target the input can supply.
+  std::vector<std::size_t> eligible(Intent intent, Relation r, const std::vector<std::size_t>& exclude) const {
+    auto all = allowedBehaviours(micro_, intent, r, exclude);
+    std::erase_if(all, [&](std::size_t i) {
+      const TargetKind t = micro_.behaviours[i].target;
+      return (t == TargetKind::ViewPoint && !in_.viewPoint) || (t == TargetKind::HearingPoint && !in_.hearingPoint);
+    });
+    return all;
+  }
+
+  // --- motions ---
+
+  Pose& pose(Actor a) { return pose_[static_cast<int>(a)]; }
+  static Actor other(Actor a) { return a == Actor::Initiator ? Actor::Respondent : Actor::Initiator; }
+
+  ScriptEntry& emit(Actor a, std::string motion, std::string behaviour, double duration, GroundingStep step, int part,
+                    int attempt) {
+    ScriptEntry e;
+    e.start = now_;
+    e.duration = duration;
+    e.motion = std::move(motion);
+    e.behaviour = std::move(behaviour);
+    e.step = step;
+    e.part = part;
+    e.attempt = attempt;
+    e.plan = plan_;
+    now_ += duration;
+    auto& list = script_.actors[static_cast<int>(a)];
+    list.push_back(std::move(e));
+    return list.back();
+  }
+
+  static void aimAt(ScriptEntry& e, Vec2 point) {
+    e.targetType = ScriptEntry::Target::Point;
+    e.targetPoint = point;
+  }
+  void aimAtAgent(ScriptEntry& e, Actor who) {
+    e.targetType = ScriptEntry::Target::Agent;
+    e.targetAgent = who;
+    e.targetPoint = pose(who).position;
+  }
+
+  double turnDuration(Actor a, Vec2 point) {
+    Pose& p = pose(a);
+    const Vec2 d = point - p.position;
+    if (core::lengthSq(d) <= 0.0f) return 0.0;
+    const double want = std::atan2(d.y, d.x);
+    const double angle = std::abs(wrapAngle(want - p.heading));
+    p.heading = want;
+    return angle / params_.turnRate;
+  }
+
+  double walkDuration(Actor a, Vec2 point) {
+    Pose& p = pose(a);
+    const Vec2 d = point - p.position;
+    const double dist = core::length(d);
+    if (dist > 0.0) p.heading = std::atan2(d.y, d.x);
+    p.position = point;
+    return dist / p.speed;
+  }
+
+  /// Where walking toward B stops: touchDistance short of B (or where A is, if closer already).
+  Vec2 nearPartner(Actor a) {
+    const Vec2 from = pose(a).position;
+    const Vec2 to = pose(other(a)).position;
+    const float d = core::distance(from, to);
+    if (d <= params_.touchDistance) return from;
+    return to + core::normalize(from - to) * static_cast<float>(params_.touchDistance);
+  }
+
+  void moveCloser(GroundingStep step, int attempt) {
+    const Vec2 target = nearPartner(Actor::Initiator);
+    const double t = walkDuration(Actor::Initiator, target);
+    ScriptEntry& e = emit(Actor::Initiator, std::string(kWalkMotion), "move_closer", t, step, 0, attempt);
+    aimAtAgent(e, Actor::Respondent);
+    e.targetPoint = target;
+    relation_ = Relation::A1;
+  }
+
+  void awaitResponse(GroundingStep step, int part, int attempt) {
+    ScriptEntry& e = emit(Actor::Initiator, std::string(kIdleMotion), "await_response", params_.responseTimeout, step,
+                          part, attempt);
+    aimAtAgent(e, Actor::Respondent);
+  }
+
+  /// The point a behaviour is aimed at; nullopt with agent set for partner targets.
+  std::optional<Vec2> targetPoint(Actor a, const MicroBehaviour& b, const ScriptEntry* answered) {
+    switch (b.target) {
+      case TargetKind::None: return std::nullopt;
+      case TargetKind::Partner: return pose(other(a)).position;
+      case TargetKind::Goal: return in_.goal.position;
+      case TargetKind::Here: return pose(a).position;
+      case TargetKind::ViewPoint: return in_.viewPoint;
+      case TargetKind::HearingPoint: return in_.hearingPoint;
+      case TargetKind::Indicated:
+        if (answered && answered->targetType != ScriptEntry::Target::None) return answered->targetPoint;
+        return pose(other(a)).position;
+    }
+    return std::nullopt;
+  }
+
+  void setTarget(ScriptEntry& e, Actor a, const MicroBehaviour& b, std::optional<Vec2> point) {
+    if (b.target == TargetKind::Partner) aimAtAgent(e, other(a));
+    else if (point) aimAt(e, *point);
+  }
+
+  /// Plays behaviour `b` for actor `a` at now_; returns its main entry (for Indicated answers).
+  const ScriptEntry* play(Actor a, const MicroBehaviour& b, GroundingStep step, int part, int attempt,
+                          const ScriptEntry* answered) {
+    const std::optional<Vec2> point = targetPoint(a, b, answered);
+    const std::size_t index = script_.actors[static_cast<int>(a)].size();
+    if (b.clip == kWalkMotion) {
+      const Vec2 dest = b.target == TargetKind::Partner ? nearPartner(a) : point.value_or(pose(a).position);
+      const double t = walkDuration(a, dest);
+      ScriptEntry& e = emit(a, b.clip, b.name, t, step, part, attempt);
+      setTarget(e, a, b, point);
+      e.targetPoint = dest;
+    } else if (b.clip == kTurnMotion) {
+      const double t = point ? turnDuration(a, *point) : 0.0;
+      setTarget(emit(a, b.clip, b.name, t, step, part, attempt), a, b, point);
+    } else {
+      if (b.turnFirst && point) {
+        const double t = turnDuration(a, *point);
+        setTarget(emit(a, std::string(kTurnMotion), b.name, t, step, part, attempt), a, b, point);
+      }
+      const auto clip = clips_.find(b.clip);
+      if (clip == clips_.end()) {
+        errors_.push_back(problem("no clip length for clip \"" + b.clip + "\" (behaviour \"" + b.name + "\")",
+                                  "every clip of the micro-behaviour database in the clip-length map"));
+        return nullptr;
+      }
+      setTarget(emit(a, b.clip, b.name, clip->second, step, part, attempt), a, b, point);
+    }
+    if (a == Actor::Initiator && b.resultRelation) relation_ = *b.resultRelation;
+    // The clip entry (the last one); valid until this actor's list grows again.
+    auto& list = script_.actors[static_cast<int>(a)];
+    return list.size() > index ? &list.back() : nullptr;
+  }
+
+  // --- step 7: the macro-plan (Table 5) ---
+
+  double visitDuration(PlanKind kind) const {
+    for (const auto& p : macro_.plans) {
+      if (p.kind == kind) return p.visitDuration;
+    }
+    return 0.0;
+  }
+
+  void walkTo(Actor a, Vec2 point, const char* behaviour) {
+    const double t = walkDuration(a, point);
+    aimAt(emit(a, std::string(kWalkMotion), behaviour, t, GroundingStep::Execute, 0, 0), point);
+  }
+
+  void idle(Actor a, const char* behaviour, double duration, Vec2 where) {
+    aimAt(emit(a, std::string(kIdleMotion), behaviour, duration, GroundingStep::Execute, 0, 0), where);
+  }
+
+  void execute(PlanKind kind) {
+    const double t8 = now_;
+    const Vec2 goal = in_.goal.position;
+    const Vec2 dest = in_.destination;
+    constexpr Actor A = Actor::Initiator;
+    constexpr Actor B = Actor::Respondent;
+    switch (kind) {
+      case PlanKind::DivideAndWait: {
+        const Vec2 meet = pose(B).position;
+        walkTo(A, goal, "walk_to_goal");                       // t8
+        idle(A, "stay", visitDuration(kind), goal);            // t9
+        const double back = walkDuration(A, meet);             // t10
+        ScriptEntry& r = emit(A, std::string(kWalkMotion), "walk_to_partner", back, GroundingStep::Execute, 0, 0);
+        aimAtAgent(r, B);
+        const double t11 = now_;
+        now_ = t8;
+        idle(B, "wait", t11 - t8, meet);                       // t8 .. t11
+        walkTo(A, dest, "resume");                             // t11
+        now_ = t11;
+        walkTo(B, dest, "resume");                             // t11
+        break;
+      }
+      case PlanKind::DivideAndProceed: {
+        walkTo(A, goal, "walk_to_goal");
+        idle(A, "stay", visitDuration(kind), goal);
+        walkTo(A, in_.goal.next.value_or(dest), "walk_to_next");
+        now_ = t8;
+        walkTo(B, dest, "walk_to_destination");
+        break;
+      }
+      case PlanKind::DetourTogether: {
+        walkTo(A, goal, "lead_to_goal");
+        const double arriveA = now_;
+        now_ = t8;
+        const double tb = walkDuration(B, goal);
+        ScriptEntry& f = emit(B, std::string(kWalkMotion), "follow", tb, GroundingStep::Execute, 0, 0);
+        aimAtAgent(f, A);
+        f.targetPoint = goal;
+        const double arriveB = now_;
+        const double t10 = std::max(arriveA, arriveB) + visitDuration(kind);
+        now_ = arriveA;
+        idle(A, "stay", t10 - arriveA, goal);
+        now_ = arriveB;
+        idle(B, "stay", t10 - arriveB, goal);
+        now_ = t10;
+        walkTo(A, dest, "resume");
+        now_ = t10;
+        walkTo(B, dest, "resume");
+        break;
+      }
+      case PlanKind::Resume: {
+        walkTo(A, dest, "resume");
+        now_ = t8;
+        walkTo(B, dest, "resume");
+        break;
+      }
+    }
+  }
+
+  const CoordinationInput& in_;
+  const MicroBehaviourDb& micro_;
+  const MacroPlanDb& macro_;
+  const ClipLengths& clips_;
+  const CoordinationParams& params_;
+  core::Rng rngA_;
+  core::Rng rngB_;
+  Pose pose_[2];
+  Relation relation_;
+  double now_ = 0.0;
+  PlanKind plan_ = PlanKind::Resume;
+  std::size_t nextResponse_ = 0;
+  ActionScript script_;
+  core::Diagnostics errors_;
+};
+
+core::Diagnostics checkParams(const CoordinationParams& p, const CoordinationInput& in, const Databases& dbs) {
+  core::Diagnostics d;
+  if (!dbs.micro || !dbs.macro) d.push_back(problem("missing behaviour database", "both micro and macro databases"));
+  if (!(p.turnRate > 0.0 && p.turnRate <= 100.0)) d.push_back(problem("turnRate out of range", "(0, 100] rad/s"));
+  if (!(p.responseTimeout >= 0.0 && p.responseTimeout <= 3600.0))
+    d.push_back(problem("responseTimeout out of range", "[0, 3600] s"));
+  if (p.maxAttempts < 1 || p.maxAttempts > 10) d.push_back(problem("maxAttempts out of range", "1 to 10"));
+  if (!(p.touchDistance > 0.0 && p.touchDistance <= 10.0)) d.push_back(problem("touchDistance out of range", "(0, 10] m"));
+  for (const ActorBody* b : {&in.initiator, &in.respondent}) {
+    if (!(b->walkSpeed > 0.0f && b->walkSpeed <= 10.0f)) d.push_back(problem("walkSpeed out of range", "(0, 10] m/s"));
+  }
+  if (!std::isfinite(in.startTime)) d.push_back(problem("startTime is not finite", "a finite time in s"));
+  return d;
+}
+
+}  // namespace
+
+std::optional<std::size_t> selectPlan(const MacroPlanDb& db, const Goal& goal, double goalDistance) {
+  for (std::size_t i = 0; i < db.plans.size(); ++i) {
+    const MacroPlan& p = db.plans[i];
+    if (std::find(p.goalKinds.begin(), p.goalKinds.end(), goal.kind) == p.goalKinds.end()) continue;
+    if (goalDistance > p.maxGoalDistance) continue;
+    if (goal.expectedVisit > p.maxExpectedVisit) continue;
+    return i;
+  }
+  return std::nullopt;
+}
+
+std::vector<std::size_t> allowedBehaviours(const MicroBehaviourDb& db, Intent intent, Relation relation,
+                                           const std::vector<std::size_t>& exclude) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < db.behaviours.size(); ++i) {
+    const MicroBehaviour& b = db.behaviours[i];
+    if (!hasIntent(b, intent) || !allows(b, relation)) continue;
+    if (std::find(exclude.begin(), exclude.end(), i) != exclude.end()) continue;
+    out.push_back(i);
+  }
+  return out;
+}
+
+std::optional<std::size_t> chooseBehaviour(const MicroBehaviourDb& db, const std::vector<std::size_t>& candidates,
+                                           const ActorStyle& style, core::Rng& rng) {
+  std::vector<double> w;
+  w.reserve(candidates.size());
+  double total = 0.0;
+  for (const std::size_t i : candidates) {
+    const MicroBehaviour& b = db.behaviours[i];
+    const auto pref = style.preference.find(b.name);
+    const double m = pref == style.preference.end() ? 1.0 : std::max(0.0, pref->second);
+    const double wi = style.mode == SelectionMode::Uniform ? (m > 0.0 ? 1.0 : 0.0) : b.weight * m;
+    w.push_back(std::isfinite(wi) ? wi : 0.0);
+    total += w.back();
+  }
+  if (candidates.empty() || !(total > 0.0)) return std::nullopt;
+  if (style.mode == SelectionMode::Best) {
+    std::size_t best = 0;
+    for (std::size_t k = 1; k < w.size(); ++k) {
+      if (w[k] > w[best]) best = k;
+    }
+    return candidates[best];
+  }
+  double r = rng.uniform() * total;
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    if (w[k] <= 0.0) continue;
+    if (r < w[k]) return candidates[k];
+    r -= w[k];
+  }
+  for (std::size_t k = w.size(); k-- > 0;) {  // rounding: the last positive weight
+    if (w[k] > 0.0) return candidates[k];
+  }
+  return std::nullopt;
+}
+
+double coordinationTimeBound(const CoordinationInput& in, const Databases& dbs, const ClipLengths& clips,
+                             const CoordinationParams& params) {
+  double maxClip = 0.0;
+  for (const auto& [name, length] : clips) maxClip = std::max(maxClip, length);
+  const Vec2 a = in.initiator.position;
+  const Vec2 b = in.respondent.position;
+  double reach = core::distance(a, b);  // farthest A can be from B, and walk toward a point
+  double walk = reach;
+  for (const auto& p : {in.viewPoint, in.hearingPoint}) {
+    if (!p) continue;
+    reach = std::max(reach, static_cast<double>(core::distance(*p, b)));
+    walk = std::max(walk, static_cast<double>(core::distance(*p, a)));
+  }
+  const double speed = std::min(in.initiator.walkSpeed, in.respondent.walkSpeed);
+  const double walking = (walk + reach) / speed;
+  const double motion = maxClip + 2.0 * kPi / params.turnRate;  // a turn first, then a clip
+  const double attempt = 2.0 * motion + params.responseTimeout;
+  std::size_t parts = 0;
+  if (dbs.macro) {
+    for (const auto& p : dbs.macro->plans) parts = std::max(parts, p.proposal.size());
+  }
+  const double steps = static_cast<double>(params.maxAttempts) * static_cast<double>(1 + parts) * attempt;
+  return walking + steps + motion + walking;  // initiation, steps 2–5, confirmation, moving closer
+}
+
+core::Result<ActionScript> planCoordination(const CoordinationInput& in, const Databases& dbs,
+                                            const ClipLengths& clips, const CoordinationParams& params) {
+  if (auto d = checkParams(params, in, dbs); !d.empty()) return d;
+  Planner planner(in, dbs, clips, params);
+  return planner.run();
+}
+
+}  // namespace throng::social
