@@ -42,9 +42,16 @@ void SpatialGrid::rebuild(std::span<const float> posX, std::span<const float> po
 std::size_t SpatialGrid::nearest(float x, float y, float range, std::size_t k, std::uint32_t self, const float* posX,
                                  const float* posY, std::vector<std::pair<float, std::uint32_t>>& best,
                                  std::uint32_t* out) const {
-  best.clear();
+  (void)posX;
+  (void)posY;
   if (k == 0) return 0;
+  best.resize(k);
+  std::pair<float, std::uint32_t>* b = best.data();
+  std::size_t n = 0;  // entries in b, sorted by (distance², row)
   const float rangeSq = range * range;
+  // Admission bound: anything farther than this cannot enter the list (the range until the list
+  // is full, then its k-th distance; equal distances are settled by row, as everywhere).
+  float bound = rangeSq;
   const int cx = cellX(x), cy = cellY(y);
   // Distance from (x, y) to the nearest edge of its own cell: ring r cells are at least
   // (r - 1) * cellSize + edge away.
@@ -52,45 +59,54 @@ std::size_t SpatialGrid::nearest(float x, float y, float range, std::size_t k, s
   const float fy = y - (originY_ + static_cast<float>(cy) * cellSize_);
   const float edge = std::max(0.0f, std::min(std::min(fx, cellSize_ - fx), std::min(fy, cellSize_ - fy)));
   const int maxRing = static_cast<int>(std::ceil(range * invCell_)) + 1;
-  auto visitCell = [&](int gx, int gy) {
-    const std::size_t c = static_cast<std::size_t>(gy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(gx);
-    const Entry* e = entries_.data();
-    for (std::uint32_t i = cellStart_[c]; i < cellStart_[c + 1]; ++i) {
-      const std::uint32_t row = e[i].row;
+  const Entry* e = entries_.data();
+  // Scans entries [first, last): cells of one grid row are contiguous, so a ring's top and bottom
+  // rows are one span each.
+  auto scan = [&](std::uint32_t first, std::uint32_t last) {
+    for (std::uint32_t i = first; i < last; ++i) {
       const float dx = e[i].x - x, dy = e[i].y - y;
       const float d2 = dx * dx + dy * dy;
-      if (d2 >= rangeSq || row == self) continue;
-      if (best.size() == k && !(d2 < best.back().first || (d2 == best.back().first && row < best.back().second))) continue;
-      // Insertion into the short sorted list (k is small).
-      std::size_t pos = best.size();
-      if (best.size() < k) best.emplace_back(); else --pos;
-      while (pos > 0 && (best[pos - 1].first > d2 || (best[pos - 1].first == d2 && best[pos - 1].second > row))) {
-        best[pos] = best[pos - 1];
+      if (d2 > bound) continue;
+      const std::uint32_t row = e[i].row;
+      if (row == self || d2 >= rangeSq) continue;
+      std::size_t pos;
+      if (n < k) {
+        pos = n++;
+      } else {
+        if (d2 == b[k - 1].first && row > b[k - 1].second) continue;
+        pos = k - 1;
+      }
+      while (pos > 0 && (b[pos - 1].first > d2 || (b[pos - 1].first == d2 && b[pos - 1].second > row))) {
+        b[pos] = b[pos - 1];
         --pos;
       }
-      best[pos] = {d2, row};
+      b[pos] = {d2, row};
+      if (n == k) bound = b[k - 1].first;
     }
+  };
+  auto cellIndex = [&](int gx, int gy) {
+    return static_cast<std::size_t>(gy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(gx);
   };
   for (int ring = 0; ring <= maxRing; ++ring) {
     const float minDist = ring == 0 ? 0.0f : static_cast<float>(ring - 1) * cellSize_ + edge;
     if (minDist * minDist >= rangeSq) break;
-    if (best.size() == k && minDist * minDist > best.back().first) break;
+    if (n == k && minDist * minDist > b[k - 1].first) break;
     if (ring == 0) {
-      visitCell(cx, cy);
+      const std::size_t c = cellIndex(cx, cy);
+      scan(cellStart_[c], cellStart_[c + 1]);
       continue;
     }
     const int x0 = cx - ring, x1 = cx + ring, y0 = cy - ring, y1 = cy + ring;
-    for (int gx = std::max(0, x0); gx <= std::min(nx_ - 1, x1); ++gx) {
-      if (y0 >= 0) visitCell(gx, y0);
-      if (y1 < ny_) visitCell(gx, y1);
-    }
+    const int gx0 = std::max(0, x0), gx1 = std::min(nx_ - 1, x1);
+    if (y0 >= 0) scan(cellStart_[cellIndex(gx0, y0)], cellStart_[cellIndex(gx1, y0) + 1]);
+    if (y1 < ny_) scan(cellStart_[cellIndex(gx0, y1)], cellStart_[cellIndex(gx1, y1) + 1]);
     for (int gy = std::max(0, y0 + 1); gy <= std::min(ny_ - 1, y1 - 1); ++gy) {
-      if (x0 >= 0) visitCell(x0, gy);
-      if (x1 < nx_) visitCell(x1, gy);
+      if (x0 >= 0) scan(cellStart_[cellIndex(x0, gy)], cellStart_[cellIndex(x0, gy) + 1]);
+      if (x1 < nx_) scan(cellStart_[cellIndex(x1, gy)], cellStart_[cellIndex(x1, gy) + 1]);
     }
   }
-  for (std::size_t i = 0; i < best.size(); ++i) out[i] = best[i].second;
-  return best.size();
+  for (std::size_t i = 0; i < n; ++i) out[i] = b[i].second;
+  return n;
 }
 
 }  // namespace throng::sim
