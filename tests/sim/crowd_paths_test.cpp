@@ -5,9 +5,11 @@
 #include <cmath>
 #include <map>
 
+#include "sim_test_util.hpp"
 #include "throng/sim/world.hpp"
 
 using namespace throng;
+using throng::sim::test::runEvents;
 
 namespace {
 
@@ -30,16 +32,6 @@ sim::PointDesc disc(const char* id, sim::PointKind kind, core::Vec2 at, float ra
   return p;
 }
 
-std::vector<sim::Event> run(sim::World& w, double seconds) {
-  core::TaskSystem tasks(2);
-  std::vector<sim::Event> events;
-  while (w.stats().time < seconds && !w.finished()) {
-    w.step(tasks);
-    const auto f = w.snapshot();
-    events.insert(events.end(), f->events.begin(), f->events.end());
-  }
-  return events;
-}
 
 }  // namespace
 
@@ -143,7 +135,7 @@ TEST(CrowdPaths, AutomaticGoalsEndAtAnActionPointThroughNearbyInterestPoints) {
   d.populations = {p};
   auto w = sim::World::create(d);
   ASSERT_TRUE(w.ok());
-  const auto events = run(*w.value(), 90);
+  const auto events = runEvents(*w.value(), 90, 2);
   std::map<std::uint32_t, std::vector<std::uint32_t>> reached;  // agent → points in order
   for (const auto& e : events) {
     if (e.kind == sim::EventKind::GoalReached || e.kind == sim::EventKind::ActionStart) reached[e.agent].push_back(e.a);

@@ -9,9 +9,11 @@
 #include <map>
 #include <set>
 
+#include "sim_test_util.hpp"
 #include "throng/sim/world.hpp"
 
 using namespace throng;
+using throng::sim::test::runEvents;
 
 namespace {
 
@@ -122,16 +124,6 @@ Cohesion measure(const sim::ScenarioDesc& d, double seconds) {
 }
 
 /// Events of a whole run, in order.
-std::vector<sim::Event> runEvents(sim::World& w, double seconds, int threads = 1) {
-  core::TaskSystem tasks(threads);
-  std::vector<sim::Event> events;
-  while (w.stats().time < seconds && !w.finished()) {
-    w.step(tasks);
-    const auto f = w.snapshot();
-    events.insert(events.end(), f->events.begin(), f->events.end());
-  }
-  return events;
-}
 
 }  // namespace
 
