@@ -1,4 +1,5 @@
-// Fuzz target for throng::io::readRecordingSummary (libs/io/src/recording_reader.cpp): the input
+// Fuzz target for throng::io::readRecordingSummary (libs/io/src/recording_reader.cpp) and the
+// Common Ground readers and metrics (recording_social.cpp, recording_metrics.cpp): the input
 // bytes become a file on disk (SQLite reads files, not buffers) and are summarised read-only.
 // Any input must give a summary or a diagnostic: no crash, hang, leak or write.
 // Corpus: fuzz/corpus/recording_reader/ (tiny valid recordings and junk).
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "throng/io/recorder.hpp"
+#include "throng/io/recording_social.hpp"
 
 namespace {
 
@@ -49,6 +51,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto summary = throng::io::readRecordingSummary(path);
   if (!summary.ok() && summary.errors().empty()) std::abort();  // a failure must say why
   if (summary.ok() && summary->fps <= 0.0) std::abort();       // the reader validates fps
+
+  // The Common Ground readers and metrics: a value or a diagnostic, never a crash.
+  const auto coordinations = throng::io::readCoordinations(path);
+  if (!coordinations.ok() && coordinations.errors().empty()) std::abort();
+  const auto script = throng::io::readScript(path, 0);
+  if (!script.ok() && script.errors().empty()) std::abort();
+  if (coordinations.ok() && !coordinations->empty()) {
+    const auto all = throng::io::readCoordinationScript(path, coordinations.value().front().id);
+    if (!all.ok() && all.errors().empty()) std::abort();
+  }
+  const auto track = throng::io::readAgentTrack(path, 0);
+  if (!track.ok() && track.errors().empty()) std::abort();
+  const auto metrics = throng::io::computeMetrics(path);
+  if (!metrics.ok() && metrics.errors().empty()) std::abort();
+  if (metrics.ok() && (metrics->cohesion.shareTogether < 0.0 || metrics->cohesion.shareTogether > 1.0)) std::abort();
   removeFiles(path);
   return 0;
 }

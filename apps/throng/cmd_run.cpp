@@ -194,6 +194,13 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
                   "Recording file; default: <scenario file name without .json>.sqlite in the current directory")
       ->type_name("FILE.sqlite");
   cmd->add_flag("--force", options.force, "Overwrite an existing recording file");
+  cmd->add_option_function<std::string>(
+         "--common-ground",
+         [&options](const std::string& v) { options.commonGround = v == "on"; },
+         "Common Ground coordination on or off (overrides the scenario's \"social\"/\"commonGround\"; off: agents "
+         "visit their generated goals alone, without telling their group)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->type_name("on|off");
   cmd->add_option("--fps", options.fps,
                   "Recorded frames per second [Hz]: every k-th tick is written, k = round(1/(fps*dt)) >= 1; "
                   "the rate actually used is stored in the recording")
@@ -225,6 +232,14 @@ int runRun(const RunOptions& options) {
   }
   sim::ScenarioDesc& desc = loaded->desc;
   if (options.seed) desc.seed = *options.seed;
+  if (options.commonGround) {
+    if (!desc.social.enabled) {
+      std::fprintf(stderr, "throng run: --common-ground: %s has no \"social\" section; nothing to switch\n",
+                   options.scenario.c_str());
+      return kExitUsage;
+    }
+    desc.social.commonGround = *options.commonGround;
+  }
   if (options.duration) desc.duration = static_cast<float>(*options.duration);
 
   const FramePlan plan = planFrames(options.fps, desc.dt);

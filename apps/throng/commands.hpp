@@ -1,6 +1,6 @@
 // throng CLI subcommands — each subcommand registers its flags on a CLI::App and runs from a plain
 // options struct (one file per subcommand: cmd_run.cpp, cmd_check.cpp, cmd_info.cpp,
-// cmd_bench.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
+// cmd_bench.cpp, cmd_script.cpp, cmd_metrics.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
 // interrupted by SIGINT/SIGTERM.
 #pragma once
 #include <cstdint>
@@ -29,6 +29,7 @@ struct RunOptions {
   double fps = 10.0;                    ///< recorded frames per second [Hz]
   bool quiet = false;                   ///< only errors
   bool json = false;                    ///< summary as one JSON object
+  std::optional<bool> commonGround;     ///< overrides the scenario's "social"/"commonGround"
 };
 
 struct CheckOptions {
@@ -38,6 +39,20 @@ struct CheckOptions {
 
 struct InfoOptions {
   std::string recording;
+  bool json = false;
+};
+
+struct ScriptOptions {
+  std::string recording;
+  std::uint32_t agent = 0;                  ///< stable agent id
+  std::optional<std::uint32_t> coordination;  ///< only this coordination
+  bool json = false;                        ///< one JSON object: coordinations, entries, trajectory
+};
+
+struct MetricsCmdOptions {
+  std::string recording;
+  double radius = 2.0;  ///< congestion disc around key points [m]
+  double bin = 60.0;    ///< arrival-rate bin [s]
   bool json = false;
 };
 
@@ -58,10 +73,14 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options);
 CLI::App* addCheckCommand(CLI::App& app, CheckOptions& options);
 CLI::App* addInfoCommand(CLI::App& app, InfoOptions& options);
 CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options);
+CLI::App* addScriptCommand(CLI::App& app, ScriptOptions& options);
+CLI::App* addMetricsCommand(CLI::App& app, MetricsCmdOptions& options);
 
 int runRun(const RunOptions& options);
 int runCheck(const CheckOptions& options);
 int runInfo(const InfoOptions& options);
 int runBench(const BenchOptions& options);
+int runScript(const ScriptOptions& options);
+int runMetrics(const MetricsCmdOptions& options);
 
 }  // namespace throng::cli

@@ -1,6 +1,6 @@
-// throng — command-line front end: run, check, info and bench subcommands (CLI11). Parses flags,
-// dispatches to the subcommand and turns every failure into a message and an exit code:
-// 0 success, 1 bad input or failure, 2 bad flags or unknown subcommand, 130 interrupted.
+// throng — command-line front end: run, check, info, bench, script and metrics subcommands (CLI11).
+// Parses flags, dispatches to the subcommand and turns every failure into a message and an exit
+// code: 0 success, 1 bad input or failure, 2 bad flags or unknown subcommand, 130 interrupted.
 #include <cstdio>
 #include <exception>
 #include <new>
@@ -28,21 +28,25 @@ int dispatch(int argc, char** argv) {
   CheckOptions checkOptions;
   InfoOptions infoOptions;
   BenchOptions benchOptions;
+  ScriptOptions scriptOptions;
+  MetricsCmdOptions metricsOptions;
   CLI::App* run = addRunCommand(app, runOptions);
   CLI::App* check = addCheckCommand(app, checkOptions);
   CLI::App* info = addInfoCommand(app, infoOptions);
   CLI::App* bench = addBenchCommand(app, benchOptions);
+  CLI::App* script = addScriptCommand(app, scriptOptions);
+  CLI::App* metrics = addMetricsCommand(app, metricsOptions);
 
   // CLI11 reports an unknown command as "A subcommand is required"; name it instead.
   const auto isCommand = [&](const char* word) {
-    for (const CLI::App* sub : {run, check, info, bench}) {
+    for (const CLI::App* sub : {run, check, info, bench, script, metrics}) {
       if (sub->check_name(word)) return true;
     }
     return false;
   };
   if (argc > 1 && argv[1][0] != '-' && !isCommand(argv[1])) {
-    const std::string hint = throng::core::closestMatch(argv[1], {"run", "check", "info", "bench"});
-    std::fputs(fmt::format("throng: unknown command '{}'; expected run, check, info or bench{}\n"
+    const std::string hint = throng::core::closestMatch(argv[1], {"run", "check", "info", "bench", "script", "metrics"});
+    std::fputs(fmt::format("throng: unknown command '{}'; expected run, check, info, bench, script or metrics{}\n"
                            "Run 'throng --help' for more information.\n",
                            argv[1], hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint))
                    .c_str(),
@@ -61,6 +65,8 @@ int dispatch(int argc, char** argv) {
   if (check->parsed()) return runCheck(checkOptions);
   if (info->parsed()) return runInfo(infoOptions);
   if (bench->parsed()) return runBench(benchOptions);
+  if (script->parsed()) return runScript(scriptOptions);
+  if (metrics->parsed()) return runMetrics(metricsOptions);
   std::fputs("throng: no command given; run 'throng --help'\n", stderr);
   return kExitUsage;
 }

@@ -277,6 +277,7 @@ RC_GTEST_PROP(CoordinationProperty, EveryCoordinationEndsWithinTheBound, ()) {
   RC_ASSERT(checkScript(s).empty());
   const double bound = coordinationTimeBound(in, databases(), clips, p);
   RC_ASSERT(s.executeTime - s.startTime <= bound + 1e-6);
+  RC_ASSERT(s.endTime - s.startTime <= bound + 1e-6);  // the bound covers the macro-plan too
   bool anyLost = in.respondentAbsent;
   for (const bool b : in.lostResponses) anyLost = anyLost || b;
   if (in.respondentAbsent) RC_ASSERT(s.outcome == Outcome::Failed);

@@ -22,6 +22,9 @@
 #include <thread>
 #include <unordered_set>
 
+#include "throng/social/behaviour_db.hpp"
+#include "throng/social/relation.hpp"
+
 #include "recording_scenario.hpp"
 #include "recording_schema.hpp"
 #include "recording_text.hpp"
@@ -107,8 +110,59 @@ const char* eventKindText(sim::EventKind kind) {
     case sim::EventKind::FollowAgentEnd: return "follow_agent_end";
     case sim::EventKind::LeaderChange: return "leader_change";
     case sim::EventKind::PathFallback: return "path_fallback";
+    case sim::EventKind::GoalGenerated: return "goal_generated";
+    case sim::EventKind::CoordinationStart: return "coordination_start";
+    case sim::EventKind::CoordinationEnd: return "coordination_end";
+    case sim::EventKind::VisitStart: return "visit_start";
+    case sim::EventKind::VisitEnd: return "visit_end";
+    case sim::EventKind::Reunited: return "reunited";
   }
   return "unknown";
+}
+
+// Common Ground record fields as text (throng::social's names; docs/recording-format.md).
+const char* triggerText(sim::GoalTrigger t) {
+  switch (t) {
+    case sim::GoalTrigger::Need: return "need";
+    case sim::GoalTrigger::Attraction: return "attraction";
+  }
+  return "unknown";
+}
+
+const char* outcomeText(sim::CoordinationOutcome o) {
+  switch (o) {
+    case sim::CoordinationOutcome::Grounded: return "grounded";
+    case sim::CoordinationOutcome::Failed: return "failed";
+    case sim::CoordinationOutcome::Alone: return "alone";
+  }
+  return "unknown";
+}
+
+const char* roleText(std::uint8_t role) {
+  switch (role) {
+    case 0: return "initiator";
+    case 1: return "respondent";
+    case 2: return "companion";
+    default: return "unknown";
+  }
+}
+
+const char* targetTypeText(std::uint8_t type) {
+  switch (type) {
+    case 0: return "none";
+    case 1: return "point";
+    case 2: return "agent";
+    default: return "unknown";
+  }
+}
+
+std::string planText(std::uint8_t plan) {
+  return std::string(social::planKindName(static_cast<social::PlanKind>(plan)));
+}
+
+/// A REAL column that holds NULL when the value is not finite (never a write error).
+void bindFinite(sqlite3_stmt* s, int i, double v) {
+  if (std::isfinite(v)) sqlite3_bind_double(s, i, v); else sqlite3_bind_null(s, i);
 }
 
 /// Agent ids below this are tracked in a bitmap (ids are dense spawn order); a stray larger id
@@ -124,7 +178,8 @@ struct Recorder::Impl {
   std::vector<std::string> populationIds;
 
   Statement begin, commit, rollback, insertRow, insertFrameData, insertFrame, insertEvent,
-      insertAgent, insertAgentSeen, updateExit, upsertMeta, insertAnimation;
+      insertAgent, insertAgentSeen, updateExit, upsertMeta, insertAnimation, insertCoordination,
+      insertScript;
 
   // Queue shared by push() and the worker.
   std::mutex mutex;
@@ -150,7 +205,8 @@ struct Recorder::Impl {
     if (db != nullptr) {
       // Statements must be finalized before sqlite3_close.
       for (Statement* s : {&begin, &commit, &rollback, &insertRow, &insertFrameData, &insertFrame,
-                           &insertEvent, &insertAgent, &insertAgentSeen, &updateExit, &upsertMeta, &insertAnimation}) {
+                           &insertEvent, &insertAgent, &insertAgentSeen, &updateExit, &upsertMeta, &insertAnimation,
+                           &insertCoordination, &insertScript}) {
         *s = Statement();
       }
       sqlite3_close(db);
@@ -208,11 +264,17 @@ struct Recorder::Impl {
            prepare(insertAgentSeen, "INSERT OR IGNORE INTO throng_agents(id, spawn_frame) VALUES(?, ?)") &&
            prepare(updateExit, "UPDATE throng_agents SET exit_frame = ?, exit_tick = ? WHERE id = ?") &&
            prepare(upsertMeta, "INSERT OR REPLACE INTO metadata(key, value) VALUES(?, ?)") &&
-           prepare(insertAnimation, "INSERT INTO throng_animation VALUES(?, ?, ?, ?)");
+           prepare(insertAnimation, "INSERT INTO throng_animation VALUES(?, ?, ?, ?)") &&
+           // A coordination published twice (a simulation bug) replaces the first: never a write error.
+           prepare(insertCoordination,
+                   "INSERT OR REPLACE INTO throng_coordinations VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)") &&
+           prepare(insertScript,
+                   "INSERT INTO throng_script VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   }
 
   bool writeScenario(const sim::ScenarioDesc& scenario);
   bool writeFrame(const sim::Frame& frame);
+  bool writeSocial(const sim::Frame& frame);
   bool markSeen(std::uint32_t id);
   void workerLoop();
   bool commitBatch();
@@ -238,6 +300,7 @@ bool Recorder::Impl::writeScenario(const sim::ScenarioDesc& scenario) {
             putMeta(kKeyDt, pythonFloatText(floatAsDecimal(scenario.dt))) &&
             putMeta(kKeyCompleted, "0") && putMeta(kKeyFrames, "0") && putMeta(kKeyDuration, "0.0") &&
             putMeta(kKeyAgents, "0");
+  if (ok && scenario.social.enabled) ok = putMeta(kKeyCommonGround, scenario.social.commonGround ? "on" : "off");
   if (!ok) return false;
 
   {
@@ -332,6 +395,8 @@ bool Recorder::Impl::writeFrame(const sim::Frame& f) {
     }
   }
 
+  if (!writeSocial(f)) return false;
+
   bindInt(insertFrameData.get(), 1, frame);
   bindInt(insertFrameData.get(), 2, geometryHash);
   if (!run(insertFrameData)) return false;
@@ -341,6 +406,64 @@ bool Recorder::Impl::writeFrame(const sim::Frame& f) {
   bindReal(s, 3, f.time);
   bindInt(s, 4, static_cast<std::int64_t>(n));
   return run(insertFrame);
+}
+
+bool Recorder::Impl::writeSocial(const sim::Frame& f) {
+  for (const sim::CoordinationRecord& c : f.coordinations) {
+    sqlite3_stmt* s = insertCoordination.get();
+    std::string respondents;
+    for (const std::uint32_t id : c.respondents) {
+      if (!respondents.empty()) respondents += ' ';
+      respondents += std::to_string(id);
+    }
+    bindInt(s, 1, c.id);
+    bindInt(s, 2, c.group);
+    bindInt(s, 3, c.initiator);
+    bindText(s, 4, respondents);
+    bindInt(s, 5, c.goalPoint);
+    bindText(s, 6, social::goalKindName(static_cast<social::GoalKind>(c.goalKind)));
+    bindText(s, 7, triggerText(c.trigger));
+    if (c.relation >= 1 && c.relation <= 6) {
+      bindText(s, 8, social::relationName(static_cast<social::Relation>(c.relation)));
+    } else {
+      sqlite3_bind_null(s, 8);
+    }
+    bindText(s, 9, planText(c.plan));
+    bindText(s, 10, outcomeText(c.outcome));
+    bindInt(s, 11, c.retries);
+    bindFinite(s, 12, c.start);
+    bindFinite(s, 13, c.executeTime);
+    bindFinite(s, 14, c.end);
+    if (!run(insertCoordination)) return false;
+  }
+  for (const sim::ScriptRecord& r : f.script) {
+    sqlite3_stmt* s = insertScript.get();
+    bindInt(s, 1, r.coordination);
+    bindInt(s, 2, r.agent);
+    bindInt(s, 3, r.seq);
+    bindText(s, 4, roleText(r.role));
+    bindInt(s, 5, r.step);
+    bindInt(s, 6, r.part);
+    bindInt(s, 7, r.attempt);
+    bindText(s, 8, planText(r.plan));
+    bindText(s, 9, r.motion);
+    bindText(s, 10, r.behaviour);
+    bindText(s, 11, targetTypeText(r.targetType));
+    if (r.targetType == 2) bindInt(s, 12, r.targetAgent); else sqlite3_bind_null(s, 12);
+    if (r.targetType != 0) {
+      bindFinite(s, 13, static_cast<double>(r.targetX));
+      bindFinite(s, 14, static_cast<double>(r.targetY));
+    } else {
+      sqlite3_bind_null(s, 13);
+      sqlite3_bind_null(s, 14);
+    }
+    bindFinite(s, 15, r.plannedStart);
+    bindFinite(s, 16, r.plannedDuration);
+    bindFinite(s, 17, r.start);
+    bindFinite(s, 18, r.duration);
+    if (!run(insertScript)) return false;
+  }
+  return true;
 }
 
 bool Recorder::Impl::commitBatch() {
@@ -482,7 +605,8 @@ core::Status Recorder::close(bool completed) {
   impl.exec("PRAGMA journal_mode=DELETE");
   for (Statement* s : {&impl.begin, &impl.commit, &impl.rollback, &impl.insertRow, &impl.insertFrameData,
                        &impl.insertFrame, &impl.insertEvent, &impl.insertAgent, &impl.insertAgentSeen,
-                       &impl.updateExit, &impl.upsertMeta, &impl.insertAnimation}) {
+                       &impl.updateExit, &impl.upsertMeta, &impl.insertAnimation, &impl.insertCoordination,
+                       &impl.insertScript}) {
     *s = Statement();
   }
   if (impl.db != nullptr && sqlite3_close(impl.db) != SQLITE_OK) impl.fail("SQLite: cannot close the recording");

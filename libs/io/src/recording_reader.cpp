@@ -16,14 +16,10 @@
 namespace throng::io {
 namespace {
 
+using recording::ReadOnlyDb;
 using recording::Statement;
 
 constexpr const char* kExpectedFile = "a JuPedSim trajectory file (SQLite, format version 1, 2 or 3)";
-
-/// Bounds the work one query may do (SQLite VM steps, checked every kProgressPeriod): a hostile
-/// file cannot make the reader spin forever. Generous enough for recordings of 10^8 rows.
-constexpr int kProgressPeriod = 10000;
-constexpr std::uint64_t kMaxProgressCalls = 2'000'000;
 
 core::Diagnostic diag(const std::string& path, std::string what, std::string expected = kExpectedFile) {
   core::Diagnostic d;
@@ -32,36 +28,6 @@ core::Diagnostic diag(const std::string& path, std::string what, std::string exp
   d.expected = std::move(expected);
   return d;
 }
-
-class ReadOnlyDb {
- public:
-  explicit ReadOnlyDb(const std::string& path) {
-    rc_ = sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX, nullptr);
-    if (rc_ == SQLITE_OK) {
-      // Untrusted content: no schema-defined functions with side effects, no writable schema.
-      sqlite3_db_config(db_, SQLITE_DBCONFIG_TRUSTED_SCHEMA, 0, nullptr);
-      sqlite3_db_config(db_, SQLITE_DBCONFIG_DEFENSIVE, 1, nullptr);
-      sqlite3_progress_handler(db_, kProgressPeriod, &ReadOnlyDb::onProgress, this);
-    }
-  }
-  ~ReadOnlyDb() { sqlite3_close(db_); }
-  ReadOnlyDb(const ReadOnlyDb&) = delete;
-  ReadOnlyDb& operator=(const ReadOnlyDb&) = delete;
-
-  [[nodiscard]] bool ok() const { return rc_ == SQLITE_OK; }
-  [[nodiscard]] sqlite3* get() const { return db_; }
-  [[nodiscard]] std::string message() const { return db_ ? sqlite3_errmsg(db_) : "out of memory"; }
-  [[nodiscard]] bool interrupted() const { return progressCalls_ > kMaxProgressCalls; }
-
- private:
-  static int onProgress(void* self) {
-    auto* db = static_cast<ReadOnlyDb*>(self);
-    return ++db->progressCalls_ > kMaxProgressCalls ? 1 : 0;
-  }
-  sqlite3* db_ = nullptr;
-  int rc_ = SQLITE_ERROR;
-  std::uint64_t progressCalls_ = 0;
-};
 
 /// A query's outcome: no row is not an error; a failed step is.
 struct Cell {

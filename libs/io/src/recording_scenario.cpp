@@ -66,7 +66,7 @@ std::string writeScenarioTables(sqlite3* db, const sim::ScenarioDesc& scenario) 
     }
   }
   {
-    Statement pt(db, "INSERT INTO throng_points VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+    Statement pt(db, "INSERT INTO throng_points VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
     if (!pt.ok()) return sqlite3_errmsg(db);
     for (std::size_t i = 0; i < scenario.points.size(); ++i) {
       const sim::PointDesc& p = scenario.points[i];
@@ -83,6 +83,7 @@ std::string writeScenarioTables(sqlite3* db, const sim::ScenarioDesc& scenario) 
       bindReal(s, 10, floatAsDecimal(p.orientation.y));
       bindText(s, 11, p.action);
       bindReal(s, 12, floatAsDecimal(p.actionDuration));
+      if (p.category.empty()) sqlite3_bind_null(s, 13); else bindText(s, 13, p.category);
       if (!step(pt)) return sqlite3_errmsg(db);
     }
   }

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string>
 #include <string_view>
 
 namespace throng::io::recording {
@@ -35,6 +36,9 @@ inline constexpr const char* kKeyCompleted = "throng_completed";
 inline constexpr const char* kKeyFrames = "throng_frames";
 inline constexpr const char* kKeyDuration = "throng_duration";
 inline constexpr const char* kKeyAgents = "throng_agents";
+/// "on" / "off": whether the scenario's social section had Common Ground enabled; absent when the
+/// scenario has no social section (no goals were generated).
+inline constexpr const char* kKeyCommonGround = "throng_common_ground";
 
 inline constexpr const char* kSchemaNote =
     "JuPedSim trajectory format version 2 (trajectory_data, metadata, geometry, frame_data) "
@@ -95,7 +99,8 @@ inline constexpr const char* kCreateThrong =
     "   ori_x REAL NOT NULL,"
     "   ori_y REAL NOT NULL,"
     "   action TEXT NOT NULL,"
-    "   action_duration REAL NOT NULL);"
+    "   action_duration REAL NOT NULL,"
+    "   category TEXT);"
     "CREATE TABLE throng_clips("
     "   idx INTEGER NOT NULL PRIMARY KEY,"
     "   name TEXT NOT NULL,"
@@ -123,7 +128,44 @@ inline constexpr const char* kCreateThrong =
     "   wander INTEGER NOT NULL,"
     "   goals TEXT NOT NULL,"
     "   spawn_kind TEXT NOT NULL,"
-    "   spawn_wkt TEXT);";
+    "   spawn_wkt TEXT);"
+    // Common Ground (Park, Peng, Quek, Cao): one row per interaction, one per action-script entry.
+    "CREATE TABLE throng_coordinations("
+    "   id INTEGER NOT NULL PRIMARY KEY,"
+    "   group_id INTEGER NOT NULL,"
+    "   initiator INTEGER NOT NULL,"
+    "   respondents TEXT NOT NULL,"
+    "   goal_point INTEGER NOT NULL,"
+    "   goal_kind TEXT NOT NULL,"
+    "   trigger TEXT NOT NULL,"
+    "   relation TEXT,"
+    "   plan TEXT NOT NULL,"
+    "   outcome TEXT NOT NULL,"
+    "   retries INTEGER NOT NULL,"
+    "   start REAL,"
+    "   execute REAL,"
+    "   end_time REAL);"
+    "CREATE TABLE throng_script("
+    "   coordination INTEGER NOT NULL,"
+    "   agent INTEGER NOT NULL,"
+    "   seq INTEGER NOT NULL,"
+    "   role TEXT NOT NULL,"
+    "   step INTEGER NOT NULL,"
+    "   part INTEGER NOT NULL,"
+    "   attempt INTEGER NOT NULL,"
+    "   plan TEXT NOT NULL,"
+    "   motion TEXT NOT NULL,"
+    "   behaviour TEXT NOT NULL,"
+    "   target_type TEXT NOT NULL,"
+    "   target_agent INTEGER,"
+    "   target_x REAL,"
+    "   target_y REAL,"
+    "   planned_start REAL,"
+    "   planned_duration REAL,"
+    "   start REAL,"
+    "   duration REAL);"
+    "CREATE INDEX throng_script_agent_idx ON throng_script(agent);"
+    "CREATE INDEX throng_script_coordination_idx ON throng_script(coordination, seq);";
 
 /// Owns a prepared statement; finalized on destruction.
 class Statement {
@@ -159,6 +201,41 @@ inline void bindText(sqlite3_stmt* s, int i, std::string_view v) {
 }
 inline void bindInt(sqlite3_stmt* s, int i, std::int64_t v) { sqlite3_bind_int64(s, i, v); }
 inline void bindReal(sqlite3_stmt* s, int i, double v) { sqlite3_bind_double(s, i, v); }
+
+/// Bounds the work one query may do (SQLite VM steps, checked every kProgressPeriod): a hostile
+/// file cannot make the reader spin forever. Generous enough for recordings of 10^8 rows.
+inline constexpr int kProgressPeriod = 10000;
+inline constexpr std::uint64_t kMaxProgressCalls = 2'000'000;
+
+class ReadOnlyDb {
+ public:
+  explicit ReadOnlyDb(const std::string& path) {
+    rc_ = sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX, nullptr);
+    if (rc_ == SQLITE_OK) {
+      // Untrusted content: no schema-defined functions with side effects, no writable schema.
+      sqlite3_db_config(db_, SQLITE_DBCONFIG_TRUSTED_SCHEMA, 0, nullptr);
+      sqlite3_db_config(db_, SQLITE_DBCONFIG_DEFENSIVE, 1, nullptr);
+      sqlite3_progress_handler(db_, kProgressPeriod, &ReadOnlyDb::onProgress, this);
+    }
+  }
+  ~ReadOnlyDb() { sqlite3_close(db_); }
+  ReadOnlyDb(const ReadOnlyDb&) = delete;
+  ReadOnlyDb& operator=(const ReadOnlyDb&) = delete;
+
+  [[nodiscard]] bool ok() const { return rc_ == SQLITE_OK; }
+  [[nodiscard]] sqlite3* get() const { return db_; }
+  [[nodiscard]] std::string message() const { return db_ ? sqlite3_errmsg(db_) : "out of memory"; }
+  [[nodiscard]] bool interrupted() const { return progressCalls_ > kMaxProgressCalls; }
+
+ private:
+  static int onProgress(void* self) {
+    auto* db = static_cast<ReadOnlyDb*>(self);
+    return ++db->progressCalls_ > kMaxProgressCalls ? 1 : 0;
+  }
+  sqlite3* db_ = nullptr;
+  int rc_ = SQLITE_ERROR;
+  std::uint64_t progressCalls_ = 0;
+};
 
 /// FNV-1a (64 bit) of the WKT, as a signed integer: the `geometry.hash` key. JuPedSim uses
 /// Python's salted hash(); readers only join on it, so any stable 64-bit value fits.

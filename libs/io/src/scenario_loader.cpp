@@ -13,6 +13,7 @@
 #include "json_document.hpp"
 #include "scenario_clips.hpp"
 #include "scenario_parser.hpp"
+#include "scenario_social.hpp"
 #include "scenario_validator.hpp"
 
 namespace throng::io {
@@ -25,6 +26,7 @@ core::Result<LoadedScenario> parseScenario(std::string_view text, const std::str
     core::Diagnostics diagnostics;
     ParsedScenario parsed = parseScenarioJson(doc.value(), diagnostics);
     MotionClips clips = loadScenarioClips(doc.value(), parsed, diagnostics);
+    loadScenarioSocial(doc.value(), parsed, diagnostics);
     std::shared_ptr<const nav::NavMesh> navmesh;
     if (doc.value().root().is_object()) validateScenario(doc.value(), parsed, options, diagnostics, navmesh);
     if (!diagnostics.empty()) {

@@ -112,7 +112,7 @@ void ScenarioReader::readSteering(const Json& v, const std::string& ptr, sim::St
 bool ScenarioReader::readPoint(const Json& v, const std::string& ptr, sim::PointDesc& p) {
   if (!isObject(v, ptr, "a point object {\"id\", \"kind\", \"position\"+\"radius\" or \"polygon\"}")) return false;
   checkKeys(v, ptr,
-            {"id", "kind", "position", "radius", "polygon", "stop", "orientation", "action", "duration", "clip"},
+            {"id", "kind", "position", "radius", "polygon", "stop", "orientation", "action", "duration", "clip", "category"},
             "a point");
   bool ok = true;
   if (auto* id = require(v, ptr, "id", "a unique non-empty string id")) {
@@ -152,6 +152,7 @@ bool ScenarioReader::readPoint(const Json& v, const std::string& ptr, sim::Point
     error(ptr, "point has no region", regionExpected);
     ok = false;
   }
+  if (auto* x = optional(v, "category")) ok = readCategory(*x, ptr + "/category", p.category) && ok;
   // Action-only keys: stop, orientation, action, duration, clip (loaded by scenario_clips).
   const bool action = p.kind == sim::PointKind::Action;
   if (action) p.stop = true;
@@ -252,7 +253,7 @@ bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::
   if (!isObject(v, ptr, "a population object {\"id\", \"groups\", \"size\", \"spawn\", \"goals\", ...}")) return false;
   checkKeys(v, ptr,
             {"id", "groups", "size", "spawn", "start", "goals", "speed", "radius", "wander", "paths", "autoNearDistance",
-             "flocking", "waitTimeout", "groupSpacing", "follow", "guide", "sociological"},
+             "flocking", "waitTimeout", "groupSpacing", "follow", "guide", "sociological", "interests", "interestsPerAgent"},
             "a population");
   bool ok = true;
   p.id = "population" + std::to_string(index);
@@ -304,6 +305,7 @@ bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::
   if (auto* x = optional(v, "speed")) ok = readSpeed(*x, ptr + "/speed", p) && ok;
   if (auto* x = optional(v, "radius")) ok = readFloat(*x, ptr + "/radius", {0.05, 1.0, false, "m"}, p.radius) && ok;
   if (auto* x = optional(v, "wander")) ok = readBool(*x, ptr + "/wander", p.wander) && ok;
+  ok = readInterests(v, ptr, p) && ok;
   return readCrowdKeys(v, ptr, index, p) && ok;
 }
 
@@ -315,7 +317,7 @@ ParsedScenario ScenarioReader::run() {
   if (!isObject(root, "", "a scenario object {\"format\": \"throng/1\", ...}")) return out;
   checkKeys(root, "",
             {"$schema", "format", "name", "seed", "duration", "dt", "walkable", "obstacles", "points", "populations",
-             "steering", "navCellSize"},
+             "steering", "navCellSize", "social"},
             "the scenario");
   if (auto* x = require(root, "", "format", "\"throng/1\"")) {
     if (readString(*x, "/format", "\"throng/1\"", desc.format) && desc.format != "throng/1") {
@@ -404,6 +406,8 @@ ParsedScenario ScenarioReader::run() {
       resolveFollows(out);
     }
   }
+  if (auto* x = optional(root, "social")) readSocial(*x, "/social", desc.social);
+  checkCategories(out);
   out.structureOk = diags_.size() == before;
   return out;
 }

@@ -157,13 +157,17 @@ class ScenarioReader {
 
   /// A motion clip path: a non-empty relative path (resolved against the scenario's directory).
   void readClipPath(const Json& v, const std::string& ptr, std::string& out) {
-    const std::string expected = "a BVH file path relative to the scenario (\"motions/look.bvh\")";
+    readRelativePath(v, ptr, "a BVH file path relative to the scenario (\"motions/look.bvh\")", out);
+  }
+
+  /// A non-empty path relative to the scenario's directory.
+  void readRelativePath(const Json& v, const std::string& ptr, const std::string& expected, std::string& out) {
     std::string path;
     if (!readString(v, ptr, expected, path)) return;
-    if (path.empty()) error(ptr, "empty clip path", expected);
+    if (path.empty()) error(ptr, "empty path", expected);
     else if (path.front() == '/' || path.front() == '\\' || (path.size() > 1 && path[1] == ':'))
-      error(ptr, "absolute clip path " + quote(path), expected, "scenarios stay portable with relative paths");
-    else if (path.find('\0') != std::string::npos) error(ptr, "clip path contains a NUL character", expected);
+      error(ptr, "absolute path " + quote(path), expected, "scenarios stay portable with relative paths");
+    else if (path.find('\0') != std::string::npos) error(ptr, "path contains a NUL character", expected);
     else out = path;
   }
 
@@ -247,6 +251,12 @@ class ScenarioReader {
   bool readGuide(const Json& v, const std::string& ptr, sim::GuideDesc& g);
   bool readGuideScript(const Json& v, const std::string& ptr, std::vector<sim::GuideWaypoint>& out, bool& firstTimeOk);
   bool readSociological(const Json& v, const std::string& ptr, sim::SociologicalDesc& s);
+  // Common Ground (scenario_social_parser.cpp).
+  bool readCategory(const Json& v, const std::string& ptr, std::string& out);
+  bool readInterests(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
+  void readSocial(const Json& v, const std::string& ptr, sim::SocialDesc& s);
+  /// Needs and interests name categories some point has.
+  void checkCategories(const ParsedScenario& out);
   void resolveFollows(ParsedScenario& out);
   bool resolvePoint(const Json& v, const std::string& ptr, std::uint32_t& out);
   void readPolygonList(const Json& root, const std::string& key, bool required, std::vector<core::Polygon>& out,

@@ -19,7 +19,10 @@ enum class GoalState : std::uint8_t {
   Done = 2,     ///< every goal visited, nothing more to do
   Exited = 3,   ///< reached an exit: removed in this tick's emit phase
   WaitingForGroup = 4,  ///< at its group's goal, waiting until the others arrive (flocking rule 4)
+  Scripted = 5,  ///< playing its action script of a Common Ground coordination (social.cpp)
 };
+
+inline constexpr std::uint16_t kNoClip = 0xffff;
 
 inline constexpr std::uint32_t kNoAgent = 0xffffffffu;
 
@@ -60,6 +63,15 @@ struct AgentStore {
   std::vector<std::int32_t> targetSub;    ///< sub-region holding the target (index into pointSubOffset space), -1 none
   std::vector<std::uint16_t> animClip;    ///< motion clip playing (animation.hpp)
   std::vector<float> animPhase;           ///< its phase in [0, 1)
+  // Common Ground (social.cpp).
+  std::vector<std::uint32_t> coordination;  ///< id of the coordination it plays a script in, kNoAgent if none
+  std::vector<std::uint8_t> scriptWalk;     ///< while Scripted: 1 = walking to its target, 0 = standing
+  std::vector<std::uint16_t> scriptClip;    ///< while Scripted: animation clip played, kNoClip = walk/idle by motion
+  std::vector<std::uint32_t> desirePoint;   ///< decide → group pass: generated goal (point), kNoAgent if none
+  std::vector<std::uint8_t> desireTrigger;  ///< its GoalTrigger
+  std::vector<std::uint64_t> socialReady;   ///< first tick a new goal may be generated (cooldown)
+  std::vector<std::uint64_t> interests;     ///< bit c: interested in category c (World::Impl::categories)
+  std::vector<std::vector<std::uint32_t>> visited;  ///< cold: points visited through the goal generator
   // Neighbours found by sense: row indices, maxNeighbours slots per agent.
   std::vector<std::uint32_t> neighbours;
   std::vector<std::uint16_t> neighbourCount;
@@ -76,6 +88,8 @@ struct AgentStore {
     f(cornerIndex); f(corners); f(actionEndTick); f(progressDistance); f(stuckTime);
     f(formVelX); f(formVelY); f(followAgent); f(followUntil); f(socialEffect); f(socialOther);
     f(animClip); f(animPhase); f(goalPending); f(targetSub); f(dynamicTarget);
+    f(coordination); f(scriptWalk); f(scriptClip); f(desirePoint); f(desireTrigger); f(socialReady); f(interests);
+    f(visited);
   }
 
   /// Appends one default-initialised row and returns its index.

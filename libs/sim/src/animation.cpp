@@ -14,6 +14,13 @@ std::vector<ClipInfo> animationClips(const ScenarioDesc& desc) {
       clips.push_back({name, p.clip, p.actionDuration, false});
     }
   }
+  // Clips of the Common Ground micro-behaviours (wave, nod, ...), played from action scripts.
+  for (const auto& entry : desc.social.clipLengths) {
+    const std::string& name = entry.first;
+    if (std::none_of(clips.begin(), clips.end(), [&](const ClipInfo& c) { return c.name == name; })) {
+      clips.push_back({name, desc.social.motions + "/" + name + ".bvh", static_cast<float>(entry.second), false});
+    }
+  }
   return clips;
 }
 

@@ -99,7 +99,9 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
   const std::size_t k = desc.steering.maxNeighbours;
   tasks.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
     ChunkOutput& out = chunks[begin / grain];
+    const nav::NavQuery& query = *worker(tasks).query;
     for (std::size_t row = begin; row < end; ++row) {
+      if (agents.coordination[row] != kNoAgent) continue;  // playing an action script (social.cpp)
       const std::uint32_t id = agents.id[row];
       const GroupState& g = groups[agents.group[row]];
       const PopulationDesc& pop = desc.populations[g.population];
@@ -187,6 +189,8 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
           break;
         }
       }
+      // Common Ground goal generator: needs and places in view.
+      if (agents.goalState[row] == GoalState::Seeking && desc.social.enabled) generateGoal(row, out, query);
       // Sociological model: meeting an agent of another group may make this one join that group
       // or follow that agent for a while (rates per second, one draw per meeting pair and tick).
       agents.socialEffect[row] = 0;

@@ -53,6 +53,10 @@ void World::Impl::decideGroups(const core::TaskSystem& tasks) {
   }
   applyPendingGoals();
   applyGroupCommands();
+  if (desc.social.enabled) {
+    startCoordinations();
+    runCoordinations();
+  }
   if (busyDirty) {
     busyGroups.clear();
     for (std::uint32_t gid = 0; gid < groups.size(); ++gid) if (groupBusy[gid]) busyGroups.push_back(gid);
@@ -62,6 +66,7 @@ void World::Impl::decideGroups(const core::TaskSystem& tasks) {
   updateFollowing();
   if (anySocial) applySocialEffects();
   updateWaiting();
+  if (desc.social.enabled) checkReunions();
   updateLeaders();
   updateGroupShapes(tasks);
 }
@@ -309,6 +314,7 @@ void World::Impl::updateWaiting() {
   for (const std::uint32_t gid : busyGroups) {
     GroupState& g = groups[gid];
     const PopulationDesc& pop = desc.populations[g.population];
+    if (g.coordination != kNoAgent) continue;  // members are playing a script: nobody waits or leaves
     if (!g.flocks(pop) || g.guided) {
       // Without flocking the group's position in its goal list is its leader's.
       if (g.leader != kNoAgent && rowOfId[g.leader] != kNoAgent) g.cursor = agents.goalCursor[rowOfId[g.leader]];
@@ -380,7 +386,7 @@ void World::Impl::updateGroupShapes(const core::TaskSystem& tasks) {
 void World::Impl::shapeGroup(GroupState& g, WorkerScratch& ws) {
   const PopulationDesc& pop = desc.populations[g.population];
   if (g.members.empty()) return;
-  const bool flocking = g.flocks(pop) && g.members.size() >= 2;
+  const bool flocking = g.flocks(pop) && g.members.size() >= 2 && g.coordination == kNoAgent;
   if (!flocking && !g.guided) {
     for (std::uint32_t id : g.members) agents.formVelX[rowOfId[id]] = agents.formVelY[rowOfId[id]] = 0.0f;
     return;

@@ -51,7 +51,9 @@ void World::Impl::integrate(const core::TaskSystem& tasks) {
         out.walkedDistance += core::length(moved);
         out.walkingTime += h;
         // Wanting to walk (a preferred velocity) but barely moving: count toward deadlock breaking.
-        const bool stuck = agents.goalState[row] == GoalState::Seeking && core::length(moved) < 0.1f * agents.speed[row] * h;
+        const bool wants = agents.goalState[row] == GoalState::Seeking ||
+                           (agents.goalState[row] == GoalState::Scripted && agents.scriptWalk[row]);
+        const bool stuck = wants && core::length(moved) < 0.1f * agents.speed[row] * h;
         agents.stuckTime[row] = stuck ? agents.stuckTime[row] + h : 0.0f;
       } else {
         agents.stuckTime[row] = 0.0f;
@@ -66,12 +68,19 @@ void World::Impl::integrate(const core::TaskSystem& tasks) {
         const float total = std::max(h, desc.points[point].actionDuration);
         const float left = static_cast<float>(agents.actionEndTick[row] > tick ? agents.actionEndTick[row] - tick : 0) * h;
         setClip(row, pointClip[point], std::clamp(1.0f - left / total, 0.0f, 0.999f));
+      } else if (agents.goalState[row] == GoalState::Scripted && agents.scriptClip[row] != kNoClip) {
+        // A micro-behaviour clip of an action script (wave, nod, ...), played once.
+        const std::uint16_t clip = agents.scriptClip[row];
+        const float phase = agents.animClip[row] == clip ? agents.animPhase[row] + h / clipDuration[clip] : 0.0f;
+        setClip(row, clip, std::min(phase, 0.999f));
       } else if (step > 0.1f * h) {
         setClip(row, kClipWalk, agents.animPhase[row] + step / kWalkCycleLength);
       } else {
         setClip(row, kClipIdle, agents.animPhase[row] + h / kIdleCycle);
       }
-      if (agents.goalState[row] != GoalState::Acting) {
+      const bool holdsHeading = agents.goalState[row] == GoalState::Acting ||
+                                (agents.goalState[row] == GoalState::Scripted && !agents.scriptWalk[row]);
+      if (!holdsHeading) {
         const float speed = core::length(moved) / h;
         if (speed > kTurnMinSpeed) {
           const core::Vec2 dir = moved / (speed * h);

@@ -215,6 +215,20 @@ void World::Impl::spawnPopulation(std::size_t populationIndex) {
       --stats.scheduled;
       agents.followAgent[row] = kNoAgent;
       agents.targetSub[row] = -1;
+      agents.coordination[row] = kNoAgent;
+      agents.desirePoint[row] = kNoAgent;
+      agents.scriptClip[row] = kNoClip;
+      if (!pop.interests.empty() && pop.interestsPerAgent > 0) {
+        // Common Ground: this agent's interests, drawn from its population's without repetition.
+        core::Rng interestRng(desc.seed, agentId, core::RngPurpose::Social);
+        std::vector<std::string> pool = pop.interests;
+        for (std::uint32_t k = 0; k < pop.interestsPerAgent && !pool.empty(); ++k) {
+          const std::uint32_t pick = interestRng.uniformInt(0, static_cast<std::uint32_t>(pool.size() - 1));
+          const auto c = std::find(categories.begin(), categories.end(), pool[pick]);
+          if (c != categories.end() && c - categories.begin() < 64) agents.interests[row] |= std::uint64_t{1} << (c - categories.begin());
+          pool.erase(pool.begin() + pick);
+        }
+      }
       // Join the group (flocking: everyone walks at the group's speed) and head for its current goal.
       GroupState& group = groups[groupId];
       group.members.push_back(agentId);

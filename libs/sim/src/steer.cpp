@@ -67,7 +67,7 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
 
       // 1. Desired velocity.
       core::Vec2 desired;
-      if (agents.goalState[row] == GoalState::Seeking) {
+      if (agents.goalState[row] == GoalState::Seeking || (agents.goalState[row] == GoalState::Scripted && agents.scriptWalk[row])) {
         std::vector<core::Vec2>& corners = agents.corners[row];
         std::uint32_t& ci = agents.cornerIndex[row];
         const core::Vec2 target{agents.targetX[row], agents.targetY[row]};

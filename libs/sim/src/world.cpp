@@ -48,6 +48,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
                                 : core::bounds(p.polygon));
   }
   w.pointClip = pointClips(desc);
+  w.initSocial();
   w.subOffset.push_back(0);
   for (const PointDesc& p : desc.points) {
     const crowd::Region region = p.polygon.empty() ? crowd::Region::disc(p.position, p.radius) : crowd::Region::poly(p.polygon);
@@ -153,6 +154,10 @@ FramePtr World::snapshot() {
   frame->phase = a.animPhase;
   frame->events = std::move(w.pendingEvents);
   w.pendingEvents.clear();
+  frame->script = std::move(w.pendingScript);
+  w.pendingScript.clear();
+  frame->coordinations = std::move(w.pendingCoordinations);
+  w.pendingCoordinations.clear();
   return frame;
 }
 

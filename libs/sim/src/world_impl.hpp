@@ -7,6 +7,7 @@
 //   integrate.cpp  commit velocities, move along the navmesh, headings, statistics
 //   world.cpp      the tick, emit (removal, frame), creation
 #pragma once
+#include <map>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -55,8 +56,28 @@ struct GroupState {
   bool guidedByApi = false;
   core::Vec2 guide;
   core::Vec2 guidePlanned{1e30f, 1e30f};  ///< guide position the members' paths were planned for
+  // Common Ground (social.cpp).
+  std::uint32_t coordination = kNoAgent;  ///< id of the coordination its members play now
+  std::uint32_t reunite = kNoAgent;       ///< a divide ended: id of that coordination until the group is whole again
 
   [[nodiscard]] bool flocks(const PopulationDesc& pop) const { return pop.flocking && expected >= 2; }
+};
+
+/// One Common Ground interaction being carried out (or a lone visit): the planned action script
+/// and where each actor is in it. Times of entries not yet started shift by `slip`, the overrun of
+/// walks that took longer than planned (paths bend, crowds slow), so every response still starts
+/// after the motion it answers.
+struct ActiveCoordination {
+  CoordinationRecord record;            ///< filled as it goes; published when it ends
+  std::vector<std::uint32_t> actors;    ///< stable ids: [0] A, [1] B, then companions
+  social::ActionScript script;
+  std::vector<std::uint32_t> cursor;    ///< per actor: entry being played (== size: done)
+  std::vector<double> started;          ///< per actor: actual start of the current entry, < 0 not started
+  std::vector<std::uint8_t> left;       ///< per actor: has left the script (resumed or gone)
+  double slip = 0.0;                    ///< [s]
+  double deadline = 0.0;                ///< [s] every actor is released by then, whatever happened
+  bool divides = false;                 ///< a divide plan: the group waits to be whole again
+  bool reunitedOnReturn = false;        ///< divide-and-wait: A walked back to B
 };
 
 /// A command from the World API, applied in order at the start of the next tick.
@@ -83,6 +104,7 @@ struct ChunkOutput {
   double walkingTime = 0.0;
   std::uint64_t socialMeetings = 0;
   std::vector<std::uint32_t> pendingRows;  ///< rows whose goalPending was set, ascending
+  std::vector<std::uint32_t> desireRows;   ///< rows whose desirePoint was set (goal generator), ascending
 };
 
 struct World::Impl {
@@ -133,6 +155,26 @@ struct World::Impl {
   std::vector<crowd::Subregion> subregions;
   std::vector<std::uint32_t> subOffset;
   std::vector<std::uint32_t> subOccupancy;
+
+  // Common Ground (social.cpp).
+  std::vector<std::string> categories;        ///< distinct point categories, in point order
+  std::vector<std::int32_t> pointCategory;    ///< per point: index into categories, -1 none
+  std::vector<std::vector<std::uint32_t>> categoryPoints;  ///< per category: its points
+  std::vector<std::uint32_t> attractionPoints;///< points with a category some population is interested in
+  std::vector<float> clipDuration;            ///< per animation clip (animationClips) [s]
+  std::map<std::string, std::uint16_t, std::less<>> clipIndex;  ///< animation clip name → index
+  std::map<std::uint32_t, ActiveCoordination> coordinations;    ///< active, by id (start order)
+  std::uint32_t nextCoordinationId = 0;
+  std::vector<ScriptRecord> pendingScript;            ///< since the last snapshot
+  std::vector<CoordinationRecord> pendingCoordinations;
+  void initSocial();
+  /// Goal generator for one agent (parallel, in decide): may set desirePoint and list the row.
+  void generateGoal(std::size_t row, ChunkOutput& out, const nav::NavQuery& query);
+  void startCoordinations();    ///< group pass: desires → coordinations (planner) or lone visits
+  void runCoordinations();      ///< group pass: plays every active script one tick
+  void beginEntry(ActiveCoordination& c, std::size_t actor, std::size_t row, double now);
+  void finishCoordination(ActiveCoordination& c, double now);
+  void checkReunions();
 
   // Threads.
   mutable std::vector<WorkerScratch> scratch;

@@ -1,6 +1,6 @@
 // throng::social action script — labels, a text rendering in the shape of Park, Peng, Quek, Cao
 // Tables 3 and 5, and the script invariants (ordered, non-overlapping entries per actor). Reads an
-// ActionScript; writes text.
+// ActionScript (A, B and any companions); writes text.
 #include "throng/social/action_script.hpp"
 
 #include <algorithm>
@@ -20,6 +20,12 @@ std::string stepLabel(const ScriptEntry& entry) {
   return s;
 }
 
+std::string actorLabel(std::size_t i) {
+  if (i == 0) return "A";
+  if (i == 1) return "B";
+  return "C" + std::to_string(i - 1);
+}
+
 namespace {
 
 std::string formatTarget(const ScriptEntry& e) {
@@ -30,8 +36,8 @@ std::string formatTarget(const ScriptEntry& e) {
       std::snprintf(buf, sizeof buf, "(%.2f, %.2f)", e.targetPoint.x, e.targetPoint.y);
       return buf;
     case ScriptEntry::Target::Agent:
-      std::snprintf(buf, sizeof buf, "%s (%.2f, %.2f)", e.targetAgent == Actor::Initiator ? "A" : "B",
-                    e.targetPoint.x, e.targetPoint.y);
+      std::snprintf(buf, sizeof buf, "%s (%.2f, %.2f)", actorLabel(e.targetActor).c_str(), e.targetPoint.x,
+                    e.targetPoint.y);
       return buf;
   }
   return "-";
@@ -42,11 +48,11 @@ std::string formatTarget(const ScriptEntry& e) {
 std::string formatScript(const ActionScript& script) {
   struct Row {
     const ScriptEntry* e;
-    int actor;
+    std::size_t actor;
   };
   std::vector<Row> rows;
-  for (int a = 0; a < 2; ++a) {
-    for (const auto& e : script.actors[static_cast<std::size_t>(a)]) rows.push_back({&e, a});
+  for (std::size_t a = 0; a < script.actors.size(); ++a) {
+    for (const auto& e : script.actors[a]) rows.push_back({&e, a});
   }
   std::stable_sort(rows.begin(), rows.end(), [](const Row& x, const Row& y) {
     if (x.e->start != y.e->start) return x.e->start < y.e->start;
@@ -56,8 +62,9 @@ std::string formatScript(const ActionScript& script) {
   char buf[256];
   for (const Row& r : rows) {
     std::snprintf(buf, sizeof buf, "%-10s %-6s %-12s %-21s %-19s %9.3f  %12.3f  %s\n", stepLabel(*r.e).c_str(),
-                  r.actor == 0 ? "A" : "B", r.e->motion.c_str(), r.e->behaviour.c_str(), formatTarget(*r.e).c_str(),
-                  r.e->start, r.e->duration, std::string(planKindName(r.e->plan)).c_str());
+                  actorLabel(r.actor).c_str(), r.e->motion.c_str(), r.e->behaviour.c_str(),
+                  formatTarget(*r.e).c_str(), r.e->start, r.e->duration,
+                  std::string(planKindName(r.e->plan)).c_str());
     out += buf;
   }
   std::snprintf(buf, sizeof buf, "outcome: %s, plan: %s, t0 = %.3f s, execute at %.3f s, end %.3f s\n",
@@ -70,17 +77,21 @@ std::string formatScript(const ActionScript& script) {
 std::string checkScript(const ActionScript& script) {
   constexpr double kEps = 1e-9;
   double last = script.executeTime;
-  for (int a = 0; a < 2; ++a) {
-    const auto& list = script.actors[static_cast<std::size_t>(a)];
-    const char* who = a == 0 ? "A" : "B";
+  for (std::size_t a = 0; a < script.actors.size(); ++a) {
+    const auto& list = script.actors[a];
+    const std::string who = actorLabel(a);
     for (std::size_t i = 0; i < list.size(); ++i) {
       const ScriptEntry& e = list[i];
       if (!std::isfinite(e.start) || !std::isfinite(e.duration) || e.duration < 0.0) {
-        return std::string(who) + " entry " + std::to_string(i) + " has a bad start or duration";
+        return who + " entry " + std::to_string(i) + " has a bad start or duration";
       }
-      if (e.start + kEps < script.startTime) return std::string(who) + " entry " + std::to_string(i) + " starts before t0";
+      if (e.start + kEps < script.startTime) return who + " entry " + std::to_string(i) + " starts before t0";
       if (i > 0 && e.start + kEps < list[i - 1].end()) {
-        return std::string(who) + " entry " + std::to_string(i) + " (" + e.behaviour + ") overlaps the previous one";
+        return who + " entry " + std::to_string(i) + " (" + e.behaviour + ") overlaps the previous one";
+      }
+      if (e.targetType == ScriptEntry::Target::Agent && e.targetActor >= script.actors.size()) {
+        return who + " entry " + std::to_string(i) + " (" + e.behaviour + ") targets actor " +
+               std::to_string(e.targetActor) + ", not in the script";
       }
       last = std::max(last, e.end());
     }

@@ -16,6 +16,7 @@ enum class RngPurpose : std::uint32_t {
   Target = 5,
   Behaviour = 6,
   Bench = 7,
+  Social = 8,  ///< Common Ground: goal generator (needs, attraction, interests)
 };
 
 /// SplitMix64 finaliser: a well-mixed 64-bit hash of x.

@@ -7,6 +7,9 @@
 #include <vector>
 
 #include "throng/core/geometry.hpp"
+#include "throng/social/behaviour_db.hpp"
+#include "throng/social/coordination.hpp"
+#include "throng/social/sensing.hpp"
 
 namespace throng::sim {
 
@@ -34,6 +37,9 @@ struct PointDesc {
                                 ///< clip's duration when a clip is given
   std::string clip;        ///< Action only: motion clip (BVH) path as written in the scenario,
                            ///< relative to its directory; empty for none. io loads the clip.
+  /// What the place is for the goal generator of the social model ("restroom", "shoes", "meeting");
+  /// empty for none. Letters, digits, '_' and '-'.
+  std::string category;
 };
 
 enum class SpawnKind : std::uint8_t { Polygon, Position, Point };
@@ -113,6 +119,10 @@ struct PopulationDesc {
   FollowDesc follow;
   GuideDesc guide;
   SociologicalDesc sociological;
+  /// Common Ground goal generator: categories of places (PointDesc::category) its members may be
+  /// attracted by; each agent draws `interestsPerAgent` of them (seeded, without repetition).
+  std::vector<std::string> interests;
+  std::uint32_t interestsPerAgent = 2;
 };
 
 /// Tunables of the operational model; every value has units and limits (after Recast's rcConfig).
@@ -132,6 +142,41 @@ struct SteeringDesc {
   float lodDistance = 0.0f;             ///< [m]
 };
 
+/// A stochastic goal of the goal generator (Park et al. §3.3): at `rate` per agent and second an
+/// agent wants the nearest place of `category` (a restroom visit).
+struct NeedDesc {
+  std::string category;
+  float rate = 0.0005f;       ///< [1/s per agent] [Limit: >= 0]
+  float expectedVisit = 120.0f;  ///< what the macro-plan rules compare [s] [Limit: >= 0]
+  social::GoalKind kind = social::GoalKind::Personal;
+};
+
+/// Environmentally driven goals: an agent that sees a place of a category among its interests
+/// (PopulationDesc::interests) wants it with `probability` (one draw per agent and place).
+struct AttractionDesc {
+  float probability = 0.1f;      ///< [0, 1]
+  float expectedVisit = 60.0f;   ///< [s] [Limit: >= 0]
+  float checkPeriod = 0.5f;      ///< how often an agent looks around [s] [Limit: > 0]
+};
+
+/// The Common Ground model (Park, Peng, Quek, Cao; docs/social-model.md). io loads the databases
+/// and clip lengths; the simulation only reads them.
+struct SocialDesc {
+  bool enabled = false;          ///< the section is present: goals are generated
+  bool commonGround = true;      ///< groups coordinate before they divide; off: the agent just goes
+  social::SensoryParams senses;
+  std::vector<NeedDesc> needs;
+  AttractionDesc attraction;
+  social::CoordinationParams coordination;
+  float cooldown = 60.0f;        ///< an agent gets no new goal this long after a visit [s] [Limit: >= 0]
+  std::string microPath;         ///< micro-behaviour database as written (relative to the scenario); empty = built in
+  std::string macroPath;         ///< macro-plan database as written; empty = built in
+  std::string motions = "motions";  ///< directory of the clips (<clip>.bvh), relative to the scenario
+  social::MicroBehaviourDb micro;
+  social::MacroPlanDb macro;
+  social::ClipLengths clipLengths;  ///< every clip the micro-behaviour database plays, from BVH files
+};
+
 struct ScenarioDesc {
   std::string format = "throng/1";
   std::string name;
@@ -144,6 +189,7 @@ struct ScenarioDesc {
   std::vector<PopulationDesc> populations;
   SteeringDesc steering;
   float navCellSize = 0.0f;  ///< navmesh voxel size [m]; 0 = chosen from the geometry
+  SocialDesc social;
 
   /// The largest body radius of any population (the navmesh is eroded by it).
   [[nodiscard]] float maxRadius() const;

@@ -1,11 +1,12 @@
 // throng::social action script — the timed output of the coordination planner (Park, Peng, Quek,
-// Cao §3.1–3.2, Tables 3 and 5): per actor a list of motions with activation times, targets, the
-// grounding step (Table 1) and the macro-plan. A rendering engine or the simulation's decide phase
-// reads it; nothing writes it but planCoordination.
+// Cao §3.1–3.2, Tables 3 and 5): per actor of the group (A, B, then the companions) a list of
+// motions with activation times, targets, the grounding step (Table 1) and the macro-plan. A
+// rendering engine or the simulation's decide phase reads it; nothing writes it but planCoordination.
 #pragma once
-#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "throng/core/vec2.hpp"
@@ -24,7 +25,8 @@ enum class GroundingStep : std::uint8_t {
   Execute = 7,
 };
 
-/// The two actors of an interaction: A (index 0) initiates, B (index 1) responds.
+/// The two principal actors of an interaction: A (index 0) initiates, B (index 1) responds. The
+/// companions (the other group mates) follow at indices 2, 3, ... of ActionScript::actors.
 enum class Actor : std::uint8_t { Initiator = 0, Respondent = 1 };
 
 struct ScriptEntry {
@@ -34,7 +36,7 @@ struct ScriptEntry {
   std::string behaviour;      ///< micro-behaviour name, or macro step ("walk_to_goal", "stay", "wait", ...)
   enum class Target : std::uint8_t { None, Point, Agent } targetType = Target::None;
   core::Vec2 targetPoint{};   ///< [m] when targetType == Point (also set to the agent's position for Agent)
-  Actor targetAgent = Actor::Initiator;  ///< when targetType == Agent
+  std::uint32_t targetActor = 0;  ///< index into ActionScript::actors when targetType == Agent
   GroundingStep step = GroundingStep::Initiate;
   int part = 0;               ///< proposal part for steps 4 and 5: 1 = "a", 2 = "b", ...; 0 otherwise
   int attempt = 0;            ///< 0 for the first try of a step, then 1, 2, ... (retries)
@@ -49,14 +51,19 @@ enum class Outcome : std::uint8_t {
 };
 
 struct ActionScript {
-  std::array<std::vector<ScriptEntry>, 2> actors;  ///< [Initiator], [Respondent], each in time order
+  /// One list per actor, each in time order: [0] = A (initiator), [1] = B (respondent), [2 + k] =
+  /// companion k of CoordinationInput::companions. Size 2 + number of companions (always >= 2).
+  std::vector<std::vector<ScriptEntry>> actors = std::vector<std::vector<ScriptEntry>>(2);
   Outcome outcome = Outcome::Failed;
   PlanKind plan = PlanKind::Resume;   ///< executed plan: the chosen one, or the fallback on failure
   double startTime = 0.0;             ///< t_0 [s]
   double executeTime = 0.0;           ///< t_8 [s]: when the macro-plan (or fallback) starts
-  double endTime = 0.0;               ///< [s] end of the last entry of either actor
+  double endTime = 0.0;               ///< [s] end of the last entry of any actor
 
-  [[nodiscard]] const std::vector<ScriptEntry>& of(Actor a) const { return actors[static_cast<int>(a)]; }
+  [[nodiscard]] const std::vector<ScriptEntry>& of(Actor a) const { return actors[static_cast<std::size_t>(a)]; }
+  [[nodiscard]] std::size_t actorCount() const { return actors.size(); }
+  /// Actor i's entries: 0 = A, 1 = B, 2 + k = companion k. Precondition: i < actorCount().
+  [[nodiscard]] const std::vector<ScriptEntry>& actor(std::size_t i) const { return actors[i]; }
 };
 
 [[nodiscard]] std::string_view outcomeName(Outcome outcome);
@@ -64,12 +71,17 @@ struct ActionScript {
 /// "4a", "5b", "2" (attempt > 0 appends "/retry N").
 [[nodiscard]] std::string stepLabel(const ScriptEntry& entry);
 
+/// "A", "B", "C1", "C2", ...: the name of actor index i in formatScript.
+[[nodiscard]] std::string actorLabel(std::size_t i);
+
 /// The script as a text table in the shape of Tables 3 and 5: one row per entry, ordered by start
-/// time, with columns step, actor, motion, behaviour, target, start, duration.
+/// time (then step, then actor), with columns step, actor (A, B, C1, C2, ...), motion, behaviour,
+/// target, start, duration, plan.
 [[nodiscard]] std::string formatScript(const ActionScript& script);
 
-/// Checks a script's invariants: each actor's entries start in order and never overlap, every
-/// duration is finite and >= 0, startTime <= executeTime <= endTime, endTime is the last end.
+/// Checks a script's invariants (for any number of actor lists): each actor's entries start in order, never
+/// before t0, and never overlap; every duration is finite and >= 0; agent targets name an actor of
+/// the script; startTime <= executeTime <= endTime, endTime is the last end.
 /// Returns an empty string when they hold, else what is wrong.
 [[nodiscard]] std::string checkScript(const ActionScript& script);
 

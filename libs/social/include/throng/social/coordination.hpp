@@ -1,11 +1,13 @@
 // throng::social coordination planner — the Common Ground grounding process of Park, Peng, Quek,
 // Cao (Table 1) as a state machine per interaction: initiate → request attention → give attention
 // → propose a macro-plan → acknowledge → confirm → execute (or fail and fall back). Pure: reads
-// the two actors' bodies, their Relation, target points, clip lengths and the two behaviour
-// databases; writes a timed ActionScript (Tables 3 and 5). Times are chained as in the paper: each
-// response starts when the previous motion ends; clip motions last their clip length, walking
-// distance / speed, turning angle / turning rate. Every step has a response timeout and a bounded
-// number of attempts (another micro-behaviour, or moving closer), so every coordination ends.
+// the group's bodies (initiator A, respondent B, companions), their Relations, target points, clip
+// lengths and the two behaviour databases; writes a timed ActionScript (Tables 3 and 5) with one
+// list per actor. Times are chained as in the paper: each response starts when the previous motion
+// ends; clip motions last their clip length, walking distance / speed, turning angle / turning rate.
+// B and every companion answer each of A's signals in parallel; A goes on when the last answer
+// ends. Every step has a response timeout and a bounded number of attempts (another
+// micro-behaviour, or moving closer), so every coordination ends.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -59,9 +61,17 @@ struct Goal {
   std::optional<core::Vec2> next; ///< x_q for divide-and-proceed; none: x_r
 };
 
+/// A group mate other than A and B. Companions answer every signal of A in parallel with B (or
+/// turn toward A when they cannot perceive it) and take B's part in the macro-plan.
+struct Companion {
+  ActorBody body;
+  Relation relation = Relation::A2;  ///< of A with respect to this companion, at t0 (assess())
+};
+
 struct CoordinationInput {
   ActorBody initiator;                      ///< A
   ActorBody respondent;                     ///< B
+  std::vector<Companion> companions;        ///< C1, C2, ...: script actors 2, 3, ... (may be empty)
   Relation relation = Relation::A2;         ///< of A with respect to B (assess(), relations.cpp)
   std::optional<core::Vec2> viewPoint;      ///< x_i: a point in B's field of view (pointInView)
   std::optional<core::Vec2> hearingPoint;   ///< x_j: a point within B's hearing range
@@ -71,9 +81,10 @@ struct CoordinationInput {
   double startTime = 0.0;                   ///< t_0 [s]
   std::uint64_t seed = 0;                   ///< scenario seed
   ActorStyle initiatorStyle;
-  ActorStyle respondentStyle;
+  ActorStyle respondentStyle;               ///< B's, also used by every companion (own random stream)
   /// Responses B fails to give, consumed in order, one per expected response (true = lost: B does
   /// not react and A times out); past the end every response arrives. For tests and disturbances.
+  /// Companions never lose responses.
   std::vector<bool> lostResponses;
   bool respondentAbsent = false;            ///< B never responds (all responses lost)
 };
@@ -97,8 +108,10 @@ struct Databases {
                                                          const std::vector<std::size_t>& candidates,
                                                          const ActorStyle& style, core::Rng& rng);
 
-/// An upper bound [s] on executeTime - startTime for this input: the initiation walk, then per
-/// step maxAttempts × (longest motion + timeout), moving closer included.
+/// An upper bound [s] on endTime - startTime (hence also on executeTime - startTime) for this
+/// input, companions included: the initiation walk and moving closer, per step maxAttempts ×
+/// (signal + slowest answer + timeout), the confirmation, then the longest macro-plan (or
+/// fallback) with the farthest actor walking at the slowest speed and the longest visit.
 [[nodiscard]] double coordinationTimeBound(const CoordinationInput& in, const Databases& dbs,
                                            const ClipLengths& clips, const CoordinationParams& params);
 

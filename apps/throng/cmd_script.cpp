@@ -1,0 +1,247 @@
+// `throng script FILE.sqlite --agent ID [--coordination N] [--json]` — the action script of one
+// character (Park, Peng, Quek, Cao, Tables 3 and 5): for every Common Ground coordination the agent
+// took part in, a header and one row per entry of all its actors ordered by start time, plus the
+// agent's trajectory. --json prints one object an animation engine can read: the coordinations
+// with their entries and the per-frame trajectory (time, position, velocity, heading, clip).
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "output.hpp"
+#include "throng/io/recorder.hpp"
+#include "throng/io/recording_social.hpp"
+
+namespace throng::cli {
+namespace {
+
+using nlohmann::json;
+
+/// "A", "B", "C1".. from the coordination's actor list; the role when the agent is not in it.
+std::string actorLabel(const io::CoordinationInfo& c, const io::ScriptEntryInfo& e) {
+  if (e.agent == c.initiator) return "A";
+  for (std::size_t i = 0; i < c.respondents.size(); ++i) {
+    if (c.respondents[i] == e.agent) return i == 0 ? "B" : fmt::format("C{}", i);
+  }
+  return e.role == "initiator" ? "A" : e.role == "respondent" ? "B" : "C?";
+}
+
+std::string timeText(double t) { return std::isfinite(t) ? fmt::format("{:.2f}", t) : "-"; }
+
+std::string targetText(const io::ScriptEntryInfo& e) {
+  const std::string at = std::isfinite(e.targetX) && std::isfinite(e.targetY)
+                             ? fmt::format("({:.2f}, {:.2f})", e.targetX, e.targetY) : std::string("(?)");
+  if (e.targetType == "agent") return fmt::format("agent {} {}", e.targetAgent.value_or(0), at);
+  if (e.targetType == "point") return at;
+  return "-";
+}
+
+json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json entryJson(const io::CoordinationInfo& c, const io::ScriptEntryInfo& e) {
+  json target{{"type", e.targetType}};
+  if (e.targetAgent) target["agent"] = *e.targetAgent;
+  if (e.targetType != "none") {
+    target["x"] = number(e.targetX);
+    target["y"] = number(e.targetY);
+  }
+  return {{"step", io::scriptStepLabel(e.step, e.part, 0)},
+          {"step_number", e.step},
+          {"part", e.part},
+          {"attempt", e.attempt},
+          {"actor", actorLabel(c, e)},
+          {"agent", e.agent},
+          {"role", e.role},
+          {"seq", e.seq},
+          {"plan", e.plan},
+          {"motion", e.motion},
+          {"behaviour", e.behaviour},
+          {"target", target},
+          {"planned_start", number(e.plannedStart)},
+          {"planned_duration", number(e.plannedDuration)},
+          {"start", number(e.start)},
+          {"duration", number(e.duration)}};
+}
+
+json coordinationJson(const io::CoordinationInfo& c) {
+  return {{"id", c.id},
+          {"group", c.group},
+          {"initiator", c.initiator},
+          {"respondents", c.respondents},
+          {"goal_point", {{"index", c.goalPoint}, {"id", c.goalPointId}, {"category", c.goalCategory}}},
+          {"goal_kind", c.goalKind},
+          {"trigger", c.trigger},
+          {"relation", c.relation.empty() ? json(nullptr) : json(c.relation)},
+          {"plan", c.plan},
+          {"outcome", c.outcome},
+          {"retries", c.retries},
+          {"t0", number(c.start)},
+          {"t8", number(c.execute)},
+          {"end", number(c.end)}};
+}
+
+void printCoordination(const io::CoordinationInfo& c, const std::vector<io::ScriptEntryInfo>& entries) {
+  std::string respondents;
+  for (std::size_t i = 0; i < c.respondents.size(); ++i) {
+    respondents += fmt::format("{}{} {}", i == 0 ? "" : ", ", i == 0 ? std::string("B") : fmt::format("C{}", i),
+                               c.respondents[i]);
+  }
+  printLine(stdout, fmt::format("coordination {}  group {}  initiator A {}  respondents {}", c.id, c.group,
+                                c.initiator, respondents.empty() ? "none" : respondents));
+  printLine(stdout, fmt::format("  goal point {} ({}{})  {} goal by {}  relation {}  plan {}  outcome {}{}",
+                                c.goalPoint, c.goalPointId.empty() ? "?" : c.goalPointId,
+                                c.goalCategory.empty() ? "" : ", " + c.goalCategory, c.goalKind, c.trigger,
+                                c.relation.empty() ? "-" : c.relation, c.plan, c.outcome,
+                                c.retries > 0 ? fmt::format(" ({} {})", c.retries, c.retries == 1 ? "retry" : "retries") : ""));
+  printLine(stdout, fmt::format("  t0 {} s  t8 {} s  end {} s", timeText(c.start), timeText(c.execute), timeText(c.end)));
+  printLine(stdout, fmt::format("  {:<12} {:<10} {:<14} {:<20} {:<28} {:>9} {:>9} {:>9}", "step", "actor", "motion",
+                                "behaviour", "target", "planned", "start", "duration"));
+  if (entries.empty()) printLine(stdout, "  (no script entries recorded)");
+  for (const io::ScriptEntryInfo& e : entries) {
+    printLine(stdout, fmt::format("  {:<12} {:<10} {:<14} {:<20} {:<28} {:>9} {:>9} {:>9}",
+                                  io::scriptStepLabel(e.step, e.part, e.attempt),
+                                  fmt::format("{} {}", actorLabel(c, e), e.agent), e.motion, e.behaviour, targetText(e),
+                                  timeText(e.plannedStart), timeText(e.start), timeText(e.duration)));
+  }
+  printLine(stdout, "");
+}
+
+}  // namespace
+
+CLI::App* addScriptCommand(CLI::App& app, ScriptOptions& options) {
+  CLI::App* cmd = app.add_subcommand("script", "Show the action script of one character");
+  cmd->footer(
+      "Show the Common Ground action script of one character (Park et al., Tables 3 and 5): for every\n"
+      "coordination it took part in, the coordination (group, actors, goal, relation, plan, outcome,\n"
+      "t0/t8/end) and every entry of all its actors by start time (step, actor, motion, behaviour,\n"
+      "target, planned start, start, duration), then the character's trajectory.\n"
+      "--json prints one object with the coordinations, their entries and the per-frame trajectory.");
+  cmd->add_option("recording", options.recording, "Recording written by 'throng run'")
+      ->required()
+      ->type_name("FILE.sqlite");
+  cmd->add_option("--agent", options.agent, "Stable agent id (spawn order, 0-based)")->required()->type_name("ID");
+  cmd->add_option("--coordination", options.coordination, "Only this coordination id")->type_name("N");
+  cmd->add_flag("--json", options.json, "Print one JSON object (coordinations, entries, trajectory)");
+  return cmd;
+}
+
+int runScript(const ScriptOptions& options) {
+  const std::string& path = options.recording;
+  if (auto missing = checkInputFile(path, "recording"); !missing.empty()) {
+    printDiagnostics(missing);
+    return kExitFailure;
+  }
+  const auto hasCg = io::hasCommonGroundData(path);
+  if (!hasCg) {
+    printDiagnostics(hasCg.errors());
+    return kExitFailure;
+  }
+  if (!hasCg.value()) {
+    printLine(stderr, fmt::format("{}: no Common Ground data in {}; expected a recording of a scenario with a "
+                                  "\"social\" section", path, path));
+    return kExitFailure;
+  }
+  auto track = io::readAgentTrack(path, options.agent);
+  if (!track) {
+    printDiagnostics(track.errors());
+    return kExitFailure;
+  }
+  if (!track->known) {
+    const auto summary = io::readRecordingSummary(path);
+    printLine(stderr, fmt::format("{}: agent {} not found; expected a stable agent id{}", path, options.agent,
+                                  summary && summary->agents > 0
+                                      ? fmt::format(" (the recording has {} agents)", summary->agents) : ""));
+    return kExitFailure;
+  }
+  const auto own = io::readScript(path, options.agent);
+  const auto all = io::readCoordinations(path);
+  if (!own || !all) {
+    printDiagnostics(!own ? own.errors() : all.errors());
+    return kExitFailure;
+  }
+  std::set<std::uint32_t> ids;
+  for (const auto& e : own.value()) ids.insert(e.coordination);
+  for (const auto& c : all.value()) {  // a lone visit, or an actor whose entries were not recorded
+    if (c.initiator == options.agent ||
+        std::find(c.respondents.begin(), c.respondents.end(), options.agent) != c.respondents.end()) {
+      ids.insert(c.id);
+    }
+  }
+  if (options.coordination) {
+    if (ids.count(*options.coordination) == 0) {
+      printLine(stderr, fmt::format("{}: agent {} took no part in coordination {}; expected one of: {}", path,
+                                    options.agent, *options.coordination,
+                                    ids.empty() ? std::string("none") : fmt::format("{}", fmt::join(ids, ", "))));
+      return kExitFailure;
+    }
+    ids = {*options.coordination};
+  }
+
+  json coordinations = json::array();
+  for (const std::uint32_t id : ids) {
+    const auto& list = all.value();
+    const auto it = std::find_if(list.begin(), list.end(), [&](const io::CoordinationInfo& c) { return c.id == id; });
+    io::CoordinationInfo c;
+    if (it != list.end()) {
+      c = *it;
+    } else {  // entries whose coordination row is missing (a run cut short): show them anyway
+      c.id = id;
+      c.initiator = options.agent;
+      c.plan = c.outcome = c.goalKind = c.trigger = "?";
+      c.start = c.execute = c.end = std::nan("");
+    }
+    auto entries = io::readCoordinationScript(path, id);
+    if (!entries) {
+      printDiagnostics(entries.errors());
+      return kExitFailure;
+    }
+    if (options.json) {
+      json j = coordinationJson(c);
+      j["entries"] = json::array();
+      for (const auto& e : *entries) j["entries"].push_back(entryJson(c, e));
+      coordinations.push_back(std::move(j));
+    } else {
+      printCoordination(c, *entries);
+    }
+  }
+
+  const auto& samples = track->samples;
+  if (options.json) {
+    json traj = json::array();
+    for (const io::TrackSample& s : samples) {
+      json row{{"frame", s.frame}, {"time", number(s.time)}, {"x", number(s.x)},      {"y", number(s.y)},
+               {"vx", number(s.vx)}, {"vy", number(s.vy)},   {"ori_x", number(s.oriX)}, {"ori_y", number(s.oriY)}};
+      if (s.clip >= 0) {
+        row["clip"] = s.clip;
+        if (static_cast<std::size_t>(s.clip) < track->clips.size()) row["clip_name"] = track->clips[static_cast<std::size_t>(s.clip)];
+        row["phase"] = number(s.phase);
+      }
+      traj.push_back(std::move(row));
+    }
+    json out{{"recording", path},
+             {"agent", options.agent},
+             {"group", track->group ? json(*track->group) : json(nullptr)},
+             {"population", track->population},
+             {"coordinations", std::move(coordinations)},
+             {"trajectory", std::move(traj)}};
+    printLine(stdout, out.dump());
+    return kExitOk;
+  }
+  if (ids.empty()) printLine(stdout, fmt::format("agent {} took part in no coordination", options.agent));
+  if (samples.empty()) {
+    printLine(stdout, fmt::format("trajectory   agent {}: no recorded frames", options.agent));
+  } else {
+    printLine(stdout, fmt::format("trajectory   agent {}{}: {} frames, t = {:.2f} .. {:.2f} s, from ({:.2f}, {:.2f}) to ({:.2f}, {:.2f})",
+                                  options.agent, track->group ? fmt::format(" (group {})", *track->group) : "",
+                                  samples.size(), samples.front().time, samples.back().time, samples.front().x,
+                                  samples.front().y, samples.back().x, samples.back().y));
+  }
+  return kExitOk;
+}
+
+}  // namespace throng::cli

@@ -1,0 +1,95 @@
+// Loads a scenario's Common Ground databases and clip lengths (see scenario_social.hpp).
+#include "scenario_social.hpp"
+
+#include <filesystem>
+#include <set>
+
+#include "social_defaults.hpp"
+#include "throng/io/bvh.hpp"
+#include "throng/io/social_db.hpp"
+#include "throng/social/behaviour_db.hpp"
+
+namespace throng::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string quote(const std::string& s) { return "\"" + s.substr(0, 120) + "\""; }
+
+}  // namespace
+
+void loadScenarioSocial(const JsonDocument& doc, ParsedScenario& parsed, core::Diagnostics& diagnostics) {
+  sim::SocialDesc& social = parsed.desc.social;
+  if (!social.enabled) return;
+  const fs::path dir = fs::path(doc.source()).parent_path();
+  auto fail = [&](const std::string& ptr, std::string what, std::string expected, std::string hint = {}) {
+    diagnostics.push_back(doc.diagnostic(ptr, std::move(what), std::move(expected), std::move(hint)));
+  };
+  auto exists = [&](const std::string& rel) {
+    std::error_code ec;
+    return fs::is_regular_file(dir / rel, ec);
+  };
+  // Databases: the scenario's files, else the built-in ones.
+  core::Result<social::MicroBehaviourDb> micro = core::Diagnostic{};
+  if (social.microPath.empty()) {
+    micro = parseMicroBehaviours(builtinMicroBehaviours(), "data/social/micro_behaviours.json (built in)");
+  } else if (!exists(social.microPath)) {
+    fail("/social/microBehaviours", "cannot read " + quote(social.microPath) + ": no such file",
+         "a micro-behaviour database (JSON) relative to the scenario");
+    return;
+  } else {
+    micro = loadMicroBehaviours((dir / social.microPath).lexically_normal().string());
+  }
+  if (!micro.ok()) {
+    diagnostics.insert(diagnostics.end(), micro.errors().begin(), micro.errors().end());
+    return;
+  }
+  social.micro = std::move(micro).value();
+  core::Result<social::MacroPlanDb> macro = core::Diagnostic{};
+  if (social.macroPath.empty()) {
+    macro = parseMacroPlans(builtinMacroPlans(), "data/social/macro_plans.json (built in)", social.micro);
+  } else if (!exists(social.macroPath)) {
+    fail("/social/macroPlans", "cannot read " + quote(social.macroPath) + ": no such file",
+         "a macro-plan database (JSON) relative to the scenario");
+    return;
+  } else {
+    macro = loadMacroPlans((dir / social.macroPath).lexically_normal().string(), social.micro);
+  }
+  if (!macro.ok()) {
+    diagnostics.insert(diagnostics.end(), macro.errors().begin(), macro.errors().end());
+    return;
+  }
+  social.macro = std::move(macro).value();
+  // Clip lengths: every clip a micro-behaviour plays, from <motions>/<clip>.bvh.
+  std::set<std::string> clips;
+  for (const auto& b : social.micro.behaviours) {
+    if (b.clip != social::kWalkMotion && b.clip != social::kTurnMotion && b.clip != social::kIdleMotion) clips.insert(b.clip);
+  }
+  const std::string ptr = doc.root().contains("social") && doc.root()["social"].contains("motions") ? "/social/motions" : "/social";
+  for (const std::string& clip : clips) {
+    const fs::path rel = fs::path(social.motions) / (clip + ".bvh");
+    const fs::path path = (dir / rel).lexically_normal();
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+      fail(ptr, "micro-behaviour clip " + quote(clip) + ": cannot read " + quote(rel.generic_string()) + ": no such file",
+           "a BVH file <motions>/<clip>.bvh for every clip the micro-behaviour database plays",
+           "\"motions\" is the clip directory relative to the scenario (now " + quote(social.motions) + ")");
+      continue;
+    }
+    auto loaded = loadBvhFile(path.string());
+    if (!loaded.ok()) {
+      diagnostics.insert(diagnostics.end(), loaded.errors().begin(), loaded.errors().end());
+      fail(ptr, "micro-behaviour clip " + quote(rel.generic_string()) + " is not valid BVH", "a valid BVH file");
+      continue;
+    }
+    const double length = loaded.value().duration();
+    if (!(length > 0.0 && length <= 3600.0)) {
+      fail(ptr, "micro-behaviour clip " + quote(rel.generic_string()) + " lasts " + std::to_string(length) + " s",
+           "a clip longer than 0 s and at most 3600 s");
+      continue;
+    }
+    social.clipLengths[clip] = length;
+  }
+}
+
+}  // namespace throng::io
