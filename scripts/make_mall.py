@@ -421,7 +421,7 @@ def build_scenario(seed, core_only=False, probe=False):
                             "goals": [p["id"] for p in points if p["kind"] != "exit"] + ["entrance-east"],
                             "radius": 0.22})
 
-    scenario = {"format": "throng/1", "name": "mall", "seed": seed, "duration": 1200,
+    scenario = {"format": "throng/1", "name": "mall", "seed": seed, "duration": 1800,
                 "walkable": mall.walkable, "obstacles": mall.obstacles, "points": points, "populations": populations}
     if not core_only:
         scenario["social"] = {

@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
@@ -116,6 +119,66 @@ TEST_F(SocialCommands, RecordingWithoutCommonGroundTablesSaysSo) {
   EXPECT_EQ(runThrong({"info", "cg.sqlite"}, dir_.path()).exitCode, 0);
   const CliResult missing = runThrong({"metrics", "nope.sqlite"}, dir_.path());
   EXPECT_EQ(missing.exitCode, 1);
+}
+
+}  // namespace
+}  // namespace throng::e2e
+
+namespace throng::e2e {
+namespace {
+
+/// A small Common Ground scenario in `dir` (with a copy of the bundled clips): a corridor, a
+/// restroom off it, three groups of three with a high restroom rate.
+std::string writeSocialScenario(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  fs::create_directories(dir / "motions");
+  for (const auto& e : fs::directory_iterator(fs::path(THRONG_SOURCE_DIR) / "scenarios" / "motions")) {
+    fs::copy_file(e.path(), dir / "motions" / e.path().filename(), fs::copy_options::overwrite_existing);
+  }
+  std::ofstream(dir / "cg.json") << R"({"format": "throng/1", "name": "cg", "seed": 4, "duration": 300,
+  "walkable": [[[0,0],[60,0],[60,10],[0,10]], [[40,10],[46,10],[46,16],[40,16]]],
+  "points": [{"id": "wc", "kind": "interest", "position": [43, 13], "radius": 1.5, "category": "restroom"},
+             {"id": "out", "kind": "exit", "polygon": [[58,0],[60,0],[60,10],[58,10]]}],
+  "populations": [{"id": "g", "groups": 3, "size": 3, "spawn": {"polygon": [[1,1],[10,1],[10,9],[1,9]]}, "goals": ["out"]}],
+  "social": {"needs": [{"category": "restroom", "rate": 0.05}], "cooldown": 1000}})";
+  return "cg.json";
+}
+
+TEST(SocialRun, CommonGroundOnAndOffFromTheCommandLine) {
+  ScratchDir dir{"social-run"};
+  const std::string scenario = writeSocialScenario(dir.path());
+  for (const std::string mode : {"on", "off"}) {
+    const std::string out = "cg-" + mode + ".sqlite";
+    const CliResult run = runThrong({"run", scenario, "--common-ground", mode, "--out", out, "--quiet"}, dir.path());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const CliResult metrics = runThrong({"metrics", out, "--json"}, dir.path());
+    ASSERT_EQ(metrics.exitCode, 0) << metrics.err;
+    const json m = json::parse(metrics.out);
+    EXPECT_EQ(m["common_ground"], mode);
+    const json& outcomes = m["coordinations"]["by_outcome"];
+    ASSERT_GE(m["coordinations"]["total"].get<int>(), 1);
+    if (mode == "on") {
+      EXPECT_GE(outcomes.value("grounded", 0) + outcomes.value("failed", 0), 1) << m.dump();
+    } else {
+      EXPECT_EQ(outcomes.value("alone", 0), m["coordinations"]["total"].get<int>()) << m.dump();
+    }
+    EXPECT_EQ(m["arrivals"]["exits"], 9) << "everybody left";
+  }
+  // The initiator's script: the grounding steps, then the plan, with planned and simulated times.
+  const CliResult first = runThrong({"script", "cg-on.sqlite", "--agent", "0", "--json"}, dir.path());
+  ASSERT_EQ(first.exitCode, 0) << first.err;
+  EXPECT_TRUE(json::parse(first.out).contains("trajectory"));
+  const CliResult bad = runThrong({"run", scenario, "--common-ground", "maybe", "--out", "x.sqlite"}, dir.path());
+  EXPECT_EQ(bad.exitCode, 2) << bad.err;
+  EXPECT_TRUE(contains(bad.err, "--common-ground")) << bad.err;
+}
+
+TEST(SocialRun, CommonGroundSwitchNeedsASocialSection) {
+  ScratchDir dir{"social-run-none"};
+  const std::string corridor = std::string(THRONG_SOURCE_DIR) + "/scenarios/corridor.json";
+  const CliResult r = runThrong({"run", corridor, "--common-ground", "off", "--out", "x.sqlite", "--quiet"}, dir.path());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_TRUE(contains(r.err, "no \"social\" section")) << r.err;
 }
 
 }  // namespace

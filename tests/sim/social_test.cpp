@@ -195,3 +195,92 @@ TEST(SocialWorld, PropertyEveryCoordinationEndsAndDividedGroupsReunite) {
 
 }  // namespace
 }  // namespace throng::sim
+
+namespace throng::sim {
+namespace {
+
+TEST(SocialWorld, MallIsDeterministicAcrossThreadCounts) {
+  // The paper's experiment (scenarios/mall.json, 1000 characters): the first 100 s, 1 vs 2 threads.
+  auto loaded = io::loadScenarioFile(std::string(THRONG_SOURCE_DIR) + "/scenarios/mall.json");
+  ASSERT_TRUE(loaded.ok()) << loaded.errors().front().format();
+  ASSERT_TRUE(loaded.value().desc.social.enabled);
+  ASSERT_TRUE(loaded.value().desc.social.commonGround);
+  auto w1 = World::create(loaded.value().desc, loaded.value().navmesh);
+  auto w2 = World::create(loaded.value().desc, loaded.value().navmesh);
+  ASSERT_TRUE(w1.ok() && w2.ok());
+  const Outcome a = run(*w1.value(), 100.0, 1);
+  const Outcome b = run(*w2.value(), 100.0, 2);
+  EXPECT_EQ(a.hash, b.hash);
+  EXPECT_EQ(a.events.size(), b.events.size());
+  ASSERT_EQ(a.script.size(), b.script.size());
+  for (std::size_t i = 0; i < a.script.size(); ++i) {
+    EXPECT_EQ(a.script[i].agent, b.script[i].agent);
+    EXPECT_EQ(a.script[i].start, b.script[i].start);
+  }
+  EXPECT_GE(count(a, EventKind::CoordinationStart), 5u) << "Common Ground is at work within 100 s";
+}
+
+}  // namespace
+}  // namespace throng::sim
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "throng/sim/animation.hpp"
+
+namespace throng::sim {
+namespace {
+
+TEST(SocialWorld, AddingAMicroBehaviourIsEditingData) {
+  // A user adds "shout" (a new clip) to a copy of the database, as docs/social-coordination.md says:
+  // one JSON entry plus one BVH file; the scenario names its database. No code changes.
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("throng-add-behaviour-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "motions");
+  const fs::path source = fs::path(THRONG_SOURCE_DIR);
+  for (const auto& entry : fs::directory_iterator(source / "scenarios" / "motions")) {
+    fs::copy_file(entry.path(), dir / "motions" / entry.path().filename());
+  }
+  fs::copy_file(source / "scenarios" / "motions" / "call_out.bvh", dir / "motions" / "shout.bvh");
+  std::ifstream in(source / "data" / "social" / "micro_behaviours.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string db = text.str();
+  const std::string anchor = "\"behaviours\": [";
+  const auto at = db.find(anchor);
+  ASSERT_NE(at, std::string::npos);
+  db.insert(at + anchor.size(), R"(
+    {"name": "shout", "intents": ["request_attention"], "allowedIn": ["A1", "A2", "A4", "A5"], "clip": "shout",
+     "target": "partner", "turnFirst": true, "responses": ["turn_toward"], "weight": 1000,
+     "description": "a loud call, added by a user"},)");
+  std::ofstream(dir / "micro.json") << db;
+  std::string scenario = scenarioText(3, 2, 3, 3, 0.05, 0.0, true);
+  scenario.replace(scenario.find("\"cooldown\": 1000"), 16, "\"cooldown\": 1000, \"microBehaviours\": \"micro.json\"");
+  std::ofstream(dir / "s.json") << scenario;
+
+  auto loaded = io::loadScenarioFile((dir / "s.json").string());
+  ASSERT_TRUE(loaded.ok()) << loaded.errors().front().format();
+  ASSERT_TRUE(loaded.value().desc.social.clipLengths.count("shout"));
+  const double shoutLength = loaded.value().desc.social.clipLengths.at("shout");
+  const auto clips = animationClips(loaded.value().desc);
+  EXPECT_TRUE(std::any_of(clips.begin(), clips.end(), [](const ClipInfo& c) { return c.name == "shout"; }))
+      << "the viewer gets the new clip in the recording's clip table";
+  auto world = World::create(loaded.value().desc, loaded.value().navmesh);
+  ASSERT_TRUE(world.ok());
+  const Outcome r = run(*world.value(), 400.0);
+  std::size_t shouts = 0;
+  for (const ScriptRecord& s : r.script) {
+    if (s.behaviour != "shout" || s.motion != "shout") continue;
+    ++shouts;
+    EXPECT_NEAR(s.plannedDuration, shoutLength, 1e-9) << "its clip's length times the script";
+    EXPECT_EQ(s.step, 2);
+  }
+  EXPECT_GE(shouts, 1u);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace throng::sim

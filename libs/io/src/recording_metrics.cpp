@@ -269,7 +269,10 @@ core::Result<SocialMetrics> computeMetrics(const std::string& path, const Metric
     if (cs.groundingSamples > 0) cs.meanGrounding = groundingSum / static_cast<double>(cs.groundingSamples);
     if (cs.divideSamples > 0) cs.meanDivide = divideSum / static_cast<double>(cs.divideSamples);
     {
-      Statement s(db.get(), "SELECT behaviour, count(*) FROM throng_script WHERE step BETWEEN 1 AND 6 GROUP BY behaviour");
+      // One performance of a behaviour may be several entries (turn first, then the clip): count
+      // each (coordination, agent, step, part, attempt, behaviour) once.
+      Statement s(db.get(), "SELECT behaviour, count(*) FROM (SELECT DISTINCT coordination, agent, step, part, attempt, behaviour "
+                     "FROM throng_script WHERE step BETWEEN 1 AND 6) GROUP BY behaviour");
       if (!s.ok()) return readDiag(path, "cannot read throng_script (" + dbFailure(db) + ")");
       int rc = SQLITE_ROW;
       while ((rc = sqlite3_step(s.get())) == SQLITE_ROW) {

@@ -122,7 +122,8 @@ void ScenarioReader::readSocial(const Json& v, const std::string& ptr, sim::Soci
   if (auto* x = optional(v, "coordination")) {
     const std::string cp = ptr + "/coordination";
     if (isObject(*x, cp, "an object {\"turnRate\", \"responseTimeout\", \"maxAttempts\", \"touchDistance\"}")) {
-      checkKeys(*x, cp, {"turnRate", "responseTimeout", "maxAttempts", "touchDistance"}, "the coordination");
+      checkKeys(*x, cp, {"turnRate", "responseTimeout", "maxAttempts", "touchDistance", "missProbability"}, "the coordination");
+      if (auto* y = optional(*x, "missProbability")) readFloat(*y, cp + "/missProbability", {0, 1, false, ""}, s.missProbability);
       auto& c = s.coordination;
       if (auto* y = optional(*x, "turnRate")) readNumber(*y, cp + "/turnRate", {0, 100, true, "rad/s"}, c.turnRate);
       if (auto* y = optional(*x, "responseTimeout")) readNumber(*y, cp + "/responseTimeout", {0, 3600, false, "s"}, c.responseTimeout);

@@ -243,6 +243,9 @@ void World::Impl::startCoordinations() {
         in.destination = destination;
         in.startTime = now;
         in.seed = desc.seed;
+        // Responses B misses (it did not notice): drawn per coordination, consumed in order.
+        core::Rng miss(desc.seed, c.record.id, core::RngPurpose::Social);
+        for (int k = 0; k < 32; ++k) in.lostResponses.push_back(miss.uniform() < social.missProbability);
         auto planned = social::planCoordination(in, {&social.micro, &social.macro}, social.clipLengths, social.coordination);
         if (planned.ok()) {
           c.script = std::move(planned).value();

@@ -168,6 +168,9 @@ struct SocialDesc {
   std::vector<NeedDesc> needs;
   AttractionDesc attraction;
   social::CoordinationParams coordination;
+  /// Each response B owes is missed with this probability (distraction, noise): A times out and
+  /// tries again, another way or closer; drawn per coordination (seeded). [0, 1]
+  float missProbability = 0.1f;
   float cooldown = 60.0f;        ///< an agent gets no new goal this long after a visit [s] [Limit: >= 0]
   std::string microPath;         ///< micro-behaviour database as written (relative to the scenario); empty = built in
   std::string macroPath;         ///< macro-plan database as written; empty = built in
