@@ -33,7 +33,9 @@ Ground model (docs/social-model.md), configured by the top-level "social" sectio
 
 usage: scripts/make_mall.py [--seed N] [--out FILE] [--core-only] [--probe] [--plot PNG] [--stats]
 
---core-only drops the Common Ground keys ("category", "interests", "interestsPerAgent", "social")
+--core-only drops the Common Ground keys ("category", "interests", "interestsPerAgent", "preferences",
+"social"). Half the populations get a communication style ("preferences": talkative callers or
+gesturers) drawn from their own random stream.
 so that the file loads with a parser that does not know them; --probe adds a population whose
 goals are every point (a reachability check for `throng check`, not for committing). --plot
 draws the layout (needs matplotlib: run with /usr/bin/python3). Deterministic for a given seed.
@@ -395,6 +397,11 @@ def build_scenario(seed, core_only=False, probe=False):
     populations = []
     tour_lengths = []
     starts_rng = random.Random(seed + 1)
+    # Communication styles (Common Ground "preferences": multipliers of the micro-behaviour
+    # database's weights), drawn per population from their own stream so nothing else moves.
+    style_rng = random.Random(seed + 2)
+    styles = [None, None, {"call_out": 2.0, "talk": 2.0, "wave": 0.5},
+              {"wave": 2.0, "beckon": 2.0, "point_toward": 1.5, "call_out": 0.5}]
     entr = ["north", "east", "south", "west"]
 
     def population(pid, groups, size):
@@ -408,6 +415,9 @@ def build_scenario(seed, core_only=False, probe=False):
         if not core_only:
             p["interests"] = interests
             p["interestsPerAgent"] = 2
+            style = styles[style_rng.randrange(len(styles))]
+            if style:
+                p["preferences"] = style
         populations.append(p)
 
     sizes = group_sizes(rng)

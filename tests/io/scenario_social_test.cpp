@@ -14,12 +14,12 @@ using test::contains;
 const std::string kSource = std::string(THRONG_SOURCE_DIR) + "/scenarios/t.json";  // motions/ is scenarios/motions
 
 std::string scenario(const std::string& social, const std::string& interests = R"(["shoes"])",
-                     const std::string& category = "shoes") {
+                     const std::string& category = "shoes", const std::string& preferences = "{}") {
   return R"({"format": "throng/1",
  "walkable": [[[0,0],[30,0],[30,8],[0,8]]],
  "points": [{"id": "shop", "kind": "interest", "position": [13, 4], "radius": 1.5, "category": ")" + category + R"("},
             {"id": "wc", "kind": "interest", "position": [25, 4], "radius": 1, "category": "restroom"}],
- "populations": [{"id": "g", "spawn": {"polygon": [[1,1],[5,1],[5,7],[1,7]]}, "interests": )" + interests + R"(}],
+ "populations": [{"id": "g", "spawn": {"polygon": [[1,1],[5,1],[5,7],[1,7]]}, "interests": )" + interests + R"(, "preferences": )" + preferences + R"(}],
  "social": )" + social + "}";
 }
 
@@ -55,6 +55,10 @@ TEST(ScenarioSocial, ValidSectionFillsTheDescription) {
   EXPECT_GT(s.clipLengths.at("wave"), 0.0);
   EXPECT_EQ(r.value().desc.points[0].category, "shoes");
   EXPECT_EQ(r.value().desc.populations[0].interests, std::vector<std::string>{"shoes"});
+  const auto withPreferences = load(scenario("{}", R"(["shoes"])", "shoes", R"({"wave": 2.5, "call_out": 0})"));
+  ASSERT_TRUE(withPreferences.ok()) << withPreferences.errors().front().format();
+  EXPECT_EQ(withPreferences.value().desc.populations[0].preferences.at("wave"), 2.5);
+  EXPECT_EQ(withPreferences.value().desc.populations[0].preferences.at("call_out"), 0.0);
 }
 
 TEST(ScenarioSocial, MistakesAreLocatedAndExplained) {
@@ -77,6 +81,8 @@ TEST(ScenarioSocial, MistakesAreLocatedAndExplained) {
       {scenario(R"({"microBehaviours": "nothing.json"})"), "/social/microBehaviours", "no such file"},
       {scenario(R"({"macroPlans": "/etc/plans.json"})"), "/social/macroPlans", "absolute path"},
       {scenario(R"([1])"), "/social", "wrong type"},
+      {scenario("{}", R"(["shoes"])", "shoes", R"({"wav": 2})"), "/populations/0/preferences/wav", "did you mean \"wave\""},
+      {scenario("{}", R"(["shoes"])", "shoes", R"({"wave": -1})"), "/populations/0/preferences/wave", "out of range"},
   };
   for (const Case& c : cases) {
     const auto r = load(c.text);

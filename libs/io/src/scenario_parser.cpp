@@ -253,7 +253,7 @@ bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::
   if (!isObject(v, ptr, "a population object {\"id\", \"groups\", \"size\", \"spawn\", \"goals\", ...}")) return false;
   checkKeys(v, ptr,
             {"id", "groups", "size", "spawn", "start", "goals", "speed", "radius", "wander", "paths", "autoNearDistance",
-             "flocking", "waitTimeout", "groupSpacing", "follow", "guide", "sociological", "interests", "interestsPerAgent"},
+             "flocking", "waitTimeout", "groupSpacing", "follow", "guide", "sociological", "interests", "interestsPerAgent", "preferences"},
             "a population");
   bool ok = true;
   p.id = "population" + std::to_string(index);

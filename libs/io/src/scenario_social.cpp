@@ -60,6 +60,18 @@ void loadScenarioSocial(const JsonDocument& doc, ParsedScenario& parsed, core::D
     return;
   }
   social.macro = std::move(macro).value();
+  // Populations' preferences name micro-behaviours of the database.
+  std::vector<std::string> names;
+  for (const auto& b : social.micro.behaviours) names.push_back(b.name);
+  for (std::size_t p = 0; p < parsed.desc.populations.size(); ++p) {
+    for (const auto& [name, weight] : parsed.desc.populations[p].preferences) {
+      if (social.micro.find(name)) continue;
+      const std::string match = core::closestMatch(name, names);
+      fail("/populations/" + std::to_string(p) + "/preferences/" + escapePointerToken(name),
+           "no micro-behaviour " + quote(name) + " in the database", "a behaviour name of the micro-behaviour database",
+           match.empty() ? "" : "did you mean " + quote(match) + "?");
+    }
+  }
   // Clip lengths: every clip a micro-behaviour plays, from <motions>/<clip>.bvh.
   std::set<std::string> clips;
   for (const auto& b : social.micro.behaviours) {

@@ -57,6 +57,19 @@ bool ScenarioReader::readInterests(const Json& v, const std::string& ptr, sim::P
       }
     }
   }
+  if (auto* x = optional(v, "preferences")) {
+    const std::string pp = ptr + "/preferences";
+    if (!x->is_object()) {
+      error(pp, "wrong type: " + describeType(*x), "an object of micro-behaviour name → weight multiplier (>= 0)");
+      ok = false;
+    } else {
+      for (const auto& [name, value] : x->items()) {
+        double w = 1.0;
+        if (readNumber(value, pp + "/" + escapePointerToken(name), {0, 1000, false, ""}, w)) p.preferences[name] = w;
+        else ok = false;
+      }
+    }
+  }
   if (auto* x = optional(v, "interestsPerAgent")) {
     double d;
     if (readInteger(*x, ptr + "/interestsPerAgent", 0, 64, "categories", d)) p.interestsPerAgent = static_cast<std::uint32_t>(d);

@@ -243,6 +243,9 @@ void World::Impl::startCoordinations() {
         in.destination = destination;
         in.startTime = now;
         in.seed = desc.seed;
+        // Per-actor preferences (the population's, seeded draws in the planner); companions use B's.
+        in.initiatorStyle.preference = desc.populations[agents.population[row]].preferences;
+        in.respondentStyle.preference = desc.populations[agents.population[bRow]].preferences;
         // Responses B misses (it did not notice): drawn per coordination, consumed in order.
         core::Rng miss(desc.seed, c.record.id, core::RngPurpose::Social);
         for (int k = 0; k < 32; ++k) in.lostResponses.push_back(miss.uniform() < social.missProbability);

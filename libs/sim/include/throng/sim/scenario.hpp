@@ -3,6 +3,8 @@
 // simulation core never reads files. Units: metres, seconds, metres per second.
 #pragma once
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -123,6 +125,9 @@ struct PopulationDesc {
   /// attracted by; each agent draws `interestsPerAgent` of them (seeded, without repetition).
   std::vector<std::string> interests;
   std::uint32_t interestsPerAgent = 2;
+  /// Common Ground: its members' preference for micro-behaviours (name → multiplier of the
+  /// database weight, >= 0; 0 = never). Names must exist in the micro-behaviour database.
+  std::map<std::string, double, std::less<>> preferences;
 };
 
 /// Tunables of the operational model; every value has units and limits (after Recast's rcConfig).
