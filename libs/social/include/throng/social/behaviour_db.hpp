@@ -56,6 +56,18 @@ struct MicroBehaviour {
   std::string description;                 ///< free text
 };
 
+/// The behaviour's precondition holds in relation r.
+[[nodiscard]] inline bool allows(const MicroBehaviour& b, Relation r) {
+  for (const Relation x : b.allowedIn) if (x == r) return true;
+  return false;
+}
+
+/// The behaviour can express intent i.
+[[nodiscard]] inline bool hasIntent(const MicroBehaviour& b, Intent i) {
+  for (const Intent x : b.intents) if (x == i) return true;
+  return false;
+}
+
 struct MicroBehaviourDb {
   std::vector<MicroBehaviour> behaviours;  ///< in file order (the order breaks ties)
 
