@@ -90,6 +90,19 @@ core::Status checkOutputPath(const RecordingOptions& options) {
   return core::Ok{};
 }
 
+/// Rows per multi-row INSERT of the per-frame tables.
+constexpr std::size_t kRowBlock = 32;
+
+/// "INSERT INTO table VALUES(?, ...), (...), ..." with kRowBlock rows of `columns` parameters.
+std::string blockInsert(const char* table, int columns) {
+  std::string row = "(";
+  for (int c = 0; c < columns; ++c) row += c == 0 ? "?" : ", ?";
+  row += ")";
+  std::string sql = std::string("INSERT INTO ") + table + " VALUES";
+  for (std::size_t r = 0; r < kRowBlock; ++r) sql += (r == 0 ? "" : ", ") + row;
+  return sql;
+}
+
 const char* eventKindText(sim::EventKind kind) {
   switch (kind) {
     case sim::EventKind::Spawn: return "spawn";
@@ -177,6 +190,7 @@ struct Recorder::Impl {
   std::int64_t geometryHash = 0;
   std::vector<std::string> populationIds;
 
+  Statement insertRowBlock, insertAnimationBlock;  // kRowBlock rows per statement
   Statement begin, commit, rollback, insertRow, insertFrameData, insertFrame, insertEvent,
       insertAgent, insertAgentSeen, updateExit, upsertMeta, insertAnimation, insertCoordination,
       insertScript;
@@ -206,7 +220,7 @@ struct Recorder::Impl {
       // Statements must be finalized before sqlite3_close.
       for (Statement* s : {&begin, &commit, &rollback, &insertRow, &insertFrameData, &insertFrame,
                            &insertEvent, &insertAgent, &insertAgentSeen, &updateExit, &upsertMeta, &insertAnimation,
-                           &insertCoordination, &insertScript}) {
+                           &insertCoordination, &insertScript, &insertRowBlock, &insertAnimationBlock}) {
         *s = Statement();
       }
       sqlite3_close(db);
@@ -240,9 +254,9 @@ struct Recorder::Impl {
     return ok;
   }
 
-  bool prepare(Statement& s, const char* sql) {
-    s = Statement(db, sql);
-    if (!s.ok()) fail(std::string("SQLite: ") + sqliteMessage() + " in " + sql);
+  bool prepare(Statement& s, const std::string& sql) {
+    s = Statement(db, sql.c_str());
+    if (!s.ok()) fail("SQLite: " + sqliteMessage() + " in " + sql.substr(0, 200));
     return s.ok();
   }
 
@@ -255,6 +269,8 @@ struct Recorder::Impl {
   bool prepareAll() {
     return prepare(begin, "BEGIN") && prepare(commit, "COMMIT") && prepare(rollback, "ROLLBACK") &&
            prepare(insertRow, "INSERT INTO trajectory_data VALUES(?, ?, ?, ?, ?, ?)") &&
+           prepare(insertRowBlock, blockInsert("trajectory_data", 6)) &&
+           prepare(insertAnimationBlock, blockInsert("throng_animation", 4)) &&
            prepare(insertFrameData, "INSERT INTO frame_data VALUES(?, ?)") &&
            prepare(insertFrame, "INSERT INTO throng_frames VALUES(?, ?, ?, ?)") &&
            prepare(insertEvent, "INSERT INTO throng_events VALUES(?, ?, ?, ?, ?, ?)") &&
@@ -377,20 +393,37 @@ bool Recorder::Impl::writeFrame(const sim::Frame& f) {
       bindInt(s, 2, frame);
       if (!run(insertAgentSeen)) return false;
     }
-    sqlite3_stmt* s = insertRow.get();
-    bindInt(s, 1, frame);
-    bindInt(s, 2, f.ids[i]);
-    bindReal(s, 3, x);
-    bindReal(s, 4, y);
-    bindReal(s, 5, ox);
-    bindReal(s, 6, oy);
+  }
+  // Rows go in blocks of kRowBlock per statement (one VDBE run each), the rest one by one; the
+  // table gets the same rows in the same order either way.
+  auto bindRow = [&](sqlite3_stmt* s, int base, std::size_t i) {
+    bindInt(s, base + 1, frame);
+    bindInt(s, base + 2, f.ids[i]);
+    bindReal(s, base + 3, f.posX[i]);
+    bindReal(s, base + 4, f.posY[i]);
+    bindReal(s, base + 5, hasOri ? f.oriX[i] : 1.0);
+    bindReal(s, base + 6, hasOri ? f.oriY[i] : 0.0);
+  };
+  auto bindAnimation = [&](sqlite3_stmt* s, int base, std::size_t i) {
+    bindInt(s, base + 1, frame);
+    bindInt(s, base + 2, f.ids[i]);
+    bindInt(s, base + 3, f.clip[i]);
+    bindReal(s, base + 4, static_cast<double>(f.phase[i]));
+  };
+  std::size_t i = 0;
+  for (; i + kRowBlock <= n; i += kRowBlock) {
+    for (std::size_t k = 0; k < kRowBlock; ++k) bindRow(insertRowBlock.get(), static_cast<int>(6 * k), i + k);
+    if (!run(insertRowBlock)) return false;
+    if (hasAnimation) {
+      for (std::size_t k = 0; k < kRowBlock; ++k) bindAnimation(insertAnimationBlock.get(), static_cast<int>(4 * k), i + k);
+      if (!run(insertAnimationBlock)) return false;
+    }
+  }
+  for (; i < n; ++i) {
+    bindRow(insertRow.get(), 0, i);
     if (!run(insertRow)) return false;
     if (hasAnimation) {
-      s = insertAnimation.get();
-      bindInt(s, 1, frame);
-      bindInt(s, 2, f.ids[i]);
-      bindInt(s, 3, f.clip[i]);
-      bindReal(s, 4, static_cast<double>(f.phase[i]));
+      bindAnimation(insertAnimation.get(), 0, i);
       if (!run(insertAnimation)) return false;
     }
   }
@@ -600,13 +633,14 @@ core::Status Recorder::close(bool completed) {
     impl.inTransaction = false;
   }
   impl.writeFinal(completed);
+  impl.exec(recording::kCreateFrameIndexes);
   // Fold the WAL into the main file and leave rollback-journal mode: one self-contained file.
   impl.exec("PRAGMA wal_checkpoint(TRUNCATE)");
   impl.exec("PRAGMA journal_mode=DELETE");
   for (Statement* s : {&impl.begin, &impl.commit, &impl.rollback, &impl.insertRow, &impl.insertFrameData,
                        &impl.insertFrame, &impl.insertEvent, &impl.insertAgent, &impl.insertAgentSeen,
                        &impl.updateExit, &impl.upsertMeta, &impl.insertAnimation, &impl.insertCoordination,
-                       &impl.insertScript}) {
+                       &impl.insertScript, &impl.insertRowBlock, &impl.insertAnimationBlock}) {
     *s = Statement();
   }
   if (impl.db != nullptr && sqlite3_close(impl.db) != SQLITE_OK) impl.fail("SQLite: cannot close the recording");

@@ -60,8 +60,15 @@ inline constexpr const char* kCreateJuPedSim =
     "CREATE UNIQUE INDEX geometry_hash on geometry( hash);"
     "CREATE TABLE frame_data("
     "   frame INTEGER NOT NULL,"
-    "   geometry_hash INTEGER NOT NULL);"
-    "CREATE INDEX frame_id_idx ON trajectory_data(frame, id);";
+    "   geometry_hash INTEGER NOT NULL);";
+
+/// The indexes over the two big per-frame tables (JuPedSim's frame_id_idx, throng_animation's),
+/// built once when the recording is closed: keeping them up to date row by row costs the writer
+/// about as much as the rows themselves. A recording cut short by a kill has every committed row
+/// but no index (readers work, only slower).
+inline constexpr const char* kCreateFrameIndexes =
+    "CREATE INDEX IF NOT EXISTS frame_id_idx ON trajectory_data(frame, id);"
+    "CREATE INDEX IF NOT EXISTS throng_animation_idx ON throng_animation(frame, id);";
 
 /// throng's own tables; JuPedSim's and PedPy's readers ignore them.
 inline constexpr const char* kCreateThrong =
@@ -112,7 +119,7 @@ inline constexpr const char* kCreateThrong =
     "   id INTEGER NOT NULL,"
     "   clip INTEGER NOT NULL,"
     "   phase REAL NOT NULL);"
-    "CREATE INDEX throng_animation_idx ON throng_animation(frame, id);"
+
     "CREATE TABLE throng_populations("
     "   idx INTEGER NOT NULL PRIMARY KEY,"
     "   id TEXT NOT NULL,"
