@@ -1,11 +1,16 @@
-// `throng bench` — times the full tick on in-memory scenarios (bench_scenarios.hpp) for each agent
-// count and thread count, then DetourCrowd on the same navmesh and agent count, and prints
-// agent-steps/s, ms per tick (median, p99), peak RSS and bytes per agent. Reads the process's
-// memory counters (/proc/self/statm, getrusage); writes a table or JSON lines on stdout and a
-// progress line on a terminal's stderr.
+// `throng bench` — times the full tick, then DetourCrowd on the same navmesh and agent count, and
+// prints agent-steps/s, ms per tick (median, p99), peak RSS and bytes per agent. Two kinds of
+// scenario: in-memory ones (bench_scenarios.hpp) at each --agents count, timed for a number of
+// ticks after a warm-up; and scenario files ("mall" or PATH.json) run from the start to their end,
+// also reporting simulated time, wall time and × real time. With --record each configuration is
+// timed again while writing a recording (io::Recorder, frames at --fps, as `throng run` does) to a
+// temporary file that is deleted afterwards. Reads the process's memory counters (/proc/self/statm,
+// getrusage) and the scenario file; writes a table or JSON lines on stdout and a progress line on a
+// terminal's stderr.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 
@@ -23,6 +28,8 @@
 #include "signal.hpp"
 #include "validators.hpp"
 #include "throng/core/parallel.hpp"
+#include "throng/io/recorder.hpp"
+#include "throng/io/scenario_loader.hpp"
 #include "throng/sim/world.hpp"
 #if THRONG_HAVE_BASELINES
 #include "baselines/detour_crowd_baseline.hpp"
@@ -36,6 +43,7 @@ using Clock = std::chrono::steady_clock;
 constexpr double kTargetSecondsPerConfig = 3.0;  ///< without --ticks, time ticks until this much work [s]
 constexpr int kMinAutoTicks = 10;
 constexpr int kMaxAutoTicks = 3000;
+constexpr std::uint64_t kRssSampleTicks = 32;  ///< file scenarios: resident memory read every this many ticks
 
 /// Resident set size now [bytes] (/proc/self/statm), 0 when unknown.
 double currentRss() {
@@ -54,7 +62,7 @@ double peakRss() {
 
 struct Measurement {
   std::string engine;
-  std::size_t agents = 0;
+  std::size_t agents = 0;  ///< in-memory: N; file: most agents present at once
   int threads = 1;
   int ticks = 0;
   double agentStepsPerSec = 0.0;
@@ -62,7 +70,14 @@ struct Measurement {
   double msP99 = 0.0;
   double bytesPerAgent = 0.0;
   double peakRssBytes = 0.0;
+  double simulatedSeconds = 0.0;  ///< simulated time of the timed ticks [s]
+  double wallSeconds = 0.0;       ///< wall time of the timed ticks (file + recording: and closing it) [s]
+  std::optional<double> recordedFps;  ///< the frame rate written, for "throng+rec"
+  std::uint64_t frames = 0;
+  double closeSeconds = 0.0;      ///< closing the recording (flush, checkpoint) [s]
   std::optional<double> speedup;  ///< throng / DetourCrowd agent-steps/s, same agent count
+
+  [[nodiscard]] double realtimeFactor() const { return wallSeconds > 0 ? simulatedSeconds / wallSeconds : 0.0; }
 };
 
 /// Agents in a bench scenario (groups of a fixed size).
@@ -79,21 +94,25 @@ double percentile(std::vector<double> values, double q) {
   return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
 }
 
+double roundMicro(double v) { return std::round(v * 1e6) / 1e6; }
+
 class BenchRunner {
  public:
   explicit BenchRunner(const BenchOptions& options)
       : options_(options),
-        layout_(options.scenario == "navmesh" ? BenchLayout::Navmesh
-                : options.scenario == "musse" ? BenchLayout::Musse
-                                              : BenchLayout::Random),
+        fileMode_(!benchLayoutFromName(options.scenario, layout_)),
         progress_(stderr, true) {}
 
   int run();
 
  private:
+  int runLayouts();
+  int runFile();
+  /// Resolves --scenario to a file path ("mall" → the bundled file); empty after printing why not.
+  std::string scenarioPath();
   std::optional<Measurement> timeThrong(const sim::ScenarioDesc& desc,
                                         const std::shared_ptr<const nav::NavMesh>& navmesh, int threads,
-                                        int& ticks);
+                                        int& ticks, bool record);
   std::optional<Measurement> timeBaseline(const sim::ScenarioDesc& desc,
                                           const std::shared_ptr<const nav::NavMesh>& navmesh, int ticks);
   void status(const std::string& text, bool force = false);
@@ -102,7 +121,13 @@ class BenchRunner {
   void printFootnotes() const;
 
   const BenchOptions& options_;
-  BenchLayout layout_;
+  BenchLayout layout_ = BenchLayout::Random;
+  bool fileMode_ = false;
+  std::string label_;         ///< the "scenario" column: layout name or the file's name without .json
+  std::string filePath_;      ///< file mode: the scenario file read
+  std::string scenarioText_;  ///< file mode: its text (stored in --record recordings)
+  double dt_ = kBenchDt;      ///< time step of the scenario [s]
+  double duration_ = 0.0;     ///< file mode: simulated time at most [s]
   ProgressLine progress_;
   std::vector<std::string> notes_;
 };
@@ -113,9 +138,11 @@ void BenchRunner::status(const std::string& text, bool force) {
 
 std::optional<Measurement> BenchRunner::timeThrong(const sim::ScenarioDesc& desc,
                                                    const std::shared_ptr<const nav::NavMesh>& navmesh, int threads,
-                                                   int& ticks) {
-  const std::size_t n = agentCount(desc);
-  const std::string label = fmt::format("throng {} N={} threads={}", options_.scenario, n, threads);
+                                                   int& ticks, bool record) {
+  const std::size_t n = fileMode_ ? 0 : agentCount(desc);
+  const std::string label = fileMode_ ? fmt::format("{}{} threads={}", label_, record ? " +rec" : "", threads)
+                                      : fmt::format("throng{} {} N={} threads={}", record ? "+rec" : "", label_, n,
+                                                    threads);
   status(label + ": building world", true);
   ::malloc_trim(0);  // hand freed pages back so the growth below is this world's
   const double rssBefore = currentRss();
@@ -128,35 +155,100 @@ std::optional<Measurement> BenchRunner::timeThrong(const sim::ScenarioDesc& desc
   const core::TaskSystem tasks(threads);
   sim::World& w = **world;
 
-  for (int i = 0; i < options_.warmup && !InterruptGuard::requested(); ++i) {
+  // Frames every `stride` ticks, as `throng run`; file runs stop only at a frame tick (with or
+  // without --record) so both figures cover the same ticks.
+  double fps = options_.fps;
+  const std::uint64_t stride = benchFrameStride(options_.fps, dt_, fps);
+  std::optional<TempRecording> temp;  // declared before the recorder: the file is deleted after it closes
+  std::unique_ptr<io::Recorder> recorder;
+  if (record) {
+    temp.emplace();
+    io::RecordingOptions recording;
+    recording.path = temp->path();
+    recording.force = true;
+    recording.fps = fps;
+    recording.seed = desc.seed;
+    recording.scenarioText = scenarioText_;
+    auto opened = io::Recorder::open(desc, recording);
+    if (!opened) {
+      progress_.clear();
+      printLine(stderr, "throng: bench --record: cannot open the temporary recording:");
+      printDiagnostics(opened.errors());
+      return std::nullopt;
+    }
+    recorder = std::move(*opened);
+  }
+
+  for (int i = 0; !fileMode_ && i < options_.warmup && !InterruptGuard::requested(); ++i) {
     w.step(tasks);
     status(fmt::format("{}: warm-up {}/{}", label, i + 1, options_.warmup));
   }
-  const double bytesPerAgent = n > 0 ? std::max(0.0, currentRss() - rssBefore) / static_cast<double>(n) : 0.0;
+  double bytesPerAgent = n > 0 ? std::max(0.0, currentRss() - rssBefore) / static_cast<double>(n) : 0.0;
+  if (recorder) recorder->push(w.snapshot());  // frame 0: the state before the first timed tick
 
-  // Fixed --ticks, or (ticks <= 0) as many as fit in kTargetSecondsPerConfig, within the limits.
+  // In-memory: fixed --ticks, or (ticks <= 0) as many as fit in kTargetSecondsPerConfig. File: to
+  // the end (finished or duration, --ticks caps), checked at frame ticks.
+  const std::uint64_t totalTicks = [&] {
+    auto t = static_cast<std::uint64_t>(std::max(0LL, std::llround(duration_ / dt_)));
+    return ticks > 0 ? std::min<std::uint64_t>(t, static_cast<std::uint64_t>(ticks)) : t;
+  }();
   const bool fixed = ticks > 0;
   std::vector<double> ms;
   const std::uint64_t stepsBefore = w.stats().agentSteps;
+  const double timeBefore = w.stats().time;
   double totalSeconds = 0.0;
-  for (int i = 0; !InterruptGuard::requested(); ++i) {
-    if (fixed ? i >= ticks : (i >= kMaxAutoTicks || (i >= kMinAutoTicks && totalSeconds >= kTargetSecondsPerConfig))) {
+  double rssPeak = currentRss();
+  std::size_t agentsPeak = w.stats().active;
+  for (std::uint64_t tick = 0; !InterruptGuard::requested(); ++tick) {
+    if (fileMode_) {
+      if (tick % stride == 0 && (w.finished() || tick >= totalTicks)) break;
+    } else if (fixed ? tick >= static_cast<std::uint64_t>(ticks)
+                     : (tick >= kMaxAutoTicks || (tick >= kMinAutoTicks && totalSeconds >= kTargetSecondsPerConfig))) {
       break;
     }
     const auto t0 = Clock::now();
     w.step(tasks);
+    if (recorder && (tick + 1) % stride == 0) recorder->push(w.snapshot());
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     totalSeconds += seconds;
     ms.push_back(seconds * 1000.0);
-    status(fixed ? fmt::format("{}: tick {}/{}", label, i + 1, ticks)
-                 : fmt::format("{}: tick {} ({:.1f}/{:.0f} s)", label, i + 1, totalSeconds, kTargetSecondsPerConfig));
+    agentsPeak = std::max<std::size_t>(agentsPeak, w.stats().active);
+    if (fileMode_ && tick % kRssSampleTicks == 0) rssPeak = std::max(rssPeak, currentRss());
+    if (progress_.due()) {
+      progress_.draw(fileMode_ ? fmt::format("{}: t = {:.0f}/{:.0f} s, {} agents", label, w.stats().time, duration_,
+                                             w.stats().active)
+                     : fixed   ? fmt::format("{}: tick {}/{}", label, tick + 1, ticks)
+                               : fmt::format("{}: tick {} ({:.1f}/{:.0f} s)", label, tick + 1, totalSeconds,
+                                             kTargetSecondsPerConfig));
+    }
+  }
+  rssPeak = std::max(rssPeak, currentRss());
+  const bool interrupted = InterruptGuard::requested();
+  Measurement m;
+  if (recorder) {
+    // Closing flushes the frames still queued and checkpoints the file: part of a whole run's cost,
+    // so counted in a file scenario's wall time; an in-memory row times the ticks only.
+    status(label + ": closing the recording", true);
+    const auto t0 = Clock::now();
+    const core::Status closed = recorder->close(!interrupted);
+    m.closeSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (fileMode_) totalSeconds += m.closeSeconds;
+    if (!closed) {
+      progress_.clear();
+      printDiagnostics(closed.errors());
+      return std::nullopt;
+    }
+    m.recordedFps = fps;
+    m.frames = recorder->framesWritten();
   }
   ticks = static_cast<int>(ms.size());
-  if (InterruptGuard::requested()) return std::nullopt;
+  if (interrupted) return std::nullopt;
+  if (fileMode_) {
+    bytesPerAgent = agentsPeak > 0 ? std::max(0.0, rssPeak - rssBefore) / static_cast<double>(agentsPeak) : 0.0;
+  }
 
-  Measurement m;
-  m.engine = "throng";
-  m.agents = n;
+  m.engine = record ? "throng+rec" : "throng";
+  m.agents = fileMode_ ? agentsPeak : n;
   m.threads = tasks.threads();
   m.ticks = ticks;
   const auto steps = static_cast<double>(w.stats().agentSteps - stepsBefore);
@@ -165,6 +257,8 @@ std::optional<Measurement> BenchRunner::timeThrong(const sim::ScenarioDesc& desc
   m.msP99 = percentile(ms, 0.99);
   m.bytesPerAgent = bytesPerAgent;
   m.peakRssBytes = peakRss();
+  m.simulatedSeconds = w.stats().time - timeBefore;
+  m.wallSeconds = totalSeconds;
   return m;
 }
 
@@ -172,7 +266,7 @@ std::optional<Measurement> BenchRunner::timeBaseline(const sim::ScenarioDesc& de
                                                      const std::shared_ptr<const nav::NavMesh>& navmesh, int ticks) {
 #if THRONG_HAVE_BASELINES
   const std::size_t n = agentCount(desc);
-  status(fmt::format("detourcrowd {} N={}: running {} ticks", options_.scenario, n, ticks), true);
+  status(fmt::format("detourcrowd {} N={}: running {} ticks", label_, n, ticks), true);
   baselines::BaselineConfig config;
   config.navmesh = navmesh;
   config.starts = drawBenchStarts(navmesh, n, options_.seed);
@@ -200,6 +294,9 @@ std::optional<Measurement> BenchRunner::timeBaseline(const sim::ScenarioDesc& de
   m.msP99 = result->msPerTickP99;
   m.bytesPerAgent = result->bytesPerAgent;
   m.peakRssBytes = peakRss();
+  m.simulatedSeconds = result->ticks * static_cast<double>(kBenchDt);
+  m.wallSeconds = m.agentStepsPerSec > 0 ? static_cast<double>(result->ticks * result->agents) / m.agentStepsPerSec
+                                         : 0.0;
   return m;
 #else
   (void)desc;
@@ -211,36 +308,50 @@ std::optional<Measurement> BenchRunner::timeBaseline(const sim::ScenarioDesc& de
 
 void BenchRunner::printHeader() const {
   if (options_.json) return;
-  printLine(stdout, fmt::format("{:<12} {:<8} {:>8} {:>7} {:>6} {:>14} {:>11} {:>11} {:>11} {:>10} {:>8}", "engine",
-                                "scenario", "agents", "threads", "ticks", "agent-steps/s", "ms/tick med",
-                                "ms/tick p99", "bytes/agent", "peak RSS", "vs DC"));
+  const std::size_t width = std::max<std::size_t>(8, label_.size());
+  std::string header = fmt::format("{:<12} {:<{}} {:>8} {:>7} {:>6} {:>14} {:>11} {:>11} {:>11} {:>10}", "engine",
+                                   "scenario", width, fileMode_ ? "peak N" : "agents", "threads", "ticks",
+                                   "agent-steps/s", "ms/tick med", "ms/tick p99", "bytes/agent", "peak RSS");
+  header += fileMode_ ? fmt::format(" {:>10} {:>9} {:>8}", "simulated", "wall", "x real") : fmt::format(" {:>8}", "vs DC");
+  printLine(stdout, header);
 }
 
 void BenchRunner::print(const Measurement& m) {
   progress_.clear();
   if (options_.json) {
     nlohmann::json line{{"engine", m.engine},
-                        {"scenario", options_.scenario},
+                        {"scenario", label_},
                         {"agents", m.agents},
                         {"threads", m.threads},
                         {"ticks", m.ticks},
-                        {"warmup_ticks", options_.warmup},
-                        {"dt_s", std::round(static_cast<double>(kBenchDt) * 1e6) / 1e6},
+                        {"warmup_ticks", fileMode_ ? 0 : options_.warmup},
+                        {"dt_s", roundMicro(dt_)},
                         {"agent_steps_per_s", m.agentStepsPerSec},
                         {"ms_per_tick_median", m.msMedian},
                         {"ms_per_tick_p99", m.msP99},
                         {"bytes_per_agent", m.bytesPerAgent},
-                        {"peak_rss_bytes", m.peakRssBytes}};
-    if (m.engine == "throng") {
+                        {"peak_rss_bytes", m.peakRssBytes},
+                        {"simulated_s", roundMicro(m.simulatedSeconds)},
+                        {"wall_s", m.wallSeconds},
+                        {"realtime_factor", m.realtimeFactor()}};
+    if (m.engine != "DetourCrowd") {
       line["speedup_vs_detourcrowd"] = m.speedup ? nlohmann::json(*m.speedup) : nlohmann::json(nullptr);
+    }
+    if (fileMode_) line["scenario_file"] = filePath_;
+    if (m.recordedFps) {
+      line["recording"] = {{"fps", *m.recordedFps}, {"frames", m.frames}, {"close_s", m.closeSeconds}};
     }
     printLine(stdout, line.dump());
     return;
   }
-  printLine(stdout, fmt::format("{:<12} {:<8} {:>8} {:>7} {:>6} {:>14} {:>11.3f} {:>11.3f} {:>11.0f} {:>10} {:>8}",
-                                m.engine, options_.scenario, m.agents, m.threads, m.ticks,
-                                formatSi(m.agentStepsPerSec), m.msMedian, m.msP99, m.bytesPerAgent,
-                                formatBytes(m.peakRssBytes), m.speedup ? fmt::format("{:.2f}x", *m.speedup) : "-"));
+  const std::size_t width = std::max<std::size_t>(8, label_.size());
+  std::string row = fmt::format("{:<12} {:<{}} {:>8} {:>7} {:>6} {:>14} {:>11.3f} {:>11.3f} {:>11.0f} {:>10}", m.engine,
+                                label_, width, m.agents, m.threads, m.ticks, formatSi(m.agentStepsPerSec), m.msMedian,
+                                m.msP99, m.bytesPerAgent, formatBytes(m.peakRssBytes));
+  row += fileMode_ ? fmt::format(" {:>10} {:>9} {:>7.1f}x", fmt::format("{:.1f} s", m.simulatedSeconds),
+                                 formatSeconds(m.wallSeconds), m.realtimeFactor())
+                   : fmt::format(" {:>8}", m.speedup ? fmt::format("{:.2f}x", *m.speedup) : "-");
+  printLine(stdout, row);
 }
 
 void BenchRunner::printFootnotes() const {
@@ -249,23 +360,112 @@ void BenchRunner::printFootnotes() const {
     return;
   }
   printLine(stdout, "");
-  printLine(stdout, fmt::format("scenario: {} — square of side sqrt(N) m (1 agent/m²), radius {} m, speed {} m/s, "
-                                "dt {} s, agents wander between random points{}",
-                                options_.scenario, kBenchRadius, kBenchSpeed, kBenchDt,
-                                layout_ == BenchLayout::Navmesh ? "; 1 m pillars every 8 m" : ""));
-  printLine(stdout, fmt::format("timing: {} untimed warm-up ticks, then each tick timed alone (steady_clock)",
-                                options_.warmup));
-  printLine(stdout, "bytes/agent: growth of resident memory from before World::create to after warm-up, divided by "
-                    "N (the shared navmesh is built before and not counted); peak RSS: the process's so far");
-  printLine(stdout, "vs DC: throng agent-steps/s divided by DetourCrowd's at the same N, on the same navmesh; "
-                    "DetourCrowd starts are drawn uniformly on the navmesh (same distribution, not the same points)");
+  if (fileMode_) {
+    printLine(stdout, fmt::format("scenario: {} (dt {:g} s), each configuration run from tick 0 until every agent has "
+                                  "left or t = {:g} s; every tick timed alone (steady_clock), World::create not timed",
+                                  filePath_, dt_, duration_));
+    printLine(stdout, "bytes/agent: peak growth of resident memory from before World::create (sampled every 32 "
+                      "ticks) divided by the most agents present at once (peak N); x real: simulated / wall time");
+  } else {
+    printLine(stdout, fmt::format("scenario: {} — square of side sqrt(N) m (1 agent/m²), radius {} m, speed {} m/s, "
+                                  "dt {} s, agents wander between random points{}",
+                                  label_, kBenchRadius, kBenchSpeed, kBenchDt,
+                                  layout_ == BenchLayout::Navmesh ? "; 1 m pillars every 8 m" : ""));
+    printLine(stdout, fmt::format("timing: {} untimed warm-up ticks, then each tick timed alone (steady_clock)",
+                                  options_.warmup));
+    printLine(stdout, "bytes/agent: growth of resident memory from before World::create to after warm-up, divided "
+                      "by N (the shared navmesh is built before and not counted); peak RSS: the process's so far");
+    printLine(stdout, "vs DC: throng agent-steps/s divided by DetourCrowd's at the same N, on the same navmesh; "
+                      "DetourCrowd starts are drawn uniformly on the navmesh (same distribution, not the same points)");
+  }
+  if (options_.record) {
+    printLine(stdout, fmt::format("throng+rec: the same configuration again, writing a recording at {:g} fps to a "
+                                  "temporary file (deleted afterwards) as `throng run` does; its tick times include "
+                                  "taking and queueing frames (the writer thread runs beside the ticks){}",
+                                  options_.fps,
+                                  fileMode_ ? ", its wall time and x real also closing the file (flush, checkpoint)"
+                                            : "; closing the file is not timed"));
+  }
   for (const auto& note : notes_) printLine(stdout, "note: " + note);
 }
 
-int BenchRunner::run() {
+std::string BenchRunner::scenarioPath() {
+  const std::string& value = options_.scenario;
+  const bool bundled = std::find_if(std::begin(kBundledBenchScenarios), std::end(kBundledBenchScenarios),
+                                    [&](const char* name) { return value == name; }) !=
+                       std::end(kBundledBenchScenarios);
+  if (!bundled) {
+    if (auto missing = checkInputFile(value, "scenario"); !missing.empty()) {
+      printDiagnostics(missing);
+      return {};
+    }
+    return value;
+  }
+  const auto candidates = bundledScenarioCandidates(value, currentExecutable());
+  std::string tried;
+  for (const auto& candidate : candidates) {
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(candidate, ec)) return candidate.string();
+    tried += fmt::format("\n  {}", std::filesystem::absolute(candidate, ec).string());
+  }
+  printLine(stderr, fmt::format("throng: bench --scenario {}: the bundled scenarios/{}.json was not found; tried "
+                                "(relative to the current directory, then to the executable):{}\n"
+                                "Run from the source tree or pass the file: --scenario PATH/{}.json",
+                                value, value, tried, value));
+  return {};
+}
+
+int BenchRunner::runFile() {
+  filePath_ = scenarioPath();
+  if (filePath_.empty()) return kExitFailure;
+  label_ = std::filesystem::path(filePath_).stem().string();
+  if (!options_.agents.empty()) {
+    notes_.push_back("--agents is not used with a scenario file: its populations say who spawns");
+  }
+  if (!options_.noBaseline) {
+    notes_.push_back("no DetourCrowd baseline for scenario files (it has no equivalent of their goals, groups and "
+                     "social model); it runs with random, navmesh and musse");
+  }
+  InterruptGuard interrupts;
+  status(fmt::format("{}: loading {}", label_, filePath_), true);
+  auto loaded = io::loadScenarioFile(filePath_);
+  if (!loaded) {
+    progress_.clear();
+    printDiagnostics(loaded.errors());
+    return kExitFailure;
+  }
+  sim::ScenarioDesc& desc = loaded->desc;
+  if (options_.duration) desc.duration = std::min(desc.duration, static_cast<float>(*options_.duration));
+  dt_ = desc.dt;
+  duration_ = desc.duration;
+  scenarioText_ = loaded->text;
+  std::vector<int> threadCounts = options_.threads.empty() ? std::vector<int>{1, 2} : options_.threads;
+  printHeader();
+  for (const int threads : threadCounts) {
+    for (const bool record : {false, true}) {
+      if (record && !options_.record) continue;
+      int ticks = options_.ticks;
+      auto m = timeThrong(desc, loaded->navmesh, threads, ticks, record);
+      if (InterruptGuard::requested()) {
+        progress_.clear();
+        printLine(stderr, "throng: bench interrupted");
+        return kExitInterrupted;
+      }
+      if (!m) return kExitFailure;
+      print(*m);
+    }
+  }
+  progress_.clear();
+  printFootnotes();
+  return kExitOk;
+}
+
+int BenchRunner::runLayouts() {
+  label_ = options_.scenario;
   std::vector<std::size_t> counts = options_.agents.empty() ? std::vector<std::size_t>{1000, 10000, 100000}
                                                             : options_.agents;
   std::vector<int> threadCounts = options_.threads.empty() ? std::vector<int>{1, 2} : options_.threads;
+  if (options_.duration) notes_.push_back("--duration is used with scenario files only (here: --ticks)");
   bool baselineAvailable = true;
 #if !THRONG_HAVE_BASELINES
   baselineAvailable = false;
@@ -275,7 +475,8 @@ int BenchRunner::run() {
   printHeader();
   for (const std::size_t n : counts) {
     const sim::ScenarioDesc desc = makeBenchScenario(layout_, n, options_.seed);
-    status(fmt::format("{} N={}: building navmesh", options_.scenario, n), true);
+    duration_ = desc.duration;
+    status(fmt::format("{} N={}: building navmesh", label_, n), true);
     auto navmesh = buildBenchNavMesh(desc);
     if (!navmesh) {
       progress_.clear();
@@ -286,11 +487,18 @@ int BenchRunner::run() {
     int ticks = options_.ticks;
     for (const int threads : threadCounts) {
       int configTicks = ticks;
-      auto m = timeThrong(desc, *navmesh, threads, configTicks);
+      auto m = timeThrong(desc, *navmesh, threads, configTicks, false);
       if (InterruptGuard::requested()) break;
       if (!m) return kExitFailure;
       if (ticks <= 0) ticks = configTicks;  // the first configuration's tick count sets the baseline's
       group.push_back(*m);
+      if (options_.record) {
+        int recTicks = configTicks;  // the same ticks as without recording
+        auto rec = timeThrong(desc, *navmesh, threads, recTicks, true);
+        if (InterruptGuard::requested()) break;
+        if (!rec) return kExitFailure;
+        group.push_back(*rec);
+      }
     }
     std::optional<Measurement> baseline;
     if (!InterruptGuard::requested() && !options_.noBaseline && baselineAvailable) {
@@ -318,17 +526,26 @@ int BenchRunner::run() {
   return kExitOk;
 }
 
+int BenchRunner::run() { return fileMode_ ? runFile() : runLayouts(); }
+
 }  // namespace
 
 CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
   CLI::App* cmd = app.add_subcommand("bench", "Measure simulation speed and memory against DetourCrowd");
   cmd->footer(
-      "Measure simulation speed and memory. For each agent count and thread count it builds the scenario\n"
-      "in memory, runs untimed warm-up ticks, then times every tick and prints agent-steps per second,\n"
+      "Measure simulation speed and memory.\n"
+      "In-memory scenarios (random, navmesh, musse): for each agent count and thread count it builds the\n"
+      "scenario, runs untimed warm-up ticks, then times every tick and prints agent-steps per second,\n"
       "milliseconds per tick (median, p99), peak RSS and bytes per agent; then runs DetourCrowd on the same\n"
-      "navmesh and agent count (one thread) and prints the ratio.");
+      "navmesh and agent count (one thread) and prints the ratio.\n"
+      "Scenario files (mall = the bundled scenarios/mall.json, or any PATH.json): for each thread count the\n"
+      "whole scenario runs from the start until every agent has left or its duration (--duration caps it);\n"
+      "only the ticks are timed. It also prints the simulated time, the wall time and x real time\n"
+      "(simulated / wall). No DetourCrowd baseline; --agents, --warmup and --seed are not used.\n"
+      "--record times every configuration a second time while writing a recording at --fps frames per\n"
+      "second to a temporary file (deleted afterwards), as `throng run` does: engine \"throng+rec\".");
   cmd->add_option("--agents", options.agents,
-                  "Agent counts, repeatable or comma-separated; default 1000,10000,100000")
+                  "Agent counts (in-memory scenarios), repeatable or comma-separated; default 1000,10000,100000")
       ->delimiter(',')
       ->type_name("N[,N...]")
       ->check(integerRange(1, 10'000'000));
@@ -338,23 +555,43 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
       ->type_name("T[,T...]")
       ->check(integerRange(0, 1024));
   cmd->add_option("--scenario", options.scenario,
-                  "random: open square, 1 agent/m², agents wander; navmesh: the same plus 1 m pillars every 8 m; musse: random with the crowd model on (flocking groups of 3)")
-      ->check(CLI::IsMember({"random", "navmesh", "musse"}))
+                  "random: open square, 1 agent/m², agents wander; navmesh: the same plus 1 m pillars every 8 m; "
+                  "musse: random with the crowd model on (flocking groups of 3); mall: the bundled "
+                  "scenarios/mall.json (looked up in the current directory, then from the executable); PATH.json: "
+                  "any scenario file, run from start to end")
+      ->type_name("NAME|PATH.json")
+      ->check(CLI::Validator([](std::string& value) { return checkBenchScenarioValue(value); },
+                             "random|navmesh|musse|mall|PATH.json", "BENCH_SCENARIO"))
       ->capture_default_str();
   cmd->add_option("--ticks", options.ticks,
                   "Timed ticks per configuration (dt = 0.1 s); 0 = as many as fit in 3 s (10 to 3000); DetourCrowd "
-                  "runs as many as throng's first thread count")
+                  "runs as many as throng's first thread count. Scenario files: at most this many ticks (0 = to the "
+                  "end)")
       ->type_name("N")
       ->check(integerRange(0, 1'000'000))
       ->capture_default_str();
-  cmd->add_option("--warmup", options.warmup, "Untimed ticks before timing")
+  cmd->add_option("--warmup", options.warmup, "Untimed ticks before timing (in-memory scenarios)")
       ->type_name("N")
       ->check(integerRange(0, 100'000))
       ->capture_default_str();
-  cmd->add_option("--seed", options.seed, "Random seed for spawns and goals")->type_name("N")->capture_default_str();
+  cmd->add_option("--seed", options.seed, "Random seed for spawns and goals (in-memory scenarios; a file keeps its own)")
+      ->type_name("N")
+      ->capture_default_str();
+  cmd->add_option("--duration", options.duration,
+                  "Scenario files: simulate at most this long [s] (the file's \"duration\" when shorter)")
+      ->type_name("S")
+      ->check(positiveNumber("s"));
+  cmd->add_flag("--record", options.record,
+                "Also time each configuration while recording (engine throng+rec): frames at --fps to a temporary "
+                "SQLite file ($TMPDIR or /tmp), deleted afterwards");
+  cmd->add_option("--fps", options.fps, "Recorded frames per second with --record [Hz] (every round(1/(fps*dt))-th tick)")
+      ->type_name("F")
+      ->check(positiveNumber("Hz"))
+      ->capture_default_str();
   cmd->add_flag("--json", options.json,
                 "One JSON object per line and engine/configuration: engine, scenario, agents, threads, ticks, "
-                "agent_steps_per_s, ms_per_tick_median, ms_per_tick_p99, bytes_per_agent, peak_rss_bytes");
+                "agent_steps_per_s, ms_per_tick_median, ms_per_tick_p99, bytes_per_agent, peak_rss_bytes, "
+                "simulated_s, wall_s, realtime_factor (scenario files also scenario_file; throng+rec recording)");
   cmd->add_flag("--no-baseline", options.noBaseline, "Skip the DetourCrowd baseline");
   cmd->add_option("--baseline-max", options.baselineMax,
                   "Largest agent count DetourCrowd is run at (it is slow)")

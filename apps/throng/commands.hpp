@@ -57,12 +57,15 @@ struct MetricsCmdOptions {
 };
 
 struct BenchOptions {
-  std::vector<std::size_t> agents;      ///< agent counts; empty = 1000,10000,100000
+  std::vector<std::size_t> agents;      ///< agent counts (in-memory scenarios); empty = 1000,10000,100000
   std::vector<int> threads;             ///< thread counts; empty = 1,2
-  std::string scenario = "random";      ///< "random" or "navmesh"
-  int ticks = 0;                        ///< timed ticks per configuration; 0 = about 3 s each
-  int warmup = 20;                      ///< untimed ticks before timing
-  std::uint64_t seed = 1;
+  std::string scenario = "random";      ///< "random", "navmesh", "musse", "mall" or a scenario file path
+  int ticks = 0;                        ///< timed ticks per configuration; 0 = about 3 s each (file: to the end)
+  int warmup = 20;                      ///< untimed ticks before timing (in-memory scenarios)
+  std::uint64_t seed = 1;               ///< in-memory scenarios' seed (a file keeps its own)
+  std::optional<double> duration;       ///< caps a scenario file's simulated time [s]
+  bool record = false;                  ///< also time each configuration while recording
+  double fps = 10.0;                    ///< recorded frames per second with `record` [Hz]
   bool json = false;                    ///< one JSON object per line
   bool noBaseline = false;              ///< skip DetourCrowd
   std::size_t baselineMax = 20000;      ///< largest agent count DetourCrowd runs at

@@ -46,12 +46,11 @@ TEST(SpatialGrid, NearestMatchesBruteForce) {
   }
   core::TaskSystem tasks(1);
   grid.rebuild(xs, ys, tasks);
-  std::vector<std::pair<float, std::uint32_t>> scratch;
   for (std::uint32_t self = 0; self < xs.size(); self += 7) {
     for (std::size_t k : {1u, 5u, 10u}) {
       for (float range : {0.5f, 2.0f, 3.0f}) {
         std::vector<std::uint32_t> out(k);
-        const std::size_t n = grid.nearest(xs[self], ys[self], range, k, self, xs.data(), ys.data(), scratch, out.data());
+        const std::size_t n = grid.nearest(xs[self], ys[self], range, k, self, out.data());
         std::vector<std::pair<float, std::uint32_t>> all;
         for (std::uint32_t i = 0; i < xs.size(); ++i) {
           if (i == self) continue;
@@ -81,4 +80,82 @@ TEST(SpatialGrid, DensityCountsAgentsPerSquareMetreAround) {
   grid.rebuild(xs, ys, tasks);
   EXPECT_NEAR(grid.density(5.5f, 5.5f), 18.0f / 9.0f, 1e-5f);
   EXPECT_NEAR(grid.density(0.5f, 9.5f), 1.0f / 4.0f, 1e-5f) << "a corner cell has 2 × 2 cells around it";
+}
+
+namespace {
+
+/// Brute-force reference: rows within range (excluding self) by (distance², row), first k.
+std::vector<std::uint32_t> bruteNearest(const std::vector<float>& xs, const std::vector<float>& ys, std::uint32_t self,
+                                        float range, std::size_t k) {
+  std::vector<std::pair<float, std::uint32_t>> all;
+  for (std::uint32_t i = 0; i < xs.size(); ++i) {
+    if (i == self) continue;
+    const float dx = xs[i] - xs[self], dy = ys[i] - ys[self];
+    const float d2 = dx * dx + dy * dy;
+    if (d2 < range * range) all.push_back({d2, i});
+  }
+  std::sort(all.begin(), all.end());
+  std::vector<std::uint32_t> rows;
+  for (std::size_t i = 0; i < std::min(k, all.size()); ++i) rows.push_back(all[i].second);
+  return rows;
+}
+
+void expectNearestMatchesBruteForce(const std::vector<float>& xs, const std::vector<float>& ys, const core::Aabb& bounds,
+                                    float cell, std::initializer_list<std::size_t> ks, std::initializer_list<float> ranges,
+                                    std::uint32_t stride) {
+  sim::SpatialGrid grid;
+  grid.configure(bounds, cell);
+  core::TaskSystem tasks(1);
+  grid.rebuild(xs, ys, tasks);
+  for (std::uint32_t self = 0; self < xs.size(); self += stride) {
+    for (std::size_t k : ks) {
+      for (float range : ranges) {
+        std::vector<std::uint32_t> out(k);
+        const std::size_t n = grid.nearest(xs[self], ys[self], range, k, self, out.data());
+        out.resize(n);
+        ASSERT_EQ(out, bruteNearest(xs, ys, self, range, k)) << "self " << self << " k " << k << " range " << range;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+TEST(SpatialGrid, NearestBreaksExactDistanceTiesByRow) {
+  // A lattice: every agent has four neighbours at exactly the same distance, and eight more in
+  // tied rings; rows are shuffled against the lattice so that cell order is not row order.
+  std::vector<float> xs, ys;
+  std::vector<std::uint32_t> slot(400);
+  for (std::uint32_t i = 0; i < slot.size(); ++i) slot[i] = i;
+  core::Rng rng(3, 0, core::RngPurpose::Bench);
+  for (std::size_t i = slot.size(); i > 1; --i) std::swap(slot[i - 1], slot[rng.uniformInt(0, static_cast<std::uint32_t>(i - 1))]);
+  for (std::uint32_t s : slot) {
+    xs.push_back(0.5f + 0.75f * static_cast<float>(s % 20));
+    ys.push_back(0.5f + 0.75f * static_cast<float>(s / 20));
+  }
+  expectNearestMatchesBruteForce(xs, ys, core::Aabb{{0, 0}, {16, 16}}, 1.0f, {1, 4, 10, 13}, {0.75f, 1.5f, 3.0f}, 3);
+}
+
+TEST(SpatialGrid, NearestInDenseCrowdsAndWithLargeK) {
+  // 600 agents in a 2 m × 2 m square (150 per m²): hundreds of candidates per search, more than
+  // the search buffers at once; k = 100 takes the large-k path.
+  std::vector<float> xs, ys;
+  core::Rng rng(4, 0, core::RngPurpose::Bench);
+  for (int i = 0; i < 600; ++i) {
+    xs.push_back(static_cast<float>(rng.uniform(4, 6)));
+    ys.push_back(static_cast<float>(rng.uniform(4, 6)));
+  }
+  expectNearestMatchesBruteForce(xs, ys, core::Aabb{{0, 0}, {10, 10}}, 1.0f, {1, 10, 100}, {0.3f, 3.0f}, 37);
+}
+
+TEST(SpatialGrid, NearestAtGridBordersAndOutsideIt) {
+  // Sparse agents, some outside the bounds (clamped into border cells), searched with ranges
+  // reaching past the grid and several rings out.
+  std::vector<float> xs, ys;
+  core::Rng rng(5, 0, core::RngPurpose::Bench);
+  for (int i = 0; i < 150; ++i) {
+    xs.push_back(static_cast<float>(rng.uniform(-3, 23)));
+    ys.push_back(static_cast<float>(rng.uniform(-3, 13)));
+  }
+  expectNearestMatchesBruteForce(xs, ys, core::Aabb{{0, 0}, {20, 10}}, 0.5f, {1, 10}, {0.5f, 1.5f, 6.0f}, 1);
 }

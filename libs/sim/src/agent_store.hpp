@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "compact_lists.hpp"
 #include "throng/core/vec2.hpp"
 #include "throng/nav/navmesh.hpp"
 #include "throng/nav/path_queue.hpp"
@@ -26,6 +27,10 @@ inline constexpr std::uint16_t kNoClip = 0xffff;
 
 inline constexpr std::uint32_t kNoAgent = 0xffffffffu;
 
+/// Columns are grouped by the features that use them. The optional groups exist (have one entry per
+/// row) only when the scenario can use them; otherwise they stay empty and the accessors below
+/// return the defaults, so lone agents of a plain scenario pay nothing for features they never use
+/// (docs/performance.md, "Memory per agent").
 struct AgentStore {
   // Identity.
   std::vector<std::uint32_t> id;          ///< stable spawn-order id
@@ -47,29 +52,36 @@ struct AgentStore {
   std::vector<std::uint32_t> targetDraws; ///< how many targets drawn (feeds the target RNG stream)
   std::vector<std::uint8_t> needPath;     ///< decide asks plan for a new path
   std::vector<nav::PathTicket> ticket;    ///< pending path request, 0 = none
-  std::vector<nav::PolyRef> polyRef;      ///< navmesh polygon under the agent
-  std::vector<std::uint32_t> cornerIndex; ///< next corner of `corners` to walk to
-  std::vector<std::vector<core::Vec2>> corners;  ///< cold: string-pulled path
-  std::vector<std::uint64_t> actionEndTick;
+  /// Navmesh polygon under the agent. Detour's references are 32-bit in Debian's build (no
+  /// DT_POLYREF64); integrate checks that every reference it gets back fits.
+  std::vector<std::uint32_t> polyRef;
+  std::vector<CornerPath> corners;        ///< string-pulled path and the corner walked to (2 inline)
+  /// Tick the action ends. 32 bits: a world runs at most 2^32 ticks (6.8 years at dt = 0.05 s).
+  std::vector<std::uint32_t> actionEndTick;
   std::vector<float> progressDistance;    ///< distance to target at the last progress check [m]
   std::vector<float> stuckTime;           ///< how long the agent has wanted to walk but barely moved [s]
-  std::vector<float> formVelX, formVelY;  ///< formation correction from the group pass [m/s]
-  std::vector<std::uint32_t> followAgent; ///< sociological: stable id of the agent followed, kNoAgent if none
-  std::vector<std::uint64_t> followUntil; ///< tick that following ends
-  std::vector<std::uint32_t> socialEffect;///< decide → group pass: 0 none, 1 join, 2 follow (+ other agent in socialOther)
-  std::vector<std::uint32_t> socialOther; ///< the agent met
   std::vector<std::uint8_t> dynamicTarget; ///< target set by a guide or a followed agent: approached slowing down
   std::vector<std::uint8_t> goalPending;  ///< decide → group pass: 1 = go on to the next goal, 2 = next wander target
   std::vector<std::int32_t> targetSub;    ///< sub-region holding the target (index into pointSubOffset space), -1 none
   std::vector<std::uint16_t> animClip;    ///< motion clip playing (animation.hpp)
   std::vector<float> animPhase;           ///< its phase in [0, 1)
-  // Common Ground (social.cpp).
+  // Formation (only when some population has flocking groups of two or more).
+  bool formation = false;
+  std::vector<float> formVelX, formVelY;  ///< formation correction from the group pass [m/s]
+  // Sociological model (only when some population has it on).
+  bool sociological = false;
+  std::vector<std::uint32_t> followAgent; ///< stable id of the agent followed, kNoAgent if none
+  std::vector<std::uint32_t> followUntil; ///< tick that following ends (32 bits, as actionEndTick)
+  std::vector<std::uint8_t> socialEffect; ///< decide → group pass: 0 none, 1 join, 2 follow (+ other agent in socialOther)
+  std::vector<std::uint32_t> socialOther; ///< the agent met
+  // Common Ground (social.cpp; only when the scenario's social section is on).
+  bool commonGround = false;
   std::vector<std::uint32_t> coordination;  ///< id of the coordination it plays a script in, kNoAgent if none
   std::vector<std::uint8_t> scriptWalk;     ///< while Scripted: 1 = walking to its target, 0 = standing
   std::vector<std::uint16_t> scriptClip;    ///< while Scripted: animation clip played, kNoClip = walk/idle by motion
   std::vector<std::uint32_t> desirePoint;   ///< decide → group pass: generated goal (point), kNoAgent if none
   std::vector<std::uint8_t> desireTrigger;  ///< its GoalTrigger
-  std::vector<std::uint64_t> socialReady;   ///< first tick a new goal may be generated (cooldown)
+  std::vector<std::uint32_t> socialReady;   ///< first tick a new goal may be generated (cooldown; 32 bits)
   std::vector<std::uint64_t> interests;     ///< bit c: interested in category c (World::Impl::categories)
   std::vector<std::vector<std::uint32_t>> visited;  ///< cold: points visited through the goal generator
   // Neighbours found by sense: row indices, maxNeighbours slots per agent.
@@ -78,18 +90,37 @@ struct AgentStore {
 
   [[nodiscard]] std::size_t size() const { return id.size(); }
 
-  /// Applies f to every per-agent column (not the neighbour buffers, which sense rebuilds).
+  // Optional columns read as their defaults when absent.
+  [[nodiscard]] core::Vec2 formVel(std::size_t row) const {
+    return formation ? core::Vec2{formVelX[row], formVelY[row]} : core::Vec2{};
+  }
+  /// Writes the formation correction (a zero needs no column).
+  void setFormVel(std::size_t row, float x, float y) {
+    if (formation) {
+      formVelX[row] = x;
+      formVelY[row] = y;
+    }
+  }
+  [[nodiscard]] std::uint32_t followedAgent(std::size_t row) const { return sociological ? followAgent[row] : kNoAgent; }
+  [[nodiscard]] std::uint32_t coordinationOf(std::size_t row) const { return commonGround ? coordination[row] : kNoAgent; }
+  [[nodiscard]] bool scriptWalking(std::size_t row) const { return commonGround && scriptWalk[row] != 0; }
+  [[nodiscard]] std::uint16_t scriptClipOf(std::size_t row) const { return commonGround ? scriptClip[row] : kNoClip; }
+
+  /// Applies f to every per-agent column present (not the neighbour buffers, which sense rebuilds).
   template <class F>
   void forEachColumn(F&& f) {
     f(id); f(group); f(population); f(groupSize);
     f(posX); f(posY); f(velX); f(velY); f(prefVelX); f(prefVelY); f(newVelX); f(newVelY);
     f(oriX); f(oriY); f(radius); f(speed); f(mode);
     f(goalState); f(goalCursor); f(targetX); f(targetY); f(targetDraws); f(needPath); f(ticket); f(polyRef);
-    f(cornerIndex); f(corners); f(actionEndTick); f(progressDistance); f(stuckTime);
-    f(formVelX); f(formVelY); f(followAgent); f(followUntil); f(socialEffect); f(socialOther);
+    f(corners); f(actionEndTick); f(progressDistance); f(stuckTime);
     f(animClip); f(animPhase); f(goalPending); f(targetSub); f(dynamicTarget);
-    f(coordination); f(scriptWalk); f(scriptClip); f(desirePoint); f(desireTrigger); f(socialReady); f(interests);
-    f(visited);
+    if (formation) { f(formVelX); f(formVelY); }
+    if (sociological) { f(followAgent); f(followUntil); f(socialEffect); f(socialOther); }
+    if (commonGround) {
+      f(coordination); f(scriptWalk); f(scriptClip); f(desirePoint); f(desireTrigger); f(socialReady); f(interests);
+      f(visited);
+    }
   }
 
   /// Appends one default-initialised row and returns its index.

@@ -56,7 +56,6 @@ void World::Impl::setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQ
   agents.ticket[row] = 0;  // a path still queued for the old goal expires unread
   agents.dynamicTarget[row] = 0;
   agents.corners[row].clear();
-  agents.cornerIndex[row] = 0;
   agents.progressDistance[row] = 1e30f;
   if (cursor < goals.size()) {
     const core::Vec2 t = drawTarget(row, desc.points[goals[cursor]], query);
@@ -101,7 +100,7 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
     ChunkOutput& out = chunks[begin / grain];
     const nav::NavQuery& query = *worker(tasks).query;
     for (std::size_t row = begin; row < end; ++row) {
-      if (agents.coordination[row] != kNoAgent) continue;  // playing an action script (social.cpp)
+      if (agents.coordinationOf(row) != kNoAgent) continue;  // playing an action script (social.cpp)
       const std::uint32_t id = agents.id[row];
       const GroupState& g = groups[agents.group[row]];
       const PopulationDesc& pop = desc.populations[g.population];
@@ -124,6 +123,7 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
         case GoalState::Exited:
         case GoalState::Done:
         case GoalState::WaitingForGroup:
+        case GoalState::Scripted:  // skipped above (coordination set); listed for completeness
           break;
         case GoalState::Acting:
           if (tick >= agents.actionEndTick[row]) {
@@ -134,7 +134,7 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
           break;
         case GoalState::Seeking: {
           // Guided groups and agents following another agent get their targets from the group pass.
-          if (g.guided || agents.followAgent[row] != kNoAgent) break;
+          if (g.guided || agents.followedAgent(row) != kNoAgent) break;
           const float x = agents.posX[row], y = agents.posY[row];
           if (agents.goalCursor[row] >= goals.size()) {  // wandering
             const float dx = agents.targetX[row] - x, dy = agents.targetY[row] - y;
@@ -169,7 +169,7 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
             } else if (point.kind == PointKind::Action && point.stop && point.actionDuration > 0.0f) {
               agents.goalState[row] = GoalState::Acting;
               agents.mode[row] = AgentMode::Acting;
-              agents.actionEndTick[row] = tick + static_cast<std::uint64_t>(std::lround(point.actionDuration / desc.dt));
+              agents.actionEndTick[row] = static_cast<std::uint32_t>(tick + static_cast<std::uint64_t>(std::lround(point.actionDuration / desc.dt)));
               agents.oriX[row] = point.orientation.x;
               agents.oriY[row] = point.orientation.y;
               out.events.push_back({tick, id, EventKind::ActionStart, pointIndex, 0});
@@ -193,7 +193,7 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
       if (agents.goalState[row] == GoalState::Seeking && desc.social.enabled) generateGoal(row, out, query);
       // Sociological model: meeting an agent of another group may make this one join that group
       // or follow that agent for a while (rates per second, one draw per meeting pair and tick).
-      agents.socialEffect[row] = 0;
+      if (agents.sociological) agents.socialEffect[row] = 0;
       const SociologicalDesc& social = pop.sociological;
       if (social.enabled && agents.goalState[row] == GoalState::Seeking && agents.followAgent[row] == kNoAgent &&
           !g.guided) {

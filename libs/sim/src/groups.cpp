@@ -59,7 +59,7 @@ void World::Impl::decideGroups(const core::TaskSystem& tasks) {
   }
   if (busyDirty) {
     busyGroups.clear();
-    for (std::uint32_t gid = 0; gid < groups.size(); ++gid) if (groupBusy[gid]) busyGroups.push_back(gid);
+    for (std::uint32_t gid = 0; gid < groups.size(); ++gid) if (groups[gid].busy) busyGroups.push_back(gid);
     busyDirty = false;
   }
   updateGuidance();
@@ -107,8 +107,7 @@ void World::Impl::bezierPath(std::size_t row, const nav::NavQuery& query) {
   std::vector<core::Vec2> points;
   crowd::sample(curve->points, 0.1f, points);
   if (!points.empty() && core::lengthSq(points.front() - from) < 1e-6f) points.erase(points.begin());
-  agents.corners[row] = std::move(points);
-  agents.cornerIndex[row] = 0;
+  agents.corners[row].assign(points);
   agents.needPath[row] = 0;
 }
 
@@ -150,13 +149,12 @@ void World::Impl::reconstructGoals(std::uint32_t gid, core::Vec2 anchor) {
 
 void World::Impl::applyGroupCommands() {
   for (const GroupCommand& c : commands) {
-    GroupState& g = groups[c.group];
-    markBusy(c.group);
+    GroupRoute& x = routeFor(c.group);
     if (c.guide) {
-      g.guidedByApi = true;
-      g.guide = c.position;
+      x.guidedByApi = true;
+      x.guide = c.position;
     } else {
-      g.guidedByApi = false;
+      x.guidedByApi = false;
     }
   }
   commands.clear();
@@ -167,18 +165,21 @@ void World::Impl::updateGuidance() {
   const float now = static_cast<float>(static_cast<double>(tick) * desc.dt);
   for (const std::uint32_t gid : busyGroups) {
     GroupState& g = groups[gid];
+    if (!hasRoute(g)) continue;  // never guided
+    GroupRoute& x = groupRoutes[extraOf(g).route];
+    const GroupExtra& shape = extraOf(g);
     const PopulationDesc& pop = desc.populations[g.population];
     const GuideDesc& script = pop.guide;
-    bool guided = g.guidedByApi;
+    bool guided = x.guidedByApi;
     if (!guided && !script.script.empty() && now >= script.script.front().time && (script.release < 0.0f || now < script.release)) {
       guided = true;
-      g.guide = interpolateGuide(script.script, now);
+      x.guide = interpolateGuide(script.script, now);
     }
     if (guided != g.guided) {
       g.guided = guided;
       const std::uint32_t leader = g.leader == kNoAgent ? 0 : g.leader;
       pendingEvents.push_back({tick, leader, guided ? EventKind::GuideStart : EventKind::GuideEnd, gid, 0});
-      g.guidePlanned = {1e30f, 1e30f};
+      x.guidePlanned = {1e30f, 1e30f};
       if (!guided) {
         // Guidance over: back to the group's own goals, where it left them.
         for (std::uint32_t id : g.members) {
@@ -188,19 +189,19 @@ void World::Impl::updateGuidance() {
       }
     }
     if (!g.guided || g.members.empty()) continue;
-    if (core::lengthSq(g.guide - g.guidePlanned) < kGuideReplan * kGuideReplan) continue;
+    if (core::lengthSq(x.guide - x.guidePlanned) < kGuideReplan * kGuideReplan) continue;
     // Dynamic goal: a spot `distance` behind the guide (on the side the group comes from), one
     // lateral slot per member so they stand beside each other.
-    g.guidePlanned = g.guide;
-    core::Vec2 back = core::normalize(g.centroid - g.guide);
-    if (core::lengthSq(back) == 0.0f) back = -g.heading;
+    x.guidePlanned = x.guide;
+    core::Vec2 back = core::normalize(shape.centroid - x.guide);
+    if (core::lengthSq(back) == 0.0f) back = -shape.heading;
     const core::Vec2 lateral = core::perp(back);
     const float n = static_cast<float>(g.members.size());
     for (std::size_t i = 0; i < g.members.size(); ++i) {
       const std::uint32_t r = rowOfId[g.members[i]];
       if (agents.goalState[r] == GoalState::Exited || agents.goalState[r] == GoalState::Acting) continue;
       const float slot = (static_cast<float>(i) - 0.5f * (n - 1.0f)) * pop.groupSpacing;
-      core::Vec2 target = g.guide + back * script.distance + lateral * slot;
+      core::Vec2 target = x.guide + back * script.distance + lateral * slot;
       if (auto hit = query.nearest(target, 3.0f)) target = hit->first;
       agents.targetX[r] = target.x;
       agents.targetY[r] = target.y;
@@ -217,36 +218,38 @@ void World::Impl::updateFollowing() {
   const nav::NavQuery& query = *mainQuery;
   for (const std::uint32_t gid : busyGroups) {
     GroupState& g = groups[gid];
-    if (g.followGroup == kNoAgent || g.guided) continue;
+    if (!hasRoute(g)) continue;  // follows nobody
+    GroupRoute& x = groupRoutes[extraOf(g).route];
+    if (x.followGroup == kNoAgent || g.guided) continue;
     const FollowDesc& f = desc.populations[g.population].follow;
-    const GroupState& leader = groups[g.followGroup];
+    const GroupState& leader = groups[x.followGroup];
     bool following = g.following;
     if (f.mode == FollowMode::Permanent) {
       following = !leader.members.empty() || leader.cursor > 0;
-    } else if (tick >= g.followToggle) {
+    } else if (tick >= x.followToggle) {
       // Temporary following: alternate periods on and off, lengths drawn per group and period.
       core::Rng rng(desc.seed, (static_cast<std::uint64_t>(gid) << 24) ^ tick, core::RngPurpose::Behaviour);
       following = !g.following && (!leader.members.empty() || leader.cursor > 0);
       const float lo = following ? f.onMin : f.offMin, hi = following ? f.onMax : f.offMax;
-      g.followToggle = tick + static_cast<std::uint64_t>(std::lround(rng.uniform(lo, hi) / desc.dt));
+      x.followToggle = static_cast<std::uint32_t>(tick + static_cast<std::uint64_t>(std::lround(rng.uniform(lo, hi) / desc.dt)));
     }
     if (following != g.following) {
       const std::uint32_t who = g.leader == kNoAgent ? 0 : g.leader;
-      pendingEvents.push_back({tick, who, following ? EventKind::FollowStart : EventKind::FollowEnd, gid, g.followGroup});
+      pendingEvents.push_back({tick, who, following ? EventKind::FollowStart : EventKind::FollowEnd, gid, x.followGroup});
       if (following) {
         // Adopt the followed group's goal list from where that group is now.
-        g.ownCursor = g.cursor;
+        x.ownCursor = g.cursor;
         g.following = true;
         g.cursor = leader.cursor;
-        g.waiting = false;
+        extraOf(g).waiting = false;
         for (std::uint32_t id : g.members) {
           const std::uint32_t r = rowOfId[id];
           if (agents.goalState[r] != GoalState::Exited && agents.goalState[r] != GoalState::Acting) setGoal(r, g.cursor, query);
         }
       } else {
         g.following = false;
-        g.cursor = g.ownCursor;
-        g.waiting = false;
+        g.cursor = x.ownCursor;
+        extraOf(g).waiting = false;
         for (std::uint32_t id : g.members) {
           const std::uint32_t r = rowOfId[id];
           if (agents.goalState[r] != GoalState::Exited && agents.goalState[r] != GoalState::Acting) setGoal(r, g.cursor, query);
@@ -289,19 +292,19 @@ void World::Impl::applySocialEffects() {
       // Join the other agent's group: adopt its goals and speed.
       const std::uint32_t from = agents.group[r], to = agents.group[other];
       if (from == to || groups[to].guided) continue;
-      std::erase(groups[from].members, agents.id[r]);
+      groups[from].members.erase(agents.id[r]);
       if (groups[from].leader == agents.id[r]) groups[from].leader = groups[from].members.empty() ? kNoAgent : groups[from].members.front();
       auto& members = groups[to].members;
       members.insert(std::upper_bound(members.begin(), members.end(), agents.id[r]), agents.id[r]);
       agents.group[r] = to;
       agents.groupSize[r] = static_cast<std::uint16_t>(std::min<std::size_t>(members.size(), 0xffff));
       markBusy(to);
-      if (groups[to].flocks(desc.populations[groups[to].population])) agents.speed[r] = groups[to].speed;
+      if (groups[to].flocks(desc.populations[groups[to].population])) agents.speed[r] = groupSpeed(to);
       pendingEvents.push_back({tick, agents.id[r], EventKind::JoinGroup, from, to});
       if (agents.goalState[r] != GoalState::Acting) setGoal(r, groups[to].cursor, query);
     } else if (effect == 2) {
       agents.followAgent[r] = agents.id[other];
-      agents.followUntil[r] = tick + static_cast<std::uint64_t>(std::lround(social.followDuration / desc.dt));
+      agents.followUntil[r] = static_cast<std::uint32_t>(tick + static_cast<std::uint64_t>(std::lround(social.followDuration / desc.dt)));
       agents.goalState[r] = GoalState::Seeking;
       agents.mode[r] = AgentMode::Walking;
       pendingEvents.push_back({tick, agents.id[r], EventKind::FollowAgent, agents.id[other], 0});
@@ -313,8 +316,9 @@ void World::Impl::updateWaiting() {
   const nav::NavQuery& query = *mainQuery;
   for (const std::uint32_t gid : busyGroups) {
     GroupState& g = groups[gid];
+    GroupExtra& x = extraOf(g);
     const PopulationDesc& pop = desc.populations[g.population];
-    if (g.coordination != kNoAgent) continue;  // members are playing a script: nobody waits or leaves
+    if (x.coordination != kNoAgent) continue;  // members are playing a script: nobody waits or leaves
     if (!g.flocks(pop) || g.guided) {
       // Without flocking the group's position in its goal list is its leader's.
       if (g.leader != kNoAgent && rowOfId[g.leader] != kNoAgent) g.cursor = agents.goalCursor[rowOfId[g.leader]];
@@ -325,20 +329,21 @@ void World::Impl::updateWaiting() {
     if (waiting == 0) continue;
     const std::vector<std::uint32_t>& goals = activeGoals(g);
     const std::uint32_t point = g.cursor < goals.size() ? goals[g.cursor] : kNoAgent;
-    if (!g.waiting) {
-      g.waiting = true;
-      g.waitStart = tick;
+    if (!x.waiting) {
+      x.waiting = true;
+      x.waitStart = static_cast<std::uint32_t>(tick);
       pendingEvents.push_back({tick, g.members.front(), EventKind::GroupWaitStart, point, gid});
     }
     const bool everyone = waiting == g.members.size();
-    const bool timedOut = static_cast<double>(tick - g.waitStart) * desc.dt >= pop.waitTimeout;
+    const bool timedOut = static_cast<double>(tick - x.waitStart) * desc.dt >= pop.waitTimeout;
     if (!everyone && !timedOut) continue;
     // A following group never overtakes: it leaves a goal only once the followed group has left it.
-    if (g.following && !groups[g.followGroup].members.empty() && groups[g.followGroup].cursor <= g.cursor) continue;
+    const std::uint32_t followed = routeOf(g).followGroup;
+    if (g.following && !groups[followed].members.empty() && groups[followed].cursor <= g.cursor) continue;
     const std::uint32_t missing = static_cast<std::uint32_t>(g.expected > waiting ? g.expected - waiting : 0);
     pendingEvents.push_back({tick, g.members.front(), everyone ? EventKind::GroupRelease : EventKind::GroupTimeout, point,
                              everyone ? gid : missing});
-    g.waiting = false;
+    x.waiting = false;
     ++g.cursor;
     for (std::uint32_t id : g.members) {
       const std::uint32_t r = rowOfId[id];
@@ -386,9 +391,10 @@ void World::Impl::updateGroupShapes(const core::TaskSystem& tasks) {
 void World::Impl::shapeGroup(GroupState& g, WorkerScratch& ws) {
   const PopulationDesc& pop = desc.populations[g.population];
   if (g.members.empty()) return;
-  const bool flocking = g.flocks(pop) && g.members.size() >= 2 && g.coordination == kNoAgent;
+  GroupExtra& x = extraOf(g);
+  const bool flocking = g.flocks(pop) && g.members.size() >= 2 && x.coordination == kNoAgent;
   if (!flocking && !g.guided) {
-    for (std::uint32_t id : g.members) agents.formVelX[rowOfId[id]] = agents.formVelY[rowOfId[id]] = 0.0f;
+    for (std::uint32_t id : g.members) agents.setFormVel(rowOfId[id], 0.0f, 0.0f);
     return;
   }
   // Centroid and heading of the members.
@@ -397,11 +403,11 @@ void World::Impl::shapeGroup(GroupState& g, WorkerScratch& ws) {
     const std::uint32_t r = rowOfId[id];
     sum += core::Vec2{agents.posX[r], agents.posY[r]};
     vel += core::Vec2{agents.velX[r], agents.velY[r]};
-    agents.formVelX[r] = agents.formVelY[r] = 0.0f;
+    agents.setFormVel(r, 0.0f, 0.0f);
   }
   const auto count = static_cast<float>(g.members.size());
-  g.centroid = sum / count;
-  if (core::lengthSq(vel) > 0.04f * count * count) g.heading = core::normalize(vel);
+  x.centroid = sum / count;
+  if (core::lengthSq(vel) > 0.04f * count * count) x.heading = core::normalize(vel);
   if (!flocking) return;
   // Members walking toward the group's goal take slots abreast (Moussaïd et al. 2010: small groups
   // walk side by side, larger ones in rows), ordered by where they already are so nobody crosses.
@@ -409,21 +415,21 @@ void World::Impl::shapeGroup(GroupState& g, WorkerScratch& ws) {
   order.clear();
   for (std::uint32_t id : g.members) {
     const std::uint32_t r = rowOfId[id];
-    if (agents.goalState[r] != GoalState::Seeking || agents.followAgent[r] != kNoAgent) continue;
+    if (agents.goalState[r] != GoalState::Seeking || agents.followedAgent(r) != kNoAgent) continue;
     if (agents.goalCursor[r] != g.cursor && !g.guided) continue;
-    const core::Vec2 rel = core::Vec2{agents.posX[r], agents.posY[r]} - g.centroid;
-    order.push_back({core::dot(rel, g.heading), r});
+    const core::Vec2 rel = core::Vec2{agents.posX[r], agents.posY[r]} - x.centroid;
+    order.push_back({core::dot(rel, x.heading), r});
   }
   if (order.size() < 2) return;
   std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
-  const core::Vec2 lateral = core::perp(g.heading);
+  const core::Vec2 lateral = core::perp(x.heading);
   const std::size_t rows = (order.size() + kAbreast - 1) / kAbreast;
   auto& line = ws.line;
   for (std::size_t row0 = 0; row0 < rows; ++row0) {
     const std::size_t first = row0 * kAbreast, last = std::min(order.size(), first + kAbreast);
     line.assign(order.begin() + static_cast<std::ptrdiff_t>(first), order.begin() + static_cast<std::ptrdiff_t>(last));
     for (auto& e : line) {
-      const core::Vec2 rel = core::Vec2{agents.posX[e.second], agents.posY[e.second]} - g.centroid;
+      const core::Vec2 rel = core::Vec2{agents.posX[e.second], agents.posY[e.second]} - x.centroid;
       e.first = core::dot(rel, lateral);
     }
     std::sort(line.begin(), line.end());
@@ -431,13 +437,12 @@ void World::Impl::shapeGroup(GroupState& g, WorkerScratch& ws) {
     for (std::size_t i = 0; i < line.size(); ++i) {
       const std::uint32_t r = line[i].second;
       const float slot = (static_cast<float>(i) - 0.5f * static_cast<float>(line.size() - 1)) * pop.groupSpacing;
-      const core::Vec2 rel = core::Vec2{agents.posX[r], agents.posY[r]} - g.centroid;
-      const float lat = core::dot(rel, lateral), lon = core::dot(rel, g.heading);
-      core::Vec2 corr = lateral * ((slot - lat) * kFormationGain) + g.heading * ((along - lon) * kFormationGain);
+      const core::Vec2 rel = core::Vec2{agents.posX[r], agents.posY[r]} - x.centroid;
+      const float lat = core::dot(rel, lateral), lon = core::dot(rel, x.heading);
+      core::Vec2 corr = lateral * ((slot - lat) * kFormationGain) + x.heading * ((along - lon) * kFormationGain);
       const float m = core::length(corr);
       if (m > kFormationMaxSpeed) corr *= kFormationMaxSpeed / m;
-      agents.formVelX[r] = corr.x;
-      agents.formVelY[r] = corr.y;
+      agents.setFormVel(r, corr.x, corr.y);
     }
   }
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "throng/core/assert.hpp"
 #include "throng/sim/animation.hpp"
 #include "world_impl.hpp"
 
@@ -40,7 +41,10 @@ void World::Impl::integrate(const core::TaskSystem& tasks) {
       if (agents.goalState[row] == GoalState::Exited) v = {};
       core::Vec2 next = pos;
       if (core::lengthSq(v) > 1e-12f) {
-        next = query.moveAlongSurface(pos, pos + v * h, agents.polyRef[row]);
+        nav::PolyRef ref = agents.polyRef[row];
+        next = query.moveAlongSurface(pos, pos + v * h, ref);
+        THRONG_ASSERT(ref <= 0xffffffffu);  // 32-bit Detour references (AgentStore::polyRef)
+        agents.polyRef[row] = static_cast<std::uint32_t>(ref);
       }
       const core::Vec2 moved = next - pos;
       agents.posX[row] = next.x;
@@ -52,7 +56,7 @@ void World::Impl::integrate(const core::TaskSystem& tasks) {
         out.walkingTime += h;
         // Wanting to walk (a preferred velocity) but barely moving: count toward deadlock breaking.
         const bool wants = agents.goalState[row] == GoalState::Seeking ||
-                           (agents.goalState[row] == GoalState::Scripted && agents.scriptWalk[row]);
+                           (agents.goalState[row] == GoalState::Scripted && agents.scriptWalking(row));
         const bool stuck = wants && core::length(moved) < 0.1f * agents.speed[row] * h;
         agents.stuckTime[row] = stuck ? agents.stuckTime[row] + h : 0.0f;
       } else {
@@ -68,7 +72,7 @@ void World::Impl::integrate(const core::TaskSystem& tasks) {
         const float total = std::max(h, desc.points[point].actionDuration);
         const float left = static_cast<float>(agents.actionEndTick[row] > tick ? agents.actionEndTick[row] - tick : 0) * h;
         setClip(row, pointClip[point], std::clamp(1.0f - left / total, 0.0f, 0.999f));
-      } else if (agents.goalState[row] == GoalState::Scripted && agents.scriptClip[row] != kNoClip) {
+      } else if (agents.goalState[row] == GoalState::Scripted && agents.scriptClipOf(row) != kNoClip) {
         // A micro-behaviour clip of an action script (wave, nod, ...), played once.
         const std::uint16_t clip = agents.scriptClip[row];
         const float phase = agents.animClip[row] == clip ? agents.animPhase[row] + h / clipDuration[clip] : 0.0f;
@@ -79,7 +83,7 @@ void World::Impl::integrate(const core::TaskSystem& tasks) {
         setClip(row, kClipIdle, agents.animPhase[row] + h / kIdleCycle);
       }
       const bool holdsHeading = agents.goalState[row] == GoalState::Acting ||
-                                (agents.goalState[row] == GoalState::Scripted && !agents.scriptWalk[row]);
+                                (agents.goalState[row] == GoalState::Scripted && !agents.scriptWalking(row));
       if (!holdsHeading) {
         const float speed = core::length(moved) / h;
         if (speed > kTurnMinSpeed) {

@@ -31,8 +31,7 @@ void World::Impl::plan() {
       const std::uint32_t point = cursor < pop.goals.size() ? pop.goals[cursor] : static_cast<std::uint32_t>(-1);
       pendingEvents.push_back({tick, agents.id[row], EventKind::PathPartial, point, 0});
     }
-    agents.corners[row] = std::move(result.corners);
-    agents.cornerIndex[row] = 0;
+    agents.corners[row].assign(result.corners);
   }
 }
 

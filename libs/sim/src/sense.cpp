@@ -1,6 +1,8 @@
 // sense — rebuilds the spatial grid and finds each agent's k nearest neighbours within
-// steering.neighbourDistance (parallel; each agent writes only its own neighbour slots). Ties in
-// distance break by row, which is stable-id order, so the lists never depend on threads.
+// steering.neighbourDistance (parallel; each agent writes only its own neighbour slots). Agents are
+// visited in the grid's cell order, so consecutive searches read the same cells from cache; ties
+// in distance break by row, which is stable-id order, so the lists never depend on threads or on
+// the visiting order.
 #include <algorithm>
 
 #include "world_impl.hpp"
@@ -15,15 +17,16 @@ void World::Impl::sense(const core::TaskSystem& tasks) {
   agents.neighbourCount.resize(n);
   const float range = desc.steering.neighbourDistance;
   const float dense = std::min(desc.steering.denseNeighbourDistance, range);
+  const float denseThreshold = desc.steering.denseThreshold;
   tasks.parallelFor(n, grainFor(n), [&](std::size_t begin, std::size_t end) {
-    auto& best = worker(tasks).candidates;
-    for (std::size_t row = begin; row < end; ++row) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::uint32_t row = grid.rowAt(i);
+      const float x = grid.xAt(i), y = grid.yAt(i);
       // Density-dependent detection range (Musse et al. §3.2.4): d in dense places, D elsewhere.
       float r = range;
-      if (dense > 0.0f && grid.density(agents.posX[row], agents.posY[row]) >= desc.steering.denseThreshold) r = dense;
-      agents.neighbourCount[row] = static_cast<std::uint16_t>(
-          grid.nearest(agents.posX[row], agents.posY[row], r, k, static_cast<std::uint32_t>(row), agents.posX.data(),
-                       agents.posY.data(), best, &agents.neighbours[row * k]));
+      if (dense > 0.0f && grid.density(x, y) >= denseThreshold) r = dense;
+      agents.neighbourCount[row] =
+          static_cast<std::uint16_t>(grid.nearest(x, y, r, k, row, &agents.neighbours[static_cast<std::size_t>(row) * k]));
     }
   });
 }

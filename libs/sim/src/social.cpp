@@ -92,7 +92,7 @@ void World::Impl::generateGoal(std::size_t row, ChunkOutput& out, const nav::Nav
   const SocialDesc& social = desc.social;
   if (!social.enabled || agents.desirePoint[row] != kNoAgent || tick < agents.socialReady[row]) return;
   const GroupState& g = groups[agents.group[row]];
-  if (g.coordination != kNoAgent || g.guided || g.following || agents.followAgent[row] != kNoAgent) return;
+  if (extraOf(g).coordination != kNoAgent || g.guided || g.following || agents.followedAgent(row) != kNoAgent) return;
   const std::uint32_t id = agents.id[row];
   const core::Vec2 pos{agents.posX[row], agents.posY[row]};
   auto want = [&](std::uint32_t point, GoalTrigger trigger) {
@@ -152,7 +152,7 @@ void World::Impl::startCoordinations() {
       if (point == kNoAgent || agents.goalState[row] != GoalState::Seeking || agents.coordination[row] != kNoAgent) continue;
       const std::uint32_t gid = agents.group[row];
       GroupState& g = groups[gid];
-      if (g.coordination != kNoAgent) continue;  // a mate got there first this tick
+      if (extraOf(g).coordination != kNoAgent) continue;  // a mate got there first this tick
       const std::uint32_t aId = agents.id[row];
       const PointDesc& place = desc.points[point];
 
@@ -319,7 +319,7 @@ void World::Impl::startCoordinations() {
         agents.needPath[r] = 0;
         agents.ticket[r] = 0;
       }
-      if (!alone) g.coordination = c.record.id;
+      if (!alone) extraOf(g).coordination = c.record.id;
       markBusy(gid);
       pendingEvents.push_back({tick, aId, EventKind::GoalGenerated, point, static_cast<std::uint32_t>(trigger)});
       pendingEvents.push_back({tick, aId, EventKind::CoordinationStart, c.record.id, gid});
@@ -412,7 +412,7 @@ void World::Impl::runCoordinations() {
       agents.scriptWalk[row] = 0;
       agents.scriptClip[row] = kNoClip;
       if (actor == 0) {
-        agents.socialReady[row] = tick + static_cast<std::uint64_t>(std::lround(desc.social.cooldown / desc.dt));
+        agents.socialReady[row] = static_cast<std::uint32_t>(tick + static_cast<std::uint64_t>(std::lround(desc.social.cooldown / desc.dt)));
         agents.visited[row].push_back(c.record.goalPoint);
       }
       // Back to the group's navigation, where the group is now.
@@ -521,10 +521,10 @@ void World::Impl::runCoordinations() {
 void World::Impl::finishCoordination(ActiveCoordination& c, double now) {
   c.record.end = now;
   if (c.record.executeTime <= 0.0) c.record.executeTime = now;
-  GroupState& g = groups[c.record.group];
-  if (g.coordination == c.record.id) g.coordination = kNoAgent;
+  GroupExtra& x = extraOf(groups[c.record.group]);
+  if (x.coordination == c.record.id) x.coordination = kNoAgent;
   if (c.divides && !c.reunitedOnReturn) {
-    g.reunite = c.record.id;
+    x.reunite = c.record.id;
     markBusy(c.record.group);
   }
   pendingEvents.push_back({tick, c.record.initiator, EventKind::CoordinationEnd, c.record.id,
@@ -535,9 +535,10 @@ void World::Impl::finishCoordination(ActiveCoordination& c, double now) {
 void World::Impl::checkReunions() {
   for (const std::uint32_t gid : busyGroups) {
     GroupState& g = groups[gid];
-    if (g.reunite == kNoAgent || g.coordination != kNoAgent) continue;
+    GroupExtra& x = extraOf(g);
+    if (x.reunite == kNoAgent || x.coordination != kNoAgent) continue;
     if (g.members.size() < 2) {
-      g.reunite = kNoAgent;
+      x.reunite = kNoAgent;
       continue;
     }
     // Whole again: nobody in a script, everybody within the group's width of the centroid.
@@ -556,8 +557,8 @@ void World::Impl::checkReunions() {
       return core::lengthSq(core::Vec2{agents.posX[r], agents.posY[r]} - centroid) <= reach * reach;
     });
     if (!together) continue;
-    pendingEvents.push_back({tick, g.leader == kNoAgent ? g.members.front() : g.leader, EventKind::Reunited, gid, g.reunite});
-    g.reunite = kNoAgent;
+    pendingEvents.push_back({tick, g.leader == kNoAgent ? g.members.front() : g.leader, EventKind::Reunited, gid, x.reunite});
+    x.reunite = kNoAgent;
   }
 }
 

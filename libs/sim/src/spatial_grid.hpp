@@ -37,44 +37,57 @@ class SpatialGrid {
   }
 
   /// The k nearest rows to (x, y) within `range` (excluding `self`), nearest first, ties by row.
-  /// Cells are searched ring by ring outward and the search stops once no unvisited cell can hold
-  /// anything closer than the current k-th neighbour. `best` is caller scratch; returns the count
-  /// written to `out` (at most k).
-  std::size_t nearest(float x, float y, float range, std::size_t k, std::uint32_t self, const float* posX,
-                      const float* posY, std::vector<std::pair<float, std::uint32_t>>& best, std::uint32_t* out) const;
+  /// Candidates are gathered as packed (distance², row) keys — the 5 × 5 cells around the query
+  /// as five contiguous spans, then ring by ring outward — until no unvisited cell can hold
+  /// anything closer than the current k-th neighbour; the k smallest keys are then selected and
+  /// sorted. Returns the count written to `out` (at most k). No allocation for k <= 64.
+  std::size_t nearest(float x, float y, float range, std::size_t k, std::uint32_t self, std::uint32_t* out) const;
+
+  /// Number of rows sorted into cells by the last rebuild().
+  [[nodiscard]] std::size_t size() const { return size_; }
+  /// The i-th agent in cell order (i < size()): its row and position as of the last rebuild().
+  [[nodiscard]] std::uint32_t rowAt(std::size_t i) const { return rows_[i]; }
+  [[nodiscard]] float xAt(std::size_t i) const { return cellX_[i]; }
+  [[nodiscard]] float yAt(std::size_t i) const { return cellY_[i]; }
 
   /// Agents per m² in the 3×3 cells around (x, y) (Musse et al. §3.2.4's density measure).
   [[nodiscard]] float density(float x, float y) const {
     const int cx = cellX(x), cy = cellY(y);
+    const int gx0 = std::max(0, cx - 1), gx1 = std::min(nx_ - 1, cx + 1);
+    const int gy0 = std::max(0, cy - 1), gy1 = std::min(ny_ - 1, cy + 1);
     std::uint32_t count = 0;
-    int cells = 0;
-    for (int gy = std::max(0, cy - 1); gy <= std::min(ny_ - 1, cy + 1); ++gy) {
-      for (int gx = std::max(0, cx - 1); gx <= std::min(nx_ - 1, cx + 1); ++gx) {
-        const std::size_t c = static_cast<std::size_t>(gy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(gx);
-        count += cellStart_[c + 1] - cellStart_[c];
-        ++cells;
-      }
+    for (int gy = gy0; gy <= gy1; ++gy) {  // the cells of one grid row are one span of entries
+      const std::size_t base = static_cast<std::size_t>(gy) * static_cast<std::size_t>(nx_);
+      count += cellStart_[base + static_cast<std::size_t>(gx1) + 1] - cellStart_[base + static_cast<std::size_t>(gx0)];
     }
+    const int cells = (gx1 - gx0 + 1) * (gy1 - gy0 + 1);
     return static_cast<float>(count) / (static_cast<float>(cells) * cellSize_ * cellSize_);
   }
 
-  [[nodiscard]] int cellX(float x) const { return clampCell(static_cast<int>(std::floor((x - originX_) * invCell_)), nx_); }
-  [[nodiscard]] int cellY(float y) const { return clampCell(static_cast<int>(std::floor((y - originY_) * invCell_)), ny_); }
+  [[nodiscard]] int cellX(float x) const { return toCell((x - originX_) * invCell_, nx_); }
+  [[nodiscard]] int cellY(float y) const { return toCell((y - originY_) * invCell_, ny_); }
   [[nodiscard]] float cellSize() const { return cellSize_; }
   /// Rows in cell order (agents of one cell are contiguous): a cache-friendly visiting order.
-  [[nodiscard]] std::span<const std::uint32_t> rowsInCellOrder() const { return rows_; }
+  [[nodiscard]] std::span<const std::uint32_t> rowsInCellOrder() const { return {rows_.data(), size_}; }
 
  private:
-  static int clampCell(int c, int n) { return c < 0 ? 0 : (c >= n ? n - 1 : c); }
+  /// floor(v) clamped to [0, n): truncation equals floor on [0, n), and everything below 0 (NaN
+  /// too) clamps to 0 either way — without a call to floorf (no SSE4.1 in the baseline ISA).
+  static int toCell(float v, int n) {
+    if (!(v >= 0.0f)) return 0;
+    if (v >= static_cast<float>(n)) return n - 1;
+    return std::min(static_cast<int>(v), n - 1);
+  }
   float originX_ = 0, originY_ = 0, cellSize_ = 1, invCell_ = 1;
   int nx_ = 1, ny_ = 1;
   std::vector<std::uint32_t> cellStart_;  // size nx*ny + 1
-  std::vector<std::uint32_t> rows_;       // rows sorted by cell
-  struct Entry {
-    float x, y;
-    std::uint32_t row;
-  };
-  std::vector<Entry> entries_;            // positions packed in cell order (nearest() reads these)
+  // Rows sorted by cell and their positions in that order (nearest() reads these four at a time);
+  // each array has kPad slack entries after size_ so that a span's last group of four may be read
+  // whole.
+  static constexpr std::size_t kPad = 4;
+  std::size_t size_ = 0;
+  std::vector<std::uint32_t> rows_;
+  std::vector<float> cellX_, cellY_;
   std::vector<std::uint32_t> cellOfRow_;
   std::vector<std::uint32_t> cursor_;
 };

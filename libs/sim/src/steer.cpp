@@ -67,9 +67,9 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
 
       // 1. Desired velocity.
       core::Vec2 desired;
-      if (agents.goalState[row] == GoalState::Seeking || (agents.goalState[row] == GoalState::Scripted && agents.scriptWalk[row])) {
-        std::vector<core::Vec2>& corners = agents.corners[row];
-        std::uint32_t& ci = agents.cornerIndex[row];
+      if (agents.goalState[row] == GoalState::Seeking || (agents.goalState[row] == GoalState::Scripted && agents.scriptWalking(row))) {
+        CornerPath& corners = agents.corners[row];
+        std::uint32_t& ci = corners.index;
         const core::Vec2 target{agents.targetX[row], agents.targetY[row]};
         // Move on to the next corner once near this one — but only if the next is in line of sight:
         // skipping a corner of a wall before rounding it walks straight into the wall.
@@ -91,7 +91,7 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
           if (lastLeg && (stopsThere || agents.dynamicTarget[row])) v = std::min(v, dist / kArrivalTime);
           desired = toAim * (v / dist);
           // Flocking: the group pass's correction toward the member's slot beside the others.
-          desired += core::Vec2{agents.formVelX[row], agents.formVelY[row]};
+          desired += agents.formVel(row);
           const float cap = maxSpeed * kFormationSpeedUp;
           if (core::lengthSq(desired) > cap * cap) desired = core::normalize(desired) * cap;
           if (agents.stuckTime[row] > kStuckPatience) desired = unstick(desired, desc.seed, agents.id[row], agents.stuckTime[row]);

@@ -10,6 +10,18 @@
 #include "world_impl.hpp"
 
 namespace throng::sim {
+namespace {
+
+// Groups are never removed, so a group's handle is fixed: {stable id + 1, generation 1} (what a
+// SlotMap filled in id order hands out) and needs no table.
+GroupId handleOf(std::uint32_t gid) { return GroupId{gid + 1, 1}; }
+
+std::optional<std::uint32_t> groupOf(const std::vector<GroupState>& groups, GroupId handle) {
+  if (handle.index == 0 || handle.index > groups.size() || handle.generation != 1) return std::nullopt;
+  return handle.index - 1;
+}
+
+}  // namespace
 
 World::World() : impl_(std::make_unique<Impl>()) {}
 World::~World() = default;
@@ -124,7 +136,7 @@ void World::Impl::emit() {
       if (keep[r]) continue;
       releaseTarget(r);
       GroupState& g = groups[agents.group[r]];
-      std::erase(g.members, agents.id[r]);
+      g.members.erase(agents.id[r]);
       if (g.leader == agents.id[r]) g.leader = g.members.empty() ? kNoAgent : g.members.front();
     }
     agents.compact(keep);
@@ -152,7 +164,7 @@ FramePtr World::snapshot() {
   frame->mode = a.mode;
   frame->clip = a.animClip;
   frame->phase = a.animPhase;
-  frame->events = std::move(w.pendingEvents);
+  frame->events = w.takeEvents();
   w.pendingEvents.clear();
   frame->script = std::move(w.pendingScript);
   w.pendingScript.clear();
@@ -175,48 +187,50 @@ GroupId World::group(std::string_view population, std::uint32_t index) const {
   const Impl& w = *impl_;
   for (std::size_t p = 0; p < w.desc.populations.size(); ++p) {
     if (w.desc.populations[p].id == population && index < w.desc.populations[p].groups) {
-      return w.groupHandles[w.firstGroupId[p] + index];
+      return handleOf(w.firstGroupId[p] + index);
     }
   }
   return {};
 }
 
 GroupId World::groupById(std::uint32_t id) const {
-  return id < impl_->groupHandles.size() ? impl_->groupHandles[id] : GroupId{};
+  return id < impl_->groups.size() ? handleOf(id) : GroupId{};
 }
 
 std::size_t World::groupCount() const { return impl_->groups.size(); }
 
 std::optional<GroupInfo> World::groupInfo(GroupId handle) const {
   const Impl& w = *impl_;
-  const auto id = w.groupSlots.find(handle);
+  const auto id = groupOf(w.groups, handle);
   if (!id) return std::nullopt;
   const GroupState& g = w.groups[*id];
+  const GroupExtra& x = w.extraOf(g);
+  const GroupRoute& route = w.routeOf(g);
   GroupInfo info;
   info.id = *id;
   info.population = g.population;
-  info.members = g.members;
+  info.members = g.members.toVector();
   info.leader = g.leader;
   info.goalIndex = g.cursor;
   const std::vector<std::uint32_t>& goals = w.activeGoals(g);
   info.goalPoint = g.cursor < goals.size() ? goals[g.cursor] : kNoAgent;
-  info.waiting = g.waiting;
+  info.waiting = x.waiting;
   info.guided = g.guided;
-  info.guide = g.guide;
+  info.guide = route.guide;
   info.following = g.following;
-  info.followedGroup = g.following ? g.followGroup : kNoAgent;
+  info.followedGroup = g.following ? route.followGroup : kNoAgent;
   return info;
 }
 
 bool World::guide(GroupId handle, core::Vec2 position) {
-  const auto id = impl_->groupSlots.find(handle);
+  const auto id = groupOf(impl_->groups, handle);
   if (!id) return false;
   impl_->commands.push_back({*id, true, position});
   return true;
 }
 
 bool World::release(GroupId handle) {
-  const auto id = impl_->groupSlots.find(handle);
+  const auto id = groupOf(impl_->groups, handle);
   if (!id) return false;
   impl_->commands.push_back({*id, false, {}});
   return true;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "agent_store.hpp"
+#include "throng/core/assert.hpp"
 #include "spatial_grid.hpp"
 #include "walls.hpp"
 #include "throng/core/rng.hpp"
@@ -31,37 +32,51 @@ inline constexpr int kPathIterationsPerTick = 20000;
 /// Period of the progress check that triggers a re-plan for an agent that is stuck [s].
 inline constexpr float kProgressCheckPeriod = 4.0f;
 
-/// One social group (Musse et al. §3.1.2: a crowd is a set of groups). Cold data, indexed by the
-/// stable group id; written only by the serial group pass (groups.cpp) and by spawning.
+/// Guidance and following of a group (§3.2.6, §3.2.5): only groups with a guide script, guided
+/// through the API, or following another group have one (World::Impl::groupRoutes).
+struct GroupRoute {
+  core::Vec2 guide;
+  core::Vec2 guidePlanned{1e30f, 1e30f};  ///< guide position the members' paths were planned for
+  std::uint32_t followGroup = kNoAgent;  ///< group followed while `following`
+  std::uint32_t followToggle = 0;        ///< tick the current (temporary) period ends (32 bits, as actionEndTick)
+  std::uint32_t ownCursor = 0;           ///< own cursor saved while following temporarily
+  bool guidedByApi = false;
+};
+
+/// The part of a group that lone agents never need: waiting, formation shape, Common Ground. Only
+/// groups that may need it have one (World::Impl::groupExtras): busy groups (GroupState::busy)
+/// and, when Common Ground is on, every group. Others read the defaults (World::Impl::extraOf).
+struct GroupExtra {
+  // Formation.
+  core::Vec2 centroid, heading{1.0f, 0.0f};
+  // Waiting (flocking rule 4).
+  std::uint32_t waitStart = 0;           ///< tick the wait began (32 bits, as actionEndTick)
+  // Common Ground (social.cpp).
+  std::uint32_t coordination = kNoAgent;  ///< id of the coordination its members play now
+  std::uint32_t reunite = kNoAgent;       ///< a divide ended: id of that coordination until the group is whole again
+  std::uint32_t route = kNoAgent;         ///< index into World::Impl::groupRoutes, kNoAgent: none
+  bool waiting = false;
+};
+
+/// One social group (Musse et al. §3.1.2: a crowd is a set of groups), indexed by the stable group
+/// id; written only by the serial group pass (groups.cpp) and by spawning. 40 bytes: what every
+/// group, even a lone agent's, needs; the rest is in its GroupExtra, if it has one. The shared
+/// walking speed of a flocking group is drawn again when needed (World::Impl::groupSpeed).
 struct GroupState {
-  std::uint16_t population = 0;
-  std::vector<std::uint32_t> members;  ///< stable ids present in the world, ascending
+  MemberList members;                  ///< stable ids present in the world, ascending
   std::uint32_t expected = 0;          ///< members that will be spawned
   std::uint32_t leader = kNoAgent;
   std::uint32_t goalList = 0;          ///< own goal list: index into World::Impl::goalLists
   std::uint32_t cursor = 0;            ///< goal the group is heading for (index into the active list)
-  float speed = 1.34f;                 ///< shared walking speed when flocking [m/s]
-  // Waiting (flocking rule 4).
-  bool waiting = false;
-  std::uint64_t waitStart = 0;
-  // Formation.
-  core::Vec2 centroid, heading{1.0f, 0.0f};
-  // Following (§3.2.5).
-  std::uint32_t followGroup = kNoAgent;  ///< group followed while `following`
-  bool following = false;
-  std::uint64_t followToggle = 0;        ///< tick the current (temporary) period ends
-  std::uint32_t ownCursor = 0;           ///< own cursor saved while following temporarily
-  // Guidance (§3.2.6).
-  bool guided = false;
-  bool guidedByApi = false;
-  core::Vec2 guide;
-  core::Vec2 guidePlanned{1e30f, 1e30f};  ///< guide position the members' paths were planned for
-  // Common Ground (social.cpp).
-  std::uint32_t coordination = kNoAgent;  ///< id of the coordination its members play now
-  std::uint32_t reunite = kNoAgent;       ///< a divide ended: id of that coordination until the group is whole again
+  std::uint32_t extra = kNoAgent;      ///< index into World::Impl::groupExtras, kNoAgent: none
+  std::uint16_t population = 0;
+  bool busy : 1 = false;               ///< visited by the group pass every tick (World::Impl::busyGroups)
+  bool guided : 1 = false;             ///< guidance (§3.2.6) on: read by every member in decide
+  bool following : 1 = false;          ///< following another group (§3.2.5) now: read by activeGoals
 
   [[nodiscard]] bool flocks(const PopulationDesc& pop) const { return pop.flocking && expected >= 2; }
 };
+static_assert(sizeof(GroupState) <= 40);
 
 /// One Common Ground interaction being carried out (or a lone visit): the planned action script
 /// and where each actor is in it. Times of entries not yet started shift by `slip`, the overrun of
@@ -94,7 +109,6 @@ struct WorkerScratch {
   std::vector<OrcaLine> projected;
   std::vector<std::uint32_t> wallIds;
   std::vector<std::pair<float, std::uint32_t>> order, line;  // formation
-  std::vector<std::pair<float, std::uint32_t>> candidates;
 };
 
 /// Per-chunk outputs merged in chunk order (deterministic for any thread count).
@@ -128,19 +142,52 @@ struct World::Impl {
 
   // Groups.
   std::vector<GroupState> groups;
+  std::vector<GroupExtra> groupExtras;      ///< cold group data, see GroupExtra
   /// Goal lists (point indices): one per population first, then one per automatic-goals group.
   std::vector<std::vector<std::uint32_t>> goalLists;
-  core::SlotMap<GroupTag> groupSlots;       ///< handle → stable group id
-  std::vector<GroupId> groupHandles;        ///< stable group id → handle
   std::vector<GroupCommand> commands;
-  /// Groups the group pass visits every tick: flocking groups of 2+, guided, following or followed,
-  /// or sociable ones. Lone agents with none of these need no per-tick group work.
-  std::vector<std::uint8_t> groupBusy;
+  /// Groups the group pass visits every tick (GroupState::busy): flocking groups of 2+, guided,
+  /// following or followed, or sociable ones. Lone agents with none of these need no per-tick group
+  /// work. Group handles are {stable id + 1, generation 1}: groups are never removed.
   std::vector<std::uint32_t> busyGroups;  ///< ascending
   bool busyDirty = true;
   void markBusy(std::uint32_t gid) {
-    if (!groupBusy[gid]) { groupBusy[gid] = 1; busyDirty = true; }
+    GroupState& g = groups[gid];
+    if (!g.busy) { g.busy = true; busyDirty = true; }
+    if (g.extra == kNoAgent) {
+      g.extra = static_cast<std::uint32_t>(groupExtras.size());
+      groupExtras.emplace_back();
+    }
   }
+  /// The group's cold part (the defaults when it has none). The reference is invalidated by markBusy.
+  [[nodiscard]] const GroupExtra& extraOf(const GroupState& g) const {
+    static const GroupExtra kNone;
+    return g.extra == kNoAgent ? kNone : groupExtras[g.extra];
+  }
+  /// The cold part of a busy group (or, with Common Ground on, of any group): it always has one.
+  [[nodiscard]] GroupExtra& extraOf(GroupState& g) {
+    THRONG_ASSERT(g.extra != kNoAgent);
+    return groupExtras[g.extra];
+  }
+  std::vector<GroupRoute> groupRoutes;      ///< see GroupRoute
+  /// The group's guidance and following state (the defaults when it has none).
+  [[nodiscard]] const GroupRoute& routeOf(const GroupState& g) const {
+    static const GroupRoute kNone;
+    const std::uint32_t r = extraOf(g).route;
+    return r == kNoAgent ? kNone : groupRoutes[r];
+  }
+  /// The group's guidance and following state, created on first use (serial code only; marks the
+  /// group busy). The reference is invalidated by the next routeFor.
+  GroupRoute& routeFor(std::uint32_t gid) {
+    markBusy(gid);
+    GroupExtra& x = groupExtras[groups[gid].extra];
+    if (x.route == kNoAgent) {
+      x.route = static_cast<std::uint32_t>(groupRoutes.size());
+      groupRoutes.emplace_back();
+    }
+    return groupRoutes[x.route];
+  }
+  [[nodiscard]] bool hasRoute(const GroupState& g) const { return extraOf(g).route != kNoAgent; }
   std::vector<core::Vec2> viewers;
   std::vector<std::uint32_t> rowOfId;       ///< stable id → row (kNoAgent if gone), rebuilt when rows change
   bool rowsChanged = true;                  ///< set by spawning and by removals
@@ -180,6 +227,19 @@ struct World::Impl {
   mutable std::vector<WorkerScratch> scratch;
   std::vector<ChunkOutput> chunks;
   std::vector<Event> pendingEvents;  // since the last snapshot
+  /// Spawn events since the last snapshot, kept compactly: `count` agents with consecutive ids from
+  /// `firstAgent` (the first one member `member` of group `group`, then in group order) entered at
+  /// `tick`; their events belong before pendingEvents[at]. snapshot() writes them out in place, so
+  /// a frame's events are the same as if each had been stored (24 bytes per agent otherwise).
+  struct SpawnRun {
+    std::size_t at = 0;
+    std::uint64_t tick = 0;
+    std::uint32_t population = 0, firstAgent = 0, count = 0, group = 0, member = 0;
+  };
+  std::vector<SpawnRun> spawnRuns;
+  void recordSpawn(std::uint32_t population, std::uint32_t agent, std::uint32_t group, std::uint32_t member);
+  /// pendingEvents with the spawn runs written out in place (empties both).
+  std::vector<Event> takeEvents();
 
   // Phases.
   void planPopulations();
@@ -205,7 +265,7 @@ struct World::Impl {
   void setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQuery& query);
   /// The goal list a group follows now: its own, or the followed group's while following.
   [[nodiscard]] const std::vector<std::uint32_t>& activeGoals(const GroupState& g) const {
-    return goalLists[g.following && g.followGroup != kNoAgent ? groups[g.followGroup].goalList : g.goalList];
+    return goalLists[g.following && routeOf(g).followGroup != kNoAgent ? groups[routeOf(g).followGroup].goalList : g.goalList];
   }
   // Group pass steps (groups.cpp).
   void applyPendingGoals();
@@ -223,6 +283,9 @@ struct World::Impl {
   void updateGuidance();
   void applySocialEffects();
   void updateLeaders();
+  /// Flocking rule 2: one walking speed per group, drawn from its population's distribution (the
+  /// group's own stream: the same value whenever it is drawn) [m/s].
+  [[nodiscard]] float groupSpeed(std::uint32_t gid) const;
   [[nodiscard]] float dt() const { return desc.dt; }
   [[nodiscard]] std::size_t grainFor(std::size_t n) const { return n < 4096 ? 256 : 1024; }
 };
