@@ -7,10 +7,13 @@
 // temporary file that is deleted afterwards. Reads the process's memory counters (/proc/self/statm,
 // getrusage) and the scenario file; writes a table or JSON lines on stdout and a progress line on a
 // terminal's stderr.
+//
+// This file: in-memory scenarios, timing one configuration (both kinds), the table and footnotes,
+// and the command line; scenario files (resolving --scenario, running each configuration) are in
+// cmd_bench_file.cpp, BenchRunner and Measurement in cmd_bench_runner.hpp.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <optional>
 
@@ -22,6 +25,7 @@
 #include <unistd.h>
 
 #include "bench_scenarios.hpp"
+#include "cmd_bench_runner.hpp"
 #include "commands.hpp"
 #include "output.hpp"
 #include "progress.hpp"
@@ -60,25 +64,6 @@ double peakRss() {
   return static_cast<double>(usage.ru_maxrss) * 1024.0;
 }
 
-struct Measurement {
-  std::string engine;
-  std::size_t agents = 0;  ///< in-memory: N; file: most agents present at once
-  int threads = 1;
-  int ticks = 0;
-  double agentStepsPerSec = 0.0;
-  double msMedian = 0.0;
-  double msP99 = 0.0;
-  double bytesPerAgent = 0.0;
-  double peakRssBytes = 0.0;
-  double simulatedSeconds = 0.0;  ///< simulated time of the timed ticks [s]
-  double wallSeconds = 0.0;       ///< wall time of the timed ticks (file + recording: and closing it) [s]
-  std::optional<double> recordedFps;  ///< the frame rate written, for "throng+rec"
-  std::uint64_t frames = 0;
-  double closeSeconds = 0.0;      ///< closing the recording (flush, checkpoint) [s]
-  std::optional<double> speedup;  ///< throng / DetourCrowd agent-steps/s, same agent count
-
-  [[nodiscard]] double realtimeFactor() const { return wallSeconds > 0 ? simulatedSeconds / wallSeconds : 0.0; }
-};
 
 /// Agents in a bench scenario (groups of a fixed size).
 std::size_t agentCount(const sim::ScenarioDesc& desc) {
@@ -96,41 +81,9 @@ double percentile(std::vector<double> values, double q) {
 
 double roundMicro(double v) { return std::round(v * 1e6) / 1e6; }
 
-class BenchRunner {
- public:
-  explicit BenchRunner(const BenchOptions& options)
-      : options_(options),
-        fileMode_(!benchLayoutFromName(options.scenario, layout_)),
-        progress_(stderr, true) {}
+}  // namespace
 
-  int run();
-
- private:
-  int runLayouts();
-  int runFile();
-  /// Resolves --scenario to a file path ("mall" → the bundled file); empty after printing why not.
-  std::string scenarioPath();
-  std::optional<Measurement> timeThrong(const sim::ScenarioDesc& desc,
-                                        const std::shared_ptr<const nav::NavMesh>& navmesh, int threads,
-                                        int& ticks, bool record);
-  std::optional<Measurement> timeBaseline(const sim::ScenarioDesc& desc,
-                                          const std::shared_ptr<const nav::NavMesh>& navmesh, int ticks);
-  void status(const std::string& text, bool force = false);
-  void printHeader() const;
-  void print(const Measurement& m);
-  void printFootnotes() const;
-
-  const BenchOptions& options_;
-  BenchLayout layout_ = BenchLayout::Random;
-  bool fileMode_ = false;
-  std::string label_;         ///< the "scenario" column: layout name or the file's name without .json
-  std::string filePath_;      ///< file mode: the scenario file read
-  std::string scenarioText_;  ///< file mode: its text (stored in --record recordings)
-  double dt_ = kBenchDt;      ///< time step of the scenario [s]
-  double duration_ = 0.0;     ///< file mode: simulated time at most [s]
-  ProgressLine progress_;
-  std::vector<std::string> notes_;
-};
+namespace bench_detail {
 
 void BenchRunner::status(const std::string& text, bool force) {
   if (force || progress_.due()) progress_.draw(text);
@@ -389,77 +342,6 @@ void BenchRunner::printFootnotes() const {
   for (const auto& note : notes_) printLine(stdout, "note: " + note);
 }
 
-std::string BenchRunner::scenarioPath() {
-  const std::string& value = options_.scenario;
-  const bool bundled = std::find_if(std::begin(kBundledBenchScenarios), std::end(kBundledBenchScenarios),
-                                    [&](const char* name) { return value == name; }) !=
-                       std::end(kBundledBenchScenarios);
-  if (!bundled) {
-    if (auto missing = checkInputFile(value, "scenario"); !missing.empty()) {
-      printDiagnostics(missing);
-      return {};
-    }
-    return value;
-  }
-  const auto candidates = bundledScenarioCandidates(value, currentExecutable());
-  std::string tried;
-  for (const auto& candidate : candidates) {
-    std::error_code ec;
-    if (std::filesystem::is_regular_file(candidate, ec)) return candidate.string();
-    tried += fmt::format("\n  {}", std::filesystem::absolute(candidate, ec).string());
-  }
-  printLine(stderr, fmt::format("throng: bench --scenario {}: the bundled scenarios/{}.json was not found; tried "
-                                "(relative to the current directory, then to the executable):{}\n"
-                                "Run from the source tree or pass the file: --scenario PATH/{}.json",
-                                value, value, tried, value));
-  return {};
-}
-
-int BenchRunner::runFile() {
-  filePath_ = scenarioPath();
-  if (filePath_.empty()) return kExitFailure;
-  label_ = std::filesystem::path(filePath_).stem().string();
-  if (!options_.agents.empty()) {
-    notes_.push_back("--agents is not used with a scenario file: its populations say who spawns");
-  }
-  if (!options_.noBaseline) {
-    notes_.push_back("no DetourCrowd baseline for scenario files (it has no equivalent of their goals, groups and "
-                     "social model); it runs with random, navmesh and musse");
-  }
-  InterruptGuard interrupts;
-  status(fmt::format("{}: loading {}", label_, filePath_), true);
-  auto loaded = io::loadScenarioFile(filePath_);
-  if (!loaded) {
-    progress_.clear();
-    printDiagnostics(loaded.errors());
-    return kExitFailure;
-  }
-  sim::ScenarioDesc& desc = loaded->desc;
-  if (options_.duration) desc.duration = std::min(desc.duration, static_cast<float>(*options_.duration));
-  dt_ = desc.dt;
-  duration_ = desc.duration;
-  scenarioText_ = loaded->text;
-  std::vector<int> threadCounts = options_.threads.empty() ? std::vector<int>{1, 2} : options_.threads;
-  printHeader();
-  for (const int threads : threadCounts) {
-    for (const bool record : {false, true}) {
-      if (record && !options_.record) continue;
-      int ticks = options_.ticks;
-      auto m = timeThrong(desc, loaded->navmesh, threads, ticks, record);
-      if (InterruptGuard::requested()) {
-        progress_.clear();
-        printLine(stderr, "throng: bench interrupted");
-        return kExitInterrupted;
-      }
-      if (!m) return kExitFailure;
-      print(*m);
-    }
-  }
-  progress_.clear();
-  printFootnotes();
-  return kExitOk;
-}
-
 int BenchRunner::runLayouts() {
   label_ = options_.scenario;
   std::vector<std::size_t> counts = options_.agents.empty() ? std::vector<std::size_t>{1000, 10000, 100000}
@@ -528,7 +410,8 @@ int BenchRunner::runLayouts() {
 
 int BenchRunner::run() { return fileMode_ ? runFile() : runLayouts(); }
 
-}  // namespace
+}  // namespace bench_detail
+
 
 CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
   CLI::App* cmd = app.add_subcommand("bench", "Measure simulation speed and memory against DetourCrowd");
@@ -600,6 +483,6 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
   return cmd;
 }
 
-int runBench(const BenchOptions& options) { return BenchRunner(options).run(); }
+int runBench(const BenchOptions& options) { return bench_detail::BenchRunner(options).run(); }
 
 }  // namespace throng::cli

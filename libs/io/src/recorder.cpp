@@ -7,6 +7,9 @@
 // The file is written at its final path from the start: WAL makes it valid after every commit,
 // so a killed process leaves the path holding everything up to the last committed batch (plus a
 // -wal file that the next opener folds in).
+//
+// The Common Ground tables (throng_coordinations, throng_script) are written by
+// recorder_social.cpp; Recorder::Impl is declared in recorder_impl.hpp.
 #include "throng/io/recorder.hpp"
 
 #include <unistd.h>
@@ -22,9 +25,7 @@
 #include <thread>
 #include <unordered_set>
 
-#include "throng/social/behaviour_db.hpp"
-#include "throng/social/relation.hpp"
-
+#include "recorder_impl.hpp"
 #include "recording_scenario.hpp"
 #include "recording_schema.hpp"
 #include "recording_text.hpp"
@@ -35,6 +36,30 @@
 #endif
 
 namespace throng::io {
+namespace recorder_detail {
+
+core::Diagnostic diag(const std::string& path, std::string what, std::string expected,
+                      std::string hint) {
+  core::Diagnostic d;
+  d.source = path;
+  d.what = std::move(what);
+  d.expected = std::move(expected);
+  d.hint = std::move(hint);
+  return d;
+}
+
+/// "INSERT INTO table VALUES(?, ...), (...), ..." with kRowBlock rows of `columns` parameters.
+std::string blockInsert(const char* table, int columns) {
+  std::string row = "(";
+  for (int c = 0; c < columns; ++c) row += c == 0 ? "?" : ", ?";
+  row += ")";
+  std::string sql = std::string("INSERT INTO ") + table + " VALUES";
+  for (std::size_t r = 0; r < kRowBlock; ++r) sql += (r == 0 ? "" : ", ") + row;
+  return sql;
+}
+
+}  // namespace recorder_detail
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -44,15 +69,8 @@ using recording::bindReal;
 using recording::bindText;
 using recording::writeScenarioTables;
 
-core::Diagnostic diag(const std::string& path, std::string what, std::string expected = {},
-                      std::string hint = {}) {
-  core::Diagnostic d;
-  d.source = path;
-  d.what = std::move(what);
-  d.expected = std::move(expected);
-  d.hint = std::move(hint);
-  return d;
-}
+using recorder_detail::diag;
+using recorder_detail::kRowBlock;
 
 /// Removes `path` and SQLite's companion files; ignores what is not there.
 void removeWithCompanions(const std::string& path) {
@@ -90,18 +108,6 @@ core::Status checkOutputPath(const RecordingOptions& options) {
   return core::Ok{};
 }
 
-/// Rows per multi-row INSERT of the per-frame tables.
-constexpr std::size_t kRowBlock = 32;
-
-/// "INSERT INTO table VALUES(?, ...), (...), ..." with kRowBlock rows of `columns` parameters.
-std::string blockInsert(const char* table, int columns) {
-  std::string row = "(";
-  for (int c = 0; c < columns; ++c) row += c == 0 ? "?" : ", ?";
-  row += ")";
-  std::string sql = std::string("INSERT INTO ") + table + " VALUES";
-  for (std::size_t r = 0; r < kRowBlock; ++r) sql += (r == 0 ? "" : ", ") + row;
-  return sql;
-}
 
 const char* eventKindText(sim::EventKind kind) {
   switch (kind) {
@@ -133,169 +139,11 @@ const char* eventKindText(sim::EventKind kind) {
   return "unknown";
 }
 
-// Common Ground record fields as text (throng::social's names; docs/recording-format.md).
-const char* triggerText(sim::GoalTrigger t) {
-  switch (t) {
-    case sim::GoalTrigger::Need: return "need";
-    case sim::GoalTrigger::Attraction: return "attraction";
-  }
-  return "unknown";
-}
-
-const char* outcomeText(sim::CoordinationOutcome o) {
-  switch (o) {
-    case sim::CoordinationOutcome::Grounded: return "grounded";
-    case sim::CoordinationOutcome::Failed: return "failed";
-    case sim::CoordinationOutcome::Alone: return "alone";
-  }
-  return "unknown";
-}
-
-const char* roleText(std::uint8_t role) {
-  switch (role) {
-    case 0: return "initiator";
-    case 1: return "respondent";
-    case 2: return "companion";
-    default: return "unknown";
-  }
-}
-
-const char* targetTypeText(std::uint8_t type) {
-  switch (type) {
-    case 0: return "none";
-    case 1: return "point";
-    case 2: return "agent";
-    default: return "unknown";
-  }
-}
-
-std::string planText(std::uint8_t plan) {
-  return std::string(social::planKindName(static_cast<social::PlanKind>(plan)));
-}
-
-/// A REAL column that holds NULL when the value is not finite (never a write error).
-void bindFinite(sqlite3_stmt* s, int i, double v) {
-  if (std::isfinite(v)) sqlite3_bind_double(s, i, v); else sqlite3_bind_null(s, i);
-}
-
 /// Agent ids below this are tracked in a bitmap (ids are dense spawn order); a stray larger id
 /// goes to a hash set instead of growing the bitmap.
 constexpr std::uint32_t kMaxTrackedAgentId = 1u << 26;
 
 }  // namespace
-
-struct Recorder::Impl {
-  RecordingOptions options;
-  sqlite3* db = nullptr;
-  std::int64_t geometryHash = 0;
-  std::vector<std::string> populationIds;
-
-  Statement insertRowBlock, insertAnimationBlock;  // kRowBlock rows per statement
-  Statement begin, commit, rollback, insertRow, insertFrameData, insertFrame, insertEvent,
-      insertAgent, insertAgentSeen, updateExit, upsertMeta, insertAnimation, insertCoordination,
-      insertScript;
-
-  // Queue shared by push() and the worker.
-  std::mutex mutex;
-  std::condition_variable notEmpty, notFull;
-  std::deque<sim::FramePtr> queue;
-  bool stopping = false;
-  std::thread worker;
-
-  // Worker-only state (read by close() after join).
-  std::uint64_t nextFrame = 0;
-  std::uint64_t pendingFrames = 0;
-  bool inTransaction = false;
-  std::vector<bool> seenAgents;               ///< ids below kMaxTrackedAgentId already recorded
-  std::unordered_set<std::uint32_t> seenHugeIds;  ///< the rest
-  std::uint64_t agentCount = 0;
-  std::optional<core::Diagnostic> error;
-
-  std::atomic<std::uint64_t> committed{0};
-  std::atomic<bool> closed{false};  ///< push() after close() is ignored
-  std::optional<core::Status> closeResult;
-
-  ~Impl() {
-    if (db != nullptr) {
-      // Statements must be finalized before sqlite3_close.
-      for (Statement* s : {&begin, &commit, &rollback, &insertRow, &insertFrameData, &insertFrame,
-                           &insertEvent, &insertAgent, &insertAgentSeen, &updateExit, &upsertMeta, &insertAnimation,
-                           &insertCoordination, &insertScript, &insertRowBlock, &insertAnimationBlock}) {
-        *s = Statement();
-      }
-      sqlite3_close(db);
-    }
-  }
-
-  /// Records the first write error; returns false for `return fail(...)`.
-  bool fail(std::string what) {
-    if (!error) error = diag(options.path, std::move(what), "a writable recording");
-    return false;
-  }
-  std::string sqliteMessage() const { return db ? sqlite3_errmsg(db) : "cannot open database"; }
-
-  bool exec(const char* sql) {
-    char* msg = nullptr;
-    if (sqlite3_exec(db, sql, nullptr, nullptr, &msg) != SQLITE_OK) {
-      fail(std::string("SQLite: ") + (msg ? msg : sqliteMessage()));
-      sqlite3_free(msg);
-      return false;
-    }
-    return true;
-  }
-
-  /// Steps a statement once and resets it; records the first failure.
-  bool run(const Statement& s) {
-    const int rc = sqlite3_step(s.get());
-    const bool ok = rc == SQLITE_DONE || rc == SQLITE_ROW;
-    if (!ok) fail("SQLite: " + sqliteMessage());
-    sqlite3_reset(s.get());
-    sqlite3_clear_bindings(s.get());
-    return ok;
-  }
-
-  bool prepare(Statement& s, const std::string& sql) {
-    s = Statement(db, sql.c_str());
-    if (!s.ok()) fail("SQLite: " + sqliteMessage() + " in " + sql.substr(0, 200));
-    return s.ok();
-  }
-
-  bool putMeta(const std::string& key, const std::string& value) {
-    bindText(upsertMeta.get(), 1, key);
-    bindText(upsertMeta.get(), 2, value);
-    return run(upsertMeta);
-  }
-
-  bool prepareAll() {
-    return prepare(begin, "BEGIN") && prepare(commit, "COMMIT") && prepare(rollback, "ROLLBACK") &&
-           prepare(insertRow, "INSERT INTO trajectory_data VALUES(?, ?, ?, ?, ?, ?)") &&
-           prepare(insertRowBlock, blockInsert("trajectory_data", 6)) &&
-           prepare(insertAnimationBlock, blockInsert("throng_animation", 4)) &&
-           prepare(insertFrameData, "INSERT INTO frame_data VALUES(?, ?)") &&
-           prepare(insertFrame, "INSERT INTO throng_frames VALUES(?, ?, ?, ?)") &&
-           prepare(insertEvent, "INSERT INTO throng_events VALUES(?, ?, ?, ?, ?, ?)") &&
-           prepare(insertAgent,
-                   "INSERT OR REPLACE INTO throng_agents(id, population, population_id, group_id, "
-                   "spawn_frame, spawn_tick) VALUES(?, ?, ?, ?, ?, ?)") &&
-           prepare(insertAgentSeen, "INSERT OR IGNORE INTO throng_agents(id, spawn_frame) VALUES(?, ?)") &&
-           prepare(updateExit, "UPDATE throng_agents SET exit_frame = ?, exit_tick = ? WHERE id = ?") &&
-           prepare(upsertMeta, "INSERT OR REPLACE INTO metadata(key, value) VALUES(?, ?)") &&
-           prepare(insertAnimation, "INSERT INTO throng_animation VALUES(?, ?, ?, ?)") &&
-           // A coordination published twice (a simulation bug) replaces the first: never a write error.
-           prepare(insertCoordination,
-                   "INSERT OR REPLACE INTO throng_coordinations VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)") &&
-           prepare(insertScript,
-                   "INSERT INTO throng_script VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-  }
-
-  bool writeScenario(const sim::ScenarioDesc& scenario);
-  bool writeFrame(const sim::Frame& frame);
-  bool writeSocial(const sim::Frame& frame);
-  bool markSeen(std::uint32_t id);
-  void workerLoop();
-  bool commitBatch();
-  void writeFinal(bool completed);
-};
 
 bool Recorder::Impl::writeScenario(const sim::ScenarioDesc& scenario) {
   using namespace recording;
@@ -439,64 +287,6 @@ bool Recorder::Impl::writeFrame(const sim::Frame& f) {
   bindReal(s, 3, f.time);
   bindInt(s, 4, static_cast<std::int64_t>(n));
   return run(insertFrame);
-}
-
-bool Recorder::Impl::writeSocial(const sim::Frame& f) {
-  for (const sim::CoordinationRecord& c : f.coordinations) {
-    sqlite3_stmt* s = insertCoordination.get();
-    std::string respondents;
-    for (const std::uint32_t id : c.respondents) {
-      if (!respondents.empty()) respondents += ' ';
-      respondents += std::to_string(id);
-    }
-    bindInt(s, 1, c.id);
-    bindInt(s, 2, c.group);
-    bindInt(s, 3, c.initiator);
-    bindText(s, 4, respondents);
-    bindInt(s, 5, c.goalPoint);
-    bindText(s, 6, social::goalKindName(static_cast<social::GoalKind>(c.goalKind)));
-    bindText(s, 7, triggerText(c.trigger));
-    if (c.relation >= 1 && c.relation <= 6) {
-      bindText(s, 8, social::relationName(static_cast<social::Relation>(c.relation)));
-    } else {
-      sqlite3_bind_null(s, 8);
-    }
-    bindText(s, 9, planText(c.plan));
-    bindText(s, 10, outcomeText(c.outcome));
-    bindInt(s, 11, c.retries);
-    bindFinite(s, 12, c.start);
-    bindFinite(s, 13, c.executeTime);
-    bindFinite(s, 14, c.end);
-    if (!run(insertCoordination)) return false;
-  }
-  for (const sim::ScriptRecord& r : f.script) {
-    sqlite3_stmt* s = insertScript.get();
-    bindInt(s, 1, r.coordination);
-    bindInt(s, 2, r.agent);
-    bindInt(s, 3, r.seq);
-    bindText(s, 4, roleText(r.role));
-    bindInt(s, 5, r.step);
-    bindInt(s, 6, r.part);
-    bindInt(s, 7, r.attempt);
-    bindText(s, 8, planText(r.plan));
-    bindText(s, 9, r.motion);
-    bindText(s, 10, r.behaviour);
-    bindText(s, 11, targetTypeText(r.targetType));
-    if (r.targetType == 2) bindInt(s, 12, r.targetAgent); else sqlite3_bind_null(s, 12);
-    if (r.targetType != 0) {
-      bindFinite(s, 13, static_cast<double>(r.targetX));
-      bindFinite(s, 14, static_cast<double>(r.targetY));
-    } else {
-      sqlite3_bind_null(s, 13);
-      sqlite3_bind_null(s, 14);
-    }
-    bindFinite(s, 15, r.plannedStart);
-    bindFinite(s, 16, r.plannedDuration);
-    bindFinite(s, 17, r.start);
-    bindFinite(s, 18, r.duration);
-    if (!run(insertScript)) return false;
-  }
-  return true;
 }
 
 bool Recorder::Impl::commitBatch() {

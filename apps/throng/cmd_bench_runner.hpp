@@ -1,0 +1,78 @@
+// BenchRunner — the state and steps of one `throng bench` invocation, shared by cmd_bench.cpp
+// (in-memory scenarios, timing one configuration, the table, the command line) and
+// cmd_bench_file.cpp (scenario files run from the start to their end). Measurement is one row of
+// the table (one engine and configuration). Private to the throng program.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench_scenarios.hpp"
+#include "commands.hpp"
+#include "progress.hpp"
+#include "throng/nav/navmesh.hpp"
+#include "throng/sim/scenario.hpp"
+
+namespace throng::cli::bench_detail {
+
+struct Measurement {
+  std::string engine;
+  std::size_t agents = 0;  ///< in-memory: N; file: most agents present at once
+  int threads = 1;
+  int ticks = 0;
+  double agentStepsPerSec = 0.0;
+  double msMedian = 0.0;
+  double msP99 = 0.0;
+  double bytesPerAgent = 0.0;
+  double peakRssBytes = 0.0;
+  double simulatedSeconds = 0.0;  ///< simulated time of the timed ticks [s]
+  double wallSeconds = 0.0;       ///< wall time of the timed ticks (file + recording: and closing it) [s]
+  std::optional<double> recordedFps;  ///< the frame rate written, for "throng+rec"
+  std::uint64_t frames = 0;
+  double closeSeconds = 0.0;      ///< closing the recording (flush, checkpoint) [s]
+  std::optional<double> speedup;  ///< throng / DetourCrowd agent-steps/s, same agent count
+
+  [[nodiscard]] double realtimeFactor() const { return wallSeconds > 0 ? simulatedSeconds / wallSeconds : 0.0; }
+};
+
+class BenchRunner {
+ public:
+  explicit BenchRunner(const BenchOptions& options)
+      : options_(options),
+        fileMode_(!benchLayoutFromName(options.scenario, layout_)),
+        progress_(stderr, true) {}
+
+  int run();
+
+ private:
+  int runLayouts();
+  int runFile();
+  /// Resolves --scenario to a file path ("mall" → the bundled file); empty after printing why not.
+  std::string scenarioPath();
+  std::optional<Measurement> timeThrong(const sim::ScenarioDesc& desc,
+                                        const std::shared_ptr<const nav::NavMesh>& navmesh, int threads,
+                                        int& ticks, bool record);
+  std::optional<Measurement> timeBaseline(const sim::ScenarioDesc& desc,
+                                          const std::shared_ptr<const nav::NavMesh>& navmesh, int ticks);
+  void status(const std::string& text, bool force = false);
+  void printHeader() const;
+  void print(const Measurement& m);
+  void printFootnotes() const;
+
+  const BenchOptions& options_;
+  BenchLayout layout_ = BenchLayout::Random;
+  bool fileMode_ = false;
+  std::string label_;         ///< the "scenario" column: layout name or the file's name without .json
+  std::string filePath_;      ///< file mode: the scenario file read
+  std::string scenarioText_;  ///< file mode: its text (stored in --record recordings)
+  double dt_ = kBenchDt;      ///< time step of the scenario [s]
+  double duration_ = 0.0;     ///< file mode: simulated time at most [s]
+  ProgressLine progress_;
+  std::vector<std::string> notes_;
+};
+
+}  // namespace throng::cli::bench_detail
