@@ -25,6 +25,10 @@ enum class GoalState : std::uint8_t {
 
 inline constexpr std::uint16_t kNoClip = 0xffff;
 
+/// Busy with a target of its own (an action point's stop, a Common Ground script): group-level
+/// retargeting (guidance, following) leaves the agent alone; it rejoins its group when done.
+[[nodiscard]] inline bool holdsOwnTarget(GoalState s) { return s == GoalState::Acting || s == GoalState::Scripted; }
+
 inline constexpr std::uint32_t kNoAgent = 0xffffffffu;
 
 /// Columns are grouped by the features that use them. The optional groups exist (have one entry per

@@ -184,7 +184,7 @@ void World::Impl::updateGuidance() {
         // Guidance over: back to the group's own goals, where it left them.
         for (std::uint32_t id : g.members) {
           const std::uint32_t r = rowOfId[id];
-          if (agents.goalState[r] != GoalState::Exited && agents.goalState[r] != GoalState::Acting) setGoal(r, g.cursor, query);
+          if (agents.goalState[r] != GoalState::Exited && !holdsOwnTarget(agents.goalState[r])) setGoal(r, g.cursor, query);
         }
       }
     }
@@ -199,7 +199,7 @@ void World::Impl::updateGuidance() {
     const float n = static_cast<float>(g.members.size());
     for (std::size_t i = 0; i < g.members.size(); ++i) {
       const std::uint32_t r = rowOfId[g.members[i]];
-      if (agents.goalState[r] == GoalState::Exited || agents.goalState[r] == GoalState::Acting) continue;
+      if (agents.goalState[r] == GoalState::Exited || holdsOwnTarget(agents.goalState[r])) continue;
       const float slot = (static_cast<float>(i) - 0.5f * (n - 1.0f)) * pop.groupSpacing;
       core::Vec2 target = x.guide + back * script.distance + lateral * slot;
       if (auto hit = query.nearest(target, 3.0f)) target = hit->first;
@@ -244,7 +244,7 @@ void World::Impl::updateFollowing() {
         extraOf(g).waiting = false;
         for (std::uint32_t id : g.members) {
           const std::uint32_t r = rowOfId[id];
-          if (agents.goalState[r] != GoalState::Exited && agents.goalState[r] != GoalState::Acting) setGoal(r, g.cursor, query);
+          if (agents.goalState[r] != GoalState::Exited && !holdsOwnTarget(agents.goalState[r])) setGoal(r, g.cursor, query);
         }
       } else {
         g.following = false;
@@ -252,7 +252,7 @@ void World::Impl::updateFollowing() {
         extraOf(g).waiting = false;
         for (std::uint32_t id : g.members) {
           const std::uint32_t r = rowOfId[id];
-          if (agents.goalState[r] != GoalState::Exited && agents.goalState[r] != GoalState::Acting) setGoal(r, g.cursor, query);
+          if (agents.goalState[r] != GoalState::Exited && !holdsOwnTarget(agents.goalState[r])) setGoal(r, g.cursor, query);
         }
       }
     }
