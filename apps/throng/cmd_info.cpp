@@ -1,5 +1,6 @@
 // `throng info FILE.sqlite` — summarises a recording (read-only): scenario, seed, agents, frames,
-// fps, duration, whether the run completed, populations and format version.
+// fps, duration, whether the run completed, populations, Common Ground (on/off, coordinations) and
+// format version.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -14,7 +15,8 @@ CLI::App* addInfoCommand(CLI::App& app, InfoOptions& options) {
   CLI::App* cmd = app.add_subcommand("info", "Show what a recording holds");
   cmd->footer(
       "Show what a recording holds: scenario name, seed, agents, frames, frame rate, duration,\n"
-      "whether the run completed (false when interrupted or killed), populations and format version.");
+      "whether the run completed (false when interrupted or killed), populations, Common Ground (on or off,\n"
+      "and how many coordinations were recorded) and format version.");
   cmd->add_option("recording", options.recording, "Recording written by 'throng run'")
       ->required()
       ->type_name("FILE.sqlite");
@@ -48,6 +50,8 @@ int runInfo(const InfoOptions& options) {
                        {"rows", s.rows},
                        {"events", s.events},
                        {"populations", populations},
+                       {"common_ground", s.commonGround.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.commonGround)},
+                       {"coordinations", s.coordinations},
                        {"format_version", s.formatVersion},
                        {"throng_version", s.throngVersion}};
     printLine(stdout, out.dump());
@@ -67,6 +71,10 @@ int runInfo(const InfoOptions& options) {
   printLine(stdout, fmt::format("completed    {}", s.completed ? "yes" : "no (interrupted or killed)"));
   printLine(stdout, fmt::format("populations  {}", populations));
   printLine(stdout, fmt::format("rows         {} trajectory rows, {} events", s.rows, s.events));
+  if (!s.commonGround.empty()) {
+    printLine(stdout, fmt::format("common ground {}: {} coordinations (throng script / throng metrics read them)", s.commonGround,
+                                  s.coordinations));
+  }
   printLine(stdout, fmt::format("format       JuPedSim trajectory version {}{}", s.formatVersion,
                                 s.throngVersion.empty() ? "" : fmt::format(", written by throng {}", s.throngVersion)));
   return kExitOk;

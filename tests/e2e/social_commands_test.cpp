@@ -163,6 +163,11 @@ TEST(SocialRun, CommonGroundOnAndOffFromTheCommandLine) {
       EXPECT_EQ(outcomes.value("alone", 0), m["coordinations"]["total"].get<int>()) << m.dump();
     }
     EXPECT_EQ(m["arrivals"]["exits"], 9) << "everybody left";
+    const CliResult info = runThrong({"info", out, "--json"}, dir.path());
+    ASSERT_EQ(info.exitCode, 0) << info.err;
+    const json i = json::parse(info.out);
+    EXPECT_EQ(i["common_ground"], mode);
+    EXPECT_EQ(i["coordinations"], m["coordinations"]["total"]);
   }
   // The initiator's script: the grounding steps, then the plan, with planned and simulated times.
   const CliResult first = runThrong({"script", "cg-on.sqlite", "--agent", "0", "--json"}, dir.path());

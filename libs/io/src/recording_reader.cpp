@@ -130,6 +130,7 @@ core::Result<RecordingSummary> readRecordingSummary(const std::string& path) {
 
     // throng's provenance (absent in files from other writers).
     sum.throngVersion = meta(recording::kKeyThrongVersion).text;
+    sum.commonGround = meta(recording::kKeyCommonGround).text;
     sum.scenarioName = meta(recording::kKeyScenarioName).text;
     if (const auto seed = recording::parseInt(meta(recording::kKeySeed).text)) {
       sum.seed = static_cast<std::uint64_t>(*seed);
@@ -162,6 +163,11 @@ core::Result<RecordingSummary> readRecordingSummary(const std::string& path) {
       const Cell events = queryOne(db, "SELECT count(*) FROM throng_events");
       if (events.failed) return diag(path, "cannot read throng_events (" + failure(db) + ")");
       sum.events = static_cast<std::uint64_t>(std::max<std::int64_t>(0, events.integer));
+    }
+    if (hasTable(db, "throng_coordinations").value_or(false)) {
+      const Cell coordinations = queryOne(db, "SELECT count(*) FROM throng_coordinations");
+      if (coordinations.failed) return diag(path, "cannot read throng_coordinations (" + failure(db) + ")");
+      sum.coordinations = static_cast<std::uint64_t>(std::max<std::int64_t>(0, coordinations.integer));
     }
     return sum;
   } catch (const std::exception& e) {

@@ -63,6 +63,8 @@ struct RecordingSummary {
   std::string throngVersion;
   std::vector<std::pair<std::string, std::uint64_t>> populations;  ///< id → agents
   std::uint64_t events = 0;
+  std::string commonGround;       ///< "on" / "off"; empty when the scenario had no social section
+  std::uint64_t coordinations = 0;///< Common Ground interactions recorded (throng_coordinations rows)
 };
 
 /// Opens a recording read-only and summarises it; bad or foreign files give a diagnostic.
