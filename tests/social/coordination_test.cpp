@@ -9,7 +9,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "throng/io/social_db.hpp"
+#include "social_test_util.hpp"
 #include "throng/social/coordination.hpp"
 
 namespace {
@@ -18,29 +18,9 @@ using namespace throng;
 using namespace throng::social;
 using core::Vec2;
 
-struct Dbs {
-  MicroBehaviourDb micro;
-  MacroPlanDb macro;
-};
-
-const Dbs& bundled() {
-  static const Dbs dbs = [] {
-    auto micro = io::loadMicroBehaviours(THRONG_SOURCE_DIR "/data/social/micro_behaviours.json");
-    if (!micro.ok()) throw std::runtime_error(core::formatAll(micro.errors()));
-    auto macro = io::loadMacroPlans(THRONG_SOURCE_DIR "/data/social/macro_plans.json", micro.value());
-    if (!macro.ok()) throw std::runtime_error(core::formatAll(macro.errors()));
-    return Dbs{micro.value(), macro.value()};
-  }();
-  return dbs;
-}
-
-Databases databases() { return {&bundled().micro, &bundled().macro}; }
-
-ClipLengths clipLengths() {
-  // The bundled motion library's lengths (docs/motion-library.md).
-  return {{"wave", 1.6}, {"nod", 0.8}, {"point_toward", 1.4}, {"point_down", 1.2}, {"call_out", 1.2},
-          {"look_at", 1.2}, {"talk", 2.0}};
-}
+using test::bundled;
+using test::clipLengths;
+using test::databases;
 
 double turnTime(double from, Vec2 a, Vec2 b, double rate) {
   double d = std::atan2(b.y - a.y, b.x - a.x) - from;

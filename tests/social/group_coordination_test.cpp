@@ -13,8 +13,8 @@
 #include <set>
 #include <tuple>
 
+#include "social_test_util.hpp"
 #include "throng/core/rng.hpp"
-#include "throng/io/social_db.hpp"
 #include "throng/social/coordination.hpp"
 
 namespace {
@@ -24,28 +24,9 @@ using namespace throng::social;
 using core::Vec2;
 using G = GroundingStep;
 
-struct Dbs {
-  MicroBehaviourDb micro;
-  MacroPlanDb macro;
-};
-
-const Dbs& bundled() {
-  static const Dbs dbs = [] {
-    auto micro = io::loadMicroBehaviours(THRONG_SOURCE_DIR "/data/social/micro_behaviours.json");
-    if (!micro.ok()) throw std::runtime_error(core::formatAll(micro.errors()));
-    auto macro = io::loadMacroPlans(THRONG_SOURCE_DIR "/data/social/macro_plans.json", micro.value());
-    if (!macro.ok()) throw std::runtime_error(core::formatAll(macro.errors()));
-    return Dbs{micro.value(), macro.value()};
-  }();
-  return dbs;
-}
-
-Databases databases() { return {&bundled().micro, &bundled().macro}; }
-
-ClipLengths clipLengths() {
-  return {{"wave", 1.6}, {"nod", 0.8}, {"point_toward", 1.4}, {"point_down", 1.2}, {"call_out", 1.2},
-          {"look_at", 1.2}, {"talk", 2.0}};
-}
+using test::bundled;
+using test::clipLengths;
+using test::databases;
 
 constexpr double kEps = 1e-9;
 
