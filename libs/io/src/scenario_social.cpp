@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <set>
 
+#include "scenario_reader.hpp"
 #include "social_defaults.hpp"
 #include "throng/io/bvh.hpp"
 #include "throng/io/social_db.hpp"
@@ -14,7 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string quote(const std::string& s) { return "\"" + s.substr(0, 120) + "\""; }
+using detail::quote;  // control characters shown as '?', long text cut
 
 }  // namespace
 

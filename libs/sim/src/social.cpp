@@ -64,6 +64,10 @@ void World::Impl::initSocial() {
     });
     if (wanted) attractionPoints.push_back(p);
   }
+  for (const NeedDesc& need : desc.social.needs) {
+    const auto c = std::find(categories.begin(), categories.end(), need.category);
+    needCategory.push_back(c == categories.end() ? -1 : static_cast<std::int32_t>(c - categories.begin()));
+  }
   const std::vector<ClipInfo> clips = animationClips(desc);
   for (std::size_t i = 0; i < clips.size(); ++i) {
     clipDuration.push_back(std::max(1e-3f, clips[i].duration));
@@ -86,13 +90,13 @@ void World::Impl::generateGoal(std::size_t row, ChunkOutput& out, const nav::Nav
   // Stochastic needs (a restroom visit): rate × dt per tick; the nearest place of the category.
   for (std::size_t i = 0; i < social.needs.size(); ++i) {
     const NeedDesc& need = social.needs[i];
-    const auto c = std::find(categories.begin(), categories.end(), need.category);
-    if (c == categories.end() || need.rate <= 0.0f) continue;
+    const std::int32_t c = needCategory[i];
+    if (c < 0 || need.rate <= 0.0f) continue;
     core::Rng rng(desc.seed, core::mix64((static_cast<std::uint64_t>(id) << 32) ^ tick) ^ i, core::RngPurpose::Social);
     if (rng.uniform() >= static_cast<double>(need.rate) * desc.dt) continue;
     std::uint32_t best = kNoAgent;
     float bestD = 1e30f;
-    for (const std::uint32_t p : categoryPoints[static_cast<std::size_t>(c - categories.begin())]) {
+    for (const std::uint32_t p : categoryPoints[static_cast<std::size_t>(c)]) {
       const float d = core::lengthSq(desc.points[p].position - pos);
       if (d < bestD) { bestD = d; best = p; }
     }
