@@ -6,5 +6,6 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 source "$root/scripts/deps.sh"
 throng_install_deps
 throng_build "$root"
+throng_build_web "$root"
 cd "$root/build"
 ctest --output-on-failure -j "$(nproc)" --timeout 600 "$@"

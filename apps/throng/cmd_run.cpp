@@ -2,10 +2,14 @@
 // World until the duration is reached, every agent has left, or SIGINT/SIGTERM arrives. Frame 0 is
 // the state before the first tick; then every k-th tick is recorded (k from --fps and dt). Reads
 // the scenario file; writes one SQLite recording, a progress line on stderr (terminal only) and a
-// summary on stdout.
+// summary on stdout. Launched by mpirun with N > 1 ranks (OMPI_COMM_WORLD_SIZE or PMI_SIZE in the
+// environment), every rank builds the world and they share the steer phase (libs/dist,
+// docs/scaling.md); only rank 0 writes the recording and prints.
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <functional>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -20,6 +24,9 @@
 #include "throng/io/recorder.hpp"
 #include "throng/io/scenario_loader.hpp"
 #include "throng/sim/world.hpp"
+#if THRONG_HAVE_MPI
+#include "throng/dist/mpi_exchange.hpp"
+#endif
 
 namespace throng::cli {
 namespace {
@@ -47,6 +54,48 @@ FramePlan planFrames(double requestedFps, double dt) {
   return plan;
 }
 
+/// Ranks mpirun started this process among (OpenMPI: OMPI_COMM_WORLD_SIZE; MPICH, Slurm: PMI_SIZE);
+/// 1 when not launched by an MPI launcher.
+std::uint32_t launchedRanks() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
+    if (const char* v = std::getenv(name); v != nullptr && *v != '\0') {
+      const long n = std::strtol(v, nullptr, 10);
+      if (n >= 1) return static_cast<std::uint32_t>(n);
+    }
+  }
+  return 1;
+}
+
+/// This process's place among the ranks of an MPI run (rank 0 of 1 otherwise).
+struct RankPlan {
+  std::uint32_t rank = 0;
+  std::uint32_t ranks = 1;
+  /// Collective under MPI: true on every rank when true on any (the identity for one process).
+  std::function<bool(bool)> anyRank = [](bool flag) { return flag; };
+  [[nodiscard]] bool speaks() const { return rank == 0; }
+};
+
+/// Wall time spent in each phase of the tick (--phase-times), in the order phases first ran.
+class PhaseTimer final : public sim::PhaseObserver {
+ public:
+  void phaseBegin(std::string_view) override { begin_ = Clock::now(); }
+  void phaseEnd(std::string_view phase) override {
+    const double s = secondsSince(begin_);
+    for (auto& [name, total] : totals_) {
+      if (name == phase) {
+        total += s;
+        return;
+      }
+    }
+    totals_.emplace_back(std::string(phase), s);
+  }
+  [[nodiscard]] const std::vector<std::pair<std::string, double>>& totals() const { return totals_; }
+
+ private:
+  Clock::time_point begin_;
+  std::vector<std::pair<std::string, double>> totals_;
+};
+
 enum class RunEnd { Duration, Finished, Interrupted };
 
 const char* endName(RunEnd end) {
@@ -65,19 +114,27 @@ struct LoopResult {
 
 /// Steps the world and pushes every `plan.stride`-th frame. Stops at `totalTicks`, when the world
 /// is finished, or on a signal; except after a signal it steps on to the next multiple of the
-/// stride so the last frame carries every event (an empty world steps in no time).
-LoopResult simulate(sim::World& world, io::Recorder& recorder, const core::TaskSystem& tasks,
-                    std::uint64_t totalTicks, const FramePlan& plan, double duration, ProgressLine& progress) {
+/// stride so the last frame carries every event (an empty world steps in no time). Under MPI every
+/// rank takes the same decisions: a signal is looked at (collectively) at frame ticks only, and
+/// only rank 0 has a recorder; the others drop their snapshots (snapshot() also clears the events).
+LoopResult simulate(sim::World& world, io::Recorder* recorder, const core::TaskSystem& tasks,
+                    std::uint64_t totalTicks, const FramePlan& plan, double duration, ProgressLine& progress,
+                    const RankPlan& ranks, sim::PhaseObserver* phases) {
   LoopResult result;
   const auto start = Clock::now();
-  recorder.push(world.snapshot());  // frame 0: the initial state at tick 0
+  auto push = [&](sim::FramePtr frame) {
+    if (recorder != nullptr) recorder->push(std::move(frame));
+  };
+  push(world.snapshot());  // frame 0: the initial state at tick 0
   std::uint64_t tick = 0;
   while (true) {
-    if (InterruptGuard::requested()) {
+    const bool atFrame = tick % plan.stride == 0;
+    const bool interrupted = ranks.ranks == 1 ? InterruptGuard::requested()
+                                              : atFrame && ranks.anyRank(InterruptGuard::requested());
+    if (interrupted) {
       result.end = RunEnd::Interrupted;
       break;
     }
-    const bool atFrame = tick % plan.stride == 0;
     if (atFrame && world.finished()) {
       result.end = RunEnd::Finished;
       break;
@@ -86,9 +143,9 @@ LoopResult simulate(sim::World& world, io::Recorder& recorder, const core::TaskS
       result.end = RunEnd::Duration;
       break;
     }
-    world.step(tasks);
+    world.step(tasks, phases);
     ++tick;
-    if (tick % plan.stride == 0) recorder.push(world.snapshot());
+    if (tick % plan.stride == 0) push(world.snapshot());
     if (progress.due()) {
       const auto& s = world.stats();
       progress.draw(formatRunProgress({s.time, duration, s.active, s.exited, secondsSince(start)}, progress.width()));
@@ -109,6 +166,10 @@ struct RunSummary {
   std::string recording;
   std::uint64_t frames = 0;
   double fps = 0.0;
+  std::uint64_t stateHash = 0;      ///< World::stateHash at the end (id, position, velocity bits)
+  sim::PartitionStats partition;    ///< ranks > 1: rank 0's share and the exchange totals
+  std::uint64_t exchangedBytes = 0; ///< every rank's blocks, summed over ranks and ticks [bytes]
+  std::vector<std::pair<std::string, double>> phaseSeconds;  ///< --phase-times: rank 0's [s]
 };
 
 /// Time until the last agent left, when every agent has left through an exit; < 0 otherwise.
@@ -139,7 +200,22 @@ void printSummaryJson(const RunSummary& r) {
                      {"setup_time_s", r.setupSeconds},
                      {"agent_steps", r.stats.agentSteps},
                      {"agent_steps_per_s", agentStepsPerSecond(r)},
-                     {"recording", {{"path", r.recording}, {"frames", r.frames}, {"fps", r.fps}}}};
+                     {"recording", {{"path", r.recording}, {"frames", r.frames}, {"fps", r.fps}}},
+                     {"state_hash", fmt::format("{:016x}", r.stateHash)}};
+  if (!r.phaseSeconds.empty()) {
+    nlohmann::json phases = nlohmann::json::object();
+    for (const auto& [name, seconds] : r.phaseSeconds) phases[name] = seconds;
+    out["phase_seconds"] = phases;
+  }
+  if (r.partition.ranks > 1) {
+    const auto& p = r.partition;
+    out["mpi"] = {{"ranks", p.ranks},
+                  {"migrations", p.migrations},
+                  {"rebalance_moves", p.rebalanceMoves},
+                  {"exchanged_bytes", r.exchangedBytes},
+                  {"bytes_per_agent_step", p.agentSteps > 0 ? static_cast<double>(r.exchangedBytes) / static_cast<double>(p.agentSteps) : 0.0},
+                  {"rank0_share", p.agentSteps > 0 ? static_cast<double>(p.ownedAgentSteps) / static_cast<double>(p.agentSteps) : 0.0}};
+  }
   printLine(stdout, out.dump());
 }
 
@@ -163,6 +239,24 @@ void printSummaryText(const RunSummary& r) {
                                formatSeconds(r.setupSeconds)));
   row("throughput", fmt::format("{} agent-steps/s", formatSi(agentStepsPerSecond(r))));
   row("recording", fmt::format("{} ({} frames at {:g} fps)", r.recording, r.frames, r.fps));
+  if (!r.phaseSeconds.empty()) {
+    double total = 0.0;
+    for (const auto& entry : r.phaseSeconds) total += entry.second;
+    std::string text;
+    for (const auto& [name, seconds] : r.phaseSeconds) {
+      text += fmt::format("{}{} {:.3f} s ({:.1f} %)", text.empty() ? "" : ", ", name, seconds,
+                          total > 0 ? 100.0 * seconds / total : 0.0);
+    }
+    row("phases", text);
+  }
+  if (r.partition.ranks > 1) {
+    const auto& p = r.partition;
+    row("MPI", fmt::format("{} ranks, {} migrations ({} more by rebalancing), exchange {:.2f} MB ({:g} B per agent-step); "
+                           "rank 0 steered {:.1f} %",
+                           p.ranks, p.migrations, p.rebalanceMoves, static_cast<double>(r.exchangedBytes) / 1e6,
+                           p.agentSteps > 0 ? static_cast<double>(r.exchangedBytes) / static_cast<double>(p.agentSteps) : 0.0,
+                           p.agentSteps > 0 ? 100.0 * static_cast<double>(p.ownedAgentSteps) / static_cast<double>(p.agentSteps) : 0.0));
+  }
 }
 
 std::string defaultOutput(const std::string& scenarioPath) {
@@ -178,7 +272,10 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
       "The scenario is validated first (every problem reported, exit 1, no file written), then the\n"
       "recording is opened, then the crowd is simulated until --duration or until every agent has\n"
       "left. Ctrl-C stops cleanly: the recording is closed as a valid file marked not completed,\n"
-      "and the exit code is 130.");
+      "and the exit code is 130.\n"
+      "Under mpirun (N > 1 ranks: OMPI_COMM_WORLD_SIZE or PMI_SIZE set), every rank simulates the\n"
+      "world and they share the steer phase; rank 0 alone writes the recording and prints. The\n"
+      "trajectories are identical to one process (docs/scaling.md).");
   cmd->add_option("scenario", options.scenario, "Scenario JSON file")->required()->type_name("SCENARIO.json");
   cmd->add_option("--seed", options.seed, "Random seed; overrides the scenario's \"seed\"")->type_name("N");
   cmd->add_option("--duration", options.duration,
@@ -207,35 +304,47 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
       ->type_name("F")
       ->check(positiveNumber("Hz"))
       ->capture_default_str();
+  cmd->add_flag("--phase-times", options.phaseTimes,
+                "Time every phase of the tick and print the totals (rank 0's under MPI; the clock reads cost a "
+                "little)");
   cmd->add_flag("--quiet,-q", options.quiet, "Print nothing but errors (no progress, no warnings, no text summary)");
   cmd->add_flag("--json", options.json, "Print the summary as one JSON object on stdout (also with --quiet)");
   return cmd;
 }
 
-int runRun(const RunOptions& options) {
+namespace {
+
+/// The run on one rank (of one, or of an MPI job: then `exchange` shares the steer phase).
+int runOn(const RunOptions& options, const RankPlan& ranks, sim::StepExchange* exchange) {
   const auto setupStart = Clock::now();
   // Installed first so Ctrl-C during a long load is handled too (before any file exists).
   InterruptGuard interrupts;
+  const bool speaks = ranks.speaks();  // only rank 0 prints; every rank takes the same path
   auto warn = [&](const std::string& message) {
-    if (!options.quiet) printLine(stderr, "throng: warning: " + message);
+    if (!options.quiet && speaks) printLine(stderr, "throng: warning: " + message);
+  };
+  auto report = [&](const core::Diagnostics& diagnostics) {
+    if (speaks) printDiagnostics(diagnostics);
   };
 
   // 1. Load and validate: nothing is written when the scenario is bad.
   if (auto missing = checkInputFile(options.scenario, "scenario"); !missing.empty()) {
-    printDiagnostics(missing);
+    report(missing);
     return kExitFailure;
   }
   auto loaded = io::loadScenarioFile(options.scenario);
   if (!loaded) {
-    printDiagnostics(loaded.errors());
+    report(loaded.errors());
     return kExitFailure;
   }
   sim::ScenarioDesc& desc = loaded->desc;
   if (options.seed) desc.seed = *options.seed;
   if (options.commonGround) {
     if (!desc.social.enabled) {
-      std::fprintf(stderr, "throng run: --common-ground: %s has no \"social\" section; nothing to switch\n",
-                   options.scenario.c_str());
+      if (speaks) {
+        std::fprintf(stderr, "throng run: --common-ground: %s has no \"social\" section; nothing to switch\n",
+                     options.scenario.c_str());
+      }
       return kExitUsage;
     }
     desc.social.commonGround = *options.commonGround;
@@ -251,42 +360,54 @@ int runRun(const RunOptions& options) {
 
   auto world = sim::World::create(desc, loaded->navmesh);
   if (!world) {
-    printDiagnostics(world.errors());
+    report(world.errors());
     return kExitFailure;
   }
 
-  if (InterruptGuard::requested()) {
-    printLine(stderr, "throng: interrupted before simulating; nothing written");
+  if (ranks.anyRank(InterruptGuard::requested())) {
+    if (speaks) printLine(stderr, "throng: interrupted before simulating; nothing written");
     return kExitInterrupted;
   }
 
-  // 2. Open the recording: a bad or existing path fails before any simulation.
+  // 2. Open the recording (rank 0 only): a bad or existing path fails before any simulation.
   io::RecordingOptions recording;
   recording.path = options.out.empty() ? defaultOutput(options.scenario) : options.out;
   recording.force = options.force;
   recording.fps = plan.fps;
   recording.seed = desc.seed;
   recording.scenarioText = loaded->text;
-  auto recorder = io::Recorder::open(desc, recording);
-  if (!recorder) {
-    printDiagnostics(recorder.errors());
-    return kExitFailure;
+  std::unique_ptr<io::Recorder> recorder;
+  bool openFailed = false;
+  if (speaks) {
+    auto opened = io::Recorder::open(desc, recording);
+    if (!opened) {
+      printDiagnostics(opened.errors());
+      openFailed = true;
+    } else {
+      recorder = std::move(opened.value());
+    }
   }
+  if (ranks.anyRank(openFailed)) return kExitFailure;
 
   // 3. Simulate.
   const core::TaskSystem tasks(options.threads);
+  if (exchange != nullptr) (*world)->setPartition(exchange);
   const auto totalTicks = static_cast<std::uint64_t>(std::max(0LL, std::llround(static_cast<double>(desc.duration) / desc.dt)));
   RunSummary summary;
   summary.setupSeconds = secondsSince(setupStart);
   LoopResult loop;
+  PhaseTimer phaseTimer;
   {
-    ProgressLine progress(stderr, !options.quiet);  // cleared when it goes out of scope
-    loop = simulate(**world, **recorder, tasks, totalTicks, plan, desc.duration, progress);
+    ProgressLine progress(stderr, !options.quiet && speaks);  // cleared when it goes out of scope
+    loop = simulate(**world, recorder.get(), tasks, totalTicks, plan, desc.duration, progress, ranks,
+                    options.phaseTimes ? &phaseTimer : nullptr);
   }
-  const core::Status closed = (*recorder)->close(loop.end != RunEnd::Interrupted);
-  if (!closed) {
-    printDiagnostics(closed.errors());
-    return kExitFailure;
+  if (recorder) {
+    const core::Status closed = recorder->close(loop.end != RunEnd::Interrupted);
+    if (!closed) {
+      printDiagnostics(closed.errors());
+      return kExitFailure;
+    }
   }
 
   summary.scenario = desc.name;
@@ -296,8 +417,13 @@ int runRun(const RunOptions& options) {
   summary.hasExit = desc.hasExit();
   summary.wallSeconds = loop.wallSeconds;
   summary.recording = recording.path;
-  summary.frames = (*recorder)->framesWritten();
+  summary.frames = recorder ? recorder->framesWritten() : 0;
   summary.fps = plan.fps;
+  summary.stateHash = (*world)->stateHash();
+  summary.partition = (*world)->partitionStats();
+  summary.exchangedBytes = summary.partition.gatheredBytes;
+  summary.phaseSeconds = phaseTimer.totals();  // every rank's blocks, as every rank received them
+  if (!speaks) return loop.end == RunEnd::Interrupted ? kExitInterrupted : kExitOk;
   if (options.json) printSummaryJson(summary);
   else if (!options.quiet) printSummaryText(summary);
   if (loop.end == RunEnd::Interrupted) {
@@ -308,6 +434,33 @@ int runRun(const RunOptions& options) {
     return kExitInterrupted;
   }
   return kExitOk;
+}
+
+}  // namespace
+
+int runRun(const RunOptions& options) {
+  const std::uint32_t launched = launchedRanks();
+  if (launched <= 1) return runOn(options, RankPlan{}, nullptr);
+#if THRONG_HAVE_MPI
+  auto session = dist::MpiSession::start();
+  if (!session) {
+    printDiagnostics(session.errors());
+    return kExitFailure;
+  }
+  dist::MpiSession& mpi = **session;
+  RankPlan ranks;
+  ranks.rank = mpi.rank();
+  ranks.ranks = mpi.ranks();
+  ranks.anyRank = [&mpi](bool flag) { return mpi.anyRank(flag); };
+  if (ranks.ranks <= 1) return runOn(options, RankPlan{}, nullptr);
+  dist::MpiExchange exchange(mpi);
+  return runOn(options, ranks, &exchange);
+#else
+  printLine(stderr, fmt::format("throng run: launched by an MPI launcher with {} ranks, but this throng was built "
+                                "without MPI (install libopenmpi-dev and reconfigure); run it as one process",
+                                launched));
+  return kExitFailure;
+#endif
 }
 
 }  // namespace throng::cli

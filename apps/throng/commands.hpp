@@ -1,6 +1,6 @@
 // throng CLI subcommands — each subcommand registers its flags on a CLI::App and runs from a plain
 // options struct (one file per subcommand: cmd_run.cpp, cmd_check.cpp, cmd_info.cpp,
-// cmd_bench.cpp, cmd_script.cpp, cmd_metrics.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
+// cmd_bench.cpp, cmd_script.cpp, cmd_metrics.cpp, cmd_serve.cpp, cmd_loadgen.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
 // interrupted by SIGINT/SIGTERM.
 #pragma once
 #include <cstdint>
@@ -30,6 +30,7 @@ struct RunOptions {
   bool quiet = false;                   ///< only errors
   bool json = false;                    ///< summary as one JSON object
   std::optional<bool> commonGround;     ///< overrides the scenario's "social"/"commonGround"
+  bool phaseTimes = false;              ///< time every phase of the tick and print the totals
 };
 
 struct CheckOptions {
@@ -71,6 +72,33 @@ struct BenchOptions {
   std::size_t baselineMax = 20000;      ///< largest agent count DetourCrowd runs at
 };
 
+struct ServeOptions {
+  std::string scenario;
+  int port = 8080;                      ///< HTTP + WebSocket; 0 = any free port
+  int udpPort = 8081;                   ///< 0 = any free port
+  std::string bind = "127.0.0.1";
+  std::optional<double> tick;           ///< ticks per second; default 1/dt
+  int maxClients = 100;
+  int threads = 0;
+  std::optional<std::uint64_t> seed;
+  std::optional<double> duration;       ///< wall-clock seconds; default until Ctrl-C
+  std::string web;                      ///< viewer files; default web/dist of the source tree
+  double budgetKbit = 500.0;            ///< per-client bandwidth target [kbit/s]
+  bool quiet = false;
+  bool json = false;
+};
+
+struct LoadgenOptions {
+  std::string url = "ws://127.0.0.1:8080/ws";
+  int clients = 10;
+  double duration = 10.0;               ///< [s]
+  bool udp = false;                     ///< native clients over UDP instead of WebSocket
+  int udpPort = 8081;                   ///< the server's UDP port (the URL gives the host)
+  double guideShare = 0.5;              ///< share of the clients that guide a group
+  bool json = false;
+  bool quiet = false;
+};
+
 /// Each registers its subcommand (flags bound to `options`, which must outlive parsing) and returns it.
 CLI::App* addRunCommand(CLI::App& app, RunOptions& options);
 CLI::App* addCheckCommand(CLI::App& app, CheckOptions& options);
@@ -78,6 +106,8 @@ CLI::App* addInfoCommand(CLI::App& app, InfoOptions& options);
 CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options);
 CLI::App* addScriptCommand(CLI::App& app, ScriptOptions& options);
 CLI::App* addMetricsCommand(CLI::App& app, MetricsCmdOptions& options);
+CLI::App* addServeCommand(CLI::App& app, ServeOptions& options);
+CLI::App* addLoadgenCommand(CLI::App& app, LoadgenOptions& options);
 
 int runRun(const RunOptions& options);
 int runCheck(const CheckOptions& options);
@@ -85,5 +115,7 @@ int runInfo(const InfoOptions& options);
 int runBench(const BenchOptions& options);
 int runScript(const ScriptOptions& options);
 int runMetrics(const MetricsCmdOptions& options);
+int runServe(const ServeOptions& options);
+int runLoadgen(const LoadgenOptions& options);
 
 }  // namespace throng::cli

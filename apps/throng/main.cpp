@@ -1,4 +1,4 @@
-// throng — command-line front end: run, check, info, bench, script and metrics subcommands (CLI11).
+// throng — command-line front end: run, check, info, bench, script, metrics, serve and loadgen subcommands (CLI11).
 // Parses flags, dispatches to the subcommand and turns every failure into a message and an exit
 // code: 0 success, 1 bad input or failure, 2 bad flags or unknown subcommand, 130 interrupted.
 #include <cstdio>
@@ -30,23 +30,27 @@ int dispatch(int argc, char** argv) {
   BenchOptions benchOptions;
   ScriptOptions scriptOptions;
   MetricsCmdOptions metricsOptions;
+  ServeOptions serveOptions;
+  LoadgenOptions loadgenOptions;
   CLI::App* run = addRunCommand(app, runOptions);
   CLI::App* check = addCheckCommand(app, checkOptions);
   CLI::App* info = addInfoCommand(app, infoOptions);
   CLI::App* bench = addBenchCommand(app, benchOptions);
   CLI::App* script = addScriptCommand(app, scriptOptions);
   CLI::App* metrics = addMetricsCommand(app, metricsOptions);
+  CLI::App* serve = addServeCommand(app, serveOptions);
+  CLI::App* loadgen = addLoadgenCommand(app, loadgenOptions);
 
   // CLI11 reports an unknown command as "A subcommand is required"; name it instead.
   const auto isCommand = [&](const char* word) {
-    for (const CLI::App* sub : {run, check, info, bench, script, metrics}) {
+    for (const CLI::App* sub : {run, check, info, bench, script, metrics, serve, loadgen}) {
       if (sub->check_name(word)) return true;
     }
     return false;
   };
   if (argc > 1 && argv[1][0] != '-' && !isCommand(argv[1])) {
-    const std::string hint = throng::core::closestMatch(argv[1], {"run", "check", "info", "bench", "script", "metrics"});
-    std::fputs(fmt::format("throng: unknown command '{}'; expected run, check, info, bench, script or metrics{}\n"
+    const std::string hint = throng::core::closestMatch(argv[1], {"run", "check", "info", "bench", "script", "metrics", "serve", "loadgen"});
+    std::fputs(fmt::format("throng: unknown command '{}'; expected run, check, info, bench, script, metrics, serve or loadgen{}\n"
                            "Run 'throng --help' for more information.\n",
                            argv[1], hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint))
                    .c_str(),
@@ -67,6 +71,8 @@ int dispatch(int argc, char** argv) {
   if (bench->parsed()) return runBench(benchOptions);
   if (script->parsed()) return runScript(scriptOptions);
   if (metrics->parsed()) return runMetrics(metricsOptions);
+  if (serve->parsed()) return runServe(serveOptions);
+  if (loadgen->parsed()) return runLoadgen(loadgenOptions);
   std::fputs("throng: no command given; run 'throng --help'\n", stderr);
   return kExitUsage;
 }

@@ -122,4 +122,6 @@ CliResult CliProcess::wait() {
   return r;
 }
 
+std::string CliProcess::outSoFar() const { return readFile(outPath_); }
+
 }  // namespace throng::e2e

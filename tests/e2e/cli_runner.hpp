@@ -45,6 +45,8 @@ class CliProcess {
   CliProcess& operator=(const CliProcess&) = delete;
 
   void signal(int sig) const;
+  /// What it printed on stdout so far.
+  [[nodiscard]] std::string outSoFar() const;
   /// Waits for the process to end and returns what it printed.
   CliResult wait();
 

@@ -89,6 +89,7 @@ void World::step(const core::TaskSystem& tasks, PhaseObserver* observer) {
   { Scope s(observer, "decide"); w.decide(tasks); }
   { Scope s(observer, "plan"); w.plan(); }
   { Scope s(observer, "steer"); w.steer(tasks); }
+  if (w.exchange != nullptr) { Scope s(observer, "exchange"); w.exchangeSteer(); }
   { Scope s(observer, "integrate"); w.integrate(tasks); }
   { Scope s(observer, "emit"); w.emit(); }
 }

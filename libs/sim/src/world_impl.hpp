@@ -289,6 +289,24 @@ struct World::Impl {
   [[nodiscard]] float groupSpeed(std::uint32_t gid) const;
   [[nodiscard]] float dt() const { return desc.dt; }
   [[nodiscard]] std::size_t grainFor(std::size_t n) const { return n < 4096 ? 256 : 1024; }
+
+  // Partition (partition.hpp, partition.cpp): the steer phase shared with other ranks. Unset
+  // (exchange == nullptr), none of this is touched and steer visits every row as always.
+  StepExchange* exchange = nullptr;
+  PartitionOptions partitionOptions;
+  PartitionStats partitionStats;
+  std::vector<float> cuts;                   ///< ranks - 1 strip cuts in x, ascending [m]
+  std::vector<std::uint16_t> ownerOfId;      ///< rank that steered each stable id last tick, 0xffff: none yet
+  std::vector<std::uint16_t> rowOwner;       ///< this tick's owner of every row
+  std::vector<std::uint32_t> ownedRows;      ///< rows this rank steers this tick, ascending
+  std::vector<std::byte> steerSend, steerGathered;
+  std::vector<std::size_t> steerSizes;
+  /// Chooses (every partitionOptions.rebalanceTicks ticks) the cuts and this tick's owner of every row.
+  void assignOwners();
+  /// Sends what steer wrote for the owned rows, applies every other rank's values.
+  void exchangeSteer();
+  /// Steers one agent (steer.cpp): writes prefVel, newVel and the corner index of `row` only.
+  void steerRow(std::size_t row, WorkerScratch& ws);
 };
 
 }  // namespace throng::sim

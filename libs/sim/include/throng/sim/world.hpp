@@ -15,6 +15,7 @@
 #include "throng/core/result.hpp"
 #include "throng/nav/navmesh.hpp"
 #include "throng/sim/frame.hpp"
+#include "throng/sim/partition.hpp"
 #include "throng/sim/scenario.hpp"
 
 namespace throng::sim {
@@ -76,6 +77,14 @@ class World {
 
   /// Advances one tick of dt seconds. Threads come from `tasks`; the result does not depend on them.
   void step(const core::TaskSystem& tasks, PhaseObserver* observer = nullptr);
+
+  /// Shares the steer phase with the other copies of this world behind `exchange` (one per rank,
+  /// each created from the same description; partition.hpp). The result stays bit-identical to
+  /// one process. nullptr switches it off. The exchange must outlive the world's use of it, and
+  /// every rank must set it before the same tick.
+  void setPartition(StepExchange* exchange, PartitionOptions options = {});
+  /// This rank's share of the work since setPartition (zeros when never set).
+  [[nodiscard]] const PartitionStats& partitionStats() const;
 
   // Groups and crowd control (Musse et al. §3.2.6). Commands are queued and applied at the start
   // of the next tick in the order they were given, so they never race with a tick.

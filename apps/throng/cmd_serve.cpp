@@ -1,0 +1,377 @@
+// `throng serve SCENARIO.json` — runs the simulation in real time and serves it into a shared
+// world (docs/server.md): HTTP (the browser viewer's files, the motion clips, /api/status) and
+// WebSocket (/ws) on one port, the same protocol over UDP on another. The hub (libs/hub) does the
+// sessions and crowd messages; the transport (libs/server) the sockets; this file wires them to
+// the World and keeps the tick on time. Reads the scenario and its clips; writes sockets, a status
+// line on stderr (terminal only) and a summary on stdout. Ctrl-C tells every client why, then stops.
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <condition_variable>
+#include <mutex>
+#include <unistd.h>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "output.hpp"
+#include "signal.hpp"
+#include "validators.hpp"
+#include "throng/core/parallel.hpp"
+#include "throng/hub/hub.hpp"
+#include "throng/hub/world_description.hpp"
+#include "throng/io/scenario_loader.hpp"
+#include "throng/server/transport.hpp"
+#include "throng/sim/world.hpp"
+
+namespace throng::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+/// Connects the transport's callbacks to the hub, and the hub's sends to the transport.
+class Bridge final : public server::TransportHandler, public hub::Outbox {
+ public:
+  explicit Bridge(Clock::time_point start) : start_(start) {}
+  void attach(hub::Hub* h, server::Transport* t) {
+    hub_ = h;
+    transport_ = t;
+  }
+  [[nodiscard]] double now() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+  // TransportHandler (transport thread).
+  void onOpen(server::PeerId peer, server::PeerKind kind, std::string remote) override {
+    if (hub_) hub_->onOpen(peer.value, std::move(remote), now());
+  }
+  void onMessage(server::PeerId peer, std::span<const std::uint8_t> message) override {
+    if (hub_) hub_->onMessage(peer.value, message, now());
+  }
+  void onClose(server::PeerId peer, std::string_view reason) override {
+    if (hub_) hub_->onClose(peer.value, reason);
+  }
+
+  // Outbox (either thread, hub mutex held; the transport only posts).
+  void send(hub::PeerKey peer, std::vector<std::uint8_t> message, bool latest, std::uint32_t slot) override {
+    if (transport_) {
+      transport_->send(server::PeerId{peer}, std::move(message),
+                       latest ? server::SendClass::Latest : server::SendClass::Reliable, slot);
+    }
+  }
+  void close(hub::PeerKey peer, std::string reason) override {
+    if (transport_) transport_->close(server::PeerId{peer}, std::move(reason));
+  }
+  [[nodiscard]] std::optional<hub::LinkCounters> link(hub::PeerKey peer) const override {
+    if (!transport_) return std::nullopt;
+    auto s = transport_->stats(server::PeerId{peer});
+    if (!s) return std::nullopt;
+    return hub::LinkCounters{s->bytesSent, s->droppedLatest, s->queueBytes};
+  }
+
+ private:
+  Clock::time_point start_;
+  hub::Hub* hub_ = nullptr;
+  server::Transport* transport_ = nullptr;
+};
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(p * static_cast<double>(v.size())));
+  return v[k];
+}
+
+/// The viewer's files: --web, else web/dist of the source tree this binary was built from.
+fs::path webRoot(const std::string& flag) {
+  if (!flag.empty()) return flag;
+#ifdef THRONG_WEB_DIST
+  return THRONG_WEB_DIST;
+#else
+  return {};
+#endif
+}
+
+}  // namespace
+
+CLI::App* addServeCommand(CLI::App& app, ServeOptions& options) {
+  CLI::App* cmd = app.add_subcommand("serve", "Serve a live crowd into a shared world (HTTP, WebSocket, UDP)");
+  cmd->footer(
+      "Runs the scenario in real time and serves it: the browser viewer and the motion clips over HTTP,\n"
+      "the shared-world protocol (docs/protocol.md) over WebSocket at /ws on the same port and over UDP\n"
+      "on --udp-port. Participants join with a name, move their avatars and guide groups. Each client\n"
+      "gets one compressed, delta-coded crowd message per tick with the agents in its area of interest,\n"
+      "at a level of detail by distance, and its animation every X frames, X regulated from its link.\n"
+      "Ctrl-C tells every client why and stops. GET /api/status gives the server's state as JSON.");
+  cmd->add_option("scenario", options.scenario, "Scenario JSON file")->required()->type_name("SCENARIO.json");
+  cmd->add_option("--port", options.port, "HTTP and WebSocket port (0: any free port, printed)")
+      ->check(integerRange(0, 65535))
+      ->capture_default_str();
+  cmd->add_option("--udp-port", options.udpPort, "UDP port for native clients (0: any free port)")
+      ->check(integerRange(0, 65535))
+      ->capture_default_str();
+  cmd->add_option("--bind", options.bind, "Address to listen on (0.0.0.0: every interface)")->capture_default_str();
+  cmd->add_option("--tick", options.tick, "Ticks per second in real time; default 1/dt of the scenario (the crowd "
+                                          "then moves at its real speed)")
+      ->type_name("HZ")
+      ->check(positiveNumber("Hz"));
+  cmd->add_option("--max-clients", options.maxClients, "Clients served at once; more are refused")
+      ->check(integerRange(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--threads", options.threads, "Simulation worker threads; 0 = all hardware threads")
+      ->check(integerRange(0, 1024))
+      ->capture_default_str();
+  cmd->add_option("--seed", options.seed, "Random seed; overrides the scenario's \"seed\"")->type_name("N");
+  cmd->add_option("--duration", options.duration, "Stop after this many seconds of wall-clock time (default: until "
+                                                  "Ctrl-C)")
+      ->type_name("S")
+      ->check(positiveNumber("s"));
+  cmd->add_option("--web", options.web, "Directory of the browser viewer's built files (default: web/dist of the "
+                                        "source tree)")
+      ->type_name("DIR");
+  cmd->add_option("--budget", options.budgetKbit, "Bandwidth target per client [kbit/s]: above it a client's "
+                                                  "animation granularity X grows")
+      ->check(positiveNumber("kbit/s"))
+      ->capture_default_str();
+  cmd->add_flag("--quiet", options.quiet, "No status line and no summary, only errors");
+  cmd->add_flag("--json", options.json, "Summary as one JSON object on stdout");
+  return cmd;
+}
+
+int runServe(const ServeOptions& options) {
+  InterruptGuard interrupts;
+  if (auto missing = checkInputFile(options.scenario, "scenario"); !missing.empty()) {
+    printDiagnostics(missing);
+    return kExitFailure;
+  }
+  auto loaded = io::loadScenarioFile(options.scenario);
+  if (!loaded) {
+    printDiagnostics(loaded.errors());
+    return kExitFailure;
+  }
+  if (options.seed) loaded->desc.seed = *options.seed;
+  auto created = sim::World::create(loaded->desc, loaded->navmesh);
+  if (!created) {
+    printDiagnostics(created.errors());
+    return kExitFailure;
+  }
+  std::unique_ptr<sim::World> world = std::move(created).value();
+  const double dt = loaded->desc.dt;
+  const double tickRate = options.tick ? *options.tick : 1.0 / dt;
+  const fs::path scenarioDir = fs::path(options.scenario).parent_path();
+
+  std::vector<std::string> warnings;
+  const hub::MotionLibrary motions = hub::MotionLibrary::load(*loaded, scenarioDir, warnings);
+  if (!options.quiet) {
+    for (const std::string& w : warnings) printLine(stderr, "throng serve: warning: " + w);
+  }
+  const std::string worldJson = hub::describeWorld(*loaded, motions, *world, tickRate);
+
+  const Clock::time_point start = Clock::now();
+  Bridge bridge(start);
+  hub::HubOptions hubOptions;
+  hubOptions.serverName = loaded->desc.name.empty() ? fs::path(options.scenario).stem().string() : loaded->desc.name;
+  hubOptions.maxClients = static_cast<std::size_t>(options.maxClients);
+  hubOptions.granularity.budgetKbitPerSecond = options.budgetKbit;
+  hub::Hub hub(hubOptions, worldJson, static_cast<float>(tickRate), motions, bridge);
+
+  server::TransportOptions t;
+  t.bindAddress = options.bind;
+  t.httpPort = static_cast<std::uint16_t>(options.port);
+  t.udpPort = static_cast<std::uint16_t>(options.udpPort);
+  t.maxPeers = static_cast<std::size_t>(options.maxClients) + 16;  // room to refuse politely
+  t.maxDatagramBytes = 65507;  // crowd frames to UDP clients travel in one datagram each
+  const fs::path web = webRoot(options.web);
+  std::error_code ec;
+  const bool haveViewer = !web.empty() && fs::is_regular_file(web / "index.html", ec);
+  if (haveViewer) t.staticRoot = web;
+  // Tick times of the last 10 s, for /api/status (read on the transport thread).
+  std::mutex tickMutex;
+  double tickMedianMs = 0.0, tickP99Ms = 0.0, publishMedianMs = 0.0, publishP99Ms = 0.0;
+  std::uint64_t overruns = 0;
+  t.httpHandler = [&](std::string_view target) -> std::optional<server::HttpResponse> {
+    const std::string_view path = target.substr(0, target.find('?'));
+    if (path == "/api/status") {
+      const hub::HubStatus s = hub.status();
+      nlohmann::json clients = nlohmann::json::array();
+      for (const hub::ClientStatus& c : s.perClient) {
+        clients.push_back({{"name", c.name}, {"participant", c.participant}, {"participantId", c.participantId},
+                           {"granularity", c.granularity}, {"granularityReason", c.granularityReason}, {"kbitPerSecond", c.kbitPerSecond},
+                           {"roundTripMs", c.roundTripMs}, {"framesSent", c.framesSent},
+                           {"agentsInView", c.agentsInView}, {"guiding", c.guiding}});
+      }
+      nlohmann::json j = {{"clients", s.clients}, {"participants", s.participants}, {"crowdFrames", s.crowdFrames},
+                          {"crowdBytes", s.crowdBytes}, {"perClient", std::move(clients)}};
+      {
+        std::lock_guard lock(tickMutex);
+        j["tick"] = {{"median_ms", tickMedianMs}, {"p99_ms", tickP99Ms}, {"late", overruns}, {"rate", tickRate},
+                     {"publish_median_ms", publishMedianMs}, {"publish_p99_ms", publishP99Ms}};
+      }
+      return server::HttpResponse{200, "application/json", j.dump(), {}};
+    }
+    if (path == "/api/world") return server::HttpResponse{200, "application/json", worldJson, {}};
+    constexpr std::string_view kMotions = "/motions/";
+    if (path.starts_with(kMotions) && path.ends_with(".bvh")) {
+      const std::string_view id = path.substr(kMotions.size(), path.size() - kMotions.size() - 4);
+      std::size_t index = 0;
+      for (char ch : id) {
+        if (ch < '0' || ch > '9' || index > 100000) return server::HttpResponse{404, "text/plain", "no such clip\n", {}};
+        index = index * 10 + static_cast<std::size_t>(ch - '0');
+      }
+      if (id.empty() || index >= motions.clips().size() || motions.clipFile(index).empty()) {
+        return server::HttpResponse{404, "text/plain", "no such clip\n", {}};
+      }
+      return server::HttpResponse{200, "text/plain; charset=utf-8", {}, motions.clipFile(index)};
+    }
+    return std::nullopt;
+  };
+  auto started = server::Transport::start(t, bridge);
+  if (!started) {
+    printDiagnostics(started.errors());
+    return kExitFailure;
+  }
+  std::unique_ptr<server::Transport> transport = std::move(started).value();
+  bridge.attach(&hub, transport.get());
+  const std::string host = options.bind == "0.0.0.0" ? "127.0.0.1" : options.bind;
+  if (!options.quiet) {
+    printLine(stdout, fmt::format("throng serve: {} — {} ticks/s", hubOptions.serverName, tickRate));
+    printLine(stdout, fmt::format("  viewer     http://{}:{}/{}", host, transport->httpPort(),
+                                  haveViewer ? "" : "  (not built: scripts/demo.sh builds it)"));
+    printLine(stdout, fmt::format("  websocket  ws://{}:{}/ws", host, transport->httpPort()));
+    printLine(stdout, fmt::format("  udp        {}:{}", host, transport->udpPort()));
+    printLine(stdout, "  Ctrl-C to stop");
+  }
+
+  core::TaskSystem tasks(options.threads);
+  // The publisher: encodes and sends each client's crowd frame on its own thread, so the tick
+  // stays on time whatever the clients cost; when it falls behind it skips to the newest frame.
+  core::TaskSystem publishTasks(options.threads);
+  std::mutex frameMutex;
+  std::condition_variable frameReady;
+  sim::FramePtr pending;
+  bool stopPublisher = false;
+  std::vector<double> publishMs;
+  std::uint64_t framesSkipped = 0;
+  std::thread publisher([&] {
+    while (true) {
+      sim::FramePtr frame;
+      {
+        std::unique_lock lock(frameMutex);
+        frameReady.wait(lock, [&] { return pending != nullptr || stopPublisher; });
+        if (stopPublisher) return;
+        frame = std::move(pending);
+        pending.reset();
+      }
+      const auto p0 = Clock::now();
+      hub.publish(*frame, bridge.now(), &publishTasks);
+      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - p0).count();
+      std::lock_guard lock(frameMutex);
+      publishMs.push_back(ms);
+    }
+  });
+  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / tickRate));
+  std::vector<double> tickMs;
+  auto next = Clock::now();
+  double lastStatus = 0.0, lastWindow = 0.0;
+  std::uint64_t lastBytes = 0;
+  const bool terminal = isatty(fileno(stderr)) != 0;
+  std::string endReason = "duration reached";
+  while (true) {
+    if (InterruptGuard::requested()) {
+      endReason = "interrupted (Ctrl-C)";
+      break;
+    }
+    if (options.duration && bridge.now() >= *options.duration) break;
+    const auto t0 = Clock::now();
+    hub.applyToWorld(*world);
+    world->step(tasks);
+    const sim::FramePtr frame = world->snapshot();
+    const auto t1 = Clock::now();
+    {
+      std::lock_guard lock(frameMutex);
+      if (pending) ++framesSkipped;
+      pending = frame;
+    }
+    frameReady.notify_one();
+    tickMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    next += period;
+    if (t1 > next) {
+      std::lock_guard lock(tickMutex);
+      ++overruns;
+      next = t1;  // late: start the next tick now, never try to catch up in a burst
+    } else {
+      std::this_thread::sleep_until(next);
+    }
+    const double now = bridge.now();
+    if (now - lastWindow >= 1.0) {
+      lastWindow = now;
+      const std::size_t recent = std::min<std::size_t>(tickMs.size(), static_cast<std::size_t>(tickRate * 10));
+      std::vector<double> window(tickMs.end() - static_cast<std::ptrdiff_t>(recent), tickMs.end());
+      std::vector<double> publishWindow;
+      {
+        std::lock_guard lock(frameMutex);
+        const std::size_t n = std::min(publishMs.size(), recent);
+        publishWindow.assign(publishMs.end() - static_cast<std::ptrdiff_t>(n), publishMs.end());
+      }
+      std::lock_guard lock(tickMutex);
+      tickMedianMs = percentile(window, 0.5);
+      tickP99Ms = percentile(window, 0.99);
+      publishMedianMs = percentile(publishWindow, 0.5);
+      publishP99Ms = percentile(publishWindow, 0.99);
+    }
+    if (!options.quiet && terminal && now - lastStatus >= 1.0) {
+      const hub::HubStatus s = hub.status();
+      const double kbit = static_cast<double>(s.crowdBytes - lastBytes) * 8.0 / 1000.0 / (now - lastStatus);
+      lastBytes = s.crowdBytes;
+      lastStatus = now;
+      double p99 = 0.0;
+      {
+        std::lock_guard lock(tickMutex);
+        p99 = tickP99Ms;
+      }
+      std::fprintf(stderr, "\r  t %s  agents %zu  clients %zu (%zu participants)  tick p99 %.1f ms  out %.0f kbit/s   ",
+                   formatSeconds(frame->time).c_str(), frame->size(), s.clients, s.participants, p99, kbit);
+      std::fflush(stderr);
+    }
+  }
+  {
+    std::lock_guard lock(frameMutex);
+    stopPublisher = true;
+  }
+  frameReady.notify_one();
+  publisher.join();
+  if (!options.quiet && terminal) std::fputs("\n", stderr);
+  const std::string goodbye = InterruptGuard::requested() ? "server shutting down (Ctrl-C)" : "server shutting down";
+  hub.shutdown(goodbye);
+  transport->shutdown(goodbye);
+  const server::TransportTotals totals = transport->totals();
+  const hub::HubStatus s = hub.status();
+  const double wall = bridge.now();
+  if (options.json) {
+    nlohmann::json j = {{"scenario", options.scenario}, {"end", endReason}, {"seconds", wall},
+                        {"ticks", tickMs.size()}, {"tickRate", tickRate},
+                        {"ms_per_tick_median", percentile(tickMs, 0.5)}, {"ms_per_tick_p99", percentile(tickMs, 0.99)},
+                        {"overruns", overruns}, {"publish_ms_median", percentile(publishMs, 0.5)},
+                        {"publish_ms_p99", percentile(publishMs, 0.99)}, {"frames_skipped", framesSkipped},
+                        {"peers_opened", totals.peersOpened},
+                        {"crowd_frames", s.crowdFrames}, {"crowd_bytes", s.crowdBytes},
+                        {"bytes_sent", totals.bytesSent}, {"bytes_received", totals.bytesReceived},
+                        {"closed_for_errors", s.closedForErrors}, {"http_requests", totals.httpRequests}};
+    printLine(stdout, j.dump());
+  } else if (!options.quiet) {
+    printLine(stdout, fmt::format("throng serve: {} after {}: {} ticks, tick median {:.2f} ms, p99 {:.2f} ms, {} late",
+                                  endReason, formatSeconds(wall), tickMs.size(), percentile(tickMs, 0.5),
+                                  percentile(tickMs, 0.99), overruns));
+    printLine(stdout, fmt::format("  crowd frames: encoding for every client median {:.2f} ms, p99 {:.2f} ms per tick; "
+                                  "{} ticks skipped by the publisher",
+                                  percentile(publishMs, 0.5), percentile(publishMs, 0.99), framesSkipped));
+    printLine(stdout, fmt::format("  {} connections, {} crowd frames, {} sent, {} received", totals.peersOpened,
+                                  s.crowdFrames, formatBytes(static_cast<double>(totals.bytesSent)),
+                                  formatBytes(static_cast<double>(totals.bytesReceived))));
+  }
+  return InterruptGuard::requested() ? kExitInterrupted : kExitOk;
+}
+
+}  // namespace throng::cli

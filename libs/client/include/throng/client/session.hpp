@@ -1,0 +1,87 @@
+// throng::client::Session — a native participant of a shared world (docs/server.md): connects over
+// WebSocket or UDP, says Hello, receives the world description, joins with a name, moves its
+// avatar, guides groups, and decodes the crowd frames (acknowledging each, so the server
+// delta-codes against them), answering heartbeats. Blocking calls with timeouts; no threads of its
+// own, so one thread can drive many sessions (throng loadgen). Reads and writes a socket.
+#pragma once
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "throng/core/result.hpp"
+#include "throng/protocol/crowd_decoder.hpp"
+#include "throng/protocol/messages.hpp"
+
+namespace throng::client {
+
+struct SessionOptions {
+  std::string host = "127.0.0.1";
+  std::uint16_t port = 8080;      ///< HTTP/WebSocket port
+  std::string path = "/ws";
+  bool udp = false;               ///< speak UDP to udpPort instead of WebSocket
+  std::uint16_t udpPort = 8081;
+  std::string name = "native";
+  protocol::ClientKind kind = protocol::ClientKind::Native;
+  std::chrono::milliseconds timeout{5000};
+};
+
+/// Counters a load generator reports.
+struct SessionStats {
+  std::uint64_t bytesReceived = 0;
+  std::uint64_t messagesReceived = 0;
+  std::uint64_t crowdFrames = 0;
+  std::uint64_t keyFrames = 0;
+  std::uint64_t lostFrames = 0;     ///< gaps in the crowd frame numbers (replaced by newer ones, or lost)
+  std::uint64_t undecodable = 0;    ///< delta frames whose base this client did not have
+  std::vector<double> frameDelayMs; ///< per crowd frame: arrival minus its slot in the tick schedule [ms]
+  double roundTripMs = 0.0;         ///< latest heartbeat round trip
+  std::uint32_t agentsInView = 0;   ///< agents in the newest decoded frame
+  std::uint32_t animationInterval = 1;  ///< X of the newest frame
+};
+
+class Session {
+ public:
+  /// Connects, says Hello and waits for the Welcome. A Refuse comes back as a diagnostic with the
+  /// server's reason.
+  static core::Result<std::unique_ptr<Session>> open(const SessionOptions& options);
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  [[nodiscard]] const protocol::Welcome& welcome() const;
+  [[nodiscard]] const std::string& worldJson() const;
+
+  /// Joins as a participant; waits for Joined.
+  core::Result<protocol::Joined> join(const std::string& name);
+  core::Status move(float x, float y, float yaw);
+  core::Status guide(std::uint32_t group);
+  core::Status release(std::uint32_t group);
+  core::Status leave();
+
+  /// Handles every message waiting (or the next within `wait`): crowd frames are decoded and
+  /// acknowledged, heartbeats answered, relays and guide results kept. Returns false once the
+  /// server closed the session (closeReason() says why).
+  bool pump(std::chrono::milliseconds wait = std::chrono::milliseconds(0));
+
+  /// The crowd as last decoded (ascending id).
+  [[nodiscard]] const std::optional<protocol::DecodedCrowdFrame>& crowd() const;
+  /// Guide results received, oldest first (cleared by the caller).
+  [[nodiscard]] std::vector<protocol::GuideResult>& guideResults();
+  /// Latest Move of each other participant, by participant id.
+  [[nodiscard]] const std::vector<std::pair<std::uint32_t, protocol::Move>>& others() const;
+  [[nodiscard]] const SessionStats& stats() const;
+  [[nodiscard]] bool open() const;
+  [[nodiscard]] const std::string& closeReason() const;
+  /// Says Bye and closes.
+  void close(const std::string& reason = "client quit");
+
+ private:
+  struct Impl;
+  explicit Session(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace throng::client

@@ -1,0 +1,276 @@
+// A native participant of a shared world (see session.hpp).
+#include "throng/client/session.hpp"
+
+#include <algorithm>
+
+#include "throng/server/udp_client.hpp"
+#include "throng/server/ws_client.hpp"
+
+namespace throng::client {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using protocol::Bytes;
+
+/// One message from the link, or the end of the connection.
+struct Received {
+  bool closed = false;
+  bool timeout = false;
+  Bytes message;
+  std::string reason;
+};
+
+class Link {
+ public:
+  virtual ~Link() = default;
+  virtual core::Status send(const Bytes& bytes) = 0;
+  virtual Received receive(std::chrono::milliseconds wait) = 0;
+  virtual void close(const std::string& reason) = 0;
+};
+
+class WsLink final : public Link {
+ public:
+  explicit WsLink(std::unique_ptr<server::WsClient> c) : c_(std::move(c)) {}
+  core::Status send(const Bytes& bytes) override { return c_->send(bytes); }
+  Received receive(std::chrono::milliseconds wait) override {
+    server::ClientEvent e = c_->receive(wait);
+    switch (e.kind) {
+      case server::ClientEvent::Kind::Message: return {false, false, std::move(e.message), {}};
+      case server::ClientEvent::Kind::Closed: return {true, false, {}, e.closeReason};
+      case server::ClientEvent::Kind::Timeout: break;
+    }
+    return {false, true, {}, {}};
+  }
+  void close(const std::string& reason) override { c_->close(reason); }
+
+ private:
+  std::unique_ptr<server::WsClient> c_;
+};
+
+class UdpLink final : public Link {
+ public:
+  explicit UdpLink(std::unique_ptr<server::UdpClient> c) : c_(std::move(c)) {}
+  core::Status send(const Bytes& bytes) override { return c_->send(bytes); }
+  Received receive(std::chrono::milliseconds wait) override {
+    auto d = c_->receive(wait);
+    if (!d) return {false, true, {}, {}};
+    return {false, false, std::move(*d), {}};
+  }
+  void close(const std::string&) override {}
+
+ private:
+  std::unique_ptr<server::UdpClient> c_;
+};
+
+core::Diagnostic problem(const std::string& source, const std::string& what, const std::string& expected = {}) {
+  core::Diagnostic d;
+  d.source = source;
+  d.what = what;
+  d.expected = expected;
+  return d;
+}
+
+}  // namespace
+
+struct Session::Impl {
+  SessionOptions options;
+  std::string source;  ///< "ws://host:port/ws" or "udp://host:port", for messages
+  std::unique_ptr<Link> link;
+  protocol::Welcome welcome;
+  std::string world;
+  std::uint64_t token = 0;
+  std::uint32_t participantId = 0;
+  std::uint32_t moveSeq = 0;
+  Clock::time_point start = Clock::now();
+  Clock::time_point lastHeartbeat = Clock::now();
+  protocol::CrowdDecoder decoder;
+  std::optional<protocol::DecodedCrowdFrame> crowd;
+  std::vector<protocol::GuideResult> guideResults;
+  std::vector<std::pair<std::uint32_t, protocol::Move>> others;
+  std::optional<protocol::Joined> joined;
+  SessionStats stats;
+  bool isOpen = true;
+  std::string closeReason;
+  std::uint32_t lastFrame = 0;
+  // Tick schedule for frame delays: the earliest-arriving frame fixes the origin.
+  bool haveOrigin = false;
+  double originSeconds = 0.0;  ///< arrival time minus simTick / tickRate, minimised over frames
+
+  [[nodiscard]] std::uint64_t nowUs() const {
+    return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - start).count()) + 1;
+  }
+
+  core::Status send(const Bytes& bytes) {
+    if (!isOpen) return problem(source, "the session is closed: " + closeReason);
+    return link->send(bytes);
+  }
+
+  void handle(const Bytes& bytes) {
+    ++stats.messagesReceived;
+    stats.bytesReceived += bytes.size();
+    auto decoded = protocol::decodeAny(bytes);
+    if (!decoded.ok()) return;
+    protocol::Message& m = decoded.value();
+    if (auto* frame = std::get_if<protocol::CrowdFrame>(&m)) {
+      const double arrival = static_cast<double>(nowUs()) / 1e6;
+      auto applied = decoder.apply(*frame);
+      if (!applied.ok()) {
+        ++stats.undecodable;
+        return;
+      }
+      ++stats.crowdFrames;
+      if (applied->header.baseFrame == 0) ++stats.keyFrames;
+      if (lastFrame != 0 && applied->header.frameNumber > lastFrame + 1) stats.lostFrames += applied->header.frameNumber - lastFrame - 1;
+      lastFrame = std::max(lastFrame, applied->header.frameNumber);
+      const double slot = static_cast<double>(applied->header.simTick) / std::max(1e-3, static_cast<double>(welcome.tickRateHz));
+      const double offset = arrival - slot;
+      if (!haveOrigin || offset < originSeconds) {
+        haveOrigin = true;
+        originSeconds = offset;
+      }
+      stats.frameDelayMs.push_back((offset - originSeconds) * 1000.0);
+      stats.agentsInView = static_cast<std::uint32_t>(applied->view.agents.size());
+      stats.animationInterval = applied->header.animationInterval;
+      const std::uint32_t number = applied->header.frameNumber;
+      crowd = std::move(applied).value();
+      (void)send(protocol::encode(protocol::Ack{token, number}));
+    } else if (auto* hb = std::get_if<protocol::Heartbeat>(&m)) {
+      if (hb->echoUs == 0) {
+        // The server's ping: answer at once (its round trip measures the link, not our pace).
+        (void)send(protocol::encode(protocol::Heartbeat{token, nowUs(), hb->timeUs}));
+      } else {
+        stats.roundTripMs = static_cast<double>(nowUs() - std::min(nowUs(), hb->echoUs)) / 1000.0;
+      }
+    } else if (auto* g = std::get_if<protocol::GuideResult>(&m)) {
+      guideResults.push_back(*g);
+    } else if (auto* j = std::get_if<protocol::Joined>(&m)) {
+      joined = *j;
+    } else if (auto* mv = std::get_if<protocol::Move>(&m)) {
+      const auto id = static_cast<std::uint32_t>(mv->subject.value);
+      auto it = std::find_if(others.begin(), others.end(), [&](const auto& e) { return e.first == id; });
+      if (it == others.end()) others.emplace_back(id, *mv);
+      else it->second = *mv;
+    } else if (auto* bye = std::get_if<protocol::Bye>(&m)) {
+      isOpen = false;
+      closeReason = bye->text;
+    } else if (auto* refuse = std::get_if<protocol::Refuse>(&m)) {
+      isOpen = false;
+      closeReason = refuse->text;
+    }
+  }
+
+  bool pump(std::chrono::milliseconds wait) {
+    if (!isOpen) return false;
+    // Our heartbeat, once a second: keeps the session alive and measures the round trip.
+    if (Clock::now() - lastHeartbeat >= std::chrono::seconds(1)) {
+      lastHeartbeat = Clock::now();
+      (void)send(protocol::encode(protocol::Heartbeat{token, nowUs(), 0}));  // a ping
+    }
+    Received r = link->receive(wait);
+    while (isOpen) {
+      if (r.closed) {
+        isOpen = false;
+        if (closeReason.empty()) closeReason = r.reason.empty() ? "connection closed" : r.reason;
+        break;
+      }
+      if (r.timeout) break;
+      handle(r.message);
+      r = link->receive(std::chrono::milliseconds(0));
+    }
+    return isOpen;
+  }
+};
+
+Session::Session(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Session::~Session() = default;
+
+core::Result<std::unique_ptr<Session>> Session::open(const SessionOptions& options) {
+  auto impl = std::make_unique<Impl>();
+  impl->options = options;
+  if (options.udp) {
+    impl->source = "udp://" + options.host + ":" + std::to_string(options.udpPort);
+    auto c = server::UdpClient::connect(options.host, options.udpPort);
+    if (!c.ok()) return std::move(c).takeErrors();
+    impl->link = std::make_unique<UdpLink>(std::move(c).value());
+  } else {
+    impl->source = "ws://" + options.host + ":" + std::to_string(options.port) + options.path;
+    server::WsClientOptions w;
+    w.host = options.host;
+    w.port = options.port;
+    w.path = options.path;
+    w.timeout = options.timeout;
+    auto c = server::WsClient::connect(w);
+    if (!c.ok()) return std::move(c).takeErrors();
+    impl->link = std::make_unique<WsLink>(std::move(c).value());
+  }
+  if (auto s = impl->link->send(protocol::encode(protocol::Hello{protocol::kProtocolVersion, options.kind, options.name})); !s.ok()) {
+    return std::move(s).takeErrors();
+  }
+  const auto deadline = Clock::now() + options.timeout;
+  while (Clock::now() < deadline) {
+    Received r = impl->link->receive(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()));
+    if (r.closed) return problem(impl->source, "the server closed the connection before its Welcome: " + r.reason);
+    if (r.timeout) break;
+    auto m = protocol::decodeAny(r.message);
+    if (!m.ok()) return problem(impl->source, "the server's first message does not decode: " + m.errors().front().format());
+    if (auto* refuse = std::get_if<protocol::Refuse>(&m.value())) {
+      return problem(impl->source, "the server refused the session: " + refuse->text);
+    }
+    if (auto* welcome = std::get_if<protocol::Welcome>(&m.value())) {
+      auto json = protocol::worldJson(*welcome);
+      if (!json.ok()) return std::move(json).takeErrors();
+      impl->welcome = *welcome;
+      impl->world = std::move(json).value();
+      return std::unique_ptr<Session>(new Session(std::move(impl)));
+    }
+  }
+  return problem(impl->source, "no Welcome within " + std::to_string(options.timeout.count()) + " ms",
+                 "a throng server (throng serve) at this address");
+}
+
+const protocol::Welcome& Session::welcome() const { return impl_->welcome; }
+const std::string& Session::worldJson() const { return impl_->world; }
+
+core::Result<protocol::Joined> Session::join(const std::string& name) {
+  if (auto s = impl_->send(protocol::encode(protocol::Join{name, 0})); !s.ok()) return std::move(s).takeErrors();
+  const auto deadline = Clock::now() + impl_->options.timeout;
+  while (!impl_->joined && impl_->isOpen && Clock::now() < deadline) impl_->pump(std::chrono::milliseconds(20));
+  if (!impl_->joined) {
+    return problem(impl_->source, impl_->isOpen ? "no Joined within the timeout" : "closed while joining: " + impl_->closeReason);
+  }
+  impl_->token = impl_->joined->token;
+  impl_->participantId = impl_->joined->participantId;
+  return *impl_->joined;
+}
+
+core::Status Session::move(float x, float y, float yaw) {
+  protocol::Move m;
+  m.subject = {protocol::Subject::Kind::Token, impl_->token};
+  m.seq = ++impl_->moveSeq;
+  m.x = x;
+  m.y = y;
+  m.yaw = yaw;
+  return impl_->send(protocol::encode(m));
+}
+
+core::Status Session::guide(std::uint32_t group) { return impl_->send(protocol::encode(protocol::Guide{impl_->token, group})); }
+core::Status Session::release(std::uint32_t group) { return impl_->send(protocol::encode(protocol::Release{impl_->token, group})); }
+core::Status Session::leave() { return impl_->send(protocol::encode(protocol::Leave{impl_->token})); }
+
+bool Session::pump(std::chrono::milliseconds wait) { return impl_->pump(wait); }
+const std::optional<protocol::DecodedCrowdFrame>& Session::crowd() const { return impl_->crowd; }
+std::vector<protocol::GuideResult>& Session::guideResults() { return impl_->guideResults; }
+const std::vector<std::pair<std::uint32_t, protocol::Move>>& Session::others() const { return impl_->others; }
+const SessionStats& Session::stats() const { return impl_->stats; }
+bool Session::open() const { return impl_->isOpen; }
+const std::string& Session::closeReason() const { return impl_->closeReason; }
+
+void Session::close(const std::string& reason) {
+  if (!impl_->isOpen) return;
+  (void)impl_->send(protocol::encode(protocol::Bye{protocol::ReasonCode::ClientQuit, reason}));
+  impl_->link->close(reason);
+  impl_->isOpen = false;
+  impl_->closeReason = reason;
+}
+
+}  // namespace throng::client

@@ -1,0 +1,488 @@
+// The shared world's server logic (see hub.hpp): sessions, participants, guidance, crowd frames.
+#include "throng/hub/hub.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <random>
+
+#include "throng/core/parallel.hpp"
+#include "throng/protocol/messages.hpp"
+
+namespace throng::hub {
+namespace {
+
+using protocol::Bytes;
+using protocol::ReasonCode;
+
+/// Transport slots of droppable messages: the crowd frame, and per participant and kind the
+/// relayed state (so a burst of Moves from one participant collapses to the newest).
+constexpr std::uint32_t kCrowdSlot = 1;
+std::uint32_t relaySlot(std::uint32_t participant, protocol::MessageType type) {
+  return 0x100u + participant * 8u + (static_cast<std::uint32_t>(type) - static_cast<std::uint32_t>(protocol::MessageType::Move));
+}
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Client {
+  PeerKey peer = 0;
+  std::string remote;
+  std::string name;
+  bool welcomed = false;
+  bool closing = false;  ///< a Bye was sent; everything else it sends is ignored
+  // Participant.
+  bool participant = false;
+  std::uint32_t participantId = 0;
+  std::uint64_t token = 0;
+  std::optional<core::Vec2> avatar;
+  float avatarZ = 0.0f;
+  std::uint32_t moveSeq = 0;
+  // Messages last relayed, sent to clients that arrive later.
+  std::map<protocol::MessageType, Bytes> lastState;
+  // Link.
+  double lastHeard = 0.0;
+  double lastHeartbeatSent = -1e300;
+  std::uint64_t peerTimeUs = 0;  ///< newest clock the client sent (echoed back)
+  double roundTripMs = 0.0;
+  std::uint64_t lastBytesSent = 0;
+  double lastProgress = 0.0;     ///< when bytes last left for this client
+  double tokens = 0.0;           ///< rate limit bucket
+  double tokensAt = 0.0;
+  // Crowd.
+  protocol::CrowdEncoder encoder;
+  std::uint32_t acked = 0;
+  GranularityController granularity;
+  std::uint64_t framesSent = 0;
+  std::uint64_t keyFrames = 0;
+  std::uint32_t agentsInView = 0;
+};
+
+struct GuideRequest {
+  PeerKey peer = 0;
+  std::uint32_t participantId = 0;
+  std::uint32_t group = 0;
+  bool guide = true;
+  bool answer = true;  ///< false: the participant left; nobody to answer
+};
+
+}  // namespace
+
+struct Hub::Impl {
+  HubOptions options;
+  const MotionLibrary& motions;
+  Outbox& outbox;
+  Bytes welcome;
+  float tickRate = 10.0f;
+  mutable std::mutex mutex;
+  std::map<PeerKey, Client> clients;
+  std::uint32_t nextParticipantId = 1;
+  std::mt19937_64 tokenSource{std::random_device{}()};
+  HubStatus totals;
+  /// What the simulation thread needs (applyToWorld), under its own small lock so a tick never
+  /// waits for the crowd frames being encoded (publish holds `mutex`).
+  struct WorldInput {
+    std::mutex mutex;
+    std::vector<GuideRequest> requests;
+    std::map<std::uint32_t, std::uint32_t> guideOf;    ///< group → participant guiding it
+    std::map<std::uint32_t, core::Vec2> avatars;       ///< participant → avatar position
+    std::map<std::uint32_t, PeerKey> participants;     ///< participants present → their peer
+  } input;
+
+  Impl(HubOptions o, const MotionLibrary& m, Outbox& out) : options(std::move(o)), motions(m), outbox(out) {}
+
+  void fail(Client& c, ReasonCode code, const std::string& text) {
+    if (c.closing) return;
+    c.closing = true;
+    ++totals.closedForErrors;
+    outbox.send(c.peer, protocol::encode(protocol::Bye{code, text.substr(0, protocol::kMaxTextLength)}), false, 0);
+    outbox.close(c.peer, text.substr(0, 120));
+  }
+
+  void refuse(Client& c, ReasonCode code, const std::string& text) {
+    c.closing = true;
+    outbox.send(c.peer, protocol::encode(protocol::Refuse{protocol::kProtocolVersion, code, text}), false, 0);
+    outbox.close(c.peer, text.substr(0, 120));
+  }
+
+  /// Participant state and guidance requests must carry the sender's own token.
+  bool owns(Client& c, std::uint64_t token, const char* what) {
+    if (!c.participant) {
+      fail(c, ReasonCode::UnexpectedMessage, std::string(what) + " before Join: join as a participant first");
+      return false;
+    }
+    if (token != c.token) {
+      fail(c, ReasonCode::BadToken, std::string(what) + " with a token that is not this participant's");
+      return false;
+    }
+    return true;
+  }
+
+  bool allowState(Client& c, double now) {
+    c.tokens = std::min(options.stateBurst, c.tokens + (now - c.tokensAt) * options.stateMessagesPerSecond);
+    c.tokensAt = now;
+    if (c.tokens < 1.0) {
+      fail(c, ReasonCode::RateLimited,
+           "more than " + std::to_string(static_cast<int>(options.stateMessagesPerSecond)) +
+               " participant messages per second");
+      return false;
+    }
+    c.tokens -= 1.0;
+    return true;
+  }
+
+  /// Relays a participant's state message to every other welcomed client, as the participant.
+  template <class M>
+  void relay(Client& from, M message) {
+    message.subject = protocol::Subject{protocol::Subject::Kind::Participant, from.participantId};
+    Bytes bytes = protocol::encode(message);
+    const protocol::MessageType type = protocol::messageType(protocol::Message{message});
+    for (auto& [peer, c] : clients) {
+      if (peer == from.peer || !c.welcomed || c.closing) continue;
+      outbox.send(peer, bytes, true, relaySlot(from.participantId, type));
+    }
+    from.lastState[type] = std::move(bytes);
+  }
+
+  /// The participant is gone (Leave, closed): its groups go back to their own goals.
+  void dropParticipant(Client& c) {
+    std::lock_guard lock(input.mutex);
+    for (const auto& [group, participant] : input.guideOf) {
+      if (participant == c.participantId) input.requests.push_back({c.peer, c.participantId, group, false, false});
+    }
+    input.avatars.erase(c.participantId);
+    input.participants.erase(c.participantId);
+  }
+
+  void handle(Client& c, const protocol::Message& message, double now);
+  /// Builds and encodes client `c`'s crowd frame (no sending: parallel over clients).
+  core::Result<protocol::EncodedCrowdFrame> encodeCrowd(Client& c, const sim::Frame& frame);
+};
+
+Hub::Hub(HubOptions options, const std::string& worldJson, float tickRateHz, const MotionLibrary& motions, Outbox& outbox)
+    : impl_(std::make_unique<Impl>(std::move(options), motions, outbox)) {
+  impl_->tickRate = tickRateHz;
+  impl_->welcome = protocol::encode(protocol::makeWelcome(impl_->options.serverName, tickRateHz, worldJson));
+}
+
+Hub::~Hub() = default;
+
+void Hub::onOpen(PeerKey peer, std::string remote, double now) {
+  std::lock_guard lock(impl_->mutex);
+  Client c{.peer = peer,
+           .remote = std::move(remote),
+           .encoder = protocol::CrowdEncoder(impl_->options.encoder),
+           .granularity = GranularityController(impl_->options.granularity)};
+  c.lastHeard = now;
+  c.lastProgress = now;
+  c.tokens = impl_->options.stateBurst;
+  c.tokensAt = now;
+  impl_->clients.emplace(peer, std::move(c));
+}
+
+void Hub::onClose(PeerKey peer, std::string_view) {
+  std::lock_guard lock(impl_->mutex);
+  auto it = impl_->clients.find(peer);
+  if (it == impl_->clients.end()) return;
+  Client& c = it->second;
+  if (c.participant) impl_->dropParticipant(c);
+  impl_->clients.erase(it);
+}
+
+void Hub::onMessage(PeerKey peer, std::span<const std::uint8_t> bytes, double now) {
+  std::lock_guard lock(impl_->mutex);
+  auto it = impl_->clients.find(peer);
+  if (it == impl_->clients.end() || it->second.closing) return;
+  Client& c = it->second;
+  c.lastHeard = now;
+  auto decoded = protocol::decodeAny(bytes);
+  if (!decoded.ok()) {
+    impl_->fail(c, ReasonCode::BadMessage, decoded.errors().front().format());
+    return;
+  }
+  impl_->handle(c, decoded.value(), now);
+}
+
+void Hub::Impl::handle(Client& c, const protocol::Message& message, double now) {
+  using namespace protocol;
+  if (!c.welcomed) {
+    const auto* hello = std::get_if<Hello>(&message);
+    if (hello == nullptr) {
+      fail(c, ReasonCode::UnexpectedMessage,
+           std::string("expected Hello as the first message, got ") + messageTypeName(messageType(message)));
+      return;
+    }
+    if (hello->protocolVersion != kProtocolVersion) {
+      refuse(c, ReasonCode::VersionMismatch,
+             "this server speaks protocol version " + std::to_string(kProtocolVersion) + ", the client " +
+                 std::to_string(hello->protocolVersion));
+      return;
+    }
+    const auto welcomed = static_cast<std::size_t>(std::count_if(
+        clients.begin(), clients.end(), [](const auto& e) { return e.second.welcomed && !e.second.closing; }));
+    if (welcomed >= options.maxClients) {
+      refuse(c, ReasonCode::ServerFull, "server full: " + std::to_string(options.maxClients) + " clients (--max-clients)");
+      return;
+    }
+    c.welcomed = true;
+    c.name = hello->clientName;
+    outbox.send(c.peer, welcome, false, 0);
+    // Everything participants said last, so the newcomer sees their avatars at once.
+    for (auto& [peer, other] : clients) {
+      if (peer == c.peer) continue;
+      for (const auto& [type, state] : other.lastState) outbox.send(c.peer, state, true, relaySlot(other.participantId, type));
+    }
+    return;
+  }
+  std::visit(
+      [&](const auto& m) {
+        using M = std::decay_t<decltype(m)>;
+        if constexpr (std::is_same_v<M, Join>) {
+          if (c.participant) {
+            fail(c, ReasonCode::UnexpectedMessage, "Join: this client already is participant " + std::to_string(c.participantId));
+            return;
+          }
+          c.participant = true;
+          c.participantId = nextParticipantId++;
+          do c.token = tokenSource(); while (c.token == 0);
+          if (!m.name.empty()) c.name = m.name;
+          {
+            std::lock_guard lock(input.mutex);
+            input.participants[c.participantId] = c.peer;
+          }
+          outbox.send(c.peer, encode(Joined{c.participantId, c.token}), false, 0);
+        } else if constexpr (std::is_same_v<M, Leave>) {
+          if (!owns(c, m.token, "Leave")) return;
+          dropParticipant(c);
+          c.participant = false;
+          c.avatar.reset();
+          c.lastState.clear();
+        } else if constexpr (std::is_same_v<M, Heartbeat>) {
+          if (m.token != 0 && c.participant && m.token != c.token) {
+            fail(c, ReasonCode::BadToken, "Heartbeat with a token that is not this participant's");
+            return;
+          }
+          c.peerTimeUs = m.timeUs;
+          if (m.echoUs == 0) {
+            // A ping: answer at once, so the client's round trip holds no waiting.
+            outbox.send(c.peer, encode(Heartbeat{0, static_cast<std::uint64_t>(now * 1e6), m.timeUs}), false, 0);
+          } else {
+            const double rtt = now * 1e3 - static_cast<double>(m.echoUs) / 1e3;
+            if (rtt >= 0.0 && rtt < 1e7) c.roundTripMs = rtt;
+          }
+        } else if constexpr (std::is_same_v<M, Bye>) {
+          c.closing = true;
+          outbox.close(c.peer, "client quit");
+        } else if constexpr (std::is_same_v<M, Move>) {
+          if (!owns(c, m.subject.value, "Move") || m.subject.kind != Subject::Kind::Token || !allowState(c, now)) return;
+          if (m.seq < c.moveSeq && c.moveSeq - m.seq < 0x80000000u) return;  // reordered (UDP): older than the last
+          if (!std::isfinite(m.x) || !std::isfinite(m.y) || !std::isfinite(m.z) || !std::isfinite(m.yaw)) {
+            fail(c, ReasonCode::BadMessage, "Move: position and yaw must be finite numbers");
+            return;
+          }
+          c.moveSeq = m.seq;
+          c.avatar = core::Vec2{m.x, m.y};
+          c.avatarZ = m.z;
+          {
+            std::lock_guard lock(input.mutex);
+            input.avatars[c.participantId] = *c.avatar;
+          }
+          relay(c, m);
+        } else if constexpr (std::is_same_v<M, Joints> || std::is_same_v<M, HandJoints> || std::is_same_v<M, FaceExpression>) {
+          if (!owns(c, m.subject.value, messageTypeName(messageType(Message{m}))) ||
+              m.subject.kind != Subject::Kind::Token || !allowState(c, now)) {
+            return;
+          }
+          relay(c, m);
+        } else if constexpr (std::is_same_v<M, Guide> || std::is_same_v<M, Release>) {
+          constexpr bool guide = std::is_same_v<M, Guide>;
+          if (!owns(c, m.token, guide ? "Guide" : "Release") || !allowState(c, now)) return;
+          std::lock_guard lock(input.mutex);
+          input.requests.push_back({c.peer, c.participantId, m.groupId, guide, true});
+        } else if constexpr (std::is_same_v<M, Ack>) {
+          if (m.token != 0 && c.participant && m.token != c.token) {
+            fail(c, ReasonCode::BadToken, "Ack with a token that is not this participant's");
+            return;
+          }
+          if (m.frameNumber >= c.encoder.nextFrameNumber()) {
+            fail(c, ReasonCode::BadMessage, "Ack of frame " + std::to_string(m.frameNumber) + " which was never sent");
+            return;
+          }
+          c.acked = std::max(c.acked, m.frameNumber);
+        } else if constexpr (std::is_same_v<M, Hello>) {
+          fail(c, ReasonCode::UnexpectedMessage, "Hello: the session is already open");
+        } else {
+          fail(c, ReasonCode::UnexpectedMessage,
+               std::string(messageTypeName(messageType(Message{m}))) + " is sent by the server, not by clients");
+        }
+      },
+      message);
+}
+
+void Hub::applyToWorld(sim::World& world) {
+  Impl& h = *impl_;
+  std::lock_guard lock(h.input.mutex);  // never the main mutex: publish may be encoding meanwhile
+  auto& in = h.input;
+  for (const GuideRequest& r : in.requests) {
+    const sim::GroupId handle = world.groupById(r.group);
+    protocol::GuideResult result{r.group, false, false, ReasonCode::None};
+    const bool present = in.participants.count(r.participantId) != 0;
+    auto owner = in.guideOf.find(r.group);
+    if (handle.isNull()) {
+      result.reason = ReasonCode::UnknownGroup;
+    } else if (r.guide) {
+      const auto count = static_cast<std::size_t>(std::count_if(
+          in.guideOf.begin(), in.guideOf.end(), [&](const auto& e) { return e.second == r.participantId; }));
+      if (owner != in.guideOf.end() && owner->second != r.participantId) {
+        result.reason = ReasonCode::GroupTaken;
+      } else if (owner == in.guideOf.end() && count >= h.options.maxGuidedGroups) {
+        result.reason = ReasonCode::RateLimited;
+      } else if (!present) {
+        continue;  // left meanwhile
+      } else {
+        in.guideOf[r.group] = r.participantId;
+        if (auto a = in.avatars.find(r.participantId); a != in.avatars.end()) world.guide(handle, a->second);
+        result.guiding = result.ok = true;
+      }
+    } else {
+      if (owner == in.guideOf.end() || owner->second != r.participantId) {
+        result.reason = ReasonCode::NotGuiding;
+      } else {
+        in.guideOf.erase(owner);
+        world.release(handle);
+        result.ok = true;
+      }
+    }
+    if (r.answer && present) h.outbox.send(r.peer, protocol::encode(result), false, 0);
+  }
+  in.requests.clear();
+  // Dynamic goals: each guided group walks to its guide's avatar (the World replans only when it
+  // moved far enough); the avatars are the viewers of multiresolution steering.
+  std::vector<core::Vec2> viewers;
+  viewers.reserve(in.avatars.size());
+  for (const auto& [participant, position] : in.avatars) viewers.push_back(position);
+  for (const auto& [group, participant] : in.guideOf) {
+    if (auto a = in.avatars.find(participant); a != in.avatars.end()) world.guide(world.groupById(group), a->second);
+  }
+  world.setViewers(std::move(viewers));
+}
+
+core::Result<protocol::EncodedCrowdFrame> Hub::Impl::encodeCrowd(Client& c, const sim::Frame& frame) {
+  // Per-thread scratch: clients are encoded in parallel.
+  thread_local std::vector<Interested> interested;
+  thread_local std::vector<std::pair<float, std::uint32_t>> nearScratch;
+  thread_local std::vector<float> pose;
+  const core::Vec2* viewpoint = c.avatar ? &*c.avatar : nullptr;
+  selectInterest(frame, viewpoint, options.interest, interested, nearScratch);
+  protocol::CrowdView view;
+  view.simTick = frame.tick;
+  view.animationInterval = static_cast<std::uint8_t>(std::min<std::uint32_t>(255, c.granularity.factor()));
+  view.jointCount = static_cast<std::uint8_t>(std::min(motions.jointCount(), protocol::kMaxJoints));
+  view.agents.reserve(interested.size());
+  pose.resize(3 * motions.jointCount());
+  for (const Interested& it : interested) {
+    const std::uint32_t r = it.row;
+    protocol::AgentState a;
+    a.id = frame.ids[r];
+    a.tier = it.tier;
+    a.x = frame.posX[r];
+    a.y = frame.posY[r];
+    a.yaw = r < frame.oriX.size() ? static_cast<float>(std::atan2(frame.oriY[r], frame.oriX[r])) : 0.0f;
+    a.clip = r < frame.clip.size() ? frame.clip[r] : 0;
+    a.phase = r < frame.phase.size() ? frame.phase[r] : 0.0f;
+    if (it.tier == Tier::Near && view.jointCount > 0) {
+      motions.sample(a.clip, a.phase, pose);
+      a.joints.resize(3u * view.jointCount);
+      for (std::size_t k = 0; k < a.joints.size(); ++k) a.joints[k] = static_cast<float>(pose[k] * kPi / 180.0);
+    }
+    view.agents.push_back(std::move(a));
+  }
+  c.agentsInView = static_cast<std::uint32_t>(view.agents.size());
+  return c.encoder.encode(view, c.acked);
+}
+
+void Hub::publish(const sim::Frame& frame, double now, const core::TaskSystem* tasks) {
+  std::lock_guard lock(impl_->mutex);
+  Impl& h = *impl_;
+  std::vector<Client*> due;
+  for (auto& [peer, c] : h.clients) {
+    if (c.closing) continue;
+    if (now - c.lastHeard > h.options.timeoutSeconds) {
+      h.fail(c, ReasonCode::Timeout,
+             "no message for " + std::to_string(static_cast<int>(h.options.timeoutSeconds)) + " s (heartbeat timeout)");
+      continue;
+    }
+    if (!c.welcomed) continue;
+    if (now - c.lastHeartbeatSent >= h.options.heartbeatEverySeconds) {
+      c.lastHeartbeatSent = now;
+      h.outbox.send(peer, protocol::encode(protocol::Heartbeat{0, static_cast<std::uint64_t>(now * 1e6), 0}), false, 0);  // a ping
+    }
+    if (auto link = h.outbox.link(peer)) {
+      if (link->bytesSent != c.lastBytesSent || link->queueBytes == 0) {
+        c.lastBytesSent = link->bytesSent;
+        c.lastProgress = now;
+      } else if (now - c.lastProgress > h.options.stallSeconds) {
+        h.fail(c, ReasonCode::SlowClient,
+               "slow client: nothing could be sent for " + std::to_string(static_cast<int>(h.options.stallSeconds)) +
+                   " s (send queue limit)");
+        continue;
+      }
+      c.granularity.update({now, link->bytesSent, link->droppedLatest, link->queueBytes, c.roundTripMs});
+    }
+    due.push_back(&c);
+  }
+  // Each client's frame is its own work (its encoder, its view): encode them in parallel, then
+  // hand them to the transport in client order.
+  std::vector<std::optional<core::Result<protocol::EncodedCrowdFrame>>> encoded(due.size());
+  auto encodeRange = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) encoded[i].emplace(h.encodeCrowd(*due[i], frame));
+  };
+  if (tasks != nullptr && tasks->threads() > 1 && due.size() > 1) tasks->parallelFor(due.size(), 1, encodeRange);
+  else encodeRange(0, due.size());
+  for (std::size_t i = 0; i < due.size(); ++i) {
+    Client& c = *due[i];
+    auto& e = *encoded[i];
+    if (!e.ok()) {
+      h.fail(c, ReasonCode::BadMessage, "server could not encode the crowd: " + e.errors().front().format());
+      continue;
+    }
+    ++c.framesSent;
+    if (e->keyFrame()) ++c.keyFrames;
+    ++h.totals.crowdFrames;
+    h.totals.crowdBytes += e->bytes.size();
+    h.outbox.send(c.peer, std::move(e->bytes), true, kCrowdSlot);
+  }
+}
+
+void Hub::shutdown(const std::string& reason) {
+  std::lock_guard lock(impl_->mutex);
+  for (auto& [peer, c] : impl_->clients) {
+    if (c.closing) continue;
+    c.closing = true;
+    impl_->outbox.send(peer, protocol::encode(protocol::Bye{ReasonCode::ShuttingDown, reason}), false, 0);
+    impl_->outbox.close(peer, reason);
+  }
+}
+
+HubStatus Hub::status() const {
+  std::lock_guard lock(impl_->mutex);
+  HubStatus s = impl_->totals;
+  s.perClient.clear();
+  for (const auto& [peer, c] : impl_->clients) {
+    if (!c.welcomed) continue;
+    ++s.clients;
+    if (c.participant) ++s.participants;
+    ClientStatus cs{peer, c.name, c.participant, c.participantId, c.granularity.factor(), c.granularity.reason(), c.granularity.kbitPerSecond(),
+                    c.roundTripMs, c.framesSent, c.keyFrames, c.agentsInView, {}};
+    {
+      std::lock_guard inputLock(impl_->input.mutex);
+      for (const auto& [group, participant] : impl_->input.guideOf) {
+        if (c.participant && participant == c.participantId) cs.guiding.push_back(group);
+      }
+    }
+    s.perClient.push_back(std::move(cs));
+  }
+  return s;
+}
+
+}  // namespace throng::hub

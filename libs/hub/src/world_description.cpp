@@ -1,0 +1,47 @@
+// The world description sent to joining participants (see world_description.hpp).
+#include "throng/hub/world_description.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace throng::hub {
+
+std::string describeWorld(const io::LoadedScenario& scenario, const MotionLibrary& motions,
+                          const sim::World& world, double tickRate) {
+  using nlohmann::json;
+  json out;
+  out["description"] = kWorldDescriptionVersion;
+  out["name"] = scenario.desc.name;
+  out["dt"] = scenario.desc.dt;
+  out["tickRate"] = tickRate;
+  // The scenario as written: a viewer draws floors, walls and points from the same format the
+  // engine reads. The loader validated it, so it parses.
+  out["scenario"] = json::parse(scenario.text, nullptr, false);
+  json joints = json::array();
+  const Skeleton& sk = motions.skeleton();
+  for (std::size_t j = 0; j < sk.names.size(); ++j) {
+    joints.push_back({{"name", sk.names[j]}, {"parent", sk.parents[j]},
+                      {"offset", {sk.offsets[j][0], sk.offsets[j][1], sk.offsets[j][2]}}});
+  }
+  out["skeleton"] = {{"joints", std::move(joints)}};
+  json clips = json::array();
+  for (std::size_t c = 0; c < motions.clips().size(); ++c) {
+    const sim::ClipInfo& info = motions.clips()[c];
+    json clip = {{"id", c}, {"name", info.name}, {"duration", info.duration}, {"loops", info.loops}};
+    clip["url"] = motions.clipFile(c).empty() ? json(nullptr) : json("/motions/" + std::to_string(c) + ".bvh");
+    clips.push_back(std::move(clip));
+  }
+  out["clips"] = std::move(clips);
+  json groups = json::array();
+  for (std::size_t g = 0; g < world.groupCount(); ++g) {
+    const auto info = world.groupInfo(world.groupById(static_cast<std::uint32_t>(g)));
+    if (!info) continue;
+    const std::string population = info->population < scenario.desc.populations.size()
+                                       ? scenario.desc.populations[info->population].id
+                                       : std::string();
+    groups.push_back({{"id", info->id}, {"population", population}, {"members", info->members}});
+  }
+  out["groups"] = std::move(groups);
+  return out.dump();
+}
+
+}  // namespace throng::hub

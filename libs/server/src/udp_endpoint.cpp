@@ -1,0 +1,200 @@
+// throng::server::detail::UdpEndpoint / UdpPeer — one socket, peers keyed by remote endpoint.
+// A datagram is a whole message; an empty one is a keep-alive. A closed peer is forgotten: its
+// next datagram opens a new peer with a new id.
+#include "udp_endpoint.hpp"
+
+#include <algorithm>
+#include <span>
+#include <utility>
+
+#include "transport_impl.hpp"
+
+namespace throng::server::detail {
+namespace {
+
+constexpr std::size_t kReceiveBufferBytes = 65536;  // larger than any UDP payload (65507)
+
+std::string endpointText(const udp::endpoint& endpoint) {
+  const auto address = endpoint.address();
+  const std::string host = address.is_v6() ? "[" + address.to_string() + "]" : address.to_string();
+  return host + ":" + std::to_string(endpoint.port());
+}
+
+}  // namespace
+
+UdpPeer::UdpPeer(UdpEndpoint& endpoint, PeerId id, udp::endpoint remote, const TransportOptions& options)
+    : Peer(id, PeerKind::Udp),
+      endpoint_(endpoint),
+      remote_(std::move(remote)),
+      lastSeen_(std::chrono::steady_clock::now()),
+      bucket_(options.messagesPerSecond, options.burstMessages, TokenBucket::Clock::now()) {}
+
+void UdpPeer::enqueue(QueuedMessage message) {
+  net::post(endpoint_.strand_, [endpoint = endpoint_.shared_from_this(), self = shared_from_this(),
+                                m = std::move(message)]() mutable { endpoint->push(self, std::move(m)); });
+}
+
+void UdpPeer::requestClose(std::string reason, CloseKind, bool flush) {
+  net::post(endpoint_.strand_, [endpoint = endpoint_.shared_from_this(), self = shared_from_this(),
+                                r = std::move(reason), flush]() mutable { endpoint->closePeer(self, std::move(r), flush); });
+}
+
+UdpEndpoint::UdpEndpoint(TransportImpl& transport)
+    : transport_(transport),
+      strand_(net::make_strand(transport.ioc())),
+      socket_(strand_),
+      sweepTimer_(strand_),
+      receiveBuffer_(kReceiveBufferBytes) {}
+
+error_code UdpEndpoint::bind(const udp::endpoint& at) {
+  error_code ec;
+  socket_.open(at.protocol(), ec);
+  if (!ec) socket_.bind(at, ec);
+  return ec;
+}
+
+std::uint16_t UdpEndpoint::port() const {
+  error_code ec;
+  const auto local = socket_.local_endpoint(ec);
+  return ec ? 0 : local.port();
+}
+
+void UdpEndpoint::start() {
+  net::dispatch(strand_, [self = shared_from_this()] {
+    self->doReceive();
+    self->scheduleSweep();
+  });
+}
+
+void UdpEndpoint::shutdown(std::string reason) {
+  net::post(strand_, [self = shared_from_this(), reason = std::move(reason)] {
+    self->stopped_ = true;
+    std::vector<std::shared_ptr<UdpPeer>> all;
+    for (const auto& [endpoint, peer] : self->peers_) all.push_back(peer);
+    for (const auto& peer : all) self->closePeer(peer, reason, false);
+    self->sweepTimer_.cancel();
+    error_code ignored;
+    self->socket_.close(ignored);
+  });
+}
+
+void UdpEndpoint::doReceive() {
+  if (stopped_) return;
+  socket_.async_receive_from(net::buffer(receiveBuffer_), sender_,
+                             beast::bind_front_handler(&UdpEndpoint::onReceive, shared_from_this()));
+}
+
+void UdpEndpoint::onReceive(error_code ec, std::size_t bytes) {
+  if (stopped_ || ec == net::error::operation_aborted) return;
+  if (ec) {  // e.g. an ICMP error from an earlier send: the socket itself is fine
+    doReceive();
+    return;
+  }
+  const TransportOptions& options = transport_.options();
+  std::shared_ptr<UdpPeer> peer;
+  if (auto it = peers_.find(sender_); it != peers_.end()) {
+    peer = it->second;
+  } else {
+    peer = std::make_shared<UdpPeer>(*this, transport_.nextPeerId(), sender_, options);
+    if (!transport_.addPeer(peer)) {  // full or stopping: ignore the datagram
+      doReceive();
+      return;
+    }
+    peers_.emplace(sender_, peer);
+    transport_.noteOpened();
+    transport_.handler().onOpen(peer->id(), PeerKind::Udp, endpointText(sender_));
+  }
+  peer->lastSeen_ = std::chrono::steady_clock::now();
+  if (!peer->closing_) {
+    if (bytes > options.maxDatagramBytes) {
+      closePeer(peer, "message too large", false);
+    } else if (bytes > 0) {
+      if (!peer->bucket_.take(TokenBucket::Clock::now())) {
+        closePeer(peer, "rate limit", false);
+      } else {
+        transport_.countReceived(*peer, bytes);
+        transport_.handler().onMessage(peer->id(), std::span<const std::uint8_t>(receiveBuffer_.data(), bytes));
+      }
+    }
+  }
+  doReceive();
+}
+
+void UdpEndpoint::scheduleSweep() {
+  if (stopped_) return;
+  const auto idle = transport_.options().udpIdleTimeout;
+  const auto period = std::clamp<std::chrono::milliseconds>(idle / 4, std::chrono::milliseconds(10), std::chrono::milliseconds(1000));
+  sweepTimer_.expires_after(period);
+  sweepTimer_.async_wait([self = shared_from_this()](error_code ec) {
+    if (ec || self->stopped_) return;
+    self->sweep();
+    self->scheduleSweep();
+  });
+}
+
+void UdpEndpoint::sweep() {
+  const auto deadline = std::chrono::steady_clock::now() - transport_.options().udpIdleTimeout;
+  std::vector<std::shared_ptr<UdpPeer>> idle;
+  for (const auto& [endpoint, peer] : peers_)
+    if (peer->lastSeen_ < deadline) idle.push_back(peer);
+  for (const auto& peer : idle) closePeer(peer, "timeout", false);
+}
+
+void UdpEndpoint::push(const std::shared_ptr<UdpPeer>& peer, QueuedMessage message) {
+  if (peer->done_ || peer->closing_) return;
+  const TransportOptions& options = transport_.options();
+  if (const std::size_t replaced = peer->queue_.push(std::move(message)); replaced > 0)
+    transport_.countDropped(*peer, replaced);
+  if (peer->queue_.messages() > options.maxQueueMessages || peer->queue_.bytes() > options.maxQueueBytes) {
+    closePeer(peer, "send queue limit", false);
+    return;
+  }
+  updateQueueCounters(*peer);
+  doSend(peer);
+}
+
+void UdpEndpoint::doSend(const std::shared_ptr<UdpPeer>& peer) {
+  if (peer->writing_ || peer->done_) return;
+  if (peer->queue_.empty()) {
+    if (peer->closing_) finishPeer(peer);
+    return;
+  }
+  peer->inFlight_ = peer->queue_.pop();
+  peer->writing_ = true;
+  updateQueueCounters(*peer);
+  socket_.async_send_to(net::buffer(peer->inFlight_.data), peer->remote_,
+                        [self = shared_from_this(), peer](error_code ec, std::size_t) {
+                          peer->writing_ = false;
+                          if (peer->done_) return;
+                          if (!ec) self->transport_.countSent(*peer, peer->inFlight_.data.size());
+                          peer->inFlight_ = {};
+                          self->updateQueueCounters(*peer);
+                          self->doSend(peer);
+                        });
+}
+
+void UdpEndpoint::closePeer(const std::shared_ptr<UdpPeer>& peer, std::string reason, bool flush) {
+  if (peer->done_ || peer->closing_) return;
+  peer->closing_ = true;
+  peer->closeReason_ = std::move(reason);
+  if (!flush) peer->queue_.clear();
+  if (!flush || (!peer->writing_ && peer->queue_.empty())) finishPeer(peer);
+}
+
+void UdpEndpoint::finishPeer(const std::shared_ptr<UdpPeer>& peer) {
+  if (peer->done_) return;
+  peer->done_ = true;
+  peer->queue_.clear();  // inFlight_ stays until its send completes
+  peer->counters().queueMessages.store(0);
+  peer->counters().queueBytes.store(0);
+  if (auto it = peers_.find(peer->remote_); it != peers_.end() && it->second == peer) peers_.erase(it);
+  transport_.handler().onClose(peer->id(), peer->closeReason_);
+  transport_.removePeer(peer->id(), true);
+}
+
+void UdpEndpoint::updateQueueCounters(UdpPeer& peer) {
+  peer.counters().queueMessages.store(peer.queue_.messages() + (peer.writing_ ? 1 : 0));
+  peer.counters().queueBytes.store(peer.queue_.bytes() + (peer.writing_ ? peer.inFlight_.data.size() : 0));
+}
+
+}  // namespace throng::server::detail

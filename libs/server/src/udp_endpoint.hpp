@@ -1,0 +1,75 @@
+// throng::server::detail::UdpEndpoint — the one UDP socket: a datagram from a new endpoint opens
+// a UdpPeer (while under maxPeers), each datagram is one message, silent peers time out, and each
+// peer's SendQueue goes out one datagram at a time. All on one strand.
+#pragma once
+#include <chrono>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "asio.hpp"
+#include "peer.hpp"
+#include "token_bucket.hpp"
+
+namespace throng::server::detail {
+
+class TransportImpl;
+class UdpEndpoint;
+
+class UdpPeer final : public Peer, public std::enable_shared_from_this<UdpPeer> {
+ public:
+  UdpPeer(UdpEndpoint& endpoint, PeerId id, udp::endpoint remote, const TransportOptions& options);
+  void enqueue(QueuedMessage message) override;
+  void requestClose(std::string reason, CloseKind kind, bool flush) override;
+
+ private:
+  friend class UdpEndpoint;
+  UdpEndpoint& endpoint_;
+  udp::endpoint remote_;
+  SendQueue queue_;
+  QueuedMessage inFlight_;
+  bool writing_ = false;
+  bool closing_ = false;
+  bool done_ = false;
+  std::string closeReason_;
+  std::chrono::steady_clock::time_point lastSeen_;
+  TokenBucket bucket_;
+};
+
+class UdpEndpoint final : public std::enable_shared_from_this<UdpEndpoint> {
+ public:
+  explicit UdpEndpoint(TransportImpl& transport);
+
+  /// Opens and binds; an error message on failure.
+  error_code bind(const udp::endpoint& at);
+  std::uint16_t port() const;
+  void start();
+  /// Any thread: close every peer with `reason` and the socket.
+  void shutdown(std::string reason);
+
+ private:
+  friend class UdpPeer;
+  using Strand = net::strand<net::io_context::executor_type>;
+
+  void doReceive();
+  void onReceive(error_code ec, std::size_t bytes);
+  void scheduleSweep();
+  void sweep();
+  void push(const std::shared_ptr<UdpPeer>& peer, QueuedMessage message);
+  void doSend(const std::shared_ptr<UdpPeer>& peer);
+  void closePeer(const std::shared_ptr<UdpPeer>& peer, std::string reason, bool flush);
+  void finishPeer(const std::shared_ptr<UdpPeer>& peer);
+  void updateQueueCounters(UdpPeer& peer);
+
+  TransportImpl& transport_;
+  Strand strand_;
+  udp::socket socket_;
+  net::steady_timer sweepTimer_;
+  std::vector<std::uint8_t> receiveBuffer_;
+  udp::endpoint sender_;
+  std::map<udp::endpoint, std::shared_ptr<UdpPeer>> peers_;
+  bool stopped_ = false;
+};
+
+}  // namespace throng::server::detail

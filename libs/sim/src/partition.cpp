@@ -1,0 +1,115 @@
+// partition — the steer phase shared between copies of one world (partition.hpp). Reads the
+// agents' positions and the previous owners; writes the strip cuts, this tick's owner of every
+// row, and, after the exchange, the steer outputs (prefVel, newVel, corner index) of the rows
+// other ranks own. Every rank computes the same owners from the same replicated state, so the
+// blocks carry no ids: rank q's block holds the records of q's rows in ascending row order.
+#include <algorithm>
+#include <cstring>
+
+#include "throng/core/assert.hpp"
+#include "world_impl.hpp"
+
+namespace throng::sim {
+namespace {
+
+constexpr std::uint16_t kNoOwner = 0xffff;
+
+}  // namespace
+
+void World::setPartition(StepExchange* exchange, PartitionOptions options) {
+  Impl& w = *impl_;
+  w.exchange = exchange;
+  w.partitionOptions = options;
+  w.partitionOptions.rebalanceTicks = std::max<std::uint32_t>(1, options.rebalanceTicks);
+  w.partitionStats = {};
+  w.partitionStats.ranks = exchange != nullptr ? exchange->ranks() : 1;
+  w.cuts.clear();
+  w.ownerOfId.clear();
+  if (exchange != nullptr) THRONG_ASSERT(exchange->ranks() >= 1 && exchange->ranks() < kNoOwner && exchange->rank() < exchange->ranks());
+}
+
+const PartitionStats& World::partitionStats() const { return impl_->partitionStats; }
+
+void World::Impl::assignOwners() {
+  const std::uint32_t ranks = exchange->ranks();
+  const std::uint32_t me = exchange->rank();
+  const std::size_t n = agents.size();
+  // Cuts at the quantiles of x: every strip gets n / ranks agents (ties go to the upper strip).
+  const bool rebalance = cuts.size() + 1 != ranks || partitionStats.ticks % partitionOptions.rebalanceTicks == 0;
+  if (rebalance) {
+    cuts.assign(ranks - 1, 0.0f);
+    if (n > 0) {
+      std::vector<float> xs(agents.posX.begin(), agents.posX.end());
+      auto from = xs.begin();
+      for (std::uint32_t r = 1; r < ranks; ++r) {
+        // Non-decreasing in r, and nth_element leaves [at, end) >= *at: the next search starts there.
+        const auto at = xs.begin() + static_cast<std::ptrdiff_t>(static_cast<std::uint64_t>(r) * n / ranks);
+        std::nth_element(from, at, xs.end());
+        cuts[r - 1] = *at;
+        from = at;
+      }
+    }
+  }
+  if (ownerOfId.size() < nextAgentId) ownerOfId.resize(nextAgentId, kNoOwner);
+  rowOwner.resize(n);
+  ownedRows.clear();
+  for (std::size_t row = 0; row < n; ++row) {
+    const auto owner = static_cast<std::uint16_t>(std::upper_bound(cuts.begin(), cuts.end(), agents.posX[row]) - cuts.begin());
+    rowOwner[row] = owner;
+    if (owner == me) ownedRows.push_back(static_cast<std::uint32_t>(row));
+    std::uint16_t& previous = ownerOfId[agents.id[row]];
+    if (previous != kNoOwner && previous != owner) ++(rebalance ? partitionStats.rebalanceMoves : partitionStats.migrations);
+    previous = owner;
+  }
+  ++partitionStats.ticks;
+  partitionStats.agentSteps += n;
+  partitionStats.ownedAgentSteps += ownedRows.size();
+}
+
+void World::Impl::exchangeSteer() {
+  const std::uint32_t ranks = exchange->ranks();
+  const std::uint32_t me = exchange->rank();
+  // Pack: prefVelX, prefVelY, newVelX, newVelY, corner index, per owned row in row order.
+  steerSend.resize(ownedRows.size() * kSteerRecordBytes);
+  std::byte* out = steerSend.data();
+  for (const std::uint32_t row : ownedRows) {
+    const float v[4] = {agents.prefVelX[row], agents.prefVelY[row], agents.newVelX[row], agents.newVelY[row]};
+    std::memcpy(out, v, sizeof v);
+    std::memcpy(out + sizeof v, &agents.corners[row].index, sizeof(std::uint32_t));
+    out += kSteerRecordBytes;
+  }
+  steerSizes.assign(ranks, 0);
+  for (const std::uint16_t owner : rowOwner) steerSizes[owner] += kSteerRecordBytes;
+  THRONG_ASSERT(steerSizes[me] == steerSend.size());
+  exchange->allGather(steerSend, steerSizes, steerGathered);
+  partitionStats.sentBytes += steerSend.size();
+  partitionStats.gatheredBytes += steerGathered.size();
+
+  // Unpack every other rank's block: its rows are the rows it owns, in row order.
+  std::vector<const std::byte*> cursor(ranks);
+  std::vector<const std::byte*> blockEnd(ranks);
+  const std::byte* at = steerGathered.data();
+  for (std::uint32_t r = 0; r < ranks; ++r) {
+    cursor[r] = at;
+    at += steerSizes[r];
+    blockEnd[r] = at;
+  }
+  THRONG_ASSERT(steerGathered.size() == static_cast<std::size_t>(at - steerGathered.data()));
+  for (std::size_t row = 0; row < rowOwner.size(); ++row) {
+    const std::uint16_t owner = rowOwner[row];
+    if (owner == me) continue;
+    const std::byte* in = cursor[owner];
+    THRONG_ASSERT(in + kSteerRecordBytes <= blockEnd[owner]);  // the ranks disagree on the owners
+    float v[4];
+    std::memcpy(v, in, sizeof v);
+    agents.prefVelX[row] = v[0];
+    agents.prefVelY[row] = v[1];
+    agents.newVelX[row] = v[2];
+    agents.newVelY[row] = v[3];
+    std::memcpy(&agents.corners[row].index, in + sizeof v, sizeof(std::uint32_t));
+    cursor[owner] = in + kSteerRecordBytes;
+  }
+  for (std::uint32_t r = 0; r < ranks; ++r) THRONG_ASSERT(r == me || cursor[r] == blockEnd[r]);
+}
+
+}  // namespace throng::sim

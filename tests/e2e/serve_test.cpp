@@ -1,0 +1,231 @@
+// `throng serve` as users meet it: the real binary on 127.0.0.1 on free ports, native clients
+// (throng::client::Session) over WebSocket and UDP, `throng loadgen`, HTTP, bad messages,
+// connect/disconnect cycles and Ctrl-C.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <chrono>
+#include <cmath>
+#include <regex>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
+#include "throng/client/session.hpp"
+#include "throng/server/http_client.hpp"
+#include "throng/server/ws_client.hpp"
+
+namespace throng::e2e {
+namespace {
+
+using namespace std::chrono_literals;
+
+/// `throng serve museum.json` on free ports, stopped with Ctrl-C at the end.
+class Server {
+ public:
+  Server() : dir_("serve") {
+    const std::string scenario = std::string(THRONG_SOURCE_DIR) + "/scenarios/museum.json";
+    process_ = std::make_unique<CliProcess>(
+        std::vector<std::string>{"serve", scenario, "--port", "0", "--udp-port", "0", "--max-clients", "50"}, dir_.path());
+    const std::regex ws(R"(ws://127\.0\.0\.1:(\d+)/ws)"), udp(R"(udp +127\.0\.0\.1:(\d+))");
+    for (int i = 0; i < 300 && (port == 0 || udpPort == 0); ++i) {
+      std::this_thread::sleep_for(20ms);
+      const std::string out = process_->outSoFar();
+      std::smatch m;
+      if (std::regex_search(out, m, ws)) port = static_cast<std::uint16_t>(std::stoi(m[1]));
+      if (std::regex_search(out, m, udp)) udpPort = static_cast<std::uint16_t>(std::stoi(m[1]));
+    }
+  }
+  /// Ctrl-C; what the server printed and its exit code.
+  CliResult stop() {
+    process_->signal(SIGINT);
+    return process_->wait();
+  }
+  client::SessionOptions options(const std::string& name, bool overUdp = false) const {
+    client::SessionOptions o;
+    o.port = port;
+    o.udpPort = udpPort;
+    o.udp = overUdp;
+    o.name = name;
+    return o;
+  }
+  std::uint16_t port = 0, udpPort = 0;
+
+ private:
+  ScratchDir dir_;
+  std::unique_ptr<CliProcess> process_;
+};
+
+std::unique_ptr<client::Session> open(const client::SessionOptions& o) {
+  auto s = client::Session::open(o);
+  EXPECT_TRUE(s.ok()) << (s.ok() ? "" : s.errors().front().format());
+  return s.ok() ? std::move(s).value() : nullptr;
+}
+
+/// Pumps every session for `duration`.
+void pumpFor(std::vector<client::Session*> sessions, std::chrono::milliseconds duration) {
+  const auto end = std::chrono::steady_clock::now() + duration;
+  while (std::chrono::steady_clock::now() < end) {
+    for (client::Session* s : sessions) s->pump(0ms);
+    std::this_thread::sleep_for(5ms);
+  }
+}
+
+/// Centroid of `members` in a decoded crowd.
+std::optional<std::pair<float, float>> centroid(const protocol::DecodedCrowdFrame& crowd,
+                                                const std::vector<std::uint32_t>& members) {
+  float x = 0, y = 0;
+  int n = 0;
+  for (const protocol::AgentState& a : crowd.view.agents) {
+    if (std::find(members.begin(), members.end(), a.id) != members.end()) {
+      x += a.x;
+      y += a.y;
+      ++n;
+    }
+  }
+  if (n == 0) return std::nullopt;
+  return std::make_pair(x / static_cast<float>(n), y / static_cast<float>(n));
+}
+
+TEST(Serve, AParticipantGuidesAGroupAndAnotherClientSeesItFollow) {
+  Server server;
+  ASSERT_NE(server.port, 0) << "the server did not print its port";
+  auto guide = open(server.options("guide"));
+  auto watcher = open(server.options("watcher"));
+  ASSERT_TRUE(guide && watcher);
+  const auto world = nlohmann::json::parse(watcher->worldJson());
+  ASSERT_FALSE(world["groups"].empty());
+  const auto members = world["groups"][0]["members"].get<std::vector<std::uint32_t>>();
+  auto joined = guide->join("guide");
+  ASSERT_TRUE(joined.ok());
+  pumpFor({guide.get(), watcher.get()}, 1500ms);
+  ASSERT_TRUE(watcher->crowd().has_value());
+  const auto start = centroid(*watcher->crowd(), members);
+  ASSERT_TRUE(start.has_value());
+  // The avatar stands 6 m beside the group and takes it.
+  const float ax = start->first + 6.0f, ay = start->second;
+  ASSERT_TRUE(guide->move(ax, ay, 0.0f).ok());
+  ASSERT_TRUE(guide->guide(0).ok());
+  pumpFor({guide.get(), watcher.get()}, 4000ms);
+  ASSERT_FALSE(guide->guideResults().empty());
+  EXPECT_TRUE(guide->guideResults().front().ok);
+  const auto end = centroid(*watcher->crowd(), members);
+  ASSERT_TRUE(end.has_value());
+  const float before = std::hypot(start->first - ax, start->second - ay);
+  const float after = std::hypot(end->first - ax, end->second - ay);
+  EXPECT_LT(after, before - 2.0f) << "the group did not follow the avatar (watcher's view)";
+  // The watcher sees the guide's avatar too (relayed Move, as the participant).
+  ASSERT_FALSE(watcher->others().empty());
+  EXPECT_EQ(watcher->others().front().first, joined->participantId);
+  EXPECT_NEAR(watcher->others().front().second.x, ax, 0.01f);
+  // Frames flowed as deltas against acknowledged frames, at the tick rate.
+  const client::SessionStats& s = watcher->stats();
+  EXPECT_GT(s.crowdFrames, 60u);
+  EXPECT_LT(s.keyFrames, s.crowdFrames / 2);
+  EXPECT_EQ(s.undecodable, 0u);
+  const CliResult stopped = server.stop();
+  EXPECT_EQ(stopped.exitCode, 130) << stopped.err;
+  EXPECT_NE(stopped.out.find("tick median"), std::string::npos) << stopped.out;
+}
+
+TEST(Serve, UdpClientsGetTheCrowdAndCtrlCTellsClientsWhy) {
+  Server server;
+  ASSERT_NE(server.udpPort, 0);
+  auto udp = open(server.options("native", true));
+  auto ws = open(server.options("browser-like"));
+  ASSERT_TRUE(udp && ws);
+  pumpFor({udp.get(), ws.get()}, 1000ms);
+  EXPECT_GT(udp->stats().crowdFrames, 10u);
+  EXPECT_GT(udp->stats().agentsInView, 0u);
+  const CliResult stopped = server.stop();
+  EXPECT_EQ(stopped.exitCode, 130);
+  pumpFor({udp.get(), ws.get()}, 300ms);
+  EXPECT_FALSE(ws->open());
+  EXPECT_NE(ws->closeReason().find("shutting down"), std::string::npos) << ws->closeReason();
+  EXPECT_NE(udp->closeReason().find("shutting down"), std::string::npos) << udp->closeReason();
+}
+
+TEST(Serve, BadMessagesCloseOnlyTheirConnectionWithAReason) {
+  Server server;
+  server::WsClientOptions o;
+  o.port = server.port;
+  auto raw = server::WsClient::connect(o);
+  ASSERT_TRUE(raw.ok());
+  auto good = open(server.options("good"));
+  ASSERT_TRUE(good);
+  const std::vector<std::uint8_t> garbage{0x54, 0x01, 0xff, 0xff, 0xff};
+  ASSERT_TRUE(raw.value()->send(garbage).ok());
+  bool closed = false;
+  std::string why;
+  for (int i = 0; i < 50 && !closed; ++i) {
+    const server::ClientEvent e = raw.value()->receive(100ms);
+    if (e.kind == server::ClientEvent::Kind::Closed) {
+      closed = true;
+      why = e.closeReason;
+    }
+  }
+  EXPECT_TRUE(closed);
+  EXPECT_FALSE(why.empty());
+  pumpFor({good.get()}, 500ms);
+  EXPECT_TRUE(good->open());
+  EXPECT_GT(good->stats().crowdFrames, 3u);
+}
+
+TEST(Serve, ConnectDisconnectCyclesLeaveNoClientBehindAndHttpServesClipsAndStatus) {
+  Server server;
+  for (int i = 0; i < 300; ++i) {
+    auto s = open(server.options("cycle"));
+    ASSERT_TRUE(s);
+    if (i % 2 == 0) s->close();  // the others just drop the connection
+  }
+  std::this_thread::sleep_for(300ms);
+  auto status = server::httpRequest("127.0.0.1", server.port, "GET", "/api/status");
+  ASSERT_TRUE(status.ok());
+  ASSERT_EQ(status->status, 200u);
+  const auto j = nlohmann::json::parse(status->body);
+  EXPECT_EQ(j["clients"], 0) << status->body;
+  EXPECT_GE(j["tick"]["rate"].get<double>(), 1.0);
+  auto clip = server::httpRequest("127.0.0.1", server.port, "GET", "/motions/1.bvh");
+  ASSERT_TRUE(clip.ok());
+  EXPECT_EQ(clip->status, 200u);
+  EXPECT_EQ(clip->body.rfind("HIERARCHY", 0), 0u);
+  auto missing = server::httpRequest("127.0.0.1", server.port, "GET", "/motions/999.bvh");
+  ASSERT_TRUE(missing.ok());
+  EXPECT_EQ(missing->status, 404u);
+  auto fresh = open(server.options("after"));
+  ASSERT_TRUE(fresh);
+  pumpFor({fresh.get()}, 300ms);
+  EXPECT_GT(fresh->stats().crowdFrames, 0u);
+}
+
+TEST(Serve, LoadgenReportsPerClientFiguresAndTheServerTick) {
+  Server server;
+  ScratchDir dir("loadgen");
+  const CliResult r = runThrong({"loadgen", "ws://127.0.0.1:" + std::to_string(server.port) + "/ws", "--clients", "4",
+                                 "--duration", "2", "--json"},
+                                dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::size_t clients = 0;
+  nlohmann::json summary;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) {
+    const auto j = nlohmann::json::parse(line);
+    if (j.contains("summary")) summary = j;
+    else {
+      ++clients;
+      EXPECT_GT(j["crowd_frames"].get<int>(), 10);
+      EXPECT_GT(j["kbit_per_s"].get<double>(), 0.0);
+    }
+  }
+  EXPECT_EQ(clients, 4u);
+  ASSERT_TRUE(summary.is_object());
+  EXPECT_EQ(summary["closed_by_server"], 0);
+  EXPECT_GT(summary["server_tick_ms_p99"].get<double>(), 0.0);
+  const CliResult bad = runThrong({"loadgen", "http://nowhere"}, dir.path());
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("expected ws://"), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace throng::e2e

@@ -1,0 +1,346 @@
+// The hub without sockets: sessions, refusals, tokens, relays, guidance moving a real group, crowd
+// frames a client decodes and acknowledges, timeouts and rate limits.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "throng/core/parallel.hpp"
+#include "throng/hub/hub.hpp"
+#include "throng/hub/world_description.hpp"
+#include "throng/io/scenario_loader.hpp"
+#include "throng/protocol/crowd_decoder.hpp"
+#include "throng/protocol/messages.hpp"
+
+namespace throng::hub {
+namespace {
+
+using namespace protocol;
+
+/// Records what the hub sends; `latest` messages of one slot replace each other until drained.
+class RecordingOutbox : public Outbox {
+ public:
+  struct Sent {
+    std::vector<std::uint8_t> bytes;
+    bool latest;
+    std::uint32_t slot;
+  };
+  void send(PeerKey peer, std::vector<std::uint8_t> message, bool latest, std::uint32_t slot) override {
+    bytesSent[peer] += message.size();
+    queues[peer].push_back({std::move(message), latest, slot});
+  }
+  void close(PeerKey peer, std::string reason) override { closed[peer] = std::move(reason); }
+  std::optional<LinkCounters> link(PeerKey peer) const override {
+    if (stalled.count(peer)) return LinkCounters{1, 50, 100'000};  // nothing leaves, data waits
+    auto it = bytesSent.find(peer);
+    return LinkCounters{it == bytesSent.end() ? 0 : it->second, 0, 0};
+  }
+  std::set<PeerKey> stalled;
+  /// Decoded messages sent to `peer` since the last call.
+  std::vector<Message> drain(PeerKey peer) {
+    std::vector<Message> out;
+    for (Sent& s : queues[peer]) {
+      auto m = decodeAny(s.bytes);
+      EXPECT_TRUE(m.ok()) << (m.ok() ? "" : m.errors().front().format());
+      if (m.ok()) out.push_back(std::move(m).value());
+    }
+    raw[peer] = std::move(queues[peer]);
+    queues[peer].clear();
+    return out;
+  }
+  std::map<PeerKey, std::vector<Sent>> queues, raw;
+  std::map<PeerKey, std::uint64_t> bytesSent;
+  std::map<PeerKey, std::string> closed;
+};
+
+template <class T>
+const T* find(const std::vector<Message>& messages) {
+  for (const Message& m : messages) {
+    if (const T* t = std::get_if<T>(&m)) return t;
+  }
+  return nullptr;
+}
+
+struct HubFixture : ::testing::Test {
+  void SetUp() override {
+    auto loaded = io::loadScenarioFile(std::string(THRONG_SOURCE_DIR) + "/scenarios/museum.json");
+    ASSERT_TRUE(loaded.ok()) << io_errors(loaded);
+    scenario = std::make_unique<io::LoadedScenario>(std::move(loaded).value());
+    auto w = sim::World::create(scenario->desc, scenario->navmesh);
+    ASSERT_TRUE(w.ok());
+    world = std::move(w).value();
+    std::vector<std::string> warnings;
+    motions = std::make_unique<MotionLibrary>(
+        MotionLibrary::load(*scenario, std::string(THRONG_SOURCE_DIR) + "/scenarios", warnings));
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    HubOptions options;
+    options.maxClients = 2;
+    hub = std::make_unique<Hub>(options, describeWorld(*scenario, *motions, *world, 20.0), 20.0f, *motions, outbox);
+  }
+  static std::string io_errors(const core::Result<io::LoadedScenario>& r) {
+    return r.ok() ? "" : core::formatAll(r.errors());
+  }
+  void say(PeerKey peer, const std::vector<std::uint8_t>& bytes) { hub->onMessage(peer, bytes, now); }
+  /// Opens a client and says Hello; returns the Welcome's world JSON.
+  std::string connect(PeerKey peer) {
+    hub->onOpen(peer, "test:" + std::to_string(peer), now);
+    say(peer, encode(Hello{kProtocolVersion, ClientKind::Native, "client"}));
+    auto got = outbox.drain(peer);
+    const Welcome* w = find<Welcome>(got);
+    if (w == nullptr) return {};
+    auto json = worldJson(*w);
+    return json.ok() ? json.value() : std::string();
+  }
+  Joined join(PeerKey peer, const std::string& name) {
+    say(peer, encode(Join{name, 0}));
+    auto got = outbox.drain(peer);
+    const Joined* j = find<Joined>(got);
+    return j ? *j : Joined{};
+  }
+  void tick() {
+    hub->applyToWorld(*world);
+    world->step(tasks);
+    now += world->desc().dt;
+    hub->publish(*world->snapshot(), now);
+  }
+
+  std::unique_ptr<io::LoadedScenario> scenario;
+  std::unique_ptr<sim::World> world;
+  std::unique_ptr<MotionLibrary> motions;
+  RecordingOutbox outbox;
+  std::unique_ptr<Hub> hub;
+  core::TaskSystem tasks{1};
+  double now = 0.0;
+};
+
+TEST_F(HubFixture, WelcomeCarriesTheWorldDescription) {
+  const std::string json = connect(1);
+  EXPECT_NE(json.find("\"skeleton\""), std::string::npos);
+  EXPECT_NE(json.find("\"clips\""), std::string::npos);
+  EXPECT_NE(json.find("\"walkable\""), std::string::npos);
+  EXPECT_TRUE(outbox.closed.empty());
+}
+
+TEST_F(HubFixture, RefusesAVersionMismatchAFullServerAndAnythingBeforeHello) {
+  hub->onOpen(1, "a", now);
+  say(1, encode(Hello{kProtocolVersion + 1, ClientKind::Native, "future"}));
+  auto got = outbox.drain(1);
+  const Refuse* r = find<Refuse>(got);
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->reason, ReasonCode::VersionMismatch);
+  EXPECT_NE(r->text.find("version 1"), std::string::npos) << r->text;
+  EXPECT_TRUE(outbox.closed.count(1));
+
+  hub->onOpen(2, "b", now);
+  say(2, encode(Join{"me", 0}));
+  const auto got1 = outbox.drain(2);
+  const Bye* bye = find<Bye>(got1);
+  ASSERT_NE(bye, nullptr);
+  EXPECT_EQ(bye->reason, ReasonCode::UnexpectedMessage);
+  EXPECT_NE(bye->text.find("expected Hello"), std::string::npos) << bye->text;
+
+  connect(3);
+  connect(4);
+  EXPECT_TRUE(connect(5).empty());
+  ASSERT_FALSE(outbox.raw[5].empty());
+  auto m = decodeAny(outbox.raw[5].front().bytes);
+  ASSERT_TRUE(m.ok());
+  ASSERT_TRUE(std::holds_alternative<Refuse>(m.value()));
+  EXPECT_EQ(std::get<Refuse>(m.value()).reason, ReasonCode::ServerFull);
+}
+
+TEST_F(HubFixture, GarbageClosesOnlyThatClientWithAReason) {
+  connect(1);
+  connect(2);
+  say(1, {0x54, 0xee, 0x01});
+  const auto got2 = outbox.drain(1);
+  const Bye* bye = find<Bye>(got2);
+  ASSERT_NE(bye, nullptr);
+  EXPECT_EQ(bye->reason, ReasonCode::BadMessage);
+  EXPECT_TRUE(outbox.closed.count(1));
+  EXPECT_FALSE(outbox.closed.count(2));
+  tick();
+  EXPECT_NE(find<CrowdFrame>(outbox.drain(2)), nullptr);
+}
+
+TEST_F(HubFixture, OnlyTheTokenHolderMovesItsAvatarAndOthersSeeTheMove) {
+  connect(1);
+  connect(2);
+  const Joined a = join(1, "alice");
+  ASSERT_NE(a.token, 0u);
+  Move move;
+  move.subject = {Subject::Kind::Token, a.token};
+  move.seq = 1;
+  move.x = 10.0f;
+  move.y = 5.0f;
+  say(1, encode(move));
+  auto got = outbox.drain(2);
+  const Move* relayed = find<Move>(got);
+  ASSERT_NE(relayed, nullptr);
+  EXPECT_EQ(relayed->subject.kind, Subject::Kind::Participant);
+  EXPECT_EQ(relayed->subject.value, a.participantId);
+  EXPECT_NEAR(relayed->x, 10.0f, 0.01f);
+  // Client 2 tries to move alice's avatar with a made-up token.
+  move.subject.value = a.token ^ 1;
+  say(2, encode(move));
+  const auto got3 = outbox.drain(2);
+  const Bye* bye = find<Bye>(got3);
+  ASSERT_NE(bye, nullptr);
+  EXPECT_EQ(bye->reason, ReasonCode::UnexpectedMessage);  // it never joined
+  EXPECT_TRUE(outbox.closed.count(2));
+}
+
+TEST_F(HubFixture, AGuidedGroupFollowsTheAvatarAndAnotherClientSeesIt) {
+  connect(1);
+  connect(2);
+  const Joined a = join(1, "guide");
+  for (int i = 0; i < 20; ++i) tick();  // the museum's groups are in
+  // Group 0's members, and a spot 8 m away from them where the avatar stands.
+  const auto info = world->groupInfo(world->groupById(0));
+  ASSERT_TRUE(info && !info->members.empty());
+  auto frame = world->snapshot();
+  auto centroid = [&](const sim::Frame& f) {
+    core::Vec2 c{};
+    int n = 0;
+    for (std::size_t r = 0; r < f.size(); ++r) {
+      if (std::find(info->members.begin(), info->members.end(), f.ids[r]) != info->members.end()) {
+        c += core::Vec2{f.posX[r], f.posY[r]};
+        ++n;
+      }
+    }
+    return n ? c * (1.0f / static_cast<float>(n)) : c;
+  };
+  const core::Vec2 start = centroid(*frame);
+  Move move;
+  move.subject = {Subject::Kind::Token, a.token};
+  move.seq = 1;
+  move.x = start.x + 6.0f;
+  move.y = start.y;
+  say(1, encode(move));
+  say(1, encode(Guide{a.token, 0}));
+  tick();
+  const auto got4 = outbox.drain(1);
+  const GuideResult* result = find<GuideResult>(got4);
+  ASSERT_NE(result, nullptr);
+  EXPECT_TRUE(result->ok && result->guiding);
+  // Client 2 decodes its crowd frames and acknowledges them; the group walks toward the avatar.
+  CrowdDecoder decoder;
+  std::optional<DecodedCrowdFrame> last;
+  for (int i = 0; i < 120; ++i) {
+    tick();
+    for (const auto& sent : outbox.queues[2]) {
+      auto d = decoder.decode(sent.bytes);
+      if (d.ok()) last = std::move(d).value();
+    }
+    outbox.queues[2].clear();
+    if (last) say(2, encode(Ack{0, last->header.frameNumber}));
+    outbox.drain(1);
+  }
+  const core::Vec2 end = centroid(*world->snapshot());
+  const core::Vec2 avatar{move.x, move.y};
+  EXPECT_LT(core::length(end - avatar), core::length(start - avatar) - 2.0f)
+      << "group went from " << start.x << "," << start.y << " to " << end.x << "," << end.y;
+  ASSERT_TRUE(last.has_value());
+  EXPECT_NE(last->header.baseFrame, 0u);  // acknowledged: delta frames
+  // What client 2 decoded is where the world has the agents (1 cm quantization).
+  auto snap = world->snapshot();
+  std::size_t matched = 0;
+  for (const AgentState& s : last->view.agents) {
+    for (std::size_t r = 0; r < snap->size(); ++r) {
+      if (snap->ids[r] == s.id && std::fabs(snap->posX[r] - s.x) < 0.011f && std::fabs(snap->posY[r] - s.y) < 0.011f) ++matched;
+    }
+  }
+  EXPECT_EQ(matched, last->view.agents.size());
+  EXPECT_EQ(last->view.agents.size(), snap->size());  // no avatar: an overview of everyone
+  // Releasing gives the group back; a second release is refused.
+  say(1, encode(Release{a.token, 0}));
+  tick();
+  const auto got5 = outbox.drain(1);
+  const GuideResult* released = find<GuideResult>(got5);
+  ASSERT_NE(released, nullptr);
+  EXPECT_TRUE(released->ok);
+  EXPECT_FALSE(released->guiding);
+  say(1, encode(Release{a.token, 0}));
+  tick();
+  const auto got6 = outbox.drain(1);
+  const GuideResult* again = find<GuideResult>(got6);
+  ASSERT_NE(again, nullptr);
+  EXPECT_FALSE(again->ok);
+  EXPECT_EQ(again->reason, ReasonCode::NotGuiding);
+}
+
+TEST_F(HubFixture, NearAgentsCarryJointPoses) {
+  connect(1);
+  const Joined a = join(1, "near");
+  for (int i = 0; i < 20; ++i) tick();
+  auto snap = world->snapshot();
+  ASSERT_GT(snap->size(), 0u);
+  Move move;
+  move.subject = {Subject::Kind::Token, a.token};
+  move.seq = 1;
+  move.x = snap->posX[0];
+  move.y = snap->posY[0];
+  say(1, encode(move));
+  outbox.drain(1);
+  tick();
+  CrowdDecoder decoder;
+  bool sawJoints = false;
+  for (const auto& sent : outbox.queues[1]) {
+    auto d = decoder.decode(sent.bytes);
+    if (!d.ok()) continue;
+    for (const AgentState& s : d->view.agents) {
+      if (s.tier == Tier::Near) {
+        EXPECT_EQ(s.joints.size(), 3 * motions->jointCount());
+        sawJoints = sawJoints || !s.joints.empty();
+      }
+    }
+  }
+  EXPECT_TRUE(sawJoints);
+}
+
+TEST_F(HubFixture, SilentClientsTimeOutAndFloodsAreCut) {
+  connect(1);
+  connect(2);
+  const Joined b = join(2, "flood");
+  now += 11.0;  // client 1 says nothing for 11 s; client 2 keeps talking
+  say(2, encode(Heartbeat{b.token, 1, 0}));
+  hub->publish(*world->snapshot(), now);
+  EXPECT_TRUE(outbox.closed.count(1));
+  const auto got7 = outbox.drain(1);
+  const Bye* bye = find<Bye>(got7);
+  ASSERT_NE(bye, nullptr);
+  EXPECT_EQ(bye->reason, ReasonCode::Timeout);
+  EXPECT_FALSE(outbox.closed.count(2));
+  Move move;
+  move.subject = {Subject::Kind::Token, b.token};
+  for (std::uint32_t i = 1; i < 400 && !outbox.closed.count(2); ++i) {
+    move.seq = i;
+    say(2, encode(move));
+  }
+  ASSERT_TRUE(outbox.closed.count(2));
+  const auto got = outbox.drain(2);
+  const Bye* limited = find<Bye>(got);
+  ASSERT_NE(limited, nullptr);
+  EXPECT_EQ(limited->reason, ReasonCode::RateLimited);
+}
+
+TEST_F(HubFixture, AClientThatNeverReadsIsCutOffAndTheOthersGoOn) {
+  connect(1);
+  connect(2);
+  outbox.stalled.insert(1);
+  for (int second = 1; second <= 12; ++second) {
+    now += 1.0;
+    say(1, encode(Heartbeat{0, 1, 0}));  // it talks, but never reads
+    say(2, encode(Heartbeat{0, 1, 0}));
+    hub->publish(*world->snapshot(), now);
+  }
+  ASSERT_TRUE(outbox.closed.count(1));
+  EXPECT_NE(outbox.closed[1].find("slow client"), std::string::npos) << outbox.closed[1];
+  EXPECT_FALSE(outbox.closed.count(2));
+  const auto got = outbox.drain(2);
+  EXPECT_NE(find<CrowdFrame>(got), nullptr);
+}
+
+}  // namespace
+}  // namespace throng::hub

@@ -1,0 +1,216 @@
+// Decoding errors of throng::protocol's messages: every truncation of every golden message, bad
+// magic, unknown type, over-long strings, trailing bytes, out-of-range enums — each a diagnostic
+// naming the field and byte offset, never a crash.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "protocol_test_util.hpp"
+
+namespace throng::protocol {
+namespace {
+
+std::vector<std::vector<std::uint8_t>> allGoldenBytes() {
+  std::vector<std::vector<std::uint8_t>> out;
+  for (const auto& [name, m] : test::goldenMessages()) out.push_back(encode(m));
+  for (const bool c : {false, true}) {
+    auto [k, d] = test::goldenCrowdFrames(c);
+    out.push_back(k);
+    out.push_back(d);
+  }
+  return out;
+}
+
+TEST(ProtocolMessages, EveryTruncationIsAnError) {
+  for (const auto& bytes : allGoldenBytes()) {
+    for (std::size_t n = 0; n < bytes.size(); ++n) {
+      auto r = decodeAny(std::span(bytes.data(), n));
+      ASSERT_FALSE(r) << "prefix of " << n << " of " << bytes.size() << " bytes decoded";
+      EXPECT_FALSE(r.errors().front().what.empty());
+    }
+  }
+}
+
+TEST(ProtocolMessages, TrailingBytesAreAnError) {
+  auto bytes = encode(Ack{1, 2});
+  bytes.push_back(0);
+  auto r = decodeAny(bytes);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.errors()[0].pointer, "/Ack/end");
+  EXPECT_NE(r.errors()[0].what.find("1 trailing bytes"), std::string::npos) << r.errors()[0].what;
+}
+
+TEST(ProtocolMessages, BadMagicAndUnknownType) {
+  auto r = decodeAny(std::vector<std::uint8_t>{0x55, 1});
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.errors()[0].what.find("bad magic"), std::string::npos);
+  r = decodeAny(std::vector<std::uint8_t>{kMagic, 200});
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.errors()[0].what.find("unknown message type 200"), std::string::npos);
+  EXPECT_EQ(r.errors()[0].column, 2);  // 1-based byte offset
+}
+
+TEST(ProtocolMessages, OverlongNameNamesFieldAndOffset) {
+  std::vector<std::uint8_t> b{kMagic, static_cast<std::uint8_t>(MessageType::Hello), 1, 0, 0, 200, 1};
+  auto r = decodeAny(b);
+  ASSERT_FALSE(r);
+  const core::Diagnostic& d = r.errors()[0];
+  EXPECT_EQ(d.pointer, "/Hello/clientName");
+  EXPECT_EQ(d.column, 6);
+  EXPECT_NE(d.what.find("string of 200 bytes too long at byte 5"), std::string::npos) << d.format();
+  EXPECT_NE(d.expected.find("at most 64"), std::string::npos);
+}
+
+TEST(ProtocolMessages, OutOfRangeEnumsAreErrors) {
+  auto bye = encode(Bye{ReasonCode::None, ""});
+  bye[2] = 250;
+  EXPECT_FALSE(decodeAny(bye));
+  auto hello = encode(Hello{});
+  hello[4] = 9;
+  EXPECT_FALSE(decodeAny(hello));
+}
+
+TEST(ProtocolMessages, EncoderClampsStringsToTheLimits) {
+  Hello h;
+  h.clientName = std::string(500, 'x');
+  auto r = decodeAny(encode(h));
+  ASSERT_TRUE(r);
+  EXPECT_EQ(std::get<Hello>(r.value()).clientName.size(), kMaxNameLength);
+}
+
+TEST(ProtocolMessages, MoveQuantizesToCentimetresAndTurns) {
+  Move m{{Subject::Kind::Participant, 12}, 9, 1.234f, -0.006f, 100.0f, 3.5f};
+  auto r = decodeAny(encode(m));
+  ASSERT_TRUE(r);
+  const Move& d = std::get<Move>(r.value());
+  EXPECT_EQ(d.subject, m.subject);
+  EXPECT_FLOAT_EQ(d.x, 1.23f);
+  EXPECT_FLOAT_EQ(d.y, -0.01f);
+  EXPECT_NEAR(d.yaw, 3.5f - 2.0f * 3.14159265f, 1e-3f);  // wrapped into [-π, π)
+}
+
+TEST(ProtocolMessages, WelcomeWorldRoundTrips) {
+  const std::string world(5000, 'a');
+  auto r = decodeAny(encode(makeWelcome("s", 25.0f, world)));
+  ASSERT_TRUE(r);
+  const Welcome& w = std::get<Welcome>(r.value());
+  EXPECT_LT(w.world.size(), 100u);
+  auto text = worldJson(w);
+  ASSERT_TRUE(text);
+  EXPECT_EQ(text.value(), world);
+  Welcome bad = w;
+  bad.world[bad.world.size() / 2] ^= 0xff;
+  bad.worldSize += 1;
+  EXPECT_FALSE(worldJson(bad));
+}
+
+TEST(ProtocolMessages, PeekTypeAndNames) {
+  auto t = peekType(encode(Guide{1, 2}));
+  ASSERT_TRUE(t);
+  EXPECT_EQ(t.value(), MessageType::Guide);
+  EXPECT_STREQ(messageTypeName(MessageType::CrowdFrame), "CrowdFrame");
+  EXPECT_EQ(messageType(Message{Ack{}}), MessageType::Ack);
+  EXPECT_STREQ(messageTypeName(MessageType::Presence), "Presence");
+  EXPECT_STREQ(messageTypeName(MessageType::ReplayControl), "ReplayControl");
+  EXPECT_STREQ(messageTypeName(MessageType::ReplayStatus), "ReplayStatus");
+  EXPECT_STREQ(messageTypeName(static_cast<MessageType>(kMaxMessageType + 1)), "?");
+  EXPECT_EQ(messageType(Message{Presence{}}), MessageType::Presence);
+  EXPECT_EQ(messageType(Message{ReplayControl{}}), MessageType::ReplayControl);
+  EXPECT_EQ(messageType(Message{ReplayStatus{}}), MessageType::ReplayStatus);
+}
+
+/// Sets the f64 at byte `at` of `bytes`.
+void putF64(std::vector<std::uint8_t>& bytes, std::size_t at, double v) {
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &v, 8);
+  for (int i = 0; i < 8; ++i) bytes[at + i] = static_cast<std::uint8_t>(bits >> (8 * i));
+}
+
+TEST(ProtocolMessages, PresenceFlagMustBeZeroOrOne) {
+  auto b = encode(Presence{5, false, "Bo"});
+  auto ok = decodeAny(b);
+  ASSERT_TRUE(ok);
+  EXPECT_FALSE(std::get<Presence>(ok.value()).present);
+  EXPECT_EQ(std::get<Presence>(ok.value()).name, "Bo");
+  b[3] = 2;  // header 2, varint id 1 byte, then the flag
+  auto r = decodeAny(b);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.errors()[0].pointer, "/Presence/present");
+  EXPECT_EQ(r.errors()[0].column, 4);
+  EXPECT_NE(r.errors()[0].what.find("at byte 3"), std::string::npos) << r.errors()[0].format();
+  // Names longer than kMaxNameLength: clamped by the encoder, refused by the decoder.
+  auto longName = decodeAny(encode(Presence{1, true, std::string(100, 'n')}));
+  ASSERT_TRUE(longName);
+  EXPECT_EQ(std::get<Presence>(longName.value()).name.size(), kMaxNameLength);
+  std::vector<std::uint8_t> tooLong{kMagic, static_cast<std::uint8_t>(MessageType::Presence), 1, 1, 65};
+  tooLong.resize(tooLong.size() + 65, 'x');
+  auto t = decodeAny(tooLong);
+  ASSERT_FALSE(t);
+  EXPECT_EQ(t.errors()[0].pointer, "/Presence/name");
+}
+
+TEST(ProtocolMessages, ReplayControlChecksCommandAndValue) {
+  constexpr std::size_t kCommandAt = 2 + 8, kValueAt = kCommandAt + 1;
+  auto check = [](ReplayCommand c, double v) { return decodeAny(encode(ReplayControl{0, c, v})); };
+  EXPECT_TRUE(check(ReplayCommand::Play, 0.0));
+  EXPECT_TRUE(check(ReplayCommand::Pause, 0.0));
+  EXPECT_TRUE(check(ReplayCommand::Seek, 0.0));
+  EXPECT_TRUE(check(ReplayCommand::Seek, 1e6));
+  EXPECT_TRUE(check(ReplayCommand::Speed, 0.25));
+  EXPECT_TRUE(check(ReplayCommand::Speed, 64.0));
+  for (const auto& [c, v] : std::vector<std::pair<ReplayCommand, double>>{
+           {ReplayCommand::Play, 1.0}, {ReplayCommand::Pause, -0.5},
+           {ReplayCommand::Seek, -1.0}, {ReplayCommand::Seek, std::nan("")},
+           {ReplayCommand::Seek, HUGE_VAL}, {ReplayCommand::Speed, 0.0},
+           {ReplayCommand::Speed, -1.0}, {ReplayCommand::Speed, 64.5},
+           {ReplayCommand::Speed, std::nan("")}}) {
+    auto r = check(c, v);
+    ASSERT_FALSE(r) << static_cast<int>(c) << " " << v;
+    EXPECT_EQ(r.errors()[0].pointer, "/ReplayControl/value");
+    EXPECT_EQ(r.errors()[0].column, static_cast<int>(kValueAt + 1));
+    EXPECT_FALSE(r.errors()[0].expected.empty());
+  }
+  auto b = encode(ReplayControl{7, ReplayCommand::Play, 0.0});
+  b[kCommandAt] = 4;
+  auto r = decodeAny(b);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.errors()[0].pointer, "/ReplayControl/command");
+  EXPECT_NE(r.errors()[0].what.find("unknown replay command 4 at byte 10"), std::string::npos) << r.errors()[0].format();
+  auto ok = check(ReplayCommand::Seek, 3.25);
+  ASSERT_TRUE(ok);
+  EXPECT_EQ(std::get<ReplayControl>(ok.value()).value, 3.25);
+  EXPECT_EQ(std::get<ReplayControl>(ok.value()).command, ReplayCommand::Seek);
+}
+
+TEST(ProtocolMessages, ReplayStatusChecksTimesFlagAndSpeed) {
+  const ReplayStatus good{1.5, 10.0, false, 0.5f};
+  auto ok = decodeAny(encode(good));
+  ASSERT_TRUE(ok);
+  const auto& s = std::get<ReplayStatus>(ok.value());
+  EXPECT_EQ(s.time, 1.5);
+  EXPECT_EQ(s.duration, 10.0);
+  EXPECT_FALSE(s.playing);
+  EXPECT_EQ(s.speed, 0.5f);
+  auto expectError = [](const std::vector<std::uint8_t>& b, const char* pointer, int column) {
+    auto r = decodeAny(b);
+    ASSERT_FALSE(r) << pointer;
+    EXPECT_EQ(r.errors()[0].pointer, pointer);
+    EXPECT_EQ(r.errors()[0].column, column);
+  };
+  auto b = encode(good);
+  putF64(b, 2, -0.1);
+  expectError(b, "/ReplayStatus/time", 3);
+  b = encode(good);
+  putF64(b, 10, std::nan(""));
+  expectError(b, "/ReplayStatus/duration", 11);
+  b = encode(good);
+  b[18] = 2;
+  expectError(b, "/ReplayStatus/playing", 19);
+  expectError(encode(ReplayStatus{0, 0, true, 0.0f}), "/ReplayStatus/speed", 20);
+  expectError(encode(ReplayStatus{0, 0, true, -1.0f}), "/ReplayStatus/speed", 20);
+  expectError(encode(ReplayStatus{0, 0, true, HUGE_VALF}), "/ReplayStatus/speed", 20);
+}
+
+}  // namespace
+}  // namespace throng::protocol

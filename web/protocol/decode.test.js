@@ -1,0 +1,81 @@
+// web/protocol/decode.js against the C++ golden set: every tests/protocol/golden/<name>.bin
+// decodes to <name>.json (crowd deltas after their base), and truncations throw ProtocolError.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync, readdirSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import { decodeAny, CrowdDecoder, ProtocolError } from './decode.js';
+
+const dir = fileURLToPath(new URL('../../tests/protocol/golden/', import.meta.url));
+const names = readdirSync(dir).filter((f) => f.endsWith('.json')).map((f) => f.slice(0, -5)).sort();
+const bin = (n) => new Uint8Array(readFileSync(dir + n + '.bin'));
+const json = (n) => JSON.parse(readFileSync(dir + n + '.json', 'utf8'));
+
+test('golden set is present', () => assert.ok(names.length >= 20, `found ${names.length} golden messages in ${dir}`));
+
+for (const name of names) {
+  test(`golden ${name}`, () => {
+    const expected = json(name);
+    if (expected.type !== 'CrowdFrame') {
+      assert.deepEqual(decodeAny(bin(name)), expected);
+      return;
+    }
+    const decoder = new CrowdDecoder();
+    if (expected.base) decoder.decode(bin(expected.base));
+    const { header, agents } = decoder.decode(bin(name));
+    const got = { type: 'CrowdFrame', header, agents };
+    if (expected.base) got.base = expected.base;
+    assert.deepEqual(got, expected);
+  });
+}
+
+test('every truncation throws ProtocolError', () => {
+  for (const name of names) {
+    const b = bin(name);
+    for (let n = 0; n < b.length; n++) {
+      assert.throws(() => decodeAny(b.subarray(0, n)), ProtocolError, `${name} cut at ${n}`);
+    }
+  }
+});
+
+test('a delta without its base is refused cleanly', () => {
+  assert.throws(() => new CrowdDecoder().decode(bin('crowd_delta')), /base frame 1 unknown/);
+});
+
+// Presence, ReplayControl, ReplayStatus (types 18–20): the value rules of docs/protocol.md.
+const f64le = (v) => { const b = new Uint8Array(8); new DataView(b.buffer).setFloat64(0, v, true); return [...b]; };
+const f32le = (v) => { const b = new Uint8Array(4); new DataView(b.buffer).setFloat32(0, v, true); return [...b]; };
+const replayControl = (command, value) => new Uint8Array([0x54, 19, ...new Array(8).fill(0), command, ...f64le(value)]);
+const replayStatus = (time, duration, playing, speed) =>
+  new Uint8Array([0x54, 20, ...f64le(time), ...f64le(duration), playing, ...f32le(speed)]);
+
+test('Presence: present flag must be 0 or 1', () => {
+  const ok = decodeAny(new Uint8Array([0x54, 18, 5, 0, 2, 0x42, 0x6f]));
+  assert.deepEqual(ok, { type: 'Presence', participantId: 5, present: false, name: 'Bo' });
+  assert.throws(() => decodeAny(new Uint8Array([0x54, 18, 5, 2, 0])),
+    (e) => e instanceof ProtocolError && e.field === '/Presence/present' && e.offset === 3);
+  assert.throws(() => decodeAny(new Uint8Array([0x54, 18, 5, 1, 65, ...new Array(65).fill(0x78)])), /\/Presence\/name/);
+});
+
+test('ReplayControl: command and value rules', () => {
+  for (const [c, v] of [[0, 0], [1, 0], [2, 0], [2, 1e6], [3, 0.25], [3, 64]]) {
+    assert.deepEqual(decodeAny(replayControl(c, v)), { type: 'ReplayControl', token: '0', command: c, value: v });
+  }
+  for (const [c, v] of [[0, 1], [1, -0.5], [2, -1], [2, NaN], [2, Infinity], [3, 0], [3, -1], [3, 64.5], [3, NaN]]) {
+    assert.throws(() => decodeAny(replayControl(c, v)),
+      (e) => e instanceof ProtocolError && e.field === '/ReplayControl/value' && e.offset === 11, `command ${c} value ${v}`);
+  }
+  assert.throws(() => decodeAny(replayControl(4, 0)),
+    (e) => e instanceof ProtocolError && e.field === '/ReplayControl/command' && e.offset === 10);
+});
+
+test('ReplayStatus: finite non-negative times, 0/1 playing, positive speed', () => {
+  assert.deepEqual(decodeAny(replayStatus(1.5, 10, 0, 0.5)), { type: 'ReplayStatus', time: 1.5, duration: 10, playing: false, speed: 0.5 });
+  const fails = (bytes, field, offset) => assert.throws(() => decodeAny(bytes),
+    (e) => e instanceof ProtocolError && e.field === `/ReplayStatus/${field}` && e.offset === offset, field);
+  fails(replayStatus(-0.1, 10, 1, 1), 'time', 2);
+  fails(replayStatus(0, NaN, 1, 1), 'duration', 10);
+  fails(replayStatus(0, 1, 2, 1), 'playing', 18);
+  fails(replayStatus(0, 1, 1, 0), 'speed', 19);
+  fails(replayStatus(0, 1, 1, Infinity), 'speed', 19);
+});

@@ -1,0 +1,126 @@
+// The crowd on screen: each frame, from the interpolated crowd state (interpolate.js) and the
+// camera, computes every agent's projected size, asks the global LOD function (lod.js) for its
+// level within the frame-time budget, and fills the three renderers: skinned bodies (near),
+// instanced low-polygon bodies (middle), instanced billboards (far). Also: colours by group,
+// picking (ray against a vertical capsule proxy per agent), and the counts for the HUD.
+import * as THREE from 'three';
+import { Level, assignLevels, makeLodScratch, projectedHeight, LodBudget, defaultLodParams } from '../lod.js';
+import { NearBodies } from './near_bodies.js';
+import { MiddleBodies } from './middle_bodies.js';
+import { Billboards, renderAtlas, kWalkFrames } from './billboards.js';
+import { sceneYaw } from '../coords.js';
+
+const kPalette = [0x3f7fbf, 0xbf5f3f, 0x4f9f5f, 0x9f4fa0, 0xc0a040, 0x40a0a8, 0x8f6f4f, 0x707fa0, 0xb0607a, 0x6a8f30];
+
+export class CrowdView {
+  constructor(scene, renderer, description, clips, options = {}) {
+    this.scene = scene;
+    this.clips = clips;
+    this.joints = description.skeleton.joints;
+    this.near = new NearBodies(scene, this.joints, clips);
+    this.middle = new MiddleBodies(scene, this.joints);
+    this.atlas = renderAtlas(renderer, this.joints, this.near.geometry, clips);
+    this.far = new Billboards(scene, this.atlas.texture);
+    this.groupOf = new Map();
+    for (const g of description.groups || []) for (const m of g.members || []) this.groupOf.set(m, g.id);
+    this.colors = kPalette.map((c) => new THREE.Color(c));
+    this.highlight = new THREE.Color(0xffe040);
+    this.adaptive = options.adaptive !== false;
+    this.budget = new LodBudget({ targetFrameMs: options.targetFrameMs || 1000 / 30 });
+    this.levels = new Uint8Array(0);
+    this.prevLevels = new Uint8Array(0);
+    this.prevIds = new Uint32Array(0);
+    this.sizes = new Float32Array(0);
+    this.scratch = makeLodScratch(1024);
+    this.counts = { near: 0, middle: 0, far: 0, hidden: 0 };
+    this.selectedId = -1;
+    this.selectedGroup = -1;  // group picked in the group list: its members are highlighted
+    this.groupHighlight = new THREE.Color(0xff9a20);
+    this.guidedGroups = new Set();
+    this.frustum = new THREE.Frustum();
+    this.m = new THREE.Matrix4();
+    this.sphere = new THREE.Sphere(new THREE.Vector3(), 1.1);
+  }
+
+  colorOf(id) {
+    if (id === this.selectedId) return this.highlight;
+    const g = this.groupOf.get(id);
+    if (g !== undefined && g === this.selectedGroup) return this.groupHighlight;
+    return this.colors[(g === undefined ? id : g) % this.colors.length];
+  }
+
+  /** Draws `state` (CrowdState, already advanced) from `camera` in a viewport `height` px high. */
+  update(state, camera, height, frameMs) {
+    const n = state.count;
+    if (this.sizes.length < n) {
+      this.sizes = new Float32Array(n * 2); this.levels = new Uint8Array(n * 2);
+    }
+    // Previous levels, re-indexed to this frame's agent order (agents come and go).
+    const prev = new Uint8Array(n).fill(Level.Far);
+    if (this.prevIds.length) {
+      const pi = this.prevIndex || new Map();
+      for (let i = 0; i < n; ++i) { const j = pi.get(state.ids[i]); if (j !== undefined) prev[i] = this.prevLevels[j]; }
+    }
+    camera.updateMatrixWorld();
+    this.m.multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse);
+    this.frustum.setFromProjectionMatrix(this.m);
+    const fov = THREE.MathUtils.degToRad(camera.fov);
+    const cx = camera.position.x, cy = camera.position.y, cz = camera.position.z;
+    for (let i = 0; i < n; ++i) {
+      const sx = state.x[i], sy = state.z[i], sz = -state.y[i];
+      this.sphere.center.set(sx, sy + 0.9, sz);
+      if (!this.frustum.intersectsSphere(this.sphere)) { this.sizes[i] = -1; continue; }
+      const d = Math.hypot(sx - cx, sy + 0.9 - cy, sz - cz);
+      this.sizes[i] = projectedHeight(d, fov, height);
+    }
+    const params = this.adaptive ? this.budget.update(frameMs, this.counts) : { ...defaultLodParams, adaptive: false };
+    this.params = params;
+    this.counts = assignLevels(this.sizes, n, prev, this.levels, params, this.scratch);
+    this.near.begin();
+    this.middle.begin(n);
+    this.far.begin(n);
+    for (let i = 0; i < n; ++i) {
+      const l = this.levels[i];
+      if (l === Level.Hidden) continue;
+      const id = state.ids[i];
+      const c = state.clip[i];
+      const color = this.colorOf(id);
+      if (l === Level.Near) {
+        this.near.add(state.x[i], state.y[i], state.z[i], state.yaw[i], c, state.phase[i], color.getHex(), state.tier[i] === 0 ? state.joints.get(id) : null);
+      } else if (l === Level.Middle) {
+        this.middle.add(state.x[i], state.y[i], state.z[i], state.yaw[i], state.phase[i], this.clips.isWalk(c), color);
+      } else {
+        const row = this.clips.isWalk(c) ? Math.floor(state.phase[i] * kWalkFrames) % kWalkFrames : kWalkFrames;
+        this.far.add(state.x[i], state.z[i], -state.y[i], sceneYaw(state.yaw[i]), row, color);
+      }
+    }
+    this.near.end(); this.middle.end(); this.far.end();
+    this.prevLevels = this.levels.slice(0, n);
+    this.prevIds = state.ids;
+    this.prevIndex = state.index;
+    return this.counts;
+  }
+
+  /** Agent index under the ray (nearest capsule proxy: radius 0.35 m, 0–1.8 m high), or −1. */
+  pick(ray, state) {
+    let best = -1, bestT = Infinity;
+    const o = ray.origin, d = ray.direction;
+    for (let i = 0; i < state.count; ++i) {
+      // Closest approach of the ray to the agent's vertical axis, in the ground plane.
+      const ax = state.x[i], az = -state.y[i], ay0 = state.z[i];
+      const ox = o.x - ax, oz = o.z - az;
+      const a = d.x * d.x + d.z * d.z;
+      const b = ox * d.x + oz * d.z;
+      const c = ox * ox + oz * oz - 0.35 * 0.35;
+      if (a < 1e-9) continue;
+      const disc = b * b - a * c;
+      if (disc < 0) continue;
+      const t = (-b - Math.sqrt(disc)) / a;
+      if (t <= 0 || t >= bestT) continue;
+      const y = o.y + d.y * t - ay0;
+      if (y < 0 || y > 1.8) continue;
+      best = i; bestT = t;
+    }
+    return best;
+  }
+}

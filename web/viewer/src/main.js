@@ -1,0 +1,238 @@
+// The viewer's entry point: reads the URL options, picks the data source (live server, ?demo, or
+// ?demo&replay), builds the scene once the world description arrives (world_view, clips, crowd
+// view, cameras) and runs the frame loop: interpolate the crowd, choose levels of detail, draw,
+// update the HUD; wires the join form, picking, guide/release, the LOD toggle and the banner.
+// URL options: demo, agents=N, lod=on|off, ws=URL, replay (with demo), target=FPS, shot=1 (no
+// panels: screenshots), aa=0 (no antialiasing).
+import * as THREE from 'three';
+import { CrowdState } from './interpolate.js';
+import { DemoSource } from './sources/demo_source.js';
+import { ReplaySource, MemoryReplayBackend } from './sources/replay_source.js';
+import { LiveSource, reasonText } from './net/live_source.js';
+import { buildWorld, addLights, worldBounds } from './world/world_view.js';
+import { ClipLibrary } from './crowd/clip_library.js';
+import { CrowdView } from './crowd/crowd_view.js';
+import { NearBodies } from './crowd/near_bodies.js';
+import { Cameras } from './camera/cameras.js';
+import { Hud } from './ui/hud.js';
+import { Banner } from './ui/banner.js';
+import { AgentPanel } from './ui/agent_panel.js';
+import { Timeline } from './ui/timeline.js';
+import { GroupList } from './ui/group_list.js';
+
+const params = new URLSearchParams(location.search);
+const demo = params.has('demo');
+const agentsN = Math.max(1, Math.min(100000, Number(params.get('agents') || 300)));
+const lodOn = params.get('lod') !== 'off';
+const shot = params.get('shot') === '1';
+const $ = (id) => document.getElementById(id);
+
+function makeSource() {
+  if (demo && params.has('replay')) {
+    const live = new DemoSource(agentsN);
+    const frames = [];
+    let t = 0;
+    live.on('world', (w) => { live.world = w; });
+    live.on('frame', (f) => frames.push({ time: t, frame: f }));
+    live.start();
+    live.stop();
+    for (let k = 0; k < 600; ++k) { t += 0.1; live.step(0.1); }  // one minute of demo, recorded
+    return new ReplaySource(new MemoryReplayBackend(live.world, frames));
+  }
+  if (demo) return new DemoSource(agentsN);
+  return new LiveSource(params.get('ws') || undefined);
+}
+
+const renderer = new THREE.WebGLRenderer({ antialias: params.get('aa') !== '0', preserveDrawingBuffer: shot });
+renderer.setPixelRatio(Math.min(devicePixelRatio, 2));
+renderer.setSize(innerWidth, innerHeight);
+$('app').appendChild(renderer.domElement);
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(0xeef2f5);
+const camera = new THREE.PerspectiveCamera(55, innerWidth / innerHeight, 0.1, 2000);
+addEventListener('resize', () => {
+  camera.aspect = innerWidth / innerHeight;
+  camera.updateProjectionMatrix();
+  renderer.setSize(innerWidth, innerHeight);
+});
+if (shot) for (const id of ['hud', 'controls']) $(id).classList.add('hidden');
+
+const source = makeSource();
+const banner = new Banner($('banner'));
+const hud = new Hud($('hud'));
+const state = new CrowdState();
+let crowd = null, cameras = null, clips = null, avatars = null, description = null;
+let selectedId = -1;
+let joined = null;
+const others = new Map();  // participant id → {x, y, yaw, moving, phase}
+const localPhase = { phase: 0 };
+
+source.on('status', (s) => banner.show(s));
+source.on('frame', (f) => state.applyFrame(f, performance.now() / 1000));
+source.on('participant', (m) => {
+  const o = others.get(m.participantId) || { phase: 0, name: source.names.get(m.participantId) };
+  o.moving = o.x !== undefined && Math.hypot(m.x - o.x, m.y - o.y) > 0.02;
+  Object.assign(o, { x: m.x, y: m.y, z: m.z || 0, yaw: m.yaw, at: performance.now() });
+  others.set(m.participantId, o);
+});
+source.on('world', async (w) => {
+  description = w;
+  const bounds = worldBounds(w.scenario || {});
+  scene.add(buildWorld(w.scenario || {}));
+  addLights(scene, bounds);
+  clips = new ClipLibrary(w);
+  await clips.load('');
+  state.setClips(w.clips || []);
+  state.interval = 1 / (w.tickRate || 10);
+  crowd = new CrowdView(scene, renderer, w, clips, { adaptive: lodOn, targetFrameMs: 1000 / Number(params.get('target') || 30) });
+  avatars = new NearBodies(scene, w.skeleton.joints, clips);
+  cameras = new Cameras(camera, renderer.domElement, bounds);
+  $('lod-toggle').checked = lodOn;
+  groupList.setGroups(w.groups || []);
+  globalThis.__throng = {
+    cameras, crowd, state, camera, source, renderer, description: w, others, groupList,
+    get joined() { return joined; },
+    /** Renders now and reads the canvas back: grey levels (0–255) every `step` px, for tests. */
+    pixels(step = 4) {
+      renderer.render(scene, camera);
+      const gl = renderer.getContext();
+      const w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+      const buf = new Uint8Array(w * h * 4);
+      gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, buf);
+      const grey = [];
+      for (let y = 0; y < h; y += step) {
+        for (let x = 0; x < w; x += step) {
+          const o = (y * w + x) * 4;
+          grey.push(Math.round(0.299 * buf[o] + 0.587 * buf[o + 1] + 0.114 * buf[o + 2]));
+        }
+      }
+      return { width: w, height: h, step, grey };
+    },
+    /** Screen position [px] of world point (x, y, z) in the current camera, or null behind it. */
+    toScreen(x, y, z = 0.9) {
+      const v = new THREE.Vector3(x, z, -y).project(camera);
+      if (v.z > 1) return null;
+      return { x: (v.x + 1) / 2 * innerWidth, y: (1 - v.y) / 2 * innerHeight };
+    },
+  };
+});
+source.on('presence', (p) => {
+  if (!p.present) others.delete(p.participantId);
+  else if (others.has(p.participantId)) others.get(p.participantId).name = p.name;
+});
+
+const panel = new AgentPanel($('agent-panel'), {
+  onGuide: (g) => source.guide(g),
+  onRelease: (g) => source.release(g),
+  onClose: () => { selectedId = -1; if (crowd) crowd.selectedId = -1; },
+});
+const groupList = new GroupList($('controls'), {
+  onSelect: (g) => { if (crowd) crowd.selectedGroup = g; },
+  onGuide: (g) => source.guide(g),
+  onRelease: (g) => source.release(g),
+});
+source.on('guide', (r) => {
+  const what = r.guiding ? 'follows you' : 'released';
+  const text = r.ok ? `group ${r.groupId} ${what}` : `group ${r.groupId}: ${reasonText(r.reason)}`;
+  panel.guideResult(r, text);
+  groupList.guideResult(r, text);
+});
+source.on('joined', (j) => {
+  const again = joined !== null;  // re-joined after a reconnect: keep the avatar where it is
+  joined = j;
+  $('join-status').textContent = `joined as ${j.name || 'participant'} (#${j.participantId}); walk with W/S A/D, drag to turn`;
+  $('join-button').textContent = 'Leave';
+  panel.setJoined(true);
+  groupList.setJoined(true);
+  if (cameras && !again) {
+    const t = cameras.orbit.target;
+    cameras.placeAvatar(t.x, -t.z, Math.PI / 2);
+    setMode('walk');
+  }
+});
+$('join-form').addEventListener('submit', (e) => {
+  e.preventDefault();
+  if (joined) {
+    source.leave();
+    joined = null;
+    $('join-button').textContent = 'Join';
+    $('join-status').textContent = 'left';
+    panel.setJoined(false);
+    groupList.setJoined(false);
+    return;
+  }
+  const name = $('join-name').value.trim() || 'visitor';
+  $('join-status').textContent = `joining as ${name}…`;
+  source.join(name);
+});
+function setMode(m) {
+  if (!cameras) return;
+  cameras.setMode(m);
+  $('cam-orbit').classList.toggle('active', m === 'orbit');
+  $('cam-walk').classList.toggle('active', m === 'walk');
+}
+$('cam-orbit').onclick = () => setMode('orbit');
+$('cam-walk').onclick = () => setMode('walk');
+$('lod-toggle').onchange = (e) => { if (crowd) crowd.adaptive = e.target.checked; };
+// Replay: the in-memory demo recording, or a server replaying a recording (its first ReplayStatus).
+let timeline = source.kind === 'replay' ? new Timeline($('timeline'), source) : null;
+source.on('timeline', (s) => { if (!timeline) { timeline = new Timeline($('timeline'), source); timeline.update(s); } });
+
+// Picking: a click (not a drag) selects the agent under the pointer.
+const raycaster = new THREE.Raycaster();
+let downAt = null;
+renderer.domElement.addEventListener('pointerdown', (e) => { downAt = [e.clientX, e.clientY]; });
+renderer.domElement.addEventListener('pointerup', (e) => {
+  if (!downAt || !crowd || Math.hypot(e.clientX - downAt[0], e.clientY - downAt[1]) > 4) return;
+  const ndc = new THREE.Vector2((e.clientX / innerWidth) * 2 - 1, -(e.clientY / innerHeight) * 2 + 1);
+  raycaster.setFromCamera(ndc, camera);
+  const i = crowd.pick(raycaster.ray, state);
+  selectedId = i >= 0 ? state.ids[i] : -1;
+  crowd.selectedId = selectedId;
+  if (i >= 0) {
+    const g = crowd.groupOf.get(selectedId);
+    panel.show(selectedId, g);
+    groupList.pick(g);
+  } else {
+    panel.hide();
+  }
+});
+
+let last = performance.now();
+function frame() {
+  requestAnimationFrame(frame);
+  const nowMs = performance.now();
+  const frameMs = nowMs - last;
+  last = nowMs;
+  if (!crowd) { renderer.render(scene, camera); return; }
+  const dt = Math.min(frameMs / 1000, 0.1);
+  cameras.update(dt);
+  state.advance(nowMs / 1000);
+  const counts = crowd.update(state, camera, renderer.domElement.height, frameMs);
+  avatars.begin();
+  const walk = clips.walkClipId(), idle = clips.idleClipId();
+  if (joined) {
+    const a = cameras.avatar;
+    localPhase.phase = (localPhase.phase + (a.speed * dt) / 1.5) % 1;
+    avatars.add(a.x, a.y, 0, a.yaw, a.moving ? walk : idle, a.moving ? localPhase.phase : (nowMs / 2000) % 1, 0xff6a00);
+    source.sendMove(a.x, a.y, 0, a.yaw);
+  }
+  for (const [, o] of others) {
+    if (nowMs - o.at > 15000) continue;
+    o.phase = (o.phase + (o.moving ? dt / 1.12 : dt / 2)) % 1;
+    avatars.add(o.x, o.y, o.z, o.yaw, o.moving ? walk : idle, o.phase, 0xd02090);
+  }
+  avatars.end();
+  renderer.render(scene, camera);
+  hud.tick(source, counts, state.count, crowd.adaptive ? crowd.params : { adaptive: false });
+  globalThis.__throngStats.crowdFrames = state.frames;
+  globalThis.__throngStats.others = others.size;
+  if (selectedId >= 0) {
+    const i = state.index.get(selectedId);
+    if (i !== undefined) {
+      panel.update({ clipName: clips.name(state.clip[i]), x: state.x[i], y: state.y[i], tier: state.tier[i] });
+    }
+  }
+}
+requestAnimationFrame(frame);
+source.start();

@@ -1,0 +1,50 @@
+// Agent panel: what the clicked agent is — id, group, behaviour (its clip), position, detail tier;
+// goal and action script fields for when the server sends them; Guide / Release buttons for its
+// group once the viewer has joined as a participant.
+const kTier = ['near (joints)', 'middle (clip + phase)', 'far (position)'];
+
+export class AgentPanel {
+  constructor(root, { onGuide, onRelease, onClose }) {
+    this.root = root;
+    this.$ = (id) => root.querySelector(`#${id}`);
+    this.$('guide-button').onclick = () => this.group !== undefined && onGuide(this.group);
+    this.$('release-button').onclick = () => this.group !== undefined && onRelease(this.group);
+    this.$('agent-close').onclick = () => { this.hide(); onClose(); };
+    this.joined = false;
+    this.guiding = new Set();
+  }
+
+  show(id, group) {
+    this.id = id;
+    this.group = group;
+    this.root.classList.remove('hidden');
+    this.$('agent-id').textContent = `#${id}`;
+    this.$('agent-group').textContent = group === undefined ? '—' : `${group}${this.guiding.has(group) ? ' (you guide it)' : ''}`;
+    this.refreshButtons();
+  }
+
+  hide() { this.root.classList.add('hidden'); this.id = undefined; }
+
+  /** Live fields, every frame while shown. */
+  update({ clipName, x, y, tier, goal, script }) {
+    this.$('agent-clip').textContent = clipName;
+    this.$('agent-pos').textContent = `(${x.toFixed(2)}, ${y.toFixed(2)}) m`;
+    this.$('agent-tier').textContent = kTier[tier] || '—';
+    if (goal !== undefined) this.$('agent-goal').textContent = goal;
+    if (script !== undefined) this.$('agent-script').textContent = script;
+  }
+
+  setJoined(joined) { this.joined = joined; this.refreshButtons(); }
+
+  guideResult(r, text) {
+    if (r.ok) { if (r.guiding) this.guiding.add(r.groupId); else this.guiding.delete(r.groupId); }
+    this.$('guide-status').textContent = text;
+    if (this.id !== undefined) this.show(this.id, this.group);
+  }
+
+  refreshButtons() {
+    const can = this.joined && this.group !== undefined;
+    this.$('guide-button').disabled = !can || this.guiding.has(this.group);
+    this.$('release-button').disabled = !can || !this.guiding.has(this.group);
+  }
+}

@@ -1,0 +1,103 @@
+// The global level-of-detail function (src/lod.js): levels by projected size, caps (largest on
+// screen win), hysteresis at the thresholds, and the frame-time budget's adaptation.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { Level, assignLevels, projectedHeight, LodBudget } from '../src/lod.js';
+
+const params = { nearPx: 100, middlePx: 20, maxNear: 10, maxMiddle: 100, hysteresis: 0.2, adaptive: true };
+
+test('projected height falls with distance and grows with screen height', () => {
+  const fov = Math.PI / 3;
+  const h10 = projectedHeight(10, fov, 1000, 1.75);
+  assert.ok(Math.abs(h10 - (1.75 * 1000) / (2 * 10 * Math.tan(fov / 2))) < 1e-9);
+  assert.ok(Math.abs(projectedHeight(20, fov, 1000) - h10 / 2) < 1e-9);
+  assert.ok(Math.abs(projectedHeight(10, fov, 2000) - h10 * 2) < 1e-9);
+});
+
+test('levels by projected size; off screen is hidden', () => {
+  const sizes = Float32Array.from([500, 150, 50, 25, 10, 1, -1]);
+  const out = new Uint8Array(sizes.length);
+  const c = assignLevels(sizes, sizes.length, null, out, params);
+  assert.deepEqual([...out], [Level.Near, Level.Near, Level.Middle, Level.Middle, Level.Far, Level.Far, Level.Hidden]);
+  assert.deepEqual([c.near, c.middle, c.far, c.hidden], [2, 2, 2, 1]);
+});
+
+test('caps keep the largest on screen; the rest drop one level', () => {
+  const n = 50;
+  const sizes = Float32Array.from({ length: n }, (_, i) => 200 + i * 10);  // all large enough for near
+  const out = new Uint8Array(n);
+  const c = assignLevels(sizes, n, null, out, { ...params, maxNear: 10 });
+  assert.equal(c.near, 10);
+  assert.equal(c.nearDemand, 50);
+  for (let i = 0; i < n; ++i) assert.equal(out[i], i >= 40 ? Level.Near : Level.Middle, `agent ${i}`);
+  const c2 = assignLevels(sizes, n, null, out, { ...params, maxNear: 10, maxMiddle: 5 });
+  assert.equal(c2.middle, 5);
+  assert.equal(c2.far, 35);
+});
+
+test('caps are exact even when every size falls in one histogram bucket', () => {
+  const n = 30;
+  const sizes = new Float32Array(n).fill(300);
+  const out = new Uint8Array(n);
+  const prev = new Uint8Array(n).fill(Level.Middle);
+  for (const i of [5, 17, 29]) prev[i] = Level.Near;
+  const c = assignLevels(sizes, n, prev, out, { ...params, maxNear: 3 });
+  assert.equal(c.near, 3);
+  // Previous holders keep their level (no flicker among equals).
+  for (const i of [5, 17, 29]) assert.equal(out[i], Level.Near);
+});
+
+test('hysteresis: a near agent stays near until clearly below the threshold', () => {
+  const out = new Uint8Array(1);
+  const near = Uint8Array.from([Level.Near]), far = Uint8Array.from([Level.Far]), mid = Uint8Array.from([Level.Middle]);
+  assignLevels(Float32Array.from([90]), 1, near, out, params);  // 90 ≥ 100 × (1 − 0.2)
+  assert.equal(out[0], Level.Near);
+  assignLevels(Float32Array.from([90]), 1, far, out, params);   // not near when coming from far
+  assert.equal(out[0], Level.Middle);
+  assignLevels(Float32Array.from([79]), 1, near, out, params);
+  assert.equal(out[0], Level.Middle);
+  assignLevels(Float32Array.from([17]), 1, mid, out, params);   // 17 ≥ 20 × 0.8: stays middle
+  assert.equal(out[0], Level.Middle);
+  assignLevels(Float32Array.from([17]), 1, far, out, params);
+  assert.equal(out[0], Level.Far);
+});
+
+test('display off: every visible agent gets the full body', () => {
+  const sizes = Float32Array.from([500, 1, -1]);
+  const out = new Uint8Array(3);
+  assignLevels(sizes, 3, null, out, { ...params, adaptive: false });
+  assert.deepEqual([...out], [Level.Near, Level.Near, Level.Hidden]);
+});
+
+test('budget: over budget shrinks caps and raises thresholds; under budget grows back', () => {
+  const b = new LodBudget({ targetFrameMs: 20, maxNear: 40, maxMiddle: 1000, periodS: 0.5 });
+  const demand = { nearDemand: 1000, middleDemand: 10000 };
+  for (let k = 0; k < 60; ++k) b.update(50, demand);  // 3 s at 20 fps against a 50 fps target
+  const p = b.params();
+  assert.ok(p.maxNear < 40 && p.maxMiddle < 1000, JSON.stringify(p));
+  assert.ok(p.nearPx > 150 && p.middlePx > 30);
+  assert.ok(p.maxNear >= 2 && p.maxMiddle >= 50);
+  for (let k = 0; k < 4000; ++k) b.update(5, demand);  // 20 s at 200 fps
+  const q = b.params();
+  assert.equal(q.maxNear, 40);
+  assert.equal(q.maxMiddle, 1000);
+  assert.equal(q.nearPx, 150);
+});
+
+test('budget: inside the dead band nothing changes (no oscillation)', () => {
+  const b = new LodBudget({ targetFrameMs: 20, maxNear: 40, maxMiddle: 1000 });
+  for (let k = 0; k < 60; ++k) b.update(50, { nearDemand: 1000, middleDemand: 10000 });
+  for (let k = 0; k < 30; ++k) b.update(20, { nearDemand: 1000, middleDemand: 10000 });  // smoothing settles
+  const before = b.params();
+  for (let k = 0; k < 600; ++k) b.update([20, 22, 17][k % 3], { nearDemand: 1000, middleDemand: 10000 });  // in the band
+  assert.deepEqual(b.params(), before);
+});
+
+test('budget: caps do not grow when nobody needs them', () => {
+  const b = new LodBudget({ targetFrameMs: 20, maxNear: 40, maxMiddle: 1000 });
+  for (let k = 0; k < 60; ++k) b.update(50, { nearDemand: 1000, middleDemand: 10000 });
+  const shrunk = b.params();
+  for (let k = 0; k < 1000; ++k) b.update(5, { nearDemand: 0, middleDemand: 0 });
+  assert.equal(b.params().maxNear, shrunk.maxNear);
+  assert.equal(b.params().maxMiddle, shrunk.maxMiddle);
+});
