@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <future>
 #include <condition_variable>
 #include <mutex>
 #include <unistd.h>
@@ -25,6 +26,7 @@
 #include "throng/hub/world_description.hpp"
 #include "throng/io/scenario_loader.hpp"
 #include "throng/server/transport.hpp"
+#include "throng/sim/animation.hpp"
 #include "throng/sim/world.hpp"
 
 namespace throng::cli {
@@ -191,8 +193,62 @@ int runServe(const ServeOptions& options) {
   std::mutex tickMutex;
   double tickMedianMs = 0.0, tickP99Ms = 0.0, publishMedianMs = 0.0, publishP99Ms = 0.0;
   std::uint64_t overruns = 0;
+  // Questions about one agent (GET /api/agent/<id>) are answered by the simulation thread between
+  // ticks, the only thread that may read the World.
+  struct AgentQuery {
+    std::uint32_t id = 0;
+    std::promise<std::optional<sim::AgentInfo>> answer;
+  };
+  std::mutex queryMutex;
+  std::vector<std::shared_ptr<AgentQuery>> queries;
+  const std::vector<sim::ClipInfo> clipTable = sim::animationClips(loaded->desc);
   t.httpHandler = [&](std::string_view target) -> std::optional<server::HttpResponse> {
     const std::string_view path = target.substr(0, target.find('?'));
+    constexpr std::string_view kAgent = "/api/agent/";
+    if (path.starts_with(kAgent)) {
+      const std::string_view digits = path.substr(kAgent.size());
+      std::uint64_t id = 0;
+      const bool numeric = !digits.empty() && digits.size() <= 9 &&
+                           std::all_of(digits.begin(), digits.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+      if (!numeric) return server::HttpResponse{400, "application/json", R"({"error":"expected /api/agent/<id>, id a number"})", {}};
+      for (char ch : digits) id = id * 10 + static_cast<std::uint64_t>(ch - '0');
+      auto query = std::make_shared<AgentQuery>();
+      query->id = static_cast<std::uint32_t>(id);
+      auto future = query->answer.get_future();
+      {
+        std::lock_guard lock(queryMutex);
+        queries.push_back(query);
+      }
+      if (future.wait_for(std::chrono::milliseconds(1000)) != std::future_status::ready) {
+        return server::HttpResponse{503, "application/json", R"({"error":"the simulation did not answer in time"})", {}};
+      }
+      const std::optional<sim::AgentInfo> info = future.get();
+      if (!info) return server::HttpResponse{404, "application/json", R"j({"error":"no such agent (not spawned yet, or left)"})j", {}};
+      const sim::ScenarioDesc& d = loaded->desc;
+      nlohmann::json j = {{"id", info->id}, {"group", info->group},
+                          {"population", info->population < d.populations.size() ? d.populations[info->population].id : ""},
+                          {"state", info->state}, {"position", {info->position.x, info->position.y}},
+                          {"target", {info->target.x, info->target.y}}, {"speed", info->speed},
+                          {"guided", info->guided},
+                          {"behaviour", info->clip < clipTable.size() ? clipTable[info->clip].name : "?"}};
+      if (info->goalPoint < d.points.size()) {
+        const sim::PointDesc& p = d.points[info->goalPoint];
+        j["goal"] = {{"point", p.id}, {"category", p.category}, {"action", p.action}};
+      } else {
+        j["goal"] = nullptr;
+      }
+      j["coordination"] = info->coordination == 0xffffffffu ? nlohmann::json(nullptr) : nlohmann::json(info->coordination);
+      j["following"] = info->followedAgent == 0xffffffffu ? nlohmann::json(nullptr) : nlohmann::json(info->followedAgent);
+      nlohmann::json script = nlohmann::json::array();
+      for (const sim::ScriptRecord& r : hub.agentScript(info->id)) {
+        script.push_back({{"coordination", r.coordination}, {"seq", r.seq}, {"role", r.role}, {"step", r.step},
+                          {"behaviour", r.behaviour}, {"motion", r.motion}, {"start", r.start}, {"duration", r.duration},
+                          {"plannedStart", r.plannedStart}, {"plannedDuration", r.plannedDuration},
+                          {"targetAgent", r.targetType == 2 ? nlohmann::json(r.targetAgent) : nlohmann::json(nullptr)}});
+      }
+      j["script"] = std::move(script);
+      return server::HttpResponse{200, "application/json", j.dump(), {}};
+    }
     if (path == "/api/status") {
       const hub::HubStatus s = hub.status();
       nlohmann::json clients = nlohmann::json::array();
@@ -288,6 +344,12 @@ int runServe(const ServeOptions& options) {
     hub.applyToWorld(*world);
     world->step(tasks);
     const sim::FramePtr frame = world->snapshot();
+    hub.observe(*frame);
+    {
+      std::lock_guard lock(queryMutex);
+      for (const auto& q : queries) q->answer.set_value(world->agentInfo(q->id));
+      queries.clear();
+    }
     const auto t1 = Clock::now();
     {
       std::lock_guard lock(frameMutex);

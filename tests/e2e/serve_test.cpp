@@ -193,6 +193,19 @@ TEST(Serve, ConnectDisconnectCyclesLeaveNoClientBehindAndHttpServesClipsAndStatu
   auto missing = server::httpRequest("127.0.0.1", server.port, "GET", "/motions/999.bvh");
   ASSERT_TRUE(missing.ok());
   EXPECT_EQ(missing->status, 404u);
+  // Who is agent 0 (the viewer's click panel): its group, state, goal, behaviour, script.
+  auto agent = server::httpRequest("127.0.0.1", server.port, "GET", "/api/agent/0");
+  ASSERT_TRUE(agent.ok());
+  ASSERT_EQ(agent->status, 200u) << agent->body;
+  const auto a = nlohmann::json::parse(agent->body);
+  EXPECT_EQ(a["id"], 0);
+  EXPECT_TRUE(a.contains("group") && a.contains("state") && a.contains("behaviour") && a.contains("script"));
+  auto gone = server::httpRequest("127.0.0.1", server.port, "GET", "/api/agent/99999");
+  ASSERT_TRUE(gone.ok());
+  EXPECT_EQ(gone->status, 404u);
+  auto bad = server::httpRequest("127.0.0.1", server.port, "GET", "/api/agent/x1");
+  ASSERT_TRUE(bad.ok());
+  EXPECT_EQ(bad->status, 400u);
   auto fresh = open(server.options("after"));
   ASSERT_TRUE(fresh);
   pumpFor({fresh.get()}, 300ms);

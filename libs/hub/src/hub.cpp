@@ -88,6 +88,9 @@ struct Hub::Impl {
     std::map<std::uint32_t, core::Vec2> avatars;       ///< participant → avatar position
     std::map<std::uint32_t, PeerKey> participants;     ///< participants present → their peer
   } input;
+  /// Latest coordination's script entries per agent (observe / agentScript).
+  mutable std::mutex scriptMutex;
+  std::map<std::uint32_t, std::vector<sim::ScriptRecord>> scripts;
 
   Impl(HubOptions o, const MotionLibrary& m, Outbox& out) : options(std::move(o)), motions(m), outbox(out) {}
 
@@ -452,6 +455,22 @@ void Hub::publish(const sim::Frame& frame, double now, const core::TaskSystem* t
     h.totals.crowdBytes += e->bytes.size();
     h.outbox.send(c.peer, std::move(e->bytes), true, kCrowdSlot);
   }
+}
+
+void Hub::observe(const sim::Frame& frame) {
+  if (frame.script.empty()) return;
+  std::lock_guard lock(impl_->scriptMutex);
+  for (const sim::ScriptRecord& r : frame.script) {
+    std::vector<sim::ScriptRecord>& entries = impl_->scripts[r.agent];
+    if (!entries.empty() && entries.back().coordination != r.coordination) entries.clear();  // a new coordination
+    if (entries.size() < 64) entries.push_back(r);
+  }
+}
+
+std::vector<sim::ScriptRecord> Hub::agentScript(std::uint32_t id) const {
+  std::lock_guard lock(impl_->scriptMutex);
+  auto it = impl_->scripts.find(id);
+  return it == impl_->scripts.end() ? std::vector<sim::ScriptRecord>{} : it->second;
 }
 
 void Hub::shutdown(const std::string& reason) {

@@ -237,6 +237,37 @@ bool World::release(GroupId handle) {
   return true;
 }
 
+std::optional<AgentInfo> World::agentInfo(std::uint32_t id) const {
+  const Impl& w = *impl_;
+  if (id >= w.rowOfId.size() || w.rowOfId[id] == kNoAgent) return std::nullopt;
+  const std::uint32_t row = w.rowOfId[id];
+  const AgentStore& a = w.agents;
+  AgentInfo info;
+  info.id = id;
+  info.group = a.group[row];
+  info.population = a.population[row];
+  info.mode = a.mode[row];
+  info.position = {a.posX[row], a.posY[row]};
+  info.target = {a.targetX[row], a.targetY[row]};
+  info.clip = a.animClip[row];
+  info.speed = a.speed[row];
+  if (row < a.coordination.size()) info.coordination = a.coordination[row];
+  if (row < a.followAgent.size()) info.followedAgent = a.followAgent[row];
+  const GroupState& g = w.groups[a.group[row]];
+  info.guided = g.guided;
+  const std::vector<std::uint32_t>& goals = w.activeGoals(g);
+  if (a.goalCursor[row] < goals.size()) info.goalPoint = goals[a.goalCursor[row]];
+  switch (a.goalState[row]) {
+    case GoalState::Seeking: info.state = "walking to its goal"; break;
+    case GoalState::Acting: info.state = "at an action point"; break;
+    case GoalState::Done: info.state = "done"; break;
+    case GoalState::Exited: info.state = "left"; break;
+    case GoalState::WaitingForGroup: info.state = "waiting for its group"; break;
+    case GoalState::Scripted: info.state = "playing a Common Ground script"; break;
+  }
+  return info;
+}
+
 void World::setViewers(std::vector<core::Vec2> viewers) { impl_->viewers = std::move(viewers); }
 
 const WorldStats& World::stats() const { return impl_->stats; }

@@ -117,6 +117,12 @@ class Hub {
   /// given. May run on its own thread, beside the simulation: applyToWorld never waits for it.
   void publish(const sim::Frame& frame, double now, const core::TaskSystem* tasks = nullptr);
 
+  /// Keeps the Common Ground action-script entries of `frame` (the simulation thread calls it for
+  /// every frame, so none is missed when the publisher skips one).
+  void observe(const sim::Frame& frame);
+  /// The action-script entries agent `id` carried out in its latest coordination (oldest first).
+  [[nodiscard]] std::vector<sim::ScriptRecord> agentScript(std::uint32_t id) const;
+
   /// Tells every client why the server stops (Bye) and closes them.
   void shutdown(const std::string& reason);
 

@@ -57,6 +57,24 @@ struct GroupInfo {
   std::uint32_t followedGroup = 0xffffffffu;
 };
 
+/// What one agent is doing, for a viewer's "who is this" panel (the server's /api/agent).
+struct AgentInfo {
+  std::uint32_t id = 0;                 ///< stable id
+  std::uint32_t group = 0;              ///< stable group id
+  std::uint32_t population = 0;         ///< index into ScenarioDesc::populations
+  AgentMode mode = AgentMode::Waiting;
+  /// "walking to its goal", "at an action point", "waiting for its group", "playing a Common Ground
+  /// script", "done", "left".
+  std::string state;
+  core::Vec2 position, target;          ///< where it is and where it heads [m]
+  std::uint32_t goalPoint = 0xffffffffu;  ///< index into ScenarioDesc::points of its current goal, or none
+  std::uint16_t clip = 0;               ///< motion clip playing (animationClips)
+  float speed = 0.0f;                   ///< desired walking speed [m/s]
+  std::uint32_t coordination = 0xffffffffu;  ///< Common Ground coordination it plays a script in, or none
+  std::uint32_t followedAgent = 0xffffffffu; ///< sociological model: the agent it follows, or none
+  bool guided = false;                  ///< its group follows a guide
+};
+
 /// Receives each phase's duration; the app passes one in (the core reads no clock itself).
 class PhaseObserver {
  public:
@@ -95,6 +113,8 @@ class World {
   [[nodiscard]] GroupId groupById(std::uint32_t id) const;
   [[nodiscard]] std::optional<GroupInfo> groupInfo(GroupId group) const;
   [[nodiscard]] std::size_t groupCount() const;
+  /// The agent with stable id `id`, if present.
+  [[nodiscard]] std::optional<AgentInfo> agentInfo(std::uint32_t id) const;
   /// The group becomes guided: `position` (an avatar's, say) is its dynamic goal until released.
   /// Returns false for a stale or null handle.
   bool guide(GroupId group, core::Vec2 position);
