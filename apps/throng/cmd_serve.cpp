@@ -6,6 +6,7 @@
 // line on stderr (terminal only) and a summary on stdout. Ctrl-C tells every client why, then stops.
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <future>
 #include <condition_variable>
@@ -23,6 +24,7 @@
 #include "validators.hpp"
 #include "throng/core/parallel.hpp"
 #include "throng/hub/hub.hpp"
+#include "throng/hub/replay.hpp"
 #include "throng/hub/world_description.hpp"
 #include "throng/io/scenario_loader.hpp"
 #include "throng/server/transport.hpp"
@@ -96,6 +98,39 @@ fs::path webRoot(const std::string& flag) {
 #endif
 }
 
+/// A SQLite file (a recording) rather than a scenario: by its first bytes.
+bool isRecording(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) return false;
+  char head[16] = {};
+  const std::size_t n = std::fread(head, 1, sizeof head, f);
+  std::fclose(f);
+  return n == sizeof head && std::memcmp(head, "SQLite format 3", 16) == 0;
+}
+
+/// The scenario stored in a recording, parsed as if it lay beside the recording, else in the source
+/// tree's scenarios/ (where the bundled scenarios, their motion clips and databases are): its clip
+/// and database paths are relative to the scenario's directory, which the recording does not keep.
+/// `dir` receives the directory that worked.
+core::Result<io::LoadedScenario> parseStoredScenario(const hub::Replay& replay, const std::string& recording,
+                                                     fs::path& dir) {
+  std::vector<fs::path> dirs{fs::path(recording).parent_path()};
+#ifdef THRONG_SCENARIOS_DIR
+  dirs.emplace_back(THRONG_SCENARIOS_DIR);
+#endif
+  const std::string name = fs::path(recording).stem().string() + ".stored-scenario.json";
+  std::optional<core::Result<io::LoadedScenario>> first;
+  for (const fs::path& candidate : dirs) {
+    auto parsed = io::parseScenario(replay.scenarioText(), (candidate / name).string());
+    if (parsed) {
+      dir = candidate;
+      return parsed;
+    }
+    if (!first) first.emplace(std::move(parsed));
+  }
+  return std::move(*first);
+}
+
 }  // namespace
 
 CLI::App* addServeCommand(CLI::App& app, ServeOptions& options) {
@@ -106,8 +141,12 @@ CLI::App* addServeCommand(CLI::App& app, ServeOptions& options) {
       "on --udp-port. Participants join with a name, move their avatars and guide groups. Each client\n"
       "gets one compressed, delta-coded crowd message per tick with the agents in its area of interest,\n"
       "at a level of detail by distance, and its animation every X frames, X regulated from its link.\n"
-      "Ctrl-C tells every client why and stops. GET /api/status gives the server's state as JSON.");
-  cmd->add_option("scenario", options.scenario, "Scenario JSON file")->required()->type_name("SCENARIO.json");
+      "Ctrl-C tells every client why and stops. GET /api/status gives the server's state as JSON.\n"
+      "Given a recording (FILE.sqlite) instead, it plays it back as the same crowd messages: viewers\n"
+      "play, pause, seek and change speed with ReplayControl messages (the viewer's timeline).");
+  cmd->add_option("scenario", options.scenario, "Scenario JSON file, or a recording of `throng run` to play back")
+      ->required()
+      ->type_name("SCENARIO.json|FILE.sqlite");
   cmd->add_option("--port", options.port, "HTTP and WebSocket port (0: any free port, printed)")
       ->check(integerRange(0, 65535))
       ->capture_default_str();
@@ -148,7 +187,19 @@ int runServe(const ServeOptions& options) {
     printDiagnostics(missing);
     return kExitFailure;
   }
-  auto loaded = io::loadScenarioFile(options.scenario);
+  // A recording (`throng run`'s SQLite file) is played back instead of simulated.
+  std::optional<hub::Replay> replay;
+  if (isRecording(options.scenario)) {
+    auto opened = hub::Replay::open(options.scenario);
+    if (!opened) {
+      printDiagnostics(opened.errors());
+      return kExitFailure;
+    }
+    replay.emplace(std::move(opened).value());
+  }
+  fs::path storedScenarioDir;
+  auto loaded = replay ? parseStoredScenario(*replay, options.scenario, storedScenarioDir)
+                       : io::loadScenarioFile(options.scenario);
   if (!loaded) {
     printDiagnostics(loaded.errors());
     return kExitFailure;
@@ -161,15 +212,21 @@ int runServe(const ServeOptions& options) {
   }
   std::unique_ptr<sim::World> world = std::move(created).value();
   const double dt = loaded->desc.dt;
-  const double tickRate = options.tick ? *options.tick : 1.0 / dt;
-  const fs::path scenarioDir = fs::path(options.scenario).parent_path();
+  const double tickRate = options.tick ? *options.tick : replay ? std::max(1.0, replay->fps()) : 1.0 / dt;
+  const fs::path scenarioDir = replay ? storedScenarioDir : fs::path(options.scenario).parent_path();
 
   std::vector<std::string> warnings;
   const hub::MotionLibrary motions = hub::MotionLibrary::load(*loaded, scenarioDir, warnings);
   if (!options.quiet) {
     for (const std::string& w : warnings) printLine(stderr, "throng serve: warning: " + w);
   }
-  const std::string worldJson = hub::describeWorld(*loaded, motions, *world, tickRate);
+  std::string worldJson = hub::describeWorld(*loaded, motions, *world, tickRate);
+  if (replay) {
+    nlohmann::json described = nlohmann::json::parse(worldJson);
+    described["replay"] = {{"duration", replay->duration()}, {"fps", replay->fps()}, {"frames", replay->frameCount()}};
+    worldJson = described.dump();
+  }
+  hub::ReplayClock clock(replay ? replay->duration() : 0.0, true);
 
   const Clock::time_point start = Clock::now();
   Bridge bridge(start);
@@ -177,6 +234,7 @@ int runServe(const ServeOptions& options) {
   hubOptions.serverName = loaded->desc.name.empty() ? fs::path(options.scenario).stem().string() : loaded->desc.name;
   hubOptions.maxClients = static_cast<std::size_t>(options.maxClients);
   hubOptions.granularity.budgetKbitPerSecond = options.budgetKbit;
+  hubOptions.replay = replay.has_value();
   hub::Hub hub(hubOptions, worldJson, static_cast<float>(tickRate), motions, bridge);
 
   server::TransportOptions t;
@@ -201,9 +259,22 @@ int runServe(const ServeOptions& options) {
   };
   std::mutex queryMutex;
   std::vector<std::shared_ptr<AgentQuery>> queries;
+  std::vector<std::shared_ptr<std::promise<std::string>>> groupQueries;  ///< GET /api/groups
   const std::vector<sim::ClipInfo> clipTable = sim::animationClips(loaded->desc);
   t.httpHandler = [&](std::string_view target) -> std::optional<server::HttpResponse> {
     const std::string_view path = target.substr(0, target.find('?'));
+    if (path == "/api/groups") {
+      auto query = std::make_shared<std::promise<std::string>>();
+      auto future = query->get_future();
+      {
+        std::lock_guard lock(queryMutex);
+        groupQueries.push_back(query);
+      }
+      if (future.wait_for(std::chrono::milliseconds(1000)) != std::future_status::ready) {
+        return server::HttpResponse{503, "application/json", R"({"error":"the simulation did not answer in time"})", {}};
+      }
+      return server::HttpResponse{200, "application/json", future.get(), {}};
+    }
     constexpr std::string_view kAgent = "/api/agent/";
     if (path.starts_with(kAgent)) {
       const std::string_view digits = path.substr(kAgent.size());
@@ -330,7 +401,7 @@ int runServe(const ServeOptions& options) {
   const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / tickRate));
   std::vector<double> tickMs;
   auto next = Clock::now();
-  double lastStatus = 0.0, lastWindow = 0.0;
+  double lastStatus = 0.0, lastWindow = 0.0, lastReplayWall = 0.0, lastReplayStatus = -1.0;
   std::uint64_t lastBytes = 0;
   const bool terminal = isatty(fileno(stderr)) != 0;
   std::string endReason = "duration reached";
@@ -341,14 +412,48 @@ int runServe(const ServeOptions& options) {
     }
     if (options.duration && bridge.now() >= *options.duration) break;
     const auto t0 = Clock::now();
-    hub.applyToWorld(*world);
-    world->step(tasks);
-    const sim::FramePtr frame = world->snapshot();
+    sim::FramePtr frame;
+    if (replay) {
+      // Playback: the clients' controls move the clock; the frame is the recorded one at its time.
+      bool changed = false;
+      for (const protocol::ReplayControl& c : hub.takeReplayControls()) changed = clock.apply(c) || changed;
+      const double wall = bridge.now();
+      changed = clock.advance(wall - lastReplayWall) || changed;
+      lastReplayWall = wall;
+      if (changed || wall - lastReplayStatus >= 1.0) {
+        lastReplayStatus = wall;
+        hub.broadcast(protocol::encode(clock.status()));
+      }
+      frame = replay->frameAt(clock.time());
+    } else {
+      hub.applyToWorld(*world);
+      world->step(tasks);
+      frame = world->snapshot();
+    }
     hub.observe(*frame);
     {
       std::lock_guard lock(queryMutex);
-      for (const auto& q : queries) q->answer.set_value(world->agentInfo(q->id));
+      for (const auto& q : queries) q->answer.set_value(replay ? std::nullopt : world->agentInfo(q->id));
       queries.clear();
+      if (!groupQueries.empty()) {
+        // The groups as they are now (most spawn after the start, so the world description lacks them).
+        nlohmann::json groups = nlohmann::json::array();
+        if (!replay) {
+          for (std::size_t g = 0; g < world->groupCount(); ++g) {
+            const auto info = world->groupInfo(world->groupById(static_cast<std::uint32_t>(g)));
+            if (!info) continue;
+            groups.push_back({{"id", info->id},
+                              {"population", info->population < loaded->desc.populations.size()
+                                                 ? loaded->desc.populations[info->population].id
+                                                 : std::string()},
+                              {"members", info->members}, {"leader", info->leader}, {"guided", info->guided},
+                              {"waiting", info->waiting}});
+          }
+        }
+        const std::string text = groups.dump();
+        for (const auto& q : groupQueries) q->set_value(text);
+        groupQueries.clear();
+      }
     }
     const auto t1 = Clock::now();
     {

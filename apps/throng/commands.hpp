@@ -1,6 +1,6 @@
 // throng CLI subcommands — each subcommand registers its flags on a CLI::App and runs from a plain
 // options struct (one file per subcommand: cmd_run.cpp, cmd_check.cpp, cmd_info.cpp,
-// cmd_bench.cpp, cmd_script.cpp, cmd_metrics.cpp, cmd_serve.cpp, cmd_loadgen.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
+// cmd_bench.cpp, cmd_script.cpp, cmd_metrics.cpp, cmd_serve.cpp, cmd_loadgen.cpp, cmd_link.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
 // interrupted by SIGINT/SIGTERM.
 #pragma once
 #include <cstdint>
@@ -99,6 +99,25 @@ struct LoadgenOptions {
   bool quiet = false;
 };
 
+struct LinkOptions {
+  std::string scenario;
+  std::string shm;                      ///< segment name ("/throng-1"); default with --socket: /throng-<pid>
+  std::string socket;                   ///< UNIX socket path for the name handshake; empty = none
+  std::optional<double> tick;           ///< ticks per second; default 1/dt
+  std::optional<double> duration;       ///< wall-clock seconds; default until Ctrl-C or the host leaves
+  int maxAgents = 10000;                ///< agent records per frame
+  int maxDetailed = 16;                 ///< agents with joint angles per frame
+  int maxAvatars = 16;
+  int maxGuides = 16;
+  double hostTimeout = 2.0;             ///< host heartbeat silence that means it is gone [s]
+  bool keepAlive = false;               ///< wait for the next host instead of exiting when it leaves
+  bool lockstep = false;                ///< step only after the host posts input_written
+  bool force = false;                   ///< replace an existing segment / socket file
+  int threads = 0;
+  std::optional<std::uint64_t> seed;
+  bool quiet = false;
+};
+
 /// Each registers its subcommand (flags bound to `options`, which must outlive parsing) and returns it.
 CLI::App* addRunCommand(CLI::App& app, RunOptions& options);
 CLI::App* addCheckCommand(CLI::App& app, CheckOptions& options);
@@ -108,6 +127,7 @@ CLI::App* addScriptCommand(CLI::App& app, ScriptOptions& options);
 CLI::App* addMetricsCommand(CLI::App& app, MetricsCmdOptions& options);
 CLI::App* addServeCommand(CLI::App& app, ServeOptions& options);
 CLI::App* addLoadgenCommand(CLI::App& app, LoadgenOptions& options);
+CLI::App* addLinkCommand(CLI::App& app, LinkOptions& options);
 
 int runRun(const RunOptions& options);
 int runCheck(const CheckOptions& options);
@@ -117,5 +137,6 @@ int runScript(const ScriptOptions& options);
 int runMetrics(const MetricsCmdOptions& options);
 int runServe(const ServeOptions& options);
 int runLoadgen(const LoadgenOptions& options);
+int runLink(const LinkOptions& options);
 
 }  // namespace throng::cli

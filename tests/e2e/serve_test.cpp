@@ -24,8 +24,7 @@ using namespace std::chrono_literals;
 /// `throng serve museum.json` on free ports, stopped with Ctrl-C at the end.
 class Server {
  public:
-  Server() : dir_("serve") {
-    const std::string scenario = std::string(THRONG_SOURCE_DIR) + "/scenarios/museum.json";
+  explicit Server(std::string scenario = std::string(THRONG_SOURCE_DIR) + "/scenarios/museum.json") : dir_("serve") {
     process_ = std::make_unique<CliProcess>(
         std::vector<std::string>{"serve", scenario, "--port", "0", "--udp-port", "0", "--max-clients", "50"}, dir_.path());
     const std::regex ws(R"(ws://127\.0\.0\.1:(\d+)/ws)"), udp(R"(udp +127\.0\.0\.1:(\d+))");
@@ -210,6 +209,59 @@ TEST(Serve, ConnectDisconnectCyclesLeaveNoClientBehindAndHttpServesClipsAndStatu
   ASSERT_TRUE(fresh);
   pumpFor({fresh.get()}, 300ms);
   EXPECT_GT(fresh->stats().crowdFrames, 0u);
+}
+
+TEST(Serve, ParticipantsAreAnnouncedToEveryone) {
+  Server server;
+  auto a = open(server.options("a"));
+  auto b = open(server.options("b"));
+  ASSERT_TRUE(a && b);
+  ASSERT_TRUE(a->join("alice").ok());
+  pumpFor({a.get(), b.get()}, 300ms);
+  ASSERT_EQ(b->participants().size(), 1u);
+  EXPECT_EQ(b->participants().front().second, "alice");
+  a->close();
+  pumpFor({b.get()}, 300ms);
+  EXPECT_TRUE(b->participants().empty());
+}
+
+TEST(Serve, PlaysARecordingBackWithASharedTimeline) {
+  ScratchDir dir("replay");
+  const CliResult run = runThrong({"run", std::string(THRONG_SOURCE_DIR) + "/scenarios/museum.json", "--duration", "20",
+                                   "--out", (dir / "museum.sqlite").string(), "--quiet"},
+                                  dir.path());
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  Server server((dir / "museum.sqlite").string());
+  ASSERT_NE(server.port, 0);
+  auto viewer = open(server.options("viewer"));
+  auto other = open(server.options("other"));
+  ASSERT_TRUE(viewer && other);
+  const auto world = nlohmann::json::parse(viewer->worldJson());
+  ASSERT_TRUE(world.contains("replay"));
+  EXPECT_NEAR(world["replay"]["duration"].get<double>(), 20.0, 0.2);
+  pumpFor({viewer.get(), other.get()}, 1200ms);
+  ASSERT_TRUE(viewer->replayStatus().has_value());
+  EXPECT_TRUE(viewer->replayStatus()->playing);
+  EXPECT_GT(viewer->stats().crowdFrames, 5u);
+  // One viewer seeks to 15 s and pauses; everyone hears it, and the crowd is the recorded one there.
+  ASSERT_TRUE(viewer->replayControl(protocol::ReplayCommand::Seek, 15.0).ok());
+  ASSERT_TRUE(viewer->replayControl(protocol::ReplayCommand::Pause).ok());
+  pumpFor({viewer.get(), other.get()}, 800ms);
+  ASSERT_TRUE(other->replayStatus().has_value());
+  EXPECT_FALSE(other->replayStatus()->playing);
+  EXPECT_NEAR(other->replayStatus()->time, 15.0, 0.2);
+  const auto paused = other->crowd();
+  ASSERT_TRUE(paused.has_value());
+  pumpFor({viewer.get(), other.get()}, 500ms);
+  ASSERT_TRUE(other->crowd().has_value());
+  EXPECT_EQ(other->crowd()->view.agents, paused->view.agents);  // paused: the crowd stands still
+  // Guiding a recorded group is refused politely.
+  ASSERT_TRUE(viewer->join("v").ok());
+  ASSERT_TRUE(viewer->guide(0).ok());
+  pumpFor({viewer.get()}, 300ms);
+  ASSERT_FALSE(viewer->guideResults().empty());
+  EXPECT_FALSE(viewer->guideResults().front().ok);
+  EXPECT_TRUE(viewer->open());
 }
 
 TEST(Serve, LoadgenReportsPerClientFiguresAndTheServerTick) {

@@ -325,6 +325,54 @@ TEST_F(HubFixture, SilentClientsTimeOutAndFloodsAreCut) {
   EXPECT_EQ(limited->reason, ReasonCode::RateLimited);
 }
 
+TEST_F(HubFixture, EveryoneHearsWhoJoinsAndWhoLeaves) {
+  connect(1);
+  connect(2);
+  const Joined a = join(1, "alice");
+  auto heard = outbox.drain(2);
+  const Presence* came = find<Presence>(heard);
+  ASSERT_NE(came, nullptr);
+  EXPECT_EQ(came->participantId, a.participantId);
+  EXPECT_TRUE(came->present);
+  EXPECT_EQ(came->name, "alice");
+  // A newcomer learns who is already there (client 2 leaves first: the fixture serves two).
+  hub->onClose(2, "done");
+  hub->onOpen(3, "late", now);
+  say(3, encode(Hello{kProtocolVersion, ClientKind::Browser, "late"}));
+  const auto late = outbox.drain(3);
+  const Presence* there = find<Presence>(late);
+  ASSERT_NE(there, nullptr);
+  EXPECT_EQ(there->name, "alice");
+  hub->onClose(1, "gone");
+  const auto left = outbox.drain(3);
+  const Presence* gone = find<Presence>(left);
+  ASSERT_NE(gone, nullptr);
+  EXPECT_FALSE(gone->present);
+  EXPECT_EQ(gone->participantId, a.participantId);
+}
+
+TEST_F(HubFixture, ReplayControlIsRefusedByALiveWorldAndQueuedByAReplay) {
+  connect(1);
+  say(1, encode(ReplayControl{0, ReplayCommand::Pause, 0.0}));
+  const auto got = outbox.drain(1);
+  const Bye* bye = find<Bye>(got);
+  ASSERT_NE(bye, nullptr);
+  EXPECT_EQ(bye->reason, ReasonCode::UnexpectedMessage);
+  HubOptions options;
+  options.replay = true;
+  Hub replay(options, "{}", 10.0f, *motions, outbox);
+  replay.onOpen(7, "viewer", now);
+  replay.onMessage(7, encode(Hello{kProtocolVersion, ClientKind::Browser, "viewer"}), now);
+  replay.onMessage(7, encode(ReplayControl{0, ReplayCommand::Seek, 12.5}), now);
+  replay.onMessage(7, encode(ReplayControl{0, ReplayCommand::Speed, 4.0}), now);
+  const auto controls = replay.takeReplayControls();
+  ASSERT_EQ(controls.size(), 2u);
+  EXPECT_EQ(controls[0].command, ReplayCommand::Seek);
+  EXPECT_DOUBLE_EQ(controls[0].value, 12.5);
+  EXPECT_TRUE(replay.takeReplayControls().empty());
+  EXPECT_FALSE(outbox.closed.count(7));
+}
+
 TEST_F(HubFixture, AClientThatNeverReadsIsCutOffAndTheOthersGoOn) {
   connect(1);
   connect(2);

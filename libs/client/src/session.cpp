@@ -88,6 +88,8 @@ struct Session::Impl {
   std::vector<protocol::GuideResult> guideResults;
   std::vector<std::pair<std::uint32_t, protocol::Move>> others;
   std::optional<protocol::Joined> joined;
+  std::optional<protocol::ReplayStatus> replayStatus;
+  std::vector<std::pair<std::uint32_t, std::string>> participants;
   SessionStats stats;
   bool isOpen = true;
   std::string closeReason;
@@ -150,6 +152,11 @@ struct Session::Impl {
       auto it = std::find_if(others.begin(), others.end(), [&](const auto& e) { return e.first == id; });
       if (it == others.end()) others.emplace_back(id, *mv);
       else it->second = *mv;
+    } else if (auto* rs = std::get_if<protocol::ReplayStatus>(&m)) {
+      replayStatus = *rs;
+    } else if (auto* p = std::get_if<protocol::Presence>(&m)) {
+      std::erase_if(participants, [&](const auto& e) { return e.first == p->participantId; });
+      if (p->present) participants.emplace_back(p->participantId, p->name);
     } else if (auto* bye = std::get_if<protocol::Bye>(&m)) {
       isOpen = false;
       closeReason = bye->text;
@@ -256,6 +263,12 @@ core::Status Session::move(float x, float y, float yaw) {
 core::Status Session::guide(std::uint32_t group) { return impl_->send(protocol::encode(protocol::Guide{impl_->token, group})); }
 core::Status Session::release(std::uint32_t group) { return impl_->send(protocol::encode(protocol::Release{impl_->token, group})); }
 core::Status Session::leave() { return impl_->send(protocol::encode(protocol::Leave{impl_->token})); }
+
+core::Status Session::replayControl(protocol::ReplayCommand command, double value) {
+  return impl_->send(protocol::encode(protocol::ReplayControl{impl_->token, command, value}));
+}
+const std::optional<protocol::ReplayStatus>& Session::replayStatus() const { return impl_->replayStatus; }
+const std::vector<std::pair<std::uint32_t, std::string>>& Session::participants() const { return impl_->participants; }
 
 bool Session::pump(std::chrono::milliseconds wait) { return impl_->pump(wait); }
 const std::optional<protocol::DecodedCrowdFrame>& Session::crowd() const { return impl_->crowd; }

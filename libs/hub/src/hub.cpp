@@ -6,6 +6,7 @@
 #include <map>
 #include <mutex>
 #include <random>
+#include <utility>
 
 #include "throng/core/parallel.hpp"
 #include "throng/protocol/messages.hpp"
@@ -87,6 +88,7 @@ struct Hub::Impl {
     std::map<std::uint32_t, std::uint32_t> guideOf;    ///< group → participant guiding it
     std::map<std::uint32_t, core::Vec2> avatars;       ///< participant → avatar position
     std::map<std::uint32_t, PeerKey> participants;     ///< participants present → their peer
+    std::vector<protocol::ReplayControl> replayControls;
   } input;
   /// Latest coordination's script entries per agent (observe / agentScript).
   mutable std::mutex scriptMutex;
@@ -147,8 +149,18 @@ struct Hub::Impl {
     from.lastState[type] = std::move(bytes);
   }
 
+  /// Tells every welcomed client (but `except`) that a participant came or went.
+  void announce(const Client& who, bool present, PeerKey except) {
+    const Bytes bytes = protocol::encode(protocol::Presence{who.participantId, present, who.name});
+    for (auto& [peer, c] : clients) {
+      if (peer == except || !c.welcomed || c.closing) continue;
+      outbox.send(peer, bytes, false, 0);
+    }
+  }
+
   /// The participant is gone (Leave, closed): its groups go back to their own goals.
   void dropParticipant(Client& c) {
+    announce(c, false, c.peer);
     std::lock_guard lock(input.mutex);
     for (const auto& [group, participant] : input.guideOf) {
       if (participant == c.participantId) input.requests.push_back({c.peer, c.participantId, group, false, false});
@@ -230,9 +242,12 @@ void Hub::Impl::handle(Client& c, const protocol::Message& message, double now) 
     c.welcomed = true;
     c.name = hello->clientName;
     outbox.send(c.peer, welcome, false, 0);
-    // Everything participants said last, so the newcomer sees their avatars at once.
+    // Who is here, and everything participants said last, so the newcomer sees their avatars at once.
     for (auto& [peer, other] : clients) {
       if (peer == c.peer) continue;
+      if (other.participant && !other.closing) {
+        outbox.send(c.peer, protocol::encode(protocol::Presence{other.participantId, true, other.name}), false, 0);
+      }
       for (const auto& [type, state] : other.lastState) outbox.send(c.peer, state, true, relaySlot(other.participantId, type));
     }
     return;
@@ -254,6 +269,7 @@ void Hub::Impl::handle(Client& c, const protocol::Message& message, double now) 
             input.participants[c.participantId] = c.peer;
           }
           outbox.send(c.peer, encode(Joined{c.participantId, c.token}), false, 0);
+          announce(c, true, 0);
         } else if constexpr (std::is_same_v<M, Leave>) {
           if (!owns(c, m.token, "Leave")) return;
           dropParticipant(c);
@@ -297,9 +313,26 @@ void Hub::Impl::handle(Client& c, const protocol::Message& message, double now) 
             return;
           }
           relay(c, m);
+        } else if constexpr (std::is_same_v<M, ReplayControl>) {
+          if (!options.replay) {
+            fail(c, ReasonCode::UnexpectedMessage, "ReplayControl: this server runs a live world, not a recording");
+            return;
+          }
+          if (m.token != 0 && (!c.participant || m.token != c.token)) {
+            fail(c, ReasonCode::BadToken, "ReplayControl with a token that is not this client's");
+            return;
+          }
+          if (!allowState(c, now)) return;
+          std::lock_guard lock(input.mutex);
+          input.replayControls.push_back(m);
         } else if constexpr (std::is_same_v<M, Guide> || std::is_same_v<M, Release>) {
           constexpr bool guide = std::is_same_v<M, Guide>;
           if (!owns(c, m.token, guide ? "Guide" : "Release") || !allowState(c, now)) return;
+          if (options.replay) {
+            // A recording cannot be steered: say so, keep the session.
+            outbox.send(c.peer, encode(GuideResult{m.groupId, false, false, ReasonCode::UnknownGroup}), false, 0);
+            return;
+          }
           std::lock_guard lock(input.mutex);
           input.requests.push_back({c.peer, c.participantId, m.groupId, guide, true});
         } else if constexpr (std::is_same_v<M, Ack>) {
@@ -454,6 +487,18 @@ void Hub::publish(const sim::Frame& frame, double now, const core::TaskSystem* t
     ++h.totals.crowdFrames;
     h.totals.crowdBytes += e->bytes.size();
     h.outbox.send(c.peer, std::move(e->bytes), true, kCrowdSlot);
+  }
+}
+
+std::vector<protocol::ReplayControl> Hub::takeReplayControls() {
+  std::lock_guard lock(impl_->input.mutex);
+  return std::exchange(impl_->input.replayControls, {});
+}
+
+void Hub::broadcast(const std::vector<std::uint8_t>& message) {
+  std::lock_guard lock(impl_->mutex);
+  for (auto& [peer, c] : impl_->clients) {
+    if (c.welcomed && !c.closing) impl_->outbox.send(peer, message, false, 0);
   }
 }
 

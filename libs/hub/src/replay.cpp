@@ -204,7 +204,8 @@ core::Result<Replay> Replay::open(const std::string& path) {
       const std::int64_t f = s.integer(0);
       if (f < 0 || f >= frameCount) continue;
       frames[static_cast<std::size_t>(f)]->tick = static_cast<std::uint64_t>(std::max<std::int64_t>(0, s.integer(1)));
-      const double t = s.real(2);
+      // tick × dt with a float dt (0.05f): rounded to the microsecond, 0.1000000015 s reads 0.1 s.
+      const double t = std::round(s.real(2) * 1e6) / 1e6;
       if (std::isfinite(t)) data->times[static_cast<std::size_t>(f)] = t;
     }
     if (rc != SQLITE_DONE) return diag(path, "cannot read throng_frames (" + db.message() + ")");

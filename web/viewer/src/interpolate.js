@@ -11,6 +11,7 @@
 
 const kTwoPi = Math.PI * 2;
 const kTeleport = 5;  // [m] farther than this between frames: snap instead of gliding
+export const kStrideCycle = 1.4;  // [m] ground covered by one walk cycle (two steps) of the bundled walk
 
 /** Signed smallest difference b − a of two angles [rad], in [−π, π). */
 export function angleDelta(a, b) {
@@ -122,6 +123,9 @@ export class CrowdState {
       }
       this.x[i] = this.fromX[i]; this.y[i] = this.fromY[i]; this.z[i] = this.fromZ[i]; this.yaw[i] = this.fromYaw[i];
     }
+    // Far-tier agents carry no clip or phase (protocol): they walk at the rate their ground speed
+    // gives (one walk cycle per kStrideCycle metres), so distant walkers still step.
+    for (let i = 0; i < n; ++i) if (this.tier[i] === 2) this.rate[i] = this.speed[i] / kStrideCycle;
     if (frame.joints) for (const [id, j] of frame.joints) this.joints.set(id, j);
   }
 

@@ -116,6 +116,21 @@ source.on('world', async (w) => {
     },
   };
 });
+// Groups formed after the start (populations that spawn later) are not in the world description:
+// a live viewer asks /api/groups ([{id, population, members}], current membership) every 3 s, and
+// stops asking when the server does not have it.
+function pollGroups() {
+  if (source.kind !== 'live' || !crowd) return;
+  fetch('/api/groups').then((r) => (r.ok ? r.json() : Promise.reject(new Error(`HTTP ${r.status}`)))).then((j) => {
+    const groups = Array.isArray(j) ? j : j.groups;
+    if (!Array.isArray(groups)) return;
+    crowd.setGroups(groups);
+    groupList.setGroups(groups);
+    description.groups = groups;
+    setTimeout(pollGroups, 3000);
+  }).catch(() => {});
+}
+source.on('world', () => setTimeout(pollGroups, 1000));
 source.on('presence', (p) => {
   if (!p.present) others.delete(p.participantId);
   else if (others.has(p.participantId)) others.get(p.participantId).name = p.name;
@@ -178,6 +193,28 @@ $('lod-toggle').onchange = (e) => { if (crowd) crowd.adaptive = e.target.checked
 let timeline = source.kind === 'replay' ? new Timeline($('timeline'), source) : null;
 source.on('timeline', (s) => { if (!timeline) { timeline = new Timeline($('timeline'), source); timeline.update(s); } });
 
+// The selected agent's goal, state and Common Ground script: GET /api/agent/<id> (live server),
+// once a second while its panel is open.
+let agentInfo = null, agentInfoTimer = null;
+function describeScript(script) {
+  if (!script || !script.length) return '—';
+  const role = ['A', 'B', 'companion'];
+  return script.slice(-4).map((r) => `${role[r.role] ?? r.role}: step ${r.step} ${r.behaviour || r.motion || ''}`.trim()).join(' → ');
+}
+function fetchAgentInfo(id) {
+  clearTimeout(agentInfoTimer);
+  agentInfo = null;
+  if (source.kind !== 'live' || id < 0) return;
+  fetch(`/api/agent/${id}`).then((r) => (r.ok ? r.json() : null)).then((j) => {
+    if (id !== selectedId) return;
+    agentInfo = j && {
+      goal: j.goal ? `${j.goal.point}${j.guided ? ' (guided)' : ''} — ${j.state || ''}`.trim() : (j.guided ? 'guided' : j.state || '—'),
+      script: describeScript(j.script),
+    };
+    agentInfoTimer = setTimeout(() => fetchAgentInfo(id), 1000);
+  }).catch(() => {});
+}
+
 // Picking: a click (not a drag) selects the agent under the pointer.
 const raycaster = new THREE.Raycaster();
 let downAt = null;
@@ -192,6 +229,7 @@ renderer.domElement.addEventListener('pointerup', (e) => {
   if (i >= 0) {
     const g = crowd.groupOf.get(selectedId);
     panel.show(selectedId, g);
+    fetchAgentInfo(selectedId);
     groupList.pick(g);
   } else {
     panel.hide();
@@ -230,7 +268,8 @@ function frame() {
   if (selectedId >= 0) {
     const i = state.index.get(selectedId);
     if (i !== undefined) {
-      panel.update({ clipName: clips.name(state.clip[i]), x: state.x[i], y: state.y[i], tier: state.tier[i] });
+      panel.update({ clipName: clips.name(state.clip[i]), x: state.x[i], y: state.y[i], tier: state.tier[i],
+        goal: agentInfo ? agentInfo.goal : undefined, script: agentInfo ? agentInfo.script : undefined });
     }
   }
 }

@@ -3,7 +3,7 @@
 // departed agents vanish, phases advance between frames at the rate the frames show.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { CrowdState, angleDelta, phaseForward } from '../src/interpolate.js';
+import { CrowdState, angleDelta, phaseForward, kStrideCycle } from '../src/interpolate.js';
 import { frameFromAgents } from '../src/sources/frame.js';
 
 const near = (a, b, eps = 1e-4) => assert.ok(Math.abs(a - b) < eps, `${a} ≉ ${b}`);
@@ -80,4 +80,17 @@ test('phase holds when the server skips animation (granularity X > 1) and snaps 
   near(s.phase[0], 0.1);
   for (let t = 0.4; t < 5; t += 0.2) s.advance(t);  // a non-looping clip holds its end
   assert.ok(s.phase[0] <= 0.9991 && s.phase[0] > 0.99, `${s.phase[0]}`);
+});
+
+test('far-tier agents (no clip or phase on the wire) step at the rate their speed gives', () => {
+  const s = new CrowdState(clips, 0.1);
+  for (let k = 0; k <= 20; ++k) s.applyFrame(frameFromAgents([{ id: 7, tier: 2, x: 0.12 * k, y: 0 }]), 0.1 * k);
+  near(s.speed[0], 1.2, 1e-3);  // 0.12 m per 0.1 s
+  near(s.rate[0], 1.2 / kStrideCycle, 1e-3);
+  const before = s.phase[0];
+  s.advance(2.0 + 0.5);
+  near(phaseForward(before, s.phase[0]), (0.5 * 1.2) / kStrideCycle, 1e-3);
+  // Standing: the rate falls to zero.
+  for (let k = 21; k <= 60; ++k) s.applyFrame(frameFromAgents([{ id: 7, tier: 2, x: 2.4, y: 0 }]), 0.1 * k);
+  assert.ok(s.rate[0] < 0.01, `rate ${s.rate[0]}`);
 });

@@ -17,7 +17,7 @@ export class Cameras {
     const span = Math.max(bounds.maxX - bounds.minX, bounds.maxY - bounds.minY, 10);
     this.bounds = bounds;
     this.orbit.target.set(cx, 0, -cy);
-    camera.position.set(cx, span * 0.55, -cy + span * 0.75);
+    camera.position.set(cx, span * 0.45, -cy + span * 0.6);
     this.orbit.update();
     this.avatar = { x: cx, y: cy, yaw: Math.PI / 2, moving: false, speed: 0 };
     this.keys = new Set();

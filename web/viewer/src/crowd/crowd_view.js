@@ -21,8 +21,7 @@ export class CrowdView {
     this.middle = new MiddleBodies(scene, this.joints);
     this.atlas = renderAtlas(renderer, this.joints, this.near.geometry, clips);
     this.far = new Billboards(scene, this.atlas.texture);
-    this.groupOf = new Map();
-    for (const g of description.groups || []) for (const m of g.members || []) this.groupOf.set(m, g.id);
+    this.setGroups(description.groups || []);
     this.colors = kPalette.map((c) => new THREE.Color(c));
     this.highlight = new THREE.Color(0xffe040);
     this.adaptive = options.adaptive !== false;
@@ -40,6 +39,12 @@ export class CrowdView {
     this.frustum = new THREE.Frustum();
     this.m = new THREE.Matrix4();
     this.sphere = new THREE.Sphere(new THREE.Vector3(), 1.1);
+  }
+
+  /** Group membership: [{id, members}] (agent ids). */
+  setGroups(groups) {
+    this.groupOf = new Map();
+    for (const g of groups) for (const m of g.members || []) this.groupOf.set(m, g.id);
   }
 
   colorOf(id) {
@@ -76,6 +81,7 @@ export class CrowdView {
     const params = this.adaptive ? this.budget.update(frameMs, this.counts) : { ...defaultLodParams, adaptive: false };
     this.params = params;
     this.counts = assignLevels(this.sizes, n, prev, this.levels, params, this.scratch);
+    const walkClip = this.clips.walkClipId(), idleClip = this.clips.idleClipId();
     this.near.begin();
     this.middle.begin(n);
     this.far.begin(n);
@@ -83,7 +89,8 @@ export class CrowdView {
       const l = this.levels[i];
       if (l === Level.Hidden) continue;
       const id = state.ids[i];
-      const c = state.clip[i];
+      // Far-tier data has no clip: walk when it moves, idle when it stands (see interpolate.js).
+      const c = state.tier[i] === 2 ? (state.speed[i] > 0.25 ? walkClip : idleClip) : state.clip[i];
       const color = this.colorOf(id);
       if (l === Level.Near) {
         this.near.add(state.x[i], state.y[i], state.z[i], state.yaw[i], c, state.phase[i], color.getHex(), state.tier[i] === 0 ? state.joints.get(id) : null);

@@ -1,8 +1,8 @@
 // Live data source: the WebSocket to `throng serve` at ws(s)://<host>/ws. Session: sends Hello,
 // receives Welcome (→ 'world': the world description JSON), then crowd frames (→ 'frame', each
 // acknowledged with Ack so the server delta-codes against it), relayed participant Moves
-// (→ 'participant'), Joined (→ 'joined'), GuideResult (→ 'guide'). Sends Heartbeat every second
-// (echoing the server's clock for its round-trip time), Move at most 10 Hz from the avatar,
+// (→ 'participant'), Joined (→ 'joined'), GuideResult (→ 'guide'). Pings (Heartbeat, echoUs 0) every second
+// and answers the server's pings at once (round-trip times both ways), Move at most 10 Hz from the avatar,
 // Join/Leave/Guide/Release on request. Connection lost: 'status' {state: 'lost', retryIn} and a
 // reconnect with exponential backoff (0.5 s … 10 s, jittered); after it, the participant joins
 // again under the same name. Presence (participants joining/leaving, with names) → 'presence';
@@ -21,8 +21,10 @@ const {
   ClientKind, encodeAck, encodeGuide, encodeHeartbeat, encodeHello, encodeJoin, encodeLeave, encodeMove, encodeRelease,
   encodeBye,
 } = encode;
-const kReplayCommand = { play: 0, pause: 1, seek: 2, speed: 3 };
-const kReplayEncoder = 'encodeReplayControl';
+const kReplayCommand = { play: encode.ReplayCommand.Play, pause: encode.ReplayCommand.Pause,
+  seek: encode.ReplayCommand.Seek, speed: encode.ReplayCommand.Speed };
+
+function nowUs() { return BigInt(Math.round((performance.timeOrigin + performance.now()) * 1000)); }
 
 export function reasonText(code) { return kReason[code] || `reason ${code}`; }
 
@@ -101,9 +103,9 @@ export class LiveSource extends Emitter {
 
   send(bytes) { if (this.ws && this.ws.readyState === WebSocket.OPEN) this.ws.send(bytes); }
 
+  /** A ping (echoUs 0): the server answers at once, echoing our time (round trip). */
   heartbeat() {
-    const nowUs = BigInt(Math.round((performance.timeOrigin + performance.now()) * 1000));
-    this.send(encodeHeartbeat({ token: this.token, timeUs: nowUs, echoUs: this.peerTimeUs }));
+    this.send(encodeHeartbeat({ token: this.token, timeUs: nowUs(), echoUs: 0n }));
   }
 
   receive(bytes) {
@@ -166,13 +168,16 @@ export class LiveSource extends Emitter {
         break;
       case 'Heartbeat':
         this.peerTimeUs = BigInt(m.timeUs);
-        if (m.echoUs && BigInt(m.echoUs) > 0n) {
-          const nowUs = BigInt(Math.round((performance.timeOrigin + performance.now()) * 1000));
-          this.rttMs = Number(nowUs - BigInt(m.echoUs)) / 1000;
+        if (BigInt(m.echoUs) === 0n) {
+          // The server's ping: answer at once, echoing its time.
+          this.send(encodeHeartbeat({ token: this.token, timeUs: nowUs(), echoUs: this.peerTimeUs }));
+        } else {
+          this.rttMs = Number(nowUs() - BigInt(m.echoUs)) / 1000;
         }
         break;
       case 'Bye':
-        this.closeReason = `server closed the connection: ${reasonText(m.reason)}${m.text ? ` — ${m.text}` : ''}`;
+        this.closeReason = `server closed the connection: ${m.text && m.text.startsWith(reasonText(m.reason)) ? m.text
+          : `${reasonText(m.reason)}${m.text ? ` — ${m.text}` : ''}`}`;
         break;
       default:
         break;
@@ -185,11 +190,9 @@ export class LiveSource extends Emitter {
     this.participants = ids.size;
   }
 
-  /** Replay control (a server started on a recording); needs encodeReplayControl (encode.js). */
+  /** Replay control (a server started on a recording). */
   replayControl(command, value = 0) {
-    const encoder = encode[kReplayEncoder];  // looked up by name: encode.js gains it with protocol ReplayControl
-    if (!encoder) { console.warn('throng: this viewer cannot encode ReplayControl yet'); return; }
-    this.send(encoder({ token: this.token, command: kReplayCommand[command], value }));
+    this.send(encode.encodeReplayControl({ token: this.token, command: kReplayCommand[command], value }));
   }
 
   play() { this.replayControl('play'); }

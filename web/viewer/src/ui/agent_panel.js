@@ -18,6 +18,7 @@ export class AgentPanel {
     this.id = id;
     this.group = group;
     this.root.classList.remove('hidden');
+    if (id !== this.shownId) { this.$('agent-goal').textContent = '—'; this.$('agent-script').textContent = '—'; this.shownId = id; }
     this.$('agent-id').textContent = `#${id}`;
     this.$('agent-group').textContent = group === undefined ? '—' : `${group}${this.guiding.has(group) ? ' (you guide it)' : ''}`;
     this.refreshButtons();

@@ -21,7 +21,11 @@ export class GroupList {
 
   /** The world description's groups: [{id, population, members}]. */
   setGroups(groups) {
+    const keep = this.selected();
+    const signature = JSON.stringify((groups || []).map((g) => [g.id, g.population, (g.members || []).length]));
     this.groups = groups || [];
+    if (signature === this.signature) return;  // unchanged: leave an open drop-down alone
+    this.signature = signature;
     this.select.replaceChildren();
     const none = document.createElement('option');
     none.value = '-1';
@@ -33,11 +37,12 @@ export class GroupList {
       o.textContent = `group ${g.id}${g.population ? ` · ${g.population}` : ''} · ${(g.members || []).length}`;
       this.select.append(o);
     }
+    if (this.groups.some((g) => g.id === keep)) this.select.value = String(keep);
     this.$('group-row').classList.toggle('hidden', this.groups.length === 0);
     this.refresh();
   }
 
-  selected() { return Number(this.select.value ?? -1); }
+  selected() { const v = this.select.value; return v === '' || v === undefined ? -1 : Number(v); }
 
   /** Picks group `g` (e.g. the group of a clicked agent). */
   pick(g) {

@@ -60,6 +60,12 @@ class Session {
   core::Status guide(std::uint32_t group);
   core::Status release(std::uint32_t group);
   core::Status leave();
+  /// Drives a replay (a server playing a recording): play, pause, seek [s], speed (factor).
+  core::Status replayControl(protocol::ReplayCommand command, double value = 0.0);
+  /// The newest ReplayStatus heard (replays only).
+  [[nodiscard]] const std::optional<protocol::ReplayStatus>& replayStatus() const;
+  /// Participants present, by id, with their names (Presence messages).
+  [[nodiscard]] const std::vector<std::pair<std::uint32_t, std::string>>& participants() const;
 
   /// Handles every message waiting (or the next within `wait`): crowd frames are decoded and
   /// acknowledged, heartbeats answered, relays and guide results kept. Returns false once the

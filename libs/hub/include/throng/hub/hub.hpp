@@ -25,6 +25,7 @@
 #include "throng/hub/interest.hpp"
 #include "throng/hub/motion_library.hpp"
 #include "throng/protocol/crowd_encoder.hpp"
+#include "throng/protocol/messages.hpp"
 #include "throng/sim/frame.hpp"
 #include "throng/sim/world.hpp"
 
@@ -66,6 +67,9 @@ struct HubOptions {
   double stateMessagesPerSecond = 60.0;    ///< participant state messages per client [1/s]
   double stateBurst = 120.0;               ///< token bucket size [messages]
   std::size_t maxGuidedGroups = 16;        ///< groups one participant may guide at once
+  /// The world is a recording played back (`throng serve FILE.sqlite`): clients drive it with
+  /// ReplayControl (takeReplayControls); there are no groups to guide.
+  bool replay = false;
 };
 
 /// One client as the server's status output shows it.
@@ -116,6 +120,11 @@ class Hub {
   /// clients that timed out or stalled. Clients' frames are encoded in parallel on `tasks` when
   /// given. May run on its own thread, beside the simulation: applyToWorld never waits for it.
   void publish(const sim::Frame& frame, double now, const core::TaskSystem* tasks = nullptr);
+
+  /// Replay: the ReplayControl messages received since the last call, in order.
+  [[nodiscard]] std::vector<protocol::ReplayControl> takeReplayControls();
+  /// Sends `message` to every welcomed client (reliable), e.g. a ReplayStatus.
+  void broadcast(const std::vector<std::uint8_t>& message);
 
   /// Keeps the Common Ground action-script entries of `frame` (the simulation thread calls it for
   /// every frame, so none is missed when the publisher skips one).

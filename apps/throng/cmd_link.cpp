@@ -1,0 +1,420 @@
+// `throng link --shm NAME SCENARIO.json` — runs the crowd as an external process that a host
+// application drives over POSIX shared memory (Musse et al. §5; include/throng/throng_link.h,
+// docs/integration.md). Each tick: read the host's input (avatars → World::setViewers, guides →
+// World::guide / release), answer its requests, step the World, write the frame (and the joint
+// angles of the agents the host asked for) into the idle frame buffer, bump the heartbeat, post
+// frame_ready. Optionally tells hosts the segment's name over a UNIX socket (--socket). Ends at
+// --duration, on Ctrl-C, when the host detaches or when its heartbeat stops; then removes the
+// segment. Reads the scenario and its clips; writes the segment, the socket, lines on stdout and
+// problems on stderr.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <span>
+#include <thread>
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "output.hpp"
+#include "signal.hpp"
+#include "validators.hpp"
+#include "throng/core/parallel.hpp"
+#include "throng/hub/motion_library.hpp"
+#include "throng/io/scenario_loader.hpp"
+#include "throng/link/handshake_server.hpp"
+#include "throng/link/segment.hpp"
+#include "throng/sim/animation.hpp"
+#include "throng/sim/world.hpp"
+
+namespace throng::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+void copyName(char* dst, std::size_t size, const std::string& text) {
+  const std::size_t n = std::min(size - 1, text.size());
+  std::memcpy(dst, text.data(), n);
+  dst[n] = '\0';
+}
+
+/// Writes one frame of the World into the segment's idle buffer.
+class FrameWriter {
+ public:
+  FrameWriter(link::Segment& segment, const hub::MotionLibrary& motions) : segment_(segment), motions_(motions) {}
+
+  void write(const sim::Frame& frame, const sim::World& world, const std::vector<std::uint32_t>& detailIds) {
+    throng_link_header& h = segment_.header();
+    // Stable group of each agent (ids are spawn order, groups 0 .. groupCount - 1).
+    const std::size_t groups = world.groupCount();
+    groupOf_.assign(world.stats().spawned, 0xffffffffu);
+    for (std::uint32_t g = 0; g < groups; ++g) {
+      if (auto info = world.groupInfo(world.groupById(g))) {
+        for (std::uint32_t m : info->members) {
+          if (m < groupOf_.size()) groupOf_[m] = g;
+        }
+      }
+    }
+    throng_link_frame& f = segment_.beginFrame();
+    const std::uint32_t n = static_cast<std::uint32_t>(std::min<std::size_t>(frame.size(), h.max_agents));
+    throng_link_agent* agents = throng_link_frame_agents(&h, &f);
+    for (std::uint32_t i = 0; i < n; ++i) {
+      throng_link_agent& a = agents[i];
+      a.id = frame.ids[i];
+      a.group = a.id < groupOf_.size() ? groupOf_[a.id] : 0xffffffffu;
+      a.x = frame.posX[i];
+      a.y = frame.posY[i];
+      a.z = 0.0f;  // 2D scenarios: the ground plane
+      a.yaw = std::atan2(frame.oriY[i], frame.oriX[i]);
+      a.phase = frame.phase[i];
+      a.clip = frame.clip[i];
+      a.mode = static_cast<std::uint8_t>(frame.mode[i]);
+      a.reserved = 0;
+    }
+    // Joint angles of the agents the host wants in full detail (present ones, in its order).
+    std::uint32_t detailed = 0;
+    for (std::uint32_t id : detailIds) {
+      if (detailed >= h.max_detailed) break;
+      const auto it = std::lower_bound(frame.ids.begin(), frame.ids.end(), id);
+      if (it == frame.ids.end() || *it != id) continue;
+      const std::size_t row = static_cast<std::size_t>(it - frame.ids.begin());
+      throng_link_detailed* d = throng_link_frame_detailed(&h, &f, detailed++);
+      d->id = id;
+      d->joint_count = h.joint_count;
+      d->clip = frame.clip[row];
+      d->reserved0 = 0;
+      d->phase = frame.phase[row];
+      if (h.joint_count > 0) {
+        motions_.sample(frame.clip[row], frame.phase[row],
+                        std::span<float>(throng_link_detailed_angles(d), std::size_t{3} * h.joint_count));
+      }
+    }
+    f.tick = frame.tick;
+    f.time = frame.time;
+    f.agent_count = n;
+    f.total_agents = static_cast<std::uint32_t>(frame.size());
+    f.detailed_count = detailed;
+    f.group_count = static_cast<std::uint32_t>(groups);
+    f.flags = frame.size() > h.max_agents ? THRONG_LINK_FRAME_TRUNCATED : 0u;
+    segment_.publishFrame();
+  }
+
+ private:
+  link::Segment& segment_;
+  const hub::MotionLibrary& motions_;
+  std::vector<std::uint32_t> groupOf_;
+};
+
+/// Applies the host's avatars and guides to the World; remembers which groups it guides.
+class HostInputApplier {
+ public:
+  void apply(const link::HostInput& in, sim::World& world) {
+    std::vector<core::Vec2> viewers;
+    viewers.reserve(in.avatars.size());
+    for (const throng_link_avatar& a : in.avatars) viewers.push_back({a.x, a.y});
+    world.setViewers(std::move(viewers));
+    std::set<std::uint32_t> now;
+    for (const throng_link_guide& g : in.guides) {
+      if (!g.active) continue;
+      const sim::GroupId handle = world.groupById(g.group);
+      if (handle.isNull() || g.avatar >= in.avatars.size()) {
+        if (warned_.insert(g.group).second) {
+          printLine(stderr, fmt::format("throng link: warning: guide record for group {} ignored: {}", g.group,
+                                        handle.isNull() ? "no such group" : "its avatar index is past the avatar count"));
+        }
+        continue;
+      }
+      world.guide(handle, {in.avatars[g.avatar].x, in.avatars[g.avatar].y});
+      now.insert(g.group);
+    }
+    for (std::uint32_t g : guided_) {
+      if (!now.contains(g)) world.release(world.groupById(g));
+    }
+    guided_ = std::move(now);
+  }
+  /// The host left: every group it guided goes back to its own goals, no viewers.
+  void releaseAll(sim::World& world) {
+    for (std::uint32_t g : guided_) world.release(world.groupById(g));
+    guided_.clear();
+    world.setViewers({});
+  }
+
+ private:
+  std::set<std::uint32_t> guided_;
+  std::set<std::uint32_t> warned_;
+};
+
+/// Insert / remove requests: answered "not supported yet" until the World can add crowds at run time.
+void answerRequests(link::Segment& segment) {
+  while (auto r = segment.takeRequest()) {
+    throng_link_reply reply{};
+    reply.request_id = r->request_id;
+    if (r->kind == THRONG_LINK_REQUEST_INSERT || r->kind == THRONG_LINK_REQUEST_REMOVE) {
+      reply.status = THRONG_LINK_STATUS_NOT_SUPPORTED;
+      copyName(reply.message, sizeof reply.message,
+               fmt::format("crowd {} is not supported yet by this throng: the simulation cannot add or remove "
+                           "crowds while it runs; request ignored",
+                           r->kind == THRONG_LINK_REQUEST_INSERT ? "insertion" : "removal"));
+    } else {
+      reply.status = THRONG_LINK_STATUS_INVALID;
+      copyName(reply.message, sizeof reply.message,
+               fmt::format("unknown request kind {}; expected 1 (insert) or 2 (remove)", r->kind));
+    }
+    segment.putReply(reply);
+  }
+}
+
+}  // namespace
+
+CLI::App* addLinkCommand(CLI::App& app, LinkOptions& options) {
+  CLI::App* cmd = app.add_subcommand("link", "Run the crowd for a host application over shared memory");
+  cmd->footer(
+      "Runs the scenario in real time in a POSIX shared-memory segment that a host application (a game\n"
+      "engine, a virtual-world client, a robot simulator) opens by name: the crowd's frames go in, the host's\n"
+      "avatars and the groups they guide come out. Layout: include/throng/throng_link.h; protocol and the\n"
+      "three ways of starting: docs/integration.md. With --socket PATH, hosts can also connect to a UNIX\n"
+      "socket to learn the segment's name. Ends at --duration, on Ctrl-C, when the host detaches (exit 0)\n"
+      "or when its heartbeat stops (exit 1; with --keep-alive it waits for the next host instead).\n"
+      "Crowd insertion/removal requests are answered \"not supported yet\".");
+  cmd->add_option("scenario", options.scenario, "Scenario JSON file")->required()->type_name("SCENARIO.json");
+  cmd->add_option("--shm", options.shm, "Name of the shared-memory segment (\"/throng-1\"; a missing leading / is "
+                                        "added). Default with --socket: /throng-<pid>")
+      ->type_name("NAME");
+  cmd->add_option("--socket", options.socket, "Also listen on this UNIX socket path and tell each host the segment's "
+                                              "name and the layout version")
+      ->type_name("PATH");
+  cmd->add_option("--tick", options.tick, "Ticks per second in real time; default 1/dt of the scenario")
+      ->type_name("HZ")
+      ->check(positiveNumber("Hz"));
+  cmd->add_option("--duration", options.duration, "Stop after this many seconds of wall-clock time (default: "
+                                                  "until Ctrl-C or the host leaves)")
+      ->type_name("S")
+      ->check(positiveNumber("s"));
+  cmd->add_option("--max-agents", options.maxAgents, "Agent records per frame; more agents are left out and the "
+                                                     "frame is flagged truncated")
+      ->check(integerRange(1, 10000000))
+      ->capture_default_str();
+  cmd->add_option("--max-detailed", options.maxDetailed, "Agents whose joint angles a host may ask for per frame")
+      ->check(integerRange(1, 1024))
+      ->capture_default_str();
+  cmd->add_option("--max-avatars", options.maxAvatars, "Avatar records the host may write")
+      ->check(integerRange(1, 1024))
+      ->capture_default_str();
+  cmd->add_option("--max-guides", options.maxGuides, "Guide records the host may write")
+      ->check(integerRange(1, 1024))
+      ->capture_default_str();
+  cmd->add_option("--host-timeout", options.hostTimeout, "A host whose heartbeat stays still this long is gone [s]")
+      ->check(positiveNumber("s"))
+      ->capture_default_str();
+  cmd->add_flag("--keep-alive", options.keepAlive, "When the host leaves or stops, release its groups and wait "
+                                                   "for the next host instead of exiting");
+  cmd->add_flag("--lockstep", options.lockstep, "Step only after the host posts input_written (the host sets the "
+                                                "pace; --tick is then a maximum)");
+  cmd->add_flag("--force", options.force, "Replace an existing segment or socket file of the same name");
+  cmd->add_option("--threads", options.threads, "Simulation worker threads; 0 = all hardware threads")
+      ->check(integerRange(0, 1024))
+      ->capture_default_str();
+  cmd->add_option("--seed", options.seed, "Random seed; overrides the scenario's \"seed\"")->type_name("N");
+  cmd->add_flag("--quiet", options.quiet, "Only errors and the lines a host's launcher waits for");
+  return cmd;
+}
+
+int runLink(const LinkOptions& options) {
+  InterruptGuard interrupts;
+  std::string name = options.shm;
+  if (name.empty() && options.socket.empty()) {
+    printLine(stderr, "throng link: give --shm NAME (the segment's name), --socket PATH, or both");
+    return kExitUsage;
+  }
+  if (name.empty()) name = fmt::format("/throng-{}", getpid());
+  if (name[0] != '/') name.insert(name.begin(), '/');
+  if (auto missing = checkInputFile(options.scenario, "scenario"); !missing.empty()) {
+    printDiagnostics(missing);
+    return kExitFailure;
+  }
+  auto loaded = io::loadScenarioFile(options.scenario);
+  if (!loaded) {
+    printDiagnostics(loaded.errors());
+    return kExitFailure;
+  }
+  if (options.seed) loaded->desc.seed = *options.seed;
+  auto created = sim::World::create(loaded->desc, loaded->navmesh);
+  if (!created) {
+    printDiagnostics(created.errors());
+    return kExitFailure;
+  }
+  std::unique_ptr<sim::World> world = std::move(created).value();
+  const double tickRate = options.tick ? *options.tick : 1.0 / loaded->desc.dt;
+  std::vector<std::string> warnings;
+  const hub::MotionLibrary motions =
+      hub::MotionLibrary::load(*loaded, fs::path(options.scenario).parent_path(), warnings);
+  if (!options.quiet) {
+    for (const std::string& w : warnings) printLine(stderr, "throng link: warning: " + w);
+  }
+
+  link::SegmentOptions so;
+  so.maxAgents = static_cast<std::uint32_t>(options.maxAgents);
+  so.maxDetailed = static_cast<std::uint32_t>(options.maxDetailed);
+  so.maxJoints = static_cast<std::uint32_t>(motions.jointCount());
+  so.maxAvatars = static_cast<std::uint32_t>(options.maxAvatars);
+  so.maxGuides = static_cast<std::uint32_t>(options.maxGuides);
+  so.maxClips = static_cast<std::uint32_t>(motions.clips().size());
+  so.dt = loaded->desc.dt;
+  so.tickRate = tickRate;
+  so.heartbeatTimeoutMs = static_cast<std::uint32_t>(std::lround(options.hostTimeout * 1000.0));
+  so.lockstep = options.lockstep;
+  so.force = options.force;
+  so.scenario = loaded->desc.name.empty() ? fs::path(options.scenario).stem().string() : loaded->desc.name;
+  auto made = link::Segment::create(name, so);
+  if (!made) {
+    printDiagnostics(made.errors());
+    return kExitFailure;
+  }
+  std::unique_ptr<link::Segment> segment = std::move(made).value();
+  // Skeleton and clips, written once before hosts may read.
+  const hub::Skeleton& skeleton = motions.skeleton();
+  for (std::size_t j = 0; j < skeleton.names.size(); ++j) {
+    throng_link_joint& out = segment->skeleton()[j];
+    copyName(out.name, sizeof out.name, skeleton.names[j]);
+    out.parent = skeleton.parents[j];
+    std::copy(skeleton.offsets[j].begin(), skeleton.offsets[j].end(), out.offset);
+  }
+  for (std::size_t c = 0; c < motions.clips().size(); ++c) {
+    throng_link_clip& out = segment->clips()[c];
+    copyName(out.name, sizeof out.name, motions.clips()[c].name);
+    out.duration = motions.clips()[c].duration;
+    out.loops = motions.clips()[c].loops ? 1u : 0u;
+  }
+  segment->setCounts(static_cast<std::uint32_t>(skeleton.names.size()),
+                     static_cast<std::uint32_t>(motions.clips().size()));
+
+  std::unique_ptr<link::HandshakeServer> handshake;
+  if (!options.socket.empty()) {
+    const bool quiet = options.quiet;
+    auto started = link::HandshakeServer::start(options.socket, name, options.force,
+                                                [quiet](bool refused, const std::string& message) {
+                                                  if (refused) printLine(stderr, "throng link: " + message);
+                                                  else if (!quiet) printLine(stdout, "throng link: " + message);
+                                                });
+    if (!started) {
+      printDiagnostics(started.errors());
+      return kExitFailure;
+    }
+    handshake = std::move(started).value();
+  }
+  segment->start();
+  // Launchers and tests wait for these lines (printed even with --quiet).
+  printLine(stdout, fmt::format("throng link: {} — segment {} (layout version {}), {:.4g} ticks/s{}", so.scenario, name,
+                                THRONG_LINK_VERSION, tickRate, options.lockstep ? ", lockstep" : ""));
+  if (handshake) printLine(stdout, fmt::format("  socket     {}", options.socket));
+  printLine(stdout, "  waiting for a host (Ctrl-C to stop)");
+
+  core::TaskSystem tasks(options.threads);
+  FrameWriter writer(*segment, motions);
+  HostInputApplier applier;
+  throng_link_header& h = segment->header();
+  const auto start = Clock::now();
+  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / tickRate));
+  auto next = Clock::now();
+  bool attached = false;
+  std::uint64_t lastHostBeat = 0;
+  auto lastHostChange = Clock::now();
+  std::vector<std::uint32_t> detailIds;
+  std::uint64_t ticks = 0;
+  int exitCode = kExitOk;
+  std::string endReason = "duration reached";
+  while (true) {
+    if (InterruptGuard::requested()) {
+      endReason = "interrupted (Ctrl-C)";
+      exitCode = kExitInterrupted;
+      break;
+    }
+    if (options.duration && secondsSince(start) >= *options.duration) break;
+    // The host: attach (version check), leave, or fall silent.
+    const std::uint32_t hostState = __atomic_load_n(&h.host_state, __ATOMIC_ACQUIRE);
+    if (!attached && hostState == THRONG_LINK_HOST_ATTACHED) {
+      if (h.host_version != THRONG_LINK_VERSION) {
+        const std::string why = fmt::format("host (pid {}) speaks link version {}, this crowd speaks version {}: refused",
+                                            h.host_pid, h.host_version, THRONG_LINK_VERSION);
+        copyName(h.message, sizeof h.message, why);
+        __atomic_store_n(&h.host_state, THRONG_LINK_HOST_REFUSED, __ATOMIC_RELEASE);
+        printLine(stderr, "throng link: " + why);
+      } else {
+        attached = true;
+        lastHostBeat = __atomic_load_n(&h.host_heartbeat, __ATOMIC_ACQUIRE);
+        lastHostChange = Clock::now();
+        if (!options.quiet) printLine(stdout, fmt::format("throng link: host attached (pid {})", h.host_pid));
+      }
+    }
+    if (attached) {
+      const std::uint64_t beat = __atomic_load_n(&h.host_heartbeat, __ATOMIC_ACQUIRE);
+      std::string gone;
+      if (hostState == THRONG_LINK_HOST_DETACHED) {
+        gone = "host detached";
+      } else if (beat != lastHostBeat) {
+        lastHostBeat = beat;
+        lastHostChange = Clock::now();
+      } else if (secondsSince(lastHostChange) >= options.hostTimeout) {
+        gone = fmt::format("host stopped: no heartbeat for {:.1f} s", secondsSince(lastHostChange));
+        exitCode = kExitFailure;
+      }
+      if (!gone.empty()) {
+        applier.releaseAll(*world);
+        detailIds.clear();
+        attached = false;
+        if (!options.keepAlive) {
+          endReason = gone;
+          if (exitCode != kExitOk) printLine(stderr, "throng link: " + gone);
+          break;
+        }
+        printLine(exitCode == kExitOk ? stdout : stderr, "throng link: " + gone + "; waiting for the next host");
+        exitCode = kExitOk;
+        __atomic_store_n(&h.host_state, THRONG_LINK_HOST_NONE, __ATOMIC_RELEASE);
+      }
+    }
+    // Lockstep: the host sets the pace; beat while waiting so it knows we are alive.
+    if (options.lockstep && !segment->waitInput(100)) {
+      segment->beat();
+      continue;
+    }
+    if (attached) {
+      if (auto in = segment->readInput()) {
+        applier.apply(*in, *world);
+        detailIds = std::move(in->detailIds);
+      }
+    }
+    answerRequests(*segment);
+    world->step(tasks);
+    const sim::FramePtr frame = world->snapshot();
+    writer.write(*frame, *world, detailIds);
+    ++ticks;
+    next += period;
+    const auto now = Clock::now();
+    if (now > next) {
+      next = now;  // late: never catch up in a burst
+    } else {
+      std::this_thread::sleep_until(next);
+    }
+  }
+  segment->stop(endReason);
+  handshake.reset();
+  segment.reset();  // removes the segment's name; hosts still mapping it read STOPPED and the reason
+  if (!options.quiet || exitCode != kExitOk) {
+    printLine(exitCode == kExitOk ? stdout : stderr,
+              fmt::format("throng link: {} after {}: {} ticks; segment {} removed", endReason,
+                          formatSeconds(secondsSince(start)), ticks, name));
+  }
+  return exitCode;
+}
+
+}  // namespace throng::cli
