@@ -1,5 +1,6 @@
 // throng::io scenario loading — the public entry points: text (or a file) → JsonDocument →
-// ParsedScenario (+ motion clips, scenario_clips) → validated LoadedScenario. Reads the file and
+// ParsedScenario (+ motion clips, scenario_clips; timeline crowd files, scenario_timeline) →
+// validated LoadedScenario. Reads the file and
 // the BVH clips it names; writes nothing. No exception escapes: even an internal failure becomes a
 // diagnostic.
 #include "throng/io/scenario_loader.hpp"
@@ -14,6 +15,7 @@
 #include "scenario_clips.hpp"
 #include "scenario_parser.hpp"
 #include "scenario_social.hpp"
+#include "scenario_timeline.hpp"
 #include "scenario_validator.hpp"
 
 namespace throng::io {
@@ -29,6 +31,8 @@ core::Result<LoadedScenario> parseScenario(std::string_view text, const std::str
     loadScenarioSocial(doc.value(), parsed, diagnostics);
     std::shared_ptr<const nav::NavMesh> navmesh;
     if (doc.value().root().is_object()) validateScenario(doc.value(), parsed, options, diagnostics, navmesh);
+    // Timeline crowds join the scenario as validated (its navmesh when reachability was checked).
+    if (diagnostics.empty()) loadScenarioTimeline(doc.value(), parsed.desc, navmesh, diagnostics);
     if (!diagnostics.empty()) {
       // Report in file order: that is how people fix them. The scenario's own come first, then
       // those of its motion clips, file by file.

@@ -317,7 +317,7 @@ ParsedScenario ScenarioReader::run() {
   if (!isObject(root, "", "a scenario object {\"format\": \"throng/1\", ...}")) return out;
   checkKeys(root, "",
             {"$schema", "format", "name", "seed", "duration", "dt", "walkable", "obstacles", "points", "populations",
-             "steering", "navCellSize", "social"},
+             "steering", "navCellSize", "social", "timeline"},
             "the scenario");
   if (auto* x = require(root, "", "format", "\"throng/1\"")) {
     if (readString(*x, "/format", "\"throng/1\"", desc.format) && desc.format != "throng/1") {
@@ -407,6 +407,7 @@ ParsedScenario ScenarioReader::run() {
     }
   }
   if (auto* x = optional(root, "social")) readSocial(*x, "/social", desc.social);
+  if (auto* x = optional(root, "timeline")) readTimeline(*x, "/timeline", desc.timeline);
   checkCategories(out);
   out.structureOk = diags_.size() == before;
   return out;

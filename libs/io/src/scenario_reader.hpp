@@ -60,6 +60,12 @@ class ScenarioReader {
   ScenarioReader(const JsonDocument& doc, core::Diagnostics& diags) : doc_(doc), diags_(diags) {}
 
   ParsedScenario run();
+  /// A crowd file (crowd_parser.cpp) read against a world: the result's desc holds the world's
+  /// geometry, social section and points followed by the crowd's points, and only the crowd's
+  /// populations (indices into that point list; follow populations index the world's populations
+  /// followed by the crowd's). `takenPoints`/`takenPopulations`: ids also in use (earlier crowds).
+  ParsedScenario runCrowd(const sim::ScenarioDesc& world, const std::vector<std::string>& takenPoints,
+                          const std::vector<std::string>& takenPopulations, std::string& crowdId);
 
  private:
   void error(const std::string& ptr, std::string what, std::string expected, std::string hint = {}, bool atKey = false) {
@@ -258,6 +264,8 @@ class ScenarioReader {
   /// Needs and interests name categories some point has.
   void checkCategories(const ParsedScenario& out);
   void resolveFollows(ParsedScenario& out);
+  /// The scenario's "timeline" (crowd_parser.cpp): entries parsed, crowd files not read yet.
+  void readTimeline(const Json& v, const std::string& ptr, std::vector<sim::TimelineEntry>& out);
   bool resolvePoint(const Json& v, const std::string& ptr, std::uint32_t& out);
   void readPolygonList(const Json& root, const std::string& key, bool required, std::vector<core::Polygon>& out,
                        std::vector<bool>& ok);

@@ -62,6 +62,12 @@ class Validator {
   Validator(const JsonDocument& doc, const ParsedScenario& parsed, core::Diagnostics& diags)
       : doc_(doc), parsed_(parsed), desc_(parsed.desc), diags_(diags) {}
 
+  /// A crowd file: points before `firstOwnPoint` are the world's; the world's navmesh is given.
+  void useWorld(std::size_t firstOwnPoint, std::shared_ptr<const nav::NavMesh> navmesh) {
+    firstOwnPoint_ = firstOwnPoint;
+    worldNavmesh_ = std::move(navmesh);
+  }
+
   void run(const LoadOptions& options, std::shared_ptr<const nav::NavMesh>& navmesh) {
     const bool geometryOk = !desc_.walkable.empty() &&
                             std::all_of(parsed_.walkableOk.begin(), parsed_.walkableOk.end(), [](bool b) { return b; }) &&
@@ -233,7 +239,12 @@ class Validator {
     nav::NavMeshConfig config;
     config.agentRadius = desc_.maxRadius();
     config.cellSize = desc_.navCellSize;
-    auto built = nav::NavMesh::build(desc_.walkable, desc_.obstacles, config);
+    if (worldNavmesh_) {
+      navmesh = worldNavmesh_;
+      config.agentRadius = navmesh->config().agentRadius;
+    }
+    auto built = worldNavmesh_ ? core::Result<std::shared_ptr<const nav::NavMesh>>(std::shared_ptr<const nav::NavMesh>(worldNavmesh_))
+                               : nav::NavMesh::build(desc_.walkable, desc_.obstacles, config);
     if (!built.ok()) {
       for (core::Diagnostic d : built.errors()) {
         // The navmesh names its own inputs ("navmesh", "/cellSize"); in a scenario the problem
@@ -248,12 +259,12 @@ class Validator {
       }
       return;
     }
-    navmesh = built.value();
+    if (!worldNavmesh_) navmesh = built.value();
     nav::NavQuery query(navmesh);
     const float width = 2.0f * config.agentRadius;
     // Every point must touch the walkable area, used as a goal or not: a point out in the void is
     // a typo in its coordinates.
-    for (std::size_t i = 0; i < desc_.points.size(); ++i) {
+    for (std::size_t i = firstOwnPoint_; i < desc_.points.size(); ++i) {
       const sim::PointDesc& point = desc_.points[i];
       float reach = point.radius;
       if (!point.polygon.empty()) {
@@ -261,7 +272,7 @@ class Validator {
         reach = 0.5f * core::length(box.max - box.min);
       }
       if (!query.nearest(goalTarget(point), reach + 1.0f)) {
-        error("/points/" + std::to_string(i),
+        error("/points/" + std::to_string(i - firstOwnPoint_),
               "point \"" + point.id + "\" at (" + num(point.position.x) + ", " + num(point.position.y) +
                   ") lies outside the walkable area (no walkable ground within " + num(reach + 1.0f) + " m)",
               "a region that overlaps /walkable");
@@ -311,6 +322,8 @@ class Validator {
   BMulti walk_;
   BMulti free_;
   std::vector<BPolygon> obstacles_;
+  std::size_t firstOwnPoint_ = 0;
+  std::shared_ptr<const nav::NavMesh> worldNavmesh_;
 };
 
 }  // namespace
@@ -322,6 +335,21 @@ void validateScenario(const JsonDocument& doc, const ParsedScenario& parsed, con
     Validator(doc, parsed, own).run(options, navmesh);
   } catch (const std::exception& e) {
     own.push_back(doc.diagnostic("", std::string("cannot validate the geometry: ") + e.what(), "simple polygons"));
+  }
+  diagnostics.insert(diagnostics.end(), own.begin(), own.end());
+}
+
+void validateCrowd(const JsonDocument& doc, const ParsedScenario& parsed, std::size_t firstOwnPoint,
+                   std::shared_ptr<const nav::NavMesh> navmesh, core::Diagnostics& diagnostics) {
+  core::Diagnostics own;
+  try {
+    Validator v(doc, parsed, own);
+    const bool check = navmesh != nullptr;
+    v.useWorld(firstOwnPoint, std::move(navmesh));
+    std::shared_ptr<const nav::NavMesh> unused;
+    v.run(LoadOptions{check}, unused);
+  } catch (const std::exception& e) {
+    own.push_back(doc.diagnostic("", std::string("cannot validate the crowd's geometry: ") + e.what(), "simple polygons"));
   }
   diagnostics.insert(diagnostics.end(), own.begin(), own.end());
 }

@@ -23,4 +23,10 @@ inline constexpr double kSpawnPackingFactor = 0.5;
 void validateScenario(const JsonDocument& doc, const ParsedScenario& parsed, const LoadOptions& options,
                       core::Diagnostics& diagnostics, std::shared_ptr<const nav::NavMesh>& navmesh);
 
+/// A crowd file's checks (crowd_parser.cpp): `parsed` as ScenarioReader::runCrowd made it. Points
+/// before `firstOwnPoint` are the world's (valid already, not checked again; pointers to the
+/// crowd's own points count from it). Reachability uses the world's `navmesh` (none: skipped).
+void validateCrowd(const JsonDocument& doc, const ParsedScenario& parsed, std::size_t firstOwnPoint,
+                   std::shared_ptr<const nav::NavMesh> navmesh, core::Diagnostics& diagnostics);
+
 }  // namespace throng::io

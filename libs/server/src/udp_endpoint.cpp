@@ -188,8 +188,9 @@ void UdpEndpoint::finishPeer(const std::shared_ptr<UdpPeer>& peer) {
   peer->counters().queueMessages.store(0);
   peer->counters().queueBytes.store(0);
   if (auto it = peers_.find(peer->remote_); it != peers_.end() && it->second == peer) peers_.erase(it);
-  transport_.handler().onClose(peer->id(), peer->closeReason_);
+  // Gone from the peer table first: once onClose runs, stats() and send() no longer know the id.
   transport_.removePeer(peer->id(), true);
+  transport_.handler().onClose(peer->id(), peer->closeReason_);
 }
 
 void UdpEndpoint::updateQueueCounters(UdpPeer& peer) {

@@ -218,8 +218,9 @@ void WsPeer::finish(std::string reason) {
   queue_.clear();  // inFlight_ stays until its (aborted) write completes
   counters().queueMessages.store(0);
   counters().queueBytes.store(0);
-  if (opened) transport_.handler().onClose(id(), reason);
+  // Gone from the peer table first: once onClose runs, stats() and send() no longer know the id.
   transport_.removePeer(id(), opened);
+  if (opened) transport_.handler().onClose(id(), reason);
 }
 
 void WsPeer::updateQueueCounters() {

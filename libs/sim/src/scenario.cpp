@@ -1,5 +1,5 @@
 // throng::sim::ScenarioDesc — derived facts about a scenario description (largest body radius,
-// presence of exits). Reads the description only.
+// presence of exits, a crowd's most agents). Reads the description only.
 #include "throng/sim/scenario.hpp"
 
 #include <algorithm>
@@ -10,6 +10,12 @@ float ScenarioDesc::maxRadius() const {
   float r = 0.0f;
   for (const PopulationDesc& p : populations) r = std::max(r, p.radius);
   return r;
+}
+
+std::uint64_t CrowdDesc::maxAgents() const {
+  std::uint64_t n = 0;
+  for (const PopulationDesc& p : populations) n += std::uint64_t{p.groups} * p.sizeMax;
+  return n;
 }
 
 bool ScenarioDesc::hasExit() const {

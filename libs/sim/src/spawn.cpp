@@ -218,6 +218,7 @@ std::vector<Event> World::Impl::takeEvents() {
 }
 
 void World::Impl::applyCommands() {
+  applyCrowdCommands();  // inserted crowds' populations starting now spawn below
   for (std::size_t p = 0; p < desc.populations.size(); ++p) {
     if (!populationSpawned[p] && populationStartTick[p] <= tick) spawnPopulation(p);
   }

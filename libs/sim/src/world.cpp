@@ -71,6 +71,8 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   w.subOccupancy.assign(w.subregions.size(), 0);
   w.planPopulations();
   for (const PopulationDesc& pop : desc.populations) w.anySocial = w.anySocial || pop.sociological.enabled;
+  w.navRadius = desc.maxRadius();
+  w.initTimeline();
   w.applyCommands();  // populations starting at t = 0 are present in the first snapshot
   return world;
 }
@@ -84,7 +86,7 @@ void World::step(const core::TaskSystem& tasks, PhaseObserver* observer) {
     Scope(PhaseObserver* obs, std::string_view n) : o(obs), name(n) { if (o) o->phaseBegin(name); }
     ~Scope() { if (o) o->phaseEnd(name); }
   };
-  { Scope s(observer, "applyCommands"); if (w.tick > 0) w.applyCommands(); }
+  { Scope s(observer, "applyCommands"); if (w.tick > 0 || w.crowdsPending()) w.applyCommands(); }
   { Scope s(observer, "sense"); w.sense(tasks); }
   { Scope s(observer, "decide"); w.decide(tasks); }
   { Scope s(observer, "plan"); w.plan(); }
@@ -176,7 +178,7 @@ FramePtr World::snapshot() {
 
 bool World::finished() const {
   const Impl& w = *impl_;
-  if (w.stats.scheduled > 0) return false;
+  if (w.stats.scheduled > 0 || w.crowdsPending()) return false;
   for (std::uint8_t spawned : w.populationSpawned) if (!spawned) return false;
   for (std::size_t r = 0; r < w.agents.size(); ++r) {
     if (w.agents.goalState[r] != GoalState::Done) return false;

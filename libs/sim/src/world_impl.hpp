@@ -1,5 +1,6 @@
 // World::Impl — the world's state and its phases. Each phase lives in its own file:
 //   spawn.cpp      applyCommands: populations due this tick enter the world
+//   insert.cpp     crowds inserted and removed at run time (API and scenario timeline)
 //   sense.cpp      grid rebuild and k-nearest neighbours
 //   decide.cpp     goal logic: regions reached, actions, exits, new targets
 //   plan.cpp       budgeted path planning through nav::PathQueue
@@ -100,6 +101,20 @@ struct GroupCommand {
   std::uint32_t group = 0;
   bool guide = false;  ///< false = release
   core::Vec2 position;
+};
+
+/// An inserted crowd (insert.cpp): queued by World::insertCrowd or the timeline, applied at the
+/// start of a tick, maybe removed later.
+struct CrowdState {
+  CrowdDesc desc;                  ///< kept until applied, then cleared (its parts live in World::Impl::desc)
+  CrowdInfo info;
+  std::vector<std::string> pointIds, populationIds;  ///< taken ids (clash checks, also while queued)
+};
+
+/// A crowd command, applied in order at the start of the next tick.
+struct CrowdCommand {
+  std::uint32_t crowd = 0;  ///< index into World::Impl::crowds
+  bool insert = true;       ///< false = remove
 };
 
 /// Per-worker scratch: navmesh queries and buffers reused across agents (never shared by threads).
@@ -241,6 +256,23 @@ struct World::Impl {
   void recordSpawn(std::uint32_t population, std::uint32_t agent, std::uint32_t group, std::uint32_t member);
   /// pendingEvents with the spawn runs written out in place (empties both).
   std::vector<Event> takeEvents();
+
+  // Inserted crowds (insert.cpp).
+  std::vector<CrowdState> crowds;
+  std::vector<CrowdCommand> crowdCommands;
+  std::vector<std::uint64_t> timelineTick;  ///< per desc.timeline entry: the tick it applies at
+  std::size_t timelineNext = 0;             ///< first timeline entry not applied yet
+  std::uint64_t insertedAgents = 0;         ///< most agents all insertions may add (kMaxInsertedAgents)
+  float navRadius = 0.0f;                   ///< the navmesh's erosion radius (the scenario's largest body) [m]
+  /// Checks a crowd against the world and the crowds queued before it (nothing changes on failure).
+  [[nodiscard]] core::Diagnostics checkCrowd(const CrowdDesc& crowd) const;
+  std::uint32_t queueCrowd(const CrowdDesc& crowd);
+  void initTimeline();
+  /// Timeline entries and API crowd commands due this tick, in that order (from applyCommands).
+  void applyCrowdCommands();
+  void insertCrowdNow(CrowdState& crowd);
+  void removeCrowdNow(CrowdState& crowd);
+  [[nodiscard]] bool crowdsPending() const { return !crowdCommands.empty() || timelineNext < desc.timeline.size(); }
 
   // Phases.
   void planPopulations();

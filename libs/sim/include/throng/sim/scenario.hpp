@@ -185,6 +185,34 @@ struct SocialDesc {
   social::ClipLengths clipLengths;  ///< every clip the micro-behaviour database plays, from BVH files
 };
 
+/// A crowd added to a running world (World::insertCrowd, a scenario's timeline): new points and
+/// populations, parsed from a crowd file (io::parseCrowd, docs/scenario-format.md "Crowd files").
+/// Point indices in its populations (goals, a spawn point) below `basePoints` name the world's
+/// points; from `basePoints` on they name this crowd's own `points` (index - basePoints). The
+/// world only ever appends points, so indices below basePoints stay valid. A "follow" population
+/// index works the same way with `basePopulations`.
+struct CrowdDesc {
+  std::string id;                           ///< unique among the world's crowds; removeCrowd names it
+  std::vector<PointDesc> points;            ///< new points; ids unique in the world
+  std::vector<PopulationDesc> populations;  ///< ids unique in the world; `start` is relative to the insertion [s]
+  std::uint32_t basePoints = 0;             ///< the world's point count the indices were resolved against
+  std::uint32_t basePopulations = 0;        ///< the world's population count likewise
+
+  /// Most agents it may spawn: groups × largest group size, summed.
+  [[nodiscard]] std::uint64_t maxAgents() const;
+};
+
+/// A scenario timeline entry: at `time` a crowd is inserted or a crowd is removed (its agents leave).
+enum class TimelineAction : std::uint8_t { Insert, Remove };
+
+struct TimelineEntry {
+  float time = 0.0f;        ///< [s] from the start of the run
+  TimelineAction action = TimelineAction::Insert;
+  std::string path;         ///< Insert: the crowd file as written (relative to the scenario)
+  CrowdDesc crowd;          ///< Insert: loaded and validated by io
+  std::string crowdId;      ///< Remove: id of an inserted crowd
+};
+
 struct ScenarioDesc {
   std::string format = "throng/1";
   std::string name;
@@ -198,6 +226,9 @@ struct ScenarioDesc {
   SteeringDesc steering;
   float navCellSize = 0.0f;  ///< navmesh voxel size [m]; 0 = chosen from the geometry
   SocialDesc social;
+  /// Crowds inserted and removed at given times, ascending (stable for equal times). The World
+  /// applies them at the start of the tick at or after each time (io loads the crowd files).
+  std::vector<TimelineEntry> timeline;
 
   /// The largest body radius of any population (the navmesh is eroded by it).
   [[nodiscard]] float maxRadius() const;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -26,6 +27,7 @@ struct WorldStats {
   double time = 0.0;                 ///< [s]
   std::uint32_t spawned = 0;
   std::uint32_t exited = 0;
+  std::uint32_t removed = 0;         ///< agents that left because their crowd was removed (not in `exited`)
   std::uint32_t active = 0;          ///< in the world now
   std::uint32_t scheduled = 0;       ///< still to spawn
   double lastExitTime = -1.0;        ///< [s]; < 0 when nobody exited
@@ -75,6 +77,27 @@ struct AgentInfo {
   bool guided = false;                  ///< its group follows a guide
 };
 
+/// Most agents one crowd insertion may add (groups × largest group size, summed).
+inline constexpr std::uint64_t kMaxInsertAgents = 10000;
+/// Most agents all insertions into one world may add together, over the whole run.
+inline constexpr std::uint64_t kMaxInsertedAgents = 200000;
+
+/// An inserted crowd as the World sees it (World::crowds).
+struct CrowdInfo {
+  std::string id;
+  std::uint32_t index = 0;            ///< insertion order (what insertCrowd returned)
+  bool applied = false;               ///< inserted at the start of a tick (false: still queued)
+  bool removed = false;               ///< removeCrowd took effect: its agents left
+  std::uint64_t insertTick = 0;       ///< tick it was applied at (valid when applied)
+  std::uint32_t firstPopulation = 0;  ///< its populations: [first, first + populations) of desc().populations
+  std::uint32_t populations = 0;
+  std::uint32_t firstPoint = 0;       ///< its points: [first, first + points) of desc().points
+  std::uint32_t points = 0;
+  std::uint32_t firstGroup = 0;       ///< its groups' stable ids: [first, first + groups)
+  std::uint32_t groups = 0;
+  std::uint32_t present = 0;          ///< its agents in the world now
+};
+
 /// Receives each phase's duration; the app passes one in (the core reads no clock itself).
 class PhaseObserver {
  public:
@@ -120,6 +143,22 @@ class World {
   bool guide(GroupId group, core::Vec2 position);
   /// Guidance ends; the group resumes its own goals where it left them.
   bool release(GroupId group);
+  /// Queues a crowd (validated by io::parseCrowd against this world) for the start of the next
+  /// tick: its points and populations are appended to desc(), its groups get the next group ids,
+  /// its agents the next agent ids as they spawn; population start times count from that tick.
+  /// Refused, with nothing changed, when its id, a population id or a point id is already taken
+  /// (queued crowds included), an index is out of range, a body radius exceeds the navmesh's
+  /// erosion radius, an action point plays an action the world has no clip for, or the agents
+  /// exceed kMaxInsertAgents or, with the earlier insertions, kMaxInsertedAgents. Returns the
+  /// crowd's index (insertion order). Deterministic: the same insertions before the same ticks
+  /// give the same trajectories for any thread count.
+  core::Result<std::uint32_t> insertCrowd(const CrowdDesc& crowd);
+  /// Queues the removal of crowd `id`: at the start of the next tick its agents leave (an Exit
+  /// event with a = 0xffffffff, b = the crowd's index) and its populations spawn nobody more.
+  /// Its points, groups and ids stay taken. False when no crowd has that id or it is removed.
+  bool removeCrowd(std::string_view id);
+  /// Every crowd inserted or queued, in insertion order (timeline crowds included).
+  [[nodiscard]] std::vector<CrowdInfo> crowds() const;
   /// Viewer positions for multiresolution steering (SteeringDesc::lodDistance).
   void setViewers(std::vector<core::Vec2> viewers);
 

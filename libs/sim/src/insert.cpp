@@ -1,0 +1,370 @@
+// Crowds inserted at run time — World::insertCrowd / removeCrowd and the scenario timeline.
+// A crowd (CrowdDesc: new points and populations) is checked against the world when it is queued
+// and applied at the start of the next tick (applyCommands), before any population spawns that
+// tick: its points and populations are appended to the description, its groups get the next
+// stable group ids, its agents the next agent ids as they spawn, and the optional agent columns it
+// needs (formation, sociological model) are created. A removal takes the crowd's agents out at the
+// start of the tick (an Exit event each, a = kNoAgent). Everything is serial and in command order,
+// so trajectories never depend on the thread count. Reads and writes World::Impl only.
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "throng/sim/animation.hpp"
+#include "world_impl.hpp"
+
+namespace throng::sim {
+namespace {
+
+/// Population indices are 16 bits in the agent store and the group table.
+constexpr std::size_t kMaxPopulations = 0xffff;
+/// Interests are a 64-bit mask over the point categories (Common Ground).
+constexpr std::size_t kMaxCategories = 64;
+
+std::uint64_t ticksOf(float time, float dt) {
+  return static_cast<std::uint64_t>(std::ceil(static_cast<double>(time) / dt - 1e-6));
+}
+
+}  // namespace
+
+core::Diagnostics World::Impl::checkCrowd(const CrowdDesc& crowd) const {
+  core::Diagnostics out;
+  const std::string source = "crowd " + (crowd.id.empty() ? std::string("(no id)") : "\"" + crowd.id + "\"");
+  auto error = [&](std::string pointer, std::string what, std::string expected) {
+    out.push_back({source, 0, 0, std::move(pointer), std::move(what), std::move(expected), ""});
+  };
+  if (crowd.id.empty()) error("/id", "empty crowd id", "a non-empty id");
+  for (const CrowdState& c : crowds) {
+    if (c.info.id == crowd.id) error("/id", "crowd id \"" + crowd.id + "\" is already taken", "an id no crowd of this world has");
+  }
+  // Ids taken by the world and by every crowd queued so far.
+  std::set<std::string, std::less<>> pointIds, populationIds;
+  for (const PointDesc& p : desc.points) pointIds.insert(p.id);
+  for (const PopulationDesc& p : desc.populations) populationIds.insert(p.id);
+  for (const CrowdState& c : crowds) {
+    if (c.info.applied) continue;
+    pointIds.insert(c.pointIds.begin(), c.pointIds.end());
+    populationIds.insert(c.populationIds.begin(), c.populationIds.end());
+  }
+  for (std::size_t i = 0; i < crowd.points.size(); ++i) {
+    if (!pointIds.insert(crowd.points[i].id).second) {
+      error("/points/" + std::to_string(i) + "/id", "point id \"" + crowd.points[i].id + "\" is already taken",
+            "an id no point of the world or of this crowd has");
+    }
+  }
+  std::size_t populationsAfter = desc.populations.size() + crowd.populations.size();
+  for (const CrowdState& c : crowds) {
+    if (!c.info.applied) populationsAfter += c.populationIds.size();
+  }
+  if (populationsAfter > kMaxPopulations) {
+    error("/populations", "the world would have " + std::to_string(populationsAfter) + " populations",
+          "at most " + std::to_string(kMaxPopulations) + " populations in a world");
+  }
+  if (crowd.basePoints > desc.points.size() || crowd.basePopulations > desc.populations.size()) {
+    error("", "the crowd was resolved against a world with more points or populations than this one",
+          "a crowd parsed against this world (io::parseCrowd with World::desc())");
+    return out;
+  }
+  const std::uint64_t pointCount = crowd.basePoints + crowd.points.size();
+  const std::uint64_t populationCount = crowd.basePopulations + crowd.populations.size();
+  const std::vector<ClipInfo> clips = animationClips(desc);
+  for (std::size_t i = 0; i < crowd.points.size(); ++i) {
+    const PointDesc& p = crowd.points[i];
+    if (p.kind != PointKind::Action || !p.stop) continue;
+    const std::string name = p.action.empty() ? "stand" : p.action;
+    if (std::none_of(clips.begin(), clips.end(), [&](const ClipInfo& c) { return c.name == name; })) {
+      error("/points/" + std::to_string(i) + "/action", "action \"" + name + "\" has no clip in this world",
+            "an action some action point of the world already plays (the clip table is fixed when the world starts)");
+    }
+  }
+  if (desc.social.enabled) {
+    std::set<std::string, std::less<>> categories(this->categories.begin(), this->categories.end());
+    for (const PointDesc& p : crowd.points) if (!p.category.empty()) categories.insert(p.category);
+    if (categories.size() > kMaxCategories) {
+      error("/points", std::to_string(categories.size()) + " point categories", "at most " + std::to_string(kMaxCategories));
+    }
+  }
+  for (std::size_t i = 0; i < crowd.populations.size(); ++i) {
+    const PopulationDesc& pop = crowd.populations[i];
+    const std::string ptr = "/populations/" + std::to_string(i);
+    if (!populationIds.insert(pop.id).second) {
+      error(ptr + "/id", "population id \"" + pop.id + "\" is already taken", "an id no population of the world or of this crowd has");
+    }
+    for (std::size_t g = 0; g < pop.goals.size(); ++g) {
+      if (pop.goals[g] >= pointCount) error(ptr + "/goals/" + std::to_string(g), "point index out of range", "a point of the world or of the crowd");
+    }
+    if (pop.spawn.kind == SpawnKind::Point && pop.spawn.point >= pointCount) {
+      error(ptr + "/spawn/point", "point index out of range", "a point of the world or of the crowd");
+    }
+    if (pop.follow.mode != FollowMode::None) {
+      const std::uint32_t f = pop.follow.population;
+      const std::uint32_t groupsThere = f < crowd.basePopulations ? (f < desc.populations.size() ? desc.populations[f].groups : 0)
+                                        : f < populationCount ? crowd.populations[f - crowd.basePopulations].groups : 0;
+      if (f >= populationCount || pop.follow.group >= groupsThere) {
+        error(ptr + "/follow", "followed population or group out of range", "a group of a population of the world or of the crowd");
+      }
+    }
+    if (pop.radius > navRadius + 1e-6f) {
+      error(ptr + "/radius",
+            "body radius " + std::to_string(pop.radius) + " m exceeds the world's navmesh erosion radius " + std::to_string(navRadius) + " m",
+            "a radius <= the largest radius of the scenario's own populations");
+    }
+    if (pop.groups == 0 || pop.sizeMin == 0 || pop.sizeMin > pop.sizeMax) {
+      error(ptr, "empty or inverted group sizes", "groups >= 1 and 1 <= size min <= size max");
+    }
+  }
+  const std::uint64_t agents = crowd.maxAgents();
+  if (agents > kMaxInsertAgents) {
+    error("/populations", "the crowd may spawn " + std::to_string(agents) + " agents",
+          "at most " + std::to_string(kMaxInsertAgents) + " agents per insertion");
+  } else if (insertedAgents + agents > kMaxInsertedAgents) {
+    error("/populations",
+          "the crowd may spawn " + std::to_string(agents) + " agents; " + std::to_string(insertedAgents) +
+              " were inserted into this world already",
+          "at most " + std::to_string(kMaxInsertedAgents) + " inserted agents per world in all");
+  }
+  return out;
+}
+
+std::uint32_t World::Impl::queueCrowd(const CrowdDesc& crowd) {
+  CrowdState c;
+  c.desc = crowd;
+  c.info.id = crowd.id;
+  c.info.index = static_cast<std::uint32_t>(crowds.size());
+  for (const PointDesc& p : crowd.points) c.pointIds.push_back(p.id);
+  for (const PopulationDesc& p : crowd.populations) c.populationIds.push_back(p.id);
+  insertedAgents += crowd.maxAgents();
+  crowds.push_back(std::move(c));
+  return crowds.back().info.index;
+}
+
+void World::Impl::initTimeline() {
+  for (const TimelineEntry& e : desc.timeline) timelineTick.push_back(ticksOf(e.time, desc.dt));
+}
+
+void World::Impl::applyCrowdCommands() {
+  while (timelineNext < desc.timeline.size() && timelineTick[timelineNext] <= tick) {
+    const TimelineEntry& e = desc.timeline[timelineNext++];
+    if (e.action == TimelineAction::Insert) {
+      // io validated the whole timeline; a crowd that no longer fits is skipped, never half-applied.
+      if (checkCrowd(e.crowd).empty()) {
+        const std::uint32_t index = queueCrowd(e.crowd);
+        insertCrowdNow(crowds[index]);
+      }
+    } else {
+      for (CrowdState& c : crowds) {
+        if (c.info.id == e.crowdId) removeCrowdNow(c);
+      }
+    }
+  }
+  if (crowdCommands.empty()) return;
+  const std::vector<CrowdCommand> commands = std::move(crowdCommands);
+  crowdCommands.clear();
+  for (const CrowdCommand& c : commands) {
+    if (c.insert) insertCrowdNow(crowds[c.crowd]);
+    else removeCrowdNow(crowds[c.crowd]);
+  }
+}
+
+void World::Impl::insertCrowdNow(CrowdState& c) {
+  if (c.info.applied) return;
+  const CrowdDesc& cd = c.desc;
+  const auto firstPoint = static_cast<std::uint32_t>(desc.points.size());
+  const auto firstPopulation = static_cast<std::uint32_t>(desc.populations.size());
+  const auto firstGroup = static_cast<std::uint32_t>(groups.size());
+  auto mapPoint = [&](std::uint32_t i) { return i < cd.basePoints ? i : firstPoint + (i - cd.basePoints); };
+  auto mapPopulation = [&](std::uint32_t i) { return i < cd.basePopulations ? i : firstPopulation + (i - cd.basePopulations); };
+  const double now = static_cast<double>(tick) * desc.dt;
+
+  // Points: geometry, sub-regions, clips, categories.
+  for (const PointDesc& p : cd.points) {
+    desc.points.push_back(p);
+    pointBounds.push_back(p.polygon.empty() ? core::Aabb{{p.position.x - p.radius, p.position.y - p.radius},
+                                                         {p.position.x + p.radius, p.position.y + p.radius}}
+                                            : core::bounds(p.polygon));
+    const crowd::Region region = p.polygon.empty() ? crowd::Region::disc(p.position, p.radius) : crowd::Region::poly(p.polygon);
+    std::vector<crowd::Subregion> subs = crowd::divideRegion(region);
+    subregions.insert(subregions.end(), std::make_move_iterator(subs.begin()), std::make_move_iterator(subs.end()));
+    subOffset.push_back(static_cast<std::uint32_t>(subregions.size()));
+  }
+  subOccupancy.resize(subregions.size(), 0);
+  pointClip = pointClips(desc);  // the crowd's actions are the world's (checkCrowd): old indices stay
+  pointCategory.resize(desc.points.size(), -1);
+  for (std::uint32_t p = firstPoint; p < desc.points.size(); ++p) {
+    const std::string& cat = desc.points[p].category;
+    if (cat.empty()) continue;
+    auto it = std::find(categories.begin(), categories.end(), cat);
+    if (it == categories.end()) {
+      categories.push_back(cat);
+      categoryPoints.emplace_back();
+      it = categories.end() - 1;
+    }
+    const auto index = static_cast<std::size_t>(it - categories.begin());
+    pointCategory[p] = static_cast<std::int32_t>(index);
+    categoryPoints[index].push_back(p);
+  }
+
+  // Populations, with indices into the world's point and population lists.
+  for (const PopulationDesc& source : cd.populations) {
+    PopulationDesc pop = source;
+    for (std::uint32_t& g : pop.goals) g = mapPoint(g);
+    if (pop.spawn.kind == SpawnKind::Point) pop.spawn.point = mapPoint(pop.spawn.point);
+    if (pop.follow.mode != FollowMode::None) pop.follow.population = mapPopulation(pop.follow.population);
+    // Times in a crowd count from its insertion: spawn, guide script and release.
+    for (GuideWaypoint& w : pop.guide.script) w.time += static_cast<float>(now);
+    if (pop.guide.release >= 0.0f) pop.guide.release += static_cast<float>(now);
+    populationStartTick.push_back(tick + ticksOf(pop.start, desc.dt));
+    populationSpawned.push_back(0);
+    anySocial = anySocial || pop.sociological.enabled;
+    desc.populations.push_back(std::move(pop));
+  }
+  if (desc.social.enabled) {
+    attractionPoints.clear();
+    for (std::uint32_t p = 0; p < desc.points.size(); ++p) {
+      if (pointCategory[p] < 0) continue;
+      const bool wanted = std::any_of(desc.populations.begin(), desc.populations.end(), [&](const PopulationDesc& pop) {
+        return std::find(pop.interests.begin(), pop.interests.end(), desc.points[p].category) != pop.interests.end();
+      });
+      if (wanted) attractionPoints.push_back(p);
+    }
+    needCategory.clear();
+    for (const NeedDesc& need : desc.social.needs) {
+      const auto it = std::find(categories.begin(), categories.end(), need.category);
+      needCategory.push_back(it == categories.end() ? -1 : static_cast<std::int32_t>(it - categories.begin()));
+    }
+  }
+
+  // Groups: sizes drawn per stable group id (as planPopulations), own goal lists.
+  for (std::uint32_t p = firstPopulation; p < desc.populations.size(); ++p) {
+    const PopulationDesc& pop = desc.populations[p];
+    const auto goalList = static_cast<std::uint32_t>(goalLists.size());
+    goalLists.push_back(pop.goals);
+    firstGroupId.push_back(static_cast<std::uint32_t>(groups.size()));
+    std::vector<std::uint32_t> sizes(pop.groups);
+    for (std::uint32_t g = 0; g < pop.groups; ++g) {
+      const auto gid = static_cast<std::uint32_t>(groups.size());
+      core::Rng rng(desc.seed, gid, core::RngPurpose::GroupSize);
+      sizes[g] = pop.sizeMin == pop.sizeMax ? pop.sizeMin : rng.uniformInt(pop.sizeMin, pop.sizeMax);
+      stats.scheduled += sizes[g];
+      GroupState state;
+      state.population = static_cast<std::uint16_t>(p);
+      state.expected = sizes[g];
+      state.goalList = goalList;
+      groups.push_back(std::move(state));
+    }
+    groupSizes.push_back(std::move(sizes));
+  }
+
+  // Optional agent columns the new populations need and the world did not have yet.
+  bool formation = false, sociological = false;
+  for (std::uint32_t p = firstPopulation; p < desc.populations.size(); ++p) {
+    formation = formation || (desc.populations[p].flocking && desc.populations[p].sizeMax >= 2);
+    sociological = sociological || desc.populations[p].sociological.enabled;
+  }
+  const std::size_t rows = agents.size();
+  if (formation && !agents.formation) {
+    agents.formation = true;
+    agents.formVelX.assign(rows, 0.0f);
+    agents.formVelY.assign(rows, 0.0f);
+  }
+  if (sociological && !agents.sociological) {
+    agents.sociological = true;
+    agents.followAgent.assign(rows, kNoAgent);
+    agents.followUntil.assign(rows, 0);
+    agents.socialEffect.assign(rows, 0);
+    agents.socialOther.assign(rows, 0);
+  }
+
+  // Busy groups, routes and cold parts, as planPopulations does for the scenario's own groups.
+  for (auto gid = firstGroup; gid < groups.size(); ++gid) {
+    const PopulationDesc& pop = desc.populations[groups[gid].population];
+    const FollowDesc& f = pop.follow;
+    if (f.mode != FollowMode::None && f.population < firstGroupId.size() && f.group < desc.populations[f.population].groups) {
+      const std::uint32_t followed = firstGroupId[f.population] + f.group;
+      markBusy(followed);
+      routeFor(gid).followGroup = followed;
+    }
+    if (!pop.guide.script.empty()) routeFor(gid);
+    if ((pop.flocking && groups[gid].expected >= 2) || pop.sociological.enabled) markBusy(gid);
+    if (desc.social.enabled && groups[gid].extra == kNoAgent) {
+      groups[gid].extra = static_cast<std::uint32_t>(groupExtras.size());
+      groupExtras.emplace_back();
+    }
+  }
+  busyDirty = true;
+
+  c.info.applied = true;
+  c.info.insertTick = tick;
+  c.info.firstPopulation = firstPopulation;
+  c.info.populations = static_cast<std::uint32_t>(cd.populations.size());
+  c.info.firstPoint = firstPoint;
+  c.info.points = static_cast<std::uint32_t>(cd.points.size());
+  c.info.firstGroup = firstGroup;
+  c.info.groups = static_cast<std::uint32_t>(groups.size()) - firstGroup;
+  c.desc = {};  // its parts live in desc now
+}
+
+void World::Impl::removeCrowdNow(CrowdState& c) {
+  if (!c.info.applied || c.info.removed) return;
+  c.info.removed = true;
+  const std::uint32_t first = c.info.firstPopulation, last = first + c.info.populations;
+  for (std::uint32_t p = first; p < last; ++p) {
+    if (populationSpawned[p]) continue;
+    populationSpawned[p] = 1;  // spawns nobody any more
+    for (const std::uint32_t s : groupSizes[p]) stats.scheduled -= s;
+  }
+  std::vector<std::uint8_t> keep(agents.size(), 1);
+  bool any = false;
+  for (std::size_t r = 0; r < agents.size(); ++r) {
+    if (agents.population[r] < first || agents.population[r] >= last) continue;
+    keep[r] = 0;
+    any = true;
+    pendingEvents.push_back({tick, agents.id[r], EventKind::Exit, kNoAgent, c.info.index});
+    ++stats.removed;
+    releaseTarget(r);
+    GroupState& g = groups[agents.group[r]];
+    g.members.erase(agents.id[r]);
+    if (g.leader == agents.id[r]) g.leader = g.members.empty() ? kNoAgent : g.members.front();
+  }
+  if (!any) return;
+  agents.compact(keep);
+  rowsChanged = true;
+  stats.active = static_cast<std::uint32_t>(agents.size());
+}
+
+core::Result<std::uint32_t> World::insertCrowd(const CrowdDesc& crowd) {
+  Impl& w = *impl_;
+  core::Diagnostics problems = w.checkCrowd(crowd);
+  if (!problems.empty()) return problems;
+  const std::uint32_t index = w.queueCrowd(crowd);
+  w.crowdCommands.push_back({index, true});
+  return index;
+}
+
+bool World::removeCrowd(std::string_view id) {
+  Impl& w = *impl_;
+  for (const CrowdState& c : w.crowds) {
+    if (c.info.id != id || c.info.removed) continue;
+    for (const CrowdCommand& cmd : w.crowdCommands) {
+      if (!cmd.insert && cmd.crowd == c.info.index) return false;  // already queued
+    }
+    w.crowdCommands.push_back({c.info.index, false});
+    return true;
+  }
+  return false;
+}
+
+std::vector<CrowdInfo> World::crowds() const {
+  const Impl& w = *impl_;
+  std::vector<CrowdInfo> out;
+  for (const CrowdState& c : w.crowds) out.push_back(c.info);
+  for (std::size_t r = 0; r < w.agents.size(); ++r) {
+    const std::uint32_t p = w.agents.population[r];
+    for (CrowdInfo& info : out) {
+      if (info.applied && p >= info.firstPopulation && p < info.firstPopulation + info.populations) ++info.present;
+    }
+  }
+  return out;
+}
+
+}  // namespace throng::sim
