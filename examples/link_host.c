@@ -8,7 +8,8 @@
  *   4. create an avatar far from group G, walk it slowly along a straight line, and ask group G to
  *      follow it, asking for the joint angles of one of its members on the way;
  *   5. check that the group came closer to the avatar on its own (exit 0), or say it did not (exit 1);
- *   6. send a crowd-insertion request and print the answer, release the group and detach.
+ *   6. insert a crowd (six visitors) and remove it again, see a bad crowd refused, release the group
+ *      and detach.
  *
  * Usage:
  *   throng_link_example_host --shm NAME [options]
@@ -78,6 +79,32 @@ static int wait_child(pid_t pid, uint32_t ms) {
   kill(pid, SIGTERM);
   waitpid(pid, &status, 0);
   return -1;
+}
+
+/* Sends one request and waits (up to 2 s, keeping our heartbeat) for its reply. 1 answered. */
+static int ask(throng_link* link, uint32_t kind, uint32_t id, uint32_t payload_kind, const char* payload,
+               uint32_t target, throng_link_reply* reply) {
+  uint64_t asked = throng_link_now_ms();
+  if (throng_link_send_request(link, kind, id, payload_kind, payload, target) != 0) return 0;
+  while (throng_link_now_ms() - asked < 2000) {
+    throng_link_host_beat(link);
+    if (throng_link_take_reply(link, reply)) return 1;
+    throng_link_sleep_ms(10);
+  }
+  printf("host: request %u not answered\n", (unsigned)id);
+  return 0;
+}
+
+/* Reads frames (up to 2 s) until the agent count reaches `count` (at least when `more`, at most
+ * otherwise); returns the last count seen. */
+static uint32_t count_after(throng_link* link, throng_link_frame* frame, uint32_t count, int more) {
+  uint64_t start = throng_link_now_ms();
+  while (throng_link_now_ms() - start < 2000) {
+    if (throng_link_wait_frame(link, frame->tick, 500) < 0) break;
+    if (throng_link_read_frame(link, frame) != 0) continue;
+    if (more ? frame->agent_count >= count : frame->agent_count <= count) break;
+  }
+  return frame->agent_count;
 }
 
 int main(int argc, char** argv) {
@@ -276,22 +303,39 @@ int main(int argc, char** argv) {
     ok = d_end < d0 && (d_end <= d_from_start - 1.0 || d_end < 2.0);
     printf("host: %s\n", ok ? "the group follows the avatar" : "the group did NOT follow the avatar");
 
-    /* ---- 6. A request, then goodbye -------------------------------------------------------------- */
+    /* ---- 6. Bring in a crowd, then take it away again ------------------------------------------ */
+    /* A crowd is JSON in throng's crowd-file format (docs/scenario-format.md, "Crowd files"); here
+     * six visitors in two groups who wander, spawning in a 2 m square around the avatar (a walkable
+     * spot). One could also send the path of a crowd file (THRONG_LINK_PAYLOAD_PATH). throng
+     * validates it against the running world and answers; the agents appear at its next tick. */
     {
       throng_link_reply reply;
-      uint64_t asked = throng_link_now_ms();
-      int answered = 0;
-      throng_link_send_request(&link, THRONG_LINK_REQUEST_INSERT, 7, THRONG_LINK_PAYLOAD_PATH, "extra_crowd.json", 0);
-      while (!answered && throng_link_now_ms() - asked < 2000) {
-        throng_link_host_beat(&link);
-        answered = throng_link_take_reply(&link, &reply);
-        if (!answered) throng_link_sleep_ms(10);
-      }
-      if (answered) {
+      char crowd[1024];
+      uint32_t before = frame->agent_count, inserted = 0xFFFFFFFFu;
+      snprintf(crowd, sizeof crowd,
+               "{\"format\": \"throng-crowd/1\", \"id\": \"visitors-from-host\", \"populations\": [{\"id\": "
+               "\"visitors-from-host\", \"groups\": 2, \"size\": 3, \"wander\": true, \"spawn\": {\"polygon\": "
+               "[[%.2f, %.2f], [%.2f, %.2f], [%.2f, %.2f], [%.2f, %.2f]]}}]}",
+               avatar.x - 1.0, avatar.y - 1.0, avatar.x + 1.0, avatar.y - 1.0, avatar.x + 1.0, avatar.y + 1.0,
+               avatar.x - 1.0, avatar.y + 1.0);
+      if (ask(&link, THRONG_LINK_REQUEST_INSERT, 7, THRONG_LINK_PAYLOAD_JSON, crowd, 0, &reply)) {
         printf("host: insert request %u answered with status %u: %s\n", (unsigned)reply.request_id,
                (unsigned)reply.status, reply.message);
-      } else {
-        printf("host: insert request not answered\n");
+        if (reply.status == THRONG_LINK_STATUS_OK) inserted = reply.crowd;
+      }
+      if (inserted != 0xFFFFFFFFu && count_after(&link, frame, before + 6u, 1) >= before + 6u) {
+        printf("host: crowd inserted: %u -> %u agents\n", (unsigned)before, (unsigned)frame->agent_count);
+        if (ask(&link, THRONG_LINK_REQUEST_REMOVE, 8, THRONG_LINK_PAYLOAD_NONE, NULL, inserted, &reply) &&
+            reply.status == THRONG_LINK_STATUS_OK && count_after(&link, frame, before, 0) <= before) {
+          printf("host: crowd removed: %u agents again\n", (unsigned)frame->agent_count);
+        }
+      }
+      /* A crowd with a mistake is refused, and nothing changes: the answer says where and why. */
+      if (ask(&link, THRONG_LINK_REQUEST_INSERT, 9, THRONG_LINK_PAYLOAD_JSON,
+              "{\"format\": \"throng-crowd/1\", \"id\": \"oops\", \"populations\": [{\"id\": \"oops\", "
+              "\"grups\": 2}]}",
+              0, &reply)) {
+        printf("host: a bad crowd is refused with status %u: %s\n", (unsigned)reply.status, reply.message);
       }
     }
     guide.active = 0; /* release the group: it resumes its own goals */

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 #include <span>
 #include <thread>
@@ -28,6 +29,7 @@
 #include "validators.hpp"
 #include "throng/core/parallel.hpp"
 #include "throng/hub/motion_library.hpp"
+#include "throng/io/crowd_loader.hpp"
 #include "throng/io/scenario_loader.hpp"
 #include "throng/link/handshake_server.hpp"
 #include "throng/link/segment.hpp"
@@ -155,21 +157,92 @@ class HostInputApplier {
 };
 
 /// Insert / remove requests: answered "not supported yet" until the World can add crowds at run time.
-void answerRequests(link::Segment& segment) {
+/// A crowd file's text (at most 4 MiB), or nothing when it cannot be read.
+std::optional<std::string> readCrowdFile(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec) || std::filesystem::file_size(path, ec) > (4u << 20) || ec) return std::nullopt;
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) return std::nullopt;
+  std::string text;
+  char buffer[65536];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) text.append(buffer, n);
+  const bool failed = std::ferror(f) != 0;
+  std::fclose(f);
+  if (failed) return std::nullopt;
+  return text;
+}
+
+/// One reply text from diagnostics: the first, and how many more there are.
+std::string summarize(const core::Diagnostics& diagnostics) {
+  std::string text = diagnostics.front().format();
+  if (diagnostics.size() > 1) text += fmt::format(" (and {} more)", diagnostics.size() - 1);
+  return text;
+}
+
+/// A limit diagnostic ("at most N agents per ...") makes the reply TOO_LARGE rather than INVALID.
+std::uint32_t statusOf(const core::Diagnostics& diagnostics) {
+  for (const core::Diagnostic& d : diagnostics) {
+    if (d.expected.find("agents per") != std::string::npos || d.what.find("agents per") != std::string::npos) {
+      return THRONG_LINK_STATUS_TOO_LARGE;
+    }
+  }
+  return THRONG_LINK_STATUS_INVALID;
+}
+
+/// The host's crowd requests: an insertion is parsed and validated against the running world (a
+/// bad file changes nothing and the reply says why, file:line:col and all); a valid one is queued
+/// and its agents appear at the next tick. A removal names the crowd id an insertion replied.
+void answerRequests(link::Segment& segment, sim::World& world) {
   while (auto r = segment.takeRequest()) {
     throng_link_reply reply{};
     reply.request_id = r->request_id;
-    if (r->kind == THRONG_LINK_REQUEST_INSERT || r->kind == THRONG_LINK_REQUEST_REMOVE) {
-      reply.status = THRONG_LINK_STATUS_NOT_SUPPORTED;
-      copyName(reply.message, sizeof reply.message,
-               fmt::format("crowd {} is not supported yet by this throng: the simulation cannot add or remove "
-                           "crowds while it runs; request ignored",
-                           r->kind == THRONG_LINK_REQUEST_INSERT ? "insertion" : "removal"));
+    std::string message;
+    if (r->kind == THRONG_LINK_REQUEST_INSERT) {
+      const std::string payload(r->payload, std::min<std::size_t>(r->payload_size, THRONG_LINK_REQUEST_PAYLOAD - 1));
+      core::Result<sim::CrowdDesc> crowd = core::Diagnostic{};
+      if (r->payload_kind == THRONG_LINK_PAYLOAD_PATH) {
+        if (auto text = readCrowdFile(payload)) {
+          crowd = io::parseCrowd(*text, payload, world);
+        } else {
+          reply.status = THRONG_LINK_STATUS_INVALID;
+          message = fmt::format("{}: cannot read the crowd file (missing, unreadable or over 4 MiB)", payload);
+        }
+      } else if (r->payload_kind == THRONG_LINK_PAYLOAD_JSON) {
+        crowd = io::parseCrowd(payload, fmt::format("host request {}", r->request_id), world);
+      } else {
+        reply.status = THRONG_LINK_STATUS_INVALID;
+        message = fmt::format("insert: payload_kind {}; expected 1 (a path) or 2 (the crowd JSON)", r->payload_kind);
+      }
+      if (message.empty() && !crowd.ok()) {
+        reply.status = statusOf(crowd.errors());
+        message = summarize(crowd.errors());
+      } else if (message.empty()) {
+        auto index = world.insertCrowd(crowd.value());
+        if (!index.ok()) {
+          reply.status = statusOf(index.errors());
+          message = summarize(index.errors());
+        } else {
+          reply.status = THRONG_LINK_STATUS_OK;
+          reply.crowd = index.value();
+          message = fmt::format("crowd '{}' inserted as {}: {} agents at most, from the next tick", crowd->id,
+                                index.value(), crowd->maxAgents());
+        }
+      }
+    } else if (r->kind == THRONG_LINK_REQUEST_REMOVE) {
+      const std::vector<sim::CrowdInfo> crowds = world.crowds();
+      if (r->target < crowds.size() && !crowds[r->target].removed && world.removeCrowd(crowds[r->target].id)) {
+        reply.status = THRONG_LINK_STATUS_OK;
+        reply.crowd = r->target;
+        message = fmt::format("crowd '{}' ({}) removed: its agents leave at the next tick", crowds[r->target].id, r->target);
+      } else {
+        reply.status = THRONG_LINK_STATUS_UNKNOWN;
+        message = fmt::format("remove: no crowd {} present; {} crowds were inserted", r->target, crowds.size());
+      }
     } else {
       reply.status = THRONG_LINK_STATUS_INVALID;
-      copyName(reply.message, sizeof reply.message,
-               fmt::format("unknown request kind {}; expected 1 (insert) or 2 (remove)", r->kind));
+      message = fmt::format("unknown request kind {}; expected 1 (insert) or 2 (remove)", r->kind);
     }
+    copyName(reply.message, sizeof reply.message, message);
     segment.putReply(reply);
   }
 }
@@ -185,7 +258,8 @@ CLI::App* addLinkCommand(CLI::App& app, LinkOptions& options) {
       "three ways of starting: docs/integration.md. With --socket PATH, hosts can also connect to a UNIX\n"
       "socket to learn the segment's name. Ends at --duration, on Ctrl-C, when the host detaches (exit 0)\n"
       "or when its heartbeat stops (exit 1; with --keep-alive it waits for the next host instead).\n"
-      "Crowd insertion/removal requests are answered \"not supported yet\".");
+      "Crowd insertion/removal requests from the host (a crowd file's path or its JSON) are validated\n"
+      "against the running world and carried out at the next tick (docs/integration.md).");
   cmd->add_option("scenario", options.scenario, "Scenario JSON file")->required()->type_name("SCENARIO.json");
   cmd->add_option("--shm", options.shm, "Name of the shared-memory segment (\"/throng-1\"; a missing leading / is "
                                         "added). Default with --socket: /throng-<pid>")
@@ -393,7 +467,7 @@ int runLink(const LinkOptions& options) {
         detailIds = std::move(in->detailIds);
       }
     }
-    answerRequests(*segment);
+    answerRequests(*segment, *world);
     world->step(tasks);
     const sim::FramePtr frame = world->snapshot();
     writer.write(*frame, *world, detailIds);

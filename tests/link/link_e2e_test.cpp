@@ -118,11 +118,14 @@ class LinkE2E : public ::testing::Test {
   std::unique_ptr<Process> host(const std::vector<std::string>& args) {
     return std::make_unique<Process>(THRONG_LINK_HOST_EXE, args, dir_, "host");
   }
-  /// The host's report must say the group followed and the insert request was answered.
+  /// The host's report must say the group followed, and a crowd came and went (a bad one refused).
   static void expectFollowed(Process& h, int code) {
     EXPECT_EQ(code, 0) << h.out() << h.err();
     EXPECT_NE(h.out().find("the group follows the avatar"), std::string::npos) << h.out();
-    EXPECT_NE(h.out().find("status 1: crowd insertion is not supported yet"), std::string::npos) << h.out();
+    EXPECT_NE(h.out().find("host: crowd inserted: "), std::string::npos) << h.out();
+    EXPECT_NE(h.out().find("host: crowd removed: "), std::string::npos) << h.out();
+    EXPECT_NE(h.out().find("a bad crowd is refused with status 2:"), std::string::npos) << h.out();
+    EXPECT_NE(h.out().find("status 2: host request 9:1:"), std::string::npos) << h.out();  // where it is wrong
   }
   std::string tag_;
   fs::path dir_;
