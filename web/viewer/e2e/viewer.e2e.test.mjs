@@ -4,7 +4,8 @@
 // the page loads and gets the world; crowd frames arrive; agents are drawn (the canvas is not blank
 // and changes over 2 s); clicking an agent shows its panel with its goal (/api/agent); a participant joins, walks its avatar with the keyboard, guides a group
 // picked in the group list, the group's members come towards the avatar (and /api/status says so),
-// and releases it; a second viewer sees the first one's avatar (relayed Move); stopping the server
+// and releases it; a second viewer sees the first one's avatar (relayed Move), its name label
+// (Presence) and its wave (relayed Joints, back to idle 1 s after the gesture); stopping the server
 // (SIGINT) shows the reconnect banner; a server started again on the same port gets the viewer back,
 // joined under the same name. Run: THRONG_EXE=build/apps/throng/throng node --test web/viewer/e2e/
 // Skips (prints "SKIPPED: …", exits 0) without THRONG_EXE, web/node_modules, web/dist or chromium;
@@ -190,6 +191,28 @@ test('viewer against a real throng serve', { skip: skip ? `SKIPPED: ${skip}` : f
     const seen = await page2.evaluate(() => [...globalThis.__throng.others.values()][0]);
     assert.ok(Math.hypot(seen.x - a1.x, seen.y - a1.y) < 1.0,
       `the second viewer shows the avatar at (${seen.x.toFixed(2)}, ${seen.y.toFixed(2)}), it is at (${a1.x.toFixed(2)}, ${a1.y.toFixed(2)})`);
+    // … with its name label (Presence), and its gestures: the first plays "wave" (key 1), the
+    // second receives its Joints (3 angles per skeleton joint) and poses the avatar with them.
+    await page2.waitForFunction(() => [...document.querySelectorAll('.name-label')].some((d) => d.textContent === 'e2e-alice'
+      && d.style.display !== 'none'), null, { timeout: 10000 });
+    assert.ok((await page.evaluate(() => globalThis.__throng.labels())).includes('e2e-alice'), 'own name label');
+    await page.keyboard.press('Digit1');
+    await page.waitForFunction(() => globalThis.__throng.gesture.playing !== null, null, { timeout: 5000 });
+    await page2.waitForFunction(() => globalThis.__throngStats.jointsReceived >= 3, null, { timeout: 10000 });
+    const gest = await page2.evaluate(() => {
+      const { remoteJoints, others, description } = globalThis.__throng;
+      const id = [...others.keys()][0];
+      const a = remoteJoints.get(id, performance.now());
+      const r = description.skeleton.joints.findIndex((j) => j.name === 'r_shoulder');
+      return { n: a && a.length, joints: description.skeleton.joints.length, rz: a && r >= 0 ? a[r * 3 + 2] : null };
+    });
+    assert.equal(gest.n, gest.joints * 3, `relayed Joints: ${JSON.stringify(gest)}`);
+    if (gest.rz !== null) assert.ok(Math.abs(gest.rz) > 0.3, `the wave raises the right arm: ${JSON.stringify(gest)}`);
+    // The gesture ends (2 s): a second later the avatar is back to its idle pose.
+    await page2.waitForFunction(() => {
+      const { remoteJoints, others } = globalThis.__throng;
+      return remoteJoints.get([...others.keys()][0], performance.now()) === null;
+    }, null, { timeout: 8000 });
     await page2.close();
 
     // Guide a group from the group list: pick one whose members are all in view, 5–30 m away.

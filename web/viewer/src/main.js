@@ -19,6 +19,8 @@ import { Banner } from './ui/banner.js';
 import { AgentPanel } from './ui/agent_panel.js';
 import { Timeline } from './ui/timeline.js';
 import { GroupList } from './ui/group_list.js';
+import { NameLabels } from './ui/name_labels.js';
+import { GesturePlayer, RemoteJoints, gestureClip, kGestures } from './crowd/gestures.js';
 
 const params = new URLSearchParams(location.search);
 const demo = params.has('demo');
@@ -66,6 +68,10 @@ let selectedId = -1;
 let joined = null;
 const others = new Map();  // participant id → {x, y, yaw, moving, phase}
 const localPhase = { phase: 0 };
+const gesture = new GesturePlayer();     // the local avatar's gesture (buttons, keys 1–4)
+const remoteJoints = new RemoteJoints(); // other participants' latest relayed Joints
+const labels = new NameLabels($('labels'));
+globalThis.__throngStats = globalThis.__throngStats || {};
 
 source.on('status', (s) => banner.show(s));
 source.on('frame', (f) => state.applyFrame(f, performance.now() / 1000));
@@ -75,6 +81,7 @@ source.on('participant', (m) => {
   Object.assign(o, { x: m.x, y: m.y, z: m.z || 0, yaw: m.yaw, at: performance.now() });
   others.set(m.participantId, o);
 });
+source.on('joints', (m) => remoteJoints.set(m.participantId, Float32Array.from(m.angles), performance.now()));
 source.on('world', async (w) => {
   description = w;
   const bounds = worldBounds(w.scenario || {});
@@ -90,8 +97,11 @@ source.on('world', async (w) => {
   $('lod-toggle').checked = lodOn;
   groupList.setGroups(w.groups || []);
   globalThis.__throng = {
-    cameras, crowd, state, camera, source, renderer, description: w, others, groupList,
+    cameras, crowd, state, camera, source, renderer, description: w, others, groupList, remoteJoints, gesture,
     get joined() { return joined; },
+    /** Texts of the name labels on screen. */
+    labels: () => labels.visible(),
+    playGesture,
     /** Renders now and reads the canvas back: grey levels (0–255) every `step` px, for tests. */
     pixels(step = 4) {
       renderer.render(scene, camera);
@@ -132,7 +142,7 @@ function pollGroups() {
 }
 source.on('world', () => setTimeout(pollGroups, 1000));
 source.on('presence', (p) => {
-  if (!p.present) others.delete(p.participantId);
+  if (!p.present) { others.delete(p.participantId); remoteJoints.delete(p.participantId); }
   else if (others.has(p.participantId)) others.get(p.participantId).name = p.name;
 });
 
@@ -159,6 +169,7 @@ source.on('joined', (j) => {
   $('join-button').textContent = 'Leave';
   panel.setJoined(true);
   groupList.setJoined(true);
+  $('gesture-row').classList.remove('hidden');
   if (cameras && !again) {
     const t = cameras.orbit.target;
     cameras.placeAvatar(t.x, -t.z, Math.PI / 2);
@@ -174,6 +185,7 @@ $('join-form').addEventListener('submit', (e) => {
     $('join-status').textContent = 'left';
     panel.setJoined(false);
     groupList.setJoined(false);
+    $('gesture-row').classList.add('hidden');
     return;
   }
   const name = $('join-name').value.trim() || 'visitor';
@@ -186,6 +198,18 @@ function setMode(m) {
   $('cam-orbit').classList.toggle('active', m === 'orbit');
   $('cam-walk').classList.toggle('active', m === 'walk');
 }
+// Gestures of the local avatar: buttons, or keys 1–4 (not while typing in a field).
+function playGesture(name) {
+  if (!joined || !clips) return false;
+  gesture.start(name, gestureClip(clips, name, description.skeleton.joints), performance.now());
+  return true;
+}
+for (const b of document.querySelectorAll('#gesture-row button')) b.onclick = () => playGesture(b.dataset.gesture);
+addEventListener('keydown', (e) => {
+  if (e.target && /^(INPUT|SELECT|TEXTAREA)$/.test(e.target.tagName)) return;
+  const g = kGestures.find((x) => x.key === e.key);
+  if (g) playGesture(g.name);
+});
 $('cam-orbit').onclick = () => setMode('orbit');
 $('cam-walk').onclick = () => setMode('walk');
 $('lod-toggle').onchange = (e) => { if (crowd) crowd.adaptive = e.target.checked; };
@@ -249,22 +273,30 @@ function frame() {
   const counts = crowd.update(state, camera, renderer.domElement.height, frameMs);
   avatars.begin();
   const walk = clips.walkClipId(), idle = clips.idleClipId();
+  const tags = [];
   if (joined) {
     const a = cameras.avatar;
     localPhase.phase = (localPhase.phase + (a.speed * dt) / 1.5) % 1;
-    avatars.add(a.x, a.y, 0, a.yaw, a.moving ? walk : idle, a.moving ? localPhase.phase : (nowMs / 2000) % 1, 0xff6a00);
+    const g = gesture.sample(nowMs);
+    avatars.add(a.x, a.y, 0, a.yaw, a.moving ? walk : idle, a.moving ? localPhase.phase : (nowMs / 2000) % 1, 0xff6a00,
+      g ? g.angles : null);
     source.sendMove(a.x, a.y, 0, a.yaw);
+    if (g && g.send && source.sendJoints) source.sendJoints(g.angles);
+    tags.push({ key: 'self', name: joined.name || 'you', at: [a.x, a.y] });
   }
-  for (const [, o] of others) {
+  for (const [id, o] of others) {
     if (nowMs - o.at > 15000) continue;
     o.phase = (o.phase + (o.moving ? dt / 1.12 : dt / 2)) % 1;
-    avatars.add(o.x, o.y, o.z, o.yaw, o.moving ? walk : idle, o.phase, 0xd02090);
+    avatars.add(o.x, o.y, o.z, o.yaw, o.moving ? walk : idle, o.phase, 0xd02090, remoteJoints.get(id, nowMs));
+    tags.push({ key: id, name: o.name || source.names?.get(id) || `participant ${id}`, at: [o.x, o.y, o.z] });
   }
   avatars.end();
+  labels.update(tags.map((t) => ({ key: t.key, name: t.name, screen: globalThis.__throng.toScreen(t.at[0], t.at[1], (t.at[2] || 0) + 2.0) })));
   renderer.render(scene, camera);
   hud.tick(source, counts, state.count, crowd.adaptive ? crowd.params : { adaptive: false });
   globalThis.__throngStats.crowdFrames = state.frames;
   globalThis.__throngStats.others = others.size;
+  globalThis.__throngStats.jointsReceived = remoteJoints.received;
   if (selectedId >= 0) {
     const i = state.index.get(selectedId);
     if (i !== undefined) {

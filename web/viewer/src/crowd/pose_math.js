@@ -40,3 +40,21 @@ export function quatFromZXY(ax, ay, az, out, o = 0) {
   out[o + 3] = cx * cy * cz - sx * sy * sz;
 }
 
+
+/** BVH Euler angles [rad] (x, y, z; applied Z, then X, then Y) of the unit quaternion at q[o..o+3]:
+ * the inverse of quatFromZXY, written to out[oo..oo+2]; x in [−π/2, π/2]. */
+export function eulerZXYFromQuat(q, o, out, oo = 0) {
+  const x = q[o], y = q[o + 1], z = q[o + 2], w = q[o + 3];
+  const m11 = 1 - 2 * (y * y + z * z), m12 = 2 * (x * y - w * z), m21 = 2 * (x * y + w * z);
+  const m22 = 1 - 2 * (x * x + z * z), m31 = 2 * (x * z - w * y), m32 = 2 * (y * z + w * x);
+  const m33 = 1 - 2 * (x * x + y * y);
+  const s = Math.min(Math.max(m32, -1), 1);
+  out[oo] = Math.asin(s);
+  if (Math.abs(s) < 0.9999999) {
+    out[oo + 1] = Math.atan2(-m31, m33);
+    out[oo + 2] = Math.atan2(-m12, m22);
+  } else {
+    out[oo + 1] = 0;
+    out[oo + 2] = Math.atan2(m21, m11);
+  }
+}

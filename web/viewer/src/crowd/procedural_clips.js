@@ -74,3 +74,22 @@ export function makeIdleClip(joints = kHanimSkeleton) {
     };
   });
 }
+
+/** The Common Ground gestures as procedural clips (not looping, ~2 s), for worlds whose clip list
+ * has none: 'wave' (right arm raised, forearm swinging), 'nod' (head down and up twice), 'point'
+ * (right arm held forward), 'call_out' (both hands raised to the mouth, head up). */
+export function makeGestureClip(name, joints = kHanimSkeleton) {
+  const h = joints[0] ? joints[0].offset[1] : 0.95;
+  const ease = (p) => Math.sin(Math.PI * Math.min(1, Math.max(0, p)));  // 0 → 1 → 0 over the clip
+  const poses = {
+    wave: (p) => ({ r_shoulder: [0, 0, -150 * Math.min(1, 3 * ease(p))], r_elbow: [0, 0, -30 * Math.sin(6 * Math.PI * p) * ease(p)] }),
+    nod: (p) => ({ skullbase: [25 * Math.abs(Math.sin(2 * Math.PI * p)), 0, 0], vl5: [4 * ease(p), 0, 0] }),
+    point: (p) => ({ r_shoulder: [-85 * Math.min(1, 3 * ease(p)), 0, -10], r_elbow: [-5, 0, 0] }),
+    call_out: (p) => ({
+      l_shoulder: [-70 * ease(p), 0, 20 * ease(p)], r_shoulder: [-70 * ease(p), 0, -20 * ease(p)],
+      l_elbow: [-110 * ease(p), 0, 0], r_elbow: [-110 * ease(p), 0, 0], skullbase: [-15 * ease(p), 0, 0],
+    }),
+  };
+  const pose = poses[name] || poses.wave;
+  return bake(joints, name, 2, false, 50, (p) => ({ root: [0, h, 0], l_shoulder: [0, 0, 5], r_shoulder: [0, 0, -5], ...pose(p) }));
+}

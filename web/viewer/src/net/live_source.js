@@ -7,7 +7,8 @@
 // reconnect with exponential backoff (0.5 s … 10 s, jittered); after it, the participant joins
 // again under the same name. Presence (participants joining/leaving, with names) → 'presence';
 // a server replaying a recording sends ReplayStatus (→ 'timeline' {time, duration, playing,
-// speed}) and takes ReplayControl from play()/pause()/seek()/setSpeed(). Decoding is
+// speed}) and takes ReplayControl from play()/pause()/seek()/setSpeed(). Relayed Joints of other
+// participants (→ 'joints' {participantId, angles}); sendJoints() sends the avatar's. Decoding is
 // web/protocol's (through protocol_adapter.js).
 import { Emitter } from '../sources/emitter.js';
 import * as encode from './encode.js';
@@ -19,7 +20,7 @@ const kReason = ['none', 'version mismatch', 'server full', 'bad message', 'unex
 
 const {
   ClientKind, encodeAck, encodeGuide, encodeHeartbeat, encodeHello, encodeJoin, encodeLeave, encodeMove, encodeRelease,
-  encodeBye,
+  encodeBye, encodeJoints,
 } = encode;
 const kReplayCommand = { play: encode.ReplayCommand.Play, pause: encode.ReplayCommand.Pause,
   seek: encode.ReplayCommand.Seek, speed: encode.ReplayCommand.Speed };
@@ -43,6 +44,7 @@ export class LiveSource extends Emitter {
     this.token = 0n;
     this.participantId = 0;
     this.moveSeq = 0;
+    this.jointsSeq = 0;
     this.lastMoveAt = 0;
     this.peerTimeUs = 0n;
     this.rttMs = 0;
@@ -151,6 +153,9 @@ export class LiveSource extends Emitter {
           this.emit('participant', m);
         }
         break;
+      case 'Joints':
+        if (m.participantId !== this.participantId && m.participantId >= 0) this.emit('joints', m);
+        break;
       case 'Presence': {
         const id = Number(m.participantId);
         if (m.present) { this.present.add(id); this.names.set(id, m.name); } else { this.present.delete(id); this.others.delete(id); }
@@ -218,6 +223,12 @@ export class LiveSource extends Emitter {
     if (!force && now - this.lastMoveAt < 100) return;
     this.lastMoveAt = now;
     this.send(encodeMove({ subject: { kind: 0, value: this.token }, seq: ++this.moveSeq, x, y, z, yaw }));
+  }
+
+  /** The avatar's joint angles (3 per skeleton joint, radians, BVH order) while it gestures. */
+  sendJoints(angles) {
+    if (!this.token) return;
+    this.send(encodeJoints({ subject: { kind: 0, value: this.token }, seq: ++this.jointsSeq, angles }));
   }
 
   guide(groupId) { if (this.token) this.send(encodeGuide({ token: this.token, groupId })); }

@@ -4,7 +4,7 @@
 //   duration() → seconds, frameAt(t) → the crowd frame (sources/frame.js layout) at or before t;
 // plus the world description. `MemoryReplayBackend` holds frames in memory (used with
 // `?demo&replay`: a recorded stretch of the demo). A server-side replay (`throng serve FILE.sqlite`)
-// plugs in as another backend — not written yet: the protocol has no replay control messages so far.
+// needs no backend here: LiveSource itself drives the server's timeline (ReplayControl/ReplayStatus).
 import { Emitter } from './emitter.js';
 
 export class MemoryReplayBackend {
