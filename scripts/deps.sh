@@ -6,7 +6,7 @@ set -euo pipefail
 THRONG_DEB_PACKAGES=(
   cmake ninja-build clang libclang-rt-14-dev g++ pkg-config
   librecast-dev nlohmann-json3-dev libcli11-dev libfmt-dev libtbb-dev libsqlite3-dev sqlite3
-  libboost-dev libzstd-dev librapidcheck-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libboost-dev libzstd-dev librapidcheck-dev libgtest-dev libgmock-dev libbenchmark-dev libtinygltf-dev
   libopenmpi-dev openmpi-bin
   chromium nodejs
 )

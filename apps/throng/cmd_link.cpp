@@ -29,6 +29,7 @@
 #include "validators.hpp"
 #include "throng/core/parallel.hpp"
 #include "throng/hub/motion_library.hpp"
+#include "throng/hub/crowd_requests.hpp"
 #include "throng/io/crowd_loader.hpp"
 #include "throng/io/scenario_loader.hpp"
 #include "throng/link/handshake_server.hpp"
@@ -156,7 +157,6 @@ class HostInputApplier {
   std::set<std::uint32_t> warned_;
 };
 
-/// Insert / remove requests: answered "not supported yet" until the World can add crowds at run time.
 /// A crowd file's text (at most 4 MiB), or nothing when it cannot be read.
 std::optional<std::string> readCrowdFile(const std::string& path) {
   std::error_code ec;
@@ -172,23 +172,6 @@ std::optional<std::string> readCrowdFile(const std::string& path) {
   return text;
 }
 
-/// One reply text from diagnostics: the first, and how many more there are.
-std::string summarize(const core::Diagnostics& diagnostics) {
-  std::string text = diagnostics.front().format();
-  if (diagnostics.size() > 1) text += fmt::format(" (and {} more)", diagnostics.size() - 1);
-  return text;
-}
-
-/// A limit diagnostic ("at most N agents per ...") makes the reply TOO_LARGE rather than INVALID.
-std::uint32_t statusOf(const core::Diagnostics& diagnostics) {
-  for (const core::Diagnostic& d : diagnostics) {
-    if (d.expected.find("agents per") != std::string::npos || d.what.find("agents per") != std::string::npos) {
-      return THRONG_LINK_STATUS_TOO_LARGE;
-    }
-  }
-  return THRONG_LINK_STATUS_INVALID;
-}
-
 /// The host's crowd requests: an insertion is parsed and validated against the running world (a
 /// bad file changes nothing and the reply says why, file:line:col and all); a valid one is queued
 /// and its agents appear at the next tick. A removal names the crowd id an insertion replied.
@@ -199,34 +182,27 @@ void answerRequests(link::Segment& segment, sim::World& world) {
     std::string message;
     if (r->kind == THRONG_LINK_REQUEST_INSERT) {
       const std::string payload(r->payload, std::min<std::size_t>(r->payload_size, THRONG_LINK_REQUEST_PAYLOAD - 1));
-      core::Result<sim::CrowdDesc> crowd = core::Diagnostic{};
+      // Parsing, validation and the queueing are the server's too (hub/crowd_requests.hpp).
+      std::optional<hub::CrowdOutcome> outcome;
       if (r->payload_kind == THRONG_LINK_PAYLOAD_PATH) {
         if (auto text = readCrowdFile(payload)) {
-          crowd = io::parseCrowd(*text, payload, world);
+          outcome = hub::insertCrowdJson(world, *text, payload);
         } else {
           reply.status = THRONG_LINK_STATUS_INVALID;
           message = fmt::format("{}: cannot read the crowd file (missing, unreadable or over 4 MiB)", payload);
         }
       } else if (r->payload_kind == THRONG_LINK_PAYLOAD_JSON) {
-        crowd = io::parseCrowd(payload, fmt::format("host request {}", r->request_id), world);
+        outcome = hub::insertCrowdJson(world, payload, fmt::format("host request {}", r->request_id));
       } else {
         reply.status = THRONG_LINK_STATUS_INVALID;
         message = fmt::format("insert: payload_kind {}; expected 1 (a path) or 2 (the crowd JSON)", r->payload_kind);
       }
-      if (message.empty() && !crowd.ok()) {
-        reply.status = statusOf(crowd.errors());
-        message = summarize(crowd.errors());
-      } else if (message.empty()) {
-        auto index = world.insertCrowd(crowd.value());
-        if (!index.ok()) {
-          reply.status = statusOf(index.errors());
-          message = summarize(index.errors());
-        } else {
-          reply.status = THRONG_LINK_STATUS_OK;
-          reply.crowd = index.value();
-          message = fmt::format("crowd '{}' inserted as {}: {} agents at most, from the next tick", crowd->id,
-                                index.value(), crowd->maxAgents());
-        }
+      if (outcome) {
+        reply.status = outcome->ok         ? THRONG_LINK_STATUS_OK
+                       : outcome->tooLarge ? THRONG_LINK_STATUS_TOO_LARGE
+                                           : THRONG_LINK_STATUS_INVALID;
+        if (outcome->ok) reply.crowd = outcome->index;
+        message = outcome->text;
       }
     } else if (r->kind == THRONG_LINK_REQUEST_REMOVE) {
       const std::vector<sim::CrowdInfo> crowds = world.crowds();

@@ -142,6 +142,7 @@ CLI::App* addServeCommand(CLI::App& app, ServeOptions& options) {
       "gets one compressed, delta-coded crowd message per tick with the agents in its area of interest,\n"
       "at a level of detail by distance, and its animation every X frames, X regulated from its link.\n"
       "Ctrl-C tells every client why and stops. GET /api/status gives the server's state as JSON.\n"
+      "Participants may insert crowds (InsertCrowd: a crowd file's JSON) and remove them; GET /api/crowds lists them.\n"
       "Given a recording (FILE.sqlite) instead, it plays it back as the same crowd messages: viewers\n"
       "play, pause, seek and change speed with ReplayControl messages (the viewer's timeline).");
   cmd->add_option("scenario", options.scenario, "Scenario JSON file, or a recording of `throng run` to play back")
@@ -260,15 +261,16 @@ int runServe(const ServeOptions& options) {
   std::mutex queryMutex;
   std::vector<std::shared_ptr<AgentQuery>> queries;
   std::vector<std::shared_ptr<std::promise<std::string>>> groupQueries;  ///< GET /api/groups
+  std::vector<std::shared_ptr<std::promise<std::string>>> crowdQueries;  ///< GET /api/crowds
   const std::vector<sim::ClipInfo> clipTable = sim::animationClips(loaded->desc);
   t.httpHandler = [&](std::string_view target) -> std::optional<server::HttpResponse> {
     const std::string_view path = target.substr(0, target.find('?'));
-    if (path == "/api/groups") {
+    if (path == "/api/groups" || path == "/api/crowds") {
       auto query = std::make_shared<std::promise<std::string>>();
       auto future = query->get_future();
       {
         std::lock_guard lock(queryMutex);
-        groupQueries.push_back(query);
+        (path == "/api/groups" ? groupQueries : crowdQueries).push_back(query);
       }
       if (future.wait_for(std::chrono::milliseconds(1000)) != std::future_status::ready) {
         return server::HttpResponse{503, "application/json", R"({"error":"the simulation did not answer in time"})", {}};
@@ -439,12 +441,14 @@ int runServe(const ServeOptions& options) {
         // The groups as they are now (most spawn after the start, so the world description lacks them).
         nlohmann::json groups = nlohmann::json::array();
         if (!replay) {
+          // world->desc(): crowds inserted at run time appended their populations (and groups).
+          const sim::ScenarioDesc& desc = world->desc();
           for (std::size_t g = 0; g < world->groupCount(); ++g) {
             const auto info = world->groupInfo(world->groupById(static_cast<std::uint32_t>(g)));
             if (!info) continue;
             groups.push_back({{"id", info->id},
-                              {"population", info->population < loaded->desc.populations.size()
-                                                 ? loaded->desc.populations[info->population].id
+                              {"population", info->population < desc.populations.size()
+                                                 ? desc.populations[info->population].id
                                                  : std::string()},
                               {"members", info->members}, {"leader", info->leader}, {"guided", info->guided},
                               {"waiting", info->waiting}});
@@ -453,6 +457,24 @@ int runServe(const ServeOptions& options) {
         const std::string text = groups.dump();
         for (const auto& q : groupQueries) q->set_value(text);
         groupQueries.clear();
+      }
+      if (!crowdQueries.empty()) {
+        // Crowds inserted at run time (InsertCrowd, timeline), in insertion order.
+        nlohmann::json crowds = nlohmann::json::array();
+        if (!replay) {
+          const sim::ScenarioDesc& desc = world->desc();
+          for (const sim::CrowdInfo& c : world->crowds()) {
+            nlohmann::json populations = nlohmann::json::array();
+            for (std::uint32_t p = c.firstPopulation; p < c.firstPopulation + c.populations && p < desc.populations.size(); ++p) {
+              populations.push_back(desc.populations[p].id);
+            }
+            crowds.push_back({{"id", c.id}, {"index", c.index}, {"applied", c.applied}, {"removed", c.removed},
+                              {"insertTick", c.insertTick}, {"populations", populations}});
+          }
+        }
+        const std::string text = crowds.dump();
+        for (const auto& q : crowdQueries) q->set_value(text);
+        crowdQueries.clear();
       }
     }
     const auto t1 = Clock::now();

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <regex>
+#include <set>
 #include <thread>
 
 #include <nlohmann/json.hpp>
@@ -291,6 +292,94 @@ TEST(Serve, LoadgenReportsPerClientFiguresAndTheServerTick) {
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("expected ws://"), std::string::npos) << bad.err;
 }
+
+/// Ids of the agents in the groups of population `population` (GET /api/groups).
+std::set<std::uint32_t> membersOf(std::uint16_t port, const std::string& population) {
+  std::set<std::uint32_t> ids;
+  auto groups = server::httpRequest("127.0.0.1", port, "GET", "/api/groups");
+  EXPECT_TRUE(groups.ok() && groups->status == 200u);
+  if (!groups.ok() || groups->status != 200u) return ids;
+  for (const auto& g : nlohmann::json::parse(groups->body)) {
+    if (g["population"] == population) {
+      for (const auto& m : g["members"]) ids.insert(m.get<std::uint32_t>());
+    }
+  }
+  return ids;
+}
+
+/// How many of `ids` the session's newest crowd frame holds.
+std::size_t visible(const client::Session& s, const std::set<std::uint32_t>& ids) {
+  std::size_t n = 0;
+  if (!s.crowd()) return 0;
+  for (const protocol::AgentState& a : s.crowd()->view.agents) n += ids.count(a.id);
+  return n;
+}
+
+/// Pumps until `session` holds `count` crowd results (or 5 s passed).
+void awaitCrowdResults(client::Session& session, std::vector<client::Session*> all, std::size_t count) {
+  const auto end = std::chrono::steady_clock::now() + 5s;
+  while (session.crowdResults().size() < count && std::chrono::steady_clock::now() < end) pumpFor(all, 20ms);
+}
+
+TEST(Serve, AParticipantInsertsACrowdAnotherClientSeesItAndRemovalMakesItGo) {
+  Server server;
+  ASSERT_NE(server.port, 0) << "the server did not print its port";
+  auto curator = open(server.options("curator"));
+  auto watcher = open(server.options("watcher"));
+  ASSERT_TRUE(curator && watcher);
+  ASSERT_TRUE(curator->join("curator").ok());
+  pumpFor({curator.get(), watcher.get()}, 500ms);
+  ASSERT_TRUE(watcher->crowd().has_value());
+  const std::size_t before = watcher->crowd()->view.agents.size();
+  const std::string crowd = R"({"format": "throng-crowd/1", "id": "late-visitors",
+    "populations": [{"id": "late", "groups": 4, "size": 5, "spawn": {"point": "hall"},
+                     "goals": ["door-a", "a1-sunflowers", "exit"], "speed": 1.1, "radius": 0.2}]})";
+  auto request = curator->insertCrowd(crowd);
+  ASSERT_TRUE(request.ok()) << request.errors().front().format();
+  awaitCrowdResults(*curator, {curator.get(), watcher.get()}, 1);
+  ASSERT_EQ(curator->crowdResults().size(), 1u);
+  const protocol::CrowdResult inserted = curator->crowdResults().front();
+  EXPECT_TRUE(inserted.ok) << inserted.text;
+  EXPECT_EQ(inserted.requestId, request.value());
+  EXPECT_EQ(inserted.crowdId, "late-visitors");
+  pumpFor({curator.get(), watcher.get()}, 500ms);
+  // The new groups are listed, their 20 agents are in the watcher's crowd frames.
+  const std::set<std::uint32_t> ids = membersOf(server.port, "late");
+  EXPECT_EQ(ids.size(), 20u);
+  EXPECT_EQ(visible(*watcher, ids), ids.size());
+  EXPECT_GE(watcher->crowd()->view.agents.size(), before + 20);
+  auto listed = server::httpRequest("127.0.0.1", server.port, "GET", "/api/crowds");
+  ASSERT_TRUE(listed.ok());
+  ASSERT_EQ(listed->status, 200u);
+  auto crowds = nlohmann::json::parse(listed->body);
+  ASSERT_EQ(crowds.size(), 1u) << listed->body;
+  EXPECT_EQ(crowds[0]["id"], "late-visitors");
+  EXPECT_EQ(crowds[0]["applied"], true);
+  EXPECT_EQ(crowds[0]["populations"], nlohmann::json::array({"late"}));
+  // A bad file: refused with diagnostics naming the request, nothing inserted.
+  auto bad = curator->insertCrowd(R"({"format": "throng-crowd/1", "id": "x", "populations": [{"id": "y"}]})");
+  ASSERT_TRUE(bad.ok());
+  awaitCrowdResults(*curator, {curator.get(), watcher.get()}, 2);
+  ASSERT_EQ(curator->crowdResults().size(), 2u);
+  EXPECT_FALSE(curator->crowdResults()[1].ok);
+  EXPECT_NE(curator->crowdResults()[1].text.find("request " + std::to_string(bad.value()) + ":1:"), std::string::npos)
+      << curator->crowdResults()[1].text;
+  // Removal: the crowd's agents leave the watcher's view.
+  auto removal = curator->removeCrowd("late-visitors");
+  ASSERT_TRUE(removal.ok());
+  awaitCrowdResults(*curator, {curator.get(), watcher.get()}, 3);
+  ASSERT_EQ(curator->crowdResults().size(), 3u);
+  EXPECT_TRUE(curator->crowdResults()[2].ok) << curator->crowdResults()[2].text;
+  pumpFor({curator.get(), watcher.get()}, 500ms);
+  EXPECT_EQ(visible(*watcher, ids), 0u);
+  listed = server::httpRequest("127.0.0.1", server.port, "GET", "/api/crowds");
+  ASSERT_TRUE(listed.ok());
+  EXPECT_EQ(nlohmann::json::parse(listed->body)[0]["removed"], true);
+  EXPECT_TRUE(watcher->open() && curator->open());
+  const CliResult stopped = server.stop();
+  EXPECT_EQ(stopped.exitCode, 130) << stopped.err;
+}
+
 
 }  // namespace
 }  // namespace throng::e2e

@@ -390,5 +390,228 @@ TEST_F(HubFixture, AClientThatNeverReadsIsCutOffAndTheOthersGoOn) {
   EXPECT_NE(find<CrowdFrame>(got), nullptr);
 }
 
+// ---- Crowds inserted at run time (InsertCrowd / RemoveCrowd → CrowdResult) ----
+
+namespace crowds {
+
+/// A valid crowd for scenarios/museum.json: 2 groups of 3 starting at the hall, at once.
+std::string visitors(const std::string& id = "late-visitors", int groups = 2, int size = 3) {
+  return R"({"format": "throng-crowd/1", "id": ")" + id + R"(",
+  "populations": [
+    {"id": ")" + id + R"(-pop", "groups": )" + std::to_string(groups) + R"(, "size": )" + std::to_string(size) + R"(,
+     "spawn": {"point": "hall"}, "goals": ["door-a", "a1-sunflowers", "exit"], "speed": 1.1, "radius": 0.2}
+  ]
+})";
+}
+
+/// Agents of the world's snapshot whose population index is at least `firstPopulation`.
+std::size_t agentsFrom(sim::World& world, std::uint32_t firstPopulation) {
+  auto snap = world.snapshot();
+  std::size_t n = 0;
+  for (std::size_t r = 0; r < snap->size(); ++r) {
+    auto info = world.agentInfo(snap->ids[r]);
+    if (info && info->population >= firstPopulation) ++n;
+  }
+  return n;
+}
+
+const CrowdResult* result(const std::vector<Message>& got) { return find<CrowdResult>(got); }
+
+}  // namespace crowds
+
+TEST_F(HubFixture, AnInsertedCrowdsAgentsAppearForEveryClient) {
+  connect(1);
+  connect(2);
+  const Joined a = join(1, "curator");
+  for (int i = 0; i < 5; ++i) tick();
+  outbox.drain(1);
+  outbox.drain(2);
+  const auto firstPopulation = static_cast<std::uint32_t>(world->desc().populations.size());
+  say(1, encode(InsertCrowd{a.token, 7, crowds::visitors()}));
+  EXPECT_TRUE(outbox.drain(1).empty());  // answered by applyToWorld, between ticks
+  tick();
+  const auto got = outbox.drain(1);
+  const CrowdResult* r = crowds::result(got);
+  ASSERT_NE(r, nullptr);
+  EXPECT_TRUE(r->ok) << r->text;
+  EXPECT_EQ(r->requestId, 7u);
+  EXPECT_EQ(r->crowdIndex, 0u);
+  EXPECT_EQ(r->crowdId, "late-visitors");
+  EXPECT_NE(r->text.find("inserted"), std::string::npos) << r->text;
+  ASSERT_EQ(world->crowds().size(), 1u);
+  EXPECT_TRUE(world->crowds()[0].applied);
+  EXPECT_EQ(crowds::agentsFrom(*world, firstPopulation), 6u);
+  EXPECT_EQ(find<CrowdResult>(outbox.drain(2)), nullptr);  // only the sender hears the answer
+  // Client 2 (no avatar: an overview of everyone) decodes the new agents in its crowd frames.
+  tick();
+  CrowdDecoder decoder;
+  std::set<std::uint32_t> seen;
+  for (const auto& sent : outbox.queues[2]) {
+    auto d = decoder.decode(sent.bytes);
+    if (!d.ok()) continue;
+    seen.clear();
+    for (const AgentState& s : d->view.agents) seen.insert(s.id);
+  }
+  auto snap = world->snapshot();
+  std::size_t inserted = 0;
+  for (std::size_t i = 0; i < snap->size(); ++i) {
+    auto info = world->agentInfo(snap->ids[i]);
+    if (info && info->population >= firstPopulation) {
+      ++inserted;
+      EXPECT_TRUE(seen.count(snap->ids[i])) << "agent " << snap->ids[i];
+    }
+  }
+  EXPECT_EQ(inserted, 6u);
+  EXPECT_TRUE(outbox.closed.empty());
+}
+
+TEST_F(HubFixture, ABadCrowdIsRefusedWithDiagnosticsAndTheWorldIsUntouched) {
+  auto control = sim::World::create(scenario->desc, scenario->navmesh);
+  ASSERT_TRUE(control.ok());
+  std::unique_ptr<sim::World> twin = std::move(control).value();
+  connect(1);
+  const Joined a = join(1, "curator");
+  const std::string bad = R"({"format": "throng-crowd/1", "id": "oops",
+  "populations": [
+    {"id": "p", "groups": 1, "size": 2, "spawn": {"point": "hal"}, "goals": ["door-a"]}
+  ]
+})";
+  for (int i = 0; i < 30; ++i) {
+    if (i == 3) say(1, encode(InsertCrowd{a.token, 9, bad}));
+    tick();
+    twin->setViewers({});
+    twin->step(tasks);
+  }
+  const auto got = outbox.drain(1);
+  const CrowdResult* r = crowds::result(got);
+  ASSERT_NE(r, nullptr);
+  EXPECT_FALSE(r->ok);
+  EXPECT_EQ(r->requestId, 9u);
+  // file:line:column, JSON pointer, what was expected, did you mean.
+  EXPECT_NE(r->text.find("participant " + std::to_string(a.participantId) + " request 9:3:"), std::string::npos) << r->text;
+  EXPECT_NE(r->text.find("/populations/0/spawn"), std::string::npos) << r->text;
+  EXPECT_NE(r->text.find("hall"), std::string::npos) << r->text;
+  EXPECT_TRUE(world->crowds().empty());
+  EXPECT_EQ(world->snapshot()->size(), twin->snapshot()->size());
+  EXPECT_EQ(world->stateHash(), twin->stateHash());
+  EXPECT_TRUE(outbox.closed.empty());  // a bad crowd file is no protocol error: the session stays
+}
+
+TEST_F(HubFixture, TooManyAgentsAreRefused) {
+  HubOptions options;
+  options.maxInsertAgents = 4;
+  hub = std::make_unique<Hub>(options, describeWorld(*scenario, *motions, *world, 20.0), 20.0f, *motions, outbox);
+  connect(1);
+  const Joined a = join(1, "curator");
+  say(1, encode(InsertCrowd{a.token, 1, crowds::visitors("six", 2, 3)}));  // 6 > 4 on this server
+  say(1, encode(InsertCrowd{a.token, 2, crowds::visitors("huge", 100, 200)}));  // 20000 > the World's 10000
+  tick();
+  const auto got = outbox.drain(1);
+  std::vector<CrowdResult> results;
+  for (const Message& m : got) {
+    if (auto* c = std::get_if<CrowdResult>(&m)) results.push_back(*c);
+  }
+  ASSERT_EQ(results.size(), 2u);
+  EXPECT_FALSE(results[0].ok);
+  EXPECT_NE(results[0].text.find("at most 4 agents per crowd insertion"), std::string::npos) << results[0].text;
+  EXPECT_EQ(results[0].crowdId, "six");
+  EXPECT_FALSE(results[1].ok);
+  EXPECT_NE(results[1].text.find("agents per crowd insertion"), std::string::npos) << results[1].text;
+  EXPECT_LE(results[1].text.size(), kMaxTextLength);
+  EXPECT_TRUE(world->crowds().empty());
+}
+
+TEST_F(HubFixture, ARemovedCrowdsAgentsLeave) {
+  connect(1);
+  const Joined a = join(1, "curator");
+  const auto firstPopulation = static_cast<std::uint32_t>(world->desc().populations.size());
+  say(1, encode(InsertCrowd{a.token, 1, crowds::visitors()}));
+  for (int i = 0; i < 5; ++i) tick();
+  ASSERT_EQ(crowds::agentsFrom(*world, firstPopulation), 6u);
+  outbox.drain(1);
+  say(1, encode(RemoveCrowd{a.token, 2, "late-visitors"}));
+  tick();
+  auto got = outbox.drain(1);
+  const CrowdResult* r = crowds::result(got);
+  ASSERT_NE(r, nullptr);
+  EXPECT_TRUE(r->ok) << r->text;
+  EXPECT_EQ(r->requestId, 2u);
+  EXPECT_EQ(r->crowdIndex, 0u);
+  EXPECT_EQ(r->crowdId, "late-visitors");
+  EXPECT_EQ(crowds::agentsFrom(*world, firstPopulation), 0u);
+  ASSERT_EQ(world->crowds().size(), 1u);
+  EXPECT_TRUE(world->crowds()[0].removed);
+  // Removing it again, or a crowd that never was, is refused (the session stays).
+  say(1, encode(RemoveCrowd{a.token, 3, "late-visitors"}));
+  say(1, encode(RemoveCrowd{a.token, 4, "late-visitor"}));
+  tick();
+  got = outbox.drain(1);
+  std::vector<CrowdResult> results;
+  for (const Message& m : got) {
+    if (auto* c = std::get_if<CrowdResult>(&m)) results.push_back(*c);
+  }
+  ASSERT_EQ(results.size(), 2u);
+  EXPECT_FALSE(results[0].ok);
+  EXPECT_NE(results[0].text.find("removed already"), std::string::npos) << results[0].text;
+  EXPECT_FALSE(results[1].ok);
+  EXPECT_NE(results[1].text.find("no crowd 'late-visitor'"), std::string::npos) << results[1].text;
+  EXPECT_TRUE(outbox.closed.empty());
+}
+
+TEST_F(HubFixture, OnlyParticipantsInsertCrowdsAndAtMostFourAMinute) {
+  connect(1);
+  connect(2);
+  // A viewer that never joined: refused like a Guide, and closed.
+  say(2, encode(InsertCrowd{0, 1, crowds::visitors()}));
+  const auto got2 = outbox.drain(2);
+  const Bye* bye = find<Bye>(got2);
+  ASSERT_NE(bye, nullptr);
+  EXPECT_EQ(bye->reason, ReasonCode::UnexpectedMessage);
+  EXPECT_TRUE(outbox.closed.count(2));
+  // A participant with someone else's token: closed too.
+  const Joined a = join(1, "curator");
+  tick();
+  EXPECT_TRUE(world->crowds().empty());
+  // Four insertions a minute; the fifth is answered "rate limited" at once, the session stays.
+  for (std::uint32_t i = 0; i < 5; ++i) say(1, encode(InsertCrowd{a.token, 10 + i, crowds::visitors("c" + std::to_string(i), 1, 1)}));
+  auto got = outbox.drain(1);
+  const CrowdResult* limited = crowds::result(got);
+  ASSERT_NE(limited, nullptr);
+  EXPECT_FALSE(limited->ok);
+  EXPECT_EQ(limited->requestId, 14u);
+  EXPECT_NE(limited->text.find("rate limited"), std::string::npos) << limited->text;
+  tick();
+  EXPECT_EQ(world->crowds().size(), 4u);
+  now += 61.0;
+  hub->onMessage(1, encode(Heartbeat{a.token, 1, 0}), now);  // keeps it from timing out
+  say(1, encode(InsertCrowd{a.token, 20, crowds::visitors("c5", 1, 1)}));
+  tick();
+  got = outbox.drain(1);
+  const CrowdResult* later = crowds::result(got);
+  ASSERT_NE(later, nullptr);
+  EXPECT_TRUE(later->ok) << later->text;
+  EXPECT_EQ(world->crowds().size(), 5u);
+  say(1, encode(InsertCrowd{a.token ^ 1, 21, crowds::visitors("c6", 1, 1)}));
+  const auto got3 = outbox.drain(1);
+  const Bye* bad = find<Bye>(got3);
+  ASSERT_NE(bad, nullptr);
+  EXPECT_EQ(bad->reason, ReasonCode::BadToken);
+}
+
+TEST_F(HubFixture, AReplayServerRefusesCrowdInsertion) {
+  HubOptions options;
+  options.replay = true;
+  hub = std::make_unique<Hub>(options, describeWorld(*scenario, *motions, *world, 20.0), 20.0f, *motions, outbox);
+  connect(1);
+  const Joined a = join(1, "viewer");
+  say(1, encode(InsertCrowd{a.token, 3, crowds::visitors()}));
+  const auto got = outbox.drain(1);
+  const CrowdResult* r = crowds::result(got);
+  ASSERT_NE(r, nullptr);
+  EXPECT_FALSE(r->ok);
+  EXPECT_NE(r->text.find("this server plays a recording"), std::string::npos) << r->text;
+  EXPECT_TRUE(outbox.closed.empty());
+}
+
 }  // namespace
 }  // namespace throng::hub

@@ -212,5 +212,46 @@ TEST(ProtocolMessages, ReplayStatusChecksTimesFlagAndSpeed) {
   expectError(encode(ReplayStatus{0, 0, true, HUGE_VALF}), "/ReplayStatus/speed", 20);
 }
 
+TEST(ProtocolMessages, CrowdRequestsCheckLimitsAndFlag) {
+  EXPECT_STREQ(messageTypeName(MessageType::InsertCrowd), "InsertCrowd");
+  EXPECT_STREQ(messageTypeName(MessageType::RemoveCrowd), "RemoveCrowd");
+  EXPECT_STREQ(messageTypeName(MessageType::CrowdResult), "CrowdResult");
+  EXPECT_EQ(messageType(Message{InsertCrowd{}}), MessageType::InsertCrowd);
+  EXPECT_EQ(messageType(Message{CrowdResult{}}), MessageType::CrowdResult);
+  // A crowd file of exactly kMaxCrowdJson bytes passes; the encoder cuts a longer one.
+  const std::string big(kMaxCrowdJson, 'x');
+  auto ok = decodeAny(encode(InsertCrowd{5, 9, big}));
+  ASSERT_TRUE(ok) << core::formatAll(ok.errors());
+  EXPECT_EQ(std::get<InsertCrowd>(ok.value()).crowdJson.size(), kMaxCrowdJson);
+  EXPECT_EQ(std::get<InsertCrowd>(ok.value()).requestId, 9u);
+  EXPECT_EQ(std::get<InsertCrowd>(decodeAny(encode(InsertCrowd{5, 9, big + "y"})).value()).crowdJson.size(), kMaxCrowdJson);
+  // Hand-made: a length prefix one over the limit is refused before anything is read.
+  std::vector<std::uint8_t> tooLong{kMagic, static_cast<std::uint8_t>(MessageType::InsertCrowd), 0, 0, 0, 0, 0, 0, 0, 0, 1};
+  for (std::uint64_t n = kMaxCrowdJson + 1; ; n >>= 7) {
+    tooLong.push_back(static_cast<std::uint8_t>((n & 0x7f) | (n >= 0x80 ? 0x80 : 0)));
+    if (n < 0x80) break;
+  }
+  auto t = decodeAny(tooLong);
+  ASSERT_FALSE(t);
+  EXPECT_EQ(t.errors()[0].pointer, "/InsertCrowd/crowdJson");
+  EXPECT_EQ(t.errors()[0].column, 12);
+  // RemoveCrowd: the id is a name.
+  std::vector<std::uint8_t> longId = encode(RemoveCrowd{1, 2, "a"});
+  longId[longId.size() - 2] = static_cast<std::uint8_t>(kMaxNameLength + 1);
+  auto r = decodeAny(longId);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.errors()[0].pointer, "/RemoveCrowd/crowdId");
+  // CrowdResult: ok is 0 or 1.
+  auto c = encode(CrowdResult{3, true, 1, "a", "b"});
+  c[3] = 2;
+  auto bad = decodeAny(c);
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.errors()[0].pointer, "/CrowdResult/ok");
+  EXPECT_EQ(bad.errors()[0].column, 4);
+  auto round = decodeAny(encode(CrowdResult{3, false, 0, "", std::string(2000, 't')}));
+  ASSERT_TRUE(round);
+  EXPECT_EQ(std::get<CrowdResult>(round.value()).text.size(), kMaxTextLength);
+}
+
 }  // namespace
 }  // namespace throng::protocol

@@ -133,6 +133,20 @@ inline nlohmann::json messageJson(const Message& m) {
           j["duration"] = v.duration;
           j["playing"] = v.playing;
           j["speed"] = v.speed;
+        } else if constexpr (std::is_same_v<T, InsertCrowd>) {
+          j["token"] = std::to_string(v.token);
+          j["requestId"] = v.requestId;
+          j["crowdJson"] = v.crowdJson;
+        } else if constexpr (std::is_same_v<T, RemoveCrowd>) {
+          j["token"] = std::to_string(v.token);
+          j["requestId"] = v.requestId;
+          j["crowdId"] = v.crowdId;
+        } else if constexpr (std::is_same_v<T, CrowdResult>) {
+          j["requestId"] = v.requestId;
+          j["ok"] = v.ok;
+          j["crowdIndex"] = v.crowdIndex;
+          j["crowdId"] = v.crowdId;
+          j["text"] = v.text;
         }
       },
       m);
@@ -226,6 +240,15 @@ inline std::vector<std::pair<std::string, Message>> goldenMessages() {
   m.emplace_back("presence", Presence{300, true, "Ada"});
   m.emplace_back("replay_control", ReplayControl{0x0123456789abcdefULL, ReplayCommand::Seek, 12.5});
   m.emplace_back("replay_status", ReplayStatus{12.5, 120.25, true, 2.0f});
+  m.emplace_back("insert_crowd",
+                 InsertCrowd{0x0123456789abcdefULL, 300,
+                             R"({"format":"throng-crowd/1","id":"tour","populations":[{"id":"p","count":3}]})"});
+  m.emplace_back("remove_crowd", RemoveCrowd{0x0123456789abcdefULL, 301, "tour"});
+  m.emplace_back("crowd_result", CrowdResult{300, true, 2, "tour", "crowd 'tour' inserted as 2: 3 agents at most"});
+  m.emplace_back("crowd_result_refused",
+                 CrowdResult{7, false, 0, "",
+                             "participant 1 request 7:1:12: /populations/0/count: -3; expected an integer >= 1\n"
+                             "(and 2 more)"});
   return m;
 }
 

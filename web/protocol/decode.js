@@ -7,10 +7,11 @@ import { decompress } from 'fzstd';
 export const PROTOCOL_VERSION = 1;
 export const MAGIC = 0x54;
 export const LIMITS = { maxMessageSize: 8 << 20, maxCrowdPayload: 16 << 20, maxWorldSize: 64 << 20,
-  maxNameLength: 64, maxTextLength: 1024, maxAgents: 65536, maxJoints: 128, maxExpressionWeights: 64 };
+  maxNameLength: 64, maxTextLength: 1024, maxAgents: 65536, maxJoints: 128, maxExpressionWeights: 64,
+  maxCrowdJson: 1 << 20 };
 export const TYPES = ['?', 'Hello', 'Refuse', 'Welcome', 'Join', 'Joined', 'Leave', 'Heartbeat', 'Bye', 'Move',
   'Joints', 'HandJoints', 'FaceExpression', 'Guide', 'Release', 'GuideResult', 'Ack', 'CrowdFrame',
-  'Presence', 'ReplayControl', 'ReplayStatus'];
+  'Presence', 'ReplayControl', 'ReplayStatus', 'InsertCrowd', 'RemoveCrowd', 'CrowdResult'];
 /** ReplayControl commands (value: 0 for play/pause, time [s] for seek, factor for speed). */
 export const REPLAY_COMMANDS = Object.freeze({ Play: 0, Pause: 1, Seek: 2, Speed: 3 });
 export const MAX_REPLAY_SPEED = 64;
@@ -148,6 +149,12 @@ const bodies = {
     if (!(Number.isFinite(m.speed) && m.speed > 0)) r.fail('speed', `speed ${m.speed}, expected a finite factor > 0`, at);
     return m;
   },
+  InsertCrowd: (r) => ({ token: r.u64('token'), requestId: r.varint('requestId'), crowdJson: r.string('crowdJson', LIMITS.maxCrowdJson) }),
+  RemoveCrowd: (r) => ({ token: r.u64('token'), requestId: r.varint('requestId'), crowdId: r.string('crowdId', LIMITS.maxNameLength) }),
+  CrowdResult: (r) => ({
+    requestId: r.varint('requestId'), ok: flag(r, 'ok'), crowdIndex: r.varint('crowdIndex'),
+    crowdId: r.string('crowdId', LIMITS.maxNameLength), text: r.string('text', LIMITS.maxTextLength),
+  }),
   CrowdFrame: (r) => {
     const at = r.p; const flags = r.u8('flags');
     if (flags & ~3) r.fail('flags', `unknown flag bits ${flags}`, at);

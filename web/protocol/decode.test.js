@@ -79,3 +79,16 @@ test('ReplayStatus: finite non-negative times, 0/1 playing, positive speed', () 
   fails(replayStatus(0, 1, 1, 0), 'speed', 19);
   fails(replayStatus(0, 1, 1, Infinity), 'speed', 19);
 });
+
+// InsertCrowd, RemoveCrowd, CrowdResult (types 21–23): limits and the ok flag.
+test('CrowdResult: ok must be 0 or 1; crowd ids are names', () => {
+  const ok = decodeAny(new Uint8Array([0x54, 23, 3, 1, 2, 1, 0x61, 1, 0x62]));
+  assert.deepEqual(ok, { type: 'CrowdResult', requestId: 3, ok: true, crowdIndex: 2, crowdId: 'a', text: 'b' });
+  assert.throws(() => decodeAny(new Uint8Array([0x54, 23, 3, 2, 2, 1, 0x61, 1, 0x62])),
+    (e) => e instanceof ProtocolError && e.field === '/CrowdResult/ok' && e.offset === 3);
+  assert.throws(() => decodeAny(new Uint8Array([0x54, 22, ...new Array(8).fill(0), 1, 65, ...new Array(65).fill(0x78)])),
+    /\/RemoveCrowd\/crowdId/);
+  // A crowd file one byte over 1 MiB: refused from its length prefix (0x80 0x80 0x40 = 2^20, +1).
+  assert.throws(() => decodeAny(new Uint8Array([0x54, 21, ...new Array(8).fill(0), 1, 0x81, 0x80, 0x40])),
+    (e) => e instanceof ProtocolError && e.field === '/InsertCrowd/crowdJson' && e.offset === 11);
+});

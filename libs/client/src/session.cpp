@@ -86,6 +86,8 @@ struct Session::Impl {
   protocol::CrowdDecoder decoder;
   std::optional<protocol::DecodedCrowdFrame> crowd;
   std::vector<protocol::GuideResult> guideResults;
+  std::vector<protocol::CrowdResult> crowdResults;
+  std::uint32_t nextRequestId = 1;
   std::vector<std::pair<std::uint32_t, protocol::Move>> others;
   std::optional<protocol::Joined> joined;
   std::optional<protocol::ReplayStatus> replayStatus;
@@ -145,6 +147,8 @@ struct Session::Impl {
       }
     } else if (auto* g = std::get_if<protocol::GuideResult>(&m)) {
       guideResults.push_back(*g);
+    } else if (auto* cr = std::get_if<protocol::CrowdResult>(&m)) {
+      crowdResults.push_back(std::move(*cr));
     } else if (auto* j = std::get_if<protocol::Joined>(&m)) {
       joined = *j;
     } else if (auto* mv = std::get_if<protocol::Move>(&m)) {
@@ -267,6 +271,29 @@ core::Status Session::leave() { return impl_->send(protocol::encode(protocol::Le
 core::Status Session::replayControl(protocol::ReplayCommand command, double value) {
   return impl_->send(protocol::encode(protocol::ReplayControl{impl_->token, command, value}));
 }
+core::Result<std::uint32_t> Session::insertCrowd(const std::string& crowdJson) {
+  if (crowdJson.size() > protocol::kMaxCrowdJson) {
+    return problem(impl_->source, "crowd file of " + std::to_string(crowdJson.size()) + " bytes",
+                   "at most " + std::to_string(protocol::kMaxCrowdJson) + " bytes");
+  }
+  const Bytes bytes = protocol::encode(protocol::InsertCrowd{impl_->token, impl_->nextRequestId, crowdJson});
+  if (impl_->options.udp && bytes.size() > protocol::kMaxDatagramSize) {
+    return problem(impl_->source, "crowd file of " + std::to_string(crowdJson.size()) + " bytes does not fit a UDP datagram",
+                   "a WebSocket session, or a file under 64 KB");
+  }
+  if (auto s = impl_->send(bytes); !s.ok()) return std::move(s).takeErrors();
+  return impl_->nextRequestId++;
+}
+
+core::Result<std::uint32_t> Session::removeCrowd(const std::string& crowdId) {
+  if (auto s = impl_->send(protocol::encode(protocol::RemoveCrowd{impl_->token, impl_->nextRequestId, crowdId})); !s.ok()) {
+    return std::move(s).takeErrors();
+  }
+  return impl_->nextRequestId++;
+}
+
+std::vector<protocol::CrowdResult>& Session::crowdResults() { return impl_->crowdResults; }
+
 const std::optional<protocol::ReplayStatus>& Session::replayStatus() const { return impl_->replayStatus; }
 const std::vector<std::pair<std::uint32_t, std::string>>& Session::participants() const { return impl_->participants; }
 

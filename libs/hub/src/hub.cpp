@@ -3,12 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <map>
 #include <mutex>
 #include <random>
 #include <utility>
 
 #include "throng/core/parallel.hpp"
+#include "throng/hub/crowd_requests.hpp"
 #include "throng/protocol/messages.hpp"
 
 namespace throng::hub {
@@ -50,6 +52,7 @@ struct Client {
   double lastProgress = 0.0;     ///< when bytes last left for this client
   double tokens = 0.0;           ///< rate limit bucket
   double tokensAt = 0.0;
+  std::deque<double> crowdInserts;  ///< when its InsertCrowds were accepted for the queue, last minute [s]
   // Crowd.
   protocol::CrowdEncoder encoder;
   std::uint32_t acked = 0;
@@ -66,6 +69,17 @@ struct GuideRequest {
   bool guide = true;
   bool answer = true;  ///< false: the participant left; nobody to answer
 };
+
+/// An InsertCrowd or RemoveCrowd waiting for applyToWorld.
+struct CrowdRequest {
+  PeerKey peer = 0;
+  std::uint32_t participantId = 0;
+  std::uint32_t requestId = 0;
+  bool insert = true;
+  std::string payload;  ///< the crowd file's JSON (insert) or the crowd id (remove)
+};
+
+constexpr double kCrowdInsertWindowSeconds = 60.0;
 
 }  // namespace
 
@@ -89,6 +103,7 @@ struct Hub::Impl {
     std::map<std::uint32_t, core::Vec2> avatars;       ///< participant → avatar position
     std::map<std::uint32_t, PeerKey> participants;     ///< participants present → their peer
     std::vector<protocol::ReplayControl> replayControls;
+    std::vector<CrowdRequest> crowdRequests;
   } input;
   /// Latest coordination's script entries per agent (observe / agentScript).
   mutable std::mutex scriptMutex;
@@ -335,6 +350,38 @@ void Hub::Impl::handle(Client& c, const protocol::Message& message, double now) 
           }
           std::lock_guard lock(input.mutex);
           input.requests.push_back({c.peer, c.participantId, m.groupId, guide, true});
+        } else if constexpr (std::is_same_v<M, InsertCrowd> || std::is_same_v<M, RemoveCrowd>) {
+          constexpr bool insert = std::is_same_v<M, InsertCrowd>;
+          if (!owns(c, m.token, insert ? "InsertCrowd" : "RemoveCrowd") || !allowState(c, now)) return;
+          auto answer = [&](const std::string& id, std::string text) {
+            outbox.send(c.peer, encode(CrowdResult{m.requestId, false, 0, id, std::move(text)}), false, 0);
+          };
+          if constexpr (insert) {
+            if (options.replay) {
+              answer("", "this server plays a recording: crowds cannot be inserted");
+              return;
+            }
+            while (!c.crowdInserts.empty() && now - c.crowdInserts.front() >= kCrowdInsertWindowSeconds) {
+              c.crowdInserts.pop_front();
+            }
+            if (c.crowdInserts.size() >= options.crowdInsertsPerMinute) {
+              const double wait = kCrowdInsertWindowSeconds - (now - c.crowdInserts.front());
+              answer("", "rate limited: at most " + std::to_string(options.crowdInsertsPerMinute) +
+                             " crowd insertions per participant per minute; try again in " +
+                             std::to_string(static_cast<int>(std::ceil(wait))) + " s");
+              return;
+            }
+            c.crowdInserts.push_back(now);
+            std::lock_guard lock(input.mutex);
+            input.crowdRequests.push_back({c.peer, c.participantId, m.requestId, true, m.crowdJson});
+          } else {
+            if (options.replay) {
+              answer(m.crowdId, "this server plays a recording: crowds cannot be removed");
+              return;
+            }
+            std::lock_guard lock(input.mutex);
+            input.crowdRequests.push_back({c.peer, c.participantId, m.requestId, false, m.crowdId});
+          }
         } else if constexpr (std::is_same_v<M, Ack>) {
           if (m.token != 0 && c.participant && m.token != c.token) {
             fail(c, ReasonCode::BadToken, "Ack with a token that is not this participant's");
@@ -392,6 +439,21 @@ void Hub::applyToWorld(sim::World& world) {
     if (r.answer && present) h.outbox.send(r.peer, protocol::encode(result), false, 0);
   }
   in.requests.clear();
+  // Crowds inserted and removed at the participants' request, in the order they came: each is
+  // validated against the world as it is then (earlier ones in this batch included).
+  for (const CrowdRequest& r : in.crowdRequests) {
+    if (in.participants.count(r.participantId) == 0) continue;  // left meanwhile: nobody asks any more
+    CrowdOutcome outcome =
+        r.insert ? insertCrowdJson(world, r.payload,
+                                   "participant " + std::to_string(r.participantId) + " request " + std::to_string(r.requestId),
+                                   h.options.maxInsertAgents)
+                 : removeCrowdById(world, r.payload);
+    protocol::CrowdResult result{r.requestId, outcome.ok, outcome.index,
+                                 outcome.id.substr(0, protocol::kMaxNameLength), std::move(outcome.text)};
+    if (!outcome.ok) result.text = diagnosticsText(outcome.diagnostics, protocol::kMaxTextLength);
+    h.outbox.send(r.peer, protocol::encode(result), false, 0);
+  }
+  in.crowdRequests.clear();
   // Dynamic goals: each guided group walks to its guide's avatar (the World replans only when it
   // moved far enough); the avatars are the viewers of multiresolution steering.
   std::vector<core::Vec2> viewers;

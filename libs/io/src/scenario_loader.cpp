@@ -17,6 +17,7 @@
 #include "scenario_social.hpp"
 #include "scenario_timeline.hpp"
 #include "scenario_validator.hpp"
+#include "throng/io/world_file.hpp"
 
 namespace throng::io {
 
@@ -52,6 +53,8 @@ core::Result<LoadedScenario> parseScenario(std::string_view text, const std::str
 }
 
 core::Result<LoadedScenario> loadScenarioFile(const std::string& path, const LoadOptions& options) {
+  // glTF worlds (.gltf, .glb) load through the world-file naming rules (world_file.hpp).
+  if (isWorldFile(path)) return loadWorldFile(path, options);
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     return core::Diagnostic{path, 0, 0, "", std::string("cannot open file: ") + std::strerror(errno),

@@ -266,6 +266,35 @@ Bytes encode(const ReplayStatus& m) {
   return out;
 }
 
+Bytes encode(const InsertCrowd& m) {
+  Bytes out = start(MessageType::InsertCrowd);
+  ByteWriter w(out);
+  w.u64(m.token);
+  w.varint(m.requestId);
+  w.string(clampString(m.crowdJson, kMaxCrowdJson));
+  return out;
+}
+
+Bytes encode(const RemoveCrowd& m) {
+  Bytes out = start(MessageType::RemoveCrowd);
+  ByteWriter w(out);
+  w.u64(m.token);
+  w.varint(m.requestId);
+  w.string(clampString(m.crowdId, kMaxNameLength));
+  return out;
+}
+
+Bytes encode(const CrowdResult& m) {
+  Bytes out = start(MessageType::CrowdResult);
+  ByteWriter w(out);
+  w.varint(m.requestId);
+  w.u8(m.ok ? 1 : 0);
+  w.varint(m.crowdIndex);
+  w.string(clampString(m.crowdId, kMaxNameLength));
+  w.string(clampString(m.text, kMaxTextLength));
+  return out;
+}
+
 Bytes encode(const Message& m) {
   return std::visit([](const auto& v) { return encode(v); }, m);
 }
@@ -278,7 +307,8 @@ const char* messageTypeName(MessageType type) {
   static constexpr const char* kNames[] = {"?", "Hello", "Refuse", "Welcome", "Join", "Joined", "Leave",
                                            "Heartbeat", "Bye", "Move", "Joints", "HandJoints",
                                            "FaceExpression", "Guide", "Release", "GuideResult", "Ack",
-                                           "CrowdFrame", "Presence", "ReplayControl", "ReplayStatus"};
+                                           "CrowdFrame", "Presence", "ReplayControl", "ReplayStatus",
+                                           "InsertCrowd", "RemoveCrowd", "CrowdResult"};
   const auto i = static_cast<std::uint8_t>(type);
   return i <= kMaxMessageType ? kNames[i] : "?";
 }
@@ -497,6 +527,29 @@ Message decodeBody(MessageType type, ByteReader& r) {
       if (r.ok() && !(std::isfinite(m.speed) && m.speed > 0.0f)) {
         r.fail("speed", at, "speed " + std::to_string(m.speed), "a finite factor > 0");
       }
+      return m;
+    }
+    case MessageType::InsertCrowd: {
+      InsertCrowd m;
+      m.token = r.u64("token");
+      m.requestId = static_cast<std::uint32_t>(r.varint("requestId", 0xffffffffu));
+      m.crowdJson = r.string("crowdJson", kMaxCrowdJson);
+      return m;
+    }
+    case MessageType::RemoveCrowd: {
+      RemoveCrowd m;
+      m.token = r.u64("token");
+      m.requestId = static_cast<std::uint32_t>(r.varint("requestId", 0xffffffffu));
+      m.crowdId = r.string("crowdId", kMaxNameLength);
+      return m;
+    }
+    case MessageType::CrowdResult: {
+      CrowdResult m;
+      m.requestId = static_cast<std::uint32_t>(r.varint("requestId", 0xffffffffu));
+      m.ok = readFlag(r, "ok", "1 (carried out) or 0 (refused)");
+      m.crowdIndex = static_cast<std::uint32_t>(r.varint("crowdIndex", 0xffffffffu));
+      m.crowdId = r.string("crowdId", kMaxNameLength);
+      m.text = r.string("text", kMaxTextLength);
       return m;
     }
   }

@@ -78,3 +78,20 @@ test('ReplayControl: hand-computed bytes and refused values', () => {
     assert.throws(() => enc.encodeReplayControl({ command, value }), RangeError, `${command} ${value}`);
   }
 });
+
+test('InsertCrowd / RemoveCrowd match the C++ golden bytes and hand-computed layouts', () => {
+  const crowdJson = '{"format":"throng-crowd/1","id":"tour","populations":[{"id":"p","count":3}]}';
+  const goldens = {
+    insert_crowd: () => enc.encodeInsertCrowd({ token, requestId: 300, crowdJson }),
+    remove_crowd: () => enc.encodeRemoveCrowd({ token, requestId: 301, crowdId: 'tour' }),
+  };
+  for (const [name, make] of Object.entries(goldens)) {
+    const file = path.join(golden, `${name}.bin`);
+    if (fs.existsSync(file)) assert.deepEqual([...make()], [...fs.readFileSync(file)], name);
+  }
+  // RemoveCrowd: u64 token, varint request 1, string "ab".
+  assert.deepEqual([...enc.encodeRemoveCrowd({ token: 2n, requestId: 1, crowdId: 'ab' })], [0x54, 22, ...le64(2n), 1, 2, 0x61, 0x62]);
+  // InsertCrowd: an object is sent as its JSON; over 1 MiB is refused.
+  assert.deepEqual([...enc.encodeInsertCrowd({ token: 0n, requestId: 128, crowdJson: {} })], [0x54, 21, ...le64(0n), 0x80, 0x01, 2, 0x7b, 0x7d]);
+  assert.throws(() => enc.encodeInsertCrowd({ token: 1n, requestId: 1, crowdJson: 'x'.repeat(enc.kMaxCrowdJson + 1) }), RangeError);
+});

@@ -148,3 +148,24 @@ export function encodeReplayControl({ token = 0n, command, value = 0 }) {
   if (!ok) throw new RangeError(`ReplayControl: command ${command} with value ${value} is not allowed`);
   return new Writer(MessageType.ReplayControl).u64(token).u8(command).f64(value).done();
 }
+
+// Crowds inserted at run time (docs/protocol.md, types 21–23): a participant sends a crowd file's
+// JSON (at most kMaxCrowdJson bytes) or names a crowd id to remove; the server answers a
+// CrowdResult (decoded by web/protocol/decode.js) with the same requestId.
+export const CrowdMessageType = Object.freeze({ InsertCrowd: 21, RemoveCrowd: 22, CrowdResult: 23 });
+export const kMaxCrowdJson = 1 << 20;
+
+/** {token, requestId, crowdJson (a "throng-crowd/1" file's text)}; throws RangeError over 1 MiB. */
+export function encodeInsertCrowd({ token, requestId, crowdJson }) {
+  const text = typeof crowdJson === 'string' ? crowdJson : JSON.stringify(crowdJson);
+  const bytes = utf8.encode(text);
+  if (bytes.length > kMaxCrowdJson) {
+    throw new RangeError(`InsertCrowd: crowd file of ${bytes.length} bytes; at most ${kMaxCrowdJson} bytes`);
+  }
+  return new Writer(CrowdMessageType.InsertCrowd).u64(token).varint(requestId).string(text, kMaxCrowdJson).done();
+}
+
+/** {token, requestId, crowdId (the id of a crowd inserted earlier, ≤ 64 bytes)}. */
+export function encodeRemoveCrowd({ token, requestId, crowdId }) {
+  return new Writer(CrowdMessageType.RemoveCrowd).u64(token).varint(requestId).string(crowdId, kMaxNameLength).done();
+}

@@ -64,6 +64,12 @@ class Session {
   core::Status replayControl(protocol::ReplayCommand command, double value = 0.0);
   /// The newest ReplayStatus heard (replays only).
   [[nodiscard]] const std::optional<protocol::ReplayStatus>& replayStatus() const;
+  /// Asks the server to insert a crowd (a "throng-crowd/1" file's text, ≤ protocol::kMaxCrowdJson
+  /// bytes; WebSocket only, it does not fit a datagram). Returns the request id that the answer
+  /// (crowdResults) carries. Needs join() first.
+  core::Result<std::uint32_t> insertCrowd(const std::string& crowdJson);
+  /// Asks the server to remove the crowd with id `crowdId`; returns the request id.
+  core::Result<std::uint32_t> removeCrowd(const std::string& crowdId);
   /// Participants present, by id, with their names (Presence messages).
   [[nodiscard]] const std::vector<std::pair<std::uint32_t, std::string>>& participants() const;
 
@@ -76,6 +82,8 @@ class Session {
   [[nodiscard]] const std::optional<protocol::DecodedCrowdFrame>& crowd() const;
   /// Guide results received, oldest first (cleared by the caller).
   [[nodiscard]] std::vector<protocol::GuideResult>& guideResults();
+  /// Answers to insertCrowd / removeCrowd received, oldest first (cleared by the caller).
+  [[nodiscard]] std::vector<protocol::CrowdResult>& crowdResults();
   /// Latest Move of each other participant, by participant id.
   [[nodiscard]] const std::vector<std::pair<std::uint32_t, protocol::Move>>& others() const;
   [[nodiscard]] const SessionStats& stats() const;

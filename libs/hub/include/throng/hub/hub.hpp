@@ -67,6 +67,12 @@ struct HubOptions {
   double stateMessagesPerSecond = 60.0;    ///< participant state messages per client [1/s]
   double stateBurst = 120.0;               ///< token bucket size [messages]
   std::size_t maxGuidedGroups = 16;        ///< groups one participant may guide at once
+  /// InsertCrowd: crowds one participant may insert per minute (sliding 60 s window); more are
+  /// answered with a CrowdResult "rate limited" (the session stays open).
+  std::size_t crowdInsertsPerMinute = 4;
+  /// InsertCrowd: most agents one inserted crowd may spawn (groups × largest group size, summed);
+  /// the World's own limits (sim::kMaxInsertAgents per insertion, kMaxInsertedAgents in all) apply too.
+  std::uint64_t maxInsertAgents = sim::kMaxInsertAgents;
   /// The world is a recording played back (`throng serve FILE.sqlite`): clients drive it with
   /// ReplayControl (takeReplayControls); there are no groups to guide.
   bool replay = false;
@@ -113,8 +119,10 @@ class Hub {
   void onClose(PeerKey peer, std::string_view reason);
 
   // Simulation side, between ticks.
-  /// Carries out guide and release requests, moves the guided groups' dynamic goals to their
-  /// guides' avatars, and gives the world the avatars as viewers (multiresolution steering).
+  /// Carries out guide and release requests and crowd insertions / removals (InsertCrowd,
+  /// RemoveCrowd: validated against the world, answered with a CrowdResult; an inserted crowd's
+  /// agents appear from the next tick), moves the guided groups' dynamic goals to their guides'
+  /// avatars, and gives the world the avatars as viewers (multiresolution steering).
   void applyToWorld(sim::World& world);
   /// Sends every welcomed client its crowd frame for `frame`, the server heartbeats, and closes
   /// clients that timed out or stalled. Clients' frames are encoded in parallel on `tasks` when

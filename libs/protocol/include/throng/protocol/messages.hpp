@@ -149,9 +149,35 @@ struct ReplayStatus {
   float speed = 1.0f;     ///< playback speed factor, finite, > 0
 };
 
+/// A participant asks the server to add a crowd (a "throng-crowd/1" file's text, docs/scenario-format.md
+/// "Crowd files") to the running world. Answered by a CrowdResult with the same requestId.
+struct InsertCrowd {
+  std::uint64_t token = 0;       ///< the participant's token
+  std::uint32_t requestId = 0;   ///< chosen by the client, echoed in the CrowdResult
+  std::string crowdJson;         ///< ≤ kMaxCrowdJson bytes
+};
+
+/// A participant asks the server to remove a crowd inserted earlier (its agents leave).
+struct RemoveCrowd {
+  std::uint64_t token = 0;       ///< the participant's token
+  std::uint32_t requestId = 0;   ///< chosen by the client, echoed in the CrowdResult
+  std::string crowdId;           ///< the crowd's id (its file's "id"), ≤ kMaxNameLength bytes
+};
+
+/// The answer to an InsertCrowd or RemoveCrowd, sent to the requesting client only.
+struct CrowdResult {
+  std::uint32_t requestId = 0;
+  bool ok = false;               ///< carried out (the agents appear / leave at the next tick)
+  std::uint32_t crowdIndex = 0;  ///< the crowd's index in insertion order (when ok)
+  std::string crowdId;           ///< the crowd's id, ≤ kMaxNameLength bytes (empty when unknown)
+  /// What happened, or the diagnostics one per line (file:line:column, JSON pointer, what was
+  /// expected), truncated with "(and N more)"; ≤ kMaxTextLength bytes.
+  std::string text;
+};
+
 using Message = std::variant<Hello, Refuse, Welcome, Join, Joined, Leave, Heartbeat, Bye, Move, Joints,
                              HandJoints, FaceExpression, Guide, Release, GuideResult, Ack, CrowdFrame,
-                             Presence, ReplayControl, ReplayStatus>;
+                             Presence, ReplayControl, ReplayStatus, InsertCrowd, RemoveCrowd, CrowdResult>;
 
 [[nodiscard]] Bytes encode(const Hello& m);
 [[nodiscard]] Bytes encode(const Refuse& m);
@@ -173,6 +199,9 @@ using Message = std::variant<Hello, Refuse, Welcome, Join, Joined, Leave, Heartb
 [[nodiscard]] Bytes encode(const Presence& m);
 [[nodiscard]] Bytes encode(const ReplayControl& m);
 [[nodiscard]] Bytes encode(const ReplayStatus& m);
+[[nodiscard]] Bytes encode(const InsertCrowd& m);  ///< crowdJson over kMaxCrowdJson is cut (the server then refuses it)
+[[nodiscard]] Bytes encode(const RemoveCrowd& m);
+[[nodiscard]] Bytes encode(const CrowdResult& m);
 [[nodiscard]] Bytes encode(const Message& m);
 
 /// The type byte of a message without decoding it; an error when too short, a bad magic or an

@@ -21,6 +21,7 @@ inline constexpr std::size_t kMaxTextLength = 1024;          ///< reason texts [
 inline constexpr std::size_t kMaxAgents = 65536;             ///< agents in one crowd view
 inline constexpr std::size_t kMaxJoints = 128;               ///< joints of a skeleton (3 angles each)
 inline constexpr std::size_t kMaxExpressionWeights = 64;     ///< FaceExpression weights
+inline constexpr std::size_t kMaxCrowdJson = 1u << 20;       ///< InsertCrowd's crowd file text [bytes, UTF-8]
 
 enum class MessageType : std::uint8_t {
   Hello = 1,           ///< client → server: first message
@@ -43,8 +44,11 @@ enum class MessageType : std::uint8_t {
   Presence = 18,       ///< server → client: a participant joined (or is present) or left
   ReplayControl = 19,  ///< client → server: play, pause, seek or change the speed of a replay
   ReplayStatus = 20,   ///< server → client: the replay's time, duration, playing and speed
+  InsertCrowd = 21,    ///< client → server: add a crowd (a crowd file's JSON) to the running world
+  RemoveCrowd = 22,    ///< client → server: remove a crowd inserted earlier, by its id
+  CrowdResult = 23,    ///< server → client: answer to InsertCrowd / RemoveCrowd
 };
-inline constexpr std::uint8_t kMaxMessageType = 20;
+inline constexpr std::uint8_t kMaxMessageType = 23;
 
 /// Name of a message type ("Hello"); "?" for an unknown value.
 [[nodiscard]] const char* messageTypeName(MessageType type);

@@ -1,0 +1,281 @@
+// throng::io glTF scene reading — tinygltf model → GltfScene (gltf_scene.hpp): node world
+// transforms (matrix or translation/rotation/scale), extras as JSON text, triangles of every
+// triangle primitive (lists, strips, fans; indexed or not), each accessor read with bounds checks.
+// The one translation unit that compiles tinygltf's implementation, without its image support.
+#define TINYGLTF_IMPLEMENTATION
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#include <tiny_gltf.h>
+
+#include "gltf_scene.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <functional>
+
+namespace throng::io {
+
+namespace {
+
+constexpr Mat4d kIdentity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+
+Mat4d multiply(const Mat4d& a, const Mat4d& b) {
+  Mat4d r{};
+  for (int c = 0; c < 4; ++c) {
+    for (int row = 0; row < 4; ++row) {
+      double s = 0;
+      for (int k = 0; k < 4; ++k) s += a[static_cast<std::size_t>(k * 4 + row)] * b[static_cast<std::size_t>(c * 4 + k)];
+      r[static_cast<std::size_t>(c * 4 + row)] = s;
+    }
+  }
+  return r;
+}
+
+Mat4d localMatrix(const tinygltf::Node& n) {
+  if (n.matrix.size() == 16) {
+    Mat4d m{};
+    for (std::size_t i = 0; i < 16; ++i) m[i] = n.matrix[i];
+    return m;
+  }
+  Mat4d m = kIdentity;
+  double qx = 0, qy = 0, qz = 0, qw = 1;
+  if (n.rotation.size() == 4) {
+    qx = n.rotation[0], qy = n.rotation[1], qz = n.rotation[2], qw = n.rotation[3];
+    const double len = std::sqrt(qx * qx + qy * qy + qz * qz + qw * qw);
+    if (len > 1e-12 && std::isfinite(len)) qx /= len, qy /= len, qz /= len, qw /= len;
+    else qx = qy = qz = 0, qw = 1;
+  }
+  // Rotation matrix columns (column-major).
+  m[0] = 1 - 2 * (qy * qy + qz * qz), m[1] = 2 * (qx * qy + qz * qw), m[2] = 2 * (qx * qz - qy * qw);
+  m[4] = 2 * (qx * qy - qz * qw), m[5] = 1 - 2 * (qx * qx + qz * qz), m[6] = 2 * (qy * qz + qx * qw);
+  m[8] = 2 * (qx * qz + qy * qw), m[9] = 2 * (qy * qz - qx * qw), m[10] = 1 - 2 * (qx * qx + qy * qy);
+  if (n.scale.size() == 3) {
+    for (int c = 0; c < 3; ++c) {
+      for (int r = 0; r < 3; ++r) m[static_cast<std::size_t>(c * 4 + r)] *= n.scale[static_cast<std::size_t>(c)];
+    }
+  }
+  if (n.translation.size() == 3) m[12] = n.translation[0], m[13] = n.translation[1], m[14] = n.translation[2];
+  return m;
+}
+
+/// Byte span of element `i` of an accessor, or nullptr when outside its buffer.
+const unsigned char* element(const tinygltf::Model& model, const tinygltf::Accessor& acc, std::size_t i,
+                             std::size_t elementSize, std::string& problem) {
+  if (acc.bufferView < 0 || static_cast<std::size_t>(acc.bufferView) >= model.bufferViews.size()) {
+    problem = "accessor without a valid bufferView";
+    return nullptr;
+  }
+  const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(acc.bufferView)];
+  if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size()) {
+    problem = "bufferView without a valid buffer";
+    return nullptr;
+  }
+  const std::vector<unsigned char>& data = model.buffers[static_cast<std::size_t>(view.buffer)].data;
+  const std::size_t stride = view.byteStride != 0 ? view.byteStride : elementSize;
+  const std::size_t start = view.byteOffset + acc.byteOffset + i * stride;
+  if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset ||
+      acc.byteOffset + i * stride + elementSize > view.byteLength || start + elementSize > data.size()) {
+    problem = "accessor data outside its buffer";
+    return nullptr;
+  }
+  return data.data() + start;
+}
+
+bool readPositions(const tinygltf::Model& model, int index, std::vector<Vec3d>& out, std::string& problem) {
+  if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size()) {
+    problem = "POSITION accessor index out of range";
+    return false;
+  }
+  const tinygltf::Accessor& acc = model.accessors[static_cast<std::size_t>(index)];
+  if (acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || acc.type != TINYGLTF_TYPE_VEC3 || acc.sparse.isSparse) {
+    problem = "POSITION must be a non-sparse VEC3 of FLOAT";
+    return false;
+  }
+  if (acc.count > kMaxWorldTriangles * 3) {
+    problem = "too many vertices";
+    return false;
+  }
+  out.resize(acc.count);
+  for (std::size_t i = 0; i < acc.count; ++i) {
+    const unsigned char* p = element(model, acc, i, 12, problem);
+    if (p == nullptr) return false;
+    float f[3];
+    std::memcpy(f, p, 12);
+    if (!std::isfinite(f[0]) || !std::isfinite(f[1]) || !std::isfinite(f[2])) {
+      problem = "non-finite vertex position";
+      return false;
+    }
+    out[i] = {f[0], f[1], f[2]};
+  }
+  return true;
+}
+
+bool readIndices(const tinygltf::Model& model, int index, std::vector<std::uint32_t>& out, std::string& problem) {
+  if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size()) {
+    problem = "indices accessor index out of range";
+    return false;
+  }
+  const tinygltf::Accessor& acc = model.accessors[static_cast<std::size_t>(index)];
+  std::size_t size = 0;
+  switch (acc.componentType) {
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: size = 1; break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: size = 2; break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: size = 4; break;
+    default: problem = "indices must be unsigned bytes, shorts or ints"; return false;
+  }
+  if (acc.type != TINYGLTF_TYPE_SCALAR || acc.sparse.isSparse || acc.count > kMaxWorldTriangles * 3) {
+    problem = "indices must be a non-sparse SCALAR accessor of at most " + std::to_string(kMaxWorldTriangles * 3) + " entries";
+    return false;
+  }
+  out.resize(acc.count);
+  for (std::size_t i = 0; i < acc.count; ++i) {
+    const unsigned char* p = element(model, acc, i, size, problem);
+    if (p == nullptr) return false;
+    if (size == 1) out[i] = *p;
+    else if (size == 2) {
+      std::uint16_t v;
+      std::memcpy(&v, p, 2);
+      out[i] = v;
+    } else std::memcpy(&out[i], p, 4);
+  }
+  return true;
+}
+
+/// Appends the world-space triangles of a mesh; false (with `problem`) when it cannot be read.
+bool meshTriangles(const tinygltf::Model& model, int meshIndex, const Mat4d& world, std::size_t& budget,
+                   std::vector<std::array<Vec3d, 3>>& out, std::string& problem) {
+  if (meshIndex < 0 || static_cast<std::size_t>(meshIndex) >= model.meshes.size()) {
+    problem = "mesh index out of range";
+    return false;
+  }
+  for (const tinygltf::Primitive& prim : model.meshes[static_cast<std::size_t>(meshIndex)].primitives) {
+    const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+      continue;  // points and lines have no surface
+    }
+    const auto pos = prim.attributes.find("POSITION");
+    if (pos == prim.attributes.end()) {
+      problem = "a primitive without POSITION";
+      return false;
+    }
+    std::vector<Vec3d> vertices;
+    if (!readPositions(model, pos->second, vertices, problem)) return false;
+    std::vector<std::uint32_t> indices;
+    if (prim.indices >= 0) {
+      if (!readIndices(model, prim.indices, indices, problem)) return false;
+    } else {
+      indices.resize(vertices.size());
+      for (std::size_t i = 0; i < indices.size(); ++i) indices[i] = static_cast<std::uint32_t>(i);
+    }
+    for (const std::uint32_t i : indices) {
+      if (i >= vertices.size()) {
+        problem = "vertex index " + std::to_string(i) + " out of range";
+        return false;
+      }
+    }
+    auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+      if (budget == 0) return false;
+      --budget;
+      out.push_back({transformPoint(world, vertices[a]), transformPoint(world, vertices[b]), transformPoint(world, vertices[c])});
+      return true;
+    };
+    const std::size_t n = indices.size();
+    for (std::size_t i = 0; i + 2 < n; i += (mode == TINYGLTF_MODE_TRIANGLES ? 3 : 1)) {
+      bool ok = true;
+      if (mode == TINYGLTF_MODE_TRIANGLES) ok = add(indices[i], indices[i + 1], indices[i + 2]);
+      else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
+        ok = (i % 2 == 0) ? add(indices[i], indices[i + 1], indices[i + 2]) : add(indices[i + 1], indices[i], indices[i + 2]);
+      else ok = add(indices[0], indices[i + 1], indices[i + 2]);
+      if (!ok) {
+        problem = "the world has more than " + std::to_string(kMaxWorldTriangles) + " triangles";
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+bool ignoreImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+  return true;  // images are never needed: a world is geometry and properties
+}
+
+}  // namespace
+
+Vec3d transformPoint(const Mat4d& m, const Vec3d& p) {
+  return {m[0] * p[0] + m[4] * p[1] + m[8] * p[2] + m[12], m[1] * p[0] + m[5] * p[1] + m[9] * p[2] + m[13],
+          m[2] * p[0] + m[6] * p[1] + m[10] * p[2] + m[14]};
+}
+
+Vec3d transformDirection(const Mat4d& m, const Vec3d& d) {
+  return {m[0] * d[0] + m[4] * d[1] + m[8] * d[2], m[1] * d[0] + m[5] * d[1] + m[9] * d[2],
+          m[2] * d[0] + m[6] * d[1] + m[10] * d[2]};
+}
+
+bool readGltfScene(const std::string& bytes, const std::string& source, const std::string& baseDir, GltfScene& out,
+                   core::Diagnostics& diagnostics,
+                   const std::function<bool(const std::string&, const std::string&)>& wantTriangles) {
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(ignoreImage, nullptr);
+  loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
+  tinygltf::Model model;
+  std::string err, warn;
+  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  bool ok = false;
+  if (binary) {
+    ok = loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                     static_cast<unsigned int>(bytes.size()), baseDir);
+  } else {
+    ok = loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), baseDir);
+  }
+  if (!ok) {
+    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+    diagnostics.push_back({source, 0, 0, "", "not a valid glTF 2.0 file: " + (err.empty() ? std::string("unknown error") : err),
+                           "a glTF 2.0 file (.gltf JSON or .glb binary)", ""});
+    return false;
+  }
+  // The default scene (or the first); without scenes every node that is nobody's child is a root.
+  std::vector<int> roots;
+  if (!model.scenes.empty()) {
+    out.sceneIndex = model.defaultScene >= 0 && static_cast<std::size_t>(model.defaultScene) < model.scenes.size()
+                         ? model.defaultScene : 0;
+    const tinygltf::Scene& scene = model.scenes[static_cast<std::size_t>(out.sceneIndex)];
+    roots = scene.nodes;
+    out.sceneExtrasJson = scene.extras_json_string;
+  } else {
+    std::vector<bool> child(model.nodes.size(), false);
+    for (const auto& n : model.nodes) {
+      for (const int c : n.children) {
+        if (c >= 0 && static_cast<std::size_t>(c) < child.size()) child[static_cast<std::size_t>(c)] = true;
+      }
+    }
+    for (std::size_t i = 0; i < child.size(); ++i) {
+      if (!child[i]) roots.push_back(static_cast<int>(i));
+    }
+  }
+  std::vector<bool> visited(model.nodes.size(), false);
+  std::size_t budget = kMaxWorldTriangles;
+  std::function<void(int, const Mat4d&, int)> visit = [&](int index, const Mat4d& parent, int depth) {
+    if (index < 0 || static_cast<std::size_t>(index) >= model.nodes.size() || visited[static_cast<std::size_t>(index)] ||
+        depth > 64) {
+      return;  // invalid, shared or cyclic references and absurd depths are skipped
+    }
+    visited[static_cast<std::size_t>(index)] = true;
+    const tinygltf::Node& n = model.nodes[static_cast<std::size_t>(index)];
+    GltfNode node;
+    node.index = index;
+    node.name = n.name;
+    node.world = multiply(parent, localMatrix(n));
+    node.extrasJson = n.extras_json_string;
+    node.hasMesh = n.mesh >= 0;
+    if (node.hasMesh && wantTriangles(node.name, node.extrasJson)) meshTriangles(model, n.mesh, node.world, budget, node.triangles, node.meshProblem);
+    const Mat4d world = node.world;
+    out.nodes.push_back(std::move(node));
+    for (const int c : n.children) visit(c, world, depth + 1);
+  };
+  for (const int r : roots) visit(r, kIdentity, 0);
+  return true;
+}
+
+}  // namespace throng::io
