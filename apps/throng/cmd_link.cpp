@@ -24,6 +24,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "live_world.hpp"
 #include "output.hpp"
 #include "signal.hpp"
 #include "validators.hpp"
@@ -292,25 +293,13 @@ int runLink(const LinkOptions& options) {
     printDiagnostics(missing);
     return kExitFailure;
   }
-  auto loaded = io::loadScenarioFile(options.scenario);
-  if (!loaded) {
-    printDiagnostics(loaded.errors());
-    return kExitFailure;
-  }
-  if (options.seed) loaded->desc.seed = *options.seed;
-  auto created = sim::World::create(loaded->desc, loaded->navmesh);
-  if (!created) {
-    printDiagnostics(created.errors());
-    return kExitFailure;
-  }
-  std::unique_ptr<sim::World> world = std::move(created).value();
+  auto live = makeLiveWorld(io::loadScenarioFile(options.scenario), options.seed,
+                            fs::path(options.scenario).parent_path(), "link", options.quiet);
+  if (!live) return kExitFailure;
+  io::LoadedScenario* loaded = &live->scenario;
+  std::unique_ptr<sim::World>& world = live->world;
+  const hub::MotionLibrary& motions = live->motions;
   const double tickRate = options.tick ? *options.tick : 1.0 / loaded->desc.dt;
-  std::vector<std::string> warnings;
-  const hub::MotionLibrary motions =
-      hub::MotionLibrary::load(*loaded, fs::path(options.scenario).parent_path(), warnings);
-  if (!options.quiet) {
-    for (const std::string& w : warnings) printLine(stderr, "throng link: warning: " + w);
-  }
 
   link::SegmentOptions so;
   so.maxAgents = static_cast<std::uint32_t>(options.maxAgents);

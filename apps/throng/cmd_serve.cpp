@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "live_world.hpp"
 #include "output.hpp"
 #include "signal.hpp"
 #include "validators.hpp"
@@ -201,27 +202,15 @@ int runServe(const ServeOptions& options) {
   fs::path storedScenarioDir;
   auto loaded = replay ? parseStoredScenario(*replay, options.scenario, storedScenarioDir)
                        : io::loadScenarioFile(options.scenario);
-  if (!loaded) {
-    printDiagnostics(loaded.errors());
-    return kExitFailure;
-  }
-  if (options.seed) loaded->desc.seed = *options.seed;
-  auto created = sim::World::create(loaded->desc, loaded->navmesh);
-  if (!created) {
-    printDiagnostics(created.errors());
-    return kExitFailure;
-  }
-  std::unique_ptr<sim::World> world = std::move(created).value();
-  const double dt = loaded->desc.dt;
-  const double tickRate = options.tick ? *options.tick : replay ? std::max(1.0, replay->fps()) : 1.0 / dt;
   const fs::path scenarioDir = replay ? storedScenarioDir : fs::path(options.scenario).parent_path();
-
-  std::vector<std::string> warnings;
-  const hub::MotionLibrary motions = hub::MotionLibrary::load(*loaded, scenarioDir, warnings);
-  if (!options.quiet) {
-    for (const std::string& w : warnings) printLine(stderr, "throng serve: warning: " + w);
-  }
-  std::string worldJson = hub::describeWorld(*loaded, motions, *world, tickRate);
+  auto live = makeLiveWorld(std::move(loaded), options.seed, scenarioDir, "serve", options.quiet);
+  if (!live) return kExitFailure;
+  io::LoadedScenario* const scenario = &live->scenario;
+  std::unique_ptr<sim::World>& world = live->world;
+  const hub::MotionLibrary& motions = live->motions;
+  const double dt = scenario->desc.dt;
+  const double tickRate = options.tick ? *options.tick : replay ? std::max(1.0, replay->fps()) : 1.0 / dt;
+  std::string worldJson = hub::describeWorld(*scenario, motions, *world, tickRate);
   if (replay) {
     nlohmann::json described = nlohmann::json::parse(worldJson);
     described["replay"] = {{"duration", replay->duration()}, {"fps", replay->fps()}, {"frames", replay->frameCount()}};
@@ -232,7 +221,7 @@ int runServe(const ServeOptions& options) {
   const Clock::time_point start = Clock::now();
   Bridge bridge(start);
   hub::HubOptions hubOptions;
-  hubOptions.serverName = loaded->desc.name.empty() ? fs::path(options.scenario).stem().string() : loaded->desc.name;
+  hubOptions.serverName = scenario->desc.name.empty() ? fs::path(options.scenario).stem().string() : scenario->desc.name;
   hubOptions.maxClients = static_cast<std::size_t>(options.maxClients);
   hubOptions.granularity.budgetKbitPerSecond = options.budgetKbit;
   hubOptions.replay = replay.has_value();
@@ -262,7 +251,7 @@ int runServe(const ServeOptions& options) {
   std::vector<std::shared_ptr<AgentQuery>> queries;
   std::vector<std::shared_ptr<std::promise<std::string>>> groupQueries;  ///< GET /api/groups
   std::vector<std::shared_ptr<std::promise<std::string>>> crowdQueries;  ///< GET /api/crowds
-  const std::vector<sim::ClipInfo> clipTable = sim::animationClips(loaded->desc);
+  const std::vector<sim::ClipInfo> clipTable = sim::animationClips(scenario->desc);
   t.httpHandler = [&](std::string_view target) -> std::optional<server::HttpResponse> {
     const std::string_view path = target.substr(0, target.find('?'));
     if (path == "/api/groups" || path == "/api/crowds") {
@@ -297,7 +286,7 @@ int runServe(const ServeOptions& options) {
       }
       const std::optional<sim::AgentInfo> info = future.get();
       if (!info) return server::HttpResponse{404, "application/json", R"j({"error":"no such agent (not spawned yet, or left)"})j", {}};
-      const sim::ScenarioDesc& d = loaded->desc;
+      const sim::ScenarioDesc& d = scenario->desc;
       nlohmann::json j = {{"id", info->id}, {"group", info->group},
                           {"population", info->population < d.populations.size() ? d.populations[info->population].id : ""},
                           {"state", info->state}, {"position", {info->position.x, info->position.y}},
