@@ -3,7 +3,7 @@
 // `?demo&agents=N&lod=on|off` in headless Chromium (Debian's `chromium`, software renderer
 // SwiftShader unless --gpu) through playwright-core, lets it warm up, then counts rendered frames
 // over a window (window.__throngStats.frames). Prints a Markdown table. With --screenshots, writes
-// docs/img/viewer_{near,middle,far}.png (one per level of detail) instead.
+// docs/img/viewer_{near,middle,far,dots}.png (one per level of detail) instead.
 //   node viewer/bench/fps.mjs [--agents 100,1000,10000] [--seconds 6] [--gpu] [--screenshots]
 //                             [--chromium /usr/bin/chromium] [--width 1280 --height 720]
 import http from 'node:http';
@@ -76,6 +76,7 @@ async function shots(browser, base) {
     { name: 'near', agents: 300, look: [0.5, 8, 2.2] },
     { name: 'middle', agents: 2000, look: [0.35, 30, 12] },
     { name: 'far', agents: 10000, look: [0.5, 140, 55] },
+    { name: 'dots', agents: 10000, look: [0.0, 260, 160] },
   ];
   for (const v of views) {
     const page = await open(browser, base, `demo&agents=${v.agents}&lod=on&shot=1`);
@@ -99,7 +100,7 @@ async function shots(browser, base) {
     // The canvas itself (preserveDrawingBuffer in shot mode): no wait for a compositor frame.
     const url = await page.evaluate(() => globalThis.__throng.renderer.domElement.toDataURL('image/png'));
     fs.writeFileSync(file, Buffer.from(url.split(',')[1], 'base64'));
-    console.log(`${file}: near ${s.lod.near}, middle ${s.lod.middle}, far ${s.lod.far}, fps ${s.fps.toFixed(1)}`);
+    console.log(`${file}: near ${s.lod.near}, middle ${s.lod.middle}, far ${s.lod.far}, dots ${s.lod.dot}, fps ${s.fps.toFixed(1)}`);
     await page.close();
   }
 }
@@ -114,13 +115,13 @@ try {
     await shots(browser, base);
   } else {
     const renderer = gpu ? 'GPU' : 'SwiftShader (software)';
-    console.log(`| agents | adaptive display on: fps | near / middle / far | adaptive display off: fps |`);
-    console.log(`|---:|---:|---|---:|`);
+    console.log(`| agents | adaptive display on: fps | near / middle / far / dots | render scale | adaptive display off: fps |`);
+    console.log(`|---:|---:|---|---:|---:|`);
     for (const n of counts) {
       const on = await measure(browser, base, n, 'on');
       const off = await measure(browser, base, n, 'off');
       const l = on.stats.lod;
-      console.log(`| ${n} | ${on.fps.toFixed(1)} | ${l.near} / ${l.middle} / ${l.far} | ${off.fps.toFixed(1)} |`);
+      console.log(`| ${n} | ${on.fps.toFixed(1)} | ${l.near} / ${l.middle} / ${l.far} / ${l.dot ?? 0} | ${(l.renderScale ?? 1).toFixed(2)} | ${off.fps.toFixed(1)} |`);
     }
     console.log(`\n${renderer}, ${width}×${height}, headless Chromium ${browser.version()}, ${seconds} s per run`);
   }

@@ -1,14 +1,14 @@
 // Global level-of-detail function (Musse et al. §4, adaptive display) — pure, no three.js.
 // Reads each agent's projected height on screen [px] and the measured frame time; writes each
-// agent's level: Near (skinned body), Middle (instanced low-polygon body), Far (billboard) or
-// Hidden (off screen). Two parts:
+// agent's level: Near (skinned body), Middle (instanced low-polygon body), Far (billboard), Dot (a
+// flat-coloured point, for agents a few pixels high) or Hidden (off screen). Two parts:
 //   assignLevels: thresholds on projected size, with hysteresis (an agent keeps its level until it
 //     crosses the threshold by a margin) and caps (at most maxNear skinned and maxMiddle middle
 //     bodies: the largest on screen win, found with a log-size histogram in O(n));
 //   LodBudget: adapts caps and thresholds from the measured frame time so the frame rate holds as
 //     the crowd grows (shrinks fast when over budget, grows slowly when under, a dead band between).
 
-export const Level = Object.freeze({ Near: 0, Middle: 1, Far: 2, Hidden: 3 });
+export const Level = Object.freeze({ Near: 0, Middle: 1, Far: 2, Hidden: 3, Dot: 4 });
 
 /** Height on screen [px] of a body `bodyHeight` [m] at `distance` [m] seen with vertical field of
  * view `fovY` [rad] on a viewport `screenHeight` [px] high. */
@@ -22,6 +22,7 @@ export const defaultLodParams = Object.freeze({
   middlePx: 30,     // projected height from which an agent gets a middle body [px]
   maxNear: 48,      // cap on skinned bodies
   maxMiddle: 4000,  // cap on middle bodies
+  dotPx: 6,         // below this projected height a Far agent is drawn as a dot [px]
   hysteresis: 0.15, // a level is kept until the size is this fraction below its threshold
   adaptive: true,   // false: every visible agent is Near (the "display off" baseline)
 });
@@ -75,12 +76,12 @@ function admitLargest(sizes, count, eligible, prev, level, cap, out, hist) {
 /**
  * Picks each agent's level. `sizes[i]`: projected height [px], negative when the agent is off
  * screen (→ Hidden). `prev`: the levels of the previous call (same agent order) or null.
- * `out`: Uint8Array ≥ count. Returns {near, middle, far, hidden, nearDemand, middleDemand}: the
+ * `out`: Uint8Array ≥ count. Returns {near, middle, far, dot, hidden, nearDemand, middleDemand}: the
  * counts assigned and how many agents were large enough for each level before the caps.
  */
 export function assignLevels(sizes, count, prev, out, params = defaultLodParams, scratch = null) {
   const p = { ...defaultLodParams, ...params };
-  const counts = { near: 0, middle: 0, far: 0, hidden: 0, nearDemand: 0, middleDemand: 0 };
+  const counts = { near: 0, middle: 0, far: 0, dot: 0, hidden: 0, nearDemand: 0, middleDemand: 0 };
   if (!p.adaptive) {
     for (let i = 0; i < count; ++i) {
       out[i] = sizes[i] < 0 ? Level.Hidden : Level.Near;
@@ -113,8 +114,17 @@ export function assignLevels(sizes, count, prev, out, params = defaultLodParams,
   for (let i = 0; i < count; ++i) md += eligible[i];
   counts.middleDemand = md;
   admitLargest(sizes, count, eligible, prev, Level.Middle, p.maxMiddle, out, s.hist);
+  // Dots: Far agents below dotPx (a billboard there is a few pixels of texture anyway); an agent
+  // that was Far or larger stays Far until it is `hysteresis` below the threshold.
+  for (let i = 0; i < count; ++i) {
+    if (out[i] !== Level.Far) continue;
+    const was = prev ? prev[i] : Level.Far;
+    const t = was === Level.Dot ? p.dotPx : p.dotPx * keep;
+    if (sizes[i] < t) out[i] = Level.Dot;
+  }
   for (let i = 0; i < count; ++i) {
     const l = out[i];
+    if (l === Level.Dot) { counts.dot++; continue; }
     if (l === Level.Near) counts.near++;
     else if (l === Level.Middle) counts.middle++;
     else if (l === Level.Far) counts.far++;
@@ -129,11 +139,14 @@ export function makeLodScratch(capacity) {
 }
 
 /**
- * Frame-time budget: adapts the caps and a size-threshold scale so the frame time approaches
- * `targetFrameMs`. Over budget by more than `high` (fraction): caps × 0.75 / 0.8 and thresholds
- * × 1.15, at most once per `periodS`. Under budget by more than `low` and the caps binding
- * (more agents want the level than it allows): caps × 1.15 (+1) and thresholds ÷ 1.05. In between
- * (the dead band): nothing changes — hysteresis against oscillation.
+ * Frame-time budget: adapts the caps, a size-threshold scale and the render scale (dynamic
+ * resolution: the fraction of the full pixel ratio the frame is drawn at) so the frame time
+ * approaches `targetFrameMs`. Over budget by more than `high` (fraction): caps × 0.75 / 0.8,
+ * thresholds × 1.15 and render scale × 0.9 (× 0.8 when over by half or more; not below
+ * `minRenderScale`), at most once per `periodS`. Under budget by more than `low`: render scale
+ * × 1.05 (up to 1), thresholds ÷ 1.05, and the caps × 1.15 (+1) where binding (more agents want
+ * the level than it allows). In between (the dead band): nothing changes — hysteresis against
+ * oscillation.
  */
 export class LodBudget {
   constructor(options = {}) {
@@ -141,12 +154,13 @@ export class LodBudget {
       targetFrameMs: 1000 / 30, high: 0.15, low: 0.25, periodS: 0.5,
       maxNear: defaultLodParams.maxNear, maxMiddle: defaultLodParams.maxMiddle,
       minNear: 2, minMiddle: 50, nearPx: defaultLodParams.nearPx, middlePx: defaultLodParams.middlePx,
-      maxScale: 4, ...options,
+      maxScale: 4, minRenderScale: 0.5, dotPx: defaultLodParams.dotPx, ...options,
     };
     this.options = o;
     this.nearCap = o.maxNear;
     this.middleCap = o.maxMiddle;
     this.scale = 1;
+    this.renderScale = 1;  // dynamic resolution: fraction of the full pixel ratio to render at
     this.frameMs = o.targetFrameMs;  // smoothed measured frame time
     this.sincePeriod = 0;
     this.lastChange = 'start';
@@ -164,6 +178,9 @@ export class LodBudget {
         this.nearCap = Math.max(o.minNear, Math.floor(this.nearCap * 0.75));
         this.middleCap = Math.max(o.minMiddle, Math.floor(this.middleCap * 0.8));
         this.scale = Math.min(o.maxScale, this.scale * 1.15);
+        // Far over budget (≥ 1.5× the target): the resolution drops faster.
+        const f = this.frameMs > o.targetFrameMs * 1.5 ? 0.8 : 0.9;
+        this.renderScale = Math.max(o.minRenderScale, this.renderScale * f);
         this.lastChange = 'over budget';
       } else if (this.frameMs < o.targetFrameMs * (1 - o.low)) {
         const nearBinding = !counts || counts.nearDemand > this.nearCap;
@@ -172,6 +189,7 @@ export class LodBudget {
         if (nearBinding && this.nearCap < o.maxNear) { this.nearCap = Math.min(o.maxNear, Math.ceil(this.nearCap * 1.15) + 1); changed = true; }
         if (middleBinding && this.middleCap < o.maxMiddle) { this.middleCap = Math.min(o.maxMiddle, Math.ceil(this.middleCap * 1.15) + 1); changed = true; }
         if (this.scale > 1) { this.scale = Math.max(1, this.scale / 1.05); changed = true; }
+        if (this.renderScale < 1) { this.renderScale = Math.min(1, this.renderScale * 1.05); changed = true; }
         this.lastChange = changed ? 'under budget' : 'steady';
       } else {
         this.lastChange = 'steady';
@@ -183,6 +201,6 @@ export class LodBudget {
   params() {
     const o = this.options;
     return { nearPx: o.nearPx * this.scale, middlePx: o.middlePx * this.scale, maxNear: this.nearCap,
-      maxMiddle: this.middleCap, hysteresis: defaultLodParams.hysteresis, adaptive: true };
+      maxMiddle: this.middleCap, dotPx: o.dotPx * this.scale, renderScale: this.renderScale, hysteresis: defaultLodParams.hysteresis, adaptive: true };
   }
 }

@@ -46,7 +46,8 @@ function makeSource() {
 }
 
 const renderer = new THREE.WebGLRenderer({ antialias: params.get('aa') !== '0', preserveDrawingBuffer: shot });
-renderer.setPixelRatio(Math.min(devicePixelRatio, 2));
+const basePixelRatio = Math.min(devicePixelRatio, 2);
+renderer.setPixelRatio(basePixelRatio);
 renderer.setSize(innerWidth, innerHeight);
 $('app').appendChild(renderer.domElement);
 const scene = new THREE.Scene();
@@ -270,7 +271,13 @@ function frame() {
   const dt = Math.min(frameMs / 1000, 0.1);
   cameras.update(dt);
   state.advance(nowMs / 1000);
-  const counts = crowd.update(state, camera, renderer.domElement.height, frameMs);
+  // Levels from the full-resolution height; the budget's render scale (dynamic resolution) is
+  // applied after, for the next frame's drawing buffer (only when it moved by 5 % or more).
+  const counts = crowd.update(state, camera, innerHeight * basePixelRatio, frameMs, renderer.domElement.height);
+  const wantRatio = basePixelRatio * (crowd.adaptive && !shot ? crowd.params.renderScale : 1);  // screenshots: full resolution
+  if (Math.abs(wantRatio - renderer.getPixelRatio()) > 0.05 * basePixelRatio || (wantRatio === basePixelRatio && renderer.getPixelRatio() !== basePixelRatio)) {
+    renderer.setPixelRatio(wantRatio);
+  }
   avatars.begin();
   const walk = clips.walkClipId(), idle = clips.idleClipId();
   const tags = [];

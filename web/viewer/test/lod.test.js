@@ -18,8 +18,8 @@ test('levels by projected size; off screen is hidden', () => {
   const sizes = Float32Array.from([500, 150, 50, 25, 10, 1, -1]);
   const out = new Uint8Array(sizes.length);
   const c = assignLevels(sizes, sizes.length, null, out, params);
-  assert.deepEqual([...out], [Level.Near, Level.Near, Level.Middle, Level.Middle, Level.Far, Level.Far, Level.Hidden]);
-  assert.deepEqual([c.near, c.middle, c.far, c.hidden], [2, 2, 2, 1]);
+  assert.deepEqual([...out], [Level.Near, Level.Near, Level.Middle, Level.Middle, Level.Far, Level.Dot, Level.Hidden]);
+  assert.deepEqual([c.near, c.middle, c.far, c.dot, c.hidden], [2, 2, 1, 1, 1]);
 });
 
 test('caps keep the largest on screen; the rest drop one level', () => {
@@ -100,4 +100,43 @@ test('budget: caps do not grow when nobody needs them', () => {
   for (let k = 0; k < 1000; ++k) b.update(5, { nearDemand: 0, middleDemand: 0 });
   assert.equal(b.params().maxNear, shrunk.maxNear);
   assert.equal(b.params().maxMiddle, shrunk.maxMiddle);
+});
+
+test('dots: far agents below dotPx become dots, with hysteresis both ways', () => {
+  const p = { ...params, dotPx: 6 };  // hysteresis 0.2: 4.8 px
+  const out = new Uint8Array(1);
+  const far = Uint8Array.from([Level.Far]), dot = Uint8Array.from([Level.Dot]);
+  assignLevels(Float32Array.from([5.5]), 1, far, out, p);  // 5.5 ≥ 4.8: a billboard stays one
+  assert.equal(out[0], Level.Far);
+  assignLevels(Float32Array.from([4.5]), 1, far, out, p);
+  assert.equal(out[0], Level.Dot);
+  assignLevels(Float32Array.from([5.5]), 1, dot, out, p);  // a dot stays one until ≥ 6 px
+  assert.equal(out[0], Level.Dot);
+  assignLevels(Float32Array.from([6.5]), 1, dot, out, p);
+  assert.equal(out[0], Level.Far);
+  assignLevels(Float32Array.from([5.5]), 1, null, out, p);  // no history counts as Far
+  assert.equal(out[0], Level.Far);
+  // Dots never replace larger levels, nor show off-screen agents; display off has no dots.
+  const o3 = new Uint8Array(3);
+  assignLevels(Float32Array.from([2, 2, -1]), 3, null, o3, { ...p, middlePx: 1, maxMiddle: 1 });
+  assert.deepEqual([...o3], [Level.Middle, Level.Dot, Level.Hidden]);
+  assignLevels(Float32Array.from([2]), 1, null, out, { ...p, adaptive: false });
+  assert.equal(out[0], Level.Near);
+});
+
+test('budget: dynamic resolution drops when over budget, faster when far over, and comes back', () => {
+  const b = new LodBudget({ targetFrameMs: 20, periodS: 0.5, minRenderScale: 0.5 });
+  assert.equal(b.params().renderScale, 1);
+  for (let k = 0; k < 20; ++k) b.update(25, null);  // 1.25× the target: over budget (> 1.15×)
+  const mild = b.params().renderScale;
+  assert.ok(mild < 1 && mild >= 0.5, String(mild));
+  const c = new LodBudget({ targetFrameMs: 20, periodS: 0.5, minRenderScale: 0.5 });
+  for (let k = 0; k < 20; ++k) c.update(40, null);  // same number of periods, 2× the target
+  assert.ok(c.params().renderScale < mild);
+  for (let k = 0; k < 200; ++k) c.update(100, null);
+  assert.equal(c.params().renderScale, 0.5);  // never below the floor
+  for (let k = 0; k < 4000; ++k) c.update(5, null);  // 20 s at 200 fps: full resolution again
+  assert.equal(c.params().renderScale, 1);
+  // Dot threshold follows the size-threshold scale.
+  assert.equal(c.params().dotPx, 6);
 });

@@ -2,7 +2,7 @@
 // skinned body (near_bodies.js) is rendered into a texture atlas from kAngles directions around it
 // (columns) × kWalkFrames walk-cycle frames plus one standing frame (rows), with an orthographic
 // camera into an offscreen render target — images generated from the 3D body, not drawn. Each far
-// agent is one instance of a quad that turns about the vertical to face the camera; the shader picks
+// agent is one quad (4 vertices of one shared dynamic geometry, not GPU instances) that turns about the vertical to face the camera; the shader picks
 // the column from the angle between the agent's facing and the direction to the camera, and the
 // row from its walk phase. One draw call for all far agents.
 import * as THREE from 'three';
@@ -97,15 +97,24 @@ export class Billboards {
     this.mesh = null;
   }
 
+  // Not GPU-instanced: SwiftShader (and some weak GPUs) pay a fixed cost per instance, so each
+  // agent's quad is written out as 4 vertices of one plain geometry (still one draw call).
   ensure(n) {
     if (n <= this.capacity) return;
     const cap = Math.max(256, Math.ceil(n * 1.5));
-    const g = new THREE.InstancedBufferGeometry();
-    g.setAttribute('position', new THREE.Float32BufferAttribute([-0.5, 0, 0, 0.5, 0, 0, 0.5, 1, 0, -0.5, 1, 0], 3));
-    g.setIndex([0, 1, 2, 0, 2, 3]);
-    this.pos = new THREE.InstancedBufferAttribute(new Float32Array(cap * 3), 3).setUsage(THREE.DynamicDrawUsage);
-    this.color = new THREE.InstancedBufferAttribute(new Float32Array(cap * 3), 3).setUsage(THREE.DynamicDrawUsage);
-    this.anim = new THREE.InstancedBufferAttribute(new Float32Array(cap * 2), 2).setUsage(THREE.DynamicDrawUsage);
+    const g = new THREE.BufferGeometry();
+    const corner = new Float32Array(cap * 12), index = new Uint32Array(cap * 6);
+    const kCorner = [-0.5, 0, 0, 0.5, 0, 0, 0.5, 1, 0, -0.5, 1, 0];
+    for (let i = 0; i < cap; ++i) {
+      corner.set(kCorner, i * 12);
+      const v = i * 4;
+      index.set([v, v + 1, v + 2, v, v + 2, v + 3], i * 6);
+    }
+    g.setAttribute('position', new THREE.BufferAttribute(corner, 3));
+    g.setIndex(new THREE.BufferAttribute(index, 1));
+    this.pos = new THREE.BufferAttribute(new Float32Array(cap * 12), 3).setUsage(THREE.DynamicDrawUsage);
+    this.color = new THREE.BufferAttribute(new Float32Array(cap * 12), 3).setUsage(THREE.DynamicDrawUsage);
+    this.anim = new THREE.BufferAttribute(new Float32Array(cap * 8), 2).setUsage(THREE.DynamicDrawUsage);
     g.setAttribute('iPos', this.pos);
     g.setAttribute('iColor', this.color);
     g.setAttribute('iAnim', this.anim);
@@ -121,14 +130,22 @@ export class Billboards {
   /** Scene yaw [rad]; row: 0…kWalkFrames−1 walk frames, kWalkFrames standing. */
   add(sx, sy, sz, sceneYaw, row, color) {
     const i = this.count++;
-    this.pos.array[i * 3] = sx; this.pos.array[i * 3 + 1] = sy; this.pos.array[i * 3 + 2] = sz;
-    this.color.array[i * 3] = color.r; this.color.array[i * 3 + 1] = color.g; this.color.array[i * 3 + 2] = color.b;
-    this.anim.array[i * 2] = sceneYaw; this.anim.array[i * 2 + 1] = row;
+    const p = this.pos.array, c = this.color.array, a = this.anim.array;
+    const r = color.r, gr = color.g, b = color.b;
+    for (let k = 0, o = i * 12; k < 4; ++k, o += 3) {
+      p[o] = sx; p[o + 1] = sy; p[o + 2] = sz;
+      c[o] = r; c[o + 1] = gr; c[o + 2] = b;
+    }
+    for (let k = 0, o = i * 8; k < 4; ++k, o += 2) { a[o] = sceneYaw; a[o + 1] = row; }
   }
 
   end() {
-    this.mesh.geometry.instanceCount = this.count;
-    this.pos.needsUpdate = true; this.color.needsUpdate = true; this.anim.needsUpdate = true;
+    this.mesh.geometry.setDrawRange(0, this.count * 6);
+    for (const [attr, w] of [[this.pos, 12], [this.color, 12], [this.anim, 8]]) {
+      attr.clearUpdateRanges();
+      attr.addUpdateRange(0, this.count * w);
+      attr.needsUpdate = true;
+    }
     this.mesh.visible = this.count > 0;
   }
 }

@@ -1,13 +1,14 @@
 // The crowd on screen: each frame, from the interpolated crowd state (interpolate.js) and the
 // camera, computes every agent's projected size, asks the global LOD function (lod.js) for its
 // level within the frame-time budget, and fills the three renderers: skinned bodies (near),
-// instanced low-polygon bodies (middle), instanced billboards (far). Also: colours by group,
+// instanced low-polygon bodies (middle), billboards (far), dots (a few pixels high). Also: colours by group,
 // picking (ray against a vertical capsule proxy per agent), and the counts for the HUD.
 import * as THREE from 'three';
 import { Level, assignLevels, makeLodScratch, projectedHeight, LodBudget, defaultLodParams } from '../lod.js';
 import { NearBodies } from './near_bodies.js';
 import { MiddleBodies } from './middle_bodies.js';
 import { Billboards, renderAtlas, kWalkFrames } from './billboards.js';
+import { Dots } from './dots.js';
 import { sceneYaw } from '../coords.js';
 
 const kPalette = [0x3f7fbf, 0xbf5f3f, 0x4f9f5f, 0x9f4fa0, 0xc0a040, 0x40a0a8, 0x8f6f4f, 0x707fa0, 0xb0607a, 0x6a8f30];
@@ -21,6 +22,7 @@ export class CrowdView {
     this.middle = new MiddleBodies(scene, this.joints);
     this.atlas = renderAtlas(renderer, this.joints, this.near.geometry, clips);
     this.far = new Billboards(scene, this.atlas.texture);
+    this.dots = new Dots(scene);
     this.setGroups(description.groups || []);
     this.colors = kPalette.map((c) => new THREE.Color(c));
     this.highlight = new THREE.Color(0xffe040);
@@ -31,7 +33,7 @@ export class CrowdView {
     this.prevIds = new Uint32Array(0);
     this.sizes = new Float32Array(0);
     this.scratch = makeLodScratch(1024);
-    this.counts = { near: 0, middle: 0, far: 0, hidden: 0 };
+    this.counts = { near: 0, middle: 0, far: 0, dot: 0, hidden: 0 };
     this.selectedId = -1;
     this.selectedGroup = -1;  // group picked in the group list: its members are highlighted
     this.groupHighlight = new THREE.Color(0xff9a20);
@@ -54,8 +56,10 @@ export class CrowdView {
     return this.colors[(g === undefined ? id : g) % this.colors.length];
   }
 
-  /** Draws `state` (CrowdState, already advanced) from `camera` in a viewport `height` px high. */
-  update(state, camera, height, frameMs) {
+  /** Draws `state` (CrowdState, already advanced) from `camera` in a viewport `height` px high
+   * (at full resolution: the levels do not change with the render scale); `bufferHeight`: the
+   * drawing buffer's height [px] (for the dots' size), `height` when omitted. */
+  update(state, camera, height, frameMs, bufferHeight = height) {
     const n = state.count;
     if (this.sizes.length < n) {
       this.sizes = new Float32Array(n * 2); this.levels = new Uint8Array(n * 2);
@@ -85,6 +89,7 @@ export class CrowdView {
     this.near.begin();
     this.middle.begin(n);
     this.far.begin(n);
+    this.dots.begin(n, bufferHeight / (2 * Math.tan(fov / 2)));
     for (let i = 0; i < n; ++i) {
       const l = this.levels[i];
       if (l === Level.Hidden) continue;
@@ -96,12 +101,14 @@ export class CrowdView {
         this.near.add(state.x[i], state.y[i], state.z[i], state.yaw[i], c, state.phase[i], color.getHex(), state.tier[i] === 0 ? state.joints.get(id) : null);
       } else if (l === Level.Middle) {
         this.middle.add(state.x[i], state.y[i], state.z[i], state.yaw[i], state.phase[i], this.clips.isWalk(c), color);
+      } else if (l === Level.Dot) {
+        this.dots.add(state.x[i], state.z[i], -state.y[i], color);
       } else {
         const row = this.clips.isWalk(c) ? Math.floor(state.phase[i] * kWalkFrames) % kWalkFrames : kWalkFrames;
         this.far.add(state.x[i], state.z[i], -state.y[i], sceneYaw(state.yaw[i]), row, color);
       }
     }
-    this.near.end(); this.middle.end(); this.far.end();
+    this.near.end(); this.middle.end(); this.far.end(); this.dots.end();
     this.prevLevels = this.levels.slice(0, n);
     this.prevIds = state.ids;
     this.prevIndex = state.index;

@@ -28,13 +28,14 @@ export class Hud {
     }
     globalThis.__throngStats = {
       fps: this.fps, agents, frames: this.totalFrames, kbps: this.kbps,
-      lod: { near: counts.near, middle: counts.middle, far: counts.far, hidden: counts.hidden },
+      lod: { near: counts.near, middle: counts.middle, far: counts.far, dot: counts.dot || 0, hidden: counts.hidden,
+        renderScale: lod.adaptive ? lod.renderScale : 1 },
       adaptive: lod.adaptive, participants: source.participants,
     };
   }
 
   draw(source, counts, agents, lod) {
-    const cap = lod.adaptive ? `caps ${lod.maxNear}/${lod.maxMiddle}` : 'LOD off';
+    const cap = lod.adaptive ? `caps ${lod.maxNear}/${lod.maxMiddle} res ${Math.round(lod.renderScale * 100)}%` : 'LOD off';
     this.el.textContent = [
       `agents       ${agents}`,
       `participants ${source.participants}`,
@@ -43,6 +44,7 @@ export class Hud {
       `near         ${counts.near}`,
       `middle       ${counts.middle}`,
       `far          ${counts.far}`,
+      `dots         ${counts.dot || 0}`,
       `off screen   ${counts.hidden}`,
       `${cap}`,
       source.rttMs ? `rtt          ${source.rttMs.toFixed(0)} ms` : `source       ${source.kind}`,
