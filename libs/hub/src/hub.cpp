@@ -101,10 +101,15 @@ struct Hub::Impl {
     std::vector<GuideRequest> requests;
     std::map<std::uint32_t, std::uint32_t> guideOf;    ///< group → participant guiding it
     std::map<std::uint32_t, core::Vec2> avatars;       ///< participant → avatar position
+    std::map<std::uint32_t, float> avatarHeights;      ///< participant → avatar height [m] (multi-level worlds)
     std::map<std::uint32_t, PeerKey> participants;     ///< participants present → their peer
     std::vector<protocol::ReplayControl> replayControls;
     std::vector<CrowdRequest> crowdRequests;
   } input;
+  static float heightOf(const WorldInput& in, std::uint32_t participant) {
+    const auto h = in.avatarHeights.find(participant);
+    return h == in.avatarHeights.end() ? 0.0f : h->second;
+  }
   /// Latest coordination's script entries per agent (observe / agentScript).
   mutable std::mutex scriptMutex;
   std::map<std::uint32_t, std::vector<sim::ScriptRecord>> scripts;
@@ -181,6 +186,7 @@ struct Hub::Impl {
       if (participant == c.participantId) input.requests.push_back({c.peer, c.participantId, group, false, false});
     }
     input.avatars.erase(c.participantId);
+    input.avatarHeights.erase(c.participantId);
     input.participants.erase(c.participantId);
   }
 
@@ -320,6 +326,7 @@ void Hub::Impl::handle(Client& c, const protocol::Message& message, double now) 
           {
             std::lock_guard lock(input.mutex);
             input.avatars[c.participantId] = *c.avatar;
+            input.avatarHeights[c.participantId] = m.z;
           }
           relay(c, m);
         } else if constexpr (std::is_same_v<M, Joints> || std::is_same_v<M, HandJoints> || std::is_same_v<M, FaceExpression>) {
@@ -424,7 +431,7 @@ void Hub::applyToWorld(sim::World& world) {
         continue;  // left meanwhile
       } else {
         in.guideOf[r.group] = r.participantId;
-        if (auto a = in.avatars.find(r.participantId); a != in.avatars.end()) world.guide(handle, a->second);
+        if (auto a = in.avatars.find(r.participantId); a != in.avatars.end()) world.guide(handle, a->second, Impl::heightOf(in, r.participantId));
         result.guiding = result.ok = true;
       }
     } else {
@@ -460,7 +467,7 @@ void Hub::applyToWorld(sim::World& world) {
   viewers.reserve(in.avatars.size());
   for (const auto& [participant, position] : in.avatars) viewers.push_back(position);
   for (const auto& [group, participant] : in.guideOf) {
-    if (auto a = in.avatars.find(participant); a != in.avatars.end()) world.guide(world.groupById(group), a->second);
+    if (auto a = in.avatars.find(participant); a != in.avatars.end()) world.guide(world.groupById(group), a->second, Impl::heightOf(in, participant));
   }
   world.setViewers(std::move(viewers));
 }
@@ -485,6 +492,7 @@ core::Result<protocol::EncodedCrowdFrame> Hub::Impl::encodeCrowd(Client& c, cons
     a.tier = it.tier;
     a.x = frame.posX[r];
     a.y = frame.posY[r];
+    a.z = frame.height(r);
     a.yaw = r < frame.oriX.size() ? static_cast<float>(std::atan2(frame.oriY[r], frame.oriX[r])) : 0.0f;
     a.clip = r < frame.clip.size() ? frame.clip[r] : 0;
     a.phase = r < frame.phase.size() ? frame.phase[r] : 0.0f;

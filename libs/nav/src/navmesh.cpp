@@ -1,6 +1,7 @@
 // throng::nav::NavMesh — builds the tiled Recast/Detour navmesh of the walkable area (walkable
-// polygons minus obstacles, eroded by the agent radius) on the plane y = 0. Reads the polygons and
-// config once; the result is immutable. Tiles build in parallel (oneTBB) and are added to the
+// polygons minus obstacles, eroded by the agent radius) on the plane y = 0, and assembles built
+// tiles (of this build or of NavMesh::buildFromTerrain, terrain_builder.cpp) into the dtNavMesh.
+// Reads the polygons and config once; the result is immutable. Tiles build in parallel (oneTBB) and are added to the
 // dtNavMesh in tile order, so polygon references are identical for any thread count.
 #include "throng/nav/navmesh.hpp"
 
@@ -13,38 +14,18 @@
 #include <cstdio>
 #include <string>
 
+#include "build_common.hpp"
 #include "navmesh_data.hpp"
 #include "tile_builder.hpp"
 
 namespace throng::nav {
 namespace {
 
-constexpr const char* kSource = "navmesh";
-// Detour packs tile index, polygon index and a salt into a dtPolyRef; the salt needs >= 10 bits.
-constexpr int kRefBits = static_cast<int>(sizeof(dtPolyRef) * 8);
-constexpr int kMinSaltBits = 10;
-
-core::Diagnostic diag(std::string pointer, std::string what, std::string expected, std::string hint = {}) {
-  core::Diagnostic d;
-  d.source = kSource;
-  d.pointer = std::move(pointer);
-  d.what = std::move(what);
-  d.expected = std::move(expected);
-  d.hint = std::move(hint);
-  return d;
-}
-
-std::string metres(float v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g m", static_cast<double>(v));
-  return buf;
-}
-
-int ilog2Ceil(unsigned v) {
-  int bits = 0;
-  while ((1u << bits) < v) ++bits;
-  return bits;
-}
+using detail::diag;
+using detail::ilog2Ceil;
+using detail::kMinSaltBits;
+using detail::kRefBits;
+using detail::metres;
 
 void validatePolygons(std::span<const Polygon> polys, const char* name, core::Diagnostics& errors) {
   for (std::size_t i = 0; i < polys.size(); ++i) {
@@ -63,6 +44,11 @@ void validatePolygons(std::span<const Polygon> polys, const char* name, core::Di
   }
 }
 
+}  // namespace
+
+namespace detail {
+namespace {
+
 // Area of polygon `poly` of `tile` in the xz-plane [m²].
 double polyArea(const dtMeshTile& tile, const dtPoly& poly) {
   double area = 0.0;
@@ -75,6 +61,89 @@ double polyArea(const dtMeshTile& tile, const dtPoly& poly) {
 }
 
 }  // namespace
+
+core::Result<NavMeshData*> assembleTiles(std::vector<TileOutput>& tiles, const TileGrid& grid,
+                                         core::Diagnostic nothingWalkable) {
+  auto freeAll = [&tiles] {
+    for (auto& t : tiles) {
+      if (t.data) dtFree(t.data);
+      t.data = nullptr;
+    }
+  };
+  const auto tilesX = static_cast<std::size_t>(grid.tilesX);
+  const std::size_t tileCount = tiles.size();
+  core::Diagnostics errors;
+  int maxPolys = 0;
+  std::size_t usedTiles = 0;
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    if (!tiles[i].error.empty()) {
+      errors.push_back(diag("", "tile (" + std::to_string(i % tilesX) + ", " + std::to_string(i / tilesX) +
+                                    "): " + tiles[i].error,
+                            "a successful Recast build"));
+    }
+    maxPolys = std::max(maxPolys, tiles[i].polyCount);
+    if (tiles[i].data) ++usedTiles;
+  }
+  if (!errors.empty()) {
+    freeAll();
+    return errors;
+  }
+  if (usedTiles == 0) return nothingWalkable;
+  const int tileBits = grid.tileBits;
+  const int polyBits = std::max(1, ilog2Ceil(static_cast<unsigned>(maxPolys)));
+  if (tileBits + polyBits > kRefBits - kMinSaltBits) {
+    freeAll();
+    return diag("/tileSize",
+                "a tile holds up to " + std::to_string(maxPolys) + " polygons and there are " +
+                    std::to_string(tileCount) + " tiles: too many for Detour's " + std::to_string(kRefBits) +
+                    "-bit polygon references",
+                "tile bits + polygon bits <= " + std::to_string(kRefBits - kMinSaltBits),
+                "change tileSize (smaller tiles hold fewer polygons, larger tiles mean fewer tiles)");
+  }
+
+  auto* mesh = new NavMeshData();
+  dtNavMeshParams params{};
+  params.orig[0] = grid.originX;
+  params.orig[1] = 0.0f;
+  params.orig[2] = grid.originY;
+  params.tileWidth = grid.tileWidth;
+  params.tileHeight = grid.tileWidth;
+  params.maxTiles = 1 << tileBits;
+  params.maxPolys = 1 << polyBits;
+  if (dtStatusFailed(mesh->init(&params))) {
+    delete mesh;
+    freeAll();
+    return diag("", "Detour could not initialise a navmesh of " + std::to_string(tileCount) + " tiles",
+                "a successful dtNavMesh::init");
+  }
+  for (auto& t : tiles) {
+    if (!t.data) continue;
+    if (dtStatusFailed(mesh->addTile(t.data, t.size, DT_TILE_FREE_DATA, 0, nullptr))) {
+      delete mesh;
+      freeAll();
+      return diag("", "Detour rejected a tile", "a successful dtNavMesh::addTile");
+    }
+    t.data = nullptr;  // owned by the mesh now
+  }
+
+  // Area table for randomPoint, in tile-index then polygon-index order.
+  const dtNavMesh& constMesh = *mesh;
+  double total = 0.0;
+  for (int i = 0; i < constMesh.getMaxTiles(); ++i) {
+    const dtMeshTile* tile = constMesh.getTile(i);
+    if (!tile || !tile->header) continue;
+    const dtPolyRef base = constMesh.getPolyRefBase(tile);
+    for (int p = 0; p < tile->header->polyCount; ++p) {
+      const dtPoly& poly = tile->polys[p];
+      if (poly.getType() != DT_POLYTYPE_GROUND) continue;
+      total += polyArea(*tile, poly);
+      mesh->areas.push_back({base | static_cast<dtPolyRef>(p), total});
+    }
+  }
+  return mesh;
+}
+
+}  // namespace detail
 
 core::Result<std::shared_ptr<const NavMesh>> NavMesh::build(std::span<const Polygon> walkable,
                                                           std::span<const Polygon> obstacles,
@@ -153,83 +222,19 @@ core::Result<std::shared_ptr<const NavMesh>> NavMesh::build(std::span<const Poly
     const int ty = static_cast<int>(i / static_cast<std::size_t>(tilesX));
     tiles[i] = detail::buildTile(settings, tx, ty, walkRaster, obstacleRaster);
   });
-  auto freeAll = [&tiles] {
-    for (auto& t : tiles) {
-      if (t.data) dtFree(t.data);
-      t.data = nullptr;
-    }
-  };
-
-  int maxPolys = 0;
-  std::size_t usedTiles = 0;
-  for (std::size_t i = 0; i < tiles.size(); ++i) {
-    if (!tiles[i].error.empty()) {
-      errors.push_back(diag("", "tile (" + std::to_string(i % tilesX) + ", " + std::to_string(i / tilesX) +
-                                    "): " + tiles[i].error,
-                            "a successful Recast build"));
-    }
-    maxPolys = std::max(maxPolys, tiles[i].polyCount);
-    if (tiles[i].data) ++usedTiles;
-  }
-  if (!errors.empty()) {
-    freeAll();
-    return errors;
-  }
-  if (usedTiles == 0) {
-    return diag("/walkable",
-                "nothing walkable remains after eroding by the agent radius " + metres(cfg.agentRadius),
-                "walkable areas wider than " + metres(2.0f * cfg.agentRadius));
-  }
-  const int polyBits = std::max(1, ilog2Ceil(static_cast<unsigned>(maxPolys)));
-  if (tileBits + polyBits > kRefBits - kMinSaltBits) {
-    freeAll();
-    return diag("/tileSize",
-                "a tile holds up to " + std::to_string(maxPolys) + " polygons and there are " +
-                    std::to_string(tileCount) + " tiles: too many for Detour's " + std::to_string(kRefBits) +
-                    "-bit polygon references",
-                "tile bits + polygon bits <= " + std::to_string(kRefBits - kMinSaltBits),
-                "change tileSize (smaller tiles hold fewer polygons, larger tiles mean fewer tiles)");
-  }
-
-  auto* mesh = new detail::NavMeshData();
-  dtNavMeshParams params{};
-  params.orig[0] = settings.originX;
-  params.orig[1] = 0.0f;
-  params.orig[2] = settings.originY;
-  params.tileWidth = tileWidth;
-  params.tileHeight = tileWidth;
-  params.maxTiles = 1 << tileBits;
-  params.maxPolys = 1 << polyBits;
-  if (dtStatusFailed(mesh->init(&params))) {
-    delete mesh;
-    freeAll();
-    return diag("", "Detour could not initialise a navmesh of " + std::to_string(tileCount) + " tiles",
-                "a successful dtNavMesh::init");
-  }
-  for (auto& t : tiles) {
-    if (!t.data) continue;
-    if (dtStatusFailed(mesh->addTile(t.data, t.size, DT_TILE_FREE_DATA, 0, nullptr))) {
-      delete mesh;
-      freeAll();
-      return diag("", "Detour rejected a tile", "a successful dtNavMesh::addTile");
-    }
-    t.data = nullptr;  // owned by the mesh now
-  }
-
-  // Area table for randomPoint, in tile-index then polygon-index order.
-  const dtNavMesh& constMesh = *mesh;
-  double total = 0.0;
-  for (int i = 0; i < constMesh.getMaxTiles(); ++i) {
-    const dtMeshTile* tile = constMesh.getTile(i);
-    if (!tile || !tile->header) continue;
-    const dtPolyRef base = constMesh.getPolyRefBase(tile);
-    for (int p = 0; p < tile->header->polyCount; ++p) {
-      const dtPoly& poly = tile->polys[p];
-      if (poly.getType() != DT_POLYTYPE_GROUND) continue;
-      total += polyArea(*tile, poly);
-      mesh->areas.push_back({base | static_cast<dtPolyRef>(p), total});
-    }
-  }
+  detail::TileGrid grid;
+  grid.originX = settings.originX;
+  grid.originY = settings.originY;
+  grid.tileWidth = tileWidth;
+  grid.tilesX = tilesX;
+  grid.tilesY = tilesY;
+  grid.tileBits = tileBits;
+  auto assembled = detail::assembleTiles(
+      tiles, grid,
+      diag("/walkable", "nothing walkable remains after eroding by the agent radius " + metres(cfg.agentRadius),
+           "walkable areas wider than " + metres(2.0f * cfg.agentRadius)));
+  if (!assembled.ok()) return std::move(assembled).takeErrors();
+  detail::NavMeshData* mesh = assembled.value();
 
   std::shared_ptr<NavMesh> out(new NavMesh());
   out->mesh_ = mesh;

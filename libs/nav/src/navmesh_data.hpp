@@ -40,11 +40,35 @@ inline void toRecast(Vec2 p, float out[3]) {
   out[1] = 0.0f;
   out[2] = p.y;
 }
+/// Ground point p at height `height` (scenario z) in Recast's y-up order.
+inline void toRecast(Vec2 p, float height, float out[3]) {
+  out[0] = p.x;
+  out[1] = height;
+  out[2] = p.y;
+}
 inline Vec2 fromRecast(const float* v) { return {v[0], v[2]}; }
+
+/// Where a height-hinted path end is searched for: the height itself and ±kLevelSearch on a
+/// layered mesh; on a flat mesh the hint is ignored (height 0, kSnapExtents), as without one.
+struct EndSearch {
+  float height = 0.0f;
+  float extents[3] = {kSnapExtents[0], kSnapExtents[1], kSnapExtents[2]};
+};
+inline EndSearch endSearch(const NavMesh& mesh, float height) {
+  EndSearch s;
+  if (mesh.layered()) {
+    s.height = height;
+    s.extents[1] = kLevelSearch;
+  }
+  return s;
+}
 
 /// Nearest polygon to p within the half extents; 0 when none. `snapped` receives the point on it.
 dtPolyRef snap(const dtNavMeshQuery& query, const dtQueryFilter& filter, Vec2 p, const float extents[3],
                float snapped[3]);
+/// The same around (p, height).
+dtPolyRef snap(const dtNavMeshQuery& query, const dtQueryFilter& filter, Vec2 p, float height,
+               const float extents[3], float snapped[3]);
 
 /// String-pulls a polygon corridor from `start` (on path[0]) toward `end` into corners (start
 /// excluded). `partial` is whether the corridor failed to reach the target polygon.

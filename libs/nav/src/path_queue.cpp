@@ -1,7 +1,8 @@
 // throng::nav::PathQueue — time-sliced path planning (after DetourPathQueue). Requests wait in a
 // FIFO; update() runs Detour's sliced A* (init/update/finalizeSlicedFindPath) on the oldest one,
 // spending at most the iteration budget across as many requests as it covers, then string-pulls the
-// corridor exactly as NavQuery::findPath does, so a queued result equals a direct query.
+// corridor exactly as NavQuery::findPath does, so a queued result equals a direct query (also with
+// heights: a request's ends are searched as NavQuery::findPath's height-taking overload does).
 //
 // Result lifetime: a finished result stays until take() or until kResultLifetimeUpdates (64)
 // further update() calls have passed without it being taken; then its ticket becomes Unknown.
@@ -23,6 +24,8 @@ struct Request {
   PathTicket ticket = 0;
   Vec2 from;
   Vec2 to;
+  detail::EndSearch fromSearch;  ///< height hint and extents (height 0, kSnapExtents without one)
+  detail::EndSearch toSearch;
 };
 
 struct Finished {
@@ -58,12 +61,13 @@ struct PathQueue::Impl {
   bool begin() {
     current = waiting.front();
     waiting.pop_front();
-    const dtPolyRef startRef = detail::snap(*query, filter, current.from, detail::kSnapExtents, start);
+    const dtPolyRef startRef =
+        detail::snap(*query, filter, current.from, current.fromSearch.height, current.fromSearch.extents, start);
     if (startRef == 0) {
       finish(current.ticket, PathResult{PathStatus::Failed, {}});
       return false;
     }
-    endRef = detail::snap(*query, filter, current.to, detail::kSnapExtents, end);
+    endRef = detail::snap(*query, filter, current.to, current.toSearch.height, current.toSearch.extents, end);
     if (endRef == 0) {
       finish(current.ticket, PathResult{PathStatus::Partial, {detail::fromRecast(start)}});
       return false;
@@ -101,7 +105,14 @@ PathQueue::~PathQueue() = default;
 
 PathTicket PathQueue::request(Vec2 from, Vec2 to) {
   const PathTicket ticket = impl_->nextTicket++;
-  impl_->waiting.push_back(Request{ticket, from, to});
+  impl_->waiting.push_back(Request{ticket, from, to, {}, {}});
+  return ticket;
+}
+
+PathTicket PathQueue::request(Vec2 from, float fromHeight, Vec2 to, float toHeight) {
+  const PathTicket ticket = impl_->nextTicket++;
+  impl_->waiting.push_back(Request{ticket, from, to, detail::endSearch(*impl_->mesh, fromHeight),
+                                   detail::endSearch(*impl_->mesh, toHeight)});
   return ticket;
 }
 

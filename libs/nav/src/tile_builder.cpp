@@ -6,47 +6,17 @@
 #include <Recast.h>
 
 #include <cmath>
-#include <cstdarg>
 #include <memory>
+
+#include "recast_context.hpp"
 
 namespace throng::nav::detail {
 namespace {
-
-/// Collects Recast's error messages instead of printing them.
-class CollectingContext final : public rcContext {
- public:
-  CollectingContext() : rcContext(true) { enableTimer(false); }
-  std::string errors;
-
- protected:
-  void doLog(const rcLogCategory category, const char* msg, const int len) override {
-    if (category != RC_LOG_ERROR) return;
-    if (!errors.empty()) errors += "; ";
-    errors.append(msg, static_cast<std::size_t>(len));
-  }
-};
-
-struct HeightfieldDeleter { void operator()(rcHeightfield* p) const { rcFreeHeightField(p); } };
-struct CompactDeleter { void operator()(rcCompactHeightfield* p) const { rcFreeCompactHeightfield(p); } };
-struct ContourDeleter { void operator()(rcContourSet* p) const { rcFreeContourSet(p); } };
-struct PolyMeshDeleter { void operator()(rcPolyMesh* p) const { rcFreePolyMesh(p); } };
 
 // Vertical resolution: the floor is flat at y = 0, so only the clearance matters.
 constexpr float kCellHeight = 0.2f;        // [m]
 constexpr int kWalkableHeightCells = 10;   // 2 m of clearance above the floor
 constexpr int kWalkableClimbCells = 1;
-constexpr float kMaxEdgeError = 1.1f;      // contour simplification [cells]
-constexpr float kMaxEdgeLength = 12.0f;    // longest border edge [m]
-constexpr float kMinIslandArea = 0.25f;    // isolated islands smaller than this are dropped [m²]
-constexpr float kMergeRegionArea = 4.0f;   // regions smaller than this merge into neighbours [m²]
-constexpr int kMaxVertsPerPoly = 6;
-
-TileOutput fail(std::string what, const CollectingContext& ctx) {
-  TileOutput out;
-  out.error = std::move(what);
-  if (!ctx.errors.empty()) out.error += " (Recast: " + ctx.errors + ")";
-  return out;
-}
 
 }  // namespace
 

@@ -2,6 +2,7 @@
 // rows always in ascending stable-id order (new agents get the next id and are appended; removal
 // is a stable compaction in the emit phase). Phases read columns and write only their own row.
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -69,6 +70,10 @@ struct AgentStore {
   std::vector<std::int32_t> targetSub;    ///< sub-region holding the target (index into pointSubOffset space), -1 none
   std::vector<std::uint16_t> animClip;    ///< motion clip playing (animation.hpp)
   std::vector<float> animPhase;           ///< its phase in [0, 1)
+  // Levels (only on a multi-level world: ScenarioDesc::terrain, a layered navmesh).
+  bool levels = false;
+  std::vector<float> posZ;     ///< height of the floor under the agent [m] (from its navmesh polygon)
+  std::vector<float> targetZ;  ///< height of the floor the target is on [m]: picks the level for paths
   // Formation (only when some population has flocking groups of two or more).
   bool formation = false;
   std::vector<float> formVelX, formVelY;  ///< formation correction from the group pass [m/s]
@@ -105,6 +110,24 @@ struct AgentStore {
       formVelY[row] = y;
     }
   }
+  [[nodiscard]] float height(std::size_t row) const { return levels ? posZ[row] : 0.0f; }
+  [[nodiscard]] float targetHeight(std::size_t row) const { return levels ? targetZ[row] : 0.0f; }
+  void setTargetHeight(std::size_t row, float z) {
+    if (levels) targetZ[row] = z;
+  }
+  /// The target is the agent's own position (standing still, waiting).
+  void targetSelf(std::size_t row) {
+    targetX[row] = posX[row];
+    targetY[row] = posY[row];
+    if (levels) targetZ[row] = posZ[row];
+  }
+  /// Whether height z is on the agent's level (always on a flat world).
+  [[nodiscard]] bool sameLevel(std::size_t row, float z) const {
+    return !levels || std::abs(posZ[row] - z) < kSameLevel;
+  }
+  /// Height difference [m] below which two things are on the same level (a step is 0.35 m at most;
+  /// floors are 2 m or more apart).
+  static constexpr float kSameLevel = 1.2f;
   [[nodiscard]] std::uint32_t followedAgent(std::size_t row) const { return sociological ? followAgent[row] : kNoAgent; }
   [[nodiscard]] std::uint32_t coordinationOf(std::size_t row) const { return commonGround ? coordination[row] : kNoAgent; }
   [[nodiscard]] bool scriptWalking(std::size_t row) const { return commonGround && scriptWalk[row] != 0; }
@@ -119,6 +142,7 @@ struct AgentStore {
     f(goalState); f(goalCursor); f(targetX); f(targetY); f(targetDraws); f(needPath); f(ticket); f(polyRef);
     f(corners); f(actionEndTick); f(progressDistance); f(stuckTime);
     f(animClip); f(animPhase); f(goalPending); f(targetSub); f(dynamicTarget);
+    if (levels) { f(posZ); f(targetZ); }
     if (formation) { f(formVelX); f(formVelY); }
     if (sociological) { f(followAgent); f(followUntil); f(socialEffect); f(socialOther); }
     if (commonGround) {

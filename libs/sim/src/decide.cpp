@@ -39,6 +39,13 @@ core::Vec2 World::Impl::drawTarget(std::size_t row, const PointDesc& point, cons
     agents.targetSub[row] = static_cast<std::int32_t>(first + k);
     ++subOccupancy[first + k];
   }
+  if (agents.levels) {
+    // Multi-level world: the point's height picks the floor the target is snapped onto.
+    auto hit = query.snap(target, point.height, 3.0f);
+    if (!hit) hit = query.snap(point.position, point.height, 10.0f);
+    agents.setTargetHeight(row, hit ? hit->height : point.height);
+    return hit ? hit->p : target;
+  }
   if (auto hit = query.nearest(target, 3.0f)) return hit->first;
   if (auto hit = query.nearest(point.position, 10.0f)) return hit->first;
   return target;
@@ -75,9 +82,20 @@ void World::Impl::setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQ
     releaseTarget(row);
     const float r0 = static_cast<float>(rng.uniform()), r1 = static_cast<float>(rng.uniform()),
                 r2 = static_cast<float>(rng.uniform());
-    const auto p = query.randomPoint(r0, r1, r2);
-    agents.targetX[row] = p ? p->x : agents.posX[row];
-    agents.targetY[row] = p ? p->y : agents.posY[row];
+    if (agents.levels) {
+      const auto p = query.randomMeshPoint(r0, r1, r2);
+      if (p) {
+        agents.targetX[row] = p->p.x;
+        agents.targetY[row] = p->p.y;
+        agents.targetZ[row] = p->height;
+      } else {
+        agents.targetSelf(row);
+      }
+    } else {
+      const auto p = query.randomPoint(r0, r1, r2);
+      agents.targetX[row] = p ? p->x : agents.posX[row];
+      agents.targetY[row] = p ? p->y : agents.posY[row];
+    }
     agents.needPath[row] = 1;
     agents.goalState[row] = GoalState::Seeking;
     agents.mode[row] = AgentMode::Walking;
@@ -85,8 +103,7 @@ void World::Impl::setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQ
     releaseTarget(row);
     agents.goalState[row] = GoalState::Done;
     agents.mode[row] = AgentMode::Waiting;
-    agents.targetX[row] = agents.posX[row];
-    agents.targetY[row] = agents.posY[row];
+    agents.targetSelf(row);
   }
 }
 
@@ -110,8 +127,7 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
         if (g.flocks(pop) && g.members.size() >= 2 && agents.goalCursor[row] == g.cursor) {
           agents.goalState[row] = GoalState::WaitingForGroup;
           agents.mode[row] = AgentMode::Waiting;
-          agents.targetX[row] = agents.posX[row];
-          agents.targetY[row] = agents.posY[row];
+          agents.targetSelf(row);
           agents.corners[row].clear();
           (void)pointIndex;
         } else {
@@ -142,7 +158,7 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
             const bool together = g.flocks(pop) && g.members.size() >= 2;
             const float reach = together ? kArriveDistance + pop.groupSpacing * static_cast<float>(g.members.size())
                                          : std::sqrt(kArriveDistance * kArriveDistance + agents.radius[row] * agents.radius[row]);
-            if (dx * dx + dy * dy < reach * reach) {
+            if (dx * dx + dy * dy < reach * reach && agents.sameLevel(row, agents.targetHeight(row))) {
               if (together && agents.goalCursor[row] == g.cursor) {
                 agents.goalState[row] = GoalState::WaitingForGroup;  // released together, to a new point
                 agents.mode[row] = AgentMode::Waiting;
@@ -158,9 +174,9 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
           bool arrived;
           if (point.kind == PointKind::Action && point.stop) {
             const float dx = agents.targetX[row] - x, dy = agents.targetY[row] - y;
-            arrived = dx * dx + dy * dy < kArriveDistance * kArriveDistance;
+            arrived = dx * dx + dy * dy < kArriveDistance * kArriveDistance && agents.sameLevel(row, agents.targetHeight(row));
           } else {
-            arrived = insideRegion(point, x, y);
+            arrived = insideRegion(point, x, y) && agents.sameLevel(row, point.height);
           }
           if (arrived) {
             if (point.kind == PointKind::Exit) {

@@ -43,6 +43,21 @@ core::Vec2 interpolateGuide(const std::vector<GuideWaypoint>& script, float t) {
   return script.back().position;
 }
 
+/// The guide script's height at time t (multi-level worlds), interpolated like the position.
+float interpolateGuideHeight(const std::vector<GuideWaypoint>& script, float t) {
+  if (t <= script.front().time) return script.front().height;
+  for (std::size_t i = 1; i < script.size(); ++i) {
+    if (t <= script[i].time) {
+      const GuideWaypoint& a = script[i - 1];
+      const GuideWaypoint& b = script[i];
+      const float span = b.time - a.time;
+      const float u = span > 0.0f ? (t - a.time) / span : 1.0f;
+      return a.height + (b.height - a.height) * u;
+    }
+  }
+  return script.back().height;
+}
+
 }  // namespace
 
 void World::Impl::decideGroups(const core::TaskSystem& tasks) {
@@ -153,6 +168,7 @@ void World::Impl::applyGroupCommands() {
     if (c.guide) {
       x.guidedByApi = true;
       x.guide = c.position;
+      x.guideHeight = c.height;
     } else {
       x.guidedByApi = false;
     }
@@ -174,6 +190,7 @@ void World::Impl::updateGuidance() {
     if (!guided && !script.script.empty() && now >= script.script.front().time && (script.release < 0.0f || now < script.release)) {
       guided = true;
       x.guide = interpolateGuide(script.script, now);
+      x.guideHeight = interpolateGuideHeight(script.script, now);
     }
     if (guided != g.guided) {
       g.guided = guided;
@@ -202,7 +219,13 @@ void World::Impl::updateGuidance() {
       if (agents.goalState[r] == GoalState::Exited || holdsOwnTarget(agents.goalState[r])) continue;
       const float slot = (static_cast<float>(i) - 0.5f * (n - 1.0f)) * pop.groupSpacing;
       core::Vec2 target = x.guide + back * script.distance + lateral * slot;
-      if (auto hit = query.nearest(target, 3.0f)) target = hit->first;
+      if (agents.levels) {
+        const auto hit = query.snap(target, x.guideHeight, 3.0f);
+        if (hit) target = hit->p;
+        agents.targetZ[r] = hit ? hit->height : x.guideHeight;
+      } else if (auto hit = query.nearest(target, 3.0f)) {
+        target = hit->first;
+      }
       agents.targetX[r] = target.x;
       agents.targetY[r] = target.y;
       agents.dynamicTarget[r] = 1;
@@ -277,6 +300,7 @@ void World::Impl::applySocialEffects() {
         if (core::lengthSq(target - core::Vec2{agents.targetX[r], agents.targetY[r]}) > 1.0f) {
           agents.targetX[r] = target.x;
           agents.targetY[r] = target.y;
+          agents.setTargetHeight(r, agents.height(other));
           agents.dynamicTarget[r] = 1;
           agents.needPath[r] = 1;
         }

@@ -45,6 +45,7 @@ void World::Impl::integrate(const core::TaskSystem& tasks) {
         next = query.moveAlongSurface(pos, pos + v * h, ref);
         THRONG_ASSERT(ref <= 0xffffffffu);  // 32-bit Detour references (AgentStore::polyRef)
         agents.polyRef[row] = static_cast<std::uint32_t>(ref);
+        if (agents.levels && ref != 0) agents.posZ[row] = query.heightAt(ref, next);  // stairs, ramps
       }
       const core::Vec2 moved = next - pos;
       agents.posX[row] = next.x;

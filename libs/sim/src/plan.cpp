@@ -13,7 +13,9 @@ void World::Impl::plan() {
   for (std::size_t row = 0; row < n; ++row) {
     if (!agents.needPath[row]) continue;
     agents.needPath[row] = 0;
-    agents.ticket[row] = pathQueue->request({agents.posX[row], agents.posY[row]}, {agents.targetX[row], agents.targetY[row]});
+    const core::Vec2 from{agents.posX[row], agents.posY[row]}, to{agents.targetX[row], agents.targetY[row]};
+    agents.ticket[row] = agents.levels ? pathQueue->request(from, agents.posZ[row], to, agents.targetZ[row])
+                                       : pathQueue->request(from, to);
   }
   pathQueue->update(kPathIterationsPerTick);
   for (std::size_t row = 0; row < n; ++row) {

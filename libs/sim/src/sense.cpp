@@ -25,8 +25,17 @@ void World::Impl::sense(const core::TaskSystem& tasks) {
       // Density-dependent detection range (Musse et al. §3.2.4): d in dense places, D elsewhere.
       float r = range;
       if (dense > 0.0f && grid.density(x, y) >= denseThreshold) r = dense;
-      agents.neighbourCount[row] =
-          static_cast<std::uint16_t>(grid.nearest(x, y, r, k, row, &agents.neighbours[static_cast<std::size_t>(row) * k]));
+      std::uint32_t* list = &agents.neighbours[static_cast<std::size_t>(row) * k];
+      std::size_t count = grid.nearest(x, y, r, k, row, list);
+      if (agents.levels) {
+        // Multi-level worlds: agents on another floor (above or below) are no neighbours.
+        std::size_t kept = 0;
+        for (std::size_t j = 0; j < count; ++j) {
+          if (agents.sameLevel(row, agents.posZ[list[j]])) list[kept++] = list[j];
+        }
+        count = kept;
+      }
+      agents.neighbourCount[row] = static_cast<std::uint16_t>(count);
     }
   });
 }

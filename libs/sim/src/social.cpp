@@ -300,8 +300,7 @@ void World::Impl::startCoordinations() {
         agents.mode[r] = AgentMode::Waiting;
         agents.scriptWalk[r] = 0;
         agents.scriptClip[r] = kNoClip;
-        agents.targetX[r] = agents.posX[r];
-        agents.targetY[r] = agents.posY[r];
+        agents.targetSelf(r);
         agents.corners[r].clear();
         agents.needPath[r] = 0;
         agents.ticket[r] = 0;

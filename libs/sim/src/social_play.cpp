@@ -40,6 +40,7 @@ void World::Impl::beginEntry(ActiveCoordination& c, std::size_t actor, std::size
   agents.scriptWalk[row] = 0;
   agents.scriptClip[row] = kNoClip;
   agents.targetX[row] = pos.x;
+  agents.setTargetHeight(row, agents.height(row));  // Common Ground runs on flat worlds only (io refuses it on levels)
   agents.targetY[row] = pos.y;
   agents.corners[row].clear();
   agents.needPath[row] = 0;
@@ -59,6 +60,7 @@ void World::Impl::beginEntry(ActiveCoordination& c, std::size_t actor, std::size
     }
     if (auto hit = mainQuery->nearest(target, 3.0f)) target = hit->first;
     agents.targetX[row] = target.x;
+    agents.setTargetHeight(row, agents.height(row));
     agents.targetY[row] = target.y;
     agents.needPath[row] = 1;
     agents.scriptWalk[row] = 1;
@@ -207,8 +209,7 @@ void World::Impl::runCoordinations() {
         c.started[i] = -1.0;
         agents.scriptWalk[row] = 0;
         agents.scriptClip[row] = kNoClip;
-        agents.targetX[row] = agents.posX[row];
-        agents.targetY[row] = agents.posY[row];
+        agents.targetSelf(row);
         agents.corners[row].clear();
         agents.mode[row] = AgentMode::Waiting;
       }

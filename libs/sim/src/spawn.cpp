@@ -255,8 +255,16 @@ void World::Impl::spawnPopulation(std::size_t populationIndex) {
   Occupancy occupancy(std::max(0.5f, 4.0f * desc.maxRadius()), agents.size() + total);
   for (std::size_t r = 0; r < agents.size(); ++r) occupancy.add({agents.posX[r], agents.posY[r]}, agents.radius[r]);
 
+  // Multi-level worlds: the spawn's height picks the floor.
+  const float spawnHeight = pop.spawn.kind == SpawnKind::Point ? desc.points[pop.spawn.point].height : pop.spawn.height;
+  auto nearestAt = [&](core::Vec2 p, float r) -> std::optional<std::pair<core::Vec2, nav::PolyRef>> {
+    if (!agents.levels) return query.nearest(p, r);
+    const auto hit = query.snap(p, spawnHeight, r);
+    if (!hit) return std::nullopt;
+    return std::make_pair(hit->p, hit->ref);
+  };
   auto onMesh = [&](core::Vec2 p) -> std::optional<std::pair<core::Vec2, nav::PolyRef>> {
-    auto hit = query.nearest(p, 0.5f);
+    auto hit = nearestAt(p, 0.5f);
     if (!hit || core::lengthSq(hit->first - p) > 1e-4f) return std::nullopt;
     return hit;
   };
@@ -296,7 +304,7 @@ void World::Impl::spawnPopulation(std::size_t populationIndex) {
         if (!p || !occupancy.free(*p, pop.radius)) continue;
         placed = onMesh(*p);
       }
-      if (!placed) placed = query.nearest(sampleDisc(anchor, groupSpread, rng), 5.0f);
+      if (!placed) placed = nearestAt(sampleDisc(anchor, groupSpread, rng), 5.0f);
       if (!placed) placed = std::make_pair(anchor, nav::PolyRef{0});
       occupancy.add(placed->first, pop.radius);
 
@@ -308,6 +316,7 @@ void World::Impl::spawnPopulation(std::size_t populationIndex) {
       agents.posX[row] = placed->first.x;
       agents.posY[row] = placed->first.y;
       agents.polyRef[row] = static_cast<std::uint32_t>(placed->second);  // 32-bit Detour references
+      if (agents.levels) agents.posZ[row] = placed->second != 0 ? query.heightAt(placed->second, placed->first) : spawnHeight;
       agents.radius[row] = pop.radius;
       core::Rng speedRng(desc.seed, agentId, core::RngPurpose::Speed);
       const double v = pop.speedSd > 0 ? speedRng.normal(pop.speedMean, pop.speedSd) : pop.speedMean;

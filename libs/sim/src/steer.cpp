@@ -89,7 +89,7 @@ void World::Impl::steerRow(std::size_t row, WorkerScratch& ws) {
     // Move on to the next corner once near this one — but only if the next is in line of sight:
     // skipping a corner of a wall before rounding it walks straight into the wall.
     while (ci + 1 < corners.size() && core::lengthSq(corners[ci] - pos) < kCornerReach * kCornerReach &&
-           ws.query->visible(pos, corners[ci + 1])) {
+           (agents.levels ? ws.query->visible(pos, agents.posZ[row], corners[ci + 1]) : ws.query->visible(pos, corners[ci + 1]))) {
       ++ci;
     }
     const core::Vec2 aim = ci < corners.size() ? corners[ci] : target;
@@ -130,6 +130,7 @@ void World::Impl::steerRow(std::size_t row, WorkerScratch& ws) {
   ws.wallIds.clear();
   if (!cheap) walls.query(pos.x, pos.y, wallReach, ws.wallIds);
   for (std::uint32_t w : ws.wallIds) {
+    if (agents.levels && !walls.onLevel(w, pos, agents.posZ[row])) continue;  // another floor's edge
     const core::Segment& seg = walls.segments()[w];
     OrcaLine line;
     if (segmentOrcaLine(seg.a - pos, seg.b - pos, vel, kWallMargin, s.timeHorizonObstacle, maxSpeed, line)) {

@@ -1,5 +1,7 @@
 #include "walls.hpp"
 
+#include "agent_store.hpp"
+
 #include <DetourNavMesh.h>
 
 #include <algorithm>
@@ -7,7 +9,7 @@
 
 namespace throng::sim {
 
-std::vector<core::Segment> navMeshBoundary(const nav::NavMesh& mesh) {
+std::vector<core::Segment> navMeshBoundary(const nav::NavMesh& mesh, std::vector<float>* heights) {
   std::vector<core::Segment> out;
   const dtNavMesh* nav = mesh.detour();
   if (nav == nullptr) return out;
@@ -33,6 +35,10 @@ std::vector<core::Segment> navMeshBoundary(const nav::NavMesh& mesh) {
         const float* vb = &tile->verts[poly.verts[(e + 1) % poly.vertCount] * 3];
         // Recast is y-up: our plane is (x, z).
         out.push_back({core::Vec2{va[0], va[2]}, core::Vec2{vb[0], vb[2]}});
+        if (heights) {
+          heights->push_back(va[1]);
+          heights->push_back(vb[1]);
+        }
       }
     }
   }
@@ -40,7 +46,8 @@ std::vector<core::Segment> navMeshBoundary(const nav::NavMesh& mesh) {
 }
 
 void Walls::build(const nav::NavMesh& mesh, float cellSize) {
-  segments_ = navMeshBoundary(mesh);
+  heights_.clear();
+  segments_ = navMeshBoundary(mesh, mesh.layered() ? &heights_ : nullptr);
   const core::Aabb b = mesh.bounds();
   originX_ = b.min.x;
   originY_ = b.min.y;
@@ -72,6 +79,16 @@ void Walls::build(const nav::NavMesh& mesh, float cellSize) {
       }
     }
   }
+}
+
+bool Walls::onLevel(std::uint32_t s, core::Vec2 p, float z) const {
+  if (heights_.empty()) return true;
+  const core::Segment& seg = segments_[s];
+  const core::Vec2 ab = seg.b - seg.a;
+  const float len2 = core::lengthSq(ab);
+  const float t = len2 > 0.0f ? std::clamp(core::dot(p - seg.a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+  const float h = heights_[2 * s] + (heights_[2 * s + 1] - heights_[2 * s]) * t;
+  return std::abs(h - z) < AgentStore::kSameLevel;
 }
 
 void Walls::query(float x, float y, float r, std::vector<std::uint32_t>& out) const {

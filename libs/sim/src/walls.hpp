@@ -20,16 +20,22 @@ class Walls {
   void query(float x, float y, float r, std::vector<std::uint32_t>& out) const;
 
   [[nodiscard]] const std::vector<core::Segment>& segments() const { return segments_; }
+  /// Multi-level worlds: whether segment `s` bounds the floor at height `z` near ground point p
+  /// (the segment's height at the point of it closest to p is within AgentStore::kSameLevel).
+  /// Always true on a flat mesh.
+  [[nodiscard]] bool onLevel(std::uint32_t s, core::Vec2 p, float z) const;
 
  private:
   std::vector<core::Segment> segments_;
+  std::vector<float> heights_;  ///< layered meshes: height at a, height at b per segment; empty when flat
   float originX_ = 0, originY_ = 0, invCell_ = 1;
   int nx_ = 1, ny_ = 1;
   std::vector<std::uint32_t> cellStart_;
   std::vector<std::uint32_t> items_;
 };
 
-/// Outer edges of the navmesh polygons (no neighbour, no cross-tile link).
-std::vector<core::Segment> navMeshBoundary(const nav::NavMesh& mesh);
+/// Outer edges of the navmesh polygons (no neighbour, no cross-tile link). `heights`, when given,
+/// receives the height at both ends of each segment.
+std::vector<core::Segment> navMeshBoundary(const nav::NavMesh& mesh, std::vector<float>* heights = nullptr);
 
 }  // namespace throng::sim

@@ -32,7 +32,8 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
     nav::NavMeshConfig config;
     config.agentRadius = desc.maxRadius();
     config.cellSize = desc.navCellSize;
-    auto built = nav::NavMesh::build(desc.walkable, desc.obstacles, config);
+    auto built = desc.terrain.empty() ? nav::NavMesh::build(desc.walkable, desc.obstacles, config)
+                                      : nav::NavMesh::buildFromTerrain(desc.terrain, config);
     if (!built) return std::move(built).takeErrors();
     navmesh = std::move(built).value();
   }
@@ -42,6 +43,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   w.navmesh = navmesh;
   w.pathQueue = std::make_unique<nav::PathQueue>(navmesh);
   w.mainQuery = std::make_unique<nav::NavQuery>(navmesh);
+  w.agents.levels = navmesh->layered();  // heights per agent: before any row exists
   const SteeringDesc& s = desc.steering;
   const float wallCell = std::max(2.0f, s.timeHorizonObstacle * 2.5f + 0.5f);
   w.walls.build(*navmesh, wallCell);
@@ -160,6 +162,7 @@ FramePtr World::snapshot() {
   frame->ids = a.id;
   frame->posX = a.posX;
   frame->posY = a.posY;
+  if (a.levels) frame->posZ = a.posZ;
   frame->velX = a.velX;
   frame->velY = a.velY;
   frame->oriX = a.oriX;
@@ -225,10 +228,12 @@ std::optional<GroupInfo> World::groupInfo(GroupId handle) const {
   return info;
 }
 
-bool World::guide(GroupId handle, core::Vec2 position) {
+bool World::guide(GroupId handle, core::Vec2 position) { return guide(handle, position, 0.0f); }
+
+bool World::guide(GroupId handle, core::Vec2 position, float height) {
   const auto id = groupOf(impl_->groups, handle);
   if (!id) return false;
-  impl_->commands.push_back({*id, true, position});
+  impl_->commands.push_back({*id, true, position, height});
   return true;
 }
 
@@ -251,6 +256,8 @@ std::optional<AgentInfo> World::agentInfo(std::uint32_t id) const {
   info.mode = a.mode[row];
   info.position = {a.posX[row], a.posY[row]};
   info.target = {a.targetX[row], a.targetY[row]};
+  info.height = a.height(row);
+  info.targetHeight = a.targetHeight(row);
   info.clip = a.animClip[row];
   info.speed = a.speed[row];
   if (row < a.coordination.size()) info.coordination = a.coordination[row];

@@ -37,6 +37,7 @@ inline constexpr float kProgressCheckPeriod = 4.0f;
 /// through the API, or following another group have one (World::Impl::groupRoutes).
 struct GroupRoute {
   core::Vec2 guide;
+  float guideHeight = 0.0f;  ///< floor height of the guide [m] (multi-level worlds)
   core::Vec2 guidePlanned{1e30f, 1e30f};  ///< guide position the members' paths were planned for
   std::uint32_t followGroup = kNoAgent;  ///< group followed while `following`
   std::uint32_t followToggle = 0;        ///< tick the current (temporary) period ends (32 bits, as actionEndTick)
@@ -101,6 +102,7 @@ struct GroupCommand {
   std::uint32_t group = 0;
   bool guide = false;  ///< false = release
   core::Vec2 position;
+  float height = 0.0f;  ///< the guide's floor height [m] (multi-level worlds)
 };
 
 /// An inserted crowd (insert.cpp): queued by World::insertCrowd or the timeline, applied at the

@@ -94,7 +94,7 @@ source.on('world', async (w) => {
   state.interval = 1 / (w.tickRate || 10);
   crowd = new CrowdView(scene, renderer, w, clips, { adaptive: lodOn, targetFrameMs: 1000 / Number(params.get('target') || 30) });
   avatars = new NearBodies(scene, w.skeleton.joints, clips);
-  cameras = new Cameras(camera, renderer.domElement, bounds);
+  cameras = new Cameras(camera, renderer.domElement, bounds, (w.scenario || {}).terrain || null);
   $('lod-toggle').checked = lodOn;
   groupList.setGroups(w.groups || []);
   globalThis.__throng = {
@@ -173,7 +173,7 @@ source.on('joined', (j) => {
   $('gesture-row').classList.remove('hidden');
   if (cameras && !again) {
     const t = cameras.orbit.target;
-    cameras.placeAvatar(t.x, -t.z, Math.PI / 2);
+    cameras.placeAvatar(t.x, -t.z, Math.PI / 2, t.y);
     setMode('walk');
   }
 });
@@ -285,11 +285,11 @@ function frame() {
     const a = cameras.avatar;
     localPhase.phase = (localPhase.phase + (a.speed * dt) / 1.5) % 1;
     const g = gesture.sample(nowMs);
-    avatars.add(a.x, a.y, 0, a.yaw, a.moving ? walk : idle, a.moving ? localPhase.phase : (nowMs / 2000) % 1, 0xff6a00,
+    avatars.add(a.x, a.y, a.z, a.yaw, a.moving ? walk : idle, a.moving ? localPhase.phase : (nowMs / 2000) % 1, 0xff6a00,
       g ? g.angles : null);
-    source.sendMove(a.x, a.y, 0, a.yaw);
+    source.sendMove(a.x, a.y, a.z, a.yaw);  // z: the floor it stands on (0 in a flat world)
     if (g && g.send && source.sendJoints) source.sendJoints(g.angles);
-    tags.push({ key: 'self', name: joined.name || 'you', at: [a.x, a.y] });
+    tags.push({ key: 'self', name: joined.name || 'you', at: [a.x, a.y, a.z] });
   }
   for (const [id, o] of others) {
     if (nowMs - o.at > 15000) continue;

@@ -2,7 +2,11 @@
 // carries it: walkable polygons as floors, obstacles extruded as walls, points as markers —
 // interest (blue ring), action (orange disc with an arrow along its orientation), exit (green
 // area) — with name labels; lights and a ground grid. World (x, y) → scene (x, 0, −y).
+// A multi-level world (`scenario.terrain`: vertices [x, y, z], walkable and obstacle triangles)
+// is drawn from its triangles instead — walkable ones as the floor, obstacle ones as walls — with
+// world (x, y, z) → scene (x, z, −y); points stand at their height (`position[2]`, or `height`).
 import * as THREE from 'three';
+import { terrainBounds } from './terrain.js';
 
 const kWallHeight = 2.4;  // [m]
 
@@ -36,17 +40,98 @@ function centroid(polygon) {
   return [x / polygon.length, y / polygon.length];
 }
 
-/** Bounds of the walkable area: {minX, minY, maxX, maxY} [m]. */
+/** Height [m] a point of the scenario stands at: `position[2]`, else `height`, else the mean z of
+ * its polygon's [x, y, z] vertices, else 0. */
+export function pointHeight(p) {
+  if (p.position && Number.isFinite(p.position[2])) return p.position[2];
+  if (Number.isFinite(p.height)) return p.height;
+  if (Array.isArray(p.polygon) && p.polygon.length && p.polygon.every((q) => Number.isFinite(q[2]))) {
+    return p.polygon.reduce((s, q) => s + q[2], 0) / p.polygon.length;
+  }
+  return 0;
+}
+
+/** Bounds of the walkable area and the terrain's vertices: {minX, minY, maxX, maxY, minZ, maxZ}
+ * [m] (minZ = maxZ = 0 in a flat world; −10 … 10 on the ground when the scenario has neither). */
 export function worldBounds(scenario) {
-  const b = { minX: Infinity, minY: Infinity, maxX: -Infinity, maxY: -Infinity };
+  const b = { minX: Infinity, minY: Infinity, maxX: -Infinity, maxY: -Infinity, minZ: 0, maxZ: 0 };
   for (const poly of scenario.walkable || []) {
     for (const [x, y] of poly) {
       b.minX = Math.min(b.minX, x); b.minY = Math.min(b.minY, y);
       b.maxX = Math.max(b.maxX, x); b.maxY = Math.max(b.maxY, y);
     }
   }
+  const t = terrainBounds(scenario.terrain);
+  if (t) {
+    b.minX = Math.min(b.minX, t.minX); b.minY = Math.min(b.minY, t.minY);
+    b.maxX = Math.max(b.maxX, t.maxX); b.maxY = Math.max(b.maxY, t.maxY);
+    b.minZ = Math.min(b.minZ, t.minZ); b.maxZ = Math.max(b.maxZ, t.maxZ);
+    if (!(scenario.walkable || []).length) { b.minZ = t.minZ; b.maxZ = t.maxZ; }
+  }
   if (!Number.isFinite(b.minX)) Object.assign(b, { minX: -10, minY: -10, maxX: 10, maxY: 10 });
   return b;
+}
+
+/** Non-indexed scene geometry of the triangles `faces` ([[i, j, k]] into the terrain's vertices),
+ * with flat normals; null when there are none. */
+function triangleGeometry(vertices, faces) {
+  const pos = [];
+  for (const f of faces || []) {
+    const a = vertices[f[0]], b = vertices[f[1]], c = vertices[f[2]];
+    if (!a || !b || !c) continue;
+    for (const v of [a, b, c]) pos.push(v[0], v[2] ?? 0, -v[1]);
+  }
+  if (!pos.length) return null;
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(pos, 3));
+  g.computeVertexNormals();
+  return g;
+}
+
+/** Line segments (scene positions) along the edges used by exactly one walkable triangle. */
+function boundaryEdges(vertices, faces) {
+  const count = new Map();
+  for (const f of faces || []) {
+    for (let e = 0; e < 3; ++e) {
+      const i = f[e], j = f[(e + 1) % 3];
+      if (!vertices[i] || !vertices[j]) continue;
+      const key = i < j ? `${i},${j}` : `${j},${i}`;
+      count.set(key, (count.get(key) || 0) + 1);
+    }
+  }
+  const pos = [];
+  for (const [key, n] of count) {
+    if (n !== 1) continue;
+    for (const i of key.split(',').map(Number)) {
+      const v = vertices[i];
+      pos.push(v[0], (v[2] ?? 0) + 0.01, -v[1]);
+    }
+  }
+  return pos;
+}
+
+function addTerrain(root, terrain, floorColor, wallMat) {
+  const vertices = terrain.vertices || [];
+  const floor = triangleGeometry(vertices, terrain.walkable);
+  if (floor) {
+    const m = new THREE.Mesh(floor, new THREE.MeshLambertMaterial({ color: floorColor, side: THREE.DoubleSide }));
+    m.name = 'terrain-floor';
+    m.receiveShadow = true;
+    root.add(m);
+    const edges = boundaryEdges(vertices, terrain.walkable);
+    if (edges.length) {
+      const g = new THREE.BufferGeometry();
+      g.setAttribute('position', new THREE.Float32BufferAttribute(edges, 3));
+      root.add(new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: 0x8a857a })));
+    }
+  }
+  const solid = triangleGeometry(vertices, terrain.obstacles);
+  if (solid) {
+    const m = new THREE.Mesh(solid, wallMat.clone());
+    m.material.side = THREE.DoubleSide;
+    m.name = 'terrain-obstacles';
+    root.add(m);
+  }
 }
 
 export function buildWorld(scenario, { labels = true } = {}) {
@@ -73,6 +158,7 @@ export function buildWorld(scenario, { labels = true } = {}) {
     g.applyMatrix4(toScene);
     root.add(new THREE.Mesh(g, wallMat));
   }
+  if (scenario.terrain) addTerrain(root, scenario.terrain, 0xd8d4cc, wallMat);
 
   const mats = {
     interest: new THREE.MeshBasicMaterial({ color: 0x3070d0, transparent: true, opacity: 0.45, side: THREE.DoubleSide, depthWrite: false }),
@@ -81,6 +167,7 @@ export function buildWorld(scenario, { labels = true } = {}) {
   };
   for (const p of scenario.points || []) {
     const mat = mats[p.kind] || mats.interest;
+    const h = pointHeight(p);  // [m] the floor it stands on
     let g;
     let at;
     if (p.polygon) {
@@ -94,20 +181,20 @@ export function buildWorld(scenario, { labels = true } = {}) {
       g.translate(p.position[0], 0, -p.position[1]);
       at = p.position;
     }
-    g.translate(0, 0.02, 0);
+    g.translate(0, h + 0.02, 0);
     const mesh = new THREE.Mesh(g, mat);
     mesh.userData.point = p;
     root.add(mesh);
     if (p.kind === 'action') {
       const o = p.orientation || [1, 0];
       const l = Math.hypot(o[0], o[1]) || 1;
-      const arrow = new THREE.ArrowHelper(new THREE.Vector3(o[0] / l, 0, -o[1] / l), new THREE.Vector3(at[0], 0.05, -at[1]),
+      const arrow = new THREE.ArrowHelper(new THREE.Vector3(o[0] / l, 0, -o[1] / l), new THREE.Vector3(at[0], h + 0.05, -at[1]),
         Math.max((p.radius ?? 0.5) + 0.6, 1), 0xc05000, 0.35, 0.25);
       root.add(arrow);
     }
     if (labels) {
       const s = label(p.id, p.kind === 'exit' ? '#106020' : p.kind === 'action' ? '#904000' : '#103080');
-      s.position.set(at[0], 2.7, -at[1]);
+      s.position.set(at[0], h + 2.7, -at[1]);
       root.add(s);
     }
   }

@@ -26,10 +26,24 @@ using PolyRef = std::uint64_t;
 
 struct NavMeshConfig {
   float agentRadius = 0.2f;  ///< erosion radius [m] [Limit: >= 0]
+  // Terrain meshes only (NavMesh::buildFromTerrain): what a person can walk on and under.
+  float maxSlopeDeg = 45.0f;  ///< steepest walkable triangle [deg] (ramps; stairs are climbed step by step)
+  float maxClimb = 0.35f;     ///< highest step walked up or down [m]
+  float clearance = 2.0f;     ///< headroom needed above a walkable surface [m]
   float cellSize = 0.0f;     ///< voxel size [m]; 0 = max(agentRadius/4, sqrt(bounding area / 4e7)) clamped to [0.03, 0.3]
   float tileSize = 24.0f;    ///< tile edge [m] [Limit: > 4 * cellSize]. Smaller tiles mean smaller polygons and
                              ///< closer-to-shortest A* paths (300 m pillar field: mean path/straight ratio
                              ///< 1.026 at 24 m, 1.073 at 48 m) for ~10% more build time.
+};
+
+/// A world's 3D walking geometry (multi-level worlds: floors joined by stairs or ramps). Scenario
+/// coordinates: ground (x, y) and height z [m], z up. Triangles index `vertices` (3 per triangle,
+/// any winding).
+struct TerrainMesh {
+  std::vector<float> vertices;           ///< x, y, z per vertex
+  std::vector<std::uint32_t> walkable;   ///< triangles people walk on (floors, stairs, ramps)
+  std::vector<std::uint32_t> obstacles;  ///< solid geometry: never walkable, blocks the floor it stands on
+  [[nodiscard]] bool empty() const { return walkable.empty(); }
 };
 
 class NavMesh {
@@ -39,6 +53,12 @@ class NavMesh {
   static core::Result<std::shared_ptr<const NavMesh>> build(std::span<const Polygon> walkable,
                                                             std::span<const Polygon> obstacles,
                                                             const NavMeshConfig& config);
+  /// Builds from 3D triangles with Recast (walkable slope, climb and clearance from `config`), so
+  /// floors above each other, stairs and ramps become one connected navigation mesh. Obstacle
+  /// triangles are rasterised as solid, unwalkable geometry. Fails with a diagnostic when nothing
+  /// walkable remains.
+  static core::Result<std::shared_ptr<const NavMesh>> buildFromTerrain(const TerrainMesh& terrain,
+                                                                       const NavMeshConfig& config);
   ~NavMesh();
   NavMesh(const NavMesh&) = delete;
   NavMesh& operator=(const NavMesh&) = delete;
@@ -46,6 +66,12 @@ class NavMesh {
   [[nodiscard]] const dtNavMesh* detour() const { return mesh_; }
   [[nodiscard]] const NavMeshConfig& config() const { return config_; }
   [[nodiscard]] core::Aabb bounds() const { return bounds_; }
+  /// True when built from a TerrainMesh: polygons have heights and may lie above each other, and
+  /// queries need a height to pick the level. False: one flat level at height 0.
+  [[nodiscard]] bool layered() const { return layered_; }
+  /// Lowest and highest walkable height [m] (0, 0 for a flat mesh).
+  [[nodiscard]] float minHeight() const { return minHeight_; }
+  [[nodiscard]] float maxHeight() const { return maxHeight_; }
   [[nodiscard]] std::size_t polygonCount() const;
   /// Outline of every polygon (for viewers and debugging), in the plane.
   [[nodiscard]] std::vector<Polygon> polygons() const;
@@ -55,7 +81,20 @@ class NavMesh {
   dtNavMesh* mesh_ = nullptr;
   NavMeshConfig config_;
   core::Aabb bounds_;
+  bool layered_ = false;
+  float minHeight_ = 0.0f, maxHeight_ = 0.0f;
 };
+
+/// A point on the mesh: ground position, its height on the polygon, the polygon.
+struct MeshPoint {
+  Vec2 p;
+  float height = 0.0f;
+  PolyRef ref = 0;
+};
+
+/// Vertical half-extent of a height-hinted search on a layered mesh [m]: floors closer than about
+/// twice this need accurate hints.
+inline constexpr float kLevelSearch = 1.5f;
 
 enum class PathStatus : std::uint8_t {
   Complete,  ///< the path reaches the target
@@ -75,9 +114,18 @@ class NavQuery {
   /// Nearest point on the mesh within `searchRadius` metres of p (horizontal), if any.
   [[nodiscard]] std::optional<std::pair<Vec2, PolyRef>> nearest(Vec2 p, float searchRadius = 2.0f) const;
 
+  /// Nearest point on the mesh within `searchRadius` metres (horizontal) of p at about `height`: on
+  /// a layered mesh the polygon nearest in 3D within ±kLevelSearch of `height` (so the hint picks
+  /// the floor); on a flat mesh the same as nearest(p, searchRadius), with height 0.
+  [[nodiscard]] std::optional<MeshPoint> snap(Vec2 p, float height, float searchRadius = 2.0f) const;
+
+  /// Height [m] of the mesh at ground point p on polygon `ref` (p inside or near it); 0 on a flat mesh.
+  [[nodiscard]] float heightAt(PolyRef ref, Vec2 p) const;
+
   /// String-pulled path from `from` to `to`: `corners` receives the turning points after `from`,
-  /// ending with the (possibly clamped) target.
+  /// ending with the (possibly clamped) target. Heights pick the levels on a layered mesh.
   PathStatus findPath(Vec2 from, Vec2 to, std::vector<Vec2>& corners) const;
+  PathStatus findPath(Vec2 from, float fromHeight, Vec2 to, float toHeight, std::vector<Vec2>& corners) const;
 
   /// Moves from `from` (on polygon `ref`) toward `to`, sliding along the mesh boundary (Detour's
   /// moveAlongSurface); returns the reached point and updates `ref`. Keeps agents inside the mesh.
@@ -85,13 +133,18 @@ class NavQuery {
 
   /// Whether `to` is reachable from `from` (both snapped within 2 m).
   [[nodiscard]] bool reachable(Vec2 from, Vec2 to) const;
+  [[nodiscard]] bool reachable(Vec2 from, float fromHeight, Vec2 to, float toHeight) const;
 
   /// True when the straight segment a→b stays on the mesh (Detour raycast).
   [[nodiscard]] bool visible(Vec2 a, Vec2 b) const;
+  /// The same from `a` at about `height` (the level it starts on).
+  [[nodiscard]] bool visible(Vec2 a, float height, Vec2 b) const;
 
   /// Uniformly random point on the mesh (area-weighted), drawn from `r01` values in [0,1):
   /// deterministic for given inputs.
   [[nodiscard]] std::optional<Vec2> randomPoint(float r0, float r1, float r2) const;
+  /// The same point with its height and polygon.
+  [[nodiscard]] std::optional<MeshPoint> randomMeshPoint(float r0, float r1, float r2) const;
 
   [[nodiscard]] const NavMesh& mesh() const { return *mesh_; }
 

@@ -28,6 +28,8 @@ class PathQueue {
 
   /// Queues a request; returns its ticket.
   PathTicket request(Vec2 from, Vec2 to);
+  /// The same with heights (they pick the levels on a layered mesh; ignored on a flat one).
+  PathTicket request(Vec2 from, float fromHeight, Vec2 to, float toHeight);
   /// Runs queued searches until `iterationBudget` Detour node expansions are spent (at least one
   /// request progresses per call). Returns how many requests completed.
   int update(int iterationBudget);

@@ -111,6 +111,7 @@ struct Frame {
   double time = 0.0;  ///< tick * dt [s]
   std::vector<std::uint32_t> ids;  ///< stable ids of the agents present, ascending
   std::vector<float> posX, posY;   ///< [m]
+  std::vector<float> posZ;         ///< height [m] on a multi-level world; empty on a flat one (all 0)
   std::vector<float> velX, velY;   ///< [m/s]
   std::vector<float> oriX, oriY;   ///< unit heading
   std::vector<AgentMode> mode;
@@ -121,6 +122,8 @@ struct Frame {
   std::vector<CoordinationRecord> coordinations; ///< interactions ended since the previous frame
 
   [[nodiscard]] std::size_t size() const { return ids.size(); }
+  /// Height of the i-th agent [m] (0 on a flat world).
+  [[nodiscard]] float height(std::size_t i) const { return posZ.empty() ? 0.0f : posZ[i]; }
 };
 
 using FramePtr = std::shared_ptr<const Frame>;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "throng/core/geometry.hpp"
+#include "throng/nav/navmesh.hpp"
 #include "throng/social/behaviour_db.hpp"
 #include "throng/social/coordination.hpp"
 #include "throng/social/sensing.hpp"
@@ -29,6 +30,7 @@ struct PointDesc {
   std::string id;
   PointKind kind = PointKind::Interest;
   Vec2 position;           ///< for polygon regions: the polygon's centroid
+  float height = 0.0f;     ///< height of the floor it is on [m] (multi-level worlds; 0 on flat ones)
   float radius = 0.0f;     ///< disc region radius [m]; 0 when `polygon` is used
   Polygon polygon;         ///< polygon region; empty for a disc
   bool stop = false;       ///< Action only: agents stop here
@@ -51,6 +53,7 @@ struct SpawnDesc {
   Polygon polygon;         ///< SpawnKind::Polygon
   Vec2 position;           ///< SpawnKind::Position
   std::uint32_t point = 0; ///< SpawnKind::Point: index into ScenarioDesc::points
+  float height = 0.0f;     ///< Polygon/Position: height of the floor spawned on [m] (Point: the point's own)
 };
 
 /// Following (Musse et al. §3.2.5): a group adopts another group's goals, for good (permanent)
@@ -70,6 +73,7 @@ struct FollowDesc {
 struct GuideWaypoint {
   float time = 0.0f;  ///< [s]
   Vec2 position;
+  float height = 0.0f;  ///< floor height [m] (multi-level worlds)
 };
 
 struct GuideDesc {
@@ -221,6 +225,10 @@ struct ScenarioDesc {
   float dt = 0.05f;          ///< simulation time step [s] [Limit: 0.001 .. 0.5]
   std::vector<Polygon> walkable;
   std::vector<Polygon> obstacles;
+  /// Multi-level worlds: 3D walking geometry (floors, stairs, ramps, solid obstacles). When it is
+  /// non-empty the navmesh is built from it, `walkable` and `obstacles` are empty, and agents,
+  /// points, spawns and guides carry heights. Empty: the flat 2D world of `walkable`/`obstacles`.
+  nav::TerrainMesh terrain;
   std::vector<PointDesc> points;
   std::vector<PopulationDesc> populations;
   SteeringDesc steering;

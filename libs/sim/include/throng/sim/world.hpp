@@ -69,6 +69,7 @@ struct AgentInfo {
   /// script", "done", "left".
   std::string state;
   core::Vec2 position, target;          ///< where it is and where it heads [m]
+  float height = 0.0f, targetHeight = 0.0f;  ///< their floor heights [m] (0 on a flat world)
   std::uint32_t goalPoint = 0xffffffffu;  ///< index into ScenarioDesc::points of its current goal, or none
   std::uint16_t clip = 0;               ///< motion clip playing (animationClips)
   float speed = 0.0f;                   ///< desired walking speed [m/s]
@@ -141,6 +142,8 @@ class World {
   /// The group becomes guided: `position` (an avatar's, say) is its dynamic goal until released.
   /// Returns false for a stale or null handle.
   bool guide(GroupId group, core::Vec2 position);
+  /// The same on a multi-level world: `height` [m] is the floor the guide stands on.
+  bool guide(GroupId group, core::Vec2 position, float height);
   /// Guidance ends; the group resumes its own goals where it left them.
   bool release(GroupId group);
   /// Queues a crowd (validated by io::parseCrowd against this world) for the start of the next

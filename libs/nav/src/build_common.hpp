@@ -1,0 +1,56 @@
+// throng::nav (private) — what NavMesh::build (flat polygons) and NavMesh::buildFromTerrain (3D
+// triangles) share: diagnostics helpers, Detour's reference-bit limits, and the assembly of built
+// tiles into one dtNavMesh plus its area table for randomPoint. Reads built tiles; writes the mesh.
+#pragma once
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "navmesh_data.hpp"
+#include "throng/core/result.hpp"
+#include "tile_builder.hpp"
+
+namespace throng::nav::detail {
+
+inline constexpr const char* kSource = "navmesh";
+// Detour packs tile index, polygon index and a salt into a dtPolyRef; the salt needs >= 10 bits.
+inline constexpr int kRefBits = static_cast<int>(sizeof(dtPolyRef) * 8);
+inline constexpr int kMinSaltBits = 10;
+
+inline core::Diagnostic diag(std::string pointer, std::string what, std::string expected, std::string hint = {}) {
+  core::Diagnostic d;
+  d.source = kSource;
+  d.pointer = std::move(pointer);
+  d.what = std::move(what);
+  d.expected = std::move(expected);
+  d.hint = std::move(hint);
+  return d;
+}
+
+inline std::string metres(float v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g m", static_cast<double>(v));
+  return buf;
+}
+
+inline int ilog2Ceil(unsigned v) {
+  int bits = 0;
+  while ((1u << bits) < v) ++bits;
+  return bits;
+}
+
+/// The tile grid both builds use.
+struct TileGrid {
+  float originX = 0, originY = 0;  ///< lower corner of tile (0, 0) [m]
+  float tileWidth = 0;             ///< [m]
+  int tilesX = 0, tilesY = 0;
+  int tileBits = 0;                ///< bits of a dtPolyRef spent on the tile index
+};
+
+/// Adds the built tiles (in index order, so polygon references do not depend on thread count)
+/// to a new NavMeshData and fills its area table. Frees every tile's data on failure.
+/// `nothingWalkable` is the diagnostic returned when no tile holds a polygon.
+core::Result<NavMeshData*> assembleTiles(std::vector<TileOutput>& tiles, const TileGrid& grid,
+                                         core::Diagnostic nothingWalkable);
+
+}  // namespace throng::nav::detail

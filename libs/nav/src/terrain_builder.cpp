@@ -1,0 +1,265 @@
+// throng::nav::NavMesh::buildFromTerrain — the layered navmesh of a 3D world (floors above each
+// other joined by stairs and ramps): validates the TerrainMesh, converts it to Recast's y-up order
+// (scenario (x, y, z) is Recast (x, z, y)), sorts triangles into the same tile grid as the flat
+// build, builds the tiles in parallel (terrain_tile.cpp) and assembles them in tile order, so
+// polygon references are identical for any thread count. Reads the terrain and config once; the
+// result is immutable.
+#include <DetourNavMesh.h>
+#include <Recast.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "build_common.hpp"
+#include "navmesh_data.hpp"
+#include "terrain_tile.hpp"
+#include "throng/nav/navmesh.hpp"
+
+namespace throng::nav {
+namespace {
+
+using detail::diag;
+using detail::ilog2Ceil;
+using detail::kMinSaltBits;
+using detail::kRefBits;
+using detail::metres;
+
+constexpr float kCellHeight = 0.1f;  // vertical voxel size [m]: maxClimb 0.35 m is 3 cells
+constexpr float kHeightMargin = 1.0f;  // heightfield reaches this far below and above the geometry [m]
+
+// Checks one triangle list: a multiple of 3 indices, each below vertexCount.
+void validateTriangles(const std::vector<std::uint32_t>& tris, const char* name, std::size_t vertexCount,
+                       core::Diagnostics& errors) {
+  const std::string pointer = std::string("/terrain/") + name;
+  if (tris.size() % 3 != 0) {
+    errors.push_back(diag(pointer, "has " + std::to_string(tris.size()) + " indices",
+                          "a multiple of 3 (three vertex indices per triangle)"));
+  }
+  for (std::size_t i = 0; i < tris.size(); ++i) {
+    if (tris[i] < vertexCount) continue;
+    errors.push_back(diag(pointer + "/" + std::to_string(i),
+                          "vertex index " + std::to_string(tris[i]) + " is out of range",
+                          "an index below the vertex count " + std::to_string(vertexCount)));
+  }
+}
+
+}  // namespace
+
+core::Result<std::shared_ptr<const NavMesh>> NavMesh::buildFromTerrain(const TerrainMesh& terrain,
+                                                                       const NavMeshConfig& config) {
+  core::Diagnostics errors;
+  NavMeshConfig cfg = config;
+  if (!std::isfinite(cfg.agentRadius) || cfg.agentRadius < 0.0f)
+    errors.push_back(diag("/agentRadius", "agent radius is " + metres(cfg.agentRadius), "a radius >= 0 m"));
+  if (!std::isfinite(cfg.maxSlopeDeg) || cfg.maxSlopeDeg <= 0.0f || cfg.maxSlopeDeg >= 90.0f)
+    errors.push_back(diag("/maxSlopeDeg", "maximum slope is " + std::to_string(cfg.maxSlopeDeg) + " deg",
+                          "a slope in (0, 90) degrees"));
+  if (!std::isfinite(cfg.maxClimb) || cfg.maxClimb < 0.0f || cfg.maxClimb > 5.0f)
+    errors.push_back(diag("/maxClimb", "maximum climb is " + metres(cfg.maxClimb), "a climb in [0, 5] m"));
+  if (!std::isfinite(cfg.clearance) || cfg.clearance < kCellHeight || cfg.clearance > 25.0f)
+    errors.push_back(diag("/clearance", "clearance is " + metres(cfg.clearance),
+                          "a clearance in [" + metres(kCellHeight) + ", 25 m]"));
+
+  const std::vector<float>& v = terrain.vertices;
+  if (v.size() % 3 != 0) {
+    errors.push_back(diag("/terrain/vertices", "has " + std::to_string(v.size()) + " coordinates",
+                          "a multiple of 3 (x, y, z per vertex)"));
+  }
+  const std::size_t vertexCount = v.size() / 3;
+  for (std::size_t i = 0; i < vertexCount * 3; ++i) {
+    if (std::isfinite(v[i])) continue;
+    errors.push_back(diag("/terrain/vertices/" + std::to_string(i), "coordinate is not finite",
+                          "finite coordinates in metres"));
+    break;  // one message is enough: the rest are likely the same problem
+  }
+  if (terrain.walkable.empty())
+    errors.push_back(diag("/terrain/walkable", "no walkable triangles", "at least one walkable triangle"));
+  validateTriangles(terrain.walkable, "walkable", vertexCount, errors);
+  validateTriangles(terrain.obstacles, "obstacles", vertexCount, errors);
+  if (!errors.empty()) return errors;
+
+  // Ground bounds and height range of the walkable triangles.
+  const std::size_t walkCount = terrain.walkable.size() / 3;
+  const std::size_t obsCount = terrain.obstacles.size() / 3;
+  core::Aabb box;
+  float minZ = std::numeric_limits<float>::max();
+  float maxZ = std::numeric_limits<float>::lowest();
+  for (std::size_t i = 0; i < walkCount * 3; ++i) {
+    const float* p = &v[static_cast<std::size_t>(terrain.walkable[i]) * 3];
+    box.min = {std::min(box.min.x, p[0]), std::min(box.min.y, p[1])};
+    box.max = {std::max(box.max.x, p[0]), std::max(box.max.y, p[1])};
+    minZ = std::min(minZ, p[2]);
+    maxZ = std::max(maxZ, p[2]);
+  }
+
+  if (cfg.cellSize == 0.0f) {  // automatic, as in NavMesh::build
+    const double area = static_cast<double>(box.max.x - box.min.x) * static_cast<double>(box.max.y - box.min.y);
+    const float bySize = static_cast<float>(std::sqrt(area / 4.0e7));
+    cfg.cellSize = std::clamp(std::max(cfg.agentRadius * 0.25f, bySize), 0.03f, 0.3f);
+  }
+  if (!std::isfinite(cfg.cellSize) || cfg.cellSize < 0.01f)
+    errors.push_back(diag("/cellSize", "cell size is " + metres(cfg.cellSize), "a cell size >= 0.01 m (0 = automatic)"));
+  else if (!std::isfinite(cfg.tileSize) || cfg.tileSize <= 4.0f * cfg.cellSize)
+    errors.push_back(diag("/tileSize", "tile size is " + metres(cfg.tileSize),
+                          "a tile size > 4 cell sizes (" + metres(4.0f * cfg.cellSize) + ")"));
+  // Half a cell below the margin: a floor at the lowest height then lies mid-cell, not on a cell
+  // boundary that float rounding could push either way (see the lift in terrain_tile.cpp).
+  const float minY = minZ - kHeightMargin - 0.5f * kCellHeight;
+  const float maxY = maxZ + cfg.clearance + kHeightMargin;
+  if ((maxY - minY) / kCellHeight >= static_cast<float>(RC_SPAN_MAX_HEIGHT)) {
+    errors.push_back(diag("/terrain/vertices",
+                          "walkable heights span " + metres(maxZ - minZ) + " (from " + metres(minZ) + " to " +
+                              metres(maxZ) + ")",
+                          "at most " + metres(RC_SPAN_MAX_HEIGHT * kCellHeight - cfg.clearance - 2 * kHeightMargin) +
+                              " between the lowest and highest walkable point"));
+  }
+  if (!errors.empty()) return errors;
+
+  const float cs = cfg.cellSize;
+  // One cell more than the radius, as in NavMesh::build (see navmesh.cpp).
+  const int radiusCells =
+      cfg.agentRadius > 0.0f ? static_cast<int>(std::ceil(cfg.agentRadius / cs - 1e-4f)) + 1 : 0;
+  if (radiusCells >= 250) {
+    return diag("/agentRadius", "agent radius " + metres(cfg.agentRadius) + " is " + std::to_string(radiusCells) +
+                                    " cells of " + metres(cs),
+                "fewer than 250 cells", "raise the cell size");
+  }
+
+  detail::TerrainSettings settings;
+  settings.tile.cellSize = cs;
+  settings.tile.tileCells = std::max(8, static_cast<int>(std::floor(cfg.tileSize / cs)));
+  settings.tile.borderCells = radiusCells + 3;
+  settings.tile.radiusCells = radiusCells;
+  settings.tile.agentRadius = cfg.agentRadius;
+  settings.tile.originX = box.min.x;
+  settings.tile.originY = box.min.y;
+  settings.cellHeight = kCellHeight;
+  settings.minY = minY;
+  settings.maxY = maxY;
+  settings.maxSlopeDeg = cfg.maxSlopeDeg;
+  settings.walkableHeightCells = static_cast<int>(std::ceil(cfg.clearance / kCellHeight - 1e-4f));
+  settings.walkableClimbCells = static_cast<int>(std::floor(cfg.maxClimb / kCellHeight + 1e-4f));
+  const float tileWidth = static_cast<float>(settings.tile.tileCells) * cs;
+  const int tilesX = std::max(1, static_cast<int>(std::ceil((box.max.x - box.min.x) / tileWidth)));
+  const int tilesY = std::max(1, static_cast<int>(std::ceil((box.max.y - box.min.y) / tileWidth)));
+  const long long tileCount = static_cast<long long>(tilesX) * tilesY;
+  const int tileBits = ilog2Ceil(static_cast<unsigned>(std::min<long long>(tileCount, 1u << 30)));
+  if (tileBits > kRefBits - kMinSaltBits - 4) {
+    return diag("/tileSize", "the world needs " + std::to_string(tilesX) + " x " + std::to_string(tilesY) +
+                                 " tiles of " + metres(tileWidth) + ", too many for Detour's " +
+                                 std::to_string(kRefBits) + "-bit polygon references",
+                "at most " + std::to_string(1 << (kRefBits - kMinSaltBits - 4)) + " tiles", "raise tileSize");
+  }
+
+  // Recast order, walkable triangles wound with their normal up (rcMarkWalkableTriangles reads the
+  // winding; the input may have any).
+  detail::TerrainInput input;
+  input.verts.resize(vertexCount * 3);
+  for (std::size_t i = 0; i < vertexCount; ++i) {
+    input.verts[i * 3 + 0] = v[i * 3 + 0];
+    input.verts[i * 3 + 1] = v[i * 3 + 2];
+    input.verts[i * 3 + 2] = v[i * 3 + 1];
+  }
+  input.walkable.assign(terrain.walkable.begin(), terrain.walkable.begin() + static_cast<std::ptrdiff_t>(walkCount * 3));
+  input.obstacles.assign(terrain.obstacles.begin(),
+                         terrain.obstacles.begin() + static_cast<std::ptrdiff_t>(obsCount * 3));
+  for (std::size_t t = 0; t < walkCount; ++t) {
+    int* tri = &input.walkable[t * 3];
+    const float* a = &input.verts[static_cast<std::size_t>(tri[0]) * 3];
+    const float* b = &input.verts[static_cast<std::size_t>(tri[1]) * 3];
+    const float* c = &input.verts[static_cast<std::size_t>(tri[2]) * 3];
+    // y of (b - a) x (c - a)
+    const double ny = static_cast<double>(b[2] - a[2]) * (c[0] - a[0]) - static_cast<double>(b[0] - a[0]) * (c[2] - a[2]);
+    if (ny < 0.0) std::swap(tri[1], tri[2]);
+  }
+
+  // Triangles per tile (ascending triangle order), by ground bounding box against the tile plus
+  // its border (one cell extra for rounding; Recast clips to the heightfield anyway).
+  const auto tiles = static_cast<std::size_t>(tileCount);
+  std::vector<std::vector<int>> walkByTile(tiles), obsByTile(tiles);
+  const float reach = static_cast<float>(settings.tile.borderCells + 1) * cs;
+  auto bucket = [&](const std::vector<int>& tris, std::size_t count, std::vector<std::vector<int>>& out) {
+    for (std::size_t t = 0; t < count; ++t) {
+      float x0 = std::numeric_limits<float>::max(), y0 = x0;
+      float x1 = std::numeric_limits<float>::lowest(), y1 = x1;
+      for (int k = 0; k < 3; ++k) {
+        const float* p = &input.verts[static_cast<std::size_t>(tris[t * 3 + k]) * 3];
+        x0 = std::min(x0, p[0]);
+        x1 = std::max(x1, p[0]);
+        y0 = std::min(y0, p[2]);
+        y1 = std::max(y1, p[2]);
+      }
+      auto cell = [&](float value, float origin, int count) {
+        const float f = std::floor((value - origin) / tileWidth);
+        return static_cast<int>(std::clamp(f, 0.0f, static_cast<float>(count - 1)));
+      };
+      const float ox = settings.tile.originX, oy = settings.tile.originY;
+      if (x1 + reach < ox || y1 + reach < oy) continue;
+      if (x0 - reach > ox + tilesX * tileWidth || y0 - reach > oy + tilesY * tileWidth) continue;
+      const int tx0 = cell(x0 - reach, ox, tilesX), tx1 = cell(x1 + reach, ox, tilesX);
+      const int ty0 = cell(y0 - reach, oy, tilesY), ty1 = cell(y1 + reach, oy, tilesY);
+      for (int ty = ty0; ty <= ty1; ++ty)
+        for (int tx = tx0; tx <= tx1; ++tx)
+          out[static_cast<std::size_t>(ty) * static_cast<std::size_t>(tilesX) + static_cast<std::size_t>(tx)]
+              .push_back(static_cast<int>(t));
+    }
+  };
+  bucket(input.walkable, walkCount, walkByTile);
+  bucket(input.obstacles, obsCount, obsByTile);
+
+  std::vector<detail::TileOutput> built(tiles);
+  tbb::parallel_for(std::size_t{0}, tiles, [&](std::size_t i) {
+    const int tx = static_cast<int>(i % static_cast<std::size_t>(tilesX));
+    const int ty = static_cast<int>(i / static_cast<std::size_t>(tilesX));
+    built[i] = detail::buildTerrainTile(settings, tx, ty, input, walkByTile[i], obsByTile[i]);
+  });
+
+  detail::TileGrid grid;
+  grid.originX = settings.tile.originX;
+  grid.originY = settings.tile.originY;
+  grid.tileWidth = tileWidth;
+  grid.tilesX = tilesX;
+  grid.tilesY = tilesY;
+  grid.tileBits = tileBits;
+  auto assembled = detail::assembleTiles(
+      built, grid,
+      diag("/terrain/walkable",
+           "nothing walkable remains (slopes up to " + std::to_string(cfg.maxSlopeDeg) + " deg, " +
+               metres(cfg.clearance) + " of headroom, eroded by the agent radius " + metres(cfg.agentRadius) + ")",
+           "walkable surfaces wider than " + metres(2.0f * cfg.agentRadius) + " with " + metres(cfg.clearance) +
+               " of headroom"));
+  if (!assembled.ok()) return std::move(assembled).takeErrors();
+  detail::NavMeshData* mesh = assembled.value();
+
+  // Height range of the polygons' vertices.
+  float lo = std::numeric_limits<float>::max();
+  float hi = std::numeric_limits<float>::lowest();
+  const dtNavMesh& constMesh = *mesh;
+  for (int i = 0; i < constMesh.getMaxTiles(); ++i) {
+    const dtMeshTile* tile = constMesh.getTile(i);
+    if (!tile || !tile->header) continue;
+    for (int p = 0; p < tile->header->polyCount; ++p) {
+      const dtPoly& poly = tile->polys[p];
+      if (poly.getType() != DT_POLYTYPE_GROUND) continue;
+      for (int k = 0; k < poly.vertCount; ++k) {
+        const float y = tile->verts[poly.verts[k] * 3 + 1];
+        lo = std::min(lo, y);
+        hi = std::max(hi, y);
+      }
+    }
+  }
+
+  std::shared_ptr<NavMesh> out(new NavMesh());
+  out->mesh_ = mesh;
+  out->config_ = cfg;
+  out->bounds_ = box;
+  out->layered_ = true;
+  out->minHeight_ = lo <= hi ? lo : 0.0f;
+  out->maxHeight_ = lo <= hi ? hi : 0.0f;
+  return std::shared_ptr<const NavMesh>(std::move(out));
+}
+
+}  // namespace throng::nav

@@ -1,0 +1,165 @@
+// Tests for multi-level worlds in libs/sim (ScenarioDesc::terrain): agents climb a ramp to reach a
+// goal on the floor above, agents on different floors are not neighbours, heights come out in
+// frames, and trajectories stay identical for any thread count.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "throng/sim/world.hpp"
+
+using namespace throng;
+
+namespace {
+
+/// Adds the quad a, b, c, d (x, y, z each) to the terrain as two walkable triangles.
+void quad(nav::TerrainMesh& t, std::initializer_list<std::array<float, 3>> corners) {
+  const auto base = static_cast<std::uint32_t>(t.vertices.size() / 3);
+  for (const auto& c : corners) t.vertices.insert(t.vertices.end(), c.begin(), c.end());
+  for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) t.walkable.push_back(base + i);
+}
+
+/// A ground floor (0..20 × 0..10 at z 0), an upper floor right above it (z 3) and, beside them
+/// (y 10..12), a ramp from z 0 at x 2 to z 3 at x 18 with landings on each floor level: the only
+/// way between the floors.
+nav::TerrainMesh twoFloors() {
+  nav::TerrainMesh t;
+  quad(t, {{0, 0, 0}, {20, 0, 0}, {20, 10, 0}, {0, 10, 0}});
+  quad(t, {{0, 0, 3}, {20, 0, 3}, {20, 10, 3}, {0, 10, 3}});
+  quad(t, {{0, 10, 0}, {2, 10, 0}, {2, 12, 0}, {0, 12, 0}});      // lower landing (joins the ground floor)
+  quad(t, {{2, 10, 0}, {18, 10, 3}, {18, 12, 3}, {2, 12, 0}});     // ramp, 10.6°
+  quad(t, {{18, 10, 3}, {20, 10, 3}, {20, 12, 3}, {18, 12, 3}});   // upper landing (joins the upper floor)
+  return t;
+}
+
+sim::PointDesc exitAt(std::string id, float x0, float x1, float y0, float y1, float height) {
+  sim::PointDesc p;
+  p.id = std::move(id);
+  p.kind = sim::PointKind::Exit;
+  p.polygon = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  p.position = {(x0 + x1) / 2, (y0 + y1) / 2};
+  p.height = height;
+  return p;
+}
+
+sim::PopulationDesc walkers(std::string id, std::uint32_t n, core::Polygon spawn, float height, std::uint32_t goal) {
+  sim::PopulationDesc p;
+  p.id = std::move(id);
+  p.groups = n;
+  p.spawn.kind = sim::SpawnKind::Polygon;
+  p.spawn.polygon = std::move(spawn);
+  p.spawn.height = height;
+  p.goals = {goal};
+  p.radius = 0.2f;
+  return p;
+}
+
+struct Track {
+  float maxY = -1e9f, minZ = 1e9f, maxZ = -1e9f, lastZ = 0;
+  float maxLateral = 0;  // largest |y - 5| (crossing test)
+  bool exited = false;
+};
+
+struct LevelRun {
+  std::map<std::uint32_t, Track> tracks;
+  std::uint64_t hash = 0;
+  double time = 0;
+};
+
+LevelRun simulate(const sim::ScenarioDesc& d, int threads, double maxTime) {
+  auto created = sim::World::create(d);
+  EXPECT_TRUE(created.ok()) << (created.ok() ? "" : core::formatAll(created.errors()));
+  LevelRun run;
+  if (!created.ok()) return run;
+  sim::World& w = *created.value();
+  core::TaskSystem tasks(threads);
+  while (!w.finished() && w.stats().time < maxTime) {
+    w.step(tasks);
+    const auto f = w.snapshot();
+    EXPECT_EQ(f->posZ.size(), f->size());
+    for (std::size_t i = 0; i < f->size(); ++i) {
+      Track& t = run.tracks[f->ids[i]];
+      t.maxY = std::max(t.maxY, f->posY[i]);
+      t.minZ = std::min(t.minZ, f->height(i));
+      t.maxZ = std::max(t.maxZ, f->height(i));
+      t.lastZ = f->height(i);
+      t.maxLateral = std::max(t.maxLateral, std::abs(f->posY[i] - 5.0f));
+    }
+    for (const sim::Event& e : f->events) {
+      if (e.kind == sim::EventKind::Exit) run.tracks[e.agent].exited = true;
+    }
+    run.hash ^= w.stateHash() + 0x9e3779b97f4a7c15ull + (run.hash << 6) + (run.hash >> 2);
+  }
+  run.time = w.stats().time;
+  return run;
+}
+
+TEST(Levels, AgentsClimbTheRampToAGoalRightAboveThem) {
+  sim::ScenarioDesc d;
+  d.name = "two floors";
+  d.seed = 5;
+  d.dt = 0.1f;
+  d.terrain = twoFloors();
+  // The goal is on the upper floor straight above the spawn: the way there is the ramp.
+  d.points = {exitAt("top", 1, 5, 3, 7, 3.0f), exitAt("bottom", 15, 19, 3, 7, 0.0f)};
+  d.populations = {walkers("up", 4, {{1, 3}, {5, 3}, {5, 7}, {1, 7}}, 0.0f, 0),
+                   walkers("down", 4, {{15, 3}, {19, 3}, {19, 7}, {15, 7}}, 3.0f, 1)};
+  const LevelRun run = simulate(d, 2, 120.0);
+  ASSERT_EQ(run.tracks.size(), 8u);
+  for (const auto& [id, t] : run.tracks) {
+    SCOPED_TRACE("agent " + std::to_string(id));
+    EXPECT_TRUE(t.exited);
+    EXPECT_GT(t.maxY, 10.0f) << "went by the ramp (y 10..12)";
+    EXPECT_LT(t.minZ, 0.2f);
+    EXPECT_GT(t.maxZ, 2.8f);
+  }
+  // "up" agents (ids 0-3) end upstairs, "down" agents (4-7) downstairs.
+  for (std::uint32_t id = 0; id < 4; ++id) EXPECT_NEAR(run.tracks.at(id).lastZ, 3.0f, 0.2f);
+  for (std::uint32_t id = 4; id < 8; ++id) EXPECT_NEAR(run.tracks.at(id).lastZ, 0.0f, 0.2f);
+}
+
+/// Two agents head on along y = 5 in projection; the second walks on the floor at `secondFloor`.
+LevelRun headOn(float secondFloor) {
+  sim::ScenarioDesc d;
+  d.seed = 7;
+  d.dt = 0.1f;
+  d.terrain = twoFloors();
+  d.points = {exitAt("east", 18, 20, 4.9f, 5.1f, 0.0f), exitAt("west", 0, 2, 4.9f, 5.1f, secondFloor)};
+  d.populations = {walkers("first", 1, {{2.5f, 4.9f}, {3.0f, 4.9f}, {3.0f, 5.1f}, {2.5f, 5.1f}}, 0.0f, 0),
+                   walkers("second", 1, {{17.0f, 4.9f}, {17.5f, 4.9f}, {17.5f, 5.1f}, {17.0f, 5.1f}}, secondFloor, 1)};
+  return simulate(d, 1, 60.0);
+}
+
+TEST(Levels, AgentsOnDifferentFloorsDoNotAvoidEachOther) {
+  // One floor apart: each walks straight down the middle line.
+  const LevelRun apart = headOn(3.0f);
+  ASSERT_EQ(apart.tracks.size(), 2u);
+  for (const auto& [id, t] : apart.tracks) {
+    SCOPED_TRACE("agent " + std::to_string(id));
+    EXPECT_TRUE(t.exited);
+    EXPECT_LT(t.maxLateral, 0.15f) << "no sidestep for an agent on the other floor";
+  }
+  EXPECT_NEAR(apart.tracks.at(0).maxZ, 0.0f, 0.1f);
+  EXPECT_NEAR(apart.tracks.at(1).minZ, 3.0f, 0.1f);
+  // The control: on the same floor they do step aside for each other.
+  const LevelRun together = headOn(0.0f);
+  ASSERT_EQ(together.tracks.size(), 2u);
+  EXPECT_GT(std::max(together.tracks.at(0).maxLateral, together.tracks.at(1).maxLateral), 0.2f);
+}
+
+TEST(Levels, SameTrajectoriesForAnyThreadCount) {
+  sim::ScenarioDesc d;
+  d.seed = 11;
+  d.dt = 0.1f;
+  d.terrain = twoFloors();
+  d.points = {exitAt("top", 1, 5, 3, 7, 3.0f), exitAt("bottom", 15, 19, 3, 7, 0.0f)};
+  d.populations = {walkers("up", 12, {{1, 1}, {8, 1}, {8, 9}, {1, 9}}, 0.0f, 0),
+                   walkers("down", 12, {{12, 1}, {19, 1}, {19, 9}, {12, 9}}, 3.0f, 1)};
+  const LevelRun one = simulate(d, 1, 30.0);
+  const LevelRun two = simulate(d, 2, 30.0);
+  EXPECT_EQ(one.hash, two.hash);
+  EXPECT_EQ(one.tracks.size(), 24u);
+}
+
+}  // namespace
