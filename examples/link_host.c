@@ -253,6 +253,7 @@ int main(int argc, char** argv) {
     avatar.id = 1;
     avatar.x = (float)sx;
     avatar.y = (float)sy;
+    avatar.z = 0.0f; /* a flat world: the ground */
     guide.group = group;
     guide.avatar = 0; /* index into our avatar array */
     guide.active = 1;

@@ -78,7 +78,7 @@ class FrameWriter {
       a.group = a.id < groupOf_.size() ? groupOf_[a.id] : 0xffffffffu;
       a.x = frame.posX[i];
       a.y = frame.posY[i];
-      a.z = 0.0f;  // 2D scenarios: the ground plane
+      a.z = frame.height(i);  // 0 on flat worlds
       a.yaw = std::atan2(frame.oriY[i], frame.oriX[i]);
       a.phase = frame.phase[i];
       a.clip = frame.clip[i];
@@ -138,7 +138,7 @@ class HostInputApplier {
         }
         continue;
       }
-      world.guide(handle, {in.avatars[g.avatar].x, in.avatars[g.avatar].y});
+      world.guide(handle, {in.avatars[g.avatar].x, in.avatars[g.avatar].y}, in.avatars[g.avatar].z);
       now.insert(g.group);
     }
     for (std::uint32_t g : guided_) {

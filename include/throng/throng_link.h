@@ -63,7 +63,7 @@ extern "C" {
 /** First four bytes of the segment: 'T' 'H' 'R' 'L' in memory order. */
 #define THRONG_LINK_MAGIC 0x4C524854u
 /** Layout version. Any change to a structure below bumps it; both sides refuse a mismatch. */
-#define THRONG_LINK_VERSION 1u
+#define THRONG_LINK_VERSION 2u
 /** First word of the UNIX-socket handshake line: "THRONG-LINK <version> <segment name>\n". */
 #define THRONG_LINK_HANDSHAKE "THRONG-LINK"
 /** The host's answer: "THRONG-LINK-HOST <version>\n"; the crowd replies "OK\n" or "REFUSED <why>\n". */
@@ -253,6 +253,7 @@ typedef struct throng_link_input {
 typedef struct throng_link_avatar {
   uint32_t id;  /**< the host's id for it (free to choose) */
   float x, y;   /**< position on the crowd's ground plane [m] */
+  float z;      /**< height of the floor it stands on [m] (multi-level worlds; 0 in 2D scenarios). Since version 2 */
   float yaw;    /**< heading from +x towards +y [rad] */
 } throng_link_avatar;
 
@@ -302,7 +303,7 @@ THRONG_LINK_STATIC_ASSERT(sizeof(throng_link_detailed) == 16, detailed_size);
 THRONG_LINK_STATIC_ASSERT(sizeof(throng_link_joint) == 48, joint_size);
 THRONG_LINK_STATIC_ASSERT(sizeof(throng_link_clip) == 40, clip_size);
 THRONG_LINK_STATIC_ASSERT(sizeof(throng_link_input) == 32, input_size);
-THRONG_LINK_STATIC_ASSERT(sizeof(throng_link_avatar) == 16, avatar_size);
+THRONG_LINK_STATIC_ASSERT(sizeof(throng_link_avatar) == 20, avatar_size);
 THRONG_LINK_STATIC_ASSERT(sizeof(throng_link_guide) == 16, guide_size);
 THRONG_LINK_STATIC_ASSERT(sizeof(throng_link_request) == 4096, request_size);
 THRONG_LINK_STATIC_ASSERT(sizeof(throng_link_reply) == 272, reply_size);

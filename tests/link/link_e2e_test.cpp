@@ -178,7 +178,7 @@ TEST_F(LinkE2E, HostRefusesASegmentOfAnotherVersion) {
   header->crowd_state = THRONG_LINK_CROWD_RUNNING;
   auto h = host({"--shm", name(), "--seconds", "1"});
   EXPECT_EQ(h->wait(10s), 1);
-  EXPECT_NE(h->err().find("layout version 99 but this host was built for version 1: refused"), std::string::npos)
+  EXPECT_NE(h->err().find("layout version 99 but this host was built for version 2: refused"), std::string::npos)
       << h->err();
   munmap(memory, layout.totalSize);
 }
@@ -202,8 +202,8 @@ TEST_F(LinkE2E, CrowdRefusesAHostOfAnotherVersion) {
       got.append(buffer, static_cast<std::size_t>(n));
     }
     close(fd);
-    EXPECT_NE(got.find("THRONG-LINK 1 " + name() + "\n"), std::string::npos) << got;
-    EXPECT_NE(got.find("REFUSED host speaks link version 99, this crowd speaks version 1"), std::string::npos) << got;
+    EXPECT_NE(got.find("THRONG-LINK " + std::to_string(THRONG_LINK_VERSION) + " " + name() + "\n"), std::string::npos) << got;
+    EXPECT_NE(got.find("REFUSED host speaks link version 99, this crowd speaks version 2"), std::string::npos) << got;
   }
   // In the segment: a host announcing version 99 is marked REFUSED with the reason.
   throng_link link{};

@@ -112,7 +112,7 @@ TEST(LinkSegment, HostInputIsReadConsistently) {
       throng_link_guide guides[4];
       std::uint32_t ids[2] = {k, k};
       for (std::uint32_t i = 0; i < 4; ++i) {
-        avatars[i] = {k, static_cast<float>(k), static_cast<float>(k), 0.0f};
+        avatars[i] = {k, static_cast<float>(k), static_cast<float>(k), 0.0f, 0.0f};
         guides[i] = {k, i, 1, 0};
       }
       throng_link_write_input(&link, avatars, n, guides, n, ids, 2);

@@ -259,6 +259,24 @@ core::Result<Replay> Replay::open(const std::string& path) {
     f->mode.assign(k, sim::AgentMode::Waiting);
   }
 
+  // Heights, on a multi-level world.
+  if (hasTable(db, "throng_heights").value_or(false)) {
+    for (auto& f : frames) f->posZ.assign(f->ids.size(), 0.0f);
+    Stmt s(db, "SELECT frame, id, z FROM throng_heights ORDER BY frame, id");
+    if (!s.ok()) return diag(path, "cannot read throng_heights (" + db.message() + ")");
+    int rc = 0;
+    while ((rc = s.step()) == SQLITE_ROW) {
+      const std::int64_t f = s.integer(0), id = s.integer(1);
+      if (f < 0 || f >= frameCount || id < 0 || id > 0xffffffffLL) continue;
+      sim::Frame& fr = *frames[static_cast<std::size_t>(f)];
+      const auto it = std::lower_bound(fr.ids.begin(), fr.ids.end(), static_cast<std::uint32_t>(id));
+      if (it == fr.ids.end() || *it != static_cast<std::uint32_t>(id)) continue;
+      const double z = s.real(2);
+      fr.posZ[static_cast<std::size_t>(it - fr.ids.begin())] = std::isfinite(z) ? static_cast<float>(z) : 0.0f;
+    }
+    if (rc != SQLITE_DONE) return diag(path, "cannot read throng_heights (" + db.message() + ")");
+  }
+
   // Clips and phases, when recorded.
   if (hasTable(db, "throng_animation").value_or(false)) {
     Stmt s(db, "SELECT frame, id, clip, phase FROM throng_animation ORDER BY frame, id");

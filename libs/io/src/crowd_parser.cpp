@@ -47,6 +47,8 @@ ParsedScenario ScenarioReader::runCrowd(const sim::ScenarioDesc& world, const st
   // The world the crowd joins: its geometry and social section, its points first.
   desc.walkable = world.walkable;
   desc.obstacles = world.obstacles;
+  desc.terrain = world.terrain;
+  multiLevel_ = !world.terrain.empty();
   desc.social = world.social;
   desc.navCellSize = world.navCellSize;
   desc.points = world.points;
@@ -102,8 +104,10 @@ ParsedScenario ScenarioReader::runCrowd(const sim::ScenarioDesc& world, const st
     }
   }
   pointIds_.clear();
+  pointHeights_.clear();
   for (const auto& p : desc.points) {
     pointIds_.push_back(p.id);
+    pointHeights_.push_back(p.height);
     hasActionPoint_ = hasActionPoint_ || p.kind == sim::PointKind::Action;
   }
   const std::string popExpected = "an array of at least one population object";

@@ -26,6 +26,7 @@
 #include <unordered_set>
 
 #include "recorder_impl.hpp"
+#include "world_footprint.hpp"
 #include "recording_scenario.hpp"
 #include "recording_schema.hpp"
 #include "recording_text.hpp"
@@ -147,11 +148,30 @@ constexpr std::uint32_t kMaxTrackedAgentId = 1u << 26;
 
 bool Recorder::Impl::writeScenario(const sim::ScenarioDesc& scenario) {
   using namespace recording;
-  const WalkableAreaWkt area = walkableAreaWkt(scenario.walkable, scenario.obstacles);
+  // JuPedSim's geometry is 2D: a multi-level world records the ground footprint of its floors.
+  const WalkableAreaWkt area = [&] {
+    if (scenario.terrain.empty()) return walkableAreaWkt(scenario.walkable, scenario.obstacles);
+    const nav::TerrainMesh& t = scenario.terrain;
+    std::vector<std::array<core::Vec2, 3>> triangles;
+    for (std::size_t i = 0; i + 2 < t.walkable.size(); i += 3) {
+      std::array<core::Vec2, 3> tri;
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t v = 3 * static_cast<std::size_t>(t.walkable[i + static_cast<std::size_t>(k)]);
+        tri[static_cast<std::size_t>(k)] = v + 1 < t.vertices.size() ? core::Vec2{t.vertices[v], t.vertices[v + 1]} : core::Vec2{};
+      }
+      triangles.push_back(tri);
+    }
+    const Footprint footprint = unionOfTriangles(triangles);
+    return walkableAreaWkt(footprint.outer, footprint.holes);
+  }();
   geometryHash = recording::geometryHash(area.wkt);
   for (const auto& pop : scenario.populations) populationIds.push_back(pop.id);
 
   if (!exec("BEGIN") || !exec(kCreateJuPedSim) || !exec(kCreateThrong) || !prepareAll()) return false;
+  if (!scenario.terrain.empty()) {
+    hasHeights = true;
+    if (!exec(kCreateHeights) || !prepare(insertHeight, "INSERT INTO throng_heights VALUES(?, ?, ?)")) return false;
+  }
 
   // metadata: JuPedSim's keys (values as Python's str() writes them), then throng's.
   bool ok = putMeta(kKeyVersion, std::to_string(kFormatVersion)) &&
@@ -276,6 +296,14 @@ bool Recorder::Impl::writeFrame(const sim::Frame& f) {
     }
   }
 
+  if (hasHeights) {
+    for (std::size_t k = 0; k < n; ++k) {
+      bindInt(insertHeight.get(), 1, frame);
+      bindInt(insertHeight.get(), 2, f.ids[k]);
+      bindReal(insertHeight.get(), 3, static_cast<double>(f.height(k)));
+      if (!run(insertHeight)) return false;
+    }
+  }
   if (!writeSocial(f)) return false;
 
   bindInt(insertFrameData.get(), 1, frame);
@@ -424,13 +452,14 @@ core::Status Recorder::close(bool completed) {
   }
   impl.writeFinal(completed);
   impl.exec(recording::kCreateFrameIndexes);
+  if (impl.hasHeights) impl.exec(recording::kCreateHeightsIndex);
   // Fold the WAL into the main file and leave rollback-journal mode: one self-contained file.
   impl.exec("PRAGMA wal_checkpoint(TRUNCATE)");
   impl.exec("PRAGMA journal_mode=DELETE");
   for (Statement* s : {&impl.begin, &impl.commit, &impl.rollback, &impl.insertRow, &impl.insertFrameData,
                        &impl.insertFrame, &impl.insertEvent, &impl.insertAgent, &impl.insertAgentSeen,
                        &impl.updateExit, &impl.upsertMeta, &impl.insertAnimation, &impl.insertCoordination,
-                       &impl.insertScript, &impl.insertRowBlock, &impl.insertAnimationBlock}) {
+                       &impl.insertScript, &impl.insertRowBlock, &impl.insertAnimationBlock, &impl.insertHeight}) {
     *s = Statement();
   }
   if (impl.db != nullptr && sqlite3_close(impl.db) != SQLITE_OK) impl.fail("SQLite: cannot close the recording");

@@ -47,6 +47,8 @@ struct Recorder::Impl {
   Statement begin, commit, rollback, insertRow, insertFrameData, insertFrame, insertEvent,
       insertAgent, insertAgentSeen, updateExit, upsertMeta, insertAnimation, insertCoordination,
       insertScript;
+  Statement insertHeight;  // multi-level worlds only (throng_heights)
+  bool hasHeights = false;
 
   // Queue shared by push() and the worker.
   std::mutex mutex;
@@ -73,7 +75,7 @@ struct Recorder::Impl {
       // Statements must be finalized before sqlite3_close.
       for (Statement* s : {&begin, &commit, &rollback, &insertRow, &insertFrameData, &insertFrame,
                            &insertEvent, &insertAgent, &insertAgentSeen, &updateExit, &upsertMeta, &insertAnimation,
-                           &insertCoordination, &insertScript, &insertRowBlock, &insertAnimationBlock}) {
+                           &insertCoordination, &insertScript, &insertRowBlock, &insertAnimationBlock, &insertHeight}) {
         *s = Statement();
       }
       sqlite3_close(db);

@@ -62,6 +62,15 @@ inline constexpr const char* kCreateJuPedSim =
     "   frame INTEGER NOT NULL,"
     "   geometry_hash INTEGER NOT NULL);";
 
+/// Multi-level worlds only (a scenario with `terrain`): the height of every trajectory_data row.
+/// JuPedSim's format is 2D; its readers ignore this table.
+inline constexpr const char* kCreateHeights =
+    "CREATE TABLE throng_heights("
+    "   frame INTEGER NOT NULL,"
+    "   id INTEGER NOT NULL,"
+    "   z REAL NOT NULL);";
+inline constexpr const char* kCreateHeightsIndex = "CREATE INDEX IF NOT EXISTS throng_heights_idx ON throng_heights(frame, id);";
+
 /// The indexes over the two big per-frame tables (JuPedSim's frame_id_idx, throng_animation's),
 /// built once when the recording is closed: keeping them up to date row by row costs the writer
 /// about as much as the rows themselves. A recording cut short by a kill has every committed row

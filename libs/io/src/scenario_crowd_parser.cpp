@@ -26,6 +26,10 @@ bool ScenarioReader::readGoals(const Json& v, const std::string& ptr, sim::Popul
       error(ptr, "unknown goals mode " + quote(s), expected, hint);
       return false;
     }
+    if (multiLevel_) {
+      refuseOnLevels(ptr, "\"goals\": \"auto\"", "an array of point ids from /points (the goals listed)");
+      return false;
+    }
     if (!hasActionPoint_) {
       error(ptr, "\"goals\": \"auto\" needs at least one point of kind \"action\"",
             "an action point in /points (each group's final goal is drawn among them)",
@@ -57,8 +61,14 @@ bool ScenarioReader::readCrowdKeys(const Json& v, const std::string& ptr, std::s
                                    {"groupSpacing", {0.3, 3, false, "m"}, &p.groupSpacing}});
   if (auto* x = optional(v, "paths")) {
     std::size_t kind = 0;
-    if (readChoice(*x, ptr + "/paths", {"navmesh", "bezier"}, "path kind", kind)) p.bezierPaths = kind == 1;
-    else ok = false;
+    if (!readChoice(*x, ptr + "/paths", {"navmesh", "bezier"}, "path kind", kind)) {
+      ok = false;
+    } else if (kind == 1 && multiLevel_) {
+      refuseOnLevels(ptr + "/paths", "\"paths\": \"bezier\"", "\"navmesh\" (or no \"paths\")");
+      ok = false;
+    } else {
+      p.bezierPaths = kind == 1;
+    }
   }
   if (auto* x = optional(v, "flocking")) ok = readBool(*x, ptr + "/flocking", p.flocking) && ok;
   if (auto* x = optional(v, "follow")) ok = readFollow(*x, ptr + "/follow", index, p.follow) && ok;
@@ -177,7 +187,7 @@ bool ScenarioReader::readGuide(const Json& v, const std::string& ptr, sim::Guide
 
 bool ScenarioReader::readGuideScript(const Json& v, const std::string& ptr, std::vector<sim::GuideWaypoint>& out,
                              bool& firstTimeOk) {
-  const std::string waypoint = "a waypoint {\"time\": seconds >= 0, \"position\": [x, y] in metres}";
+  const std::string waypoint = "a waypoint {\"time\": seconds >= 0, \"position\": [x, y] or [x, y, z] in metres}";
   if (!v.is_array()) {
     error(ptr, "wrong type: " + describeType(v), "an array of waypoints, times strictly ascending");
     return false;
@@ -196,8 +206,8 @@ bool ScenarioReader::readGuideScript(const Json& v, const std::string& ptr, std:
       if (auto* t = require(v[k], wptr, "time", "a time in seconds >= 0")) {
         timeOk = readFloat(*t, wptr + "/time", {0, 1e6, false, "s"}, out[k].time);
       }
-      if (auto* p = require(v[k], wptr, "position", "a point [x, y] in metres")) {
-        ok = readVec2(*p, wptr + "/position", out[k].position) && ok;
+      if (auto* p = require(v[k], wptr, "position", "a position [x, y] or [x, y, z] in metres")) {
+        ok = readPosition(*p, wptr + "/position", out[k].position, out[k].height) && ok;
       } else {
         ok = false;
       }

@@ -112,7 +112,8 @@ void ScenarioReader::readSteering(const Json& v, const std::string& ptr, sim::St
 bool ScenarioReader::readPoint(const Json& v, const std::string& ptr, sim::PointDesc& p) {
   if (!isObject(v, ptr, "a point object {\"id\", \"kind\", \"position\"+\"radius\" or \"polygon\"}")) return false;
   checkKeys(v, ptr,
-            {"id", "kind", "position", "radius", "polygon", "stop", "orientation", "action", "duration", "clip", "category"},
+            {"id", "kind", "position", "radius", "polygon", "height", "stop", "orientation", "action", "duration", "clip",
+             "category"},
             "a point");
   bool ok = true;
   if (auto* id = require(v, ptr, "id", "a unique non-empty string id")) {
@@ -144,12 +145,17 @@ bool ScenarioReader::readPoint(const Json& v, const std::string& ptr, sim::Point
   } else if (polygon != nullptr) {
     ok = readPolygon(*polygon, ptr + "/polygon", p.polygon) && ok;
     if (ok) p.position = core::centroid(p.polygon);
+    if (auto* h = optional(v, "height")) ok = readHeight(*h, ptr + "/height", p.height) && ok;
   } else if (position != nullptr) {
-    ok = readVec2(*position, ptr + "/position", p.position) && ok;
+    ok = readPosition(*position, ptr + "/position", p.position, p.height) && ok;
     p.radius = 0.5f;
     if (radius != nullptr) ok = readFloat(*radius, ptr + "/radius", {0, 1000, true, "m"}, p.radius) && ok;
   } else {
     error(ptr, "point has no region", regionExpected);
+    ok = false;
+  }
+  if (polygon == nullptr && optional(v, "height") != nullptr) {
+    error(ptr + "/height", "\"height\" only applies to a polygon region", "the height as the position's z: [x, y, z]", "", true);
     ok = false;
   }
   if (auto* x = optional(v, "category")) ok = readCategory(*x, ptr + "/category", p.category) && ok;
@@ -195,23 +201,36 @@ bool ScenarioReader::resolvePoint(const Json& v, const std::string& ptr, std::ui
 bool ScenarioReader::readSpawn(const Json& v, const std::string& ptr, sim::SpawnDesc& s) {
   const std::string expected = "an object with one of \"polygon\", \"position\" or \"point\"";
   if (!isObject(v, ptr, expected)) return false;
-  checkKeys(v, ptr, {"polygon", "position", "point"}, "a spawn");
-  if (v.size() != 1) {
-    if (v.empty()) error(ptr, "empty spawn", expected);
-    else error(ptr, "spawn has " + std::to_string(v.size()) + " forms", "exactly one of \"polygon\", \"position\" or \"point\"");
+  checkKeys(v, ptr, {"polygon", "position", "point", "height"}, "a spawn");
+  const Json* height = optional(v, "height");
+  const std::size_t forms = v.size() - (height != nullptr ? 1 : 0);
+  if (forms != 1) {
+    if (forms == 0) error(ptr, "empty spawn", expected);
+    else error(ptr, "spawn has " + std::to_string(forms) + " forms", "exactly one of \"polygon\", \"position\" or \"point\"");
+    return false;
+  }
+  if (height != nullptr && optional(v, "polygon") == nullptr) {
+    error(ptr + "/height", "\"height\" only applies to a polygon spawn",
+          optional(v, "position") != nullptr ? "the height as the position's z: [x, y, z]"
+                                             : "no \"height\" (a spawn at a point takes the point's height)",
+          "", true);
     return false;
   }
   if (auto* x = optional(v, "polygon")) {
     s.kind = sim::SpawnKind::Polygon;
-    return readPolygon(*x, ptr + "/polygon", s.polygon);
+    bool ok = readPolygon(*x, ptr + "/polygon", s.polygon);
+    if (height != nullptr) ok = readHeight(*height, ptr + "/height", s.height) && ok;
+    return ok;
   }
   if (auto* x = optional(v, "position")) {
     s.kind = sim::SpawnKind::Position;
-    return readVec2(*x, ptr + "/position", s.position);
+    return readPosition(*x, ptr + "/position", s.position, s.height);
   }
   if (auto* x = optional(v, "point")) {
     s.kind = sim::SpawnKind::Point;
-    return resolvePoint(*x, ptr + "/point", s.point);
+    if (!resolvePoint(*x, ptr + "/point", s.point)) return false;
+    s.height = pointHeights_[s.point];
+    return true;
   }
   return false;  // the unknown key was reported by checkKeys
 }
@@ -295,7 +314,7 @@ bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::
     error(ptr + "/groups", num(double(p.groups) * p.sizeMax) + " agents", "at most " + num(kMaxAgents) + " agents per population");
     ok = false;
   }
-  if (auto* x = require(v, ptr, "spawn", "{\"polygon\": [...]}, {\"position\": [x, y]} or {\"point\": \"id\"}")) {
+  if (auto* x = require(v, ptr, "spawn", "{\"polygon\": [...]}, {\"position\": [x, y] or [x, y, z]} or {\"point\": \"id\"}")) {
     ok = readSpawn(*x, ptr + "/spawn", p.spawn) && ok;
   } else {
     ok = false;
@@ -316,8 +335,8 @@ ParsedScenario ScenarioReader::run() {
   const Json& root = doc_.root();
   if (!isObject(root, "", "a scenario object {\"format\": \"throng/1\", ...}")) return out;
   checkKeys(root, "",
-            {"$schema", "format", "name", "seed", "duration", "dt", "walkable", "obstacles", "points", "populations",
-             "steering", "navCellSize", "social", "timeline"},
+            {"$schema", "format", "name", "seed", "duration", "dt", "walkable", "obstacles", "terrain", "points",
+             "populations", "steering", "navCellSize", "social", "timeline"},
             "the scenario");
   if (auto* x = require(root, "", "format", "\"throng/1\"")) {
     if (readString(*x, "/format", "\"throng/1\"", desc.format) && desc.format != "throng/1") {
@@ -359,8 +378,24 @@ ParsedScenario ScenarioReader::run() {
     error("/duration", "duration " + num(desc.duration) + " s is shorter than one step (dt " + num(desc.dt) + " s)",
           "a number >= dt");
   }
-  readPolygonList(root, "walkable", true, desc.walkable, out.walkableOk);
-  readPolygonList(root, "obstacles", false, desc.obstacles, out.obstaclesOk);
+  if (const Json* terrain = optional(root, "terrain")) {
+    // A multi-level world: its geometry is the terrain's triangles, never 2D polygons.
+    multiLevel_ = true;
+    out.terrainOk = readTerrain(*terrain, "/terrain", desc.terrain);
+    for (const char* key : {"walkable", "obstacles"}) {
+      const Json* x = optional(root, key);
+      if (x == nullptr || (x->is_array() && x->empty())) continue;
+      error(std::string("/") + key,
+            std::string("a multi-level world takes its ") + (key[0] == 'w' ? "walkable surface" : "obstacles") +
+                " from /terrain/" + key,
+            std::string("no \"") + key + "\" (or an empty array) next to \"terrain\"",
+            std::string("move the ") + (key[0] == 'w' ? "floors" : "obstacles") + " into /terrain/" + key + " as triangles",
+            true);
+    }
+  } else {
+    readPolygonList(root, "walkable", true, desc.walkable, out.walkableOk);
+    readPolygonList(root, "obstacles", false, desc.obstacles, out.obstaclesOk);
+  }
 
   if (auto* x = optional(root, "points")) {
     if (!x->is_array()) {
@@ -382,8 +417,10 @@ ParsedScenario ScenarioReader::run() {
     }
   }
   pointIds_.clear();
+  pointHeights_.clear();
   for (const auto& p : desc.points) {
     pointIds_.push_back(p.id);
+    pointHeights_.push_back(p.height);
     hasActionPoint_ = hasActionPoint_ || p.kind == sim::PointKind::Action;
   }
 
@@ -406,7 +443,13 @@ ParsedScenario ScenarioReader::run() {
       resolveFollows(out);
     }
   }
-  if (auto* x = optional(root, "social")) readSocial(*x, "/social", desc.social);
+  if (auto* x = optional(root, "social")) {
+    if (multiLevel_) {
+      refuseOnLevels("/social", "the \"social\" section (Common Ground)", "no \"social\" section next to \"terrain\"", true);
+    } else {
+      readSocial(*x, "/social", desc.social);
+    }
+  }
   if (auto* x = optional(root, "timeline")) readTimeline(*x, "/timeline", desc.timeline);
   checkCategories(out);
   out.structureOk = diags_.size() == before;

@@ -1,5 +1,6 @@
 // throng::io scenario parser — JSON document → sim::ScenarioDesc, checking keys, types, ranges
-// and each polygon on its own (simple, non-degenerate), id references (goals, spawn points, the
+// and each polygon on its own (simple, non-degenerate), a multi-level world's "terrain" (vertices
+// and triangle indices), heights of positions, id references (goals, spawn points, the
 // crowd model's "follow" population and group) and the crowd-model keys (Musse et al.).
 // Geometric cross-element checks (spawn and guide waypoints inside the walkable area, capacity,
 // reachability) belong to scenario_validator. Reads a JsonDocument;
@@ -19,6 +20,7 @@ struct ParsedScenario {
   sim::ScenarioDesc desc;
   std::vector<bool> walkableOk;    ///< per walkable polygon: a simple polygon with area
   std::vector<bool> obstaclesOk;   ///< per obstacle polygon
+  bool terrainOk = true;           ///< "terrain" absent, or its vertices and triangles all valid
   std::vector<bool> pointsOk;      ///< per point: region parsed and valid
   std::vector<bool> populationsOk; ///< per population: every field parsed (spawn, goals and follow resolved)
   bool structureOk = false;        ///< no diagnostic at all from the parser
@@ -26,6 +28,8 @@ struct ParsedScenario {
 
 /// Largest coordinate magnitude accepted [m]: float positions keep ~1 cm precision up to here.
 inline constexpr double kMaxCoordinate = 100000.0;
+/// Most triangles a "terrain" may hold (walkable and obstacles together).
+inline constexpr std::size_t kMaxTerrainTriangles = 200000;
 /// Most agents a scenario may spawn in total (groups × largest group size, summed).
 inline constexpr double kMaxAgents = 10000000.0;
 

@@ -245,6 +245,53 @@ class ScenarioReader {
     return ok;
   }
 
+  /// A single position: [x, y] or [x, y, z] (z: height of the floor it is on). A z other than 0
+  /// needs a multi-level world (a "/terrain"); `height` is 0 for [x, y].
+  bool readPosition(const Json& v, const std::string& ptr, core::Vec2& out, float& height) {
+    const std::string expected = "a position [x, y] or [x, y, z] of numbers in metres (z: the floor's height, " +
+                                 std::string("multi-level worlds only), each within ±") + num(kMaxCoordinate);
+    if (!v.is_array() || (v.size() != 2 && v.size() != 3)) {
+      error(ptr, v.is_array() ? "point has " + std::to_string(v.size()) + " coordinates" : "wrong type: " + describeType(v),
+            expected);
+      return false;
+    }
+    bool ok = true;
+    double c[3] = {0, 0, 0};
+    const Range r{-kMaxCoordinate, kMaxCoordinate, false, "m"};
+    for (std::size_t i = 0; i < v.size(); ++i) ok = readNumber(v[i], ptr + "/" + std::to_string(i), r, c[i]) && ok;
+    out = core::Vec2(static_cast<float>(c[0]), static_cast<float>(c[1]));
+    height = 0.0f;
+    if (v.size() == 3 && ok) ok = acceptHeight(c[2], ptr + "/2", height);
+    return ok;
+  }
+
+  /// A "height" key [m] (polygon spawns and polygon points).
+  bool readHeight(const Json& v, const std::string& ptr, float& height) {
+    double h = 0;
+    if (!readNumber(v, ptr, {-kMaxCoordinate, kMaxCoordinate, false, "m"}, h)) return false;
+    return acceptHeight(h, ptr, height);
+  }
+
+  /// Heights belong to multi-level worlds: in a flat one only 0 is accepted.
+  bool acceptHeight(double h, const std::string& ptr, float& height) {
+    if (!multiLevel_ && h != 0.0) {
+      error(ptr, "height " + num(h) + " m in a flat world: heights need a multi-level world (/terrain)",
+            "no height (or 0) in a world of /walkable polygons", "describe the floors, stairs and ramps in \"terrain\"");
+      return false;
+    }
+    height = static_cast<float>(h);
+    return true;
+  }
+
+  /// A 2D-only feature used on a multi-level world: one diagnostic naming the key.
+  void refuseOnLevels(const std::string& ptr, const std::string& what, const std::string& expected, bool atKey = false) {
+    error(ptr, what + " is not supported on multi-level worlds yet", expected, "", atKey);
+  }
+
+  /// "terrain" (scenario_terrain_parser.cpp): vertices and walkable/obstacle triangles.
+  bool readTerrain(const Json& v, const std::string& ptr, nav::TerrainMesh& out);
+  bool readTriangles(const Json& v, const std::string& ptr, std::size_t vertexCount, std::vector<std::uint32_t>& out);
+
   bool readPolygon(const Json& v, const std::string& ptr, core::Polygon& out);
   void readSteering(const Json& v, const std::string& ptr, sim::SteeringDesc& s);
   bool readPoint(const Json& v, const std::string& ptr, sim::PointDesc& p);
@@ -273,6 +320,9 @@ class ScenarioReader {
   const JsonDocument& doc_;
   core::Diagnostics& diags_;
   std::vector<std::string> pointIds_;
+  std::vector<float> pointHeights_;  ///< per point id: its floor height (spawns at a point take it)
+  /// The world has a "terrain" (multi-level): positions may carry heights; 2D-only features are refused.
+  bool multiLevel_ = false;
   bool hasActionPoint_ = false;  ///< "goals": "auto" draws its final goal among the action points
   /// A "follow" whose population id is resolved once every population has been read.
   struct PendingFollow {

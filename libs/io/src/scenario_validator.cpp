@@ -1,6 +1,8 @@
 // throng::io scenario validator — cross-element checks on a parsed scenario, with Boost.Geometry
-// for polygon sets (walkable union minus obstacles) and the navmesh for reachability. Reads a
-// ParsedScenario; writes diagnostics (and the navmesh it built).
+// for polygon sets (walkable union minus obstacles) and the navmesh for reachability. Multi-level
+// worlds (a "terrain") are checked on their 3D navmesh only: points, spawns and guide waypoints
+// snapped at their heights, goals reachable across floors. Reads a ParsedScenario; writes
+// diagnostics (and the navmesh it built).
 #include "scenario_validator.hpp"
 
 #include <boost/geometry.hpp>
@@ -69,6 +71,10 @@ class Validator {
   }
 
   void run(const LoadOptions& options, std::shared_ptr<const nav::NavMesh>& navmesh) {
+    if (!desc_.terrain.empty() || !parsed_.terrainOk) {
+      runTerrain(options, navmesh);
+      return;
+    }
     const bool geometryOk = !desc_.walkable.empty() &&
                             std::all_of(parsed_.walkableOk.begin(), parsed_.walkableOk.end(), [](bool b) { return b; }) &&
                             std::all_of(parsed_.obstaclesOk.begin(), parsed_.obstaclesOk.end(), [](bool b) { return b; });
@@ -235,31 +241,157 @@ class Validator {
     return core::Vec2(static_cast<float>(inside.x()), static_cast<float>(inside.y()));
   }
 
-  void checkReachability(const std::vector<std::optional<core::Vec2>>& starts, std::shared_ptr<const nav::NavMesh>& navmesh) {
-    nav::NavMeshConfig config;
+  /// The navmesh for reachability: the world's (crowd files) or built from the scenario's
+  /// polygons or terrain; null after diagnostics (mapped to /walkable, /terrain or /navCellSize).
+  std::shared_ptr<const nav::NavMesh> navmeshFor(nav::NavMeshConfig& config) {
     config.agentRadius = desc_.maxRadius();
     config.cellSize = desc_.navCellSize;
     if (worldNavmesh_) {
-      navmesh = worldNavmesh_;
-      config.agentRadius = navmesh->config().agentRadius;
+      config.agentRadius = worldNavmesh_->config().agentRadius;
+      return worldNavmesh_;
     }
-    auto built = worldNavmesh_ ? core::Result<std::shared_ptr<const nav::NavMesh>>(std::shared_ptr<const nav::NavMesh>(worldNavmesh_))
-                               : nav::NavMesh::build(desc_.walkable, desc_.obstacles, config);
-    if (!built.ok()) {
-      for (core::Diagnostic d : built.errors()) {
-        // The navmesh names its own inputs ("navmesh", "/cellSize"); in a scenario the problem
-        // is the walkable area (or navCellSize), so point there.
-        const std::string pointer = d.pointer == "/cellSize" ? "/navCellSize" : "/walkable";
-        const SourcePos pos = doc_.position(pointer);
-        d.source = doc_.source();
-        d.line = pos.line;
-        d.column = pos.column;
-        d.pointer = pointer;
-        diags_.push_back(std::move(d));
+    const bool terrain = !desc_.terrain.empty();
+    auto built = terrain ? nav::NavMesh::buildFromTerrain(desc_.terrain, config)
+                         : nav::NavMesh::build(desc_.walkable, desc_.obstacles, config);
+    if (built.ok()) return built.value();
+    for (core::Diagnostic d : built.errors()) {
+      // The navmesh names its own inputs ("navmesh", "/cellSize", "/terrain/walkable"); in a
+      // scenario the problem is the walkable geometry (or navCellSize), so point there.
+      std::string pointer = terrain ? "/terrain" : "/walkable";
+      if (d.pointer == "/cellSize") pointer = "/navCellSize";
+      else if (terrain && d.pointer.rfind("/terrain", 0) == 0) pointer = d.pointer;
+      const SourcePos pos = doc_.position(pointer);
+      d.source = doc_.source();
+      d.line = pos.line;
+      d.column = pos.column;
+      d.pointer = pointer;
+      diags_.push_back(std::move(d));
+    }
+    return nullptr;
+  }
+
+  /// How far around a point's position its region reaches [m].
+  static float regionReach(const sim::PointDesc& p) {
+    if (p.polygon.empty()) return p.radius;
+    const core::Aabb box = core::bounds(p.polygon);
+    return 0.5f * core::length(box.max - box.min);
+  }
+
+  /// NavQuery::snap, keeping only points within the height band: Detour picks polygons by their
+  /// bounding boxes, and a polygon spanning a ramp and the floor above it reaches into the band of
+  /// the floor below.
+  static std::optional<nav::MeshPoint> snapAt(const nav::NavQuery& query, core::Vec2 p, float height, float radius) {
+    auto m = query.snap(p, height, radius);
+    if (m && query.mesh().layered() && std::fabs(m->height - height) > nav::kLevelSearch) return std::nullopt;
+    return m;
+  }
+
+  /// The height band a snap searches (nav::kLevelSearch).
+  static std::string levelsText() { return " at heights within ±" + num(nav::kLevelSearch) + " m"; }
+
+  static std::string at3(core::Vec2 p, float h) { return "(" + num(p.x) + ", " + num(p.y) + ", " + num(h) + ")"; }
+
+  /// A multi-level world (ScenarioDesc::terrain): every check snaps to the navmesh at the given
+  /// heights, so it needs the mesh; the 2D polygon checks (spawn areas inside /walkable, capacity)
+  /// have no counterpart yet.
+  void runTerrain(const LoadOptions& options, std::shared_ptr<const nav::NavMesh>& navmesh) {
+    if (!parsed_.terrainOk || !options.checkReachability) return;  // the parser said why / no mesh wanted
+    nav::NavMeshConfig config;
+    const auto mesh = navmeshFor(config);
+    if (!mesh) return;
+    navmesh = mesh;
+    nav::NavQuery query(mesh);
+    const std::string levels = " m" + levelsText();
+    for (std::size_t i = firstOwnPoint_; i < desc_.points.size(); ++i) {
+      if (i < parsed_.pointsOk.size() && !parsed_.pointsOk[i]) continue;
+      const sim::PointDesc& point = desc_.points[i];
+      const float reach = regionReach(point) + 1.0f;
+      if (!snapAt(query, goalTarget(point), point.height, reach)) {
+        error("/points/" + std::to_string(i - firstOwnPoint_),
+              "point \"" + point.id + "\" at " + at3(point.position, point.height) +
+                  " lies off the walkable surface (nothing walkable within " + num(reach) + levels + ")",
+              "a region on a floor, stair or ramp of /terrain/walkable, at that floor's height (z)");
       }
-      return;
     }
-    if (!worldNavmesh_) navmesh = built.value();
+    std::vector<std::optional<nav::MeshPoint>> starts(desc_.populations.size());
+    for (std::size_t i = 0; i < desc_.populations.size(); ++i) {
+      if (i >= parsed_.populationsOk.size() || !parsed_.populationsOk[i]) continue;
+      starts[i] = terrainSpawn(i, query, levels);
+      const auto& script = desc_.populations[i].guide.script;
+      for (std::size_t k = 0; k < script.size(); ++k) {
+        if (snapAt(query, script[k].position, script[k].height, 1.0f)) continue;
+        error("/populations/" + std::to_string(i) + "/guide/script/" + std::to_string(k) + "/position",
+              "guide waypoint " + at3(script[k].position, script[k].height) +
+                  " is off the walkable surface (nothing walkable within 1" + levels + ")",
+              "a waypoint on a floor, stair or ramp of /terrain/walkable, at that floor's height (z)");
+      }
+    }
+    if (!diags_.empty()) return;
+    const float width = 2.0f * config.agentRadius;
+    for (std::size_t i = 0; i < desc_.populations.size(); ++i) {
+      if (!starts[i]) continue;
+      const sim::PopulationDesc& pop = desc_.populations[i];
+      for (std::size_t g = 0; g < pop.goals.size(); ++g) {
+        const sim::PointDesc& goal = desc_.points[pop.goals[g]];
+        const auto target = snapAt(query, goalTarget(goal), goal.height, regionReach(goal) + 1.0f);
+        if (!target || !query.reachable(starts[i]->p, starts[i]->height, target->p, target->height)) {
+          error("/populations/" + std::to_string(i) + "/goals/" + std::to_string(g),
+                "point \"" + goal.id + "\" cannot be reached from the spawn area of population \"" + pop.id + "\"",
+                "a goal connected to the spawn by floors, stairs or ramps at least " + num(width) +
+                    " m wide (2 × agent radius), steps at most " + num(config.maxClimb) + " m high, slopes at most " +
+                    num(config.maxSlopeDeg) + "°",
+                "check /terrain/walkable for a missing stair or ramp, and /terrain/obstacles for walls closing the way");
+        }
+      }
+    }
+  }
+
+  /// A population's spawn on a multi-level world: its centre (a position, a point's region) or,
+  /// for a polygon, its vertices pulled halfway to the centre and the centre itself, snapped to the
+  /// navmesh at the spawn's height. Returns the first point that snaps (reachability starts there).
+  std::optional<nav::MeshPoint> terrainSpawn(std::size_t i, const nav::NavQuery& query, const std::string& levels) {
+    const sim::SpawnDesc& spawn = desc_.populations[i].spawn;
+    const std::string base = "/populations/" + std::to_string(i) + "/spawn";
+    const std::string expected = "a spawn on a floor, stair or ramp of /terrain/walkable, at that floor's height (z)";
+    switch (spawn.kind) {
+      case sim::SpawnKind::Position: {
+        if (auto m = snapAt(query, spawn.position, spawn.height, 1.0f)) return m;
+        error(base + "/position",
+              "spawn position " + at3(spawn.position, spawn.height) + " is off the walkable surface (nothing walkable within 1" +
+                  levels + ")",
+              expected);
+        return std::nullopt;
+      }
+      case sim::SpawnKind::Point: {
+        if (spawn.point >= parsed_.pointsOk.size() || !parsed_.pointsOk[spawn.point]) return std::nullopt;
+        const sim::PointDesc& p = desc_.points[spawn.point];
+        return snapAt(query, goalTarget(p), p.height, regionReach(p) + 1.0f);  // the point's own check reports a miss
+      }
+      case sim::SpawnKind::Polygon: break;
+    }
+    const core::Polygon& poly = spawn.polygon;
+    sim::PointDesc region;
+    region.polygon = poly;
+    region.position = core::centroid(poly);
+    const core::Vec2 centre = goalTarget(region);
+    const std::size_t step = std::max<std::size_t>(1, poly.size() / 8);
+    for (std::size_t k = 0; k < poly.size(); k += step) {
+      if (auto m = snapAt(query, 0.5f * (poly[k] + centre), spawn.height, 1.0f)) return m;
+    }
+    const float reach = std::max(1.0f, regionReach(region));
+    if (auto m = snapAt(query, centre, spawn.height, reach)) return m;
+    error(base + "/polygon",
+          "spawn area at height " + num(spawn.height) + " m is off the walkable surface (nothing walkable within " + num(reach) +
+              " m of its centre " + at3(centre, spawn.height) + levelsText() + ")",
+          expected, "give the floor's height as \"height\" next to \"polygon\"");
+    return std::nullopt;
+  }
+
+  void checkReachability(const std::vector<std::optional<core::Vec2>>& starts, std::shared_ptr<const nav::NavMesh>& navmesh) {
+    nav::NavMeshConfig config;
+    const auto mesh = navmeshFor(config);
+    if (!mesh) return;
+    navmesh = mesh;
     nav::NavQuery query(navmesh);
     const float width = 2.0f * config.agentRadius;
     // Every point must touch the walkable area, used as a goal or not: a point out in the void is

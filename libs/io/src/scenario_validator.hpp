@@ -1,7 +1,9 @@
 // throng::io scenario validator — the semantic checks that need several parts of a parsed
 // scenario at once: spawns inside the walkable area and clear of obstacles, spawn areas large
 // enough for their agents, scripted guide waypoints (crowd model) on walkable ground clear of
-// obstacles, and (optionally) every goal reachable on the navmesh from its spawn.
+// obstacles, and (optionally) every goal reachable on the navmesh from its spawn. On a multi-level
+// world (ScenarioDesc::terrain) the navmesh is built from the terrain and points, spawns and
+// waypoints are checked by snapping to it at their heights (only when reachability is asked for).
 // Reads ParsedScenario and the JsonDocument (for positions); writes diagnostics and the navmesh.
 // Private to throng_io.
 #pragma once

@@ -8,8 +8,10 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <map>
 #include <set>
@@ -31,7 +33,10 @@ enum class Role { None, Walkable, Obstacle, Interest, Action, Exit, Crowd };
 const std::vector<std::string> kPrefixes = {"interest", "action", "exit", "crowd"};
 const std::vector<std::string> kSurfaceWords = {"walkable", "obstacle"};
 /// Scenario keys that come from the nodes, never from the scene's extras.
-const std::vector<std::string> kNodeKeys = {"format", "$schema", "walkable", "obstacles", "points", "populations"};
+const std::vector<std::string> kNodeKeys = {"format", "$schema", "walkable", "obstacles", "terrain", "points", "populations"};
+/// Walkable triangles whose heights all lie within this band [m] make a flat (one-level) world:
+/// the 2D path of walkable/obstacle polygons, exactly as before multi-level worlds.
+constexpr double kFlatTolerance = 0.05;
 
 std::string quote(const std::string& s) { return "\"" + s.substr(0, 80) + (s.size() > 80 ? "...\"" : "\""); }
 
@@ -62,9 +67,19 @@ class WorldBuilder {
     root["format"] = "throng/1";
     root["name"] = std::filesystem::path(source_).stem().string();
     readSceneExtras(scene, root);
+    // Flat or multi-level: decided by the walkable triangles' heights before any point is read
+    // (points and crowds carry heights only on multi-level worlds).
+    for (const GltfNode& node : scene.nodes) prescanHeights(node);
+    multiLevel_ = maxHeight_ - minHeight_ > kFlatTolerance;
     for (const GltfNode& node : scene.nodes) readNode(node);
     if (walkableNodes_.empty()) {
       error("", "the world has no walkable surface", "a mesh node named \"walkable...\" or with extras {\"throng\": {\"walkable\": true}}");
+    }
+    if (multiLevel_) {
+      root["terrain"] = terrainJson();
+      root["points"] = std::move(points_);
+      root["populations"] = std::move(populations_);
+      return root;
     }
     Footprint floor = unionOfTriangles(floorTriangles_);
     if (!walkableNodes_.empty() && floor.outer.empty()) {
@@ -100,6 +115,10 @@ class WorldBuilder {
     if (d.source != source_) return;
     d.line = d.column = 0;
     const std::string& ptr = d.pointer;
+    if (ptr.rfind("/terrain", 0) == 0) {
+      d.pointer = terrainOrigin(ptr);
+      return;
+    }
     const std::pair<const std::string, Origin>* best = nullptr;
     for (const auto& entry : origins_) {
       const std::string& prefix = entry.first;
@@ -125,6 +144,79 @@ class WorldBuilder {
  private:
   void error(const std::string& where, std::string what, std::string expected, std::string hint = {}) {
     diags_.push_back({source_, 0, 0, where, std::move(what), std::move(expected), std::move(hint)});
+  }
+
+  /// A walkable node's triangle heights, before the nodes are read (nodes with a bad role or
+  /// mesh are reported by readNode and give no heights).
+  void prescanHeights(const GltfNode& n) {
+    if (!n.hasMesh || !n.meshProblem.empty()) return;
+    const std::string l = lower(n.name);
+    bool walkable = l.rfind("walkable", 0) == 0;
+    if (!walkable && !n.extrasJson.empty() && n.name.find(':') == std::string::npos) {
+      const Json extras = Json::parse(n.extrasJson, nullptr, false);
+      walkable = extras.is_object() && extras.contains("throng") && extras["throng"].is_object() &&
+                 extras["throng"].value("walkable", false) == true;
+    }
+    if (!walkable) return;
+    for (const auto& tri : n.triangles) {
+      for (const Vec3d& v : tri) {
+        minHeight_ = std::min(minHeight_, v[1]);
+        maxHeight_ = std::max(maxHeight_, v[1]);
+      }
+    }
+  }
+
+  /// Index of a terrain vertex (ground x, y, height z), shared by equal vertices.
+  std::uint32_t terrainVertex(const Vec3d& p) {
+    const double lim = 1e9;
+    const std::array<float, 3> v = {static_cast<float>(std::clamp(p[0], -lim, lim)),
+                                     static_cast<float>(std::clamp(-p[2], -lim, lim)),
+                                     static_cast<float>(std::clamp(p[1], -lim, lim))};
+    const auto [it, fresh] = vertexIndex_.emplace(v, static_cast<std::uint32_t>(vertices_.size()));
+    if (fresh) vertices_.push_back(v);
+    return it->second;
+  }
+
+  /// A node's triangles as terrain triangles (degenerate ones dropped); records which node they came from.
+  void addTerrainTriangles(const GltfNode& n, const std::string& label, bool walkable) {
+    auto& tris = walkable ? walkTris_ : obstTris_;
+    (walkable ? walkOrigins_ : obstOrigins_).emplace_back(tris.size(), label);
+    for (const auto& tri : n.triangles) {
+      const std::array<std::uint32_t, 3> t = {terrainVertex(tri[0]), terrainVertex(tri[1]), terrainVertex(tri[2])};
+      if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+      tris.push_back(t);
+    }
+  }
+
+  Json terrainJson() const {
+    Json vertices = Json::array(), walkable = Json::array(), obstacles = Json::array();
+    for (const auto& v : vertices_) vertices.push_back({v[0], v[1], v[2]});
+    for (const auto& t : walkTris_) walkable.push_back({t[0], t[1], t[2]});
+    for (const auto& t : obstTris_) obstacles.push_back({t[0], t[1], t[2]});
+    Json terrain = Json::object();
+    terrain["vertices"] = std::move(vertices);
+    terrain["walkable"] = std::move(walkable);
+    terrain["obstacles"] = std::move(obstacles);
+    return terrain;
+  }
+
+  /// The node a /terrain pointer's triangle came from ("/terrain/walkable/12" → the 12th walkable
+  /// triangle's node); the whole terrain otherwise.
+  std::string terrainOrigin(const std::string& ptr) const {
+    for (const bool walkable : {true, false}) {
+      const std::string prefix = walkable ? "/terrain/walkable/" : "/terrain/obstacles/";
+      if (ptr.compare(0, prefix.size(), prefix) != 0) continue;
+      const std::size_t index = std::strtoull(ptr.c_str() + prefix.size(), nullptr, 10);
+      const auto& origins = walkable ? walkOrigins_ : obstOrigins_;
+      std::string label;
+      for (const auto& [first, l] : origins) {
+        if (first <= index) label = l;
+      }
+      if (!label.empty()) return label + " (triangle " + std::to_string(index) + " of the terrain)";
+    }
+    std::string nodes;
+    for (const GltfNode* n : walkableNodes_) nodes += (nodes.empty() ? "" : ", ") + std::to_string(n->index);
+    return "the terrain (walkable nodes " + nodes + ")" + (ptr == "/terrain" ? "" : " " + ptr);
   }
 
   static std::string nodeLabel(const GltfNode& n) { return "node " + std::to_string(n.index) + " " + quote(n.name); }
@@ -284,6 +376,11 @@ class WorldBuilder {
       error(label, "cannot read its mesh: " + n.meshProblem, "triangles with FLOAT VEC3 positions inside their buffers");
       return;
     }
+    if (multiLevel_) {
+      if (role == Role::Walkable) walkableNodes_.push_back(&n);
+      addTerrainTriangles(n, label, role == Role::Walkable);
+      return;
+    }
     std::vector<std::array<core::Vec2, 3>> tris;
     tris.reserve(n.triangles.size());
     for (const auto& tri : n.triangles) {
@@ -307,9 +404,16 @@ class WorldBuilder {
     return {static_cast<float>(std::clamp(p[0], -lim, lim)), static_cast<float>(std::clamp(-p[2], -lim, lim))};
   }
 
-  static Json position(const GltfNode& n) {
+  /// The node's position: [x, y] on a flat world, [x, y, height] on a multi-level one.
+  Json position(const GltfNode& n) const {
     const core::Vec2 g = ground({n.world[12], n.world[13], n.world[14]});
+    if (multiLevel_) return Json::array({g.x, g.y, nodeHeight(n)});
     return Json::array({g.x, g.y});
+  }
+
+  /// glTF y of the node's origin: the height of the floor it stands on.
+  static float nodeHeight(const GltfNode& n) {
+    return static_cast<float>(std::clamp(n.world[13], -1e9, 1e9));
   }
 
   /// Copies extras keys (except the ones the node itself gives) into `obj`; records the origin.
@@ -335,6 +439,7 @@ class WorldBuilder {
     p["kind"] = role == Role::Action ? "action" : role == Role::Exit ? "exit" : "interest";
     Origin origin = copyExtras(t, label, {"id", "kind", "position"}, p, "the node's name and translation");
     if (!p.contains("polygon")) p["position"] = position(n);
+    else if (multiLevel_ && !p.contains("height")) p["height"] = nodeHeight(n);
     if (role == Role::Action && !p.contains("orientation")) {
       // Facing: the node's local +Z axis (glTF's "forward") on the ground.
       const Vec3d f = transformDirection(n.world, {0, 0, 1});
@@ -357,6 +462,7 @@ class WorldBuilder {
         square.push_back({g.x, g.y});
       }
       pop["spawn"] = {{"polygon", std::move(square)}};
+      if (multiLevel_) pop["spawn"]["height"] = nodeHeight(n);
     }
     origins_["/populations/" + std::to_string(populations_.size())] = std::move(origin);
     populations_.push_back(std::move(pop));
@@ -368,6 +474,14 @@ class WorldBuilder {
   std::vector<const GltfNode*> walkableNodes_;
   std::vector<std::array<core::Vec2, 3>> floorTriangles_;
   std::vector<std::pair<std::string, Footprint>> obstacleFootprints_;
+  // Multi-level worlds: walkable heights seen, and the terrain (ground x, y, height z).
+  double minHeight_ = std::numeric_limits<double>::infinity();
+  double maxHeight_ = -std::numeric_limits<double>::infinity();
+  bool multiLevel_ = false;
+  std::map<std::array<float, 3>, std::uint32_t> vertexIndex_;
+  std::vector<std::array<float, 3>> vertices_;
+  std::vector<std::array<std::uint32_t, 3>> walkTris_, obstTris_;
+  std::vector<std::pair<std::size_t, std::string>> walkOrigins_, obstOrigins_;  ///< first triangle, node label
   Json points_ = Json::array();
   Json populations_ = Json::array();
   std::map<std::string, Origin> origins_;

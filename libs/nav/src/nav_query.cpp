@@ -33,6 +33,37 @@ dtPolyRef snap(const dtNavMeshQuery& query, const dtQueryFilter& filter, Vec2 p,
   return ref;
 }
 
+dtPolyRef snapLevel(const dtNavMeshQuery& query, const dtQueryFilter& filter, Vec2 p, float height,
+                    const float extents[3], float snapped[3]) {
+  float centre[3];
+  toRecast(p, height, centre);
+  constexpr int kMaxPolys = 128;
+  dtPolyRef polys[kMaxPolys];
+  int count = 0;
+  if (dtStatusFailed(query.queryPolygons(centre, extents, &filter, polys, &count, kMaxPolys))) return 0;
+  dtPolyRef best = 0;
+  float bestD = 0.0f;
+  for (int i = 0; i < count; ++i) {
+    float c[3];
+    if (dtStatusFailed(query.closestPointOnPoly(polys[i], centre, c, nullptr))) continue;
+    const float dy = c[1] - height;
+    if (std::abs(dy) > extents[1]) continue;  // the polygon is near, but not at this level
+    const float d = dtVdistSqr(c, centre);
+    if (best == 0 || d < bestD) {
+      best = polys[i];
+      bestD = d;
+      dtVcopy(snapped, c);
+    }
+  }
+  return best;
+}
+
+dtPolyRef snapEnd(const dtNavMeshQuery& query, const dtQueryFilter& filter, Vec2 p, const EndSearch& search,
+                  float snapped[3]) {
+  return search.layered ? snapLevel(query, filter, p, search.height, search.extents, snapped)
+                        : snap(query, filter, p, search.height, search.extents, snapped);
+}
+
 PathStatus straighten(const dtNavMeshQuery& query, const float start[3], const float end[3],
                       const dtPolyRef* path, int pathCount, bool partial, std::vector<Vec2>& corners) {
   corners.clear();
@@ -66,9 +97,9 @@ PathStatus findPathFrom(dtNavMeshQuery& query, const dtQueryFilter& filter, Vec2
   corners.clear();
   float start[3];
   float end[3];
-  const dtPolyRef startRef = detail::snap(query, filter, from, fromSearch.height, fromSearch.extents, start);
+  const dtPolyRef startRef = detail::snapEnd(query, filter, from, fromSearch, start);
   if (startRef == 0) return PathStatus::Failed;
-  const dtPolyRef endRef = detail::snap(query, filter, to, toSearch.height, toSearch.extents, end);
+  const dtPolyRef endRef = detail::snapEnd(query, filter, to, toSearch, end);
   if (endRef == 0) {
     // Target far off the mesh: no path toward it; stay where we are.
     corners.push_back(detail::fromRecast(start));
@@ -177,7 +208,7 @@ std::optional<MeshPoint> NavQuery::snap(Vec2 p, float height, float searchRadius
   const float r = std::max(searchRadius, 0.0f);
   const float extents[3] = {r, kLevelSearch, r};
   float snapped[3];
-  const dtPolyRef ref = detail::snap(*query_, *filter_, p, height, extents, snapped);
+  const dtPolyRef ref = detail::snapLevel(*query_, *filter_, p, height, extents, snapped);
   if (ref == 0) return std::nullopt;
   const Vec2 q = detail::fromRecast(snapped);
   if (lengthSq(q - p) > r * r) return std::nullopt;  // the search box's corners reach beyond r
@@ -274,7 +305,7 @@ bool NavQuery::visible(Vec2 a, float height, Vec2 b) const {
   if (!mesh_->layered()) return visible(a, b);
   const detail::EndSearch search = detail::endSearch(*mesh_, height);
   float start[3];
-  const dtPolyRef startRef = detail::snap(*query_, *filter_, a, search.height, search.extents, start);
+  const dtPolyRef startRef = detail::snapEnd(*query_, *filter_, a, search, start);
   if (startRef == 0) return false;
   float s[3];
   float e[3];

@@ -53,12 +53,14 @@ inline Vec2 fromRecast(const float* v) { return {v[0], v[2]}; }
 struct EndSearch {
   float height = 0.0f;
   float extents[3] = {kSnapExtents[0], kSnapExtents[1], kSnapExtents[2]};
+  bool layered = false;  ///< snap with snapLevel (the height picks the floor)
 };
 inline EndSearch endSearch(const NavMesh& mesh, float height) {
   EndSearch s;
   if (mesh.layered()) {
     s.height = height;
     s.extents[1] = kLevelSearch;
+    s.layered = true;
   }
   return s;
 }
@@ -66,6 +68,15 @@ inline EndSearch endSearch(const NavMesh& mesh, float height) {
 /// Nearest polygon to p within the half extents; 0 when none. `snapped` receives the point on it.
 dtPolyRef snap(const dtNavMeshQuery& query, const dtQueryFilter& filter, Vec2 p, const float extents[3],
                float snapped[3]);
+/// Layered meshes: the point nearest to (p, height) over every polygon in the box whose closest
+/// point lies within ±extents[1] of `height` (Detour's findNearestPoly keeps a polygon whose
+/// bounding box reaches into the band even when the polygon itself — a ramp with part of the floor
+/// above — is far above or below it). Ties keep the first polygon in Detour's query order.
+dtPolyRef snapLevel(const dtNavMeshQuery& query, const dtQueryFilter& filter, Vec2 p, float height,
+                    const float extents[3], float snapped[3]);
+/// snapLevel on a layered search, snap otherwise.
+dtPolyRef snapEnd(const dtNavMeshQuery& query, const dtQueryFilter& filter, Vec2 p, const EndSearch& search,
+                  float snapped[3]);
 /// The same around (p, height).
 dtPolyRef snap(const dtNavMeshQuery& query, const dtQueryFilter& filter, Vec2 p, float height,
                const float extents[3], float snapped[3]);

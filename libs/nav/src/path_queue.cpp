@@ -62,12 +62,12 @@ struct PathQueue::Impl {
     current = waiting.front();
     waiting.pop_front();
     const dtPolyRef startRef =
-        detail::snap(*query, filter, current.from, current.fromSearch.height, current.fromSearch.extents, start);
+        detail::snapEnd(*query, filter, current.from, current.fromSearch, start);
     if (startRef == 0) {
       finish(current.ticket, PathResult{PathStatus::Failed, {}});
       return false;
     }
-    endRef = detail::snap(*query, filter, current.to, current.toSearch.height, current.toSearch.extents, end);
+    endRef = detail::snapEnd(*query, filter, current.to, current.toSearch, end);
     if (endRef == 0) {
       finish(current.ticket, PathResult{PathStatus::Partial, {detail::fromRecast(start)}});
       return false;

@@ -1,0 +1,47 @@
+// Screenshot of a live world for the docs: starts `throng serve WORLD`, opens the viewer in headless
+// Chromium (SwiftShader), waits, frames the camera and writes the canvas as a PNG.
+//   THRONG_EXE=build/apps/throng/throng node viewer/bench/shot.mjs WORLD OUT.png
+//       [--wait 20] [--look x,y,distance,height] [--width 1280 --height 720]
+// (run from web/ after `npm run build`; WORLD and OUT relative to the current directory)
+import fs from 'node:fs';
+import path from 'node:path';
+import { startServer, stopServer, launchBrowser, sleep, missing } from '../e2e/harness.mjs';
+
+const argv = process.argv.slice(2);
+const opt = (name, fallback) => {
+  const i = argv.indexOf(`--${name}`);
+  return i >= 0 ? argv[i + 1] : fallback;
+};
+const positional = argv.filter((a, i) => !a.startsWith('--') && !(i > 0 && argv[i - 1].startsWith('--')));
+if (positional.length !== 2) {
+  console.error('usage: node viewer/bench/shot.mjs WORLD OUT.png [--wait S] [--look x,y,distance,height] [--width W --height H]');
+  process.exit(2);
+}
+const why = missing();
+if (why) { console.error(`cannot take the screenshot: ${why}`); process.exit(1); }
+const [world, out] = positional.map((p) => path.resolve(p));
+const wait = Number(opt('wait', 20));
+const look = opt('look', '');
+const width = Number(opt('width', 1280)), height = Number(opt('height', 720));
+
+const server = await startServer(world);
+const browser = await launchBrowser();
+try {
+  const page = await browser.newPage({ viewport: { width, height } });
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  await page.goto(`${server.url}?shot=1`);
+  await page.waitForFunction(() => globalThis.__throngStats && globalThis.__throngStats.agents > 0, null, { timeout: 30000 });
+  if (look) {
+    const [x, y, d, h] = look.split(',').map(Number);
+    await page.evaluate(([x, y, d, h]) => globalThis.__throng.cameras.lookAt(x, y, d, h), [x, y, d, h]);
+  }
+  await sleep(wait * 1000);
+  const url = await page.evaluate(() => globalThis.__throng.renderer.domElement.toDataURL('image/png'));
+  fs.writeFileSync(out, Buffer.from(url.split(',')[1], 'base64'));
+  const s = await page.evaluate(() => globalThis.__throngStats);
+  console.log(`${out}: ${s.agents} agents, fps ${s.fps.toFixed(1)}${errors.length ? `, page errors: ${errors.join('; ')}` : ''}`);
+} finally {
+  await browser.close();
+  await stopServer(server);
+}
