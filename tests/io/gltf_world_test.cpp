@@ -255,6 +255,48 @@ TEST(GltfWorld, GalleryRunsInTheSimulation) {
   EXPECT_EQ(world.value()->groupCount(), 9u);  // 8 visitor groups + the tour
 }
 
+TEST(GltfWorld, BufferFilesAreConfinedToTheWorldsDirectory) {
+  // The gallery's buffer as a file: next to the world it loads; one directory up it is refused.
+  const std::filesystem::path dir = std::filesystem::path(THRONG_BINARY_DIR) / "gltf_confinement";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "world");
+  json g = gallery();
+  const std::string uri = g["buffers"][0]["uri"];
+  const std::string prefix = "base64,";
+  const auto comma = uri.find(prefix);
+  ASSERT_NE(comma, std::string::npos);
+  // Decode the data: URI (standard base64) into bytes.
+  std::string bytes;
+  int bits = 0, value = 0;
+  for (char c : uri.substr(comma + prefix.size())) {
+    const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    const char* at = std::strchr(table, c);
+    if (c == '=' || at == nullptr) break;
+    value = (value << 6) | static_cast<int>(at - table);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      bytes.push_back(static_cast<char>((value >> bits) & 0xff));
+    }
+  }
+  for (const auto& file : {dir / "world" / "gallery.bin", dir / "outside.bin"}) {
+    std::ofstream(file, std::ios::binary) << bytes;
+  }
+  g["buffers"][0]["uri"] = "gallery.bin";
+  std::ofstream(dir / "world" / "inside.gltf") << g.dump();
+  const auto inside = io::loadWorldFile((dir / "world" / "inside.gltf").string());
+  EXPECT_TRUE(inside.ok()) << (inside.ok() ? "" : throng::core::formatAll(inside.errors()));
+  for (const std::string& bad : std::vector<std::string>{"../outside.bin", (dir / "outside.bin").string()}) {
+    g["buffers"][0]["uri"] = bad;
+    std::ofstream(dir / "world" / "escape.gltf") << g.dump();
+    const auto r = io::loadWorldFile((dir / "world" / "escape.gltf").string());
+    ASSERT_FALSE(r.ok()) << bad;
+    const std::string text = throng::core::formatAll(r.errors());
+    EXPECT_NE(text.find("outside the world file's directory"), std::string::npos) << text;
+    EXPECT_NE(text.find("escape.gltf"), std::string::npos) << text;
+  }
+}
+
 #ifdef THRONG_EXE
 TEST(GltfWorld, ThrongRunsTheGallery) {
   // A fresh directory each run: `throng run` refuses to overwrite a recording without --force.

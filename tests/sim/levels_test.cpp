@@ -162,4 +162,45 @@ TEST(Levels, SameTrajectoriesForAnyThreadCount) {
   EXPECT_EQ(one.tracks.size(), 24u);
 }
 
+TEST(Levels, AGuideOnTheUpperFloorLeadsItsGroupUpTheRamp) {
+  // A group of four waits downstairs (its goal is where it stands); a guide (an avatar) stands on
+  // the upper floor straight above it: the group must go round by the ramp and up to it.
+  sim::ScenarioDesc d;
+  d.seed = 3;
+  d.dt = 0.1f;
+  d.terrain = twoFloors();
+  sim::PointDesc rest;
+  rest.id = "rest";
+  rest.position = {4, 5};
+  rest.radius = 2.0f;
+  d.points = {rest};
+  sim::PopulationDesc p = walkers("class", 1, {{3, 4}, {5, 4}, {5, 6}, {3, 6}}, 0.0f, 0);
+  p.sizeMin = p.sizeMax = 4;
+  d.populations = {p};
+  auto created = sim::World::create(d);
+  ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
+  sim::World& w = *created.value();
+  core::TaskSystem tasks(1);
+  for (int i = 0; i < 20; ++i) w.step(tasks);
+  ASSERT_TRUE(w.guide(w.groupById(0), {4, 5}, 3.0f));
+  float lowest = 1e9f;
+  float passedY = 0;
+  for (int i = 0; i < 900; ++i) {
+    w.step(tasks);
+    const auto f = w.snapshot();
+    lowest = 1e9f;
+    for (std::size_t k = 0; k < f->size(); ++k) {
+      lowest = std::min(lowest, f->height(k));
+      passedY = std::max(passedY, f->posY[k]);
+    }
+  }
+  const auto f = w.snapshot();
+  ASSERT_EQ(f->size(), 4u);
+  EXPECT_GT(passedY, 10.0f) << "they went by the ramp";
+  EXPECT_GT(lowest, 2.8f) << "every member is upstairs with the guide";
+  for (std::size_t k = 0; k < f->size(); ++k) {
+    EXPECT_LT(std::hypot(f->posX[k] - 4.0f, f->posY[k] - 5.0f), 4.0f) << "near the guide: " << f->posX[k] << ", " << f->posY[k] << ", " << f->height(k);
+  }
+}
+
 }  // namespace

@@ -13,6 +13,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
+#include <filesystem>
 #include <functional>
 
 namespace throng::io {
@@ -201,6 +203,70 @@ bool ignoreImage(tinygltf::Image*, const int, std::string*, std::string*, int, i
   return true;  // images are never needed: a world is geometry and properties
 }
 
+/// External files a .gltf names (buffers) are read only from the world file's directory and below:
+/// a world from the network or a shared folder must not make throng read "../../etc/passwd" or an
+/// absolute path. No "~" or variable expansion either (tinygltf's default runs wordexp).
+struct Confinement {
+  std::filesystem::path root;  ///< canonical directory of the world file
+  std::string baseDir;         ///< as tinygltf joins it to a URI (it also tries "." after it)
+  std::string refused;         ///< the first path refused, for the diagnostic
+
+  /// The URI as the file wrote it: the refused path without the search directory tinygltf added.
+  [[nodiscard]] std::string refusedUri() const {
+    for (const std::string& prefix : {baseDir.empty() ? std::string() : baseDir + "/", std::string("./")}) {
+      if (!prefix.empty() && refused.rfind(prefix, 0) == 0) return refused.substr(prefix.size());
+    }
+    return refused;
+  }
+};
+
+constexpr std::uintmax_t kMaxExternalFile = 512ull << 20;  // [bytes]
+
+bool confined(const std::string& file, Confinement& c) {
+  std::error_code ec;
+  const std::filesystem::path p = std::filesystem::weakly_canonical(std::filesystem::path(file), ec);
+  if (ec) return false;
+  const auto rel = p.lexically_relative(c.root);
+  const bool inside = !rel.empty() && *rel.begin() != ".." && !rel.is_absolute();
+  if (!inside && c.refused.empty()) c.refused = file;
+  return inside;
+}
+
+bool confinedExists(const std::string& file, void* user) {
+  auto& c = *static_cast<Confinement*>(user);
+  std::error_code ec;
+  return confined(file, c) && std::filesystem::is_regular_file(file, ec);
+}
+
+std::string noExpansion(const std::string& path, void*) { return path; }
+
+bool confinedRead(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
+  auto& c = *static_cast<Confinement*>(user);
+  if (!confined(file, c)) {
+    if (err) *err += "refused to read " + file + " (outside the world file's directory)\n";
+    return false;
+  }
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(file, ec);
+  if (ec || size > kMaxExternalFile) {
+    if (err) *err += "cannot read " + file + (ec ? std::string() : " (larger than 512 MiB)") + "\n";
+    return false;
+  }
+  std::ifstream in(file, std::ios::binary);
+  out->resize(static_cast<std::size_t>(size));
+  if (size > 0) in.read(reinterpret_cast<char*>(out->data()), static_cast<std::streamsize>(size));
+  if (!in) {
+    if (err) *err += "cannot read " + file + "\n";
+    return false;
+  }
+  return true;
+}
+
+bool neverWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "throng never writes glTF files\n";
+  return false;
+}
+
 }  // namespace
 
 Vec3d transformPoint(const Mat4d& m, const Vec3d& p) {
@@ -219,6 +285,13 @@ bool readGltfScene(const std::string& bytes, const std::string& source, const st
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(ignoreImage, nullptr);
   loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
+  Confinement confinement;
+  confinement.baseDir = baseDir;
+  {
+    std::error_code ec;
+    confinement.root = std::filesystem::weakly_canonical(std::filesystem::path(baseDir.empty() ? "." : baseDir), ec);
+  }
+  loader.SetFsCallbacks({&confinedExists, &noExpansion, &confinedRead, &neverWrite, &confinement});
   tinygltf::Model model;
   std::string err, warn;
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
@@ -228,6 +301,12 @@ bool readGltfScene(const std::string& bytes, const std::string& source, const st
                                      static_cast<unsigned int>(bytes.size()), baseDir);
   } else {
     ok = loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), baseDir);
+  }
+  if (!ok && !confinement.refused.empty()) {
+    diagnostics.push_back({source, 0, 0, "/buffers",
+                           "a buffer names \"" + confinement.refusedUri() + "\", outside the world file's directory",
+                           "buffer files next to the world file (or below it), or data: URIs", ""});
+    return false;
   }
   if (!ok) {
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();

@@ -12,6 +12,8 @@ namespace {
 
 /// Distance at which a path corner counts as passed [m].
 constexpr float kCornerReach = 0.5f;
+/// Corners looked ahead for one in sight on multi-level worlds (see steerRow).
+constexpr std::uint32_t kLevelLookAhead = 3;
 /// Approaching a stop (action point, last goal), agents slow down over this time [s].
 constexpr float kArrivalTime = 0.5f;
 /// Members catching up with their group may walk this much faster than the group's speed.
@@ -88,9 +90,27 @@ void World::Impl::steerRow(std::size_t row, WorkerScratch& ws) {
     const core::Vec2 target{agents.targetX[row], agents.targetY[row]};
     // Move on to the next corner once near this one — but only if the next is in line of sight:
     // skipping a corner of a wall before rounding it walks straight into the wall.
-    while (ci + 1 < corners.size() && core::lengthSq(corners[ci] - pos) < kCornerReach * kCornerReach &&
-           (agents.levels ? ws.query->visible(pos, agents.posZ[row], corners[ci + 1]) : ws.query->visible(pos, corners[ci + 1]))) {
-      ++ci;
+    if (!agents.levels) {
+      while (ci + 1 < corners.size() && core::lengthSq(corners[ci] - pos) < kCornerReach * kCornerReach &&
+             ws.query->visible(pos, corners[ci + 1])) {
+        ++ci;
+      }
+    } else {
+      // Multi-level worlds: where a ramp or stair meets a floor the path turns through a chain of
+      // corners a few centimetres apart, and an agent that cuts across the junction is past the
+      // next one, which it then cannot see from its floor: look up to kLevelLookAhead corners ahead.
+      const float z = agents.posZ[row];
+      while (ci + 1 < corners.size() && core::lengthSq(corners[ci] - pos) < kCornerReach * kCornerReach) {
+        std::uint32_t next = ci;
+        for (std::uint32_t k = ci + 1; k < corners.size() && k <= ci + kLevelLookAhead; ++k) {
+          if (ws.query->visible(pos, z, corners[k])) {
+            next = k;
+            break;
+          }
+        }
+        if (next == ci) break;
+        ci = next;
+      }
     }
     const core::Vec2 aim = ci < corners.size() ? corners[ci] : target;
     const core::Vec2 toAim = aim - pos;
