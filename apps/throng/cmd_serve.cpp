@@ -120,14 +120,29 @@ core::Result<io::LoadedScenario> parseStoredScenario(const hub::Replay& replay, 
   dirs.emplace_back(THRONG_SCENARIOS_DIR);
 #endif
   const std::string name = fs::path(recording).stem().string() + ".stored-scenario.json";
-  std::optional<core::Result<io::LoadedScenario>> first;
+  // The first directory where it parses and its motion clips are; else the first where it parses
+  // (bodies then get the viewer's built-in skeleton and procedural clips).
+  std::optional<core::Result<io::LoadedScenario>> first, firstParsed;
+  fs::path firstParsedDir;
   for (const fs::path& candidate : dirs) {
     auto parsed = io::parseScenario(replay.scenarioText(), (candidate / name).string());
     if (parsed) {
-      dir = candidate;
-      return parsed;
+      std::error_code ec;
+      if (fs::is_directory(candidate / parsed.value().desc.social.motions, ec)) {
+        dir = candidate;
+        return parsed;
+      }
+      if (!firstParsed) {
+        firstParsedDir = candidate;
+        firstParsed.emplace(std::move(parsed));
+      }
+      continue;
     }
     if (!first) first.emplace(std::move(parsed));
+  }
+  if (firstParsed) {
+    dir = firstParsedDir;
+    return std::move(*firstParsed);
   }
   return std::move(*first);
 }

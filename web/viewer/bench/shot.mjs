@@ -1,4 +1,5 @@
-// Screenshot of a live world for the docs: starts `throng serve WORLD`, opens the viewer in headless
+// Screenshot of a live world or a recording for the docs: starts `throng serve WORLD` (a scenario,
+// a world file or FILE.sqlite), opens the viewer in headless
 // Chromium (SwiftShader), waits, frames the camera and writes the canvas as a PNG.
 //   THRONG_EXE=build/apps/throng/throng node viewer/bench/shot.mjs WORLD OUT.png
 //       [--wait 20] [--look x,y,distance,height] [--width 1280 --height 720]
@@ -31,7 +32,14 @@ try {
   const errors = [];
   page.on('pageerror', (e) => errors.push(e.message));
   await page.goto(`${server.url}?shot=1`);
-  await page.waitForFunction(() => globalThis.__throngStats && globalThis.__throngStats.agents > 0, null, { timeout: 30000 });
+  // A recording (throng serve FILE.sqlite) may open paused: play it.
+  await page.waitForFunction(() => globalThis.__throng && globalThis.__throng.source && globalThis.__throngStats, null, { timeout: 30000 });
+  const replay = await page.evaluate(() => globalThis.__throng.source.kind === 'replay');
+  if (replay) {
+    await page.waitForFunction(() => !!globalThis.__throng.source.replay, null, { timeout: 15000 });
+    if (!(await page.evaluate(() => globalThis.__throng.source.replay.playing))) await page.click('#tl-play');
+  }
+  await page.waitForFunction(() => globalThis.__throngStats.agents > 0, null, { timeout: 30000 });
   if (look) {
     const [x, y, d, h] = look.split(',').map(Number);
     await page.evaluate(([x, y, d, h]) => globalThis.__throng.cameras.lookAt(x, y, d, h), [x, y, d, h]);

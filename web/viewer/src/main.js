@@ -11,6 +11,7 @@ import { ReplaySource, MemoryReplayBackend } from './sources/replay_source.js';
 import { LiveSource, reasonText } from './net/live_source.js';
 import { buildWorld, addLights, worldBounds } from './world/world_view.js';
 import { ClipLibrary } from './crowd/clip_library.js';
+import { kHanimSkeleton } from './crowd/procedural_clips.js';
 import { CrowdView } from './crowd/crowd_view.js';
 import { NearBodies } from './crowd/near_bodies.js';
 import { Cameras } from './camera/cameras.js';
@@ -84,6 +85,12 @@ source.on('participant', (m) => {
 });
 source.on('joints', (m) => remoteJoints.set(m.participantId, Float32Array.from(m.angles), performance.now()));
 source.on('world', async (w) => {
+  if (!w.skeleton || !Array.isArray(w.skeleton.joints) || w.skeleton.joints.length === 0) {
+    // The server found no motion files (a recording replayed away from its scenario's motions/):
+    // the bundled library's skeleton, with procedural walk and idle clips.
+    console.info('throng: no skeleton in the world description; using the built-in H-Anim skeleton');
+    w.skeleton = { joints: kHanimSkeleton };
+  }
   description = w;
   const bounds = worldBounds(w.scenario || {});
   scene.add(buildWorld(w.scenario || {}));
