@@ -29,33 +29,20 @@ constexpr float kGuideReplan = 1.0f;
 /// Agents following another agent (sociological model) keep this far behind it [m].
 constexpr float kFollowAgentGap = 1.0f;
 
-core::Vec2 interpolateGuide(const std::vector<GuideWaypoint>& script, float t) {
-  if (t <= script.front().time) return script.front().position;
+/// The guide script's position (and floor height) at time t: linear between waypoints, held
+/// before the first and after the last.
+GuideWaypoint interpolateGuide(const std::vector<GuideWaypoint>& script, float t) {
+  if (t <= script.front().time) return script.front();
   for (std::size_t i = 1; i < script.size(); ++i) {
     if (t <= script[i].time) {
       const GuideWaypoint& a = script[i - 1];
       const GuideWaypoint& b = script[i];
       const float span = b.time - a.time;
       const float u = span > 0.0f ? (t - a.time) / span : 1.0f;
-      return a.position + (b.position - a.position) * u;
+      return {t, a.position + (b.position - a.position) * u, a.height + (b.height - a.height) * u};
     }
   }
-  return script.back().position;
-}
-
-/// The guide script's height at time t (multi-level worlds), interpolated like the position.
-float interpolateGuideHeight(const std::vector<GuideWaypoint>& script, float t) {
-  if (t <= script.front().time) return script.front().height;
-  for (std::size_t i = 1; i < script.size(); ++i) {
-    if (t <= script[i].time) {
-      const GuideWaypoint& a = script[i - 1];
-      const GuideWaypoint& b = script[i];
-      const float span = b.time - a.time;
-      const float u = span > 0.0f ? (t - a.time) / span : 1.0f;
-      return a.height + (b.height - a.height) * u;
-    }
-  }
-  return script.back().height;
+  return script.back();
 }
 
 }  // namespace
@@ -189,8 +176,9 @@ void World::Impl::updateGuidance() {
     bool guided = x.guidedByApi;
     if (!guided && !script.script.empty() && now >= script.script.front().time && (script.release < 0.0f || now < script.release)) {
       guided = true;
-      x.guide = interpolateGuide(script.script, now);
-      x.guideHeight = interpolateGuideHeight(script.script, now);
+      const GuideWaypoint at = interpolateGuide(script.script, now);
+      x.guide = at.position;
+      x.guideHeight = at.height;
     }
     if (guided != g.guided) {
       g.guided = guided;
