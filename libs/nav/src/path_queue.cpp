@@ -10,6 +10,7 @@
 #include "throng/nav/path_queue.hpp"
 
 #include <algorithm>
+#include <array>
 #include <map>
 
 #include "navmesh_data.hpp"
@@ -20,12 +21,12 @@ namespace {
 /// Updates an unread result survives before it expires.
 constexpr std::uint64_t kResultLifetimeUpdates = 64;
 
+/// 24 bytes: a path request for every agent of a million-agent world can wait in the queue at once,
+/// so the heights of layered meshes wait in a queue of their own (Impl::waitingHeights).
 struct Request {
   PathTicket ticket = 0;
   Vec2 from;
   Vec2 to;
-  detail::EndSearch fromSearch;  ///< height hint and extents (height 0, kSnapExtents without one)
-  detail::EndSearch toSearch;
 };
 
 struct Finished {
@@ -40,9 +41,11 @@ struct PathQueue::Impl {
   dtNavMeshQuery* query = nullptr;
   dtQueryFilter filter;
   std::deque<Request> waiting;
+  std::deque<std::array<float, 2>> waitingHeights;  ///< layered meshes only: from and to height, as `waiting`
   // The search in progress (sliced), if any.
   bool active = false;
   Request current;
+  detail::EndSearch fromSearch, toSearch;  ///< how the current request's ends are snapped
   float start[3] = {};
   float end[3] = {};
   dtPolyRef endRef = 0;
@@ -61,13 +64,19 @@ struct PathQueue::Impl {
   bool begin() {
     current = waiting.front();
     waiting.pop_front();
+    fromSearch = toSearch = detail::EndSearch{};
+    if (!waitingHeights.empty()) {
+      fromSearch = detail::endSearch(*mesh, waitingHeights.front()[0]);
+      toSearch = detail::endSearch(*mesh, waitingHeights.front()[1]);
+      waitingHeights.pop_front();
+    }
     const dtPolyRef startRef =
-        detail::snapEnd(*query, filter, current.from, current.fromSearch, start);
+        detail::snapEnd(*query, filter, current.from, fromSearch, start);
     if (startRef == 0) {
       finish(current.ticket, PathResult{PathStatus::Failed, {}});
       return false;
     }
-    endRef = detail::snapEnd(*query, filter, current.to, current.toSearch, end);
+    endRef = detail::snapEnd(*query, filter, current.to, toSearch, end);
     if (endRef == 0) {
       finish(current.ticket, PathResult{PathStatus::Partial, {detail::fromRecast(start)}});
       return false;
@@ -105,14 +114,15 @@ PathQueue::~PathQueue() = default;
 
 PathTicket PathQueue::request(Vec2 from, Vec2 to) {
   const PathTicket ticket = impl_->nextTicket++;
-  impl_->waiting.push_back(Request{ticket, from, to, {}, {}});
+  impl_->waiting.push_back(Request{ticket, from, to});
+  if (impl_->mesh->layered()) impl_->waitingHeights.push_back({0.0f, 0.0f});
   return ticket;
 }
 
 PathTicket PathQueue::request(Vec2 from, float fromHeight, Vec2 to, float toHeight) {
   const PathTicket ticket = impl_->nextTicket++;
-  impl_->waiting.push_back(Request{ticket, from, to, detail::endSearch(*impl_->mesh, fromHeight),
-                                   detail::endSearch(*impl_->mesh, toHeight)});
+  impl_->waiting.push_back(Request{ticket, from, to});
+  if (impl_->mesh->layered()) impl_->waitingHeights.push_back({fromHeight, toHeight});
   return ticket;
 }
 
