@@ -11,6 +11,9 @@ namespace {
 
 /// Distance at which an agent counts as arrived at an action point's (or wander) target [m].
 constexpr float kArriveDistance = 0.3f;
+/// A guided (or following) agent that made no progress over a check period re-plans only while it is
+/// farther than this from its target [m].
+constexpr float kGuidedReplanDistance = 1.0f;
 
 }  // namespace
 
@@ -150,7 +153,19 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
           break;
         case GoalState::Seeking: {
           // Guided groups and agents following another agent get their targets from the group pass.
-          if (g.guided || agents.followedAgent(row) != kNoAgent) break;
+          if (g.guided || agents.followedAgent(row) != kNoAgent) {
+            // Their path is re-planned when the guide (or the one followed) moves on; one that got
+            // stuck on the way (a corner it cannot round) asks again from where it stands.
+            // The same progress check as below, for agents still more than kGuidedReplanDistance
+            // from their target (members standing at their place beside the guide never re-plan).
+            if ((tick + id) % checkEvery == 0 && agents.ticket[row] == 0) {
+              const float dx = agents.targetX[row] - agents.posX[row], dy = agents.targetY[row] - agents.posY[row];
+              const float d = std::sqrt(dx * dx + dy * dy);
+              if (d > kGuidedReplanDistance && d > agents.progressDistance[row] - 0.5f) agents.needPath[row] = 1;
+              agents.progressDistance[row] = d;
+            }
+            break;
+          }
           const float x = agents.posX[row], y = agents.posY[row];
           if (agents.goalCursor[row] >= goals.size()) {  // wandering
             const float dx = agents.targetX[row] - x, dy = agents.targetY[row] - y;
