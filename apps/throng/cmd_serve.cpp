@@ -369,7 +369,7 @@ int runServe(const ServeOptions& options) {
   bridge.attach(&hub, transport.get());
   const std::string host = options.bind == "0.0.0.0" ? "127.0.0.1" : options.bind;
   if (!options.quiet) {
-    printLine(stdout, fmt::format("throng serve: {} — {} ticks/s", hubOptions.serverName, tickRate));
+    printLine(stdout, fmt::format("throng serve: {} — {:.4g} ticks/s", hubOptions.serverName, tickRate));
     printLine(stdout, fmt::format("  viewer     http://{}:{}/{}", host, transport->httpPort(),
                                   haveViewer ? "" : "  (not built: scripts/demo.sh builds it)"));
     printLine(stdout, fmt::format("  websocket  ws://{}:{}/ws", host, transport->httpPort()));
