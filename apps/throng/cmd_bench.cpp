@@ -24,6 +24,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include "phase_timer.hpp"
 #include "bench_scenarios.hpp"
 #include "cmd_bench_runner.hpp"
 #include "commands.hpp"
@@ -147,6 +148,7 @@ std::optional<Measurement> BenchRunner::timeThrong(const sim::ScenarioDesc& desc
   }();
   const bool fixed = ticks > 0;
   std::vector<double> ms;
+  PhaseTimer phases;  // --phase-times: the timed ticks only
   const std::uint64_t stepsBefore = w.stats().agentSteps;
   const double timeBefore = w.stats().time;
   double totalSeconds = 0.0;
@@ -160,7 +162,7 @@ std::optional<Measurement> BenchRunner::timeThrong(const sim::ScenarioDesc& desc
       break;
     }
     const auto t0 = Clock::now();
-    w.step(tasks);
+    w.step(tasks, options_.phaseTimes ? &phases : nullptr);
     if (recorder && (tick + 1) % stride == 0) recorder->push(w.snapshot());
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     totalSeconds += seconds;
@@ -196,6 +198,9 @@ std::optional<Measurement> BenchRunner::timeThrong(const sim::ScenarioDesc& desc
   }
   ticks = static_cast<int>(ms.size());
   if (interrupted) return std::nullopt;
+  for (const auto& [name, seconds] : phases.totals()) {
+    m.phaseMs.emplace_back(name, ticks > 0 ? 1000.0 * seconds / ticks : 0.0);
+  }
   if (fileMode_) {
     bytesPerAgent = agentsPeak > 0 ? std::max(0.0, rssPeak - rssBefore) / static_cast<double>(agentsPeak) : 0.0;
   }
@@ -294,6 +299,11 @@ void BenchRunner::print(const Measurement& m) {
     if (m.recordedFps) {
       line["recording"] = {{"fps", *m.recordedFps}, {"frames", m.frames}, {"close_s", m.closeSeconds}};
     }
+    if (!m.phaseMs.empty()) {
+      nlohmann::json phaseMs = nlohmann::json::object();
+      for (const auto& [name, value] : m.phaseMs) phaseMs[name] = value;
+      line["phase_ms_per_tick"] = phaseMs;
+    }
     printLine(stdout, line.dump());
     return;
   }
@@ -305,6 +315,11 @@ void BenchRunner::print(const Measurement& m) {
                                  formatSeconds(m.wallSeconds), m.realtimeFactor())
                    : fmt::format(" {:>8}", m.speedup ? fmt::format("{:.2f}x", *m.speedup) : "-");
   printLine(stdout, row);
+  if (!m.phaseMs.empty()) {
+    std::string phasesLine = "  ms/tick by phase:";
+    for (const auto& [name, value] : m.phaseMs) phasesLine += fmt::format(" {} {:.2f}", name, value);
+    printLine(stdout, phasesLine);
+  }
 }
 
 void BenchRunner::printFootnotes() const {
@@ -475,6 +490,9 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
                 "One JSON object per line and engine/configuration: engine, scenario, agents, threads, ticks, "
                 "agent_steps_per_s, ms_per_tick_median, ms_per_tick_p99, bytes_per_agent, peak_rss_bytes, "
                 "simulated_s, wall_s, realtime_factor (scenario files also scenario_file; throng+rec recording)");
+  cmd->add_flag("--phase-times", options.phaseTimes,
+                "Also time every phase of the tick (decide, plan, sense, steer, integrate, ...) over the timed ticks "
+                "and print each one's ms per tick (JSON: phase_ms_per_tick); the clock reads cost a little");
   cmd->add_flag("--no-baseline", options.noBaseline, "Skip the DetourCrowd baseline");
   cmd->add_option("--baseline-max", options.baselineMax,
                   "Largest agent count DetourCrowd is run at (it is slow)")

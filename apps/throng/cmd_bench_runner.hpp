@@ -35,6 +35,7 @@ struct Measurement {
   std::uint64_t frames = 0;
   double closeSeconds = 0.0;      ///< closing the recording (flush, checkpoint) [s]
   std::optional<double> speedup;  ///< throng / DetourCrowd agent-steps/s, same agent count
+  std::vector<std::pair<std::string, double>> phaseMs;  ///< --phase-times: each phase's ms per timed tick
 
   [[nodiscard]] double realtimeFactor() const { return wallSeconds > 0 ? simulatedSeconds / wallSeconds : 0.0; }
 };

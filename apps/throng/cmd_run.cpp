@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "phase_timer.hpp"
 #include "commands.hpp"
 #include "output.hpp"
 #include "progress.hpp"
@@ -75,26 +76,6 @@ struct RankPlan {
   [[nodiscard]] bool speaks() const { return rank == 0; }
 };
 
-/// Wall time spent in each phase of the tick (--phase-times), in the order phases first ran.
-class PhaseTimer final : public sim::PhaseObserver {
- public:
-  void phaseBegin(std::string_view) override { begin_ = Clock::now(); }
-  void phaseEnd(std::string_view phase) override {
-    const double s = secondsSince(begin_);
-    for (auto& [name, total] : totals_) {
-      if (name == phase) {
-        total += s;
-        return;
-      }
-    }
-    totals_.emplace_back(std::string(phase), s);
-  }
-  [[nodiscard]] const std::vector<std::pair<std::string, double>>& totals() const { return totals_; }
-
- private:
-  Clock::time_point begin_;
-  std::vector<std::pair<std::string, double>> totals_;
-};
 
 enum class RunEnd { Duration, Finished, Interrupted };
 

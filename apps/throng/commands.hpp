@@ -70,6 +70,7 @@ struct BenchOptions {
   bool json = false;                    ///< one JSON object per line
   bool noBaseline = false;              ///< skip DetourCrowd
   std::size_t baselineMax = 20000;      ///< largest agent count DetourCrowd runs at
+  bool phaseTimes = false;              ///< also time every phase of the timed ticks
 };
 
 struct ServeOptions {

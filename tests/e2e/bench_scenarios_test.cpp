@@ -147,6 +147,34 @@ TEST(BenchScenarioFile, RecordWorksForInMemoryScenarios) {
   EXPECT_GT(rows[1].at("realtime_factor").get<double>(), 0.0);
 }
 
+TEST(BenchScenarioFile, PhaseTimesSplitTheTick) {
+  ScratchDir dir("bench-phases");
+  const CliResult r = runThrong({"bench", "--agents", "200", "--threads", "1", "--ticks", "5", "--warmup", "1",
+                                 "--no-baseline", "--phase-times", "--json"},
+                                dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto rows = jsonLines(r.out);
+  ASSERT_EQ(rows.size(), 1u) << r.out;
+  const json& phases = rows[0].at("phase_ms_per_tick");
+  double sum = 0.0;
+  for (const char* phase : {"decide", "plan", "sense", "steer", "integrate", "emit"}) {
+    ASSERT_TRUE(phases.contains(phase)) << phases.dump();
+    EXPECT_GE(phases.at(phase).get<double>(), 0.0);
+    sum += phases.at(phase).get<double>();
+  }
+  EXPECT_GT(phases.at("steer").get<double>(), 0.0);
+  // The phases are the tick: their sum cannot exceed the mean tick by more than clock noise.
+  const double meanTick = 1000.0 * rows[0].at("wall_s").get<double>() / rows[0].at("ticks").get<double>();
+  EXPECT_LE(sum, meanTick * 1.05 + 0.01) << phases.dump();
+  // Text: a line under the row.
+  const CliResult text = runThrong({"bench", "--agents", "200", "--threads", "1", "--ticks", "2", "--warmup", "1",
+                                    "--no-baseline", "--phase-times"},
+                                   dir.path());
+  ASSERT_EQ(text.exitCode, 0) << text.err;
+  EXPECT_TRUE(contains(text.out, "ms/tick by phase:")) << text.out;
+  EXPECT_TRUE(contains(text.out, " steer ")) << text.out;
+}
+
 TEST(BenchScenarioFile, TextTableShowsRealTime) {
   ScratchDir dir("bench-text");
   const fs::path file = dir.write("exit-room.json", kExitRoom);
