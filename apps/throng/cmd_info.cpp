@@ -54,6 +54,7 @@ int runInfo(const InfoOptions& options) {
                        {"coordinations", s.coordinations},
                        {"format_version", s.formatVersion},
                        {"throng_version", s.throngVersion}};
+    out["heights_m"] = s.heights ? nlohmann::json{s.heights->first, s.heights->second} : nlohmann::json(nullptr);
     printLine(stdout, out.dump());
     return kExitOk;
   }
@@ -71,6 +72,10 @@ int runInfo(const InfoOptions& options) {
   printLine(stdout, fmt::format("completed    {}", s.completed ? "yes" : "no (interrupted or killed)"));
   printLine(stdout, fmt::format("populations  {}", populations));
   printLine(stdout, fmt::format("rows         {} trajectory rows, {} events", s.rows, s.events));
+  if (s.heights) {
+    printLine(stdout, fmt::format("heights      {:.2f} to {:.2f} m (a multi-level world: throng_heights)", s.heights->first,
+                                  s.heights->second));
+  }
   if (!s.commonGround.empty()) {
     printLine(stdout, fmt::format("common ground {}: {} coordinations (throng script / throng metrics read them)", s.commonGround,
                                   s.coordinations));

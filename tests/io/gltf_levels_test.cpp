@@ -217,6 +217,13 @@ TEST(GltfLevels, RecordingKeepsTheHeights) {
   EXPECT_NEAR(one("SELECT min(z) FROM throng_heights"), 0.0, 0.15);
   EXPECT_GT(one("SELECT count(*) FROM geometry WHERE wkt LIKE 'GEOMETRYCOLLECTION%' OR wkt LIKE 'POLYGON%' OR wkt LIKE 'MULTIPOLYGON%'"), 0);
   sqlite3_close(h);
+  // `throng info` reports the height range.
+  const std::string info = (dir / "info.json").string();
+  ASSERT_EQ(std::system((std::string("'") + THRONG_EXE + "' info '" + db + "' --json > '" + info + "'").c_str()), 0);
+  const json summary = readJson(info);
+  ASSERT_TRUE(summary.at("heights_m").is_array()) << summary.dump();
+  EXPECT_NEAR(summary.at("heights_m").at(0).get<double>(), 0.0, 0.15);
+  EXPECT_NEAR(summary.at("heights_m").at(1).get<double>(), 3.0, 0.15);
 }
 #endif
 

@@ -34,6 +34,7 @@ struct Cell {
   bool failed = false;
   bool present = false;
   std::int64_t integer = 0;
+  double real = 0.0;
   std::string text;
 };
 
@@ -51,6 +52,7 @@ Cell queryOne(const ReadOnlyDb& db, const std::string& sql, const std::string& b
   if (rc == SQLITE_ROW) {
     cell.present = sqlite3_column_type(s.get(), 0) != SQLITE_NULL;
     cell.integer = sqlite3_column_int64(s.get(), 0);
+    cell.real = sqlite3_column_double(s.get(), 0);
     const unsigned char* t = sqlite3_column_text(s.get(), 0);
     if (t != nullptr) cell.text.assign(reinterpret_cast<const char*>(t), static_cast<std::size_t>(sqlite3_column_bytes(s.get(), 0)));
   } else if (rc != SQLITE_DONE) {
@@ -168,6 +170,14 @@ core::Result<RecordingSummary> readRecordingSummary(const std::string& path) {
       const Cell coordinations = queryOne(db, "SELECT count(*) FROM throng_coordinations");
       if (coordinations.failed) return diag(path, "cannot read throng_coordinations (" + failure(db) + ")");
       sum.coordinations = static_cast<std::uint64_t>(std::max<std::int64_t>(0, coordinations.integer));
+    }
+    if (hasTable(db, "throng_heights").value_or(false)) {
+      const Cell low = queryOne(db, "SELECT min(z) FROM throng_heights");
+      const Cell high = queryOne(db, "SELECT max(z) FROM throng_heights");
+      if (low.failed || high.failed) return diag(path, "cannot read throng_heights (" + failure(db) + ")");
+      if (low.present && high.present && std::isfinite(low.real) && std::isfinite(high.real)) {
+        sum.heights = std::make_pair(low.real, high.real);
+      }
     }
     return sum;
   } catch (const std::exception& e) {

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,8 @@ struct RecordingSummary {
   std::uint64_t events = 0;
   std::string commonGround;       ///< "on" / "off"; empty when the scenario had no social section
   std::uint64_t coordinations = 0;///< Common Ground interactions recorded (throng_coordinations rows)
+  /// Multi-level worlds (a throng_heights table): lowest and highest agent height recorded [m].
+  std::optional<std::pair<double, double>> heights;
 };
 
 /// Opens a recording read-only and summarises it; bad or foreign files give a diagnostic.
