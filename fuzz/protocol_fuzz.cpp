@@ -1,6 +1,7 @@
 // libFuzzer target for every protocol decoder: decodeAny (all message types), then for crowd
 // frames a CrowdDecoder that holds the golden key frame (frame 1), so delta payloads against it are
-// applied too. Input: one message. Must never crash, hang or read out of bounds.
+// applied too; a Fragment goes through a Reassembler (completed with copies of itself when its
+// count is small, and the whole message decoded). Input: one message. Must never crash, hang or read out of bounds.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -8,6 +9,7 @@
 
 #include "throng/protocol/crowd_decoder.hpp"
 #include "throng/protocol/crowd_encoder.hpp"
+#include "throng/protocol/fragments.hpp"
 #include "throng/protocol/messages.hpp"
 
 using namespace throng::protocol;
@@ -38,6 +40,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)dec.apply(*frame);
   } else if (auto* welcome = std::get_if<Welcome>(&m.value())) {
     (void)worldJson(*welcome);
+  } else if (auto* fragment = std::get_if<Fragment>(&m.value())) {
+    Reassembler reassembler;
+    (void)reassembler.add(*fragment);
+    if (fragment->count <= 16) {  // the other pieces: copies of this payload
+      Fragment other = *fragment;
+      for (std::uint32_t i = 0; i < fragment->count; ++i) {
+        other.index = i;
+        auto whole = reassembler.add(other);
+        if (whole.ok() && whole.value()) (void)decodeAny(*whole.value());
+      }
+    }
   }
   (void)encode(m.value());  // whatever decodes also encodes
   return 0;

@@ -170,6 +170,12 @@ CLI::App* addServeCommand(CLI::App& app, ServeOptions& options) {
   cmd->add_option("--udp-port", options.udpPort, "UDP port for native clients (0: any free port)")
       ->check(integerRange(0, 65535))
       ->capture_default_str();
+  cmd->add_option("--udp-fragment", options.udpFragment,
+                  "Largest datagram sent to UDP clients; a larger message (a key frame of a big crowd, the "
+                  "world description) goes as several Fragment datagrams of at most this size")
+      ->type_name("BYTES")
+      ->check(integerRange(200, 65507))
+      ->capture_default_str();
   cmd->add_option("--bind", options.bind, "Address to listen on (0.0.0.0: every interface)")->capture_default_str();
   cmd->add_option("--tick", options.tick, "Ticks per second in real time; default 1/dt of the scenario (the crowd "
                                           "then moves at its real speed)")
@@ -247,7 +253,8 @@ int runServe(const ServeOptions& options) {
   t.httpPort = static_cast<std::uint16_t>(options.port);
   t.udpPort = static_cast<std::uint16_t>(options.udpPort);
   t.maxPeers = static_cast<std::size_t>(options.maxClients) + 16;  // room to refuse politely
-  t.maxDatagramBytes = 65507;  // crowd frames to UDP clients travel in one datagram each
+  t.maxDatagramBytes = 65507;  // the largest datagram accepted from a UDP client
+  t.udpFragmentBytes = static_cast<std::size_t>(options.udpFragment);  // larger messages go as Fragments
   const fs::path web = webRoot(options.web);
   std::error_code ec;
   const bool haveViewer = !web.empty() && fs::is_regular_file(web / "index.html", ec);

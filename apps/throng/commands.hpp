@@ -77,6 +77,7 @@ struct ServeOptions {
   std::string scenario;
   int port = 8080;                      ///< HTTP + WebSocket; 0 = any free port
   int udpPort = 8081;                   ///< 0 = any free port
+  int udpFragment = 1200;               ///< largest datagram to UDP clients [bytes]; larger messages go as Fragments
   std::string bind = "127.0.0.1";
   std::optional<double> tick;           ///< ticks per second; default 1/dt
   int maxClients = 100;

@@ -24,7 +24,11 @@ std::vector<std::vector<std::uint8_t>> allGoldenBytes() {
 
 TEST(ProtocolMessages, EveryTruncationIsAnError) {
   for (const auto& bytes : allGoldenBytes()) {
-    for (std::size_t n = 0; n < bytes.size(); ++n) {
+    // A Fragment's payload is the rest of the datagram (a datagram arrives whole or not at all):
+    // only cuts into its header or leaving no payload are errors.
+    const bool fragment = bytes.size() > 1 && bytes[1] == static_cast<std::uint8_t>(MessageType::Fragment);
+    const std::size_t cuts = fragment ? 7 : bytes.size();  // the golden Fragment's header is 6 bytes
+    for (std::size_t n = 0; n < cuts; ++n) {
       auto r = decodeAny(std::span(bytes.data(), n));
       ASSERT_FALSE(r) << "prefix of " << n << " of " << bytes.size() << " bytes decoded";
       EXPECT_FALSE(r.errors().front().what.empty());

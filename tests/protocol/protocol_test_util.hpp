@@ -147,6 +147,13 @@ inline nlohmann::json messageJson(const Message& m) {
           j["crowdIndex"] = v.crowdIndex;
           j["crowdId"] = v.crowdId;
           j["text"] = v.text;
+        } else if constexpr (std::is_same_v<T, Fragment>) {
+          j["messageId"] = std::to_string(v.messageId);
+          j["index"] = v.index;
+          j["count"] = v.count;
+          json bytes = json::array();
+          for (const std::uint8_t b : v.payload) bytes.push_back(b);
+          j["payload"] = bytes;
         }
       },
       m);
@@ -249,6 +256,8 @@ inline std::vector<std::pair<std::string, Message>> goldenMessages() {
                  CrowdResult{7, false, 0, "",
                              "participant 1 request 7:1:12: /populations/0/count: -3; expected an integer >= 1\n"
                              "(and 2 more)"});
+  // The middle piece of message 300 (a 2-byte varint id): 3 fragments in all.
+  m.emplace_back("fragment", Fragment{300, 1, 3, {0x12, 0x2c, 0x01, 0x03, 0x41, 0x64, 0x61, 0xff}});
   return m;
 }
 

@@ -148,6 +148,12 @@ TEST(HttpBind, PortInUseIsADiagnostic) {
   auto third = Transport::start(bad, handler);
   ASSERT_FALSE(third.ok());
   EXPECT_EQ(third.errors().size(), 1u);  // option errors first; the address is checked on bind
+
+  TransportOptions tiny = testOptions();
+  tiny.udpFragmentBytes = 10;  // no room for a Fragment header and payload
+  auto fourth = Transport::start(tiny, handler);
+  ASSERT_FALSE(fourth.ok());
+  EXPECT_NE(core::formatAll(fourth.errors()).find("udpFragmentBytes"), std::string::npos);
 }
 
 }  // namespace

@@ -1,10 +1,12 @@
 // Tests for libs/server/src/udp_endpoint.cpp: a datagram opens a peer, echo, size limits,
-// keep-alives, idle timeout, rate limit, and peers back to zero.
+// keep-alives, idle timeout, rate limit, peers back to zero, and large messages going out as
+// protocol Fragments (reassembled here with protocol::Reassembler).
 #include <gtest/gtest.h>
 
 #include <thread>
 
 #include "test_handler.hpp"
+#include "throng/protocol/fragments.hpp"
 #include "throng/server/udp_client.hpp"
 
 namespace throng::server::test {
@@ -57,6 +59,7 @@ TEST(Udp, DatagramOpensPeerAndEchoes) {
 TEST(Udp, SizeLimitsBothWays) {
   TransportOptions options = testOptions();
   options.maxDatagramBytes = 1200;
+  options.udpFragmentBytes = 0;  // never fragment: over maxDatagramBytes is TooLarge
   UdpServer server(options);
   auto client = server.connect();
   ASSERT_TRUE(client->send(std::vector<std::uint8_t>(1200, 7)).ok());
@@ -68,6 +71,53 @@ TEST(Udp, SizeLimitsBothWays) {
   ASSERT_TRUE(client->send(std::vector<std::uint8_t>(1300, 7)).ok());
   ASSERT_TRUE(server.handler.waitFor([&] { return server.handler.closed.count(id.value) > 0; }));
   EXPECT_EQ(server.handler.locked([&] { return server.handler.closed[id.value]; }), "message too large");
+}
+
+TEST(Udp, LargeMessagesGoAsFragments) {
+  TransportOptions options = testOptions();
+  options.udpFragmentBytes = 300;
+  UdpServer server(options);
+  auto client = server.connect();
+  ASSERT_TRUE(client->send(bytes("hi")).ok());
+  ASSERT_TRUE(server.handler.waitFor([&] { return server.handler.opened.size() == 1; }));
+  const PeerId id = server.handler.locked([&] { return server.handler.opened[0].peer; });
+  // At or under the fragment size: one datagram, unchanged.
+  const std::vector<std::uint8_t> small(300, 7);
+  ASSERT_EQ(server.transport->send(id, small), SendStatus::Queued);
+  const auto whole = client->receive(5s);
+  ASSERT_TRUE(whole);
+  EXPECT_EQ(*whole, small);
+  // Over it: Fragment datagrams of at most 300 bytes that reassemble to the message, twice
+  // (message ids 0 and 1).
+  protocol::Reassembler reassembler;
+  for (int round = 0; round < 2; ++round) {
+    std::vector<std::uint8_t> big(5000);
+    for (std::size_t i = 0; i < big.size(); ++i) big[i] = static_cast<std::uint8_t>(i * 7 + round);
+    ASSERT_EQ(server.transport->send(id, big, SendClass::Latest, 1), SendStatus::Queued);
+    std::optional<std::vector<std::uint8_t>> done;
+    std::size_t datagrams = 0;
+    while (!done) {
+      const auto d = client->receive(5s);
+      ASSERT_TRUE(d) << "fragment " << datagrams << " missing";
+      ++datagrams;
+      EXPECT_LE(d->size(), 300u);
+      auto m = protocol::decodeAny(*d);
+      ASSERT_TRUE(m.ok()) << core::formatAll(m.errors());
+      const auto& f = std::get<protocol::Fragment>(m.value());
+      EXPECT_EQ(f.messageId, static_cast<std::uint64_t>(round));
+      auto got = reassembler.add(f);
+      ASSERT_TRUE(got.ok()) << core::formatAll(got.errors());
+      done = got.value();
+    }
+    EXPECT_EQ(*done, big);
+    EXPECT_EQ(datagrams, (5000 + 292) / 293u);  // a 7-byte header: magic, type, id, 2-byte index and count
+  }
+  // Counted as messages, with the bytes of all their datagrams.
+  for (int i = 0; i < 500 && server.transport->stats(id)->messagesSent < 3; ++i) std::this_thread::sleep_for(10ms);
+  EXPECT_EQ(server.transport->stats(id)->messagesSent, 3u);
+  EXPECT_GT(server.transport->stats(id)->bytesSent, 300u + 2 * 5000u);
+  // Beyond what 8192 fragments carry: TooLarge.
+  EXPECT_EQ(server.transport->send(id, std::vector<std::uint8_t>(protocol::maxFragmentedSize(300) + 1)), SendStatus::TooLarge);
 }
 
 TEST(Udp, IdlePeersTimeOutKeepAlivesKeepThem) {

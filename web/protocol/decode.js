@@ -8,10 +8,11 @@ export const PROTOCOL_VERSION = 1;
 export const MAGIC = 0x54;
 export const LIMITS = { maxMessageSize: 8 << 20, maxCrowdPayload: 16 << 20, maxWorldSize: 64 << 20,
   maxNameLength: 64, maxTextLength: 1024, maxAgents: 65536, maxJoints: 128, maxExpressionWeights: 64,
-  maxCrowdJson: 1 << 20 };
+  maxCrowdJson: 1 << 20, minFragments: 2, maxFragments: 8192 };
 export const TYPES = ['?', 'Hello', 'Refuse', 'Welcome', 'Join', 'Joined', 'Leave', 'Heartbeat', 'Bye', 'Move',
   'Joints', 'HandJoints', 'FaceExpression', 'Guide', 'Release', 'GuideResult', 'Ack', 'CrowdFrame',
-  'Presence', 'ReplayControl', 'ReplayStatus', 'InsertCrowd', 'RemoveCrowd', 'CrowdResult'];
+  'Presence', 'ReplayControl', 'ReplayStatus', 'InsertCrowd', 'RemoveCrowd', 'CrowdResult',
+  'Fragment'];
 /** ReplayControl commands (value: 0 for play/pause, time [s] for seek, factor for speed). */
 export const REPLAY_COMMANDS = Object.freeze({ Play: 0, Pause: 1, Seek: 2, Speed: 3 });
 export const MAX_REPLAY_SPEED = 64;
@@ -155,6 +156,18 @@ const bodies = {
     requestId: r.varint('requestId'), ok: flag(r, 'ok'), crowdIndex: r.varint('crowdIndex'),
     crowdId: r.string('crowdId', LIMITS.maxNameLength), text: r.string('text', LIMITS.maxTextLength),
   }),
+  // One piece of a larger message (UDP only: browsers never receive it; decoded for tools and tests).
+  Fragment: (r) => {
+    const messageId = r.varintBig('messageId').toString();
+    const indexAt = r.p; const index = r.varint('index');
+    const countAt = r.p; const count = r.varint('count');
+    if (count < LIMITS.minFragments || count > LIMITS.maxFragments) {
+      r.fail('count', `count ${count}, expected ${LIMITS.minFragments}..${LIMITS.maxFragments} fragments`, countAt);
+    }
+    if (index >= count) r.fail('index', `index ${index} of ${count} fragments, expected an index below count`, indexAt);
+    if (r.p >= r.b.length) r.fail('payload', 'an empty payload, expected at least 1 payload byte');
+    return { messageId, index, count, payload: Array.from(r.bytes('payload', r.b.length - r.p)) };
+  },
   CrowdFrame: (r) => {
     const at = r.p; const flags = r.u8('flags');
     if (flags & ~3) r.fail('flags', `unknown flag bits ${flags}`, at);

@@ -32,7 +32,10 @@ for (const name of names) {
 test('every truncation throws ProtocolError', () => {
   for (const name of names) {
     const b = bin(name);
-    for (let n = 0; n < b.length; n++) {
+    // A Fragment's payload is the rest of the datagram: only cuts into its 6-byte header (or
+    // leaving no payload) are errors.
+    const cuts = name === 'fragment' ? 7 : b.length;
+    for (let n = 0; n < cuts; n++) {
       assert.throws(() => decodeAny(b.subarray(0, n)), ProtocolError, `${name} cut at ${n}`);
     }
   }
@@ -91,4 +94,16 @@ test('CrowdResult: ok must be 0 or 1; crowd ids are names', () => {
   // A crowd file one byte over 1 MiB: refused from its length prefix (0x80 0x80 0x40 = 2^20, +1).
   assert.throws(() => decodeAny(new Uint8Array([0x54, 21, ...new Array(8).fill(0), 1, 0x81, 0x80, 0x40])),
     (e) => e instanceof ProtocolError && e.field === '/InsertCrowd/crowdJson' && e.offset === 11);
+});
+
+// Fragment (type 24): messageId, index, count (2..8192, index < count), then ≥ 1 payload byte.
+test('Fragment: count and index rules', () => {
+  const ok = decodeAny(new Uint8Array([0x54, 24, 0xac, 0x02, 1, 3, 9, 8]));
+  assert.deepEqual(ok, { type: 'Fragment', messageId: '300', index: 1, count: 3, payload: [9, 8] });
+  assert.throws(() => decodeAny(new Uint8Array([0x54, 24, 0, 0, 1, 9])),
+    (e) => e instanceof ProtocolError && e.field === '/Fragment/count' && e.offset === 4);
+  assert.throws(() => decodeAny(new Uint8Array([0x54, 24, 0, 0, 0x81, 0x40, 9])), /\/Fragment\/count/);  // 8193
+  assert.throws(() => decodeAny(new Uint8Array([0x54, 24, 0, 3, 3, 9])),
+    (e) => e instanceof ProtocolError && e.field === '/Fragment/index' && e.offset === 3);
+  assert.throws(() => decodeAny(new Uint8Array([0x54, 24, 0, 0, 2])), /\/Fragment\/payload/);
 });

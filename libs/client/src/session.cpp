@@ -1,6 +1,8 @@
 // A native participant of a shared world (see session.hpp).
 #include "throng/client/session.hpp"
 
+#include "throng/protocol/fragments.hpp"
+
 #include <algorithm>
 
 #include "throng/server/udp_client.hpp"
@@ -84,6 +86,7 @@ struct Session::Impl {
   Clock::time_point start = Clock::now();
   Clock::time_point lastHeartbeat = Clock::now();
   protocol::CrowdDecoder decoder;
+  protocol::Reassembler fragments;  ///< UDP: Fragment datagrams back into whole messages
   std::optional<protocol::DecodedCrowdFrame> crowd;
   std::vector<protocol::GuideResult> guideResults;
   std::vector<protocol::CrowdResult> crowdResults;
@@ -112,9 +115,9 @@ struct Session::Impl {
   void handle(const Bytes& bytes) {
     ++stats.messagesReceived;
     stats.bytesReceived += bytes.size();
-    auto decoded = protocol::decodeAny(bytes);
-    if (!decoded.ok()) return;
-    protocol::Message& m = decoded.value();
+    auto decoded = reassemble(protocol::decodeAny(bytes));
+    if (!decoded) return;  // malformed (ignored, like any bad message) or a message still in pieces
+    protocol::Message& m = *decoded;
     if (auto* frame = std::get_if<protocol::CrowdFrame>(&m)) {
       const double arrival = static_cast<double>(nowUs()) / 1e6;
       auto applied = decoder.apply(*frame);
@@ -170,6 +173,20 @@ struct Session::Impl {
     }
   }
 
+  /// A decoded datagram as a whole message: a Fragment goes to the reassembler and comes back as
+  /// the message it completes (nullopt while incomplete); bad ones come back as nullopt.
+  std::optional<protocol::Message> reassemble(core::Result<protocol::Message> decoded) {
+    if (!decoded.ok()) return std::nullopt;
+    auto* fragment = std::get_if<protocol::Fragment>(&decoded.value());
+    if (!fragment) return std::move(decoded).value();
+    auto whole = fragments.add(*fragment);
+    stats.incompleteMessages = fragments.droppedMessages();
+    if (!whole.ok() || !whole.value()) return std::nullopt;
+    auto m = protocol::decodeAny(*whole.value());
+    if (!m.ok()) return std::nullopt;
+    return std::move(m).value();
+  }
+
   bool pump(std::chrono::milliseconds wait) {
     if (!isOpen) return false;
     // Our heartbeat, once a second: keeps the session alive and measures the round trip.
@@ -222,12 +239,15 @@ core::Result<std::unique_ptr<Session>> Session::open(const SessionOptions& optio
     Received r = impl->link->receive(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()));
     if (r.closed) return problem(impl->source, "the server closed the connection before its Welcome: " + r.reason);
     if (r.timeout) break;
-    auto m = protocol::decodeAny(r.message);
-    if (!m.ok()) return problem(impl->source, "the server's first message does not decode: " + m.errors().front().format());
-    if (auto* refuse = std::get_if<protocol::Refuse>(&m.value())) {
+    auto decoded = protocol::decodeAny(r.message);
+    if (!decoded.ok()) return problem(impl->source, "the server's first message does not decode: " + decoded.errors().front().format());
+    // Over UDP a large Welcome arrives in Fragments: wait for the whole of it.
+    auto m = impl->reassemble(std::move(decoded));
+    if (!m) continue;
+    if (auto* refuse = std::get_if<protocol::Refuse>(&*m)) {
       return problem(impl->source, "the server refused the session: " + refuse->text);
     }
-    if (auto* welcome = std::get_if<protocol::Welcome>(&m.value())) {
+    if (auto* welcome = std::get_if<protocol::Welcome>(&*m)) {
       auto json = protocol::worldJson(*welcome);
       if (!json.ok()) return std::move(json).takeErrors();
       impl->welcome = *welcome;

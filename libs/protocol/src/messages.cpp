@@ -295,6 +295,16 @@ Bytes encode(const CrowdResult& m) {
   return out;
 }
 
+Bytes encode(const Fragment& m) {
+  Bytes out = start(MessageType::Fragment);
+  ByteWriter w(out);
+  w.varint(m.messageId);
+  w.varint(m.index);
+  w.varint(m.count);
+  w.bytes(m.payload);
+  return out;
+}
+
 Bytes encode(const Message& m) {
   return std::visit([](const auto& v) { return encode(v); }, m);
 }
@@ -308,7 +318,7 @@ const char* messageTypeName(MessageType type) {
                                            "Heartbeat", "Bye", "Move", "Joints", "HandJoints",
                                            "FaceExpression", "Guide", "Release", "GuideResult", "Ack",
                                            "CrowdFrame", "Presence", "ReplayControl", "ReplayStatus",
-                                           "InsertCrowd", "RemoveCrowd", "CrowdResult"};
+                                           "InsertCrowd", "RemoveCrowd", "CrowdResult", "Fragment"};
   const auto i = static_cast<std::uint8_t>(type);
   return i <= kMaxMessageType ? kNames[i] : "?";
 }
@@ -550,6 +560,26 @@ Message decodeBody(MessageType type, ByteReader& r) {
       m.crowdIndex = static_cast<std::uint32_t>(r.varint("crowdIndex", 0xffffffffu));
       m.crowdId = r.string("crowdId", kMaxNameLength);
       m.text = r.string("text", kMaxTextLength);
+      return m;
+    }
+    case MessageType::Fragment: {
+      Fragment m;
+      m.messageId = r.varint("messageId");
+      const std::size_t indexAt = r.offset();
+      m.index = static_cast<std::uint32_t>(r.varint("index", 0xffffffffu));
+      std::size_t at = r.offset();
+      m.count = static_cast<std::uint32_t>(r.varint("count", 0xffffffffu));
+      if (r.ok() && (m.count < kMinFragments || m.count > kMaxFragments)) {
+        r.fail("count", at, "count " + std::to_string(m.count),
+               std::to_string(kMinFragments) + ".." + std::to_string(kMaxFragments) + " fragments");
+      } else if (r.ok() && m.index >= m.count) {
+        r.fail("index", indexAt, "index " + std::to_string(m.index) + " of " + std::to_string(m.count) + " fragments",
+               "an index below count (" + std::to_string(m.count) + ")");
+      }
+      at = r.offset();
+      if (r.ok() && r.remaining() == 0) r.fail("payload", at, "an empty payload", "at least 1 payload byte");
+      const auto b = r.bytes("payload", r.ok() ? r.remaining() : 0);
+      m.payload.assign(b.begin(), b.end());
       return m;
     }
   }

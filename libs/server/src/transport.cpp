@@ -6,6 +6,7 @@
 #include "http_session.hpp"
 #include "transport_impl.hpp"
 #include "udp_endpoint.hpp"
+#include "throng/protocol/fragments.hpp"
 
 namespace throng::server {
 namespace detail {
@@ -35,6 +36,10 @@ core::Diagnostics validate(const TransportOptions& o) {
     errors.push_back(optionError("maxMessageBytes", "0 bytes", "at least 1 byte"));
   if (o.enableUdp && (o.maxDatagramBytes < 1 || o.maxDatagramBytes > kMaxUdpPayload))
     errors.push_back(optionError("maxDatagramBytes", std::to_string(o.maxDatagramBytes) + " bytes", "1 to 65507 bytes (1200 recommended)"));
+  if (o.enableUdp && o.udpFragmentBytes != 0 &&
+      (o.udpFragmentBytes < protocol::kMinFragmentDatagram || o.udpFragmentBytes > kMaxUdpPayload))
+    errors.push_back(optionError("udpFragmentBytes", std::to_string(o.udpFragmentBytes) + " bytes",
+                                 "0 (never fragment) or 64 to 65507 bytes (1200 recommended)"));
   if (o.maxQueueMessages < 1)
     errors.push_back(optionError("maxQueueMessages", "0 messages", "at least 1 message"));
   if (o.maxQueueBytes < 1)
@@ -142,7 +147,10 @@ SendStatus TransportImpl::send(PeerId id, std::vector<std::uint8_t> message, Sen
     if (it == peers_.end()) return SendStatus::UnknownPeer;
     peer = it->second;
   }
-  const std::size_t limit = peer->kind() == PeerKind::Udp ? options_.maxDatagramBytes : options_.maxMessageBytes;
+  std::size_t limit = options_.maxMessageBytes;
+  if (peer->kind() == PeerKind::Udp) {
+    limit = options_.udpFragmentBytes > 0 ? protocol::maxFragmentedSize(options_.udpFragmentBytes) : options_.maxDatagramBytes;
+  }
   if (message.size() > limit) return SendStatus::TooLarge;
   peer->enqueue(QueuedMessage{std::move(message), cls, slot});
   return SendStatus::Queued;

@@ -7,6 +7,7 @@
 #include <span>
 #include <utility>
 
+#include "throng/protocol/fragments.hpp"
 #include "transport_impl.hpp"
 
 namespace throng::server::detail {
@@ -155,18 +156,41 @@ void UdpEndpoint::push(const std::shared_ptr<UdpPeer>& peer, QueuedMessage messa
 
 void UdpEndpoint::doSend(const std::shared_ptr<UdpPeer>& peer) {
   if (peer->writing_ || peer->done_) return;
-  if (peer->queue_.empty()) {
-    if (peer->closing_) finishPeer(peer);
-    return;
+  if (peer->nextFragment_ >= peer->fragments_.size()) {  // no fragmented message under way
+    if (peer->queue_.empty()) {
+      if (peer->closing_) finishPeer(peer);
+      return;
+    }
+    peer->inFlight_ = peer->queue_.pop();
+    const std::size_t fragmentBytes = transport_.options().udpFragmentBytes;
+    peer->fragments_.clear();
+    peer->nextFragment_ = 0;
+    peer->fragmentBytesSent_ = 0;
+    if (fragmentBytes > 0 && peer->inFlight_.data.size() > fragmentBytes) {
+      peer->fragments_ = protocol::splitMessage(peer->inFlight_.data, peer->nextMessageId_++, fragmentBytes);
+    }
   }
-  peer->inFlight_ = peer->queue_.pop();
+  const bool fragmented = !peer->fragments_.empty();
+  const std::vector<std::uint8_t>& datagram = fragmented ? peer->fragments_[peer->nextFragment_] : peer->inFlight_.data;
   peer->writing_ = true;
   updateQueueCounters(*peer);
-  socket_.async_send_to(net::buffer(peer->inFlight_.data), peer->remote_,
-                        [self = shared_from_this(), peer](error_code ec, std::size_t) {
+  socket_.async_send_to(net::buffer(datagram), peer->remote_,
+                        [self = shared_from_this(), peer, fragmented](error_code ec, std::size_t sent) {
                           peer->writing_ = false;
                           if (peer->done_) return;
-                          if (!ec) self->transport_.countSent(*peer, peer->inFlight_.data.size());
+                          if (fragmented) {
+                            if (!ec) peer->fragmentBytesSent_ += sent;
+                            if (++peer->nextFragment_ < peer->fragments_.size()) {
+                              self->doSend(peer);  // the next fragment of the same message
+                              return;
+                            }
+                            // The whole message went: one message, the bytes of all its datagrams.
+                            if (peer->fragmentBytesSent_ > 0) self->transport_.countSent(*peer, peer->fragmentBytesSent_);
+                            peer->fragments_.clear();
+                            peer->nextFragment_ = 0;
+                          } else if (!ec) {
+                            self->transport_.countSent(*peer, peer->inFlight_.data.size());
+                          }
                           peer->inFlight_ = {};
                           self->updateQueueCounters(*peer);
                           self->doSend(peer);

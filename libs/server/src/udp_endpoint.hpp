@@ -1,6 +1,7 @@
 // throng::server::detail::UdpEndpoint — the one UDP socket: a datagram from a new endpoint opens
 // a UdpPeer (while under maxPeers), each datagram is one message, silent peers time out, and each
-// peer's SendQueue goes out one datagram at a time. All on one strand.
+// peer's SendQueue goes out one datagram at a time (a message over udpFragmentBytes as several
+// Fragment datagrams, split when it leaves the queue). All on one strand.
 #pragma once
 #include <chrono>
 #include <map>
@@ -29,6 +30,13 @@ class UdpPeer final : public Peer, public std::enable_shared_from_this<UdpPeer> 
   udp::endpoint remote_;
   SendQueue queue_;
   QueuedMessage inFlight_;
+  /// inFlight_ as Fragment datagrams when it is over udpFragmentBytes (else empty), and the next
+  /// one to send; the whole message stays in the queue until it is popped, so a Latest
+  /// replacement replaces all of its fragments.
+  std::vector<std::vector<std::uint8_t>> fragments_;
+  std::size_t nextFragment_ = 0;
+  std::size_t fragmentBytesSent_ = 0;
+  std::uint64_t nextMessageId_ = 0;  ///< Fragment::messageId of the next fragmented message
   bool writing_ = false;
   bool closing_ = false;
   bool done_ = false;

@@ -36,6 +36,9 @@ struct SessionStats {
   std::uint64_t keyFrames = 0;
   std::uint64_t lostFrames = 0;     ///< gaps in the crowd frame numbers (replaced by newer ones, or lost)
   std::uint64_t undecodable = 0;    ///< delta frames whose base this client did not have
+  /// UDP: fragmented messages dropped incomplete (a piece lost, or overtaken by newer ones); a
+  /// crowd frame among them also shows in lostFrames as a gap.
+  std::uint64_t incompleteMessages = 0;
   std::vector<double> frameDelayMs; ///< per crowd frame: arrival minus its slot in the tick schedule [ms]
   double roundTripMs = 0.0;         ///< latest heartbeat round trip
   std::uint32_t agentsInView = 0;   ///< agents in the newest decoded frame

@@ -175,9 +175,20 @@ struct CrowdResult {
   std::string text;
 };
 
+/// One piece of a larger server → client message over UDP (docs/protocol.md "Fragment"): the
+/// payloads of fragments 0..count-1 with the same messageId, concatenated, are one whole encoded
+/// message (never itself a Fragment) of at most kMaxMessageSize bytes. See fragments.hpp.
+struct Fragment {
+  std::uint64_t messageId = 0;  ///< per peer, increasing by one per fragmented message
+  std::uint32_t index = 0;      ///< < count
+  std::uint32_t count = 0;      ///< kMinFragments..kMaxFragments
+  Bytes payload;                ///< the rest of the datagram
+};
+
 using Message = std::variant<Hello, Refuse, Welcome, Join, Joined, Leave, Heartbeat, Bye, Move, Joints,
                              HandJoints, FaceExpression, Guide, Release, GuideResult, Ack, CrowdFrame,
-                             Presence, ReplayControl, ReplayStatus, InsertCrowd, RemoveCrowd, CrowdResult>;
+                             Presence, ReplayControl, ReplayStatus, InsertCrowd, RemoveCrowd, CrowdResult,
+                             Fragment>;
 
 [[nodiscard]] Bytes encode(const Hello& m);
 [[nodiscard]] Bytes encode(const Refuse& m);
@@ -202,6 +213,7 @@ using Message = std::variant<Hello, Refuse, Welcome, Join, Joined, Leave, Heartb
 [[nodiscard]] Bytes encode(const InsertCrowd& m);  ///< crowdJson over kMaxCrowdJson is cut (the server then refuses it)
 [[nodiscard]] Bytes encode(const RemoveCrowd& m);
 [[nodiscard]] Bytes encode(const CrowdResult& m);
+[[nodiscard]] Bytes encode(const Fragment& m);
 [[nodiscard]] Bytes encode(const Message& m);
 
 /// The type byte of a message without decoding it; an error when too short, a bad magic or an

@@ -22,6 +22,8 @@ inline constexpr std::size_t kMaxAgents = 65536;             ///< agents in one 
 inline constexpr std::size_t kMaxJoints = 128;               ///< joints of a skeleton (3 angles each)
 inline constexpr std::size_t kMaxExpressionWeights = 64;     ///< FaceExpression weights
 inline constexpr std::size_t kMaxCrowdJson = 1u << 20;       ///< InsertCrowd's crowd file text [bytes, UTF-8]
+inline constexpr std::size_t kMinFragments = 2;              ///< Fragment::count, at least
+inline constexpr std::size_t kMaxFragments = 8192;           ///< Fragment::count, at most
 
 enum class MessageType : std::uint8_t {
   Hello = 1,           ///< client → server: first message
@@ -47,8 +49,9 @@ enum class MessageType : std::uint8_t {
   InsertCrowd = 21,    ///< client → server: add a crowd (a crowd file's JSON) to the running world
   RemoveCrowd = 22,    ///< client → server: remove a crowd inserted earlier, by its id
   CrowdResult = 23,    ///< server → client: answer to InsertCrowd / RemoveCrowd
+  Fragment = 24,       ///< server → client (UDP only): one piece of a message too large for a datagram
 };
-inline constexpr std::uint8_t kMaxMessageType = 23;
+inline constexpr std::uint8_t kMaxMessageType = 24;
 
 /// Name of a message type ("Hello"); "?" for an unknown value.
 [[nodiscard]] const char* messageTypeName(MessageType type);

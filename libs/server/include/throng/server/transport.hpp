@@ -1,7 +1,9 @@
 // throng::server::Transport — moves whole binary messages between the server and its peers:
 // HTTP (static files, /health, a dynamic hook) and WebSocket (/ws) on one TCP port, datagrams on
 // a UDP port. Message-agnostic: it never looks inside a message. Reads sockets; writes sockets;
-// calls the TransportHandler on its own thread. See docs/server.md ("Transport").
+// calls the TransportHandler on its own thread. See docs/server.md ("Transport"). The one place it
+// writes protocol bytes: a message too large for one datagram goes to a UDP peer as Fragment
+// messages (docs/protocol.md "Fragment").
 #pragma once
 #include <chrono>
 #include <cstddef>
@@ -39,7 +41,8 @@ enum class SendClass : std::uint8_t {
 enum class SendStatus : std::uint8_t {
   Queued,       ///< handed to the peer's queue (it may still be dropped if the peer closes)
   UnknownPeer,  ///< no such peer (closed, or never existed)
-  TooLarge,     ///< larger than maxMessageBytes (WebSocket) or maxDatagramBytes (UDP)
+  TooLarge,     ///< larger than maxMessageBytes (WebSocket), or for UDP than what udpFragmentBytes
+                ///< fragments can carry (protocol::maxFragmentedSize), or maxDatagramBytes when 0
   ShuttingDown, ///< shutdown() was called
 };
 
@@ -63,7 +66,11 @@ struct TransportOptions {
 
   std::size_t threads = 1;                    ///< io threads [limit: 1..64]
   std::size_t maxMessageBytes = 1 << 20;      ///< incoming and outgoing WebSocket message [bytes]
-  std::size_t maxDatagramBytes = 1200;        ///< UDP payload, both ways [bytes, limit: 1..65507]
+  std::size_t maxDatagramBytes = 1200;        ///< UDP payload received; sent too when udpFragmentBytes is 0 [bytes, limit: 1..65507]
+  /// Outgoing UDP datagram size [bytes, limit: 0 or 64..65507]: a message larger than this goes out
+  /// as protocol Fragment datagrams of at most this size (each message whole in its queue slot,
+  /// split only when sent); 0 = never fragment (a message over maxDatagramBytes is TooLarge).
+  std::size_t udpFragmentBytes = 1200;
   std::size_t maxQueueBytes = 4 << 20;        ///< unsent bytes per peer before "send queue limit"
   std::size_t maxQueueMessages = 256;         ///< unsent messages per peer before "send queue limit"
   std::size_t maxPeers = 1000;                ///< WebSocket + UDP peers; more are refused (HTTP 503 / ignored)
