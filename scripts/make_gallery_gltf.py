@@ -66,6 +66,23 @@ def unit_box():
     return v, [t for a, b, c, d in faces for t in ((a, b, c), (a, c, d))]
 
 
+def write_gltf(out, b, nodes, scene_name, scene_extras, generator):
+    """Writes a .gltf with every node in its one scene, the builder's meshes and one embedded buffer."""
+    gltf = {
+        "asset": {"version": "2.0", "generator": "throng " + generator},
+        "scene": 0,
+        "scenes": [{"name": scene_name, "nodes": list(range(len(nodes))), "extras": {"throng": scene_extras}}],
+        "nodes": nodes,
+        "meshes": b.meshes,
+        "accessors": b.accessors,
+        "bufferViews": b.views,
+        "buffers": [{"byteLength": len(b.data),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(b.data)).decode()}],
+    }
+    out.write_text(json.dumps(gltf, indent=1) + "\n")
+    print(f"wrote {out}")
+
+
 def main():
     out = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent / "scenarios" / "gallery.gltf"
     b = Builder()
@@ -94,20 +111,7 @@ def main():
                                                     {"time": 30, "position": [25, 21]}]}}}},
         {"name": "Lamp", "translation": [15, 4, -6]},
     ]
-    gltf = {
-        "asset": {"version": "2.0", "generator": "throng scripts/make_gallery_gltf.py"},
-        "scene": 0,
-        "scenes": [{"name": "gallery", "nodes": list(range(len(nodes))),
-                    "extras": {"throng": {"name": "gallery", "seed": 3, "duration": 120}}}],
-        "nodes": nodes,
-        "meshes": b.meshes,
-        "accessors": b.accessors,
-        "bufferViews": b.views,
-        "buffers": [{"byteLength": len(b.data),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(b.data)).decode()}],
-    }
-    out.write_text(json.dumps(gltf, indent=1) + "\n")
-    print(f"wrote {out}")
+    write_gltf(out, b, nodes, "gallery", {"name": "gallery", "seed": 3, "duration": 120}, "scripts/make_gallery_gltf.py")
 
 
 if __name__ == "__main__":

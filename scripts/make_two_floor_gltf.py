@@ -12,14 +12,12 @@ balcony over the hall) upstairs, an exit on the ground floor; visitors spawn dow
 and back down to the exit, gallery guests spawn upstairs and go down.
 Usage: scripts/make_two_floor_gltf.py [output path]
 """
-import base64
-import json
 import sys
 from pathlib import Path
 
 sys.dont_write_bytecode = True  # no __pycache__ next to the scripts
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from make_gallery_gltf import Builder, ground, slab, unit_box, yaw_quaternion  # noqa: E402
+from make_gallery_gltf import Builder, ground, slab, unit_box, write_gltf, yaw_quaternion  # noqa: E402
 
 HALL = (0.0, 0.0, 24.0, 16.0)     # x0, y0, x1, y1 at height 0
 GALLERY_Y = 10.0                  # the gallery covers y in [10, 16]
@@ -89,20 +87,8 @@ def main():
                                "speed": {"mean": 1.2, "sd": 0.15}}}},
         {"name": "Lamp", "translation": [12, 2.8, -5]},
     ]
-    gltf = {
-        "asset": {"version": "2.0", "generator": "throng scripts/make_two_floor_gltf.py"},
-        "scene": 0,
-        "scenes": [{"name": "two floors", "nodes": list(range(len(nodes))),
-                    "extras": {"throng": {"name": "two floors", "seed": 5, "duration": 120}}}],
-        "nodes": nodes,
-        "meshes": b.meshes,
-        "accessors": b.accessors,
-        "bufferViews": b.views,
-        "buffers": [{"byteLength": len(b.data),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(b.data)).decode()}],
-    }
-    out.write_text(json.dumps(gltf, indent=1) + "\n")
-    print(f"wrote {out}")
+    write_gltf(out, b, nodes, "two floors", {"name": "two floors", "seed": 5, "duration": 120},
+               "scripts/make_two_floor_gltf.py")
 
 
 if __name__ == "__main__":

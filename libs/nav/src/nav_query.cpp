@@ -64,6 +64,24 @@ dtPolyRef snapEnd(const dtNavMeshQuery& query, const dtQueryFilter& filter, Vec2
                         : snap(query, filter, p, search.height, search.extents, snapped);
 }
 
+/// Whether the straight segment a → b (at `height`, from polygon `startRef`) stays on the mesh:
+/// Detour's raycast reaches b without hitting a boundary edge.
+bool rayStaysOnMesh(const dtNavMeshQuery& query, const dtQueryFilter& filter, dtPolyRef startRef, Vec2 a, Vec2 b,
+                    float height) {
+  float s[3];
+  float e[3];
+  toRecast(a, height, s);
+  toRecast(b, height, e);
+  float t = 0.0f;
+  float normal[3];
+  constexpr int kMaxRayPolys = 256;
+  dtPolyRef path[kMaxRayPolys];
+  int count = 0;
+  const dtStatus status = query.raycast(startRef, s, e, &filter, &t, normal, path, &count, kMaxRayPolys);
+  if (dtStatusFailed(status) || dtStatusDetail(status, DT_BUFFER_TOO_SMALL)) return false;
+  return t == FLT_MAX;
+}
+
 PathStatus straighten(const dtNavMeshQuery& query, const float start[3], const float end[3],
                       const dtPolyRef* path, int pathCount, bool partial, std::vector<Vec2>& corners) {
   corners.clear();
@@ -286,19 +304,7 @@ bool NavQuery::reachable(Vec2 from, float fromHeight, Vec2 to, float toHeight) c
 bool NavQuery::visible(Vec2 a, Vec2 b) const {
   float start[3];
   const dtPolyRef startRef = detail::snap(*query_, *filter_, a, detail::kSnapExtents, start);
-  if (startRef == 0) return false;
-  float s[3];
-  float e[3];
-  detail::toRecast(a, s);
-  detail::toRecast(b, e);
-  float t = 0.0f;
-  float normal[3];
-  constexpr int kMaxRayPolys = 256;
-  dtPolyRef path[kMaxRayPolys];
-  int count = 0;
-  const dtStatus status = query_->raycast(startRef, s, e, filter_, &t, normal, path, &count, kMaxRayPolys);
-  if (dtStatusFailed(status) || dtStatusDetail(status, DT_BUFFER_TOO_SMALL)) return false;
-  return t == FLT_MAX;
+  return startRef != 0 && detail::rayStaysOnMesh(*query_, *filter_, startRef, a, b, 0.0f);
 }
 
 bool NavQuery::visible(Vec2 a, float height, Vec2 b) const {
@@ -306,19 +312,7 @@ bool NavQuery::visible(Vec2 a, float height, Vec2 b) const {
   const detail::EndSearch search = detail::endSearch(*mesh_, height);
   float start[3];
   const dtPolyRef startRef = detail::snapEnd(*query_, *filter_, a, search, start);
-  if (startRef == 0) return false;
-  float s[3];
-  float e[3];
-  detail::toRecast(a, start[1], s);
-  detail::toRecast(b, start[1], e);
-  float t = 0.0f;
-  float normal[3];
-  constexpr int kMaxRayPolys = 256;
-  dtPolyRef path[kMaxRayPolys];
-  int count = 0;
-  const dtStatus status = query_->raycast(startRef, s, e, filter_, &t, normal, path, &count, kMaxRayPolys);
-  if (dtStatusFailed(status) || dtStatusDetail(status, DT_BUFFER_TOO_SMALL)) return false;
-  return t == FLT_MAX;
+  return startRef != 0 && detail::rayStaysOnMesh(*query_, *filter_, startRef, a, b, start[1]);
 }
 
 std::optional<Vec2> NavQuery::randomPoint(float r0, float r1, float r2) const {

@@ -174,18 +174,9 @@ core::Result<std::shared_ptr<const NavMesh>> NavMesh::build(std::span<const Poly
   if (!errors.empty()) return errors;
 
   const float cs = cfg.cellSize;
-  // One cell more than the radius: cells count as walkable when their centre is, and contour
-  // simplification moves edges up to ~1 cell, so eroding by ceil(r / cs) alone lets the mesh reach
-  // up to ~1.5 cells closer than r to a wall (measured: 0.1 m into obstacles at cs = r = 0.2 m).
-  // With the extra cell the mesh keeps >= ~r/2 from every wall at cs = r/2 (and >= r from straight
-  // walls); a doorway then needs to be wider than about 2 * (r + cs) to stay open.
-  const int radiusCells =
-      cfg.agentRadius > 0.0f ? static_cast<int>(std::ceil(cfg.agentRadius / cs - 1e-4f)) + 1 : 0;
-  if (radiusCells >= 250) {
-    return diag("/agentRadius", "agent radius " + metres(cfg.agentRadius) + " is " + std::to_string(radiusCells) +
-                                    " cells of " + metres(cs),
-                "fewer than 250 cells", "raise the cell size");
-  }
+  auto erosion = detail::erosionCells(cfg.agentRadius, cs);
+  if (!erosion) return std::move(erosion).takeErrors();
+  const int radiusCells = erosion.value();
 
   core::Aabb box;
   for (const Polygon& poly : walkable) {

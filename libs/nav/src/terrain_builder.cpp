@@ -119,14 +119,9 @@ core::Result<std::shared_ptr<const NavMesh>> NavMesh::buildFromTerrain(const Ter
   if (!errors.empty()) return errors;
 
   const float cs = cfg.cellSize;
-  // One cell more than the radius, as in NavMesh::build (see navmesh.cpp).
-  const int radiusCells =
-      cfg.agentRadius > 0.0f ? static_cast<int>(std::ceil(cfg.agentRadius / cs - 1e-4f)) + 1 : 0;
-  if (radiusCells >= 250) {
-    return diag("/agentRadius", "agent radius " + metres(cfg.agentRadius) + " is " + std::to_string(radiusCells) +
-                                    " cells of " + metres(cs),
-                "fewer than 250 cells", "raise the cell size");
-  }
+  auto erosion = detail::erosionCells(cfg.agentRadius, cs);
+  if (!erosion) return std::move(erosion).takeErrors();
+  const int radiusCells = erosion.value();
 
   detail::TerrainSettings settings;
   settings.tile.cellSize = cs;
