@@ -132,18 +132,31 @@ class LinkE2E : public ::testing::Test {
 };
 
 TEST_F(LinkE2E, HostLaunchesThrong) {
-  auto h = host({"--launch", THRONG_EXE, kScenario, "--shm", name(), "--seconds", "2", "--", "--tick", "40"});
+  auto h = host({"--launch", THRONG_EXE, kScenario, "--shm", name(), "--seconds", "3", "--", "--tick", "100"});
   const int code = h->wait(30s);
   expectFollowed(*h, code);
   EXPECT_NE(h->out().find("throng link exited with status 0"), std::string::npos) << h->out();
   EXPECT_FALSE(segmentExists()) << "throng removes the segment when its host detaches";
 }
 
+// The control: the same walk without an active guide record. The followed group stands still in
+// tests/link/link_square.json, so only guiding can bring it to the avatar; without it the host must
+// report that the group did not follow (and exit 1). Guards the check above against passing by drift.
+TEST_F(LinkE2E, WithoutGuidingTheGroupDoesNotCome) {
+  auto h = host({"--launch", THRONG_EXE, kScenario, "--shm", name(), "--seconds", "3", "--no-guide", "--", "--tick",
+                 "100"});
+  const int code = h->wait(30s);
+  EXPECT_EQ(code, 1) << h->out() << h->err();
+  EXPECT_NE(h->out().find("does not ask the group to follow"), std::string::npos) << h->out();
+  EXPECT_NE(h->out().find("the group did NOT follow the avatar"), std::string::npos) << h->out();
+  EXPECT_EQ(h->out().find("the group follows the avatar"), std::string::npos) << h->out();
+}
+
 TEST_F(LinkE2E, ThrongFirstThenHostAttachesByName) {
-  auto t = throng({"--shm", name(), kScenario, "--tick", "40"});
+  auto t = throng({"--shm", name(), kScenario, "--tick", "100"});
   ASSERT_TRUE(t->waitFor("waiting for a host")) << t->out() << t->err();
   EXPECT_TRUE(segmentExists());
-  auto h = host({"--shm", name(), "--seconds", "2"});
+  auto h = host({"--shm", name(), "--seconds", "3"});
   expectFollowed(*h, h->wait(30s));
   EXPECT_EQ(t->wait(10s), 0) << t->out() << t->err();
   EXPECT_NE(t->out().find("host attached"), std::string::npos) << t->out();
@@ -153,9 +166,9 @@ TEST_F(LinkE2E, ThrongFirstThenHostAttachesByName) {
 
 TEST_F(LinkE2E, SocketHandshakePassesTheName) {
   const std::string socketPath = (dir_ / "link.sock").string();
-  auto t = throng({"--socket", socketPath, "--shm", name(), kScenario, "--tick", "40"});
+  auto t = throng({"--socket", socketPath, "--shm", name(), kScenario, "--tick", "100"});
   ASSERT_TRUE(t->waitFor("waiting for a host")) << t->out() << t->err();
-  auto h = host({"--socket", socketPath, "--seconds", "2"});
+  auto h = host({"--socket", socketPath, "--seconds", "3"});
   expectFollowed(*h, h->wait(30s));
   EXPECT_NE(h->out().find("says the segment is " + name()), std::string::npos) << h->out();
   EXPECT_EQ(t->wait(10s), 0) << t->out() << t->err();
@@ -185,7 +198,7 @@ TEST_F(LinkE2E, HostRefusesASegmentOfAnotherVersion) {
 
 TEST_F(LinkE2E, CrowdRefusesAHostOfAnotherVersion) {
   const std::string socketPath = (dir_ / "link.sock").string();
-  auto t = throng({"--socket", socketPath, "--shm", name(), kScenario, "--tick", "40"});
+  auto t = throng({"--socket", socketPath, "--shm", name(), kScenario, "--tick", "100"});
   ASSERT_TRUE(t->waitFor("waiting for a host")) << t->out() << t->err();
   // Over the socket: a host line with version 99 gets "REFUSED".
   {

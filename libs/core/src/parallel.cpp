@@ -2,6 +2,8 @@
 #include "throng/core/parallel.hpp"
 
 #include <oneapi/tbb/blocked_range.h>
+#include <oneapi/tbb/global_control.h>
+#include <oneapi/tbb/info.h>
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/partitioner.h>
 #include <oneapi/tbb/task_arena.h>
@@ -11,7 +13,15 @@
 namespace throng::core {
 
 struct TaskSystem::Impl {
-  explicit Impl(int threads) : arena(threads) {}
+  // oneTBB caps its workers at the hardware's threads; a caller that asks for more (8 threads on a
+  // 2-core machine: the determinism tests, a user's --threads) gets them while this TaskSystem lives.
+  explicit Impl(int threads)
+      : oversubscribe(threads > tbb::info::default_concurrency()
+                          ? std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                                  static_cast<std::size_t>(threads))
+                          : nullptr),
+        arena(threads) {}
+  std::unique_ptr<tbb::global_control> oversubscribe;
   tbb::task_arena arena;
 };
 

@@ -112,7 +112,7 @@ void World::Impl::setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQ
 
 void World::Impl::decide(const core::TaskSystem& tasks) {
   const std::size_t n = agents.size();
-  const std::size_t grain = grainFor(n);
+  const std::size_t grain = grainFor(n, tasks);
   chunks.resize(std::max(chunks.size(), core::TaskSystem::chunkCount(n, grain)));
   const std::uint64_t checkEvery = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(kProgressCheckPeriod / desc.dt));
   const std::size_t k = desc.steering.maxNeighbours;

@@ -394,7 +394,7 @@ void World::Impl::updateLeaders() {
 
 void World::Impl::updateGroupShapes(const core::TaskSystem& tasks) {
   // Parallel over groups: a group writes its own centroid and heading and its members' rows only.
-  tasks.parallelFor(busyGroups.size(), 512, [&](std::size_t begin, std::size_t end) {
+  tasks.parallelFor(busyGroups.size(), tasks.grain(512), [&](std::size_t begin, std::size_t end) {
     WorkerScratch& ws = worker(tasks);
     for (std::size_t i = begin; i < end; ++i) shapeGroup(groups[busyGroups[i]], ws);
   });

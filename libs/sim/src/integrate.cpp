@@ -29,7 +29,7 @@ void World::Impl::integrate(const core::TaskSystem& tasks) {
     agents.animPhase[row] = phase - std::floor(phase);
   };
   const std::size_t n = agents.size();
-  const std::size_t grain = grainFor(n);
+  const std::size_t grain = grainFor(n, tasks);
   const float h = desc.dt;
   const float turn = std::min(1.0f, h / kTurnTime);
   tasks.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {

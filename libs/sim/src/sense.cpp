@@ -18,7 +18,7 @@ void World::Impl::sense(const core::TaskSystem& tasks) {
   const float range = desc.steering.neighbourDistance;
   const float dense = std::min(desc.steering.denseNeighbourDistance, range);
   const float denseThreshold = desc.steering.denseThreshold;
-  tasks.parallelFor(n, grainFor(n), [&](std::size_t begin, std::size_t end) {
+  tasks.parallelFor(n, grainFor(n, tasks), [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const std::uint32_t row = grid.rowAt(i);
       const float x = grid.xAt(i), y = grid.yAt(i);

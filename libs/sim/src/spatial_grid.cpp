@@ -26,7 +26,7 @@ void SpatialGrid::rebuild(std::span<const float> posX, std::span<const float> po
   cellOfRow_.resize(n);
   size_ = n;
   rows_.assign(n + kPad, 0);
-  tasks.parallelFor(n, 4096, [&](std::size_t begin, std::size_t end) {
+  tasks.parallelFor(n, tasks.grain(4096), [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       cellOfRow_[i] = static_cast<std::uint32_t>(cellY(posY[i]) * nx_ + cellX(posX[i]));
     }
@@ -39,7 +39,7 @@ void SpatialGrid::rebuild(std::span<const float> posX, std::span<const float> po
   for (std::size_t i = 0; i < n; ++i) rows_[cursor_[cellOfRow_[i]]++] = static_cast<std::uint32_t>(i);
   cellX_.assign(n + kPad, 0.0f);
   cellY_.assign(n + kPad, 0.0f);
-  tasks.parallelFor(n, 4096, [&](std::size_t begin, std::size_t end) {
+  tasks.parallelFor(n, tasks.grain(4096), [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
       cellX_[k] = posX[rows_[k]];
       cellY_[k] = posY[rows_[k]];

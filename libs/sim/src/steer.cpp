@@ -60,14 +60,14 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
     // Partitioned (partition.cpp): only the rows this rank owns; exchangeSteer brings the rest.
     assignOwners();
     const std::size_t owned = ownedRows.size();
-    tasks.parallelFor(owned, grainFor(owned), [&](std::size_t begin, std::size_t end) {
+    tasks.parallelFor(owned, grainFor(owned, tasks), [&](std::size_t begin, std::size_t end) {
       WorkerScratch& ws = worker(tasks);
       for (std::size_t i = begin; i < end; ++i) steerRow(ownedRows[i], ws);
     });
     return;
   }
   const std::size_t n = agents.size();
-  tasks.parallelFor(n, grainFor(n), [&](std::size_t begin, std::size_t end) {
+  tasks.parallelFor(n, grainFor(n, tasks), [&](std::size_t begin, std::size_t end) {
     WorkerScratch& ws = worker(tasks);
     for (std::size_t row = begin; row < end; ++row) steerRow(row, ws);
   });

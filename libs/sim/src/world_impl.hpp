@@ -322,7 +322,9 @@ struct World::Impl {
   /// group's own stream: the same value whenever it is drawn) [m/s].
   [[nodiscard]] float groupSpeed(std::uint32_t gid) const;
   [[nodiscard]] float dt() const { return desc.dt; }
-  [[nodiscard]] std::size_t grainFor(std::size_t n) const { return n < 4096 ? 256 : 1024; }
+  [[nodiscard]] static std::size_t grainFor(std::size_t n, const core::TaskSystem& tasks) {
+    return tasks.grain(n < 4096 ? 256 : 1024);
+  }
 
   // Partition (partition.hpp, partition.cpp): the steer phase shared with other ranks. Unset
   // (exchange == nullptr), none of this is touched and steer visits every row as always.

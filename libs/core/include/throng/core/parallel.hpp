@@ -31,8 +31,20 @@ class TaskSystem {
 
   static std::size_t chunkCount(std::size_t n, std::size_t grain) { return grain == 0 ? 0 : (n + grain - 1) / grain; }
 
+  /// Caps the chunk size callers ask for through grain(): 0 (the default) leaves their grains as
+  /// they are. [limit] >= 0 [rows]. Smaller chunks spread a small crowd over every thread, which the
+  /// determinism tests use to split the work of a few hundred agents among 8 threads; results never
+  /// depend on the thread count, whatever the limit.
+  void setGrainLimit(std::size_t limit) { grainLimit_ = limit; }
+  [[nodiscard]] std::size_t grainLimit() const { return grainLimit_; }
+  /// The chunk size to use for a loop that wants `wanted` rows per chunk: min(wanted, limit).
+  [[nodiscard]] std::size_t grain(std::size_t wanted) const {
+    return grainLimit_ != 0 && grainLimit_ < wanted ? grainLimit_ : wanted;
+  }
+
  private:
   int threads_;
+  std::size_t grainLimit_ = 0;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
