@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The README's second command (and CI's): install what is missing, build everything, run the
-# whole test suite with ctest.
+# whole test suite with ctest, the viewer's JavaScript and browser tests included (a missing
+# component — node, npm, web/node_modules, web/dist, chromium — fails them; nothing is skipped).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 source "$root/scripts/deps.sh"
