@@ -40,28 +40,32 @@ throng_build() {
 }
 
 # Builds the browser viewer (web/ → web/dist/, which `throng serve` serves): `npm ci` when
-# web/node_modules is missing or older than package-lock.json, then `npm run build`. Without
-# node/npm, or when npm fails (offline), it says so and returns 0 (the C++ build and tests do not need it).
+# web/node_modules is missing or older than package-lock.json, then `npm run build`. Its tools
+# (Vite 6, playwright-core 1.61) run on Debian 12's own nodejs 18. Returns 1, saying what is missing
+# and how to get it, when node ≥ 18 or npm is not there or npm fails (offline): the viewer and its
+# tests are part of the build, and ctest fails rather than skips without them.
 throng_build_web() {
   local root="$1"
   local web="$root/web"
   if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
-    echo "throng: node/npm not found: the browser viewer (web/dist) is not built (apt-get install nodejs npm)"
-    return 0
+    echo "throng: error: node/npm not found: the browser viewer (web/dist) cannot be built; install them with: apt-get install nodejs npm" >&2
+    return 1
   fi
-  # Vite 8 and playwright-core need node ≥ 20.19 (Debian 12's own nodejs is 18).
-  if ! node -e 'const [a,b]=process.versions.node.split(".").map(Number); process.exit(a>20||(a===20&&b>=19)?0:1)'; then
-    echo "throng: node $(node --version) is too old for the viewer's build (needs ≥ 20.19, e.g. NodeSource's nodejs): web/dist is not built"
-    return 0
+  if ! node -e 'process.exit(Number(process.versions.node.split(".")[0]) >= 18 ? 0 : 1)'; then
+    echo "throng: error: node $(node --version) is too old for the browser viewer's build (needs 18 or newer; Debian 12's nodejs is 18.20): apt-get install nodejs" >&2
+    return 1
   fi
   if [ ! -d "$web/node_modules" ] || [ "$web/package-lock.json" -nt "$web/node_modules" ]; then
     echo "throng: installing the viewer's npm packages (npm ci in web/)"
     if ! (cd "$web" && npm ci --no-audit --no-fund); then
-      echo "throng: npm ci failed in web/ (offline?): the browser viewer is not built; the rest goes on"
-      return 0
+      echo "throng: error: npm ci failed in web/ (see above; offline? it needs the npm registry once): the browser viewer cannot be built" >&2
+      return 1
     fi
     touch "$web/node_modules"
   fi
   echo "throng: building the browser viewer (web/dist)"
-  (cd "$web" && npm run build --silent) || echo "throng: the browser viewer's build failed (see above); the rest goes on"
+  if ! (cd "$web" && npm run build --silent); then
+    echo "throng: error: the browser viewer's build failed (see above): web/dist is not built" >&2
+    return 1
+  fi
 }

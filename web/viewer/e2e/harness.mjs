@@ -1,5 +1,5 @@
 // Shared plumbing of the viewer's end-to-end tests (viewer.e2e.test.mjs, replay.e2e.test.mjs):
-// what is missing to run them (→ SKIPPED), starting and stopping the built `throng serve`
+// what is missing to run them (→ the test fails saying so), starting and stopping the built `throng serve`
 // (THRONG_EXE) on 127.0.0.1 and reading the viewer URL it prints, launching Debian's headless
 // chromium (playwright-core, SwiftShader) and opening the viewer with page errors collected.
 // Reads THRONG_EXE, THRONG_CHROMIUM (default /usr/bin/chromium); downloads nothing.
@@ -21,6 +21,12 @@ export function missing() {
   if (!fs.existsSync(path.join(webRoot, 'dist', 'index.html'))) return 'web/dist missing: run `cd web && npm run build`';
   if (!fs.existsSync(chromiumPath)) return `${chromiumPath} missing: apt-get install chromium`;
   return null;
+}
+
+/** Throws (the test fails, it is never skipped) naming what is missing and how to get it. */
+export function requirePrerequisites(what) {
+  const why = missing();
+  if (why) throw new Error(`${what} cannot run: ${why} (scripts/test.sh installs, builds and runs everything)`);
 }
 
 export const sleep = (ms) => new Promise((r) => setTimeout(r, ms));

@@ -5,14 +5,11 @@
 // within 40 s, some agent between the floors (on the stairs or the ramp); the picture is not blank;
 // a participant who joins stands on the terrain's walking surface, at a height from 0 to 3 m (the
 // server's /api/status sees the participant). Run: THRONG_EXE=build/apps/throng/throng node --test
-// web/viewer/e2e/. Skips (prints "SKIPPED: …") like the other e2e tests.
+// web/viewer/e2e/levels.e2e.test.mjs. Fails, like the other e2e tests, when something it needs is missing.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
-import { repo, missing, startServer, stopServer, launchBrowser, openViewer, sleep } from './harness.mjs';
-
-const skip = missing();
-if (skip) console.log(`SKIPPED: levels e2e: ${skip}`);
+import { repo, requirePrerequisites, startServer, stopServer, launchBrowser, openViewer, sleep } from './harness.mjs';
 
 /** Heights of the agents the viewer holds now. */
 function heights(page) {
@@ -22,7 +19,8 @@ function heights(page) {
   });
 }
 
-test('viewer shows a two-floor world with agents at their heights', { skip: skip ? `SKIPPED: ${skip}` : false, timeout: 90000 }, async () => {
+test('viewer shows a two-floor world with agents at their heights', { timeout: 90000 }, async () => {
+  requirePrerequisites('levels e2e');
   const server = await startServer(path.join(repo, 'scenarios/two_floors.gltf'));
   const browser = await launchBrowser();
   const errors = [];

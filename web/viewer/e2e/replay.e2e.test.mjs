@@ -4,18 +4,15 @@
 // recording's duration (ReplayStatus); playing, the time advances and crowd frames arrive with
 // agents drawn; Pause stops the time (and the crowd); scrubbing to a time jumps there (status time,
 // frame ticks and positions — the same positions each time that moment is sought); a faster speed
-// makes the time run faster. Run: THRONG_EXE=build/apps/throng/throng node --test web/viewer/e2e/
-// Skips (prints "SKIPPED: …", passes) without THRONG_EXE, web/node_modules, web/dist or chromium.
+// makes the time run faster. Run: THRONG_EXE=build/apps/throng/throng node --test web/viewer/e2e/replay.e2e.test.mjs
+// Fails (never skips) without THRONG_EXE, web/node_modules, web/dist or chromium, saying which.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { exe, repo, missing, sleep, startServer, stopServer, launchBrowser, openViewer } from './harness.mjs';
-
-const skip = missing();
-if (skip) console.log(`SKIPPED: replay e2e: ${skip}`);
+import { exe, repo, requirePrerequisites, sleep, startServer, stopServer, launchBrowser, openViewer } from './harness.mjs';
 
 /** The page's view of the replay: last status, its log (with receipt times) and the last frame. */
 function probe(page) {
@@ -63,7 +60,8 @@ async function frameAfter(page, frames) {
   return probe(page);
 }
 
-test('viewer replays a recording from throng serve FILE.sqlite', { skip: skip ? `SKIPPED: ${skip}` : false, timeout: 60000 }, async () => {
+test('viewer replays a recording from throng serve FILE.sqlite', { timeout: 60000 }, async () => {
+  requirePrerequisites('replay e2e');
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'throng-replay-e2e-'));
   const file = path.join(dir, 'museum.sqlite');
   const rec = spawnSync(exe, ['run', path.join(repo, 'scenarios/museum.json'), '--duration', '20', '--out', file, '--quiet'],

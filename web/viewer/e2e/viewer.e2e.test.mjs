@@ -7,8 +7,8 @@
 // and releases it; a second viewer sees the first one's avatar (relayed Move), its name label
 // (Presence) and its wave (relayed Joints, back to idle 1 s after the gesture); stopping the server
 // (SIGINT) shows the reconnect banner; a server started again on the same port gets the viewer back,
-// joined under the same name. Run: THRONG_EXE=build/apps/throng/throng node --test web/viewer/e2e/
-// Skips (prints "SKIPPED: …", exits 0) without THRONG_EXE, web/node_modules, web/dist or chromium;
+// joined under the same name. Run: THRONG_EXE=build/apps/throng/throng node --test web/viewer/e2e/viewer.e2e.test.mjs
+// Fails (never skips) without THRONG_EXE, web/node_modules, web/dist or chromium, saying which;
 // downloads nothing. THRONG_CHROMIUM overrides /usr/bin/chromium; THRONG_E2E_SHOTS=DIR keeps screenshots.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -31,9 +31,6 @@ function missing() {
   if (!fs.existsSync(chromiumPath)) return `${chromiumPath} missing: apt-get install chromium`;
   return null;
 }
-
-const skip = missing();
-if (skip) console.log(`SKIPPED: viewer e2e: ${skip}`);
 
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
@@ -102,7 +99,9 @@ function groupDistance(page, group) {
   }, group);
 }
 
-test('viewer against a real throng serve', { skip: skip ? `SKIPPED: ${skip}` : false, timeout: 150000 }, async () => {
+test('viewer against a real throng serve', { timeout: 150000 }, async () => {
+  const why = missing();
+  if (why) throw new Error(`viewer e2e cannot run: ${why} (scripts/test.sh installs, builds and runs everything)`);
   const { chromium } = await import('playwright-core');
   const server = await startServer();
   let browser, server2 = null;
