@@ -236,9 +236,16 @@ test('viewer against a real throng serve', { timeout: 150000 }, async () => {
     const guiding = (await apiStatus(server)).perClient.find((c) => c.participant);
     assert.deepEqual(guiding.guiding, [group], `/api/status: ${JSON.stringify(guiding)}`);
     const d0 = await groupDistance(page, group);
-    await sleep(6000);
-    const d1 = await groupDistance(page, group);
-    assert.ok(d1.mean < d0.mean - 1.5 || d1.mean < Math.min(2.5, d0.mean),
+    // About 6 s of walking on an idle machine; a loaded one (CI, 2 cores) runs the server's ticks and
+    // the browser's frames late, so wait up to 30 s for the group to come 1.5 m nearer (or within
+    // 2.5 m). A group that does not follow never gets there.
+    const came = (d) => d.mean < d0.mean - 1.5 || d.mean < Math.min(2.5, d0.mean);
+    let d1 = await groupDistance(page, group);
+    for (const until = Date.now() + 30000; !came(d1) && Date.now() < until;) {
+      await sleep(500);
+      d1 = await groupDistance(page, group);
+    }
+    assert.ok(came(d1),
       `group ${group} follows the avatar: mean distance ${d0.mean.toFixed(2)} m → ${d1.mean.toFixed(2)} m`);
     if (shotsDir) await page.screenshot({ path: path.join(shotsDir, 'e2e_guide.png') });
 
