@@ -10,6 +10,8 @@
 
 #include "gltf_scene.hpp"
 
+#include "confined_path.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -223,11 +225,7 @@ struct Confinement {
 constexpr std::uintmax_t kMaxExternalFile = 512ull << 20;  // [bytes]
 
 bool confined(const std::string& file, Confinement& c) {
-  std::error_code ec;
-  const std::filesystem::path p = std::filesystem::weakly_canonical(std::filesystem::path(file), ec);
-  if (ec) return false;
-  const auto rel = p.lexically_relative(c.root);
-  const bool inside = !rel.empty() && *rel.begin() != ".." && !rel.is_absolute();
+  const bool inside = detail::insideDirectory(c.root, std::filesystem::path(file));
   if (!inside && c.refused.empty()) c.refused = file;
   return inside;
 }
@@ -287,10 +285,7 @@ bool readGltfScene(const std::string& bytes, const std::string& source, const st
   loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
   Confinement confinement;
   confinement.baseDir = baseDir;
-  {
-    std::error_code ec;
-    confinement.root = std::filesystem::weakly_canonical(std::filesystem::path(baseDir.empty() ? "." : baseDir), ec);
-  }
+  confinement.root = detail::canonicalDirectory(baseDir);
   loader.SetFsCallbacks({&confinedExists, &noExpansion, &confinedRead, &neverWrite, &confinement});
   tinygltf::Model model;
   std::string err, warn;
