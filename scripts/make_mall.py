@@ -440,8 +440,6 @@ def build_scenario(seed, core_only=False, probe=False):
             "needs": [{"category": "restroom", "rate": 0.0008, "expectedVisit": 120}],
             "attraction": {"probability": 0.08, "expectedVisit": 60},
             "coordination": {"turnRate": 3.0, "responseTimeout": 2.0, "maxAttempts": 3},
-            "microBehaviours": "../data/social/micro_behaviours.json",
-            "macroPlans": "../data/social/macro_plans.json",
             "motions": "motions"}
     stats = {"group sizes": sizes, "solo populations": solos, "tour lengths": tour_lengths, "mall": mall}
     return scenario, stats

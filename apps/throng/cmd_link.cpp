@@ -58,7 +58,9 @@ class FrameWriter {
   FrameWriter(link::Segment& segment, const hub::MotionLibrary& motions) : segment_(segment), motions_(motions) {}
 
   void write(const sim::Frame& frame, const sim::World& world, const std::vector<std::uint32_t>& detailIds) {
-    throng_link_header& h = segment_.header();
+    // Capacities from the segment's own copy of the layout, never from the shared header.
+    const std::uint32_t maxAgents = segment_.maxAgents(), maxDetailed = segment_.maxDetailed();
+    const std::uint32_t joints = segment_.jointCount();
     // Stable group of each agent (ids are spawn order, groups 0 .. groupCount - 1).
     const std::size_t groups = world.groupCount();
     groupOf_.assign(world.stats().spawned, 0xffffffffu);
@@ -70,8 +72,8 @@ class FrameWriter {
       }
     }
     throng_link_frame& f = segment_.beginFrame();
-    const std::uint32_t n = static_cast<std::uint32_t>(std::min<std::size_t>(frame.size(), h.max_agents));
-    throng_link_agent* agents = throng_link_frame_agents(&h, &f);
+    const std::uint32_t n = static_cast<std::uint32_t>(std::min<std::size_t>(frame.size(), maxAgents));
+    throng_link_agent* agents = segment_.agents(f);
     for (std::uint32_t i = 0; i < n; ++i) {
       throng_link_agent& a = agents[i];
       a.id = frame.ids[i];
@@ -88,19 +90,19 @@ class FrameWriter {
     // Joint angles of the agents the host wants in full detail (present ones, in its order).
     std::uint32_t detailed = 0;
     for (std::uint32_t id : detailIds) {
-      if (detailed >= h.max_detailed) break;
+      if (detailed >= maxDetailed) break;
       const auto it = std::lower_bound(frame.ids.begin(), frame.ids.end(), id);
       if (it == frame.ids.end() || *it != id) continue;
       const std::size_t row = static_cast<std::size_t>(it - frame.ids.begin());
-      throng_link_detailed* d = throng_link_frame_detailed(&h, &f, detailed++);
+      throng_link_detailed* d = segment_.detailed(f, detailed++);
       d->id = id;
-      d->joint_count = h.joint_count;
+      d->joint_count = joints;
       d->clip = frame.clip[row];
       d->reserved0 = 0;
       d->phase = frame.phase[row];
-      if (h.joint_count > 0) {
+      if (joints > 0) {
         motions_.sample(frame.clip[row], frame.phase[row],
-                        std::span<float>(throng_link_detailed_angles(d), std::size_t{3} * h.joint_count));
+                        std::span<float>(throng_link_detailed_angles(d), std::size_t{3} * joints));
       }
     }
     f.tick = frame.tick;
@@ -109,7 +111,7 @@ class FrameWriter {
     f.total_agents = static_cast<std::uint32_t>(frame.size());
     f.detailed_count = detailed;
     f.group_count = static_cast<std::uint32_t>(groups);
-    f.flags = frame.size() > h.max_agents ? THRONG_LINK_FRAME_TRUNCATED : 0u;
+    f.flags = frame.size() > maxAgents ? THRONG_LINK_FRAME_TRUNCATED : 0u;
     segment_.publishFrame();
   }
 
@@ -119,23 +121,27 @@ class FrameWriter {
   std::vector<std::uint32_t> groupOf_;
 };
 
-/// Applies the host's avatars and guides to the World; remembers which groups it guides.
+/// Applies the host's avatars and guides to the World; remembers which groups it guides. What the
+/// host wrote was checked by Segment::readInput: unusable avatars are left out and said once.
 class HostInputApplier {
  public:
   void apply(const link::HostInput& in, sim::World& world) {
+    for (const std::string& problem : in.problems) warn(problem);
     std::vector<core::Vec2> viewers;
     viewers.reserve(in.avatars.size());
-    for (const throng_link_avatar& a : in.avatars) viewers.push_back({a.x, a.y});
+    for (std::size_t i = 0; i < in.avatars.size(); ++i) {
+      if (in.avatarUsable[i]) viewers.push_back({in.avatars[i].x, in.avatars[i].y});
+    }
     world.setViewers(std::move(viewers));
     std::set<std::uint32_t> now;
     for (const throng_link_guide& g : in.guides) {
       if (!g.active) continue;
       const sim::GroupId handle = world.groupById(g.group);
-      if (handle.isNull() || g.avatar >= in.avatars.size()) {
-        if (warned_.insert(g.group).second) {
-          printLine(stderr, fmt::format("throng link: warning: guide record for group {} ignored: {}", g.group,
-                                        handle.isNull() ? "no such group" : "its avatar index is past the avatar count"));
-        }
+      if (handle.isNull() || g.avatar >= in.avatars.size() || !in.avatarUsable[g.avatar]) {
+        warn(fmt::format("guide record for group {} ignored: {}", g.group,
+                         handle.isNull()                      ? "no such group"
+                         : g.avatar >= in.avatars.size() ? "its avatar index is past the avatar count"
+                                                              : "its avatar's position is not usable"));
         continue;
       }
       world.guide(handle, {in.avatars[g.avatar].x, in.avatars[g.avatar].y}, in.avatars[g.avatar].z);
@@ -154,8 +160,15 @@ class HostInputApplier {
   }
 
  private:
+  /// Each distinct warning once, at most kMaxWarnings in all (a host writing garbage every tick
+  /// must not flood the terminal).
+  void warn(const std::string& text) {
+    static constexpr std::size_t kMaxWarnings = 20;
+    if (warned_.size() > kMaxWarnings || !warned_.insert(text).second) return;
+    printLine(stderr, "throng link: warning: " + (warned_.size() > kMaxWarnings ? std::string("further warnings about the host's input are not shown") : text));
+  }
   std::set<std::uint32_t> guided_;
-  std::set<std::uint32_t> warned_;
+  std::set<std::string> warned_;
 };
 
 /// A crowd file's text (at most 4 MiB), or nothing when it cannot be read.
@@ -376,6 +389,13 @@ int runLink(const LinkOptions& options) {
     if (InterruptGuard::requested()) {
       endReason = "interrupted (Ctrl-C)";
       exitCode = kExitInterrupted;
+      break;
+    }
+    // The layout is this process's own copy, so a damaged header cannot make it crash; but hosts
+    // address the segment through the header, so a damaged one ends the link.
+    if (const auto why = segment->damaged()) {
+      endReason = "the segment's header was overwritten (" + *why + "): stopped";
+      exitCode = kExitFailure;
       break;
     }
     if (options.duration && secondsSince(start) >= *options.duration) break;

@@ -77,13 +77,14 @@ struct RankPlan {
 };
 
 
-enum class RunEnd { Duration, Finished, Interrupted };
+enum class RunEnd { Duration, Finished, Interrupted, WriteError };
 
 const char* endName(RunEnd end) {
   switch (end) {
     case RunEnd::Duration: return "duration";
     case RunEnd::Finished: return "finished";
     case RunEnd::Interrupted: return "interrupted";
+    case RunEnd::WriteError: return "write error";
   }
   return "?";
 }
@@ -114,6 +115,13 @@ LoopResult simulate(sim::World& world, io::Recorder* recorder, const core::TaskS
                                               : atFrame && ranks.anyRank(InterruptGuard::requested());
     if (interrupted) {
       result.end = RunEnd::Interrupted;
+      break;
+    }
+    // The first failed write (disk full, file too large) ends the run: nothing after it could be
+    // recorded. Under MPI rank 0 tells the others at the next frame tick.
+    const bool writeFailed = recorder != nullptr && recorder->failed();
+    if (ranks.ranks == 1 ? writeFailed : atFrame && ranks.anyRank(writeFailed)) {
+      result.end = RunEnd::WriteError;
       break;
     }
     if (atFrame && world.finished()) {
@@ -384,12 +392,17 @@ int runOn(const RunOptions& options, const RankPlan& ranks, sim::StepExchange* e
                     options.phaseTimes ? &phaseTimer : nullptr);
   }
   if (recorder) {
-    const core::Status closed = recorder->close(loop.end != RunEnd::Interrupted);
+    const core::Status closed = recorder->close(loop.end != RunEnd::Interrupted && loop.end != RunEnd::WriteError);
     if (!closed) {
       printDiagnostics(closed.errors());
+      printLine(stderr, fmt::format("throng: {} at t = {:.2f} s; {} holds the {} frames written before the error and "
+                                    "is marked not completed",
+                                    loop.end == RunEnd::WriteError ? "stopped at the first write error" : "the recording failed",
+                                    (*world)->stats().time, recording.path, recorder->framesWritten()));
       return kExitFailure;
     }
   }
+  if (loop.end == RunEnd::WriteError) return kExitFailure;  // another rank's recorder failed (MPI)
 
   summary.scenario = desc.name;
   summary.seed = desc.seed;

@@ -237,6 +237,68 @@ std::string toGlb(json g) {
   return out;
 }
 
+TEST(GltfWorld, NodeCyclesAreErrorsNamingTheNode) {
+  // A node that is its own child (the gallery's lamp).
+  json g = gallery();
+  node(g, "Lamp")["children"] = {12};
+  std::string e = errorsOf(g);
+  EXPECT_NE(e.find("world.gltf /nodes/12/children/0: node 12 \"Lamp\" is its own ancestor (children cycle 12 → 12); "
+                   "expected a node hierarchy without cycles (a tree)"),
+            std::string::npos)
+      << e;
+  // Two nodes that are each other's child, neither in the scene (a cycle is found wherever it is).
+  g = gallery();
+  g["scenes"][0]["nodes"] = json::array({0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10});
+  node(g, "crowd:tour")["children"] = {12};
+  node(g, "Lamp")["children"] = {11};
+  e = errorsOf(g);
+  EXPECT_NE(e.find("node 11 \"crowd:tour\" is its own ancestor (children cycle 11 → 12 → 11)"), std::string::npos) << e;
+  EXPECT_NE(e.find("world.gltf /nodes/12/children/0: "), std::string::npos) << e;
+  // A node with two parents, a scene root that is someone's child, a child that does not exist.
+  g = gallery();
+  node(g, "walkable_hall")["children"] = {12};
+  node(g, "walkable_wing")["children"] = {12, 40};
+  e = errorsOf(g);
+  EXPECT_NE(e.find("/nodes/1/children/0: node 12 \"Lamp\" is a child of node 0 \"walkable_hall\" already, and of node 1 "
+                   "\"walkable_wing\"; expected each node a child of at most one node (a tree)"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find("/nodes/1/children/1: node 1 \"walkable_wing\" names child 40, which does not exist; expected a node index 0 … 12"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find("/scenes/0/nodes/12: scene 0 names node 12 \"Lamp\" as a root, but it is a child of node 0"), std::string::npos) << e;
+}
+
+TEST(GltfWorld, ABadSceneIndexIsAnError) {
+  json g = gallery();
+  g["scene"] = 3;
+  std::string e = errorsOf(g);
+  EXPECT_NE(e.find("world.gltf /scene: scene 3 does not exist (the file has 1 scene); expected a scene index 0 … 0"),
+            std::string::npos)
+      << e;
+  g["scene"] = -2;
+  EXPECT_NE(errorsOf(g).find("/scene: scene -2 does not exist"), std::string::npos) << errorsOf(g);
+  g = gallery();
+  g["scenes"][0]["nodes"].push_back(99);
+  e = errorsOf(g);
+  EXPECT_NE(e.find("world.gltf /scenes/0/nodes/13: scene 0 names node 99, which does not exist; expected a node index 0 … 12"),
+            std::string::npos)
+      << e;
+}
+
+TEST(GltfWorld, NestingDeeperThan64LevelsIsAnError) {
+  json g = gallery();
+  const std::size_t first = g["nodes"].size();
+  for (std::size_t i = 0; i < 70; ++i) {
+    json n = {{"name", "level" + std::to_string(i)}};
+    if (i + 1 < 70) n["children"] = {first + i + 1};
+    g["nodes"].push_back(n);
+  }
+  g["scenes"][0]["nodes"].push_back(first);
+  const std::string e = errorsOf(g);
+  EXPECT_NE(e.find("is nested more than 64 levels deep; expected at most 64 levels of child nodes"), std::string::npos) << e;
+}
+
 TEST(GltfWorld, GlbLoadsLikeGltf) {
   const auto r = io::parseWorld(toGlb(gallery()), "gallery.glb");
   ASSERT_TRUE(r.ok()) << throng::core::formatAll(r.errors());

@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <thread>
 #include <vector>
@@ -417,6 +418,34 @@ TEST(Recorder, NonFinitePositionIsAWriteError) {
   ASSERT_FALSE(st.ok());
   EXPECT_NE(st.errors()[0].what.find("not finite"), std::string::npos) << core::formatAll(st.errors());
   Db db(path);  // still a valid file, marked incomplete
+  EXPECT_EQ(db.one("SELECT value FROM metadata WHERE key = 'throng_completed'"), "0");
+}
+
+TEST(Recorder, FailedIsSaidAtTheFirstWriteErrorNotOnlyAtClose) {
+  // The app polls failed() to stop simulating at once (throng run); frames pushed after it are dropped.
+  TempDir dir;
+  const std::string path = dir.file("out.sqlite");
+  RecordingOptions options = optionsFor(path);
+  options.framesPerBatch = 2;
+  auto rec = openOk(bottleneck(), options);
+  ASSERT_NE(rec, nullptr);
+  for (std::uint64_t f = 0; f < 4; ++f) rec->push(makeFrame(f, 2));  // two batches committed
+  EXPECT_FALSE(rec->failed());
+  auto bad = std::make_shared<sim::Frame>(*makeFrame(4, 2));
+  bad->posY[0] = std::numeric_limits<float>::infinity();
+  rec->push(bad);
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (!rec->failed() && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_TRUE(rec->failed()) << "failed() must turn true without close()";
+  EXPECT_EQ(rec->framesWritten(), 4u);
+  for (std::uint64_t f = 5; f < 9; ++f) rec->push(makeFrame(f, 2));  // dropped, never blocks
+  const core::Status st = rec->close(false);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.errors()[0].what.find("frame 4 agent 0: position or orientation is not finite"), std::string::npos)
+      << core::formatAll(st.errors());
+  EXPECT_FALSE(fs::exists(path + "-wal"));
+  Db db(path);
+  EXPECT_EQ(db.one("SELECT count(*) FROM throng_frames"), "4");
   EXPECT_EQ(db.one("SELECT value FROM metadata WHERE key = 'throng_completed'"), "0");
 }
 

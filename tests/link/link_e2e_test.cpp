@@ -9,6 +9,8 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <sstream>
 #include <thread>
 
@@ -65,11 +67,11 @@ class Process {
   [[nodiscard]] std::string out() const { return readFile(out_); }
   [[nodiscard]] std::string err() const { return readFile(err_); }
   void signal(int sig) const { kill(pid_, sig); }
-  /// Waits until stdout contains `text` (true) or `limit` passed.
-  bool waitFor(const std::string& text, std::chrono::milliseconds limit = 10s) const {
+  /// Waits until stdout (stderr with `onStderr`) contains `text` (true) or `limit` passed.
+  bool waitFor(const std::string& text, std::chrono::milliseconds limit = 10s, bool onStderr = false) const {
     const auto end = std::chrono::steady_clock::now() + limit;
     while (std::chrono::steady_clock::now() < end) {
-      if (out().find(text) != std::string::npos) return true;
+      if ((onStderr ? err() : out()).find(text) != std::string::npos) return true;
       std::this_thread::sleep_for(20ms);
     }
     return false;
@@ -111,9 +113,29 @@ class LinkE2E : public ::testing::Test {
     if (fd >= 0) close(fd);
     return fd >= 0;
   }
-  std::unique_ptr<Process> throng(std::vector<std::string> args) {
+  std::unique_ptr<Process> throng(std::vector<std::string> args, const std::string& tag = "throng") {
     args.insert(args.begin(), "link");
-    return std::make_unique<Process>(THRONG_EXE, args, dir_, "throng");
+    return std::make_unique<Process>(THRONG_EXE, args, dir_, tag);
+  }
+  /// Attaches to `segment` as a host would (throng_link_attach, a heartbeat and one input).
+  static bool attachAsHost(throng_link& link, const std::string& segment, Process& crowd) {
+    char error[512];
+    if (throng_link_open(&link, segment.c_str(), 5000, error, sizeof error) != 0) {
+      ADD_FAILURE() << error;
+      return false;
+    }
+    throng_link_attach(&link);
+    const throng_link_avatar avatar{7, 5.0f, 5.0f, 0.0f, 0.0f};
+    throng_link_write_input(&link, &avatar, 1, nullptr, 0, nullptr, 0);
+    return crowd.waitFor("host attached");
+  }
+  /// Keeps the host's heartbeat going for `time`.
+  static void beatFor(throng_link& link, std::chrono::milliseconds time) {
+    const auto end = std::chrono::steady_clock::now() + time;
+    while (std::chrono::steady_clock::now() < end) {
+      throng_link_host_beat(&link);
+      std::this_thread::sleep_for(20ms);
+    }
   }
   std::unique_ptr<Process> host(const std::vector<std::string>& args) {
     return std::make_unique<Process>(THRONG_LINK_HOST_EXE, args, dir_, "host");
@@ -263,6 +285,82 @@ TEST_F(LinkE2E, AnExistingSegmentIsRefusedUnlessForced) {
   EXPECT_NE(second->err().find("exists already"), std::string::npos) << second->err();
   first->signal(SIGINT);
   EXPECT_EQ(first->wait(10s), 130);
+}
+
+TEST_F(LinkE2E, ADamagedHeaderStopsTheCrowdCleanly) {
+  // A host (buggy or hostile) overwrites a field of the header while the crowd runs. The crowd
+  // addresses the segment from its own copy of the layout, so nothing it reads or writes moves;
+  // it notices, says which field, stops with exit 1 and removes the segment. (These used to be
+  // SIGSEGV, leaving the segment in /dev/shm.)
+  const std::vector<std::pair<std::string, std::function<void(throng_link_header&)>>> damages = {
+      {"frame_offset[1]", [](throng_link_header& h) { h.frame_offset[1] = std::uint64_t{1} << 40; }},
+      {"max_avatars",
+       [](throng_link_header& h) {
+         throng_link_input_of(&h)->avatar_count = 0xffffffffu;  // the count a too-large capacity lets through
+         h.max_avatars = 0xffffffffu;
+       }},
+      {"host_offset", [](throng_link_header& h) { h.host_offset = std::uint64_t{1} << 40; }},
+      {"max_detailed", [](throng_link_header& h) { h.max_detailed = 0xffffffffu; }},
+      {"the magic", [](throng_link_header& h) { h.magic = 0; }},
+      {"the layout version", [](throng_link_header& h) { h.version = 99; }},
+  };
+  for (std::size_t i = 0; i < damages.size(); ++i) {
+    const auto& [field, damage] = damages[i];
+    SCOPED_TRACE(field);
+    const std::string segment = name() + "-" + std::to_string(i);
+    auto t = throng({"--shm", segment, kScenario, "--tick", "40", "--host-timeout", "30"}, "throng" + std::to_string(i));
+    ASSERT_TRUE(t->waitFor("waiting for a host")) << t->out() << t->err();
+    throng_link link{};
+    ASSERT_TRUE(attachAsHost(link, segment, *t)) << t->out() << t->err();
+    beatFor(link, 200ms);  // a few ticks with the host's input applied
+    damage(*link.header);
+    EXPECT_EQ(t->wait(10s), 1) << t->out() << t->err();
+    EXPECT_NE(t->err().find("the segment's header was overwritten (" + field + " is "), std::string::npos) << t->err();
+    EXPECT_NE(t->err().find("segment " + segment + " removed"), std::string::npos) << t->err();
+    EXPECT_EQ(__atomic_load_n(&link.header->crowd_state, __ATOMIC_ACQUIRE), THRONG_LINK_CROWD_STOPPED);
+    EXPECT_NE(std::string(link.header->message).find("overwritten"), std::string::npos) << link.header->message;
+    munmap(link.header, link.size);
+    const int fd = shm_open(segment.c_str(), O_RDONLY, 0);
+    EXPECT_LT(fd, 0) << "the segment is removed";
+    if (fd >= 0) {
+      close(fd);
+      shm_unlink(segment.c_str());
+    }
+  }
+}
+
+TEST_F(LinkE2E, TheHostsInputIsCheckedBeforeUse) {
+  // Counts past the capacities and avatars that are not finite numbers are refused with a
+  // warning (once each); the crowd runs on and ends normally when the host detaches.
+  auto t = throng({"--shm", name(), kScenario, "--tick", "40", "--host-timeout", "30"});
+  ASSERT_TRUE(t->waitFor("waiting for a host")) << t->out() << t->err();
+  throng_link link{};
+  ASSERT_TRUE(attachAsHost(link, name(), *t)) << t->out() << t->err();
+  throng_link_header& h = *link.header;
+  throng_link_input* in = throng_link_input_of(&h);
+  const std::uint64_t seq = __atomic_load_n(&in->seq, __ATOMIC_RELAXED);
+  __atomic_store_n(&in->seq, seq + 1, __ATOMIC_RELEASE);
+  throng_link_input_avatars(&h)[0] = {7, std::numeric_limits<float>::quiet_NaN(), 5.0f, 0.0f, 0.0f};
+  throng_link_input_avatars(&h)[1] = {8, 5.0f, std::numeric_limits<float>::infinity(), 0.0f, 0.0f};
+  throng_link_input_guides(&h)[0] = {0, 0, 1, 0};
+  in->avatar_count = 1000;  // more than --max-avatars (16)
+  in->guide_count = 1;
+  in->detail_count = 0;
+  __atomic_store_n(&in->seq, seq + 2, __ATOMIC_RELEASE);
+  for (const std::string expected :
+       {"warning: avatar_count 1000 is more than max_avatars 16: only the first 16 are read",
+        "warning: avatar 0 (id 7) has a position or heading that is not a finite number within 1000000 m: ignored",
+        "warning: avatar 1 (id 8) has a position or heading",
+        "warning: guide record for group 0 ignored: its avatar's position is not usable"}) {
+    EXPECT_TRUE(t->waitFor(expected, 5s, true)) << expected << "\n" << t->err();
+  }
+  beatFor(link, 300ms);
+  __atomic_store_n(&h.host_state, THRONG_LINK_HOST_DETACHED, __ATOMIC_RELEASE);
+  EXPECT_EQ(t->wait(10s), 0) << t->out() << t->err();
+  const std::string err = t->err();
+  EXPECT_EQ(err.find("avatar_count 1000"), err.rfind("avatar_count 1000")) << "said once:\n" << err;
+  munmap(link.header, link.size);
+  EXPECT_FALSE(segmentExists());
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <limits>
 #include <thread>
 
 #include <unistd.h>
@@ -198,6 +199,54 @@ TEST(LinkSegment, AnExistingNameIsRefusedUnlessForced) {
   first.value().reset();
   EXPECT_NE(throng_link_open(&link, uniqueName("twice").c_str(), 50, error, sizeof error), 0);
   EXPECT_NE(std::string(error).find("no throng link segment"), std::string::npos) << error;
+}
+
+TEST(LinkSegment, ADamagedHeaderIsNamedAndNeverFollowed) {
+  auto segment = makeSegment("damaged");
+  ASSERT_TRUE(segment);
+  EXPECT_FALSE(segment->damaged());
+  throng_link_header& h = segment->header();
+  // Input past the capacities and not finite: cut and marked, never read beyond the region.
+  throng_link_input* in = throng_link_input_of(&h);
+  throng_link_input_avatars(&h)[0] = {1, std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f, 0.0f};
+  throng_link_input_avatars(&h)[1] = {2, 3.0f, 4.0f, 0.0f, 0.5f};
+  in->avatar_count = 0xffffffffu;
+  in->guide_count = 5;
+  in->detail_count = 0xffffffffu;
+  h.max_avatars = 0xffffffffu;  // the old reader cut counts to these
+  h.max_detailed = 0xffffffffu;
+  auto input = segment->readInput();
+  ASSERT_TRUE(input);
+  EXPECT_EQ(input->avatars.size(), 4u);
+  EXPECT_EQ(input->guides.size(), 4u);
+  EXPECT_EQ(input->detailIds.size(), 2u);
+  ASSERT_EQ(input->avatarUsable.size(), 4u);
+  EXPECT_FALSE(input->avatarUsable[0]);
+  EXPECT_TRUE(input->avatarUsable[1]);
+  ASSERT_GE(input->problems.size(), 4u);
+  EXPECT_EQ(input->problems[0], "avatar_count 4294967295 is more than max_avatars 4: only the first 4 are read");
+  EXPECT_EQ(input->problems[1], "guide_count 5 is more than max_guides 4: only the first 4 are read");
+  EXPECT_EQ(input->problems[3], "avatar 0 (id 1) has a position or heading that is not a finite number within 1000000 m: ignored");
+  const auto why = segment->damaged();
+  ASSERT_TRUE(why);
+  EXPECT_EQ(*why, "max_detailed is 4294967295, this crowd process wrote 2");  // the first field that differs
+  // Frames are written where the crowd put them, whatever the header says now.
+  h.max_avatars = 4;
+  h.max_detailed = 2;
+  const std::uint64_t frame1 = h.frame_offset[1];
+  h.frame_offset[1] = std::uint64_t{1} << 40;
+  writeFrame(*segment, 1);  // the test's writer reads the header: the same capacities as the segment
+  writeFrame(*segment, 2);
+  EXPECT_EQ(*segment->damaged(), "frame_offset[1] is 1099511627776, this crowd process wrote " + std::to_string(frame1));
+  h.frame_offset[1] = frame1;
+  EXPECT_EQ(reinterpret_cast<throng_link_frame*>(reinterpret_cast<unsigned char*>(&h) + frame1)->tick, 2u);
+  // A request ring the host ran past its size is not read.
+  h.requests_written = 1000;
+  EXPECT_FALSE(segment->takeRequest());
+  EXPECT_EQ(*segment->damaged(), "requests_written is 1000 but 0 requests were taken and the ring holds 4");
+  h.requests_written = 0;
+  h.magic = 0;
+  EXPECT_EQ(*segment->damaged(), "the magic is 0, this crowd process wrote " + std::to_string(THRONG_LINK_MAGIC));
 }
 
 }  // namespace

@@ -10,6 +10,9 @@
 
 #include "gltf_scene.hpp"
 
+#include "confined_path.hpp"
+
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -223,11 +226,7 @@ struct Confinement {
 constexpr std::uintmax_t kMaxExternalFile = 512ull << 20;  // [bytes]
 
 bool confined(const std::string& file, Confinement& c) {
-  std::error_code ec;
-  const std::filesystem::path p = std::filesystem::weakly_canonical(std::filesystem::path(file), ec);
-  if (ec) return false;
-  const auto rel = p.lexically_relative(c.root);
-  const bool inside = !rel.empty() && *rel.begin() != ".." && !rel.is_absolute();
+  const bool inside = detail::insideDirectory(c.root, std::filesystem::path(file));
   if (!inside && c.refused.empty()) c.refused = file;
   return inside;
 }
@@ -267,6 +266,105 @@ bool neverWrite(std::string* err, const std::string&, const std::vector<unsigned
   return false;
 }
 
+/// Deepest node nesting accepted (a scene root is at depth 0).
+constexpr int kMaxNodeDepth = 64;
+
+std::string nodeName(const tinygltf::Model& model, std::size_t i) {
+  std::string name = model.nodes[i].name.substr(0, 60);
+  for (char& c : name) {
+    if (static_cast<unsigned char>(c) < 0x20) c = '?';
+  }
+  return "node " + std::to_string(i) + (name.empty() ? "" : " \"" + name + "\"");
+}
+
+/// The node hierarchy glTF 2.0 requires and tinygltf does not check (§3.5.2, §3.5.3): "scene"
+/// names a scene; scene roots and children name nodes; each node has at most one parent, a scene
+/// root has none; no node is its own ancestor; at most kMaxNodeDepth levels. One diagnostic per
+/// fault, at its JSON pointer with the node named; false when there is any.
+bool checkHierarchy(const tinygltf::Model& model, const std::string& source, core::Diagnostics& diagnostics) {
+  const std::size_t before = diagnostics.size();
+  auto error = [&](std::string pointer, std::string what, std::string expected) {
+    if (diagnostics.size() - before < 50) diagnostics.push_back({source, 0, 0, std::move(pointer), std::move(what), std::move(expected), ""});
+  };
+  const std::size_t n = model.nodes.size();
+  const std::string nodeRange = n == 0 ? "no node index (the file has no nodes)" : "a node index 0 … " + std::to_string(n - 1);
+  if (model.defaultScene < -1 || (model.defaultScene >= 0 && static_cast<std::size_t>(model.defaultScene) >= model.scenes.size())) {
+    error("/scene", "scene " + std::to_string(model.defaultScene) + " does not exist (the file has " +
+                        std::to_string(model.scenes.size()) + " scene" + (model.scenes.size() == 1 ? "" : "s") + ")",
+          model.scenes.empty() ? "no \"scene\" (the file has no scenes)"
+                               : "a scene index 0 … " + std::to_string(model.scenes.size() - 1));
+  }
+  // Parents, from the children lists.
+  constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  std::vector<std::size_t> parent(n, kNone);
+  for (std::size_t p = 0; p < n; ++p) {
+    const std::vector<int>& children = model.nodes[p].children;
+    for (std::size_t k = 0; k < children.size(); ++k) {
+      const std::string ptr = "/nodes/" + std::to_string(p) + "/children/" + std::to_string(k);
+      const int c = children[k];
+      if (c < 0 || static_cast<std::size_t>(c) >= n) {
+        error(ptr, nodeName(model, p) + " names child " + std::to_string(c) + ", which does not exist", nodeRange);
+        continue;
+      }
+      const auto child = static_cast<std::size_t>(c);
+      if (parent[child] != kNone) {
+        error(ptr, nodeName(model, child) + " is a child of " + nodeName(model, parent[child]) + " already, and of " +
+                       nodeName(model, p),
+              "each node a child of at most one node (a tree)");
+        continue;
+      }
+      parent[child] = p;
+    }
+  }
+  // Cycles: walk up from every node; reaching a node of the same walk closes a cycle.
+  std::vector<std::size_t> walk(n, kNone);  // the walk that reached each node first
+  for (std::size_t start = 0; start < n; ++start) {
+    if (walk[start] != kNone) continue;
+    std::size_t at = start;
+    while (at != kNone && walk[at] == kNone) {
+      walk[at] = start;
+      at = parent[at];
+    }
+    if (at == kNone || walk[at] != start) continue;  // reached a root, or a chain checked before
+    // `at` is on a cycle: name it in order, report it at the children entry that closes it.
+    std::string chain = std::to_string(at);
+    for (std::size_t c = parent[at]; c != at; c = parent[c]) chain = std::to_string(c) + " → " + chain;
+    chain = std::to_string(at) + " → " + chain;
+    const std::vector<int>& siblings = model.nodes[parent[at]].children;
+    const auto k = static_cast<std::size_t>(std::find(siblings.begin(), siblings.end(), static_cast<int>(at)) - siblings.begin());
+    error("/nodes/" + std::to_string(parent[at]) + "/children/" + std::to_string(k),
+          nodeName(model, at) + " is its own ancestor (children cycle " + chain + ")",
+          "a node hierarchy without cycles (a tree)");
+  }
+  // Depth (only meaningful without cycles).
+  if (diagnostics.size() == before) {
+    for (std::size_t i = 0; i < n; ++i) {
+      int d = 0;
+      for (std::size_t a = parent[i]; a != kNone && d <= kMaxNodeDepth; a = parent[a]) ++d;
+      if (d > kMaxNodeDepth) {
+        error("/nodes/" + std::to_string(i), nodeName(model, i) + " is nested more than " + std::to_string(kMaxNodeDepth) + " levels deep",
+              "at most " + std::to_string(kMaxNodeDepth) + " levels of child nodes");
+        break;
+      }
+    }
+  }
+  for (std::size_t s = 0; s < model.scenes.size(); ++s) {
+    const std::vector<int>& roots = model.scenes[s].nodes;
+    for (std::size_t k = 0; k < roots.size(); ++k) {
+      const std::string ptr = "/scenes/" + std::to_string(s) + "/nodes/" + std::to_string(k);
+      const int r = roots[k];
+      if (r < 0 || static_cast<std::size_t>(r) >= n) {
+        error(ptr, "scene " + std::to_string(s) + " names node " + std::to_string(r) + ", which does not exist", nodeRange);
+      } else if (parent[static_cast<std::size_t>(r)] != kNone) {
+        error(ptr, "scene " + std::to_string(s) + " names " + nodeName(model, static_cast<std::size_t>(r)) +
+                       " as a root, but it is a child of " + nodeName(model, parent[static_cast<std::size_t>(r)]),
+              "root nodes of a scene without a parent");
+      }
+    }
+  }
+  return diagnostics.size() == before;
+}
+
 }  // namespace
 
 Vec3d transformPoint(const Mat4d& m, const Vec3d& p) {
@@ -287,10 +385,7 @@ bool readGltfScene(const std::string& bytes, const std::string& source, const st
   loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
   Confinement confinement;
   confinement.baseDir = baseDir;
-  {
-    std::error_code ec;
-    confinement.root = std::filesystem::weakly_canonical(std::filesystem::path(baseDir.empty() ? "." : baseDir), ec);
-  }
+  confinement.root = detail::canonicalDirectory(baseDir);
   loader.SetFsCallbacks({&confinedExists, &noExpansion, &confinedRead, &neverWrite, &confinement});
   tinygltf::Model model;
   std::string err, warn;
@@ -314,11 +409,11 @@ bool readGltfScene(const std::string& bytes, const std::string& source, const st
                            "a glTF 2.0 file (.gltf JSON or .glb binary)", ""});
     return false;
   }
+  if (!checkHierarchy(model, source, diagnostics)) return false;
   // The default scene (or the first); without scenes every node that is nobody's child is a root.
   std::vector<int> roots;
   if (!model.scenes.empty()) {
-    out.sceneIndex = model.defaultScene >= 0 && static_cast<std::size_t>(model.defaultScene) < model.scenes.size()
-                         ? model.defaultScene : 0;
+    out.sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
     const tinygltf::Scene& scene = model.scenes[static_cast<std::size_t>(out.sceneIndex)];
     roots = scene.nodes;
     out.sceneExtrasJson = scene.extras_json_string;
@@ -333,12 +428,13 @@ bool readGltfScene(const std::string& bytes, const std::string& source, const st
       if (!child[i]) roots.push_back(static_cast<int>(i));
     }
   }
+  // checkHierarchy made it a forest of at most kMaxNodeDepth levels: each node is visited once.
   std::vector<bool> visited(model.nodes.size(), false);
   std::size_t budget = kMaxWorldTriangles;
   std::function<void(int, const Mat4d&, int)> visit = [&](int index, const Mat4d& parent, int depth) {
     if (index < 0 || static_cast<std::size_t>(index) >= model.nodes.size() || visited[static_cast<std::size_t>(index)] ||
-        depth > 64) {
-      return;  // invalid, shared or cyclic references and absurd depths are skipped
+        depth > kMaxNodeDepth) {
+      return;  // cannot happen after checkHierarchy; kept so that a mistake there cannot recurse forever
     }
     visited[static_cast<std::size_t>(index)] = true;
     const tinygltf::Node& n = model.nodes[static_cast<std::size_t>(index)];

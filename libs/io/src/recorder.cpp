@@ -423,8 +423,10 @@ core::Result<std::unique_ptr<Recorder>> Recorder::open(const sim::ScenarioDesc& 
   }
 }
 
+bool Recorder::failed() const { return impl_ && impl_->failed.load(std::memory_order_acquire); }
+
 void Recorder::push(sim::FramePtr frame) {
-  if (!impl_ || impl_->closed || !frame) return;
+  if (!impl_ || impl_->closed || !frame || failed()) return;
   {
     std::unique_lock lock(impl_->mutex);
     impl_->notFull.wait(lock, [&] { return impl_->queue.size() < impl_->options.queueFrames || impl_->stopping; });

@@ -67,6 +67,7 @@ struct Recorder::Impl {
   std::optional<core::Diagnostic> error;
 
   std::atomic<std::uint64_t> committed{0};
+  std::atomic<bool> failed{false};  ///< set with `error`: the caller stops simulating (Recorder::failed)
   std::atomic<bool> closed{false};  ///< push() after close() is ignored
   std::optional<core::Status> closeResult;
 
@@ -85,6 +86,7 @@ struct Recorder::Impl {
   /// Records the first write error; returns false for `return fail(...)`.
   bool fail(std::string what) {
     if (!error) error = recorder_detail::diag(options.path, std::move(what), "a writable recording");
+    failed.store(true, std::memory_order_release);
     return false;
   }
   std::string sqliteMessage() const { return db ? sqlite3_errmsg(db) : "cannot open database"; }

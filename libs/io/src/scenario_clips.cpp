@@ -4,6 +4,8 @@
 // scenario's points, the clip map and diagnostics.
 #include "scenario_clips.hpp"
 
+#include "confined_path.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -69,7 +71,8 @@ struct ClipLoad {
 class ClipLoader {
  public:
   ClipLoader(const JsonDocument& doc, core::Diagnostics& diags)
-      : doc_(doc), diags_(diags), dir_(fs::path(doc.source()).parent_path()) {}
+      : doc_(doc), diags_(diags), dir_(fs::path(doc.source()).parent_path()),
+        namer_(fs::path(doc.source()).filename().string()) {}
 
   void run(ParsedScenario& parsed, MotionClips& clips) {
     const Json& root = doc_.root();
@@ -106,8 +109,15 @@ class ClipLoader {
   const ClipLoad& loadOnce(const std::string& clip) {
     if (auto it = loads_.find(clip); it != loads_.end()) return it->second;
     ClipLoad& load = loads_[clip];
-    const fs::path path = (dir_ / fs::path(clip)).lexically_normal();
     const std::string expected = "a BVH file path relative to the scenario";
+    // Only files in the scenario's directory and below (never read, so never quoted, otherwise).
+    const detail::ConfinedPath confined = detail::confinePath(dir_, clip, namer_);
+    if (!confined.ok()) {
+      load.what = "clip " + confined.problem;
+      load.expected = detail::confinedExpectation("a BVH file", namer_);
+      return load;
+    }
+    const fs::path& path = confined.path;
     std::error_code ec;
     const fs::file_status status = fs::status(path, ec);
     if (ec || !fs::is_regular_file(status)) {
@@ -140,6 +150,7 @@ class ClipLoader {
   const JsonDocument& doc_;
   core::Diagnostics& diags_;
   fs::path dir_;
+  std::string namer_;  ///< the scenario's file name, for messages
   std::map<std::string, ClipLoad> loads_;
   std::optional<std::vector<std::string>> candidates_;
 };

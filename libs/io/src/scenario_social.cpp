@@ -2,8 +2,10 @@
 #include "scenario_social.hpp"
 
 #include <filesystem>
+#include <optional>
 #include <set>
 
+#include "confined_path.hpp"
 #include "scenario_reader.hpp"
 #include "social_defaults.hpp"
 #include "throng/io/bvh.hpp"
@@ -26,20 +28,35 @@ void loadScenarioSocial(const JsonDocument& doc, ParsedScenario& parsed, core::D
   auto fail = [&](const std::string& ptr, std::string what, std::string expected, std::string hint = {}) {
     diagnostics.push_back(doc.diagnostic(ptr, std::move(what), std::move(expected), std::move(hint)));
   };
-  auto exists = [&](const std::string& rel) {
-    std::error_code ec;
-    return fs::is_regular_file(dir / rel, ec);
+  const std::string namer = fs::path(doc.source()).filename().string();
+  // Every file named here is read only from the scenario's directory and below (a refused one is
+  // never opened, so its content never reaches a message).
+  auto confined = [&](const std::string& ptr, const std::string& rel, const std::string& what) -> std::optional<fs::path> {
+    const detail::ConfinedPath c = detail::confinePath(dir, rel, namer);
+    if (!c.ok()) {
+      fail(ptr, c.problem, detail::confinedExpectation(what, namer));
+      return std::nullopt;
+    }
+    return c.path;
   };
+  auto exists = [&](const fs::path& path) {
+    std::error_code ec;
+    return fs::is_regular_file(path, ec);
+  };
+  // The clip directory is checked even before the databases: the server reads it too.
+  if (!confined("/social/motions", social.motions.empty() ? "." : social.motions, "a directory of BVH clips")) return;
   // Databases: the scenario's files, else the built-in ones.
   core::Result<social::MicroBehaviourDb> micro = core::Diagnostic{};
   if (social.microPath.empty()) {
     micro = parseMicroBehaviours(builtinMicroBehaviours(), "data/social/micro_behaviours.json (built in)");
-  } else if (!exists(social.microPath)) {
+  } else if (const auto path = confined("/social/microBehaviours", social.microPath, "a micro-behaviour database (JSON)"); !path) {
+    return;
+  } else if (!exists(*path)) {
     fail("/social/microBehaviours", "cannot read " + quote(social.microPath) + ": no such file",
          "a micro-behaviour database (JSON) relative to the scenario");
     return;
   } else {
-    micro = loadMicroBehaviours((dir / social.microPath).lexically_normal().string());
+    micro = loadMicroBehaviours(path->string());
   }
   if (!micro.ok()) {
     diagnostics.insert(diagnostics.end(), micro.errors().begin(), micro.errors().end());
@@ -49,12 +66,14 @@ void loadScenarioSocial(const JsonDocument& doc, ParsedScenario& parsed, core::D
   core::Result<social::MacroPlanDb> macro = core::Diagnostic{};
   if (social.macroPath.empty()) {
     macro = parseMacroPlans(builtinMacroPlans(), "data/social/macro_plans.json (built in)", social.micro);
-  } else if (!exists(social.macroPath)) {
+  } else if (const auto path = confined("/social/macroPlans", social.macroPath, "a macro-plan database (JSON)"); !path) {
+    return;
+  } else if (!exists(*path)) {
     fail("/social/macroPlans", "cannot read " + quote(social.macroPath) + ": no such file",
          "a macro-plan database (JSON) relative to the scenario");
     return;
   } else {
-    macro = loadMacroPlans((dir / social.macroPath).lexically_normal().string(), social.micro);
+    macro = loadMacroPlans(path->string(), social.micro);
   }
   if (!macro.ok()) {
     diagnostics.insert(diagnostics.end(), macro.errors().begin(), macro.errors().end());
@@ -81,7 +100,13 @@ void loadScenarioSocial(const JsonDocument& doc, ParsedScenario& parsed, core::D
   const std::string ptr = doc.root().contains("social") && doc.root()["social"].contains("motions") ? "/social/motions" : "/social";
   for (const std::string& clip : clips) {
     const fs::path rel = fs::path(social.motions) / (clip + ".bvh");
-    const fs::path path = (dir / rel).lexically_normal();
+    const detail::ConfinedPath c = detail::confinePath(dir, rel.generic_string(), namer);
+    if (!c.ok()) {  // a clip name of the database such as "../../secret"
+      fail(ptr, "micro-behaviour clip " + quote(clip) + ": " + c.problem,
+           detail::confinedExpectation("<motions>/<clip>.bvh", namer));
+      continue;
+    }
+    const fs::path& path = c.path;
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) {
       fail(ptr, "micro-behaviour clip " + quote(clip) + ": cannot read " + quote(rel.generic_string()) + ": no such file",

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 
+#include "confined_path.hpp"
 #include "scenario_reader.hpp"
 #include "throng/io/crowd_loader.hpp"
 
@@ -81,7 +82,14 @@ void loadScenarioTimeline(const JsonDocument& doc, sim::ScenarioDesc& desc, std:
     const std::string ptr = "/timeline/" + std::to_string(i);
     if (e.action == sim::TimelineAction::Insert) {
       if (e.path.empty()) continue;  // reported by the parser
-      const std::string path = (dir / fs::path(e.path)).lexically_normal().string();
+      // Crowd files only from the scenario's directory and below (a refused one is never opened).
+      const detail::ConfinedPath confined = detail::confinePath(dir, e.path, fs::path(doc.source()).filename().string());
+      if (!confined.ok()) {
+        diagnostics.push_back(doc.diagnostic(ptr + "/insert", "crowd file " + confined.problem,
+                                             detail::confinedExpectation("a crowd file", fs::path(doc.source()).filename().string())));
+        continue;
+      }
+      const std::string path = confined.path.string();
       // Each timeline crowd joins the scenario as written (never another timeline crowd's points):
       // its indices stay right whatever else is inserted in between.
       auto crowd = loadCrowdFile(path, desc, options);

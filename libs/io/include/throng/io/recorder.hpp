@@ -34,8 +34,13 @@ class Recorder {
   ~Recorder();  ///< closes if still open
 
   /// Queues a frame (blocks while the queue is full). Frame numbers are assigned in push order
-  /// starting at 0.
+  /// starting at 0. After a write error (failed()) frames are dropped.
   void push(sim::FramePtr frame);
+
+  /// True once a write failed (disk full, file too large, I/O error): nothing more is written, so
+  /// the caller should stop simulating and close(), which reports the error and leaves the file
+  /// with every batch committed before it (marked not completed).
+  [[nodiscard]] bool failed() const;
 
   /// Flushes everything, writes the final metadata (frames, duration, finished flag), checkpoints
   /// the WAL into the main file and closes. Returns the first write error, if any.
