@@ -4,12 +4,15 @@
 // simulated time and `throng metrics` column headers. The pure helpers (progress.cpp,
 // stall_tracker.cpp) are compiled into this test; the rest runs the built binary (cli_runner.hpp).
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
 #include "cli_runner.hpp"
+#include "progress.hpp"
+#include "social_recording_fixture.hpp"
 #include "stall_tracker.hpp"
 
 namespace throng::e2e {
@@ -18,6 +21,15 @@ namespace {
 using nlohmann::json;
 
 bool contains(const std::string& haystack, const std::string& needle) { return haystack.find(needle) != std::string::npos; }
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty()) out.push_back(line);
+  }
+  return out;
+}
 
 // --- throng run: the summary -------------------------------------------------------------------
 
@@ -148,6 +160,71 @@ TEST(RunSummary, StalledAgentsAreNamedInTextAndJson) {
   ASSERT_EQ(t.exitCode, 0) << t.err;
   EXPECT_TRUE(contains(t.out, "stalled       3 agents stood still (within 0.5 m) for 60 s or more: agent ")) << t.out;
   EXPECT_TRUE(contains(t.out, "(done: stays at its last goal)")) << t.out;
+}
+
+// --- the progress line ----------------------------------------------------------------------------
+
+TEST(ProgressLine, BarStaysPastOneHundredSeconds) {
+  for (const double t : {5.0, 99.9, 100.0, 150.0, 999.9, 1700.0}) {
+    const std::string line = cli::formatRunProgress({t, 1800.0, 1234, 567, 2.0}, 80);
+    EXPECT_LE(line.size(), 79u) << line;
+    EXPECT_TRUE(contains(line, "[")) << "t = " << t << ": " << line;
+    EXPECT_TRUE(contains(line, "ETA")) << line;
+  }
+  // Same width for every time: the bar does not jump as the time grows a digit.
+  EXPECT_EQ(cli::formatRunProgress({5.0, 1800.0, 12, 5, 2.0}, 80).find('['),
+            cli::formatRunProgress({500.0, 1800.0, 12, 5, 2.0}, 80).find('['));
+}
+
+// --- throng bench ---------------------------------------------------------------------------------
+
+TEST(BenchReport, DetourCrowdRowHasItsSpeedAndThrongRowsTheRatio) {
+  ScratchDir dir("bench-dc");
+  const CliResult r = runThrong({"bench", "--agents", "30", "--threads", "1", "--ticks", "3", "--warmup", "2", "--json"},
+                                dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto rows = lines(r.out);
+  ASSERT_EQ(rows.size(), 2u) << r.out;  // DetourCrowd, then throng
+  const json dc = json::parse(rows[0]);
+  const json th = json::parse(rows[1]);
+  EXPECT_EQ(dc.at("engine"), "detourcrowd");
+  EXPECT_FALSE(dc.contains("speedup_vs_detourcrowd")) << rows[0];
+  EXPECT_GT(dc.at("mean_speed_mps").get<double>(), 0.0) << rows[0];
+  EXPECT_EQ(th.at("engine"), "throng");
+  ASSERT_TRUE(th.at("speedup_vs_detourcrowd").is_number()) << rows[1];
+  EXPECT_GT(th.at("speedup_vs_detourcrowd").get<double>(), 0.0);
+  EXPECT_GT(th.at("mean_speed_mps").get<double>(), 0.0) << rows[1];
+}
+
+TEST(BenchReport, BaselineShowsProgressOnATerminal) {
+  ScratchDir dir("bench-tty");
+  const CliResult r = runThrongInTerminal(
+      {"bench", "--agents", "30", "--threads", "1", "--ticks", "3", "--warmup", "2"}, dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(contains(r.err, "detourcrowd random N=30: tick 3/3")) << r.err;
+  EXPECT_TRUE(contains(r.out, "speed m/s")) << r.out;
+}
+
+// --- throng metrics ------------------------------------------------------------------------------
+
+TEST(MetricsReport, LongCategoryNamesAreNotCut) {
+  ScratchDir dir("metrics-cols");
+  const std::string path = (dir / "cg.sqlite").string();
+  ASSERT_EQ(throng::testing::writeSocialRecording(path), "");
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, "UPDATE throng_points SET category = 'electronics' WHERE id = 'wc'", nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(db);
+  const CliResult r = runThrong({"metrics", "cg.sqlite", "--bin", "0.25"}, dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  bool header = false;
+  for (const std::string& line : lines(r.out)) {
+    if (!contains(line, "from [s]")) continue;
+    header = true;
+    EXPECT_TRUE(contains(line, " electronics ")) << line;
+  }
+  EXPECT_TRUE(header) << r.out;
 }
 
 }  // namespace
