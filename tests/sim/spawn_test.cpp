@@ -4,6 +4,7 @@
 // run-time crowd insertion shares the code; the layout is the same for any thread count.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -137,6 +138,50 @@ TEST(Spawn, CrowdedLayoutIsTheSameForAnyThreadCount) {
     for (int t = 0; t < 40; ++t) w.value()->step(tasks);
     if (threads == 1) hash = w.value()->stateHash();
     else EXPECT_EQ(w.value()->stateHash(), hash) << threads << " threads";
+  }
+}
+
+/// Adds the quad a, b, c, d (x, y, z each) to the terrain as two walkable triangles.
+void quad(nav::TerrainMesh& t, std::initializer_list<std::array<float, 3>> corners) {
+  const auto base = static_cast<std::uint32_t>(t.vertices.size() / 3);
+  for (const auto& c : corners) t.vertices.insert(t.vertices.end(), c.begin(), c.end());
+  for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) t.walkable.push_back(base + i);
+}
+
+TEST(Spawn, CrowdedFloorsOfAMultiLevelWorldEachKeepTheirOwn) {
+  // A ground floor and an upper floor 3 m above it, joined by a ramp; one crowd on each floor over
+  // the same 4 m x 4 m square, each about 3.9 /m².
+  ScenarioDesc d;
+  d.seed = 9;
+  d.duration = 10.0f;
+  quad(d.terrain, {{0, 0, 0}, {20, 0, 0}, {20, 10, 0}, {0, 10, 0}});
+  quad(d.terrain, {{0, 0, 3}, {20, 0, 3}, {20, 10, 3}, {0, 10, 3}});
+  quad(d.terrain, {{0, 10, 0}, {2, 10, 0}, {2, 12, 0}, {0, 12, 0}});
+  quad(d.terrain, {{2, 10, 0}, {18, 10, 3}, {18, 12, 3}, {2, 12, 0}});
+  quad(d.terrain, {{18, 10, 3}, {20, 10, 3}, {20, 12, 3}, {18, 12, 3}});
+  const Polygon square{{8, 3}, {12, 3}, {12, 7}, {8, 7}};
+  for (const float height : {0.0f, 3.0f}) {
+    PopulationDesc pop = standing(height == 0.0f ? "below" : "above", 62, 1, 0.2f);
+    pop.spawn.polygon = square;
+    pop.spawn.height = height;
+    d.populations.push_back(pop);
+  }
+  auto w = World::create(d);
+  ASSERT_TRUE(w.ok()) << core::formatAll(w.errors());
+  core::TaskSystem tasks(1);
+  w.value()->step(tasks);
+  const auto f = w.value()->snapshot();
+  ASSERT_EQ(f->size(), 124u);
+  for (std::size_t i = 0; i < f->size(); ++i) {
+    const float floor = f->ids[i] < 62 ? 0.0f : 3.0f;
+    EXPECT_NEAR(f->height(i), floor, 0.05f) << "agent " << f->ids[i];
+    EXPECT_TRUE(f->posX[i] > 7.98f && f->posX[i] < 12.02f && f->posY[i] > 2.98f && f->posY[i] < 7.02f)
+        << "agent " << f->ids[i] << " at (" << f->posX[i] << ", " << f->posY[i] << ")";
+    for (std::size_t j = i + 1; j < f->size(); ++j) {
+      if ((f->ids[j] < 62) != (f->ids[i] < 62)) continue;  // other floor
+      EXPECT_GE(core::length(core::Vec2{f->posX[i] - f->posX[j], f->posY[i] - f->posY[j]}), 0.4f)
+          << "agents " << f->ids[i] << " and " << f->ids[j];
+    }
   }
 }
 

@@ -18,6 +18,7 @@ namespace throng::sim {
 namespace {
 
 constexpr float kSpawnGap = 0.02f;  // extra clearance between spawned bodies [m]
+constexpr float kFloorGap = 1.5f;   // bodies further apart in height stand on different floors [m]
 
 }  // namespace
 
@@ -34,23 +35,26 @@ class SpawnOccupancy {
     heads_.assign(cap, kNone);
     entries_.reserve(expected);
   }
-  void add(core::Vec2 p, float r) {
+  /// A disc of radius `r` at `p` on the floor at height `z` (0 on flat worlds).
+  void add(core::Vec2 p, float r, float z = 0.0f) {
     if (2 * (cells_ + 1) > keys_.size()) rehash(2 * keys_.size());
     const std::size_t slot = find(key(p));
     if (heads_[slot] == kNone) {
       keys_[slot] = key(p);
       ++cells_;
     }
-    entries_.push_back({p, r, heads_[slot]});
+    entries_.push_back({p, r, z, heads_[slot]});
     heads_[slot] = static_cast<std::uint32_t>(entries_.size() - 1);
   }
-  [[nodiscard]] bool free(core::Vec2 p, float r) const {
+  /// Whether a disc of radius `r` at `p` on the floor at height `z` touches none (discs on other
+  /// floors, more than kFloorGap above or below, do not count).
+  [[nodiscard]] bool free(core::Vec2 p, float r, float z = 0.0f) const {
     const int cx = static_cast<int>(std::floor(p.x / cell_)), cy = static_cast<int>(std::floor(p.y / cell_));
     for (int y = cy - 1; y <= cy + 1; ++y) {
       for (int x = cx - 1; x <= cx + 1; ++x) {
         for (std::uint32_t i = heads_[find(pack(x, y))]; i != kNone; i = entries_[i].next) {
           const float d = r + entries_[i].r + kSpawnGap;
-          if (core::lengthSq(p - entries_[i].p) < d * d) return false;
+          if (core::lengthSq(p - entries_[i].p) < d * d && std::fabs(z - entries_[i].z) <= kFloorGap) return false;
         }
       }
     }
@@ -62,6 +66,7 @@ class SpawnOccupancy {
   struct Entry {
     core::Vec2 p;
     float r;
+    float z;
     std::uint32_t next;  ///< previous disc of the same cell, kNone at the end
   };
   static std::uint64_t pack(int x, int y) {
@@ -244,7 +249,7 @@ struct SpawnArea {
   core::Vec2 centre;  ///< a spawn polygon's centroid, a point's or position's centre (never an unset origin)
   float radius = 0.0f;
   core::Aabb box;
-  float height = 0.0f;
+  float height = 0.0f;  ///< its floor on multi-level worlds (0 on flat ones) [m]
   double area = 0.0;  ///< [m²]
 
   [[nodiscard]] bool contains(core::Vec2 p) const {
@@ -256,7 +261,7 @@ struct SpawnArea {
   }
 };
 
-SpawnArea spawnArea(const ScenarioDesc& desc, const PopulationDesc& pop, std::uint32_t total) {
+SpawnArea spawnArea(const ScenarioDesc& desc, const PopulationDesc& pop, std::uint32_t total, bool levels) {
   SpawnArea a;
   switch (pop.spawn.kind) {
     case SpawnKind::Polygon: a.poly = &pop.spawn.polygon; break;
@@ -280,7 +285,7 @@ SpawnArea spawnArea(const ScenarioDesc& desc, const PopulationDesc& pop, std::ui
     a.box = {{a.centre.x - a.radius, a.centre.y - a.radius}, {a.centre.x + a.radius, a.centre.y + a.radius}};
     a.area = 3.141592653589793 * static_cast<double>(a.radius) * a.radius;
   }
-  a.height = pop.spawn.kind == SpawnKind::Point ? desc.points[pop.spawn.point].height : pop.spawn.height;
+  if (levels) a.height = pop.spawn.kind == SpawnKind::Point ? desc.points[pop.spawn.point].height : pop.spawn.height;
   return a;
 }
 
@@ -398,7 +403,7 @@ World::Impl::SpawnPlan World::Impl::planRandomSpawn(std::size_t populationIndex,
   const std::vector<std::uint32_t>& sizes = groupSizes[populationIndex];
   std::uint32_t total = 0;
   for (std::uint32_t s : sizes) total += s;
-  const SpawnArea area = spawnArea(desc, pop, total);
+  const SpawnArea area = spawnArea(desc, pop, total, agents.levels);
   const bool levels = agents.levels;
   SpawnPlan plan;
   plan.population = populationIndex;
@@ -412,7 +417,7 @@ World::Impl::SpawnPlan World::Impl::planRandomSpawn(std::size_t populationIndex,
     std::optional<core::Vec2> anchor;
     for (int attempt = 0; attempt < 200 && !anchor; ++attempt) {
       auto p = area.sample(groupRng);
-      if (p && onMesh(query, levels, area, *p) && occupancy.free(*p, pop.radius)) anchor = *p;
+      if (p && onMesh(query, levels, area, *p) && occupancy.free(*p, pop.radius, area.height)) anchor = *p;
     }
     if (!anchor && pop.spawn.kind == SpawnKind::Polygon) {
       plan.placed = false;  // the area is crowded: laid out again on a lattice
@@ -432,14 +437,14 @@ World::Impl::SpawnPlan World::Impl::planRandomSpawn(std::size_t populationIndex,
         } else {
           p = area.sample(rng);
         }
-        if (!p || !occupancy.free(*p, pop.radius)) continue;
+        if (!p || !occupancy.free(*p, pop.radius, area.height)) continue;
         placed = onMesh(query, levels, area, *p);
       }
       if (!placed) {
         plan.placed = false;
         return plan;
       }
-      occupancy.add(placed->first, pop.radius);
+      occupancy.add(placed->first, pop.radius, area.height);
       plan.spots.push_back(*placed);
     }
   }
@@ -453,7 +458,7 @@ World::Impl::SpawnPlan World::Impl::planPackedSpawn(std::size_t populationIndex,
   const std::vector<std::uint32_t>& sizes = groupSizes[populationIndex];
   std::uint32_t total = 0;
   for (std::uint32_t s : sizes) total += s;
-  const SpawnArea area = spawnArea(desc, pop, total);
+  const SpawnArea area = spawnArea(desc, pop, total, agents.levels);
   const bool levels = agents.levels;
   SpawnPlan plan;
   plan.population = populationIndex;
@@ -473,9 +478,9 @@ World::Impl::SpawnPlan World::Impl::planPackedSpawn(std::size_t populationIndex,
       const float shift = staggered && (j & 1) ? 0.5f * dx : 0.0f;
       for (std::int64_t i = 0; i < cols && out.size() < want; ++i) {
         const core::Vec2 p{area.box.min.x + 0.5f * (width - static_cast<float>(cols - 1) * dx) + shift + static_cast<float>(i) * dx, y};
-        if (!area.contains(p) || !occ.free(p, pop.radius)) continue;
+        if (!area.contains(p) || !occ.free(p, pop.radius, area.height)) continue;
         if (auto hit = onMesh(query, levels, area, p)) {
-          occ.add(hit->first, pop.radius);
+          occ.add(hit->first, pop.radius, area.height);
           out.push_back(*hit);
         }
       }
@@ -563,7 +568,7 @@ World::Impl::SpawnPlan World::Impl::planPackedSpawn(std::size_t populationIndex,
   // The spots taken become occupied; agents the area cannot hold go around it (widening discs),
   // or to the navmesh nearest the area.
   for (const auto& c : chosen) {
-    if (c) occupancy.add(spots[*c].first, pop.radius);
+    if (c) occupancy.add(spots[*c].first, pop.radius, area.height);
   }
   std::uint32_t agentId = firstAgent;
   std::size_t k = 0;
@@ -581,11 +586,11 @@ World::Impl::SpawnPlan World::Impl::planPackedSpawn(std::size_t populationIndex,
       std::optional<std::pair<core::Vec2, nav::PolyRef>> placed;
       for (int attempt = 0; attempt < 300 && !placed; ++attempt) {
         const core::Vec2 p = sampleDisc(anchor, groupSpread + 0.05f * static_cast<float>(attempt), rng);
-        if (occupancy.free(p, pop.radius)) placed = onMesh(query, levels, area, p);
+        if (occupancy.free(p, pop.radius, area.height)) placed = onMesh(query, levels, area, p);
       }
       if (!placed) placed = nearestAt(query, levels, area, anchor, std::max(5.0f, 0.5f * (width + depth)));
       if (!placed) placed = std::make_pair(anchor, nav::PolyRef{0});
-      occupancy.add(placed->first, pop.radius);
+      occupancy.add(placed->first, pop.radius, area.height);
       plan.spots.push_back(*placed);
     }
   }
@@ -604,7 +609,9 @@ void World::Impl::spawnPopulations(const std::vector<std::size_t>& due) {
   const float cell = std::max(0.5f, 4.0f * desc.maxRadius());
   auto occupied = [&] {
     SpawnOccupancy occupancy(cell, expected);
-    for (std::size_t r = 0; r < agents.size(); ++r) occupancy.add({agents.posX[r], agents.posY[r]}, agents.radius[r]);
+    for (std::size_t r = 0; r < agents.size(); ++r) {
+      occupancy.add({agents.posX[r], agents.posY[r]}, agents.radius[r], agents.levels ? agents.posZ[r] : 0.0f);
+    }
     return occupancy;
   };
   SpawnOccupancy occupancy = occupied();
@@ -624,7 +631,7 @@ void World::Impl::spawnPopulations(const std::vector<std::size_t>& due) {
     for (std::size_t k = 0; k < due.size(); ++k) {
       std::uint32_t total = 0;
       for (const std::uint32_t s : groupSizes[due[k]]) total += s;
-      boxes.push_back(spawnArea(desc, desc.populations[due[k]], total).box);
+      boxes.push_back(spawnArea(desc, desc.populations[due[k]], total, agents.levels).box);
       redo[k] = plans[k].placed ? 0 : 1;
     }
     for (bool grew = true; grew;) {
@@ -639,7 +646,9 @@ void World::Impl::spawnPopulations(const std::vector<std::size_t>& due) {
     occupancy = occupied();
     for (std::size_t k = 0; k < due.size(); ++k) {
       if (redo[k]) continue;
-      for (const auto& spot : plans[k].spots) occupancy.add(spot.first, desc.populations[due[k]].radius);
+      const PopulationDesc& pop = desc.populations[due[k]];
+      const float height = spawnArea(desc, pop, 0, agents.levels).height;
+      for (const auto& spot : plans[k].spots) occupancy.add(spot.first, pop.radius, height);
     }
     for (std::size_t k = 0; k < due.size(); ++k) {
       if (redo[k]) plans[k] = planPackedSpawn(due[k], firstAgent[k], occupancy);
