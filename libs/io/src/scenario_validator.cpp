@@ -349,7 +349,7 @@ class Validator {
         bg::expand(box, bg::return_envelope<bg::model::box<BPoint>>(regions.back()));
       }
       const double w = box.max_corner().x() - box.min_corner().x(), h = box.max_corner().y() - box.min_corner().y();
-      const double step = std::max(0.05, std::sqrt(w * h / 40000.0));
+      const double step = std::max(0.1, std::sqrt(w * h / 10000.0));  // at most 10,000 samples
       const float height = spawnHeight(cluster.front());
       const float reach = agentRadius + 0.02f;
       std::size_t walkable = 0;
