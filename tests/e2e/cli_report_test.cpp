@@ -162,6 +162,29 @@ TEST(RunSummary, StalledAgentsAreNamedInTextAndJson) {
   EXPECT_TRUE(contains(t.out, "(done: stays at its last goal)")) << t.out;
 }
 
+// --- throng check: spawn capacity ---------------------------------------------------------------
+
+TEST(CheckCapacity, PopulationsSharingASpawnAreaAreRefusedWithTheirPlace) {
+  // 2 x 150 agents of radius 0.2 m in one 56 m² room: each would fit alone; together they spawned
+  // partly outside the room (at the world origin, before) — now check refuses the file.
+  ScratchDir dir("capacity");
+  dir.write("shared.json", R"({
+  "format": "throng/1", "name": "shared",
+  "walkable": [[[0,0],[20,0],[20,10],[0,10]]],
+  "points": [{"id": "exit", "kind": "exit", "polygon": [[19,4],[20,4],[20,6],[19,6]]}],
+  "populations": [
+    {"id": "a", "groups": 150, "spawn": {"polygon": [[1,1],[8,1],[8,9],[1,9]]}, "goals": ["exit"]},
+    {"id": "b", "groups": 150, "spawn": {"polygon": [[1,1],[8,1],[8,9],[1,9]]}, "goals": ["exit"]}
+  ]
+})");
+  const CliResult r = runThrong({"check", "shared.json"}, dir.path());
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_TRUE(contains(r.err, "shared.json:7:53 /populations/1/spawn/polygon: spawn areas of populations \"a\" (150 at "
+                              "/populations/0/spawn/polygon) and \"b\" (150 at /populations/1/spawn/polygon) overlap and "
+                              "start at 0 s: 56 m² of walkable ground is too small for their 300 agents"))
+      << r.err;
+}
+
 // --- the progress line ----------------------------------------------------------------------------
 
 TEST(ProgressLine, BarStaysPastOneHundredSeconds) {
