@@ -537,6 +537,7 @@ World::Impl::SpawnPlan World::Impl::planPackedSpawn(std::size_t populationIndex,
   std::vector<std::optional<std::size_t>> chosen;  // per agent
   chosen.reserve(total);
   for (std::uint32_t g = 0; g < sizes.size(); ++g) {
+    if (sizes[g] == 0) continue;  // an empty group takes no spot
     const float tolerated = spacing * (1.5f + std::sqrt(static_cast<float>(sizes[g])));
     std::vector<std::size_t> bestTry;
     float bestSpread = 0.0f;
@@ -573,7 +574,7 @@ World::Impl::SpawnPlan World::Impl::planPackedSpawn(std::size_t populationIndex,
   std::uint32_t agentId = firstAgent;
   std::size_t k = 0;
   for (std::uint32_t g = 0; g < sizes.size(); ++g) {
-    plan.anchors.push_back(chosen[k] ? spots[*chosen[k]].first : area.centre);
+    plan.anchors.push_back(sizes[g] > 0 && chosen[k] ? spots[*chosen[k]].first : area.centre);
     const float groupSpread = 0.4f + 0.5f * std::sqrt(static_cast<float>(sizes[g]));
     for (std::uint32_t m = 0; m < sizes[g]; ++m, ++agentId, ++k) {
       if (chosen[k]) {
