@@ -504,7 +504,8 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
   cmd->add_flag("--json", options.json,
                 "One JSON object per line and engine/configuration: engine, scenario, agents, threads, ticks, "
                 "agent_steps_per_s, ms_per_tick_median, ms_per_tick_p99, bytes_per_agent, peak_rss_bytes, "
-                "simulated_s, wall_s, realtime_factor (scenario files also scenario_file; throng+rec recording)");
+                "simulated_s, wall_s, realtime_factor, mean_speed_mps; throng rows speedup_vs_detourcrowd (scenario files also "
+                "scenario_file; throng+rec recording)");
   cmd->add_flag("--phase-times", options.phaseTimes,
                 "Also time every phase of the tick (decide, plan, sense, steer, integrate, ...) over the timed ticks "
                 "and print each one's ms per tick (JSON: phase_ms_per_tick); the clock reads cost a little");

@@ -323,6 +323,9 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
       "recording is opened, then the crowd is simulated until --duration or until every agent has\n"
       "left. Ctrl-C stops cleanly: the recording is closed as a valid file marked not completed,\n"
       "and the exit code is 130.\n"
+      "The summary gives an evacuation time only for evacuations (every population heads for an exit\n"
+      "without action points, wandering or generated goals) and names stalled agents: those that stood\n"
+      "within 0.5 m for 60 s or more outside actions and Common Ground scripts, with when and why.\n"
       "Under mpirun (N > 1 ranks: OMPI_COMM_WORLD_SIZE or PMI_SIZE set), every rank simulates the\n"
       "world and they share the steer phase; rank 0 alone writes the recording and prints. The\n"
       "trajectories are identical to one process (docs/scaling.md).");
