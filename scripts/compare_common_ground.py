@@ -48,7 +48,7 @@ def measure(throng, scenario, seed, mode, workdir, threads):
         "visits": m["arrivals"]["visits"],
         "visits_per_min": m["arrivals"]["visits_per_minute"],
         "exits_per_min": m["arrivals"]["exits_per_minute"],
-        "empty_s": summary.get("evacuation_time_s") or summary["simulated_time_s"],
+        "empty_s": summary.get("last_exit_time_s") if summary["agents_active"] == 0 and summary.get("last_exit_time_s") else summary["simulated_time_s"],
         "speedup": summary["simulated_time_s"] / max(1e-9, summary["wall_time_s"]),
         "wall_s": wall,
         "cohesion_m": m["cohesion"]["mean_distance_m"],

@@ -151,6 +151,7 @@ std::optional<Measurement> BenchRunner::timeThrong(const sim::ScenarioDesc& desc
   PhaseTimer phases;  // --phase-times: the timed ticks only
   const std::uint64_t stepsBefore = w.stats().agentSteps;
   const double timeBefore = w.stats().time;
+  const double walkedBefore = w.stats().walkedDistance;
   double totalSeconds = 0.0;
   double rssPeak = currentRss();
   std::size_t agentsPeak = w.stats().active;
@@ -211,6 +212,8 @@ std::optional<Measurement> BenchRunner::timeThrong(const sim::ScenarioDesc& desc
   m.ticks = ticks;
   const auto steps = static_cast<double>(w.stats().agentSteps - stepsBefore);
   m.agentStepsPerSec = totalSeconds > 0 ? steps / totalSeconds : 0.0;
+  // Distance walked per agent-second, over every agent of the timed ticks (as DetourCrowd's).
+  m.meanSpeed = steps > 0 ? (w.stats().walkedDistance - walkedBefore) / (steps * dt_) : 0.0;
   m.msMedian = percentile(ms, 0.5);
   m.msP99 = percentile(ms, 0.99);
   m.bytesPerAgent = bytesPerAgent;
@@ -224,7 +227,8 @@ std::optional<Measurement> BenchRunner::timeBaseline(const sim::ScenarioDesc& de
                                                      const std::shared_ptr<const nav::NavMesh>& navmesh, int ticks) {
 #if THRONG_HAVE_BASELINES
   const std::size_t n = agentCount(desc);
-  status(fmt::format("detourcrowd {} N={}: running {} ticks", label_, n, ticks), true);
+  const std::string label = fmt::format("detourcrowd {} N={}", label_, n);
+  status(label + ": starting", true);
   baselines::BaselineConfig config;
   config.navmesh = navmesh;
   config.starts = drawBenchStarts(navmesh, n, options_.seed);
@@ -234,6 +238,12 @@ std::optional<Measurement> BenchRunner::timeBaseline(const sim::ScenarioDesc& de
   config.seed = options_.seed;
   config.warmupTicks = options_.warmup;
   config.ticks = ticks;
+  config.progress = [&](int done, int total) {
+    status(fmt::format("{}: {} {}/{}", label, done <= options_.warmup ? "warm-up" : "tick",
+                       done <= options_.warmup ? done : done - options_.warmup,
+                       done <= options_.warmup ? options_.warmup : total - options_.warmup),
+           done == total);
+  };
   ::malloc_trim(0);
   auto result = baselines::runDetourCrowd(config);
   if (!result) {
@@ -251,6 +261,7 @@ std::optional<Measurement> BenchRunner::timeBaseline(const sim::ScenarioDesc& de
   m.msMedian = result->msPerTickMedian;
   m.msP99 = result->msPerTickP99;
   m.bytesPerAgent = result->bytesPerAgent;
+  m.meanSpeed = result->meanSpeed;
   m.peakRssBytes = peakRss();
   m.simulatedSeconds = result->ticks * static_cast<double>(kBenchDt);
   m.wallSeconds = m.agentStepsPerSec > 0 ? static_cast<double>(result->ticks * result->agents) / m.agentStepsPerSec
@@ -267,9 +278,9 @@ std::optional<Measurement> BenchRunner::timeBaseline(const sim::ScenarioDesc& de
 void BenchRunner::printHeader() const {
   if (options_.json) return;
   const std::size_t width = std::max<std::size_t>(8, label_.size());
-  std::string header = fmt::format("{:<12} {:<{}} {:>8} {:>7} {:>6} {:>14} {:>11} {:>11} {:>11} {:>10}", "engine",
-                                   "scenario", width, fileMode_ ? "peak N" : "agents", "threads", "ticks",
-                                   "agent-steps/s", "ms/tick med", "ms/tick p99", "bytes/agent", "peak RSS");
+  std::string header = fmt::format("{:<12} {:<{}} {:>8} {:>7} {:>6} {:>14} {:>11} {:>11} {:>11} {:>10} {:>9}",
+                                   "engine", "scenario", width, fileMode_ ? "peak N" : "agents", "threads", "ticks",
+                                   "agent-steps/s", "ms/tick med", "ms/tick p99", "bytes/agent", "peak RSS", "speed m/s");
   header += fileMode_ ? fmt::format(" {:>10} {:>9} {:>8}", "simulated", "wall", "x real") : fmt::format(" {:>8}", "vs DC");
   printLine(stdout, header);
 }
@@ -291,8 +302,9 @@ void BenchRunner::print(const Measurement& m) {
                         {"peak_rss_bytes", m.peakRssBytes},
                         {"simulated_s", roundMicro(m.simulatedSeconds)},
                         {"wall_s", m.wallSeconds},
-                        {"realtime_factor", m.realtimeFactor()}};
-    if (m.engine != "DetourCrowd") {
+                        {"realtime_factor", m.realtimeFactor()},
+                        {"mean_speed_mps", m.meanSpeed}};
+    if (m.engine != kDetourCrowdEngine) {
       line["speedup_vs_detourcrowd"] = m.speedup ? nlohmann::json(*m.speedup) : nlohmann::json(nullptr);
     }
     if (fileMode_) line["scenario_file"] = filePath_;
@@ -308,9 +320,9 @@ void BenchRunner::print(const Measurement& m) {
     return;
   }
   const std::size_t width = std::max<std::size_t>(8, label_.size());
-  std::string row = fmt::format("{:<12} {:<{}} {:>8} {:>7} {:>6} {:>14} {:>11.3f} {:>11.3f} {:>11.0f} {:>10}", m.engine,
-                                label_, width, m.agents, m.threads, m.ticks, formatSi(m.agentStepsPerSec), m.msMedian,
-                                m.msP99, m.bytesPerAgent, formatBytes(m.peakRssBytes));
+  std::string row = fmt::format("{:<12} {:<{}} {:>8} {:>7} {:>6} {:>14} {:>11.3f} {:>11.3f} {:>11.0f} {:>10} {:>9.2f}",
+                                m.engine, label_, width, m.agents, m.threads, m.ticks, formatSi(m.agentStepsPerSec),
+                                m.msMedian, m.msP99, m.bytesPerAgent, formatBytes(m.peakRssBytes), m.meanSpeed);
   row += fileMode_ ? fmt::format(" {:>10} {:>9} {:>7.1f}x", fmt::format("{:.1f} s", m.simulatedSeconds),
                                  formatSeconds(m.wallSeconds), m.realtimeFactor())
                    : fmt::format(" {:>8}", m.speedup ? fmt::format("{:.2f}x", *m.speedup) : "-");
@@ -344,7 +356,10 @@ void BenchRunner::printFootnotes() const {
     printLine(stdout, "bytes/agent: growth of resident memory from before World::create to after warm-up, divided "
                       "by N (the shared navmesh is built before and not counted); peak RSS: the process's so far");
     printLine(stdout, "vs DC: throng agent-steps/s divided by DetourCrowd's at the same N, on the same navmesh; "
-                      "DetourCrowd starts are drawn uniformly on the navmesh (same distribution, not the same points)");
+                      "DetourCrowd starts are drawn uniformly on the navmesh (same distribution, not the same points); "
+                      "DetourCrowd runs on one thread, so the threads=1 row compares like with like");
+    printLine(stdout, "speed m/s: distance walked per agent-second over the timed ticks, every agent counted "
+                      "(both engines alike)");
   }
   if (options_.record) {
     printLine(stdout, fmt::format("throng+rec: the same configuration again, writing a recording at {:g} fps to a "
@@ -489,7 +504,8 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
   cmd->add_flag("--json", options.json,
                 "One JSON object per line and engine/configuration: engine, scenario, agents, threads, ticks, "
                 "agent_steps_per_s, ms_per_tick_median, ms_per_tick_p99, bytes_per_agent, peak_rss_bytes, "
-                "simulated_s, wall_s, realtime_factor (scenario files also scenario_file; throng+rec recording)");
+                "simulated_s, wall_s, realtime_factor, mean_speed_mps; throng rows speedup_vs_detourcrowd (scenario files also "
+                "scenario_file; throng+rec recording)");
   cmd->add_flag("--phase-times", options.phaseTimes,
                 "Also time every phase of the tick (decide, plan, sense, steer, integrate, ...) over the timed ticks "
                 "and print each one's ms per tick (JSON: phase_ms_per_tick); the clock reads cost a little");

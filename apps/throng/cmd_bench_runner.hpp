@@ -19,6 +19,9 @@
 
 namespace throng::cli::bench_detail {
 
+/// The engine name DetourCrowd's rows carry (baselines::BaselineResult::engine).
+inline constexpr const char* kDetourCrowdEngine = "detourcrowd";
+
 struct Measurement {
   std::string engine;
   std::size_t agents = 0;  ///< in-memory: N; file: most agents present at once
@@ -35,6 +38,7 @@ struct Measurement {
   std::uint64_t frames = 0;
   double closeSeconds = 0.0;      ///< closing the recording (flush, checkpoint) [s]
   std::optional<double> speedup;  ///< throng / DetourCrowd agent-steps/s, same agent count
+  double meanSpeed = 0.0;         ///< agents' mean speed over the timed ticks, all agents [m/s]
   std::vector<std::pair<std::string, double>> phaseMs;  ///< --phase-times: each phase's ms per timed tick
 
   [[nodiscard]] double realtimeFactor() const { return wallSeconds > 0 ? simulatedSeconds / wallSeconds : 0.0; }

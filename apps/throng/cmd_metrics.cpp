@@ -94,15 +94,20 @@ void printReport(const io::SocialMetrics& m) {
   for (const auto& [category, n] : m.visitsByCategory) {
     if (std::find(columns.begin(), columns.end(), category) == columns.end()) columns.push_back(category);
   }
+  // Each category column as wide as its name (at least 10), so no header is cut.
+  std::vector<std::size_t> widths;
+  for (const auto& col : columns) widths.push_back(std::max<std::size_t>(10, col.empty() ? 6 : col.size()));
   std::string header = fmt::format("  {:>13} {:>7}", "from [s]", "visits");
-  for (const auto& col : columns) header += fmt::format(" {:>10}", col.empty() ? "(none)" : col.substr(0, 10));
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    header += fmt::format(" {:>{}}", columns[c].empty() ? "(none)" : columns[c], widths[c]);
+  }
   header += fmt::format(" {:>7}", "exits");
   printLine(stdout, header);
   for (const io::ArrivalBin& b : m.arrivals) {
     std::string row = fmt::format("  {:>13g} {:>7}", b.start, b.visits);
-    for (const auto& col : columns) {
-      const auto it = b.byCategory.find(col);
-      row += fmt::format(" {:>10}", it == b.byCategory.end() ? 0 : it->second);
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      const auto it = b.byCategory.find(columns[c]);
+      row += fmt::format(" {:>{}}", it == b.byCategory.end() ? 0 : it->second, widths[c]);
     }
     row += fmt::format(" {:>7}", b.exits);
     printLine(stdout, row);

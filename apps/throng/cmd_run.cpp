@@ -5,6 +5,7 @@
 // summary on stdout. Launched by mpirun with N > 1 ranks (OMPI_COMM_WORLD_SIZE or PMI_SIZE in the
 // environment), every rank builds the world and they share the steer phase (libs/dist,
 // docs/scaling.md); only rank 0 writes the recording and prints.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -20,6 +21,7 @@
 #include "output.hpp"
 #include "progress.hpp"
 #include "signal.hpp"
+#include "stall_tracker.hpp"
 #include "validators.hpp"
 #include "throng/core/parallel.hpp"
 #include "throng/io/recorder.hpp"
@@ -94,6 +96,15 @@ struct LoopResult {
   double wallSeconds = 0.0;
 };
 
+/// What agent `id` is doing (AgentInfo::state; "done" says where), or nullopt while standing is
+/// its task: at an action point, or in a Common Ground script (a visit, a wait its group agreed on).
+std::optional<std::string> stallState(const sim::World& world, std::uint32_t id) {
+  const auto info = world.agentInfo(id);
+  if (!info || info->state == "at an action point" || info->state == "playing a Common Ground script") return std::nullopt;
+  if (info->state == "done") return std::string("done: stays at its last goal");
+  return info->state;
+}
+
 /// Steps the world and pushes every `plan.stride`-th frame. Stops at `totalTicks`, when the world
 /// is finished, or on a signal; except after a signal it steps on to the next multiple of the
 /// stride so the last frame carries every event (an empty world steps in no time). Under MPI every
@@ -101,10 +112,11 @@ struct LoopResult {
 /// only rank 0 has a recorder; the others drop their snapshots (snapshot() also clears the events).
 LoopResult simulate(sim::World& world, io::Recorder* recorder, const core::TaskSystem& tasks,
                     std::uint64_t totalTicks, const FramePlan& plan, double duration, ProgressLine& progress,
-                    const RankPlan& ranks, sim::PhaseObserver* phases) {
+                    const RankPlan& ranks, sim::PhaseObserver* phases, StallTracker* stalls) {
   LoopResult result;
   const auto start = Clock::now();
   auto push = [&](sim::FramePtr frame) {
+    if (stalls != nullptr) stalls->observe(*frame, [&world](std::uint32_t id) { return stallState(world, id); });
     if (recorder != nullptr) recorder->push(std::move(frame));
   };
   push(world.snapshot());  // frame 0: the initial state at tick 0
@@ -150,6 +162,10 @@ struct RunSummary {
   RunEnd end = RunEnd::Duration;
   sim::WorldStats stats;
   bool hasExit = false;
+  bool evacuation = false;          ///< isEvacuation(scenario)
+  std::vector<StallSpan> stalls;    ///< agents that made no progress for stallSeconds or more
+  double stallSeconds = 0.0;
+  double stallRadius = 0.0;         ///< [m]
   double wallSeconds = 0.0;
   double setupSeconds = 0.0;
   std::string recording;
@@ -161,10 +177,42 @@ struct RunSummary {
   std::vector<std::pair<std::string, double>> phaseSeconds;  ///< --phase-times: rank 0's [s]
 };
 
+/// An evacuation: every agent heads for an exit, its goals all exits or places it only passes
+/// (interest points): no action points, no wandering, no automatic goals, no Common Ground goals.
+bool isEvacuation(const sim::ScenarioDesc& desc) {
+  if (desc.populations.empty() || desc.social.enabled) return false;
+  return std::all_of(desc.populations.begin(), desc.populations.end(), [&](const sim::PopulationDesc& pop) {
+    if (pop.goals.empty() || pop.wander || pop.autoGoals) return false;
+    if (desc.points[pop.goals.back()].kind != sim::PointKind::Exit) return false;
+    return std::none_of(pop.goals.begin(), pop.goals.end(),
+                        [&](std::uint32_t g) { return desc.points[g].kind == sim::PointKind::Action; });
+  });
+}
+
 /// Time until the last agent left, when every agent has left through an exit; < 0 otherwise.
-double evacuationTime(const RunSummary& r) {
+double lastExitTime(const RunSummary& r) {
   const bool everyoneOut = r.stats.active == 0 && r.stats.scheduled == 0 && r.stats.exited > 0;
   return r.hasExit && everyoneOut ? r.stats.lastExitTime : -1.0;
+}
+
+/// The same, for evacuations only.
+double evacuationTime(const RunSummary& r) { return r.evacuation ? lastExitTime(r) : -1.0; }
+
+/// "finished (...)": why the run ended before its duration, without contradicting the counts.
+std::string finishedText(const sim::WorldStats& s) {
+  if (s.active == 0) return "finished (every agent left)";
+  return fmt::format("finished (every agent reached its last goal; {} stay{} there)", s.active, s.active == 1 ? "s" : "");
+}
+
+/// "agent 24 36.0–264.0 s, agent 7 ..." (the first `limit`, then how many more).
+std::string stallsText(const std::vector<StallSpan>& spans, std::size_t limit) {
+  std::string text;
+  for (std::size_t i = 0; i < spans.size() && i < limit; ++i) {
+    text += fmt::format("{}agent {} {:.1f}–{:.1f} s ({})", i == 0 ? "" : "; ", spans[i].agent, spans[i].from, spans[i].to,
+                        spans[i].state);
+  }
+  if (spans.size() > limit) text += fmt::format(" and {} more (--json lists them all)", spans.size() - limit);
+  return text;
 }
 
 double agentStepsPerSecond(const RunSummary& r) {
@@ -183,7 +231,9 @@ void printSummaryJson(const RunSummary& r) {
                      {"agents_scheduled", r.stats.scheduled},
                      {"ticks", r.stats.tick},
                      {"simulated_time_s", r.stats.time},
+                     {"evacuation", r.evacuation},
                      {"evacuation_time_s", evac >= 0 ? nlohmann::json(evac) : nlohmann::json(nullptr)},
+                     {"last_exit_time_s", r.stats.lastExitTime >= 0 ? nlohmann::json(r.stats.lastExitTime) : nlohmann::json(nullptr)},
                      {"mean_walking_speed_mps", r.stats.meanWalkingSpeed()},
                      {"wall_time_s", r.wallSeconds},
                      {"setup_time_s", r.setupSeconds},
@@ -191,6 +241,13 @@ void printSummaryJson(const RunSummary& r) {
                      {"agent_steps_per_s", agentStepsPerSecond(r)},
                      {"recording", {{"path", r.recording}, {"frames", r.frames}, {"fps", r.fps}}},
                      {"state_hash", fmt::format("{:016x}", r.stateHash)}};
+  nlohmann::json stalled = nlohmann::json::array();
+  for (const StallSpan& span : r.stalls) {
+    stalled.push_back({{"agent", span.agent}, {"from_s", span.from}, {"to_s", span.to}, {"state", span.state}});
+  }
+  out["stalled_agents"] = std::move(stalled);
+  out["stall_min_s"] = r.stallSeconds;
+  out["stall_radius_m"] = r.stallRadius;
   if (!r.phaseSeconds.empty()) {
     nlohmann::json phases = nlohmann::json::object();
     for (const auto& [name, seconds] : r.phaseSeconds) phases[name] = seconds;
@@ -213,14 +270,26 @@ void printSummaryText(const RunSummary& r) {
   auto row = [](const char* key, const std::string& value) { printLine(stdout, fmt::format("{:<14}{}", key, value)); };
   row("scenario", fmt::format("{} (seed {})", r.scenario, r.seed));
   row("status", r.end == RunEnd::Interrupted ? "interrupted (recording closed, marked not completed)"
-                : r.end == RunEnd::Finished  ? "finished (no agent left to simulate)"
+                : r.end == RunEnd::Finished  ? finishedText(s)
                                              : "duration reached");
   row("agents", fmt::format("{} spawned, {} exited, {} still inside", s.spawned, s.exited, s.active));
   row("simulated", fmt::format("{:.2f} s ({} ticks)", s.time, s.tick));
-  if (r.hasExit) {
+  if (r.evacuation) {
     const double evac = evacuationTime(r);
     if (evac >= 0) row("evacuation", fmt::format("{:.2f} s (last agent out)", evac));
     else row("evacuation", fmt::format("incomplete: {} agents inside, {} not spawned yet", s.active, s.scheduled));
+  } else if (r.hasExit && s.exited > 0) {
+    row("exits", fmt::format("{} agents left, the last at {:.2f} s", s.exited, s.lastExitTime));
+  }
+  if (!r.stalls.empty()) {
+    std::vector<std::uint32_t> ids;
+    for (const StallSpan& span : r.stalls) ids.push_back(span.agent);
+    std::sort(ids.begin(), ids.end());
+    const auto agents = static_cast<std::size_t>(std::unique(ids.begin(), ids.end()) - ids.begin());
+    row("stalled", fmt::format("{} agent{} stood still (within {:g} m) for {:g} s or more{}: {}", agents,
+                               agents == 1 ? "" : "s", r.stallRadius, r.stallSeconds,
+                               r.stalls.size() > agents ? fmt::format(", {} spells", r.stalls.size()) : "",
+                               stallsText(r.stalls, 10)));
   }
   row("mean speed", fmt::format("{:.2f} m/s (walking agents)", s.meanWalkingSpeed()));
   const double realTime = r.wallSeconds > 0 ? s.time / r.wallSeconds : 0.0;
@@ -262,6 +331,9 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
       "recording is opened, then the crowd is simulated until --duration or until every agent has\n"
       "left. Ctrl-C stops cleanly: the recording is closed as a valid file marked not completed,\n"
       "and the exit code is 130.\n"
+      "The summary gives an evacuation time only for evacuations (every population heads for an exit\n"
+      "without action points, wandering or generated goals) and names stalled agents: those that stood\n"
+      "within 0.5 m for 60 s or more outside actions and Common Ground scripts, with when and why.\n"
       "Under mpirun (N > 1 ranks: OMPI_COMM_WORLD_SIZE or PMI_SIZE set), every rank simulates the\n"
       "world and they share the steer phase; rank 0 alone writes the recording and prints. The\n"
       "trajectories are identical to one process (docs/scaling.md).");
@@ -386,10 +458,11 @@ int runOn(const RunOptions& options, const RankPlan& ranks, sim::StepExchange* e
   summary.setupSeconds = secondsSince(setupStart);
   LoopResult loop;
   PhaseTimer phaseTimer;
+  StallTracker stalls;
   {
     ProgressLine progress(stderr, !options.quiet && speaks);  // cleared when it goes out of scope
     loop = simulate(**world, recorder.get(), tasks, totalTicks, plan, desc.duration, progress, ranks,
-                    options.phaseTimes ? &phaseTimer : nullptr);
+                    options.phaseTimes ? &phaseTimer : nullptr, speaks ? &stalls : nullptr);
   }
   if (recorder) {
     const core::Status closed = recorder->close(loop.end != RunEnd::Interrupted && loop.end != RunEnd::WriteError);
@@ -409,6 +482,10 @@ int runOn(const RunOptions& options, const RankPlan& ranks, sim::StepExchange* e
   summary.end = loop.end;
   summary.stats = (*world)->stats();
   summary.hasExit = desc.hasExit();
+  summary.evacuation = isEvacuation(desc);
+  summary.stalls = stalls.finish(summary.stats.time);
+  summary.stallSeconds = stalls.minSeconds();
+  summary.stallRadius = stalls.radius();
   summary.wallSeconds = loop.wallSeconds;
   summary.recording = recording.path;
   summary.frames = recorder ? recorder->framesWritten() : 0;

@@ -68,7 +68,31 @@ json entryJson(const io::CoordinationInfo& c, const io::ScriptEntryInfo& e) {
           {"duration", number(e.duration)}};
 }
 
+/// The unknown parts of a coordination that had not ended when the recording stopped.
+constexpr const char* kUnfinished = "unfinished at end of recording";
+
+json text(const std::string& s) { return s.empty() ? json(nullptr) : json(s); }
+
 json coordinationJson(const io::CoordinationInfo& c) {
+  if (!c.finished) {
+    return {{"id", c.id},
+            {"group", c.group},
+            {"initiator", c.initiator},
+            {"respondents", c.respondents},
+            {"finished", false},
+            {"goal_point", c.goalPointId.empty() && c.trigger.empty()
+                               ? json(nullptr)
+                               : json{{"index", c.goalPoint}, {"id", text(c.goalPointId)}, {"category", text(c.goalCategory)}}},
+            {"goal_kind", nullptr},
+            {"trigger", text(c.trigger)},
+            {"relation", nullptr},
+            {"plan", nullptr},
+            {"outcome", "unfinished"},
+            {"retries", nullptr},
+            {"t0", number(c.start)},
+            {"t8", nullptr},
+            {"end", nullptr}};
+  }
   return {{"id", c.id},
           {"group", c.group},
           {"initiator", c.initiator},
@@ -82,7 +106,8 @@ json coordinationJson(const io::CoordinationInfo& c) {
           {"retries", c.retries},
           {"t0", number(c.start)},
           {"t8", number(c.execute)},
-          {"end", number(c.end)}};
+          {"end", number(c.end)},
+          {"finished", true}};
 }
 
 void printCoordination(const io::CoordinationInfo& c, const std::vector<io::ScriptEntryInfo>& entries) {
@@ -91,6 +116,17 @@ void printCoordination(const io::CoordinationInfo& c, const std::vector<io::Scri
     respondents += fmt::format("{}{} {}", i == 0 ? "" : ", ", i == 0 ? std::string("B") : fmt::format("C{}", i),
                                c.respondents[i]);
   }
+  if (!c.finished) {
+    printLine(stdout, fmt::format("coordination {}  group {}  initiator A {}  respondents {}  ({})", c.id, c.group,
+                                  c.initiator, respondents.empty() ? "none recorded yet" : respondents, kUnfinished));
+    printLine(stdout, fmt::format("  goal point {}  goal by {}  outcome {}",
+                                  c.goalPointId.empty() && c.trigger.empty()
+                                      ? std::string("unknown")
+                                      : fmt::format("{} ({}{})", c.goalPoint, c.goalPointId.empty() ? "?" : c.goalPointId,
+                                                    c.goalCategory.empty() ? "" : ", " + c.goalCategory),
+                                  c.trigger.empty() ? "-" : c.trigger, kUnfinished));
+    printLine(stdout, fmt::format("  t0 {} s  t8 -  end -", timeText(c.start)));
+  } else {
   printLine(stdout, fmt::format("coordination {}  group {}  initiator A {}  respondents {}", c.id, c.group,
                                 c.initiator, respondents.empty() ? "none" : respondents));
   printLine(stdout, fmt::format("  goal point {} ({}{})  {} goal by {}  relation {}  plan {}  outcome {}{}",
@@ -99,6 +135,7 @@ void printCoordination(const io::CoordinationInfo& c, const std::vector<io::Scri
                                 c.relation.empty() ? "-" : c.relation, c.plan, c.outcome,
                                 c.retries > 0 ? fmt::format(" ({} {})", c.retries, c.retries == 1 ? "retry" : "retries") : ""));
   printLine(stdout, fmt::format("  t0 {} s  t8 {} s  end {} s", timeText(c.start), timeText(c.execute), timeText(c.end)));
+  }
   printLine(stdout, fmt::format("  {:<12} {:<10} {:<14} {:<20} {:<28} {:>9} {:>9} {:>9}", "step", "actor", "motion",
                                 "behaviour", "target", "planned", "start", "duration"));
   if (entries.empty()) printLine(stdout, "  (no script entries recorded)");
@@ -119,7 +156,9 @@ CLI::App* addScriptCommand(CLI::App& app, ScriptOptions& options) {
       "Show the Common Ground action script of one character (Park et al., Tables 3 and 5): for every\n"
       "coordination it took part in, the coordination (group, actors, goal, relation, plan, outcome,\n"
       "t0/t8/end) and every entry of all its actors by start time (step, actor, motion, behaviour,\n"
-      "target, planned start, start, duration), then the character's trajectory.\n"
+      "target, planned start, start, duration), then the character's trajectory. A coordination still\n"
+      "running when the recording ended is marked \"unfinished at end of recording\" (its plan and outcome\n"
+      "are unknown; JSON: \"finished\": false). Groups are numbered as in the trajectory (stable group ids).\n"
       "--json prints one object with the coordinations, their entries and the per-frame trajectory.");
   cmd->add_option("recording", options.recording, "Recording written by 'throng run'")
       ->required()
@@ -159,11 +198,13 @@ int runScript(const ScriptOptions& options) {
     return kExitFailure;
   }
   const auto own = io::readScript(path, options.agent);
-  const auto all = io::readCoordinations(path);
-  if (!own || !all) {
-    printDiagnostics(!own ? own.errors() : all.errors());
+  auto all = io::readCoordinations(path);
+  const auto unfinished = io::readUnfinishedCoordinations(path);
+  if (!own || !all || !unfinished) {
+    printDiagnostics(!own ? own.errors() : !all ? all.errors() : unfinished.errors());
     return kExitFailure;
   }
+  all->insert(all->end(), unfinished->begin(), unfinished->end());
   std::set<std::uint32_t> ids;
   for (const auto& e : own.value()) ids.insert(e.coordination);
   for (const auto& c : all.value()) {  // a lone visit, or an actor whose entries were not recorded
@@ -186,19 +227,28 @@ int runScript(const ScriptOptions& options) {
   for (const std::uint32_t id : ids) {
     const auto& list = all.value();
     const auto it = std::find_if(list.begin(), list.end(), [&](const io::CoordinationInfo& c) { return c.id == id; });
-    io::CoordinationInfo c;
-    if (it != list.end()) {
-      c = *it;
-    } else {  // entries whose coordination row is missing (a run cut short): show them anyway
-      c.id = id;
-      c.initiator = options.agent;
-      c.plan = c.outcome = c.goalKind = c.trigger = "?";
-      c.start = c.execute = c.end = std::nan("");
-    }
     auto entries = io::readCoordinationScript(path, id);
     if (!entries) {
       printDiagnostics(entries.errors());
       return kExitFailure;
+    }
+    io::CoordinationInfo c;
+    if (it != list.end()) {
+      c = *it;
+    } else {  // entries without a coordination row or start event (a file cut short): show them anyway
+      c.id = id;
+      c.finished = false;
+      c.group = track->group.value_or(0);  // the trajectory's group numbering
+      c.initiator = options.agent;
+      c.start = c.execute = c.end = std::nan("");
+      for (const auto& e : *entries) {
+        if (e.role == "initiator") c.initiator = e.agent;
+      }
+      for (const auto& e : *entries) {
+        if (e.agent != c.initiator && std::find(c.respondents.begin(), c.respondents.end(), e.agent) == c.respondents.end()) {
+          c.respondents.push_back(e.agent);
+        }
+      }
     }
     if (options.json) {
       json j = coordinationJson(c);

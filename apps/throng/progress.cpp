@@ -34,16 +34,30 @@ std::string formatRunProgress(const RunProgress& p, int width) {
   const double fraction = p.duration > 0 ? p.simTime / p.duration : 0.0;
   const double speed = p.wallSeconds > 0 ? p.simTime / p.wallSeconds : 0.0;
   const double eta = speed > 0 ? (p.duration - p.simTime) / speed : -1.0;
-  const std::string left = fmt::format("{:.1f}/{:.1f} s", p.simTime, p.duration);
-  const std::string right = fmt::format("{:3.0f}%  {} active {} exited  {:.1f}x real time  ETA {}",
-                                        std::clamp(fraction, 0.0, 1.0) * 100.0, p.active, p.exited,
-                                        speed, formatClock(eta));
-  // Leave the last column free: writing into it wraps on some terminals.
-  const int room = width - 1 - static_cast<int>(left.size() + right.size()) - 2;
-  std::string line = left;
-  if (room >= 12) line += " " + formatBar(fraction, std::min(room, 60)) + " ";
-  else line += "  ";
-  line += right;
+  // The simulated time is padded to the duration's width so the line does not shift as it grows.
+  const std::string total = fmt::format("{:.1f}", p.duration);
+  const std::string left = fmt::format("{:>{}.1f}/{} s", p.simTime, total.size(), total);
+  const double percent = std::clamp(fraction, 0.0, 1.0) * 100.0;
+  // Longest first; the bar keeps its place by shortening the right part when the line is narrow.
+  const std::string rights[] = {
+      fmt::format("{:3.0f}%  {} active {} exited  {:.1f}x real time  ETA {}", percent, p.active, p.exited, speed,
+                  formatClock(eta)),
+      fmt::format("{:3.0f}%  {} active {} exited  {:.1f}x  ETA {}", percent, p.active, p.exited, speed, formatClock(eta)),
+      fmt::format("{:3.0f}%  {}/{} in/out  {:.0f}x  ETA {}", percent, p.active, p.exited, speed, formatClock(eta)),
+  };
+  constexpr int kMinBar = 12;
+  std::string line;
+  for (const std::string& right : rights) {
+    // Leave the last column free: writing into it wraps on some terminals.
+    const int room = width - 1 - static_cast<int>(left.size() + right.size()) - 2;
+    if (room >= kMinBar || &right == &rights[2]) {
+      line = left;
+      if (room >= kMinBar) line += " " + formatBar(fraction, std::min(room, 60)) + " ";
+      else line += "  ";
+      line += right;
+      break;
+    }
+  }
   if (width > 1 && static_cast<int>(line.size()) > width - 1) line.resize(static_cast<std::size_t>(width - 1));
   return line;
 }

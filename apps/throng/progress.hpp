@@ -24,8 +24,9 @@ struct RunProgress {
 /// "m:ss" or "h:mm:ss"; "--:--" when not finite or negative.
 [[nodiscard]] std::string formatClock(double seconds);
 
-/// One line at most `width` columns: simulated/total time, a bar when there is room, percentage,
-/// agents active/exited, speed as a multiple of real time and the remaining wall time.
+/// One line at most `width` columns: simulated/total time (padded to a fixed width), a bar of at
+/// least 12 columns, percentage, agents active/exited, speed as a multiple of real time and the
+/// remaining wall time; the right part is written shorter before the bar is dropped.
 [[nodiscard]] std::string formatRunProgress(const RunProgress& progress, int width);
 
 class ProgressLine {

@@ -141,6 +141,7 @@ core::Result<BaselineResult> runDetourCrowd(const BaselineConfig& config) {
       if (arrived || ag->targetState == DT_CROWDAGENT_TARGET_FAILED || ag->targetState == DT_CROWDAGENT_TARGET_NONE)
         newGoal(*crowd, query, rngs[i], i, &goals[static_cast<std::size_t>(i) * 3]);
     }
+    if (config.progress) config.progress(t + 1, config.warmupTicks + config.ticks);
   }
 
   BaselineResult result;

@@ -3,6 +3,7 @@
 // on arrival. Reads the NavMesh; measures only dtCrowd::update() of the measured ticks.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,6 +28,9 @@ struct BaselineConfig {
   std::uint64_t seed = 1;          ///< goal choice: core::Rng(seed, agent, Goal)
   int warmupTicks = 20;            ///< untimed ticks first [Limit: >= 0]
   int ticks = 100;                 ///< timed ticks [Limit: >= 1]
+  /// Called after every tick (warm-up and timed, outside the timing) with the ticks done and the
+  /// total (warmupTicks + ticks); may be empty.
+  std::function<void(int done, int total)> progress;
 };
 
 struct BaselineResult {
@@ -37,7 +41,7 @@ struct BaselineResult {
   double msPerTickMedian = 0;     ///< [ms]
   double msPerTickP99 = 0;        ///< [ms]
   double bytesPerAgent = 0;       ///< resident-set growth over crowd creation / agents (see .cpp)
-  double meanSpeed = 0;           ///< mean agent speed over the timed ticks [m/s] (a sanity check)
+  double meanSpeed = 0;           ///< mean agent speed over the timed ticks and all agents [m/s]
 };
 
 /// Runs the baseline. Fails with a diagnostic for bad config or when dtCrowd cannot be set up.

@@ -10,6 +10,8 @@
 #include <stdexcept>
 
 #include <fcntl.h>
+#include <pty.h>
+#include <sys/ioctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -92,6 +94,52 @@ std::string readFile(const fs::path& path) {
 CliResult runThrong(const std::vector<std::string>& args, const fs::path& cwd) {
   CliProcess process(args, cwd);
   return process.wait();
+}
+
+CliResult runThrongInTerminal(const std::vector<std::string>& args, const fs::path& cwd, int columns) {
+  winsize size{};
+  size.ws_row = 24;
+  size.ws_col = static_cast<unsigned short>(columns);
+  int master = -1, slave = -1;
+  if (::openpty(&master, &slave, nullptr, nullptr, &size) != 0) throw std::runtime_error("openpty failed");
+  const fs::path outPath = uniqueOutputPath("out");
+  std::vector<std::string> argvStrings{THRONG_EXE};
+  argvStrings.insert(argvStrings.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argvStrings) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid == 0) {
+    const int o = ::open(outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int in = ::open("/dev/null", O_RDONLY);
+    if (o < 0 || in < 0 || ::chdir(cwd.c_str()) != 0) ::_exit(126);
+    ::close(master);
+    ::dup2(in, 0);
+    ::dup2(o, 1);
+    ::dup2(slave, 2);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  ::close(slave);
+  CliResult r;
+  char buf[4096];
+  while (true) {
+    const ssize_t n = ::read(master, buf, sizeof buf);
+    if (n > 0) {
+      r.err.append(buf, static_cast<std::size_t>(n));
+    } else if (n < 0 && errno == EINTR) {
+      continue;
+    } else {
+      break;  // EIO once the child has closed the terminal
+    }
+  }
+  ::close(master);
+  r.exitCode = waitFor(pid);
+  r.out = readFile(outPath);
+  std::error_code ec;
+  fs::remove(outPath, ec);
+  return r;
 }
 
 CliProcess::CliProcess(const std::vector<std::string>& args, const fs::path& cwd)

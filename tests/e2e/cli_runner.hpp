@@ -36,6 +36,10 @@ class ScratchDir {
 /// Runs `throng args...` in `cwd` and waits for it.
 CliResult runThrong(const std::vector<std::string>& args, const std::filesystem::path& cwd);
 
+/// Runs `throng args...` in `cwd` with its stderr on a pseudo-terminal `columns` wide (stdout to a
+/// file), so it draws its progress line; `err` holds every byte written to the terminal.
+CliResult runThrongInTerminal(const std::vector<std::string>& args, const std::filesystem::path& cwd, int columns = 80);
+
 /// A throng process started in the background (for signal tests); its output goes to files.
 class CliProcess {
  public:

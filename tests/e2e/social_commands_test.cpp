@@ -71,6 +71,47 @@ TEST_F(SocialCommands, ScriptJsonIsTheActionScriptPerCharacter) {
   EXPECT_EQ(j["trajectory"][0]["ori_y"], 1.0);
 }
 
+TEST_F(SocialCommands, ScriptMarksUnfinishedCoordinationsInTheTrajectorysGroups) {
+  // Coordination 1 still running when the recording stopped: its start event, no row yet.
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db,
+                         "DELETE FROM throng_coordinations WHERE id = 1; INSERT INTO throng_events(frame, tick, agent, "
+                         "kind, a, b) VALUES (0, 0, 0, 'coordination_start', 1, 7);",
+                         nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(db);
+  const CliResult r = runThrong({"script", "cg.sqlite", "--agent", "1"}, dir_.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "coordination 1  group 7  initiator A 0  respondents B 1  (unfinished at end of recording)"))
+      << r.out;
+  EXPECT_TRUE(contains(r.out, "goal point 0 (wc, restroom)  goal by need  outcome unfinished at end of recording")) << r.out;
+  EXPECT_TRUE(contains(r.out, "t0 0.00 s  t8 -  end -")) << r.out;
+  EXPECT_FALSE(contains(r.out, "respondents none")) << r.out;
+  EXPECT_TRUE(contains(r.out, "trajectory   agent 1 (group 7)")) << r.out;
+  const CliResult j = runThrong({"script", "cg.sqlite", "--agent", "1", "--json"}, dir_.path());
+  ASSERT_EQ(j.exitCode, 0) << j.err;
+  const json out = json::parse(j.out);
+  const json& c = out["coordinations"][0];
+  EXPECT_EQ(c["id"], 1);
+  EXPECT_FALSE(c["finished"].get<bool>());
+  EXPECT_EQ(c["outcome"], "unfinished");
+  EXPECT_EQ(c["group"], out["group"]);
+  EXPECT_EQ(c["respondents"], json::array({1}));
+  EXPECT_TRUE(c["plan"].is_null());
+  EXPECT_TRUE(out["coordinations"][1]["finished"].get<bool>());
+
+  // No start event either (a file cut short): the entries still name the actors, the trajectory the group.
+  ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, "DELETE FROM throng_events WHERE kind = 'coordination_start';", nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(db);
+  const CliResult cut = runThrong({"script", "cg.sqlite", "--agent", "1"}, dir_.path());
+  ASSERT_EQ(cut.exitCode, 0) << cut.err;
+  EXPECT_TRUE(contains(cut.out, "coordination 1  group 7  initiator A 0  respondents B 1  (unfinished at end of recording)"))
+      << cut.out;
+}
+
 TEST_F(SocialCommands, MetricsReportAndJson) {
   const CliResult text = runThrong({"metrics", "cg.sqlite", "--bin", "0.25"}, dir_.path());
   ASSERT_EQ(text.exitCode, 0) << text.err;

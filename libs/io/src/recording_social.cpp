@@ -5,6 +5,9 @@
 #include "throng/io/recording_social.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <filesystem>
 #include <sstream>
 
@@ -199,6 +202,76 @@ core::Result<std::vector<CoordinationInfo>> readCoordinations(const std::string&
       out.push_back(std::move(c));
     }
     if (rc != SQLITE_DONE) return readDiag(path, "cannot read throng_coordinations (" + dbFailure(db) + ")");
+    return out;
+  } catch (const std::exception& e) {
+    return readDiag(path, std::string("cannot read: ") + e.what());
+  }
+}
+
+core::Result<std::vector<CoordinationInfo>> readUnfinishedCoordinations(const std::string& path) {
+  try {
+    ReadOnlyDb db(path);
+    if (auto d = openChecked(path, db)) return *d;
+    if (auto d = requireCommonGround(path, db)) return *d;
+    std::vector<CoordinationInfo> out;
+    if (!tableExists(db, "throng_events").value_or(false)) return out;
+    const auto points = readPointNames(db);
+    const std::string dtText = metaValue(db, "throng_dt");
+    char* endPtr = nullptr;
+    const double dt = std::strtod(dtText.c_str(), &endPtr);
+    const bool haveDt = !dtText.empty() && endPtr != dtText.c_str() && std::isfinite(dt) && dt > 0.0;
+    FrameClock clock;
+    if (!clock.load(db, recordingFps(db).value_or(1.0))) {
+      return readDiag(path, "cannot read throng_frames (" + dbFailure(db) + ")");
+    }
+    Statement s(db.get(),
+                "SELECT a, b, agent, tick, frame FROM throng_events WHERE kind = 'coordination_start' AND "
+                "a NOT IN (SELECT id FROM throng_coordinations) ORDER BY a");
+    Statement goal(db.get(),
+                   "SELECT a, b FROM throng_events WHERE kind = 'goal_generated' AND agent = ? AND tick <= ? "
+                   "ORDER BY tick DESC LIMIT 1");
+    Statement actors(db.get(),
+                     "SELECT agent, max(role = 'respondent') AS b, min(start) AS first FROM throng_script "
+                     "WHERE coordination = ? GROUP BY agent ORDER BY b DESC, first, agent");
+    if (!s.ok() || !goal.ok() || !actors.ok()) return readDiag(path, "cannot read throng_events (" + dbFailure(db) + ")");
+    int rc = SQLITE_ROW;
+    while ((rc = sqlite3_step(s.get())) == SQLITE_ROW) {
+      sqlite3_stmt* q = s.get();
+      const auto id = columnId(q, 0), group = columnId(q, 1), initiator = columnId(q, 2);
+      if (!id || !group || !initiator) {
+        return readDiag(path, "throng_events: a coordination_start with agent, a or b not an id",
+                        "non-negative integers below 2^32");
+      }
+      CoordinationInfo c;
+      c.finished = false;
+      c.id = *id;
+      c.group = *group;
+      c.initiator = *initiator;
+      const sqlite3_int64 tick = sqlite3_column_int64(q, 3);
+      c.start = haveDt ? static_cast<double>(tick) * dt : clock.time(sqlite3_column_int64(q, 4));
+      c.execute = c.end = std::numeric_limits<double>::quiet_NaN();
+      sqlite3_reset(goal.get());
+      bindInt(goal.get(), 1, c.initiator);
+      bindInt(goal.get(), 2, tick);
+      if (sqlite3_step(goal.get()) == SQLITE_ROW) {
+        if (const auto point = columnId(goal.get(), 0)) {
+          c.goalPoint = *point;
+          if (c.goalPoint < points.size()) {
+            c.goalPointId = points[c.goalPoint].first;
+            c.goalCategory = points[c.goalPoint].second;
+          }
+        }
+        c.trigger = sqlite3_column_int64(goal.get(), 1) == 1 ? "attraction" : "need";
+      }
+      sqlite3_reset(actors.get());
+      bindInt(actors.get(), 1, c.id);
+      while (sqlite3_step(actors.get()) == SQLITE_ROW) {
+        const auto agent = columnId(actors.get(), 0);
+        if (agent && *agent != c.initiator) c.respondents.push_back(*agent);
+      }
+      out.push_back(std::move(c));
+    }
+    if (rc != SQLITE_DONE) return readDiag(path, "cannot read throng_events (" + dbFailure(db) + ")");
     return out;
   } catch (const std::exception& e) {
     return readDiag(path, std::string("cannot read: ") + e.what());

@@ -87,6 +87,7 @@ class Validator {
         checkGuide(i);
       }
     }
+    checkSpawnCapacity(starts);
     if (options.checkReachability && diags_.empty()) checkReachability(starts, navmesh);
   }
 
@@ -211,15 +212,6 @@ class Validator {
             expected);
     }
     if (freeArea < 1e-6) return std::nullopt;
-    const double agents = double(pop.groups) * pop.sizeMax;
-    const double needed = agents * std::numbers::pi * double(pop.radius) * pop.radius / kSpawnPackingFactor;
-    if (freeArea < needed) {
-      error(s.pointer,
-            "spawn area of " + num(freeArea) + " m² is too small for " + num(agents) + " agents of radius " +
-                num(pop.radius) + " m",
-            "at least " + num(needed) + " m² (agents × π r² / packing factor " + num(kSpawnPackingFactor) + ")",
-            "enlarge the spawn area or spawn fewer groups");
-    }
     BPoint inside;
     try {
       bg::point_on_surface(inFree, inside);
@@ -227,6 +219,151 @@ class Validator {
       return std::nullopt;
     }
     return core::Vec2(static_cast<float>(inside.x()), static_cast<float>(inside.y()));
+  }
+
+  /// Agents of a population at most (groups × largest group size).
+  double maxAgents(std::size_t i) const {
+    const sim::PopulationDesc& pop = desc_.populations[i];
+    return double(pop.groups) * pop.sizeMax;
+  }
+
+  /// Populations spawning in areas that overlap, at the same time (and on multi-level worlds at
+  /// the same floor), as clusters of population indices in ascending order; only those `use`
+  /// admits. Position spawns grow a disc that fits their agents and are left out.
+  std::vector<std::vector<std::size_t>> spawnClusters(const std::vector<bool>& use, bool levels) const {
+    const std::size_t n = desc_.populations.size();
+    std::vector<std::size_t> parent(n);
+    for (std::size_t i = 0; i < n; ++i) parent[i] = i;
+    auto root = [&](std::size_t i) {
+      while (parent[i] != i) i = parent[i] = parent[parent[i]];
+      return i;
+    };
+    std::vector<BPolygon> regions(n);
+    std::vector<bg::model::box<BPoint>> boxes(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!use[i]) continue;
+      regions[i] = spawnRegion(i).region;
+      boxes[i] = bg::return_envelope<bg::model::box<BPoint>>(regions[i]);
+    }
+    const float halfTick = 0.5f * desc_.dt;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!use[i]) continue;
+      for (std::size_t j = i + 1; j < n; ++j) {
+        if (!use[j] || root(i) == root(j)) continue;
+        if (std::fabs(desc_.populations[i].start - desc_.populations[j].start) > halfTick) continue;
+        if (levels && std::fabs(spawnHeight(i) - spawnHeight(j)) > nav::kLevelSearch) continue;
+        if (!bg::intersects(boxes[i], boxes[j])) continue;
+        BMulti overlap;
+        bg::intersection(regions[i], regions[j], overlap);
+        if (bg::area(overlap) > 1e-6) parent[root(j)] = root(i);
+      }
+    }
+    std::vector<std::vector<std::size_t>> clusters;
+    std::vector<std::size_t> index(n, n);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!use[i]) continue;
+      const std::size_t r = root(i);
+      if (index[r] == n) {
+        index[r] = clusters.size();
+        clusters.emplace_back();
+      }
+      clusters[index[r]].push_back(i);
+    }
+    return clusters;
+  }
+
+  float spawnHeight(std::size_t i) const {
+    const sim::SpawnDesc& spawn = desc_.populations[i].spawn;
+    return spawn.kind == sim::SpawnKind::Point ? desc_.points[spawn.point].height : spawn.height;
+  }
+
+  /// One diagnostic when the walkable part of a cluster's spawn areas (`freeArea`) cannot hold its
+  /// agents: agents × π r² / kSpawnPackingFactor, summed over the populations spawning there.
+  void reportCapacity(const std::vector<std::size_t>& cluster, double freeArea) {
+    double agents = 0.0, needed = 0.0;
+    for (const std::size_t i : cluster) {
+      const double r = desc_.populations[i].radius;
+      agents += maxAgents(i);
+      needed += maxAgents(i) * std::numbers::pi * r * r / kSpawnPackingFactor;
+    }
+    if (freeArea >= needed) return;
+    const std::size_t last = cluster.back();
+    const SpawnRegion s = spawnRegion(last);
+    const sim::PopulationDesc& pop = desc_.populations[last];
+    if (cluster.size() == 1) {
+      error(s.pointer,
+            "spawn area of " + num(freeArea) + " m² is too small for " + num(agents) + " agents of radius " +
+                num(pop.radius) + " m",
+            "at least " + num(needed) + " m² (agents × π r² / packing factor " + num(kSpawnPackingFactor) + ")",
+            "enlarge the spawn area or spawn fewer groups");
+      return;
+    }
+    std::string names;
+    for (std::size_t k = 0; k < cluster.size(); ++k) {
+      const std::size_t i = cluster[k];
+      names += (k == 0 ? "" : k + 1 == cluster.size() ? " and " : ", ") + ("\"" + desc_.populations[i].id + "\" (" +
+               num(maxAgents(i)) + " at " + spawnRegion(i).pointer + ")");
+    }
+    error(s.pointer,
+          "spawn areas of populations " + names + " overlap and start at " + num(pop.start) + " s: " + num(freeArea) +
+              " m² of walkable ground is too small for their " + num(agents) + " agents",
+          "at least " + num(needed) + " m² (agents × π r² / packing factor " + num(kSpawnPackingFactor) +
+              ", summed over the populations spawning there together)",
+          "enlarge the spawn areas, spawn fewer groups, or start the populations at different times");
+  }
+
+  /// Spawn capacity on a flat world: the walkable part (clear of obstacles) of the union of the
+  /// areas of populations that spawn together in overlapping areas must hold all their agents.
+  void checkSpawnCapacity(const std::vector<std::optional<core::Vec2>>& starts) {
+    std::vector<bool> use(desc_.populations.size(), false);
+    for (std::size_t i = 0; i < use.size(); ++i) {
+      use[i] = starts[i].has_value() && desc_.populations[i].spawn.kind != sim::SpawnKind::Position;
+    }
+    for (const auto& cluster : spawnClusters(use, false)) {
+      BMulti all;
+      for (const std::size_t i : cluster) {
+        BMulti next;
+        bg::union_(all, spawnRegion(i).region, next);
+        all = std::move(next);
+      }
+      BMulti inFree;
+      bg::intersection(all, free_, inFree);
+      reportCapacity(cluster, bg::area(inFree));
+    }
+  }
+
+  /// Spawn capacity on a multi-level world: the walkable part of the spawn areas at their floor,
+  /// measured on the navmesh (ground within one body radius of it, sampled on a grid).
+  void checkTerrainCapacity(const std::vector<std::optional<nav::MeshPoint>>& starts, const nav::NavQuery& query,
+                            float agentRadius) {
+    std::vector<bool> use(desc_.populations.size(), false);
+    for (std::size_t i = 0; i < use.size(); ++i) {
+      use[i] = starts[i].has_value() && desc_.populations[i].spawn.kind != sim::SpawnKind::Position;
+    }
+    for (const auto& cluster : spawnClusters(use, true)) {
+      std::vector<BPolygon> regions;
+      bg::model::box<BPoint> box;
+      bg::assign_inverse(box);
+      for (const std::size_t i : cluster) {
+        regions.push_back(spawnRegion(i).region);
+        bg::expand(box, bg::return_envelope<bg::model::box<BPoint>>(regions.back()));
+      }
+      const double w = box.max_corner().x() - box.min_corner().x(), h = box.max_corner().y() - box.min_corner().y();
+      const double step = std::max(0.1, std::sqrt(w * h / 10000.0));  // at most 10,000 samples
+      const float height = spawnHeight(cluster.front());
+      const float reach = agentRadius + 0.02f;
+      std::size_t walkable = 0;
+      for (double y = box.min_corner().y() + 0.5 * step; y < box.max_corner().y(); y += step) {
+        for (double x = box.min_corner().x() + 0.5 * step; x < box.max_corner().x(); x += step) {
+          const BPoint b(x, y);
+          if (std::none_of(regions.begin(), regions.end(), [&](const BPolygon& r) { return bg::within(b, r); })) continue;
+          const core::Vec2 p(static_cast<float>(x), static_cast<float>(y));
+          const auto m = snapAt(query, p, height, reach);
+          if (m && core::lengthSq(m->p - p) <= reach * reach) ++walkable;
+        }
+      }
+      reportCapacity(cluster, static_cast<double>(walkable) * step * step);
+    }
   }
 
   /// A point inside a goal's region to route to.
@@ -292,8 +429,8 @@ class Validator {
   static std::string at3(core::Vec2 p, float h) { return "(" + num(p.x) + ", " + num(p.y) + ", " + num(h) + ")"; }
 
   /// A multi-level world (ScenarioDesc::terrain): every check snaps to the navmesh at the given
-  /// heights, so it needs the mesh; the 2D polygon checks (spawn areas inside /walkable, capacity)
-  /// have no counterpart yet.
+  /// heights, so it needs the mesh; spawn capacity is measured on it (checkTerrainCapacity); the 2D
+  /// polygon checks (spawn areas inside /walkable) have no counterpart yet.
   void runTerrain(const LoadOptions& options, std::shared_ptr<const nav::NavMesh>& navmesh) {
     if (!parsed_.terrainOk || !options.checkReachability) return;  // the parser said why / no mesh wanted
     nav::NavMeshConfig config;
@@ -326,6 +463,7 @@ class Validator {
               "a waypoint on a floor, stair or ramp of /terrain/walkable, at that floor's height (z)");
       }
     }
+    checkTerrainCapacity(starts, query, config.agentRadius);
     if (!diags_.empty()) return;
     const float width = 2.0f * config.agentRadius;
     for (std::size_t i = 0; i < desc_.populations.size(); ++i) {

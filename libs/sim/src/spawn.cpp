@@ -1,9 +1,14 @@
 // applyCommands — spawning. Populations due this tick enter the world in population order; groups
-// are placed together (members near a group anchor) on free spots of the spawn region, on the
-// navmesh, never closer than the sum of radii to anyone already there when room allows. Every
-// draw comes from a stream keyed by (seed, stable group or agent id, purpose).
+// are placed together (members near a group anchor) on free spots of the spawn area, on the
+// navmesh, never closer than the sum of radii (plus a small gap) to anyone already there. Every
+// draw comes from a stream keyed by (seed, stable group or agent id, purpose). When random spots
+// run out (a crowded area), the populations sharing that area are laid out again on a packed
+// lattice inside it, a deterministic layout; only what the area cannot hold at all goes around it.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <unordered_map>
 
 #include "throng/core/assert.hpp"
 #include "throng/core/rng.hpp"
@@ -13,37 +18,43 @@ namespace throng::sim {
 namespace {
 
 constexpr float kSpawnGap = 0.02f;  // extra clearance between spawned bodies [m]
+constexpr float kFloorGap = 1.5f;   // bodies further apart in height stand on different floors [m]
+
+}  // namespace
 
 /// Hash grid of occupied discs used while placing agents (only on ticks that spawn): open
 /// addressing over cells, each cell's discs chained through one flat array. A few large blocks
 /// (about 40 bytes per disc), freed whole when spawning ends, so placing a million agents leaves
 /// no heap fragments behind.
-class Occupancy {
+class SpawnOccupancy {
  public:
-  Occupancy(float cell, std::size_t expected) : cell_(cell) {
+  SpawnOccupancy(float cell, std::size_t expected) : cell_(cell) {
     std::size_t cap = 64;
     while (cap < 2 * expected) cap *= 2;
     keys_.resize(cap);
     heads_.assign(cap, kNone);
     entries_.reserve(expected);
   }
-  void add(core::Vec2 p, float r) {
+  /// A disc of radius `r` at `p` on the floor at height `z` (0 on flat worlds).
+  void add(core::Vec2 p, float r, float z = 0.0f) {
     if (2 * (cells_ + 1) > keys_.size()) rehash(2 * keys_.size());
     const std::size_t slot = find(key(p));
     if (heads_[slot] == kNone) {
       keys_[slot] = key(p);
       ++cells_;
     }
-    entries_.push_back({p, r, heads_[slot]});
+    entries_.push_back({p, r, z, heads_[slot]});
     heads_[slot] = static_cast<std::uint32_t>(entries_.size() - 1);
   }
-  [[nodiscard]] bool free(core::Vec2 p, float r) const {
+  /// Whether a disc of radius `r` at `p` on the floor at height `z` touches none (discs on other
+  /// floors, more than kFloorGap above or below, do not count).
+  [[nodiscard]] bool free(core::Vec2 p, float r, float z = 0.0f) const {
     const int cx = static_cast<int>(std::floor(p.x / cell_)), cy = static_cast<int>(std::floor(p.y / cell_));
     for (int y = cy - 1; y <= cy + 1; ++y) {
       for (int x = cx - 1; x <= cx + 1; ++x) {
         for (std::uint32_t i = heads_[find(pack(x, y))]; i != kNone; i = entries_[i].next) {
           const float d = r + entries_[i].r + kSpawnGap;
-          if (core::lengthSq(p - entries_[i].p) < d * d) return false;
+          if (core::lengthSq(p - entries_[i].p) < d * d && std::fabs(z - entries_[i].z) <= kFloorGap) return false;
         }
       }
     }
@@ -55,6 +66,7 @@ class Occupancy {
   struct Entry {
     core::Vec2 p;
     float r;
+    float z;
     std::uint32_t next;  ///< previous disc of the same cell, kNone at the end
   };
   static std::uint64_t pack(int x, int y) {
@@ -88,6 +100,8 @@ class Occupancy {
   std::vector<Entry> entries_;
   std::size_t cells_ = 0;
 };
+
+namespace {
 
 /// Uniform point in a polygon by rejection from its bounding box (nullopt after many misses).
 std::optional<core::Vec2> samplePolygon(const Polygon& poly, const core::Aabb& box, core::Rng& rng) {
@@ -219,95 +233,448 @@ std::vector<Event> World::Impl::takeEvents() {
 
 void World::Impl::applyCommands() {
   applyCrowdCommands();  // inserted crowds' populations starting now spawn below
+  std::vector<std::size_t> due;
   for (std::size_t p = 0; p < desc.populations.size(); ++p) {
-    if (!populationSpawned[p] && populationStartTick[p] <= tick) spawnPopulation(p);
+    if (!populationSpawned[p] && populationStartTick[p] <= tick) due.push_back(p);
   }
+  if (!due.empty()) spawnPopulations(due);
 }
 
-void World::Impl::spawnPopulation(std::size_t populationIndex) {
-  const PopulationDesc& pop = desc.populations[populationIndex];
-  populationSpawned[populationIndex] = 1;
-  const nav::NavQuery& query = *mainQuery;
+namespace {
 
-  // Region the population spawns in.
-  const Polygon* regionPoly = nullptr;
-  core::Vec2 regionCentre;
-  float regionRadius = 0.0f;
+/// Where one population appears: a polygon, or a disc (a point's radius; a position's disc grown
+/// big enough for everyone at half packing density), at one floor's height on multi-level worlds.
+struct SpawnArea {
+  const Polygon* poly = nullptr;
+  core::Vec2 centre;  ///< a spawn polygon's centroid, a point's or position's centre (never an unset origin)
+  float radius = 0.0f;
+  core::Aabb box;
+  float height = 0.0f;  ///< its floor on multi-level worlds (0 on flat ones) [m]
+  double area = 0.0;  ///< [m²]
+
+  [[nodiscard]] bool contains(core::Vec2 p) const {
+    return poly ? core::pointInPolygon(*poly, p) : core::lengthSq(p - centre) <= radius * radius;
+  }
+  [[nodiscard]] std::optional<core::Vec2> sample(core::Rng& rng) const {
+    if (poly) return samplePolygon(*poly, box, rng);
+    return sampleDisc(centre, radius, rng);
+  }
+};
+
+SpawnArea spawnArea(const ScenarioDesc& desc, const PopulationDesc& pop, std::uint32_t total, bool levels) {
+  SpawnArea a;
   switch (pop.spawn.kind) {
-    case SpawnKind::Polygon: regionPoly = &pop.spawn.polygon; break;
-    case SpawnKind::Position: regionCentre = pop.spawn.position; break;
+    case SpawnKind::Polygon: a.poly = &pop.spawn.polygon; break;
+    case SpawnKind::Position:
+      a.centre = pop.spawn.position;
+      a.radius = std::sqrt(static_cast<float>(total) * pop.radius * pop.radius / 0.5f) + pop.radius;
+      break;
     case SpawnKind::Point: {
       const PointDesc& point = desc.points[pop.spawn.point];
-      if (!point.polygon.empty()) regionPoly = &point.polygon;
-      regionCentre = point.position;
-      regionRadius = point.radius;
+      if (!point.polygon.empty()) a.poly = &point.polygon;
+      a.centre = point.position;
+      a.radius = point.radius;
       break;
     }
   }
-  const core::Aabb box = regionPoly ? core::bounds(*regionPoly) : core::Aabb{};
-  std::uint32_t total = 0;
-  for (std::uint32_t s : groupSizes[populationIndex]) total += s;
-  // A position spawn grows a disc big enough for everyone at half packing density.
-  if (pop.spawn.kind == SpawnKind::Position) {
-    regionRadius = std::sqrt(static_cast<float>(total) * pop.radius * pop.radius / 0.5f) + pop.radius;
+  if (a.poly) {
+    a.box = core::bounds(*a.poly);
+    if (pop.spawn.kind == SpawnKind::Polygon) a.centre = core::centroid(*a.poly);
+    a.area = std::fabs(core::signedArea(*a.poly));
+  } else {
+    a.box = {{a.centre.x - a.radius, a.centre.y - a.radius}, {a.centre.x + a.radius, a.centre.y + a.radius}};
+    a.area = 3.141592653589793 * static_cast<double>(a.radius) * a.radius;
+  }
+  if (levels) a.height = pop.spawn.kind == SpawnKind::Point ? desc.points[pop.spawn.point].height : pop.spawn.height;
+  return a;
+}
+
+/// The navmesh near `p` (on multi-level worlds at the area's floor).
+std::optional<std::pair<core::Vec2, nav::PolyRef>> nearestAt(const nav::NavQuery& query, bool levels, const SpawnArea& area,
+                                                             core::Vec2 p, float r) {
+  if (!levels) return query.nearest(p, r);
+  const auto hit = query.snap(p, area.height, r);
+  if (!hit) return std::nullopt;
+  return std::make_pair(hit->p, hit->ref);
+}
+
+/// `p` itself when it lies on the navmesh.
+std::optional<std::pair<core::Vec2, nav::PolyRef>> onMesh(const nav::NavQuery& query, bool levels, const SpawnArea& area,
+                                                          core::Vec2 p) {
+  auto hit = nearestAt(query, levels, area, p, 0.5f);
+  if (!hit || core::lengthSq(hit->first - p) > 1e-4f) return std::nullopt;
+  return hit;
+}
+
+bool boxesOverlap(const core::Aabb& a, const core::Aabb& b) {
+  return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y;
+}
+
+/// Position of cell (x, y) along the Hilbert curve over a 65536 x 65536 grid.
+std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y) {
+  constexpr std::uint32_t n = 1u << 16;
+  std::uint64_t d = 0;
+  for (std::uint32_t s = n / 2; s > 0; s /= 2) {
+    const std::uint32_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
+    d += static_cast<std::uint64_t>(s) * s * ((3 * rx) ^ ry);
+    if (ry == 0) {  // rotate the quadrant
+      if (rx == 1) {
+        x = n - 1 - x;
+        y = n - 1 - y;
+      }
+      std::swap(x, y);
+    }
+  }
+  return d;
+}
+
+/// Spots handed out once each (and given back): the first free one in their order, or the one
+/// nearest a point (ties: the earlier). Buckets of 1 m cells, searched ring by ring.
+class NearestSpots {
+ public:
+  explicit NearestSpots(const std::vector<std::pair<core::Vec2, nav::PolyRef>>& spots) : spots_(spots), used_(spots.size(), 0) {
+    for (std::size_t i = 0; i < spots.size(); ++i) {
+      const auto [x, y] = cellOf(spots[i].first);
+      buckets_[key(x, y)].push_back(static_cast<std::uint32_t>(i));
+      minX_ = std::min(minX_, x), maxX_ = std::max(maxX_, x), minY_ = std::min(minY_, y), maxY_ = std::max(maxY_, y);
+    }
+  }
+  /// The first free spot at or after `from`.
+  std::optional<std::size_t> firstFree(std::size_t from) {
+    while (cursor_ < used_.size() && used_[cursor_]) ++cursor_;  // every spot before the cursor is taken
+    for (std::size_t i = std::max(from, cursor_); i < used_.size(); ++i) {
+      if (!used_[i]) return i;
+    }
+    return std::nullopt;
+  }
+  void take(std::size_t i) { used_[i] = 1; }
+  void release(std::size_t i) {
+    used_[i] = 0;
+    cursor_ = std::min(cursor_, i);
+  }
+  std::optional<std::size_t> takeNearest(core::Vec2 p) {
+    const auto [cx, cy] = cellOf(p);
+    std::optional<std::size_t> best;
+    float bestD = 0.0f;
+    const int reach = std::max({cx - minX_, maxX_ - cx, cy - minY_, maxY_ - cy, 0});
+    for (int k = 0; k <= reach; ++k) {
+      if (best && bestD <= static_cast<float>(k - 1) * static_cast<float>(k - 1)) break;  // ring k is farther
+      for (int y = cy - k; y <= cy + k; ++y) {
+        for (int x = cx - k; x <= cx + k; ++x) {
+          if (std::max(std::abs(x - cx), std::abs(y - cy)) != k) continue;
+          const auto it = buckets_.find(key(x, y));
+          if (it == buckets_.end()) continue;
+          for (const std::uint32_t i : it->second) {
+            if (used_[i]) continue;
+            const float d = core::lengthSq(spots_[i].first - p);
+            if (!best || d < bestD || (d == bestD && i < *best)) {
+              best = i;
+              bestD = d;
+            }
+          }
+        }
+      }
+    }
+    if (best) used_[*best] = 1;
+    return best;
   }
 
-  Occupancy occupancy(std::max(0.5f, 4.0f * desc.maxRadius()), agents.size() + total);
-  for (std::size_t r = 0; r < agents.size(); ++r) occupancy.add({agents.posX[r], agents.posY[r]}, agents.radius[r]);
+ private:
+  static std::pair<int, int> cellOf(core::Vec2 p) {
+    return {static_cast<int>(std::floor(p.x)), static_cast<int>(std::floor(p.y))};
+  }
+  static std::uint64_t key(int x, int y) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) << 32) | static_cast<std::uint32_t>(y);
+  }
+  const std::vector<std::pair<core::Vec2, nav::PolyRef>>& spots_;
+  std::vector<std::uint8_t> used_;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> buckets_;
+  std::size_t cursor_ = 0;
+  int minX_ = std::numeric_limits<int>::max(), maxX_ = std::numeric_limits<int>::min();
+  int minY_ = std::numeric_limits<int>::max(), maxY_ = std::numeric_limits<int>::min();
+};
 
-  // Multi-level worlds: the spawn's height picks the floor.
-  const float spawnHeight = pop.spawn.kind == SpawnKind::Point ? desc.points[pop.spawn.point].height : pop.spawn.height;
-  auto nearestAt = [&](core::Vec2 p, float r) -> std::optional<std::pair<core::Vec2, nav::PolyRef>> {
-    if (!agents.levels) return query.nearest(p, r);
-    const auto hit = query.snap(p, spawnHeight, r);
-    if (!hit) return std::nullopt;
-    return std::make_pair(hit->p, hit->ref);
-  };
-  auto onMesh = [&](core::Vec2 p) -> std::optional<std::pair<core::Vec2, nav::PolyRef>> {
-    auto hit = nearestAt(p, 0.5f);
-    if (!hit || core::lengthSq(hit->first - p) > 1e-4f) return std::nullopt;
-    return hit;
-  };
-  auto sampleRegion = [&](core::Rng& rng) -> std::optional<core::Vec2> {
-    if (regionPoly) return samplePolygon(*regionPoly, box, rng);
-    return sampleDisc(regionCentre, regionRadius, rng);
-  };
+}  // namespace
 
+World::Impl::SpawnPlan World::Impl::planRandomSpawn(std::size_t populationIndex, std::uint32_t firstAgent,
+                                                    SpawnOccupancy& occupancy) {
+  const PopulationDesc& pop = desc.populations[populationIndex];
+  const nav::NavQuery& query = *mainQuery;
   const std::vector<std::uint32_t>& sizes = groupSizes[populationIndex];
+  std::uint32_t total = 0;
+  for (std::uint32_t s : sizes) total += s;
+  const SpawnArea area = spawnArea(desc, pop, total, agents.levels);
+  const bool levels = agents.levels;
+  SpawnPlan plan;
+  plan.population = populationIndex;
+  plan.firstAgent = firstAgent;
+  plan.spots.reserve(total);
+  std::uint32_t agentId = firstAgent;
   for (std::uint32_t g = 0; g < sizes.size(); ++g) {
     const std::uint32_t groupId = firstGroupId[populationIndex] + g;
     core::Rng groupRng(desc.seed, groupId, core::RngPurpose::Spawn);
-    // Group anchor: a free point on the mesh inside the region.
-    core::Vec2 anchor = regionCentre;
-    for (int attempt = 0; attempt < 200; ++attempt) {
-      auto p = sampleRegion(groupRng);
-      if (p && onMesh(*p) && occupancy.free(*p, pop.radius)) { anchor = *p; break; }
+    // Group anchor: a free point on the mesh inside the area.
+    std::optional<core::Vec2> anchor;
+    for (int attempt = 0; attempt < 200 && !anchor; ++attempt) {
+      auto p = area.sample(groupRng);
+      if (p && onMesh(query, levels, area, *p) && occupancy.free(*p, pop.radius, area.height)) anchor = *p;
     }
-    if (pop.autoGoals) reconstructGoals(groupId, anchor);
+    if (!anchor && pop.spawn.kind == SpawnKind::Polygon) {
+      plan.placed = false;  // the area is crowded: laid out again on a lattice
+      return plan;
+    }
+    plan.anchors.push_back(anchor.value_or(area.centre));
     const float groupSpread = 0.4f + 0.5f * std::sqrt(static_cast<float>(sizes[g]));
-    for (std::uint32_t m = 0; m < sizes[g]; ++m) {
-      const std::uint32_t agentId = nextAgentId++;
+    for (std::uint32_t m = 0; m < sizes[g]; ++m, ++agentId) {
       core::Rng rng(desc.seed, agentId, core::RngPurpose::Spawn);
       std::optional<std::pair<core::Vec2, nav::PolyRef>> placed;
-      // Near the anchor first, then anywhere in the region, then (an overfull region) in a
-      // widening disc around the anchor beyond the region, and only then wherever the mesh is.
-      for (int attempt = 0; attempt < 700 && !placed; ++attempt) {
+      // Near the anchor first, then anywhere in the area.
+      for (int attempt = 0; attempt < 400 && !placed; ++attempt) {
         std::optional<core::Vec2> p;
         if (attempt < 100) {
-          p = sampleDisc(anchor, groupSpread * (1.0f + 0.02f * static_cast<float>(attempt)), rng);
-          if (regionPoly && !core::pointInPolygon(*regionPoly, *p)) p.reset();
-        } else if (attempt < 400) {
-          p = sampleRegion(rng);
+          p = sampleDisc(plan.anchors.back(), groupSpread * (1.0f + 0.02f * static_cast<float>(attempt)), rng);
+          if (area.poly && !core::pointInPolygon(*area.poly, *p)) p.reset();
         } else {
-          p = sampleDisc(anchor, groupSpread + 0.05f * static_cast<float>(attempt - 400), rng);
+          p = area.sample(rng);
         }
-        if (!p || !occupancy.free(*p, pop.radius)) continue;
-        placed = onMesh(*p);
+        if (!p || !occupancy.free(*p, pop.radius, area.height)) continue;
+        placed = onMesh(query, levels, area, *p);
       }
-      if (!placed) placed = nearestAt(sampleDisc(anchor, groupSpread, rng), 5.0f);
-      if (!placed) placed = std::make_pair(anchor, nav::PolyRef{0});
-      occupancy.add(placed->first, pop.radius);
+      if (!placed) {
+        plan.placed = false;
+        return plan;
+      }
+      occupancy.add(placed->first, pop.radius, area.height);
+      plan.spots.push_back(*placed);
+    }
+  }
+  return plan;
+}
 
+World::Impl::SpawnPlan World::Impl::planPackedSpawn(std::size_t populationIndex, std::uint32_t firstAgent,
+                                                    SpawnOccupancy& occupancy) {
+  const PopulationDesc& pop = desc.populations[populationIndex];
+  const nav::NavQuery& query = *mainQuery;
+  const std::vector<std::uint32_t>& sizes = groupSizes[populationIndex];
+  std::uint32_t total = 0;
+  for (std::uint32_t s : sizes) total += s;
+  const SpawnArea area = spawnArea(desc, pop, total, agents.levels);
+  const bool levels = agents.levels;
+  SpawnPlan plan;
+  plan.population = populationIndex;
+  plan.firstAgent = firstAgent;
+  if (total == 0) {
+    plan.anchors.assign(sizes.size(), area.centre);
+    return plan;
+  }
+  const float width = area.box.max.x - area.box.min.x, depth = area.box.max.y - area.box.min.y;
+  // Free spots on a lattice over the area, row by row, each kept clear of everyone placed.
+  auto scan = [&](SpawnOccupancy& occ, float dx, float dy, bool staggered, std::size_t want,
+                  std::vector<std::pair<core::Vec2, nav::PolyRef>>& out) {
+    const auto rows = static_cast<std::int64_t>(std::floor(depth / dy)) + 1;
+    const auto cols = static_cast<std::int64_t>(std::floor(width / dx)) + 1;
+    for (std::int64_t j = 0; j < rows && out.size() < want; ++j) {
+      const float y = area.box.min.y + 0.5f * (depth - static_cast<float>(rows - 1) * dy) + static_cast<float>(j) * dy;
+      const float shift = staggered && (j & 1) ? 0.5f * dx : 0.0f;
+      for (std::int64_t i = 0; i < cols && out.size() < want; ++i) {
+        const core::Vec2 p{area.box.min.x + 0.5f * (width - static_cast<float>(cols - 1) * dx) + shift + static_cast<float>(i) * dx, y};
+        if (!area.contains(p) || !occ.free(p, pop.radius, area.height)) continue;
+        if (auto hit = onMesh(query, levels, area, p)) {
+          occ.add(hit->first, pop.radius, area.height);
+          out.push_back(*hit);
+        }
+      }
+    }
+  };
+  // A hexagonal lattice a little looser than the closest packing allowed (bodies kSpawnGap apart),
+  // or spread over the whole area when that is tighter; tightened step by step while the area
+  // holds too few spots, then a fine grid fills what is left. A few spots more than agents are
+  // gathered when there is room, so groups need not take scattered leftovers.
+  const float closest = 2.0f * pop.radius + kSpawnGap + 1e-3f;
+  float spacing = std::clamp(static_cast<float>(std::sqrt(area.area / (0.8660254 * total))), closest, 1.15f * closest);
+  const std::size_t want = total + total / 4 + 8;
+  const double cells = static_cast<double>(width) * depth;
+  std::vector<std::pair<core::Vec2, nav::PolyRef>> spots;
+  std::optional<SpawnOccupancy> best;
+  for (int attempt = 0; attempt < 24; ++attempt) {
+    if (cells / (static_cast<double>(spacing) * spacing) > 4e6) break;  // a sliver in a huge box: the grid below
+    SpawnOccupancy trial = occupancy;
+    std::vector<std::pair<core::Vec2, nav::PolyRef>> found;
+    found.reserve(want);
+    scan(trial, spacing, 0.8660254f * spacing, true, want, found);
+    if (found.size() >= spots.size()) {
+      spots = std::move(found);
+      best = std::move(trial);
+    }
+    if (spots.size() >= total || spacing <= closest) break;
+    spacing = std::max(closest, spacing * 0.93f);
+  }
+  if (spots.size() < total) {
+    SpawnOccupancy trial = best ? std::move(*best) : occupancy;
+    const float step = std::max({pop.radius / 3.0f, 0.02f, static_cast<float>(std::sqrt(cells / 4e6))});
+    scan(trial, step, step, false, total, spots);
+  }
+  plan.placed = spots.size() >= total;
+
+  // Along a Hilbert curve over the area: spots next to each other in this order are close. Each
+  // group starts at the first free spot in this order and its other members take the free spots
+  // nearest to it; a start whose group would stand far apart is passed over (up to 32 tries).
+  {
+    const float cellSize = std::max({width, depth, 1e-3f}) / 65535.0f;
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> order(spots.size());
+    for (std::size_t i = 0; i < spots.size(); ++i) {
+      const auto qx = static_cast<std::uint32_t>(std::clamp((spots[i].first.x - area.box.min.x) / cellSize, 0.0f, 65535.0f));
+      const auto qy = static_cast<std::uint32_t>(std::clamp((spots[i].first.y - area.box.min.y) / cellSize, 0.0f, 65535.0f));
+      order[i] = {hilbertIndex(qx, qy), static_cast<std::uint32_t>(i)};
+    }
+    std::sort(order.begin(), order.end());
+    std::vector<std::pair<core::Vec2, nav::PolyRef>> sorted;
+    sorted.reserve(spots.size());
+    for (const auto& entry : order) sorted.push_back(spots[entry.second]);
+    spots = std::move(sorted);
+  }
+  NearestSpots nearest(spots);
+  std::vector<std::optional<std::size_t>> chosen;  // per agent
+  chosen.reserve(total);
+  for (std::uint32_t g = 0; g < sizes.size(); ++g) {
+    if (sizes[g] == 0) continue;  // an empty group takes no spot
+    const float tolerated = spacing * (1.5f + std::sqrt(static_cast<float>(sizes[g])));
+    std::vector<std::size_t> bestTry;
+    float bestSpread = 0.0f;
+    std::size_t from = 0;
+    for (int attempt = 0; attempt < 32; ++attempt) {
+      const std::optional<std::size_t> leader = nearest.firstFree(from);
+      if (!leader) break;
+      std::vector<std::size_t> members{*leader};
+      nearest.take(*leader);
+      float spread = 0.0f;
+      for (std::uint32_t m = 1; m < sizes[g]; ++m) {
+        const auto next = nearest.takeNearest(spots[*leader].first);
+        if (!next) break;
+        members.push_back(*next);
+        spread = std::max(spread, core::length(spots[*next].first - spots[*leader].first));
+      }
+      for (const std::size_t i : members) nearest.release(i);
+      if (bestTry.empty() || members.size() > bestTry.size() || (members.size() == bestTry.size() && spread < bestSpread)) {
+        bestTry = members;
+        bestSpread = spread;
+      }
+      if (members.size() == sizes[g] && spread <= tolerated) break;
+      from = *leader + 1;
+    }
+    for (const std::size_t i : bestTry) nearest.take(i);
+    for (std::uint32_t m = 0; m < sizes[g]; ++m) chosen.push_back(m < bestTry.size() ? std::optional<std::size_t>(bestTry[m]) : std::nullopt);
+  }
+
+  // The spots taken become occupied; agents the area cannot hold go around it (widening discs),
+  // or to the navmesh nearest the area.
+  for (const auto& c : chosen) {
+    if (c) occupancy.add(spots[*c].first, pop.radius, area.height);
+  }
+  std::uint32_t agentId = firstAgent;
+  std::size_t k = 0;
+  for (std::uint32_t g = 0; g < sizes.size(); ++g) {
+    plan.anchors.push_back(sizes[g] > 0 && chosen[k] ? spots[*chosen[k]].first : area.centre);
+    const float groupSpread = 0.4f + 0.5f * std::sqrt(static_cast<float>(sizes[g]));
+    for (std::uint32_t m = 0; m < sizes[g]; ++m, ++agentId, ++k) {
+      if (chosen[k]) {
+        plan.spots.push_back(spots[*chosen[k]]);
+        continue;
+      }
+      plan.placed = false;
+      const core::Vec2 anchor = plan.anchors.back();
+      core::Rng rng(desc.seed, agentId, core::RngPurpose::Spawn);
+      std::optional<std::pair<core::Vec2, nav::PolyRef>> placed;
+      for (int attempt = 0; attempt < 300 && !placed; ++attempt) {
+        const core::Vec2 p = sampleDisc(anchor, groupSpread + 0.05f * static_cast<float>(attempt), rng);
+        if (occupancy.free(p, pop.radius, area.height)) placed = onMesh(query, levels, area, p);
+      }
+      if (!placed) placed = nearestAt(query, levels, area, anchor, std::max(5.0f, 0.5f * (width + depth)));
+      if (!placed) placed = std::make_pair(anchor, nav::PolyRef{0});
+      occupancy.add(placed->first, pop.radius, area.height);
+      plan.spots.push_back(*placed);
+    }
+  }
+  return plan;
+}
+
+void World::Impl::spawnPopulations(const std::vector<std::size_t>& due) {
+  std::size_t expected = agents.size();
+  std::vector<std::uint32_t> firstAgent;
+  std::uint32_t nextId = nextAgentId;
+  for (const std::size_t p : due) {
+    firstAgent.push_back(nextId);
+    for (const std::uint32_t s : groupSizes[p]) nextId += s;
+    expected += nextId - firstAgent.back();
+  }
+  const float cell = std::max(0.5f, 4.0f * desc.maxRadius());
+  auto occupied = [&] {
+    SpawnOccupancy occupancy(cell, expected);
+    for (std::size_t r = 0; r < agents.size(); ++r) {
+      occupancy.add({agents.posX[r], agents.posY[r]}, agents.radius[r], agents.levels ? agents.posZ[r] : 0.0f);
+    }
+    return occupancy;
+  };
+  SpawnOccupancy occupancy = occupied();
+  std::vector<SpawnPlan> plans;
+  plans.reserve(due.size());
+  bool allPlaced = true;
+  for (std::size_t k = 0; k < due.size(); ++k) {
+    plans.push_back(planRandomSpawn(due[k], firstAgent[k], occupancy));
+    allPlaced = allPlaced && plans.back().placed;
+  }
+  if (!allPlaced) {
+    // Random spots ran out in some area. Every population whose area overlaps such an area (and
+    // so on, transitively) is laid out again on the lattice, in population order; the others keep
+    // their spots.
+    std::vector<core::Aabb> boxes;
+    std::vector<std::uint8_t> redo(due.size(), 0);
+    for (std::size_t k = 0; k < due.size(); ++k) {
+      std::uint32_t total = 0;
+      for (const std::uint32_t s : groupSizes[due[k]]) total += s;
+      boxes.push_back(spawnArea(desc, desc.populations[due[k]], total, agents.levels).box);
+      redo[k] = plans[k].placed ? 0 : 1;
+    }
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (std::size_t k = 0; k < due.size(); ++k) {
+        if (redo[k]) continue;
+        for (std::size_t o = 0; o < due.size() && !redo[k]; ++o) {
+          if (redo[o] && boxesOverlap(boxes[k], boxes[o])) redo[k] = grew = true;
+        }
+      }
+    }
+    occupancy = occupied();
+    for (std::size_t k = 0; k < due.size(); ++k) {
+      if (redo[k]) continue;
+      const PopulationDesc& pop = desc.populations[due[k]];
+      const float height = spawnArea(desc, pop, 0, agents.levels).height;
+      for (const auto& spot : plans[k].spots) occupancy.add(spot.first, pop.radius, height);
+    }
+    for (std::size_t k = 0; k < due.size(); ++k) {
+      if (redo[k]) plans[k] = planPackedSpawn(due[k], firstAgent[k], occupancy);
+    }
+  }
+  for (const SpawnPlan& plan : plans) addSpawnedAgents(plan);
+  stats.active = static_cast<std::uint32_t>(agents.size());
+  rowsChanged = true;
+}
+
+void World::Impl::addSpawnedAgents(const SpawnPlan& plan) {
+  const std::size_t populationIndex = plan.population;
+  const PopulationDesc& pop = desc.populations[populationIndex];
+  populationSpawned[populationIndex] = 1;
+  const nav::NavQuery& query = *mainQuery;
+  const std::vector<std::uint32_t>& sizes = groupSizes[populationIndex];
+  const float spawnHeight = pop.spawn.kind == SpawnKind::Point ? desc.points[pop.spawn.point].height : pop.spawn.height;
+  THRONG_ASSERT(nextAgentId == plan.firstAgent);
+  std::size_t spot = 0;
+  for (std::uint32_t g = 0; g < sizes.size(); ++g) {
+    const std::uint32_t groupId = firstGroupId[populationIndex] + g;
+    if (pop.autoGoals) reconstructGoals(groupId, plan.anchors[g]);
+    for (std::uint32_t m = 0; m < sizes[g]; ++m) {
+      const std::uint32_t agentId = nextAgentId++;
+      const std::pair<core::Vec2, nav::PolyRef>* placed = &plan.spots[spot++];
       const std::size_t row = agents.addRow();
       agents.id[row] = agentId;
       agents.group[row] = groupId;
@@ -360,8 +727,6 @@ void World::Impl::spawnPopulation(std::size_t populationIndex) {
       agents.progressDistance[row] = 1e30f;
     }
   }
-  stats.active = static_cast<std::uint32_t>(agents.size());
-  rowsChanged = true;
 }
 
 }  // namespace throng::sim

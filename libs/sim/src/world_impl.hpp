@@ -138,6 +138,9 @@ struct ChunkOutput {
   std::vector<std::uint32_t> desireRows;   ///< rows whose desirePoint was set (goal generator), ascending
 };
 
+/// Occupied discs while agents are placed (spawn.cpp).
+class SpawnOccupancy;
+
 struct World::Impl {
   ScenarioDesc desc;
   std::shared_ptr<const nav::NavMesh> navmesh;
@@ -156,6 +159,15 @@ struct World::Impl {
   std::vector<std::uint32_t> firstGroupId;             // per population
   std::uint32_t nextAgentId = 0;
   std::uint32_t nextGroupId = 0;
+  /// Where one population's agents appear (spawn.cpp): planned for every population due in a
+  /// tick before any of them is added, so a crowded area can be laid out again as a whole.
+  struct SpawnPlan {
+    std::size_t population = 0;
+    std::uint32_t firstAgent = 0;                               ///< stable id of its first agent
+    std::vector<core::Vec2> anchors;                            ///< per group: where it gathers
+    std::vector<std::pair<core::Vec2, nav::PolyRef>> spots;     ///< per agent, in spawn order
+    bool placed = true;  ///< every agent found a free spot on the navmesh inside the spawn area
+  };
 
   // Groups.
   std::vector<GroupState> groups;
@@ -279,7 +291,14 @@ struct World::Impl {
   // Phases.
   void planPopulations();
   void applyCommands();
-  void spawnPopulation(std::size_t populationIndex);
+  /// Spawns the populations due this tick, in order (spawn.cpp): random free spots in each
+  /// spawn area; when that fails for some population, the populations whose areas overlap it are
+  /// laid out again on a packed lattice inside their areas (deterministic, never off the area
+  /// while it has room).
+  void spawnPopulations(const std::vector<std::size_t>& due);
+  [[nodiscard]] SpawnPlan planRandomSpawn(std::size_t population, std::uint32_t firstAgent, SpawnOccupancy& occupancy);
+  [[nodiscard]] SpawnPlan planPackedSpawn(std::size_t population, std::uint32_t firstAgent, SpawnOccupancy& occupancy);
+  void addSpawnedAgents(const SpawnPlan& plan);
   void sense(const core::TaskSystem& tasks);
   void decide(const core::TaskSystem& tasks);
   void decideGroups(const core::TaskSystem& tasks);  ///< group pass (groups.cpp), after the per-agent part of decide

@@ -36,6 +36,9 @@ struct CoordinationInfo {
   double start = 0.0;                       ///< t_0 [s] (NaN when not recorded)
   double execute = 0.0;                     ///< t_8: the macro-plan (or fallback) starts [s]
   double end = 0.0;                         ///< the last actor left the script [s]
+  /// False: the coordination had started but not ended when the recording stopped (no row in
+  /// throng_coordinations; plan, outcome, goal kind, relation and t_8 are unknown).
+  bool finished = true;
 };
 
 /// One row of `throng_script`: an action-script entry as the simulation carried it out.
@@ -67,6 +70,12 @@ core::Result<bool> hasCommonGroundData(const std::string& path);
 
 /// Every coordination, ordered by id.
 core::Result<std::vector<CoordinationInfo>> readCoordinations(const std::string& path);
+
+/// Coordinations still running when the recording stopped: a coordination_start event with no
+/// throng_coordinations row, ordered by id. Group, initiator and t_0 come from the event, the
+/// goal point and trigger from the initiator's latest goal_generated event before it, the
+/// respondents from the script entries recorded so far (B first, then companions by first entry).
+core::Result<std::vector<CoordinationInfo>> readUnfinishedCoordinations(const std::string& path);
 
 /// The entries of one agent, ordered by coordination, then seq.
 core::Result<std::vector<ScriptEntryInfo>> readScript(const std::string& path, std::uint32_t agent);

@@ -1,0 +1,189 @@
+// Spawning in crowded areas (spawn.cpp): when random free spots run out, every agent still lands
+// inside its spawn area, on the navmesh, with no two bodies overlapping and nobody at the world
+// origin (the old fallback); populations spawning together in one area are laid out together;
+// run-time crowd insertion shares the code; the layout is the same for any thread count.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "throng/core/geometry.hpp"
+#include "throng/sim/world.hpp"
+
+namespace throng::sim {
+namespace {
+
+constexpr core::Vec2 kCentre{15.0f, 10.0f};
+constexpr float kInner = 3.0f, kOuter = 5.0f;
+
+/// A ring between radii 3 and 5 m around (15, 10), as one simple polygon (a 0.05 m slit joins the
+/// two circles): about 50 m².
+Polygon ring() {
+  Polygon p;
+  constexpr int kSides = 96;
+  const double slit = 0.01;  // [rad]
+  for (int i = 0; i <= kSides; ++i) {
+    const double a = slit + (2.0 * std::numbers::pi - 2.0 * slit) * i / kSides;
+    p.push_back({kCentre.x + kOuter * static_cast<float>(std::cos(a)), kCentre.y + kOuter * static_cast<float>(std::sin(a))});
+  }
+  for (int i = kSides; i >= 0; --i) {
+    const double a = slit + (2.0 * std::numbers::pi - 2.0 * slit) * i / kSides;
+    p.push_back({kCentre.x + kInner * static_cast<float>(std::cos(a)), kCentre.y + kInner * static_cast<float>(std::sin(a))});
+  }
+  return p;
+}
+
+PopulationDesc standing(const std::string& id, std::uint32_t groups, std::uint32_t size, float radius) {
+  PopulationDesc pop;
+  pop.id = id;
+  pop.groups = groups;
+  pop.sizeMin = pop.sizeMax = size;
+  pop.spawn.kind = SpawnKind::Polygon;
+  pop.spawn.polygon = ring();
+  pop.radius = radius;
+  return pop;  // no goals: everyone is done on arrival and stands where it spawned
+}
+
+/// A 30 m x 20 m hall whose corner is the origin, the ring in its middle.
+ScenarioDesc hall(std::vector<PopulationDesc> populations) {
+  ScenarioDesc d;
+  d.seed = 5;
+  d.duration = 60.0f;
+  d.walkable = {{{0, 0}, {30, 0}, {30, 20}, {0, 20}}};
+  d.populations = std::move(populations);
+  return d;
+}
+
+/// Every agent of the frame is inside the ring (within 2 cm: positions snap to the navmesh), no
+/// two bodies overlap, and none is near the origin.
+void expectWellPlaced(const Frame& f, float radius, std::size_t expected) {
+  ASSERT_EQ(f.size(), expected);
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const core::Vec2 p{f.posX[i], f.posY[i]};
+    const float r = core::length(p - kCentre);
+    EXPECT_TRUE(r > kInner - 0.02f && r < kOuter + 0.02f) << "agent " << f.ids[i] << " at (" << p.x << ", " << p.y << ")";
+    EXPECT_GT(core::length(p), 1.0f) << "agent " << f.ids[i] << " at the origin";
+    for (std::size_t j = i + 1; j < f.size(); ++j) {
+      const float d = core::length(p - core::Vec2{f.posX[j], f.posY[j]});
+      EXPECT_GE(d, 2.0f * radius) << "agents " << f.ids[i] << " and " << f.ids[j] << " overlap (" << d << " m apart)";
+    }
+  }
+}
+
+TEST(Spawn, FourPerSquareMetreInARingAllInsideWithoutOverlap) {
+  const Polygon area = ring();
+  const double m2 = std::fabs(core::signedArea(area));
+  const auto agents = static_cast<std::uint32_t>(std::floor(4.0 * m2));  // 4 /m², what check accepts at r = 0.2 m
+  auto w = World::create(hall({standing("crowd", agents, 1, 0.2f)}));
+  ASSERT_TRUE(w.ok()) << core::formatAll(w.errors());
+  core::TaskSystem tasks(1);
+  w.value()->step(tasks);
+  const auto f = w.value()->snapshot();
+  EXPECT_EQ(w.value()->stats().spawned, agents);
+  expectWellPlaced(*f, 0.2f, agents);
+}
+
+TEST(Spawn, PopulationsSharingTheRingAreLaidOutTogether) {
+  const Polygon area = ring();
+  const double m2 = std::fabs(core::signedArea(area));
+  const auto groups = static_cast<std::uint32_t>(std::floor(4.0 * m2 / 3.0));  // groups of 3, 4 /m² in all
+  auto w = World::create(hall({standing("a", groups / 2, 3, 0.2f), standing("b", groups - groups / 2, 3, 0.2f)}));
+  ASSERT_TRUE(w.ok()) << core::formatAll(w.errors());
+  core::TaskSystem tasks(1);
+  w.value()->step(tasks);
+  expectWellPlaced(*w.value()->snapshot(), 0.2f, 3 * groups);
+  // Group members stand together: each within 2 m of its group's first member.
+  const auto f = w.value()->snapshot();
+  for (std::size_t i = 0; i < f->size(); ++i) {
+    const std::size_t first = i - i % 3;
+    EXPECT_LT(core::length(core::Vec2{f->posX[i] - f->posX[first], f->posY[i] - f->posY[first]}), 2.0f) << "agent " << f->ids[i];
+  }
+}
+
+TEST(Spawn, InsertedCrowdInACrowdedRingIsPlacedInside) {
+  ScenarioDesc d = hall({standing("early", 40, 1, 0.2f)});
+  auto w = World::create(d);
+  ASSERT_TRUE(w.ok()) << core::formatAll(w.errors());
+  core::TaskSystem tasks(1);
+  w.value()->step(tasks);
+  const Polygon area = ring();
+  const auto more = static_cast<std::uint32_t>(std::floor(4.0 * std::fabs(core::signedArea(area)))) - 40;
+  CrowdDesc c;
+  c.id = "late";
+  c.basePoints = 0;
+  c.basePopulations = 1;
+  c.populations = {standing("late", more, 1, 0.2f)};
+  ASSERT_TRUE(w.value()->insertCrowd(c).ok());
+  w.value()->step(tasks);
+  expectWellPlaced(*w.value()->snapshot(), 0.2f, 40 + more);
+}
+
+TEST(Spawn, CrowdedLayoutIsTheSameForAnyThreadCount) {
+  const Polygon area = ring();
+  const auto agents = static_cast<std::uint32_t>(std::floor(4.0 * std::fabs(core::signedArea(area))));
+  ScenarioDesc d = hall({standing("crowd", agents, 1, 0.2f)});
+  PointDesc exit;
+  exit.id = "out";
+  exit.kind = PointKind::Exit;
+  exit.position = {28, 10};
+  exit.radius = 1.0f;
+  d.points = {exit};
+  d.populations[0].goals = {0};
+  std::uint64_t hash = 0;
+  for (const int threads : {1, 2, 8}) {
+    auto w = World::create(d);
+    ASSERT_TRUE(w.ok());
+    core::TaskSystem tasks(threads);
+    for (int t = 0; t < 40; ++t) w.value()->step(tasks);
+    if (threads == 1) hash = w.value()->stateHash();
+    else EXPECT_EQ(w.value()->stateHash(), hash) << threads << " threads";
+  }
+}
+
+/// Adds the quad a, b, c, d (x, y, z each) to the terrain as two walkable triangles.
+void quad(nav::TerrainMesh& t, std::initializer_list<std::array<float, 3>> corners) {
+  const auto base = static_cast<std::uint32_t>(t.vertices.size() / 3);
+  for (const auto& c : corners) t.vertices.insert(t.vertices.end(), c.begin(), c.end());
+  for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) t.walkable.push_back(base + i);
+}
+
+TEST(Spawn, CrowdedFloorsOfAMultiLevelWorldEachKeepTheirOwn) {
+  // A ground floor and an upper floor 3 m above it, joined by a ramp; one crowd on each floor over
+  // the same 4 m x 4 m square, each about 3.9 /m².
+  ScenarioDesc d;
+  d.seed = 9;
+  d.duration = 10.0f;
+  quad(d.terrain, {{0, 0, 0}, {20, 0, 0}, {20, 10, 0}, {0, 10, 0}});
+  quad(d.terrain, {{0, 0, 3}, {20, 0, 3}, {20, 10, 3}, {0, 10, 3}});
+  quad(d.terrain, {{0, 10, 0}, {2, 10, 0}, {2, 12, 0}, {0, 12, 0}});
+  quad(d.terrain, {{2, 10, 0}, {18, 10, 3}, {18, 12, 3}, {2, 12, 0}});
+  quad(d.terrain, {{18, 10, 3}, {20, 10, 3}, {20, 12, 3}, {18, 12, 3}});
+  const Polygon square{{8, 3}, {12, 3}, {12, 7}, {8, 7}};
+  for (const float height : {0.0f, 3.0f}) {
+    PopulationDesc pop = standing(height == 0.0f ? "below" : "above", 62, 1, 0.2f);
+    pop.spawn.polygon = square;
+    pop.spawn.height = height;
+    d.populations.push_back(pop);
+  }
+  auto w = World::create(d);
+  ASSERT_TRUE(w.ok()) << core::formatAll(w.errors());
+  core::TaskSystem tasks(1);
+  w.value()->step(tasks);
+  const auto f = w.value()->snapshot();
+  ASSERT_EQ(f->size(), 124u);
+  for (std::size_t i = 0; i < f->size(); ++i) {
+    const float floor = f->ids[i] < 62 ? 0.0f : 3.0f;
+    EXPECT_NEAR(f->height(i), floor, 0.05f) << "agent " << f->ids[i];
+    EXPECT_TRUE(f->posX[i] > 7.98f && f->posX[i] < 12.02f && f->posY[i] > 2.98f && f->posY[i] < 7.02f)
+        << "agent " << f->ids[i] << " at (" << f->posX[i] << ", " << f->posY[i] << ")";
+    for (std::size_t j = i + 1; j < f->size(); ++j) {
+      if ((f->ids[j] < 62) != (f->ids[i] < 62)) continue;  // other floor
+      EXPECT_GE(core::length(core::Vec2{f->posX[i] - f->posX[j], f->posY[i] - f->posY[j]}), 0.4f)
+          << "agents " << f->ids[i] << " and " << f->ids[j];
+    }
+  }
+}
+
+}  // namespace
+}  // namespace throng::sim
