@@ -41,7 +41,8 @@ std::string describeWorld(const io::LoadedScenario& scenario, const MotionLibrar
     groups.push_back({{"id", info->id}, {"population", population}, {"members", info->members}});
   }
   out["groups"] = std::move(groups);
-  return out.dump();
+  // Names come from the scenario: never let one that is not UTF-8 make the description throw.
+  return out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 }  // namespace throng::hub
