@@ -27,6 +27,7 @@
 #include "throng/core/parallel.hpp"
 #include "throng/hub/hub.hpp"
 #include "throng/hub/replay.hpp"
+#include "throng/hub/text.hpp"
 #include "throng/hub/tick_watch.hpp"
 #include "throng/hub/world_description.hpp"
 #include "throng/io/scenario_loader.hpp"
@@ -248,7 +249,9 @@ int runServe(const ServeOptions& options) {
   const Clock::time_point start = Clock::now();
   Bridge bridge(start);
   hub::HubOptions hubOptions;
-  hubOptions.serverName = scenario->desc.name.empty() ? fs::path(options.scenario).stem().string() : scenario->desc.name;
+  // Sent in Welcome and printed: valid UTF-8, control characters escaped, at most 64 bytes.
+  hubOptions.serverName = hub::printable(
+      scenario->desc.name.empty() ? fs::path(options.scenario).stem().string() : scenario->desc.name, protocol::kMaxNameLength);
   hubOptions.maxClients = static_cast<std::size_t>(options.maxClients);
   hubOptions.granularity.budgetKbitPerSecond = options.budgetKbit;
   hubOptions.replay = replay.has_value();

@@ -4,7 +4,11 @@
 // that counts late and stalled ticks, the running one included.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include "throng/hub/crowd_requests.hpp"
+#include "throng/hub/motion_library.hpp"
+#include "throng/hub/world_description.hpp"
 #include "throng/hub/text.hpp"
 #include "throng/hub/tick_watch.hpp"
 #include "throng/io/scenario_loader.hpp"
@@ -39,6 +43,34 @@ TEST(Text, PrintableEscapesControlsAndBadBytesAndCapsTheLength) {
   EXPECT_EQ(printable("\x01\x02\x03\x04", 9), "\\x01...");
   EXPECT_EQ(cutUtf8("ab\xc3\xab", 3), "ab");
   EXPECT_EQ(cutUtf8("abc", 3), "abc");
+}
+
+TEST(Text, ValidUtf8ReplacesOnlyBadBytes) {
+  EXPECT_EQ(validUtf8("Zo\xc3\xab"), "Zo\xc3\xab");
+  EXPECT_EQ(validUtf8("a\xff" "b\xc3"), "a\xef\xbf\xbd" "b\xef\xbf\xbd");
+}
+
+// Names from a scenario that are not UTF-8 made the server's JSON throw (HTTP 500, a serve that
+// fails): the world description is always JSON, the bad bytes written as U+FFFD.
+TEST(WorldDescription, NamesThatAreNotUtf8NeverBreakIt) {
+  auto loaded = io::loadScenarioFile(std::string(THRONG_SOURCE_DIR) + "/scenarios/museum.json");
+  ASSERT_TRUE(loaded.ok());
+  io::LoadedScenario scenario = std::move(loaded).value();
+  auto world = sim::World::create(scenario.desc, scenario.navmesh);
+  ASSERT_TRUE(world.ok());
+  std::vector<std::string> warnings;
+  const MotionLibrary motions = MotionLibrary::load(scenario, std::string(THRONG_SOURCE_DIR) + "/scenarios", warnings);
+  scenario.desc.name = "bad\xff name";
+  const std::size_t at = scenario.text.find("\"hall\"");
+  ASSERT_NE(at, std::string::npos);
+  scenario.text.replace(at + 1, 4, "h\xc3\x28l");  // "hall" with a broken sequence
+  std::string described;
+  ASSERT_NO_THROW(described = describeWorld(scenario, motions, *world.value(), 20.0));
+  const auto j = nlohmann::json::parse(described, nullptr, false);
+  ASSERT_FALSE(j.is_discarded()) << described.substr(0, 200);
+  EXPECT_EQ(j["name"], "bad\xef\xbf\xbd name");
+  ASSERT_TRUE(j["scenario"].is_object());
+  EXPECT_NE(j["scenario"].dump().find("h\xef\xbf\xbd(l"), std::string::npos);
 }
 
 TEST(CrowdLimits, AValidCrowdFileKeepsWithinEveryLimit) {

@@ -23,6 +23,10 @@ namespace throng::hub {
 /// `maxBytes` bytes (cut at a character boundary, ending in "..." when cut; maxBytes >= 3).
 [[nodiscard]] std::string printable(std::string_view text, std::size_t maxBytes);
 
+/// `text` with every byte of an ill-formed UTF-8 sequence replaced by U+FFFD (what a JSON writer
+/// or reader can always take).
+[[nodiscard]] std::string validUtf8(std::string_view text);
+
 /// The longest prefix of `text` of at most `maxBytes` bytes that does not cut a UTF-8 sequence.
 [[nodiscard]] std::string_view cutUtf8(std::string_view text, std::size_t maxBytes);
 
