@@ -767,5 +767,30 @@ TEST_F(HubFixture, ACrowdIdThatIsNotUtf8IsRefusedAndRepliesStayUtf8) {
   EXPECT_EQ(results[1].text.find('\x1b'), std::string::npos);
 }
 
+
+TEST_F(HubFixture, AtMostSoManyInsertionsWaitForValidationMoreAreAnsweredBusy) {
+  HubOptions options;
+  options.crowdInsertsPerMinute = 100;
+  options.maxPendingCrowdInserts = 3;
+  hub = std::make_unique<Hub>(options, describeWorld(*scenario, *motions, *world, 20.0), 20.0f, *motions, outbox);
+  connect(1);
+  const Joined a = join(1, "curator");
+  // No tick yet: the crowd thread has no copy of the world to validate against, so they wait.
+  for (std::uint32_t i = 0; i < 5; ++i) say(1, encode(InsertCrowd{a.token, i, crowds::visitors("c" + std::to_string(i), 1, 1)}));
+  std::vector<CrowdResult> busy = crowdResults(outbox.drain(1));
+  ASSERT_EQ(busy.size(), 2u);
+  for (const CrowdResult& r : busy) {
+    EXPECT_FALSE(r.ok);
+    EXPECT_NE(r.text.find("busy: 3 crowd insertions are waiting"), std::string::npos) << r.text;
+  }
+  EXPECT_EQ(busy[0].requestId, 3u);
+  EXPECT_EQ(busy[1].requestId, 4u);
+  tick();
+  const std::vector<CrowdResult> done = crowdResults(outbox.drain(1));
+  ASSERT_EQ(done.size(), 3u);
+  for (const CrowdResult& r : done) EXPECT_TRUE(r.ok) << r.text;
+  EXPECT_EQ(world->crowds().size(), 3u);
+}
+
 }  // namespace
 }  // namespace throng::hub

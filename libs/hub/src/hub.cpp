@@ -510,9 +510,16 @@ void Hub::Impl::handle(Client& c, const protocol::Message& message, double now) 
                              std::to_string(static_cast<int>(std::ceil(wait))) + " s");
               return;
             }
-            c.crowdInserts.push_back(now);
             {
               std::lock_guard lock(work.mutex);
+              const auto pending = static_cast<std::size_t>(
+                  std::count_if(work.queue.begin(), work.queue.end(), [](const CrowdRequest& r) { return r.insert; }));
+              if (pending >= options.maxPendingCrowdInserts) {
+                answer("", "busy: " + std::to_string(pending) +
+                               " crowd insertions are waiting to be validated; try again in a few seconds");
+                return;
+              }
+              c.crowdInserts.push_back(now);
               work.queue.push_back({c.peer, c.participantId, c.name, m.requestId, true, m.crowdJson});
             }
             work.changed.notify_all();

@@ -78,6 +78,9 @@ struct HubOptions {
   /// InsertCrowd: bounds on one request's text (size, nesting, keys, values, polygon vertices),
   /// checked in one pass before it is parsed; over one, a CrowdResult names the limit and where.
   CrowdLimits crowdLimits;
+  /// InsertCrowd: most insertions waiting for the crowd thread at once, all participants together;
+  /// more are answered with a CrowdResult "busy" (bounds the memory and the thread's backlog).
+  std::size_t maxPendingCrowdInserts = 16;
   /// The world is a recording played back (`throng serve FILE.sqlite`): clients drive it with
   /// ReplayControl (takeReplayControls); there are no groups to guide.
   bool replay = false;
