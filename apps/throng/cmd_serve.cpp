@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <future>
 #include <condition_variable>
+#include <map>
 #include <mutex>
 #include <unistd.h>
 #include <thread>
@@ -26,6 +27,8 @@
 #include "throng/core/parallel.hpp"
 #include "throng/hub/hub.hpp"
 #include "throng/hub/replay.hpp"
+#include "throng/hub/text.hpp"
+#include "throng/hub/tick_watch.hpp"
 #include "throng/hub/world_description.hpp"
 #include "throng/io/scenario_loader.hpp"
 #include "throng/server/transport.hpp"
@@ -81,6 +84,10 @@ class Bridge final : public server::TransportHandler, public hub::Outbox {
   hub::Hub* hub_ = nullptr;
   server::Transport* transport_ = nullptr;
 };
+
+/// JSON text that never throws: a string that is not UTF-8 (a name, an id a client or a scenario
+/// gave) is written with U+FFFD in place of its bad bytes instead of failing the response.
+std::string dumpJson(const nlohmann::json& j) { return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace); }
 
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0.0;
@@ -235,14 +242,16 @@ int runServe(const ServeOptions& options) {
   if (replay) {
     nlohmann::json described = nlohmann::json::parse(worldJson);
     described["replay"] = {{"duration", replay->duration()}, {"fps", replay->fps()}, {"frames", replay->frameCount()}};
-    worldJson = described.dump();
+    worldJson = dumpJson(described);
   }
   hub::ReplayClock clock(replay ? replay->duration() : 0.0, true);
 
   const Clock::time_point start = Clock::now();
   Bridge bridge(start);
   hub::HubOptions hubOptions;
-  hubOptions.serverName = scenario->desc.name.empty() ? fs::path(options.scenario).stem().string() : scenario->desc.name;
+  // Sent in Welcome and printed: valid UTF-8, control characters escaped, at most 64 bytes.
+  hubOptions.serverName = hub::printable(
+      scenario->desc.name.empty() ? fs::path(options.scenario).stem().string() : scenario->desc.name, protocol::kMaxNameLength);
   hubOptions.maxClients = static_cast<std::size_t>(options.maxClients);
   hubOptions.granularity.budgetKbitPerSecond = options.budgetKbit;
   hubOptions.replay = replay.has_value();
@@ -262,7 +271,8 @@ int runServe(const ServeOptions& options) {
   // Tick times of the last 10 s, for /api/status (read on the transport thread).
   std::mutex tickMutex;
   double tickMedianMs = 0.0, tickP99Ms = 0.0, publishMedianMs = 0.0, publishP99Ms = 0.0;
-  std::uint64_t overruns = 0;
+  // Late and stalled ticks, the one running now included (a tick stuck for 14 s shows at once).
+  hub::TickWatch tickWatch(1.0 / tickRate);
   // Questions about one agent (GET /api/agent/<id>) are answered by the simulation thread between
   // ticks, the only thread that may read the World.
   struct AgentQuery {
@@ -331,7 +341,7 @@ int runServe(const ServeOptions& options) {
                           {"targetAgent", r.targetType == 2 ? nlohmann::json(r.targetAgent) : nlohmann::json(nullptr)}});
       }
       j["script"] = std::move(script);
-      return server::HttpResponse{200, "application/json", j.dump(), {}};
+      return server::HttpResponse{200, "application/json", dumpJson(j), {}};
     }
     if (path == "/api/status") {
       const hub::HubStatus s = hub.status();
@@ -345,11 +355,13 @@ int runServe(const ServeOptions& options) {
       nlohmann::json j = {{"clients", s.clients}, {"participants", s.participants}, {"crowdFrames", s.crowdFrames},
                           {"crowdBytes", s.crowdBytes}, {"perClient", std::move(clients)}};
       {
+        const hub::TickReport r = tickWatch.report(bridge.now());
         std::lock_guard lock(tickMutex);
-        j["tick"] = {{"median_ms", tickMedianMs}, {"p99_ms", tickP99Ms}, {"late", overruns}, {"rate", tickRate},
+        j["tick"] = {{"median_ms", tickMedianMs}, {"p99_ms", tickP99Ms}, {"late", r.late}, {"stalls", r.stalls},
+                     {"longest_ms", r.longestMs}, {"running_ms", r.runningMs}, {"rate", tickRate},
                      {"publish_median_ms", publishMedianMs}, {"publish_p99_ms", publishP99Ms}};
       }
-      return server::HttpResponse{200, "application/json", j.dump(), {}};
+      return server::HttpResponse{200, "application/json", dumpJson(j), {}};
     }
     if (path == "/api/world") return server::HttpResponse{200, "application/json", worldJson, {}};
     constexpr std::string_view kMotions = "/motions/";
@@ -425,6 +437,7 @@ int runServe(const ServeOptions& options) {
     }
     if (options.duration && bridge.now() >= *options.duration) break;
     const auto t0 = Clock::now();
+    tickWatch.started(bridge.now());
     sim::FramePtr frame;
     if (replay) {
       // Playback: the clients' controls move the clock; the frame is the recorded one at its time.
@@ -465,7 +478,7 @@ int runServe(const ServeOptions& options) {
                               {"waiting", info->waiting}});
           }
         }
-        const std::string text = groups.dump();
+        const std::string text = dumpJson(groups);
         for (const auto& q : groupQueries) q->set_value(text);
         groupQueries.clear();
       }
@@ -474,16 +487,20 @@ int runServe(const ServeOptions& options) {
         nlohmann::json crowds = nlohmann::json::array();
         if (!replay) {
           const sim::ScenarioDesc& desc = world->desc();
+          const std::map<std::string, std::uint32_t> owners = hub.crowdOwners();
           for (const sim::CrowdInfo& c : world->crowds()) {
             nlohmann::json populations = nlohmann::json::array();
             for (std::uint32_t p = c.firstPopulation; p < c.firstPopulation + c.populations && p < desc.populations.size(); ++p) {
               populations.push_back(desc.populations[p].id);
             }
+            // Its owner: the participant that inserted it (only it may remove it); null: the scenario's.
+            const auto owner = owners.find(c.id);
             crowds.push_back({{"id", c.id}, {"index", c.index}, {"applied", c.applied}, {"removed", c.removed},
-                              {"insertTick", c.insertTick}, {"populations", populations}});
+                              {"insertTick", c.insertTick}, {"populations", populations},
+                              {"owner", owner == owners.end() ? nlohmann::json(nullptr) : nlohmann::json(owner->second)}});
           }
         }
-        const std::string text = crowds.dump();
+        const std::string text = dumpJson(crowds);
         for (const auto& q : crowdQueries) q->set_value(text);
         crowdQueries.clear();
       }
@@ -497,9 +514,8 @@ int runServe(const ServeOptions& options) {
     frameReady.notify_one();
     tickMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
     next += period;
+    tickWatch.finished(bridge.now(), t1 > next);
     if (t1 > next) {
-      std::lock_guard lock(tickMutex);
-      ++overruns;
       next = t1;  // late: start the next tick now, never try to catch up in a burst
     } else {
       std::this_thread::sleep_until(next);
@@ -549,17 +565,20 @@ int runServe(const ServeOptions& options) {
   const server::TransportTotals totals = transport->totals();
   const hub::HubStatus s = hub.status();
   const double wall = bridge.now();
+  const hub::TickReport ticks = tickWatch.report(wall);
+  const std::uint64_t overruns = ticks.late;
   if (options.json) {
     nlohmann::json j = {{"scenario", options.scenario}, {"end", endReason}, {"seconds", wall},
                         {"ticks", tickMs.size()}, {"tickRate", tickRate},
                         {"ms_per_tick_median", percentile(tickMs, 0.5)}, {"ms_per_tick_p99", percentile(tickMs, 0.99)},
-                        {"overruns", overruns}, {"publish_ms_median", percentile(publishMs, 0.5)},
+                        {"overruns", overruns}, {"stalls", ticks.stalls}, {"longest_tick_ms", ticks.longestMs},
+                        {"publish_ms_median", percentile(publishMs, 0.5)},
                         {"publish_ms_p99", percentile(publishMs, 0.99)}, {"frames_skipped", framesSkipped},
                         {"peers_opened", totals.peersOpened},
                         {"crowd_frames", s.crowdFrames}, {"crowd_bytes", s.crowdBytes},
                         {"bytes_sent", totals.bytesSent}, {"bytes_received", totals.bytesReceived},
                         {"closed_for_errors", s.closedForErrors}, {"http_requests", totals.httpRequests}};
-    printLine(stdout, j.dump());
+    printLine(stdout, dumpJson(j));
   } else if (!options.quiet) {
     printLine(stdout, fmt::format("throng serve: {} after {}: {} ticks, tick median {:.2f} ms, p99 {:.2f} ms, {} late",
                                   endReason, formatSeconds(wall), tickMs.size(), percentile(tickMs, 0.5),

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <cstdio>
 #include <chrono>
 #include <cmath>
 #include <regex>
@@ -376,6 +377,130 @@ TEST(Serve, AParticipantInsertsACrowdAnotherClientSeesItAndRemovalMakesItGo) {
   ASSERT_TRUE(listed.ok());
   EXPECT_EQ(nlohmann::json::parse(listed->body)[0]["removed"], true);
   EXPECT_TRUE(watcher->open() && curator->open());
+  const CliResult stopped = server.stop();
+  EXPECT_EQ(stopped.exitCode, 130) << stopped.err;
+}
+
+/// `i` as 4 base-36 digits: 96,312 distinct short keys fit 1 MiB.
+std::string base36(int i) {
+  std::string s(4, '0');
+  for (int k = 3; k >= 0; --k, i /= 36) s[static_cast<std::size_t>(k)] = "0123456789abcdefghijklmnopqrstuvwxyz"[i % 36];
+  return s;
+}
+
+// Issue 15 item 6: a crowd request of 95,280 polygon vertices stalled the world for 30 s (and one
+// of 96,312 keys for 14.6 s): other clients got no frames and were closed for silence. Now such a
+// request is refused at once, naming the limit and where, and the world keeps ticking meanwhile.
+TEST(Serve, AHugeCrowdRequestIsRefusedAndTheWorldKeepsTickingForEveryone) {
+  Server server;
+  ASSERT_NE(server.port, 0) << "the server did not print its port";
+  auto curator = open(server.options("curator"));
+  auto watcher = open(server.options("watcher"));
+  ASSERT_TRUE(curator && watcher);
+  ASSERT_TRUE(curator->join("curator").ok());
+  pumpFor({curator.get(), watcher.get()}, 500ms);
+  std::string polygon;
+  for (int i = 0; i < 95280; ++i) polygon += std::string(i ? "," : "") + "[" + std::to_string(1 + i % 7) + "," + std::to_string(2 + i % 5) + "]";
+  const std::string vertices = R"({"format": "throng-crowd/1", "id": "big", "populations": [{"id": "p", "groups": 1,
+    "size": 1, "spawn": {"polygon": [)" + polygon + R"(]}, "goals": ["exit"]}]})";
+  std::string keys;
+  for (int i = 0; i < 96312; ++i) keys += ",\"" + base36(i) + "\":0";  // about 1 MiB
+  const std::string manyKeys = R"({"format": "throng-crowd/1", "id": "keys", "populations": [{"id": "p", "groups": 1,
+    "size": 1, "spawn": {"point": "hall"}, "goals": ["exit"])" + keys + "}]}";
+  ASSERT_LE(vertices.size(), protocol::kMaxCrowdJson);
+  ASSERT_LE(manyKeys.size(), protocol::kMaxCrowdJson);
+  const std::uint64_t framesBefore = watcher->stats().crowdFrames;
+  const auto sent = std::chrono::steady_clock::now();
+  ASSERT_TRUE(curator->insertCrowd(vertices).ok());
+  ASSERT_TRUE(curator->insertCrowd(manyKeys).ok());
+  awaitCrowdResults(*curator, {curator.get(), watcher.get()}, 2);
+  ASSERT_EQ(curator->crowdResults().size(), 2u) << "no answer within 5 s";
+  // For the record (no assertion on time): how long both answers took.
+  std::printf("both refusals arrived %.3f s after the requests were sent\n",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count());
+  const protocol::CrowdResult& a = curator->crowdResults()[0];
+  const protocol::CrowdResult& b = curator->crowdResults()[1];
+  EXPECT_FALSE(a.ok);
+  EXPECT_NE(a.text.find("/populations/0/spawn/polygon/1000: a polygon of more than 1000 vertices"), std::string::npos) << a.text;
+  EXPECT_FALSE(b.ok);
+  EXPECT_NE(b.text.find("more than 10000 object keys"), std::string::npos) << b.text;
+  // The watcher kept getting frames, and both sessions are open.
+  pumpFor({curator.get(), watcher.get()}, 1000ms);
+  EXPECT_GT(watcher->stats().crowdFrames, framesBefore + 5);
+  EXPECT_TRUE(watcher->open() && curator->open());
+  // The status reports late and stalled ticks (and the one running now).
+  auto status = server::httpRequest("127.0.0.1", server.port, "GET", "/api/status");
+  ASSERT_TRUE(status.ok());
+  ASSERT_EQ(status->status, 200u);
+  const auto j = nlohmann::json::parse(status->body);
+  EXPECT_TRUE(j["tick"].contains("late") && j["tick"].contains("stalls") && j["tick"].contains("running_ms") &&
+              j["tick"].contains("longest_ms")) << status->body;
+  const CliResult stopped = server.stop();
+  EXPECT_EQ(stopped.exitCode, 130) << stopped.err;
+}
+
+// Issue 15 item 10: a participant name that is not UTF-8 was accepted, and /api/status then
+// answered HTTP 500. Now the session is refused with a reason and every endpoint stays JSON.
+TEST(Serve, ANameThatIsNotUtf8IsRefusedAndTheStatusStaysJson) {
+  Server server;
+  ASSERT_NE(server.port, 0) << "the server did not print its port";
+  auto bad = client::Session::open(server.options("bad\xff\xfe" "name"));
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.errors().front().format().find("clientName is not UTF-8 at byte 3 (0xFF)"), std::string::npos)
+      << bad.errors().front().format();
+  auto odd = open(server.options("bell\x07"));
+  ASSERT_TRUE(odd);
+  auto joined = odd->join("Zo\xc3\xab\x1b[2J");
+  ASSERT_TRUE(joined.ok());
+  pumpFor({odd.get()}, 300ms);
+  for (const char* path : {"/api/status", "/api/crowds", "/api/groups", "/api/world"}) {
+    auto r = server::httpRequest("127.0.0.1", server.port, "GET", path);
+    ASSERT_TRUE(r.ok()) << path;
+    EXPECT_EQ(r->status, 200u) << path << ": " << r->body;
+    EXPECT_NO_THROW((void)nlohmann::json::parse(r->body)) << path;
+  }
+  auto status = server::httpRequest("127.0.0.1", server.port, "GET", "/api/status");
+  ASSERT_TRUE(status.ok());
+  const auto j = nlohmann::json::parse(status->body);
+  ASSERT_EQ(j["perClient"].size(), 1u) << status->body;
+  EXPECT_EQ(j["perClient"][0]["name"], "Zo\xc3\xab\x1b[2J");  // escaped in the JSON text, intact after parsing
+  EXPECT_EQ(status->body.find('\x1b'), std::string::npos);
+  const CliResult stopped = server.stop();
+  EXPECT_EQ(stopped.exitCode, 130) << stopped.err;
+}
+
+// Issue 15 item 8: any participant removed another's crowd with its own token.
+TEST(Serve, OnlyTheParticipantThatInsertedACrowdRemovesIt) {
+  Server server;
+  ASSERT_NE(server.port, 0) << "the server did not print its port";
+  auto alice = open(server.options("alice"));
+  auto mallory = open(server.options("mallory"));
+  ASSERT_TRUE(alice && mallory);
+  auto a = alice->join("alice");
+  ASSERT_TRUE(a.ok() && mallory->join("mallory").ok());
+  const std::string crowd = R"({"format": "throng-crowd/1", "id": "alices-tour",
+    "populations": [{"id": "tour", "groups": 1, "size": 3, "spawn": {"point": "hall"}, "goals": ["exit"]}]})";
+  ASSERT_TRUE(alice->insertCrowd(crowd).ok());
+  awaitCrowdResults(*alice, {alice.get(), mallory.get()}, 1);
+  ASSERT_EQ(alice->crowdResults().size(), 1u);
+  ASSERT_TRUE(alice->crowdResults()[0].ok) << alice->crowdResults()[0].text;
+  ASSERT_TRUE(mallory->removeCrowd("alices-tour").ok());
+  awaitCrowdResults(*mallory, {alice.get(), mallory.get()}, 1);
+  ASSERT_EQ(mallory->crowdResults().size(), 1u);
+  EXPECT_FALSE(mallory->crowdResults()[0].ok);
+  EXPECT_NE(mallory->crowdResults()[0].text.find("belongs to participant " + std::to_string(a->participantId) + " ('alice')"),
+            std::string::npos) << mallory->crowdResults()[0].text;
+  auto listed = server::httpRequest("127.0.0.1", server.port, "GET", "/api/crowds");
+  ASSERT_TRUE(listed.ok());
+  auto crowds = nlohmann::json::parse(listed->body);
+  ASSERT_EQ(crowds.size(), 1u) << listed->body;
+  EXPECT_EQ(crowds[0]["removed"], false);
+  EXPECT_EQ(crowds[0]["owner"], a->participantId);
+  EXPECT_TRUE(mallory->open());
+  ASSERT_TRUE(alice->removeCrowd("alices-tour").ok());
+  awaitCrowdResults(*alice, {alice.get(), mallory.get()}, 2);
+  ASSERT_EQ(alice->crowdResults().size(), 2u);
+  EXPECT_TRUE(alice->crowdResults()[1].ok) << alice->crowdResults()[1].text;
   const CliResult stopped = server.stop();
   EXPECT_EQ(stopped.exitCode, 130) << stopped.err;
 }

@@ -8,6 +8,8 @@
 
 #include "throng/core/parallel.hpp"
 #include "throng/hub/hub.hpp"
+#include "throng/hub/text.hpp"
+#include "throng/io/crowd_loader.hpp"
 #include "throng/hub/world_description.hpp"
 #include "throng/io/scenario_loader.hpp"
 #include "throng/protocol/crowd_decoder.hpp"
@@ -99,6 +101,7 @@ struct HubFixture : ::testing::Test {
     return j ? *j : Joined{};
   }
   void tick() {
+    hub->awaitCrowdValidation(*world);  // crowd requests are validated on the hub's own thread
     hub->applyToWorld(*world);
     world->step(tasks);
     now += world->desc().dt;
@@ -611,6 +614,182 @@ TEST_F(HubFixture, AReplayServerRefusesCrowdInsertion) {
   EXPECT_FALSE(r->ok);
   EXPECT_NE(r->text.find("this server plays a recording"), std::string::npos) << r->text;
   EXPECT_TRUE(outbox.closed.empty());
+}
+
+
+// ---- Per-request limits, ownership, names (issue 15 items 6, 8, 10) ----
+
+/// All CrowdResults in `got`, in order.
+std::vector<CrowdResult> crowdResults(const std::vector<Message>& got) {
+  std::vector<CrowdResult> out;
+  for (const Message& m : got) {
+    if (auto* c = std::get_if<CrowdResult>(&m)) out.push_back(*c);
+  }
+  return out;
+}
+
+/// `i` as 4 base-36 digits: 96,312 distinct short keys fit 1 MiB.
+std::string base36(int i) {
+  std::string s(4, '0');
+  for (int k = 3; k >= 0; --k, i /= 36) s[static_cast<std::size_t>(k)] = "0123456789abcdefghijklmnopqrstuvwxyz"[i % 36];
+  return s;
+}
+
+TEST_F(HubFixture, ACrowdOverALimitIsRefusedNamingTheLimitAndWhereItWasCrossed) {
+  connect(1);
+  const Joined a = join(1, "curator");
+  // A spawn polygon of 95,280 vertices (it stalled the world for 30 s), and a population of
+  // 96,312 keys (14.6 s): each refused at the vertex or key that crossed the limit.
+  std::string polygon;
+  for (int i = 0; i < 95280; ++i) polygon += std::string(i ? "," : "") + "[" + std::to_string(1 + i % 7) + "," + std::to_string(2 + i % 5) + "]";
+  const std::string vertices = R"({"format": "throng-crowd/1", "id": "big", "populations": [{"id": "p", "groups": 1, "size": 1,
+    "spawn": {"polygon": [)" + polygon + R"(]}, "goals": ["exit"]}]})";
+  std::string keys;
+  for (int i = 0; i < 96312; ++i) keys += ",\"" + base36(i) + "\":0";  // about 1 MiB
+  const std::string manyKeys = R"({"format": "throng-crowd/1", "id": "keys", "populations": [{"id": "p", "groups": 1,
+    "size": 1, "spawn": {"point": "hall"}, "goals": ["exit"])" + keys + "}]}";
+  std::string deep = R"({"format": "throng-crowd/1", "id": "deep", "populations": )";
+  for (int i = 0; i < 40; ++i) deep += "[";
+  for (int i = 0; i < 40; ++i) deep += "]";
+  deep += "}";
+  say(1, encode(InsertCrowd{a.token, 1, vertices}));
+  say(1, encode(InsertCrowd{a.token, 2, manyKeys}));
+  say(1, encode(InsertCrowd{a.token, 3, deep}));
+  tick();
+  const std::vector<CrowdResult> results = crowdResults(outbox.drain(1));
+  ASSERT_EQ(results.size(), 3u);
+  for (const CrowdResult& r : results) {
+    EXPECT_FALSE(r.ok);
+    EXPECT_NE(r.text.find("(server limit)"), std::string::npos) << r.text;
+    EXPECT_LE(r.text.size(), kMaxTextLength);
+  }
+  const std::string who = "participant " + std::to_string(a.participantId) + " request ";
+  EXPECT_NE(results[0].text.find(who + "1:2:"), std::string::npos) << results[0].text;
+  EXPECT_NE(results[0].text.find("/populations/0/spawn/polygon/1000: a polygon of more than 1000 vertices"),
+            std::string::npos) << results[0].text;
+  EXPECT_NE(results[1].text.find("/populations/0/" + base36(9991) + ": more than 10000 object keys"), std::string::npos) << results[1].text;
+  EXPECT_NE(results[2].text.find("/populations/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0: nesting deeper than 16 levels"),
+            std::string::npos) << results[2].text;
+  EXPECT_TRUE(world->crowds().empty());
+  EXPECT_TRUE(outbox.closed.empty());  // the session stays
+}
+
+TEST_F(HubFixture, ACrowdBelongsToWhoeverInsertedItOthersAreRefused) {
+  connect(1);
+  connect(2);
+  const Joined a = join(1, "alice");
+  const Joined b = join(2, "bob");
+  say(1, encode(InsertCrowd{a.token, 1, crowds::visitors("alices")}));
+  tick();
+  ASSERT_TRUE(crowds::result(outbox.drain(1))->ok);
+  // The scenario's own crowd (its timeline does this): nobody's.
+  {
+    auto parsed = io::parseCrowd(crowds::visitors("scenarios"), "timeline", *world);
+    ASSERT_TRUE(parsed.ok()) << core::formatAll(parsed.errors());
+    ASSERT_TRUE(world->insertCrowd(parsed.value()).ok());
+  }
+  tick();
+  outbox.drain(2);
+  // Bob may remove neither Alice's crowd nor the scenario's: refused with a reason, session kept.
+  say(2, encode(RemoveCrowd{b.token, 5, "alices"}));
+  say(2, encode(RemoveCrowd{b.token, 6, "scenarios"}));
+  tick();
+  std::vector<CrowdResult> refused = crowdResults(outbox.drain(2));
+  ASSERT_EQ(refused.size(), 2u);
+  EXPECT_FALSE(refused[0].ok);
+  EXPECT_EQ(refused[0].crowdId, "alices");
+  EXPECT_NE(refused[0].text.find("crowd 'alices' belongs to participant " + std::to_string(a.participantId) + " ('alice')"),
+            std::string::npos) << refused[0].text;
+  EXPECT_FALSE(refused[1].ok);
+  EXPECT_NE(refused[1].text.find("crowd 'scenarios' belongs to the scenario"), std::string::npos) << refused[1].text;
+  for (const sim::CrowdInfo& c : world->crowds()) EXPECT_FALSE(c.removed) << c.id;
+  EXPECT_TRUE(outbox.closed.empty());
+  EXPECT_EQ(hub->crowdOwners(), (std::map<std::string, std::uint32_t>{{"alices", a.participantId}}));
+  // Alice removes her own.
+  say(1, encode(RemoveCrowd{a.token, 7, "alices"}));
+  tick();
+  const std::vector<CrowdResult> removed = crowdResults(outbox.drain(1));
+  ASSERT_EQ(removed.size(), 1u);
+  EXPECT_TRUE(removed[0].ok) << removed[0].text;
+  EXPECT_TRUE(world->crowds()[0].removed);
+  EXPECT_FALSE(world->crowds()[1].removed);
+}
+
+TEST_F(HubFixture, NamesThatAreNotUtf8AreRefusedAtEntry) {
+  hub->onOpen(1, "test:1", now);
+  say(1, encode(Hello{kProtocolVersion, ClientKind::Native, "bad\xff\xfe" "name"}));
+  const auto got = outbox.drain(1);
+  const Refuse* refused = find<Refuse>(got);
+  ASSERT_NE(refused, nullptr);
+  EXPECT_EQ(refused->reason, ReasonCode::BadMessage);
+  EXPECT_NE(refused->text.find("clientName is not UTF-8 at byte 3 (0xFF)"), std::string::npos) << refused->text;
+  EXPECT_TRUE(outbox.closed.count(1));
+  EXPECT_EQ(find<Welcome>(got), nullptr);
+  // A participant name: the session is closed with the reason; nobody hears of it.
+  connect(2);
+  hub->onOpen(3, "test:3", now);
+  say(3, encode(Hello{kProtocolVersion, ClientKind::Native, "watcher"}));
+  outbox.drain(3);
+  say(2, encode(Join{"\xc3\x28", 0}));  // a lead byte followed by no continuation byte
+  const auto got2 = outbox.drain(2);
+  const Bye* bye = find<Bye>(got2);
+  ASSERT_NE(bye, nullptr);
+  EXPECT_EQ(bye->reason, ReasonCode::BadMessage);
+  EXPECT_NE(bye->text.find("Join: name is not UTF-8 at byte 0 (0xC3)"), std::string::npos) << bye->text;
+  EXPECT_EQ(find<Joined>(got2), nullptr);
+  EXPECT_EQ(find<Presence>(outbox.drain(3)), nullptr);
+  for (const ClientStatus& c : hub->status().perClient) EXPECT_FALSE(c.participant) << c.name;
+  // A UTF-8 name with a control character is kept as sent (JSON and the viewer escape it).
+  hub->onOpen(4, "test:4", now);
+  say(4, encode(Hello{kProtocolVersion, ClientKind::Native, "Zo\xc3\xab\x07"}));
+  EXPECT_NE(find<Welcome>(outbox.drain(4)), nullptr);
+}
+
+TEST_F(HubFixture, ACrowdIdThatIsNotUtf8IsRefusedAndRepliesStayUtf8) {
+  connect(1);
+  const Joined a = join(1, "curator");
+  say(1, encode(RemoveCrowd{a.token, 4, "x\xff"}));
+  tick();
+  std::vector<CrowdResult> results = crowdResults(outbox.drain(1));
+  ASSERT_EQ(results.size(), 1u);
+  EXPECT_FALSE(results[0].ok);
+  EXPECT_NE(results[0].text.find("not UTF-8 at byte 1 (0xFF)"), std::string::npos) << results[0].text;
+  EXPECT_FALSE(invalidUtf8At(results[0].crowdId).has_value());
+  // A crowd file that is not UTF-8: refused at its line and column, before it is parsed.
+  say(1, encode(InsertCrowd{a.token, 5, "{\"format\": \"throng-crowd/1\",\n \"id\": \"\xfe\"}"}));
+  // An unknown id quoting control characters: echoed escaped.
+  say(1, encode(RemoveCrowd{a.token, 6, "a\x1b[2Jb"}));
+  tick();
+  results = crowdResults(outbox.drain(1));
+  ASSERT_EQ(results.size(), 2u);
+  EXPECT_NE(results[0].text.find(":2:9: not UTF-8: byte 37 (0xFE)"), std::string::npos) << results[0].text;
+  EXPECT_NE(results[1].text.find("no crowd 'a\\x1B[2Jb' present"), std::string::npos) << results[1].text;
+  EXPECT_EQ(results[1].text.find('\x1b'), std::string::npos);
+}
+
+
+TEST_F(HubFixture, AtMostSoManyInsertionsWaitForValidationMoreAreAnsweredBusy) {
+  HubOptions options;
+  options.crowdInsertsPerMinute = 100;
+  options.maxPendingCrowdInserts = 3;
+  hub = std::make_unique<Hub>(options, describeWorld(*scenario, *motions, *world, 20.0), 20.0f, *motions, outbox);
+  connect(1);
+  const Joined a = join(1, "curator");
+  // No tick yet: the crowd thread has no copy of the world to validate against, so they wait.
+  for (std::uint32_t i = 0; i < 5; ++i) say(1, encode(InsertCrowd{a.token, i, crowds::visitors("c" + std::to_string(i), 1, 1)}));
+  std::vector<CrowdResult> busy = crowdResults(outbox.drain(1));
+  ASSERT_EQ(busy.size(), 2u);
+  for (const CrowdResult& r : busy) {
+    EXPECT_FALSE(r.ok);
+    EXPECT_NE(r.text.find("busy: 3 crowd insertions are waiting"), std::string::npos) << r.text;
+  }
+  EXPECT_EQ(busy[0].requestId, 3u);
+  EXPECT_EQ(busy[1].requestId, 4u);
+  tick();
+  const std::vector<CrowdResult> done = crowdResults(outbox.drain(1));
+  ASSERT_EQ(done.size(), 3u);
+  for (const CrowdResult& r : done) EXPECT_TRUE(r.ok) << r.text;
+  EXPECT_EQ(world->crowds().size(), 3u);
 }
 
 }  // namespace

@@ -3,14 +3,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <deque>
 #include <map>
 #include <mutex>
 #include <random>
+#include <thread>
 #include <utility>
 
 #include "throng/core/parallel.hpp"
 #include "throng/hub/crowd_requests.hpp"
+#include "throng/hub/text.hpp"
 #include "throng/protocol/messages.hpp"
 
 namespace throng::hub {
@@ -70,13 +73,28 @@ struct GuideRequest {
   bool answer = true;  ///< false: the participant left; nobody to answer
 };
 
-/// An InsertCrowd or RemoveCrowd waiting for applyToWorld.
+/// An InsertCrowd or RemoveCrowd, in the order they came: validated on the crowd worker, then
+/// carried out by applyToWorld.
 struct CrowdRequest {
   PeerKey peer = 0;
   std::uint32_t participantId = 0;
+  std::string name;     ///< the participant's name (the crowd's owner, in refusals)
   std::uint32_t requestId = 0;
   bool insert = true;
   std::string payload;  ///< the crowd file's JSON (insert) or the crowd id (remove)
+};
+
+/// A request the worker is done with: an insertion parsed and validated (or refused).
+struct CrowdDone {
+  CrowdRequest request;
+  ParsedCrowd parsed;
+};
+
+/// What the worker validates insertions against: a copy of the world's description, its navmesh
+/// and the ids of its crowds, refreshed by the simulation thread between ticks when they changed.
+struct CrowdContext {
+  sim::ScenarioDesc desc;
+  io::CrowdOptions options;
 };
 
 constexpr double kCrowdInsertWindowSeconds = 60.0;
@@ -104,8 +122,27 @@ struct Hub::Impl {
     std::map<std::uint32_t, float> avatarHeights;      ///< participant → avatar height [m] (multi-level worlds)
     std::map<std::uint32_t, PeerKey> participants;     ///< participants present → their peer
     std::vector<protocol::ReplayControl> replayControls;
-    std::vector<CrowdRequest> crowdRequests;
+    CrowdOwners owners;                                ///< who inserted each crowd (removal rule)
+    std::size_t crowdsQueued = 0;                      ///< insertions queued into the World by the hub
   } input;
+  /// Crowd requests: parsed and validated on their own thread, never on the simulation's, so a
+  /// large or hostile crowd file cannot stall the tick (docs/server.md).
+  struct CrowdWork {
+    std::mutex mutex;
+    std::condition_variable changed;
+    std::deque<CrowdRequest> queue;   ///< waiting for the worker, in arrival order
+    std::vector<CrowdDone> done;      ///< waiting for applyToWorld, in arrival order
+    std::shared_ptr<const CrowdContext> context;
+    bool stale = true;                ///< the world changed since `context` was taken
+    bool busy = false;                ///< the worker holds a request
+    bool stop = false;
+    std::size_t points = 0, populations = 0, queued = 0;  ///< what `context` was taken at
+  } work;
+  std::thread worker;
+  void crowdWorker();
+  /// A fresh validation context when the world changed since the last and requests wait for it
+  /// (or always with `force`). Simulation thread, between ticks.
+  void refreshCrowdContext(const sim::World& world, bool force);
   static float heightOf(const WorldInput& in, std::uint32_t participant) {
     const auto h = in.avatarHeights.find(participant);
     return h == in.avatarHeights.end() ? 0.0f : h->second;
@@ -120,14 +157,16 @@ struct Hub::Impl {
     if (c.closing) return;
     c.closing = true;
     ++totals.closedForErrors;
-    outbox.send(c.peer, protocol::encode(protocol::Bye{code, text.substr(0, protocol::kMaxTextLength)}), false, 0);
-    outbox.close(c.peer, text.substr(0, 120));
+    outbox.send(c.peer, protocol::encode(protocol::Bye{code, std::string(cutUtf8(text, protocol::kMaxTextLength))}), false, 0);
+    outbox.close(c.peer, std::string(cutUtf8(text, 120)));
   }
 
   void refuse(Client& c, ReasonCode code, const std::string& text) {
     c.closing = true;
-    outbox.send(c.peer, protocol::encode(protocol::Refuse{protocol::kProtocolVersion, code, text}), false, 0);
-    outbox.close(c.peer, text.substr(0, 120));
+    outbox.send(c.peer,
+                protocol::encode(protocol::Refuse{protocol::kProtocolVersion, code, std::string(cutUtf8(text, protocol::kMaxTextLength))}),
+                false, 0);
+    outbox.close(c.peer, std::string(cutUtf8(text, 120)));
   }
 
   /// Participant state and guidance requests must carry the sender's own token.
@@ -199,9 +238,93 @@ Hub::Hub(HubOptions options, const std::string& worldJson, float tickRateHz, con
     : impl_(std::make_unique<Impl>(std::move(options), motions, outbox)) {
   impl_->tickRate = tickRateHz;
   impl_->welcome = protocol::encode(protocol::makeWelcome(impl_->options.serverName, tickRateHz, worldJson));
+  impl_->worker = std::thread([h = impl_.get()] { h->crowdWorker(); });
 }
 
-Hub::~Hub() = default;
+Hub::~Hub() {
+  {
+    std::lock_guard lock(impl_->work.mutex);
+    impl_->work.stop = true;
+  }
+  impl_->work.changed.notify_all();
+  impl_->worker.join();
+}
+
+void Hub::Impl::crowdWorker() {
+  std::unique_lock lock(work.mutex);
+  while (true) {
+    // Removals pass in order; an insertion waits for a context taken since the world last changed.
+    work.changed.wait(lock, [&] {
+      return work.stop || (!work.queue.empty() && (!work.queue.front().insert || (work.context && !work.stale)));
+    });
+    if (work.stop) return;
+    CrowdDone d{std::move(work.queue.front()), {}};
+    work.queue.pop_front();
+    const std::shared_ptr<const CrowdContext> context = work.context;
+    work.busy = true;
+    lock.unlock();
+    if (d.request.insert) {
+      const std::string source = "participant " + std::to_string(d.request.participantId) + " request " +
+                                 std::to_string(d.request.requestId);
+      try {
+        d.parsed = parseCrowdRequest(d.request.payload, source, context->desc, context->options, options.maxInsertAgents,
+                                     options.crowdLimits);
+      } catch (const std::exception& e) {
+        d.parsed.refusal.text = "the server could not validate the crowd: " + std::string(e.what());
+        d.parsed.refusal.diagnostics = {{source, 0, 0, "", d.parsed.refusal.text, "", ""}};
+      }
+      d.request.payload.clear();
+      d.request.payload.shrink_to_fit();
+    }
+    lock.lock();
+    work.done.push_back(std::move(d));
+    work.busy = false;
+    work.changed.notify_all();
+  }
+}
+
+void Hub::Impl::refreshCrowdContext(const sim::World& world, bool force) {
+  const sim::ScenarioDesc& desc = world.desc();
+  std::size_t queued = 0;
+  {
+    std::lock_guard lock(input.mutex);
+    queued = input.crowdsQueued;
+  }
+  {
+    std::lock_guard lock(work.mutex);
+    const bool stale = !work.context || work.points != desc.points.size() || work.populations != desc.populations.size() ||
+                       work.queued != queued;
+    if (stale) work.stale = true;
+    if (!work.stale || (work.queue.empty() && !force)) return;
+  }
+  auto context = std::make_shared<CrowdContext>();
+  context->desc = desc;
+  // The World outlives the hub (hub.hpp): a non-owning pointer to its navmesh.
+  context->options.navmesh = std::shared_ptr<const nav::NavMesh>(std::shared_ptr<const nav::NavMesh>(), &world.navMesh());
+  for (const sim::CrowdInfo& c : world.crowds()) context->options.takenCrowdIds.push_back(c.id);
+  {
+    std::lock_guard lock(work.mutex);
+    work.context = std::move(context);
+    work.stale = false;
+    work.points = desc.points.size();
+    work.populations = desc.populations.size();
+    work.queued = queued;
+  }
+  work.changed.notify_all();
+}
+
+void Hub::awaitCrowdValidation(const sim::World& world) {
+  impl_->refreshCrowdContext(world, true);
+  std::unique_lock lock(impl_->work.mutex);
+  impl_->work.changed.wait(lock, [&] { return impl_->work.queue.empty() && !impl_->work.busy; });
+}
+
+std::map<std::string, std::uint32_t> Hub::crowdOwners() const {
+  std::lock_guard lock(impl_->input.mutex);
+  std::map<std::string, std::uint32_t> out;
+  for (const auto& [id, owner] : impl_->input.owners.all()) out.emplace(id, owner.first);
+  return out;
+}
 
 void Hub::onOpen(PeerKey peer, std::string remote, double now) {
   std::lock_guard lock(impl_->mutex);
@@ -260,6 +383,11 @@ void Hub::Impl::handle(Client& c, const protocol::Message& message, double now) 
       refuse(c, ReasonCode::ServerFull, "server full: " + std::to_string(options.maxClients) + " clients (--max-clients)");
       return;
     }
+    if (const auto bad = invalidUtf8At(hello->clientName)) {
+      refuse(c, ReasonCode::BadMessage,
+             "Hello: clientName is not UTF-8 at " + describeByte(hello->clientName, *bad) + "; expected a UTF-8 name");
+      return;
+    }
     c.welcomed = true;
     c.name = hello->clientName;
     outbox.send(c.peer, welcome, false, 0);
@@ -279,6 +407,10 @@ void Hub::Impl::handle(Client& c, const protocol::Message& message, double now) 
         if constexpr (std::is_same_v<M, Join>) {
           if (c.participant) {
             fail(c, ReasonCode::UnexpectedMessage, "Join: this client already is participant " + std::to_string(c.participantId));
+            return;
+          }
+          if (const auto bad = invalidUtf8At(m.name)) {
+            fail(c, ReasonCode::BadMessage, "Join: name is not UTF-8 at " + describeByte(m.name, *bad) + "; expected a UTF-8 name");
             return;
           }
           c.participant = true;
@@ -378,16 +510,34 @@ void Hub::Impl::handle(Client& c, const protocol::Message& message, double now) 
                              std::to_string(static_cast<int>(std::ceil(wait))) + " s");
               return;
             }
-            c.crowdInserts.push_back(now);
-            std::lock_guard lock(input.mutex);
-            input.crowdRequests.push_back({c.peer, c.participantId, m.requestId, true, m.crowdJson});
+            {
+              std::lock_guard lock(work.mutex);
+              const auto pending = static_cast<std::size_t>(
+                  std::count_if(work.queue.begin(), work.queue.end(), [](const CrowdRequest& r) { return r.insert; }));
+              if (pending >= options.maxPendingCrowdInserts) {
+                answer("", "busy: " + std::to_string(pending) +
+                               " crowd insertions are waiting to be validated; try again in a few seconds");
+                return;
+              }
+              c.crowdInserts.push_back(now);
+              work.queue.push_back({c.peer, c.participantId, c.name, m.requestId, true, m.crowdJson});
+            }
+            work.changed.notify_all();
           } else {
             if (options.replay) {
-              answer(m.crowdId, "this server plays a recording: crowds cannot be removed");
+              answer(std::string(cutUtf8(printable(m.crowdId, protocol::kMaxNameLength), protocol::kMaxNameLength)),
+                     "this server plays a recording: crowds cannot be removed");
               return;
             }
-            std::lock_guard lock(input.mutex);
-            input.crowdRequests.push_back({c.peer, c.participantId, m.requestId, false, m.crowdId});
+            if (const auto bad = invalidUtf8At(m.crowdId)) {
+              answer("", "remove /crowdId: not UTF-8 at " + describeByte(m.crowdId, *bad) + "; expected the id of a crowd");
+              return;
+            }
+            {
+              std::lock_guard lock(work.mutex);
+              work.queue.push_back({c.peer, c.participantId, c.name, m.requestId, false, m.crowdId});
+            }
+            work.changed.notify_all();
           }
         } else if constexpr (std::is_same_v<M, Ack>) {
           if (m.token != 0 && c.participant && m.token != c.token) {
@@ -411,7 +561,7 @@ void Hub::Impl::handle(Client& c, const protocol::Message& message, double now) 
 
 void Hub::applyToWorld(sim::World& world) {
   Impl& h = *impl_;
-  std::lock_guard lock(h.input.mutex);  // never the main mutex: publish may be encoding meanwhile
+  std::unique_lock lock(h.input.mutex);  // never the main mutex: publish may be encoding meanwhile
   auto& in = h.input;
   for (const GuideRequest& r : in.requests) {
     const sim::GroupId handle = world.groupById(r.group);
@@ -446,21 +596,35 @@ void Hub::applyToWorld(sim::World& world) {
     if (r.answer && present) h.outbox.send(r.peer, protocol::encode(result), false, 0);
   }
   in.requests.clear();
-  // Crowds inserted and removed at the participants' request, in the order they came: each is
-  // validated against the world as it is then (earlier ones in this batch included).
-  for (const CrowdRequest& r : in.crowdRequests) {
+  // Crowds inserted and removed at the participants' request, in the order they came. Insertions
+  // were parsed and validated on the crowd worker; here they are only queued into the World
+  // (World::insertCrowd checks their ids against the crowds queued since), so they take effect at
+  // the next tick boundary. A crowd belongs to whoever inserted it: only they remove it.
+  std::vector<CrowdDone> done;
+  {
+    std::lock_guard workLock(h.work.mutex);
+    done.swap(h.work.done);
+  }
+  for (CrowdDone& d : done) {
+    const CrowdRequest& r = d.request;
     if (in.participants.count(r.participantId) == 0) continue;  // left meanwhile: nobody asks any more
-    CrowdOutcome outcome =
-        r.insert ? insertCrowdJson(world, r.payload,
-                                   "participant " + std::to_string(r.participantId) + " request " + std::to_string(r.requestId),
-                                   h.options.maxInsertAgents)
-                 : removeCrowdById(world, r.payload);
+    CrowdOutcome outcome;
+    if (!r.insert) {
+      outcome = removeCrowdById(world, r.payload, &in.owners, r.participantId);
+    } else if (d.parsed.crowd) {
+      outcome = queueCrowd(world, *d.parsed.crowd);
+      if (outcome.ok) {
+        in.owners.add(outcome.id, r.participantId, r.name);
+        ++in.crowdsQueued;
+      }
+    } else {
+      outcome = std::move(d.parsed.refusal);
+    }
     protocol::CrowdResult result{r.requestId, outcome.ok, outcome.index,
-                                 outcome.id.substr(0, protocol::kMaxNameLength), std::move(outcome.text)};
+                                 std::string(cutUtf8(outcome.id, protocol::kMaxNameLength)), std::move(outcome.text)};
     if (!outcome.ok) result.text = diagnosticsText(outcome.diagnostics, protocol::kMaxTextLength);
     h.outbox.send(r.peer, protocol::encode(result), false, 0);
   }
-  in.crowdRequests.clear();
   // Dynamic goals: each guided group walks to its guide's avatar (the World replans only when it
   // moved far enough); the avatars are the viewers of multiresolution steering.
   std::vector<core::Vec2> viewers;
@@ -470,6 +634,8 @@ void Hub::applyToWorld(sim::World& world) {
     if (auto a = in.avatars.find(participant); a != in.avatars.end()) world.guide(world.groupById(group), a->second, Impl::heightOf(in, participant));
   }
   world.setViewers(std::move(viewers));
+  lock.unlock();
+  h.refreshCrowdContext(world, false);
 }
 
 core::Result<protocol::EncodedCrowdFrame> Hub::Impl::encodeCrowd(Client& c, const sim::Frame& frame) {

@@ -3,6 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "throng/hub/text.hpp"
+
 namespace throng::hub {
 
 std::string describeWorld(const io::LoadedScenario& scenario, const MotionLibrary& motions,
@@ -15,7 +17,10 @@ std::string describeWorld(const io::LoadedScenario& scenario, const MotionLibrar
   out["tickRate"] = tickRate;
   // The scenario as written: a viewer draws floors, walls and points from the same format the
   // engine reads. The loader validated it, so it parses.
-  out["scenario"] = json::parse(scenario.text, nullptr, false);
+  // A text that is not UTF-8 does not parse as JSON: its bad bytes become U+FFFD first.
+  json written = json::parse(scenario.text, nullptr, false);
+  if (written.is_discarded()) written = json::parse(validUtf8(scenario.text), nullptr, false);
+  out["scenario"] = written.is_discarded() ? json(nullptr) : std::move(written);
   json joints = json::array();
   const Skeleton& sk = motions.skeleton();
   for (std::size_t j = 0; j < sk.names.size(); ++j) {
@@ -41,7 +46,8 @@ std::string describeWorld(const io::LoadedScenario& scenario, const MotionLibrar
     groups.push_back({{"id", info->id}, {"population", population}, {"members", info->members}});
   }
   out["groups"] = std::move(groups);
-  return out.dump();
+  // Names come from the scenario: never let one that is not UTF-8 make the description throw.
+  return out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 }  // namespace throng::hub

@@ -13,6 +13,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "throng/core/parallel.hpp"
+#include "throng/hub/crowd_requests.hpp"
 #include "throng/hub/granularity.hpp"
 #include "throng/hub/interest.hpp"
 #include "throng/hub/motion_library.hpp"
@@ -73,6 +75,12 @@ struct HubOptions {
   /// InsertCrowd: most agents one inserted crowd may spawn (groups × largest group size, summed);
   /// the World's own limits (sim::kMaxInsertAgents per insertion, kMaxInsertedAgents in all) apply too.
   std::uint64_t maxInsertAgents = sim::kMaxInsertAgents;
+  /// InsertCrowd: bounds on one request's text (size, nesting, keys, values, polygon vertices),
+  /// checked in one pass before it is parsed; over one, a CrowdResult names the limit and where.
+  CrowdLimits crowdLimits;
+  /// InsertCrowd: most insertions waiting for the crowd thread at once, all participants together;
+  /// more are answered with a CrowdResult "busy" (bounds the memory and the thread's backlog).
+  std::size_t maxPendingCrowdInserts = 16;
   /// The world is a recording played back (`throng serve FILE.sqlite`): clients drive it with
   /// ReplayControl (takeReplayControls); there are no groups to guide.
   bool replay = false;
@@ -120,10 +128,20 @@ class Hub {
 
   // Simulation side, between ticks.
   /// Carries out guide and release requests and crowd insertions / removals (InsertCrowd,
-  /// RemoveCrowd: validated against the world, answered with a CrowdResult; an inserted crowd's
-  /// agents appear from the next tick), moves the guided groups' dynamic goals to their guides'
-  /// avatars, and gives the world the avatars as viewers (multiresolution steering).
+  /// RemoveCrowd, answered with a CrowdResult; an inserted crowd's agents appear from the next
+  /// tick), moves the guided groups' dynamic goals to their guides' avatars, and gives the world
+  /// the avatars as viewers (multiresolution steering). InsertCrowd is parsed and validated on the
+  /// hub's own crowd thread against a copy of the world's description, never here: applyToWorld
+  /// queues the crowds validated since the last call (World::insertCrowd, cheap) and refreshes
+  /// that copy when the world changed. A crowd is removed only by the participant that inserted
+  /// it. Always the same World, which must outlive the hub (the crowd thread reads its navmesh).
   void applyToWorld(sim::World& world);
+  /// Blocks until every crowd request received so far is validated against `world` and waits for
+  /// applyToWorld (tests and tools that want a request carried out at a known tick; a server
+  /// never waits). Simulation thread, between ticks.
+  void awaitCrowdValidation(const sim::World& world);
+  /// Crowd id → the participant that inserted it (crowds of the scenario are not listed).
+  [[nodiscard]] std::map<std::string, std::uint32_t> crowdOwners() const;
   /// Sends every welcomed client its crowd frame for `frame`, the server heartbeats, and closes
   /// clients that timed out or stalled. Clients' frames are encoded in parallel on `tasks` when
   /// given. May run on its own thread, beside the simulation: applyToWorld never waits for it.
