@@ -259,3 +259,50 @@ TEST(ProtocolMessages, CrowdRequestsCheckLimitsAndFlag) {
 
 }  // namespace
 }  // namespace throng::protocol
+
+namespace throng::protocol {
+namespace {
+
+// The UDP handshake messages (types 25 and 26): sizes, the Hello inside a UdpHello, errors.
+TEST(ProtocolMessages, CookieAndUdpHello) {
+  CookieBytes cookie{};
+  for (std::size_t i = 0; i < cookie.size(); ++i) cookie[i] = static_cast<std::uint8_t>(0xa0 + i);
+  const Bytes c = encode(Cookie{cookie});
+  EXPECT_EQ(c.size(), kCookieMessageSize);
+  const Bytes smallest = encode(UdpHello{CookieBytes{}, Hello{kProtocolVersion, ClientKind::Native, ""}});
+  EXPECT_EQ(smallest.size(), kMinUdpHelloSize);
+  EXPECT_GT(kMinUdpHelloSize, kCookieMessageSize);  // the server's answer never amplifies
+  const Bytes u = encode(UdpHello{cookie, Hello{kProtocolVersion, ClientKind::Loadgen, "lg"}});
+  // The Hello inside is a whole Hello message, byte for byte.
+  const Bytes inner = encode(Hello{kProtocolVersion, ClientKind::Loadgen, "lg"});
+  ASSERT_EQ(u.size(), 2 + kCookieSize + inner.size());
+  EXPECT_TRUE(std::equal(inner.begin(), inner.end(), u.begin() + 2 + kCookieSize));
+  auto d = decodeAny(u);
+  ASSERT_TRUE(d) << core::formatAll(d.errors());
+  const auto& m = std::get<UdpHello>(d.value());
+  EXPECT_EQ(m.cookie, cookie);
+  EXPECT_EQ(m.hello.clientName, "lg");
+  EXPECT_EQ(m.hello.clientKind, ClientKind::Loadgen);
+  EXPECT_EQ(messageDirection(MessageType::UdpHello), Direction::ClientToServer);
+  EXPECT_EQ(messageDirection(MessageType::Cookie), Direction::ServerToClient);
+  EXPECT_STREQ(messageTypeName(MessageType::Cookie), "Cookie");
+  EXPECT_STREQ(messageTypeName(MessageType::UdpHello), "UdpHello");
+
+  auto bad = [](Bytes b, const char* pointer) {
+    auto r = decodeAny(b);
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.errors().front().pointer, pointer) << r.errors().front().format();
+  };
+  Bytes notHello = u;
+  notHello[2 + kCookieSize + 1] = static_cast<std::uint8_t>(MessageType::Join);
+  bad(notHello, "/UdpHello/hello");
+  Bytes badMagic = u;
+  badMagic[2 + kCookieSize] = 0x55;
+  bad(badMagic, "/UdpHello/hello");
+  Bytes longer = c;
+  longer.push_back(0);
+  bad(longer, "/Cookie/end");
+}
+
+}  // namespace
+}  // namespace throng::protocol

@@ -4,6 +4,7 @@
 // limits in protocol.hpp before anything is allocated.
 #include "throng/protocol/messages.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "byte_io.hpp"
@@ -305,6 +306,20 @@ Bytes encode(const Fragment& m) {
   return out;
 }
 
+Bytes encode(const Cookie& m) {
+  Bytes out = start(MessageType::Cookie);
+  ByteWriter(out).bytes(m.cookie);
+  return out;
+}
+
+Bytes encode(const UdpHello& m) {
+  Bytes out = start(MessageType::UdpHello);
+  ByteWriter w(out);
+  w.bytes(m.cookie);
+  w.bytes(encode(m.hello));
+  return out;
+}
+
 Bytes encode(const Message& m) {
   return std::visit([](const auto& v) { return encode(v); }, m);
 }
@@ -318,9 +333,42 @@ const char* messageTypeName(MessageType type) {
                                            "Heartbeat", "Bye", "Move", "Joints", "HandJoints",
                                            "FaceExpression", "Guide", "Release", "GuideResult", "Ack",
                                            "CrowdFrame", "Presence", "ReplayControl", "ReplayStatus",
-                                           "InsertCrowd", "RemoveCrowd", "CrowdResult", "Fragment"};
+                                           "InsertCrowd", "RemoveCrowd", "CrowdResult", "Fragment",
+                                           "Cookie", "UdpHello"};
   const auto i = static_cast<std::uint8_t>(type);
   return i <= kMaxMessageType ? kNames[i] : "?";
+}
+
+Direction messageDirection(MessageType type) {
+  switch (type) {
+    case MessageType::Hello:
+    case MessageType::Join:
+    case MessageType::Leave:
+    case MessageType::Guide:
+    case MessageType::Release:
+    case MessageType::Ack:
+    case MessageType::ReplayControl:
+    case MessageType::InsertCrowd:
+    case MessageType::RemoveCrowd:
+    case MessageType::UdpHello: return Direction::ClientToServer;
+    case MessageType::Heartbeat:
+    case MessageType::Bye:
+    case MessageType::Move:
+    case MessageType::Joints:
+    case MessageType::HandJoints:
+    case MessageType::FaceExpression: return Direction::Both;
+    case MessageType::Refuse:
+    case MessageType::Welcome:
+    case MessageType::Joined:
+    case MessageType::GuideResult:
+    case MessageType::CrowdFrame:
+    case MessageType::Presence:
+    case MessageType::ReplayStatus:
+    case MessageType::CrowdResult:
+    case MessageType::Fragment:
+    case MessageType::Cookie: return Direction::ServerToClient;
+  }
+  return Direction::ServerToClient;
 }
 
 core::Result<MessageType> peekType(std::span<const std::uint8_t> bytes) {
@@ -580,6 +628,29 @@ Message decodeBody(MessageType type, ByteReader& r) {
       if (r.ok() && r.remaining() == 0) r.fail("payload", at, "an empty payload", "at least 1 payload byte");
       const auto b = r.bytes("payload", r.ok() ? r.remaining() : 0);
       m.payload.assign(b.begin(), b.end());
+      return m;
+    }
+    case MessageType::Cookie: {
+      Cookie m;
+      const auto b = r.bytes("cookie", kCookieSize);
+      if (r.ok()) std::copy(b.begin(), b.end(), m.cookie.begin());
+      return m;
+    }
+    case MessageType::UdpHello: {
+      UdpHello m;
+      const auto b = r.bytes("cookie", kCookieSize);
+      if (r.ok()) std::copy(b.begin(), b.end(), m.cookie.begin());
+      // Then a whole Hello message, magic and type included.
+      std::size_t at = r.offset();
+      const std::uint8_t magic = r.u8("hello");
+      if (r.ok() && magic != kMagic) r.fail("hello", at, "bad magic byte " + std::to_string(magic) + " of the Hello", "0x54 ('T')");
+      at = r.offset();
+      const std::uint8_t type = r.u8("hello");
+      if (r.ok() && type != static_cast<std::uint8_t>(MessageType::Hello)) {
+        r.fail("hello", at, "a message of type " + std::to_string(type) + " after the cookie", "a Hello (type 1)");
+      }
+      if (!r.ok()) return m;
+      m.hello = std::get<Hello>(decodeBody(MessageType::Hello, r));
       return m;
     }
   }
