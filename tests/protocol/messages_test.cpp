@@ -304,5 +304,58 @@ TEST(ProtocolMessages, CookieAndUdpHello) {
   bad(longer, "/Cookie/end");
 }
 
+// A compressed CrowdFrame whose payload inflates to 16 MiB from about 530 bytes.
+Bytes inflatingCrowdFrame() {
+  CrowdFrame f;
+  f.header.compressed = true;
+  f.header.frameNumber = 1;
+  f.header.animationInterval = 1;
+  f.payload.assign(kMaxCrowdPayload, 0);
+  return encode(f);
+}
+
+TEST(ProtocolMessages, ClientMessagesAreTypeCheckedBeforeTheirBody) {
+  const Bytes bomb = inflatingCrowdFrame();
+  EXPECT_LT(bomb.size(), 1000u);
+  // decodeAny (what a client uses) inflates it; decodeFromClient refuses it from its type byte.
+  auto inflated = decodeAny(bomb);
+  ASSERT_TRUE(inflated) << core::formatAll(inflated.errors());
+  EXPECT_EQ(std::get<CrowdFrame>(inflated.value()).payload.size(), kMaxCrowdPayload);
+  auto refused = decodeFromClient(bomb);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.errors().front().pointer, "/message/type");
+  EXPECT_NE(refused.errors().front().what.find("CrowdFrame (type 17) is a server → client message"), std::string::npos)
+      << refused.errors().front().format();
+  // Not even read: a corrupt body gives the same answer (decodeAny reports the payload).
+  Bytes corrupt = bomb;
+  corrupt.pop_back();
+  EXPECT_EQ(decodeAny(corrupt).errors().front().pointer, "/CrowdFrame/payload");
+  EXPECT_EQ(decodeFromClient(corrupt).errors().front().pointer, "/message/type");
+
+  // Every golden message: server → client types refused at the type, the others decode as usual.
+  for (const auto& [name, message] : test::goldenMessages()) {
+    SCOPED_TRACE(name);
+    const Bytes bytes = encode(message);
+    auto r = decodeFromClient(bytes);
+    if (messageDirection(messageType(message)) == Direction::ServerToClient) {
+      ASSERT_FALSE(r);
+      EXPECT_EQ(r.errors().front().pointer, "/message/type");
+    } else {
+      ASSERT_TRUE(r) << core::formatAll(r.errors());
+      EXPECT_EQ(encode(r.value()), bytes);
+    }
+  }
+  // Size per type: a Move padded past the client bound, before its fields are read; an
+  // InsertCrowd may be up to its crowd file's limit.
+  Bytes longMove = encode(Move{});
+  longMove.resize(kMaxClientMessageSize + 1);
+  auto tooLong = decodeFromClient(longMove);
+  ASSERT_FALSE(tooLong);
+  EXPECT_EQ(tooLong.errors().front().pointer, "/message/size");
+  EXPECT_EQ(maxClientMessageSize(MessageType::CrowdFrame), 0u);
+  const Bytes bigCrowd = encode(InsertCrowd{1, 2, std::string(kMaxCrowdJson, ' ')});
+  EXPECT_TRUE(decodeFromClient(bigCrowd));
+}
+
 }  // namespace
 }  // namespace throng::protocol

@@ -371,6 +371,13 @@ Direction messageDirection(MessageType type) {
   return Direction::ServerToClient;
 }
 
+std::size_t maxClientMessageSize(MessageType type) {
+  if (messageDirection(type) == Direction::ServerToClient) return 0;
+  // InsertCrowd: header 2, token 8, requestId ≤ 5, string length ≤ 3, then the crowd file.
+  if (type == MessageType::InsertCrowd) return kMaxCrowdJson + 32;
+  return kMaxClientMessageSize;
+}
+
 core::Result<MessageType> peekType(std::span<const std::uint8_t> bytes) {
   ByteReader r(bytes, "message");
   if (bytes.size() > kMaxMessageSize) {
@@ -668,6 +675,26 @@ core::Result<Message> decodeAny(std::span<const std::uint8_t> bytes) {
   r.expectEnd();
   if (!r.ok()) return r.error();
   return m;
+}
+
+core::Result<Message> decodeFromClient(std::span<const std::uint8_t> bytes) {
+  auto type = peekType(bytes);
+  if (!type) return std::move(type).takeErrors();
+  ByteReader r(bytes, "message");
+  const char* name = messageTypeName(type.value());
+  if (messageDirection(type.value()) == Direction::ServerToClient) {
+    r.fail("type", 1,
+           std::string(name) + " (type " + std::to_string(static_cast<int>(type.value())) +
+               ") is a server → client message; not decoded",
+           "a client → server message type");
+    return r.error();
+  }
+  if (const std::size_t max = maxClientMessageSize(type.value()); bytes.size() > max) {
+    r.fail("size", 0, std::string(name) + " of " + std::to_string(bytes.size()) + " bytes",
+           "at most " + std::to_string(max) + " bytes for a " + name);
+    return r.error();
+  }
+  return decodeAny(bytes);
 }
 
 Welcome makeWelcome(std::string serverName, float tickRateHz, const std::string& worldJson) {

@@ -248,6 +248,14 @@ using Message = std::variant<Hello, Refuse, Welcome, Join, Joined, Leave, Heartb
 /// payload decompressed but not applied: hand it to CrowdDecoder.
 [[nodiscard]] core::Result<Message> decodeAny(std::span<const std::uint8_t> bytes);
 
+/// Decodes a message a client sent (what a server calls): the type is checked before anything
+/// else, so a server → client type (a CrowdFrame, a Welcome: the ones with compressed parts) is
+/// refused from its first two bytes without its body being read or decompressed
+/// (pointer "/message/type"), and the size against that type's bound (kMaxCrowdJson + 32 for
+/// InsertCrowd, kMaxClientMessageSize for the others; pointer "/message/size"). Then decodeAny.
+[[nodiscard]] core::Result<Message> decodeFromClient(std::span<const std::uint8_t> bytes);
+/// The most bytes a client → server message of `type` may have (0 for server → client types).
+[[nodiscard]] std::size_t maxClientMessageSize(MessageType type);
 
 [[nodiscard]] MessageType messageType(const Message& m);
 

@@ -29,6 +29,8 @@ inline constexpr std::size_t kCookieMessageSize = 2 + kCookieSize;      ///< an 
 /// The smallest encoded UdpHello [bytes]: header, cookie and a Hello with an empty name (6 bytes).
 /// Larger than a Cookie, so the server's answer never amplifies what it answers.
 inline constexpr std::size_t kMinUdpHelloSize = 2 + kCookieSize + 6;
+/// Largest client → server message other than InsertCrowd [bytes] (a Joints of 128 joints is 785).
+inline constexpr std::size_t kMaxClientMessageSize = 4096;
 
 enum class MessageType : std::uint8_t {
   Hello = 1,           ///< client → server: first message
