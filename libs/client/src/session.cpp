@@ -144,6 +144,9 @@ struct Session::Impl {
       }
       stats.frameDelayMs.push_back((offset - originSeconds) * 1000.0);
       stats.agentsInView = static_cast<std::uint32_t>(applied->view.agents.size());
+      stats.tiersInView = {applied->header.nearCount, applied->header.middleCount, applied->header.farCount};
+      for (std::size_t t = 0; t < 3; ++t) stats.tierSums[t] += stats.tiersInView[t];
+      stats.farMax = std::max(stats.farMax, applied->header.farCount);
       stats.animationInterval = applied->header.animationInterval;
       const std::uint32_t number = applied->header.frameNumber;
       crowd = std::move(applied).value();
