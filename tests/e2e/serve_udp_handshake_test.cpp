@@ -1,6 +1,6 @@
-// `throng serve` against hostile UDP sources (issue 15, item 7): empty datagrams and bare Hellos
-// from many source ports open no session, get no more bytes than they sent (a Welcome once went to
-// any 7-byte Hello, spoofable), and leave every /ws slot free; a native UDP client still connects
+// `throng serve` against hostile UDP sources (issue 15, item 7): empty datagrams, bare Hellos and
+// junk from many source ports open no session, get no more bytes than they sent (a Welcome once went
+// to any 7-byte Hello, a Bye to any junk, spoofable), and leave every /ws slot free; a native UDP client still connects
 // (the cookie round trip of docs/protocol.md "Opening a UDP session").
 #include <gtest/gtest.h>
 
@@ -49,6 +49,13 @@ TEST(ServeUdpHandshake, RawSourcesOpenNothingAndGetNoMoreThanTheySent) {
     ASSERT_TRUE(sources.back()->send({}).ok());
     ASSERT_TRUE(sources.back()->send(bareHello).ok());
   }
+  // And 20 that send 2 bytes of junk (an unknown type): once each was answered with a Bye.
+  for (int i = 0; i < 20; ++i) {
+    auto c = server::UdpClient::connect("127.0.0.1", udpPort);
+    ASSERT_TRUE(c.ok());
+    sources.push_back(std::move(c).value());
+    ASSERT_TRUE(sources.back()->send(protocol::Bytes{0x54, 0xee}).ok());
+  }
   // A WebSocket client gets in (no 503), and so does a native UDP client.
   client::SessionOptions o;
   o.port = port;
@@ -64,7 +71,7 @@ TEST(ServeUdpHandshake, RawSourcesOpenNothingAndGetNoMoreThanTheySent) {
   while (std::chrono::steady_clock::now() < end && (*udpSession)->pump(5ms)) {
   }
   EXPECT_GT((*udpSession)->stats().crowdFrames, 3u);
-  // The sources sent 7 bytes each (and an empty datagram): nothing came back to any of them.
+  // The sources sent at most 7 bytes each: nothing came back to any of them (no Welcome, no Bye).
   std::size_t received = 0;
   for (auto& s : sources) {
     while (auto d = s->receive(10ms)) received += d->size();
