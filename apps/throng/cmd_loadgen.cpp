@@ -1,9 +1,11 @@
 // `throng loadgen URL --clients N --duration S [--udp]` — simulated participants for a running
 // `throng serve`: each joins, walks its avatar along a loop, a share of them guide a group, and
 // every one decodes and acknowledges its crowd frames. Reports per client kbit/s, messages/s,
-// frame delay percentiles, lost frames and its animation granularity, and the server's tick time
-// (from GET /api/status). Reads and writes sockets; writes the report on stdout.
+// frame delay percentiles, lost frames, its animation granularity and the agents it saw per detail
+// tier (near, middle, far), and the server's tick time (from GET /api/status). Reads and writes
+// sockets; writes the report on stdout.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <numeric>
@@ -99,7 +101,10 @@ CLI::App* addLoadgenCommand(CLI::App& app, LoadgenOptions& options) {
       "along a loop at 1.3 m/s (10 Move messages per second), a share of them guide a group, and\n"
       "all decode and acknowledge their crowd frames. At the end: per-client kbit/s, messages/s,\n"
       "frame delay percentiles (arrival against the tick schedule), lost frames, animation\n"
-      "granularity X, and the server's tick time from GET /api/status.");
+      "granularity X, agents in view per detail tier (near: joint poses, middle: clip and phase,\n"
+      "far: position only; mean per frame, and the most far agents in any frame), and the server's\n"
+      "tick time from GET /api/status. --at and --loop-radius place the avatars' loops, e.g. at the\n"
+      "centre of a world to keep every agent within the animated tiers.");
   cmd->add_option("url", options.url, "The server's WebSocket URL")->type_name("ws://HOST:PORT/ws")->capture_default_str();
   cmd->add_option("--clients", options.clients, "Simulated participants")->check(integerRange(1, 10000))->capture_default_str();
   cmd->add_option("--duration", options.duration, "How long they stay [s]")->check(positiveNumber("s"))->capture_default_str();
@@ -108,6 +113,21 @@ CLI::App* addLoadgenCommand(CLI::App& app, LoadgenOptions& options) {
   cmd->add_option("--guide-share", options.guideShare, "Share of the clients that guide a group [0, 1]")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  cmd->add_option("--at", options.at, "Centre of every avatar's loop (default: a random point of the world each)")
+      ->type_name("X,Y")
+      ->expected(2)
+      ->delimiter(',')
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            double v = 0;
+            if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v) || std::abs(v) > 1e6) {
+              return "value " + text + " is not a coordinate in metres (a finite number within ±1e6 m)";
+            }
+            return {};
+          },
+          "m", "COORDINATE"));
+  cmd->add_option("--loop-radius", options.loopRadius, "Radius of the avatars' loops [m] (default: random, 2 to 5 m)")
+      ->check(positiveNumber("m"));
   cmd->add_flag("--json", options.json, "One JSON object per client and a summary object, one per line");
   cmd->add_flag("--quiet", options.quiet, "No progress line");
   return cmd;
@@ -156,6 +176,11 @@ int runLoadgen(const LoadgenOptions& options) {
     p.cx = bounds.minX + static_cast<float>(rng.uniform()) * (bounds.maxX - bounds.minX);
     p.cy = bounds.minY + static_cast<float>(rng.uniform()) * (bounds.maxY - bounds.minY);
     p.radius = 2.0f + 3.0f * static_cast<float>(rng.uniform());
+    if (options.at.size() == 2) {
+      p.cx = static_cast<float>(options.at[0]);
+      p.cy = static_cast<float>(options.at[1]);
+    }
+    if (options.loopRadius > 0.0) p.radius = static_cast<float>(options.loopRadius);
     p.angle = 6.2831853f * static_cast<float>(rng.uniform());
     people.push_back(std::move(p));
   }
@@ -204,6 +229,11 @@ int runLoadgen(const LoadgenOptions& options) {
 
   std::vector<double> kbits, delays;
   std::uint64_t lost = 0, frames = 0, closed = 0;
+  std::array<std::uint64_t, 3> tierSums{};  // over every client's frames
+  std::uint32_t farMax = 0;
+  const auto tierJson = [](double near, double middle, double far) {
+    return nlohmann::json{{"near", near}, {"middle", middle}, {"far", far}};
+  };
   for (std::size_t i = 0; i < people.size(); ++i) {
     const client::SessionStats& s = people[i].session->stats();
     const double kbit = static_cast<double>(s.bytesReceived) * 8.0 / 1000.0 / elapsed;
@@ -211,7 +241,10 @@ int runLoadgen(const LoadgenOptions& options) {
     delays.insert(delays.end(), s.frameDelayMs.begin(), s.frameDelayMs.end());
     lost += s.lostFrames;
     frames += s.crowdFrames;
+    for (std::size_t t = 0; t < 3; ++t) tierSums[t] += s.tierSums[t];
+    farMax = std::max(farMax, s.farMax);
     if (!people[i].closed.empty()) ++closed;
+    const double perFrame = 1.0 / static_cast<double>(std::max<std::uint64_t>(1, s.crowdFrames));
     if (options.json) {
       printLine(stdout, nlohmann::json{{"client", i}, {"kbit_per_s", kbit},
                                        {"messages_per_s", static_cast<double>(s.messagesReceived) / elapsed},
@@ -220,10 +253,19 @@ int runLoadgen(const LoadgenOptions& options) {
                                        {"frame_delay_ms_p50", percentile(s.frameDelayMs, 0.5)},
                                        {"frame_delay_ms_p99", percentile(s.frameDelayMs, 0.99)},
                                        {"round_trip_ms", s.roundTripMs}, {"agents_in_view", s.agentsInView},
+                                       {"tiers", nlohmann::json{{"near", s.tiersInView[0]}, {"middle", s.tiersInView[1]},
+                                                                {"far", s.tiersInView[2]}}},
+                                       {"tiers_mean", tierJson(static_cast<double>(s.tierSums[0]) * perFrame,
+                                                               static_cast<double>(s.tierSums[1]) * perFrame,
+                                                               static_cast<double>(s.tierSums[2]) * perFrame)},
+                                       {"far_max", s.farMax},
                                        {"granularity", s.animationInterval}, {"closed", people[i].closed}}
                             .dump());
     }
   }
+  const double allFrames = static_cast<double>(std::max<std::uint64_t>(1, frames));
+  const double tierMean[3] = {static_cast<double>(tierSums[0]) / allFrames, static_cast<double>(tierSums[1]) / allFrames,
+                              static_cast<double>(tierSums[2]) / allFrames};
   const double tickP99 = server.is_object() && server.contains("tick") ? server["tick"].value("p99_ms", 0.0) : 0.0;
   const double tickMedian = server.is_object() && server.contains("tick") ? server["tick"].value("median_ms", 0.0) : 0.0;
   if (options.json) {
@@ -234,6 +276,7 @@ int runLoadgen(const LoadgenOptions& options) {
                                      {"frame_delay_ms_p50", percentile(delays, 0.5)},
                                      {"frame_delay_ms_p95", percentile(delays, 0.95)},
                                      {"frame_delay_ms_p99", percentile(delays, 0.99)}, {"closed_by_server", closed},
+                                     {"tiers_mean", tierJson(tierMean[0], tierMean[1], tierMean[2])}, {"far_max", farMax},
                                      {"server_tick_ms_median", tickMedian}, {"server_tick_ms_p99", tickP99}}
                           .dump());
   } else {
@@ -246,6 +289,8 @@ int runLoadgen(const LoadgenOptions& options) {
     printLine(stdout, fmt::format("  frame delay  p50 {:.1f} ms, p95 {:.1f} ms, p99 {:.1f} ms; {} frames lost of {}",
                                   percentile(delays, 0.5), percentile(delays, 0.95), percentile(delays, 0.99), lost,
                                   frames + lost));
+    printLine(stdout, fmt::format("  in view      near {:.1f}, middle {:.1f}, far {:.1f} agents (mean per frame); at most {} far",
+                                  tierMean[0], tierMean[1], tierMean[2], farMax));
     printLine(stdout, fmt::format("  server tick  median {:.2f} ms, p99 {:.2f} ms; {} clients closed by the server",
                                   tickMedian, tickP99, closed));
   }

@@ -262,6 +262,7 @@ int runServe(const ServeOptions& options) {
   t.httpPort = static_cast<std::uint16_t>(options.port);
   t.udpPort = static_cast<std::uint16_t>(options.udpPort);
   t.maxPeers = static_cast<std::size_t>(options.maxClients) + 16;  // room to refuse politely
+  t.maxUdpPeers = t.maxPeers;  // a separate budget: UDP peers never take a /ws slot
   t.maxDatagramBytes = 65507;  // the largest datagram accepted from a UDP client
   t.udpFragmentBytes = static_cast<std::size_t>(options.udpFragment);  // larger messages go as Fragments
   const fs::path web = webRoot(options.web);

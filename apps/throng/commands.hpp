@@ -97,6 +97,8 @@ struct LoadgenOptions {
   bool udp = false;                     ///< native clients over UDP instead of WebSocket
   int udpPort = 8081;                   ///< the server's UDP port (the URL gives the host)
   double guideShare = 0.5;              ///< share of the clients that guide a group
+  std::vector<double> at;               ///< --at X,Y: every avatar's loop centre [m]; empty = random in the world
+  double loopRadius = 0.0;              ///< --loop-radius [m]; 0 = random in [2, 5] m
   bool json = false;
   bool quiet = false;
 };

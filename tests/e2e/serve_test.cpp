@@ -294,6 +294,50 @@ TEST(Serve, LoadgenReportsPerClientFiguresAndTheServerTick) {
   EXPECT_NE(bad.err.find("expected ws://"), std::string::npos) << bad.err;
 }
 
+TEST(Serve, LoadgenCountsAgentsPerTierAndTheSquaresCentreSeesAllAnimated) {
+  // scenarios/square.json: 1000 agents in 40 m × 40 m. From a 1 m loop round the centre every
+  // agent is within 29 m, inside the animated tiers (near: 16 nearest within 6 m; middle: 30 m).
+  Server server(std::string(THRONG_SOURCE_DIR) + "/scenarios/square.json");
+  ASSERT_NE(server.port, 0);
+  ScratchDir dir("loadgen-tiers");
+  const std::string url = "ws://127.0.0.1:" + std::to_string(server.port) + "/ws";
+  const CliResult r = runThrong({"loadgen", url, "--clients", "1", "--duration", "2", "--guide-share", "0", "--at", "20,20",
+                                 "--loop-radius", "1", "--json"},
+                                dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  nlohmann::json client, summary;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) {
+    const auto j = nlohmann::json::parse(line);
+    (j.contains("summary") ? summary : client) = j;
+  }
+  ASSERT_TRUE(client.is_object()) << r.out;
+  ASSERT_TRUE(summary.is_object()) << r.out;
+  EXPECT_EQ(client["agents_in_view"], 1000) << r.out;
+  const auto& tiers = client["tiers"];
+  EXPECT_EQ(tiers["near"].get<int>() + tiers["middle"].get<int>() + tiers["far"].get<int>(), 1000) << r.out;
+  EXPECT_GE(tiers["near"].get<int>(), 1) << r.out;  // the nearest, at most 16 (the server's nearMax)
+  EXPECT_LE(tiers["near"].get<int>(), 16) << r.out;
+  EXPECT_EQ(tiers["far"], 0) << r.out;
+  EXPECT_EQ(client["far_max"], 0) << r.out;
+  EXPECT_EQ(summary["far_max"], 0) << r.out;
+  EXPECT_NEAR(summary["tiers_mean"]["near"].get<double>() + summary["tiers_mean"]["middle"].get<double>(), 1000.0, 1.0)
+      << r.out;
+  // The text report says it too.
+  const CliResult text = runThrong({"loadgen", url, "--clients", "1", "--duration", "1", "--guide-share", "0", "--at",
+                                    "20,20", "--loop-radius", "1"},
+                                   dir.path());
+  ASSERT_EQ(text.exitCode, 0) << text.err;
+  // (Before the avatar's first Move the server sends an overview, every agent middle: means vary.)
+  EXPECT_TRUE(std::regex_search(
+      text.out, std::regex(R"(in view      near \d+\.\d, middle \d+\.\d, far 0\.0 agents \(mean per frame\); at most 0 far)")))
+      << text.out;
+  // A bad --at is a usage error.
+  const CliResult bad = runThrong({"loadgen", url, "--at", "nan,3"}, dir.path());
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("not a coordinate"), std::string::npos) << bad.err;
+}
+
 /// Ids of the agents in the groups of population `population` (GET /api/groups).
 std::set<std::uint32_t> membersOf(std::uint16_t port, const std::string& population) {
   std::set<std::uint32_t> ids;

@@ -259,3 +259,103 @@ TEST(ProtocolMessages, CrowdRequestsCheckLimitsAndFlag) {
 
 }  // namespace
 }  // namespace throng::protocol
+
+namespace throng::protocol {
+namespace {
+
+// The UDP handshake messages (types 25 and 26): sizes, the Hello inside a UdpHello, errors.
+TEST(ProtocolMessages, CookieAndUdpHello) {
+  CookieBytes cookie{};
+  for (std::size_t i = 0; i < cookie.size(); ++i) cookie[i] = static_cast<std::uint8_t>(0xa0 + i);
+  const Bytes c = encode(Cookie{cookie});
+  EXPECT_EQ(c.size(), kCookieMessageSize);
+  const Bytes smallest = encode(UdpHello{CookieBytes{}, Hello{kProtocolVersion, ClientKind::Native, ""}});
+  EXPECT_EQ(smallest.size(), kMinUdpHelloSize);
+  EXPECT_GT(kMinUdpHelloSize, kCookieMessageSize);  // the server's answer never amplifies
+  const Bytes u = encode(UdpHello{cookie, Hello{kProtocolVersion, ClientKind::Loadgen, "lg"}});
+  // The Hello inside is a whole Hello message, byte for byte.
+  const Bytes inner = encode(Hello{kProtocolVersion, ClientKind::Loadgen, "lg"});
+  ASSERT_EQ(u.size(), 2 + kCookieSize + inner.size());
+  EXPECT_TRUE(std::equal(inner.begin(), inner.end(), u.begin() + 2 + kCookieSize));
+  auto d = decodeAny(u);
+  ASSERT_TRUE(d) << core::formatAll(d.errors());
+  const auto& m = std::get<UdpHello>(d.value());
+  EXPECT_EQ(m.cookie, cookie);
+  EXPECT_EQ(m.hello.clientName, "lg");
+  EXPECT_EQ(m.hello.clientKind, ClientKind::Loadgen);
+  EXPECT_EQ(messageDirection(MessageType::UdpHello), Direction::ClientToServer);
+  EXPECT_EQ(messageDirection(MessageType::Cookie), Direction::ServerToClient);
+  EXPECT_STREQ(messageTypeName(MessageType::Cookie), "Cookie");
+  EXPECT_STREQ(messageTypeName(MessageType::UdpHello), "UdpHello");
+
+  auto bad = [](Bytes b, const char* pointer) {
+    auto r = decodeAny(b);
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.errors().front().pointer, pointer) << r.errors().front().format();
+  };
+  Bytes notHello = u;
+  notHello[2 + kCookieSize + 1] = static_cast<std::uint8_t>(MessageType::Join);
+  bad(notHello, "/UdpHello/hello");
+  Bytes badMagic = u;
+  badMagic[2 + kCookieSize] = 0x55;
+  bad(badMagic, "/UdpHello/hello");
+  Bytes longer = c;
+  longer.push_back(0);
+  bad(longer, "/Cookie/end");
+}
+
+// A compressed CrowdFrame whose payload inflates to 16 MiB from about 530 bytes.
+Bytes inflatingCrowdFrame() {
+  CrowdFrame f;
+  f.header.compressed = true;
+  f.header.frameNumber = 1;
+  f.header.animationInterval = 1;
+  f.payload.assign(kMaxCrowdPayload, 0);
+  return encode(f);
+}
+
+TEST(ProtocolMessages, ClientMessagesAreTypeCheckedBeforeTheirBody) {
+  const Bytes bomb = inflatingCrowdFrame();
+  EXPECT_LT(bomb.size(), 1000u);
+  // decodeAny (what a client uses) inflates it; decodeFromClient refuses it from its type byte.
+  auto inflated = decodeAny(bomb);
+  ASSERT_TRUE(inflated) << core::formatAll(inflated.errors());
+  EXPECT_EQ(std::get<CrowdFrame>(inflated.value()).payload.size(), kMaxCrowdPayload);
+  auto refused = decodeFromClient(bomb);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.errors().front().pointer, "/message/type");
+  EXPECT_NE(refused.errors().front().what.find("CrowdFrame (type 17) is a server → client message"), std::string::npos)
+      << refused.errors().front().format();
+  // Not even read: a corrupt body gives the same answer (decodeAny reports the payload).
+  Bytes corrupt = bomb;
+  corrupt.pop_back();
+  EXPECT_EQ(decodeAny(corrupt).errors().front().pointer, "/CrowdFrame/payload");
+  EXPECT_EQ(decodeFromClient(corrupt).errors().front().pointer, "/message/type");
+
+  // Every golden message: server → client types refused at the type, the others decode as usual.
+  for (const auto& [name, message] : test::goldenMessages()) {
+    SCOPED_TRACE(name);
+    const Bytes bytes = encode(message);
+    auto r = decodeFromClient(bytes);
+    if (messageDirection(messageType(message)) == Direction::ServerToClient) {
+      ASSERT_FALSE(r);
+      EXPECT_EQ(r.errors().front().pointer, "/message/type");
+    } else {
+      ASSERT_TRUE(r) << core::formatAll(r.errors());
+      EXPECT_EQ(encode(r.value()), bytes);
+    }
+  }
+  // Size per type: a Move padded past the client bound, before its fields are read; an
+  // InsertCrowd may be up to its crowd file's limit.
+  Bytes longMove = encode(Move{});
+  longMove.resize(kMaxClientMessageSize + 1);
+  auto tooLong = decodeFromClient(longMove);
+  ASSERT_FALSE(tooLong);
+  EXPECT_EQ(tooLong.errors().front().pointer, "/message/size");
+  EXPECT_EQ(maxClientMessageSize(MessageType::CrowdFrame), 0u);
+  const Bytes bigCrowd = encode(InsertCrowd{1, 2, std::string(kMaxCrowdJson, ' ')});
+  EXPECT_TRUE(decodeFromClient(bigCrowd));
+}
+
+}  // namespace
+}  // namespace throng::protocol

@@ -51,6 +51,17 @@ inline nlohmann::json crowdJson(const DecodedCrowdFrame& f) {
   return {{"type", "CrowdFrame"}, {"header", headerJson(f.header)}, {"agents", agents}};
 }
 
+/// Lower-case hex of a cookie, as decode.js writes it.
+inline std::string hex(const CookieBytes& b) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string out;
+  for (const std::uint8_t v : b) {
+    out += kDigits[v >> 4];
+    out += kDigits[v & 15];
+  }
+  return out;
+}
+
 /// JSON of a decoded non-crowd message.
 inline nlohmann::json messageJson(const Message& m) {
   using nlohmann::json;
@@ -154,6 +165,13 @@ inline nlohmann::json messageJson(const Message& m) {
           json bytes = json::array();
           for (const std::uint8_t b : v.payload) bytes.push_back(b);
           j["payload"] = bytes;
+        } else if constexpr (std::is_same_v<T, Cookie>) {
+          j["cookie"] = hex(v.cookie);
+        } else if constexpr (std::is_same_v<T, UdpHello>) {
+          j["cookie"] = hex(v.cookie);
+          j["hello"] = {{"protocolVersion", v.hello.protocolVersion},
+                        {"clientKind", static_cast<int>(v.hello.clientKind)},
+                        {"clientName", v.hello.clientName}};
         }
       },
       m);
@@ -258,6 +276,11 @@ inline std::vector<std::pair<std::string, Message>> goldenMessages() {
                              "(and 2 more)"});
   // The middle piece of message 300 (a 2-byte varint id): 3 fragments in all.
   m.emplace_back("fragment", Fragment{300, 1, 3, {0x12, 0x2c, 0x01, 0x03, 0x41, 0x64, 0x61, 0xff}});
+  // The UDP handshake: a first UdpHello without a cookie, the server's Cookie, the UdpHello again.
+  const CookieBytes cookie{0x3c, 0x91, 0x0e, 0x5a, 0xd2, 0x47, 0x18, 0xb6, 0x7f, 0x01, 0xe3, 0x88, 0x2d, 0x64, 0xa9, 0xc5};
+  m.emplace_back("udp_hello_first", UdpHello{CookieBytes{}, Hello{kProtocolVersion, ClientKind::Native, "Ada"}});
+  m.emplace_back("cookie", Cookie{cookie});
+  m.emplace_back("udp_hello", UdpHello{cookie, Hello{kProtocolVersion, ClientKind::Loadgen, "loadgen-0"}});
   return m;
 }
 

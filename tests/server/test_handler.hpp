@@ -24,10 +24,14 @@ class TestHandler : public TransportHandler {
   Transport* transport = nullptr;  ///< set after start; used by echo and hooks
   bool echo = false;
   std::function<void(PeerId, std::span<const std::uint8_t>)> messageHook;
+  std::function<void(PeerId)> openHook;  ///< e.g. send a large first answer, as a Welcome
 
   void onOpen(PeerId peer, PeerKind kind, std::string remote) override {
-    std::lock_guard lock(mutex_);
-    opened.push_back({peer, kind, std::move(remote)});
+    {
+      std::lock_guard lock(mutex_);
+      opened.push_back({peer, kind, std::move(remote)});
+    }
+    if (openHook) openHook(peer);
     cv_.notify_all();
   }
   void onMessage(PeerId peer, std::span<const std::uint8_t> message) override {

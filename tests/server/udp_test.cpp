@@ -1,6 +1,7 @@
-// Tests for libs/server/src/udp_endpoint.cpp: a datagram opens a peer, echo, size limits,
-// keep-alives, idle timeout, rate limit, peers back to zero, and large messages going out as
-// protocol Fragments (reassembled here with protocol::Reassembler).
+// Tests for libs/server/src/udp_endpoint.cpp: the cookie round trip that opens a peer (and what an
+// unproven endpoint gets: never more bytes than it sent, never a peer), echo, size limits,
+// keep-alives, idle timeout, rate limit, peers back to zero, UDP and WebSocket limits kept apart,
+// and large messages going out as protocol Fragments (reassembled here with protocol::Reassembler).
 #include <gtest/gtest.h>
 
 #include <thread>
@@ -8,10 +9,16 @@
 #include "test_handler.hpp"
 #include "throng/protocol/fragments.hpp"
 #include "throng/server/udp_client.hpp"
+#include "throng/server/ws_client.hpp"
 
 namespace throng::server::test {
 namespace {
 using namespace std::chrono_literals;
+
+/// A Hello as a throng client's first message (any bytes do for the transport; ≥ 6 of them).
+std::vector<std::uint8_t> hello(const std::string& name) {
+  return protocol::encode(protocol::Hello{protocol::kProtocolVersion, protocol::ClientKind::Native, name});
+}
 
 struct UdpServer {
   explicit UdpServer(TransportOptions options = testOptions()) {
@@ -20,40 +27,171 @@ struct UdpServer {
     transport = std::move(started.value());
     handler.transport = transport.get();
   }
-  std::unique_ptr<UdpClient> connect() {
+  /// A socket that has not opened a session.
+  std::unique_ptr<UdpClient> raw() {
     auto client = UdpClient::connect("127.0.0.1", transport->udpPort());
     EXPECT_TRUE(client.ok());
     return client.ok() ? std::move(client.value()) : nullptr;
+  }
+  /// A client that went through the cookie round trip with `first` as its first message.
+  std::unique_ptr<UdpClient> connect(const std::vector<std::uint8_t>& first = hello("client")) {
+    auto client = raw();
+    if (!client) return nullptr;
+    const auto opened = client->open(first, 5s);
+    EXPECT_TRUE(opened.ok()) << core::formatAll(opened.errors());
+    return client;
+  }
+  /// Waits until the transport has answered, ignored (or opened a peer for) `n` datagrams of
+  /// unproven endpoints.
+  bool waitHandshakeDatagrams(std::uint64_t n) {
+    for (int i = 0; i < 500; ++i) {
+      const auto t = transport->totals();
+      if (t.udpIgnored + t.udpCookiesSent + t.peersOpened >= n) return true;
+      std::this_thread::sleep_for(10ms);
+    }
+    return false;
   }
   TestHandler handler;
   std::unique_ptr<Transport> transport;
 };
 
-TEST(Udp, DatagramOpensPeerAndEchoes) {
+/// Every byte `client` receives until nothing more comes for 200 ms.
+std::size_t drain(UdpClient& client, std::size_t* datagrams = nullptr) {
+  std::size_t total = 0;
+  while (auto d = client.receive(200ms)) {
+    total += d->size();
+    if (datagrams) ++*datagrams;
+  }
+  return total;
+}
+
+TEST(Udp, CookieRoundTripOpensPeerAndEchoes) {
   UdpServer server;
   server.handler.echo = true;
-  auto client = server.connect();
+  auto client = server.connect(hello("first"));
   ASSERT_TRUE(client);
-  ASSERT_TRUE(client->send(bytes("ping")).ok());
-  const auto reply = client->receive(5s);
-  ASSERT_TRUE(reply);
-  EXPECT_EQ(*reply, bytes("ping"));
+  // The message inside the UdpHello is the peer's first message (and echoed).
+  const auto first = client->receive(5s);
+  ASSERT_TRUE(first);
+  EXPECT_EQ(*first, hello("first"));
   ASSERT_EQ(server.handler.opened.size(), 1u);
   const auto opened = server.handler.locked([&] { return server.handler.opened[0]; });
   EXPECT_EQ(opened.kind, PeerKind::Udp);
   EXPECT_EQ(opened.remote, "127.0.0.1:" + std::to_string(client->localPort()));
+  EXPECT_GE(server.transport->totals().udpCookiesSent, 1u);  // more if a Cookie was slow and the UdpHello resent
+  // A repeated UdpHello (its answer was lost, the client thinks) is only a keep-alive now.
+  ASSERT_TRUE(client->reopen().ok());
+  ASSERT_TRUE(client->send(bytes("ping")).ok());
+  const auto reply = client->receive(5s);
+  ASSERT_TRUE(reply);
+  EXPECT_EQ(*reply, bytes("ping"));
   // Same endpoint, same peer; a second client is a second peer.
   ASSERT_TRUE(client->send(bytes("again")).ok());
   ASSERT_TRUE(client->receive(5s));
   auto other = server.connect();
-  ASSERT_TRUE(other->send(bytes("hi")).ok());
   ASSERT_TRUE(other->receive(5s));
   EXPECT_EQ(server.handler.locked([&] { return server.handler.opened.size(); }), 2u);
   const auto stats = server.transport->stats(opened.peer);
   ASSERT_TRUE(stats);
   EXPECT_EQ(stats->kind, PeerKind::Udp);
-  EXPECT_EQ(stats->messagesReceived, 2u);
+  EXPECT_EQ(stats->messagesReceived, 3u);  // first, ping, again: not the repeated UdpHello
+  EXPECT_EQ(server.handler.locked([&] { return server.handler.messages[opened.peer.value].size(); }), 3u);
   EXPECT_EQ(server.transport->totals().liveUdpPeers, 2u);
+}
+
+TEST(Udp, UnprovenEndpointsOpenNothingAndGetNoMoreBytesThanTheySent) {
+  UdpServer server;
+  // What a throng server does on open: answer with something large (its Welcome).
+  server.handler.openHook = [&](PeerId peer) { server.transport->send(peer, std::vector<std::uint8_t>(5000, 1)); };
+  struct Probe {
+    std::vector<std::uint8_t> datagram;
+    std::size_t cookies;  // Cookie datagrams expected back
+  };
+  auto forged = protocol::encode(protocol::UdpHello{protocol::CookieBytes{1, 2, 3}, protocol::Hello{}});
+  const std::vector<Probe> probes{
+      {{}, 0},                                                            // empty datagram
+      {hello("x"), 0},                                                    // a bare 7-byte Hello
+      {bytes("garbage that is long enough to be anything at all"), 0},
+      {protocol::encode(protocol::UdpHello{{}, protocol::Hello{}}), 1},   // no cookie yet: one Cookie
+      {forged, 1},                                                        // a forged cookie: a new one
+      {std::vector<std::uint8_t>(forged.begin(), forged.begin() + 23), 0},  // shorter than a UdpHello
+  };
+  std::vector<std::unique_ptr<UdpClient>> sockets;
+  for (const Probe& p : probes) {
+    sockets.push_back(server.raw());
+    ASSERT_TRUE(sockets.back()->send(p.datagram).ok());
+  }
+  EXPECT_TRUE(server.waitHandshakeDatagrams(probes.size()));
+  for (std::size_t i = 0; i < probes.size(); ++i) {
+    SCOPED_TRACE(i);
+    std::size_t datagrams = 0;
+    const std::size_t got = drain(*sockets[i], &datagrams);
+    EXPECT_LE(got, probes[i].datagram.size());
+    EXPECT_EQ(datagrams, probes[i].cookies);
+    EXPECT_EQ(got, probes[i].cookies * protocol::kCookieMessageSize);
+  }
+  const auto totals = server.transport->totals();
+  EXPECT_EQ(totals.udpCookiesSent, 2u);
+  EXPECT_EQ(totals.udpIgnored, 4u);
+  EXPECT_EQ(totals.peersOpened, 0u);
+  EXPECT_EQ(totals.liveUdpPeers, 0u);
+  EXPECT_EQ(totals.bytesSent, 0u);
+  EXPECT_TRUE(server.handler.locked([&] { return server.handler.opened.empty(); }));
+
+  // A cookie is good for the endpoint it was issued to only.
+  auto a = server.raw();
+  ASSERT_TRUE(a->send(protocol::encode(protocol::UdpHello{{}, protocol::Hello{}})).ok());
+  const auto cookieBytes = a->receive(5s);
+  ASSERT_TRUE(cookieBytes);
+  auto cookie = protocol::decodeAny(*cookieBytes);
+  ASSERT_TRUE(cookie.ok());
+  const protocol::CookieBytes aCookie = std::get<protocol::Cookie>(cookie.value()).cookie;
+  auto b = server.raw();
+  ASSERT_TRUE(b->send(protocol::encode(protocol::UdpHello{aCookie, protocol::Hello{}})).ok());
+  const auto bAnswer = b->receive(5s);
+  ASSERT_TRUE(bAnswer);
+  EXPECT_EQ(bAnswer->size(), protocol::kCookieMessageSize);  // b gets its own cookie, no peer
+  EXPECT_TRUE(server.handler.locked([&] { return server.handler.opened.empty(); }));
+  // With it, a opens a peer.
+  ASSERT_TRUE(a->send(protocol::encode(protocol::UdpHello{aCookie, protocol::Hello{}})).ok());
+  ASSERT_TRUE(server.handler.waitFor([&] { return server.handler.opened.size() == 1; }));
+  EXPECT_EQ(server.handler.locked([&] { return server.handler.opened[0].remote; }),
+            "127.0.0.1:" + std::to_string(a->localPort()));
+}
+
+TEST(Udp, RawSourcesNeverTakeWebSocketSlotsAndUdpHasItsOwnLimit) {
+  TransportOptions options = testOptions();
+  options.maxPeers = 3;
+  options.maxUdpPeers = 2;
+  UdpServer server(options);
+  // 40 source ports, each an empty datagram and a bare Hello: once all opened peers.
+  std::vector<std::unique_ptr<UdpClient>> sources;
+  for (int i = 0; i < 40; ++i) {
+    sources.push_back(server.raw());
+    ASSERT_TRUE(sources.back()->send({}).ok());
+    ASSERT_TRUE(sources.back()->send(hello("x")).ok());
+  }
+  EXPECT_TRUE(server.waitHandshakeDatagrams(80));
+  EXPECT_EQ(server.transport->totals().liveUdpPeers, 0u);
+  // Proven UDP clients up to their own limit; one more is ignored.
+  auto u1 = server.connect(), u2 = server.connect();
+  ASSERT_TRUE(server.handler.waitFor([&] { return server.handler.opened.size() == 2; }));
+  const auto ignoredBefore = server.transport->totals().udpIgnored;
+  auto u3 = server.connect();
+  for (int i = 0; i < 500 && server.transport->totals().udpIgnored == ignoredBefore; ++i) std::this_thread::sleep_for(10ms);
+  EXPECT_GE(server.transport->totals().udpIgnored, ignoredBefore + 1);
+  EXPECT_EQ(server.transport->totals().liveUdpPeers, 2u);
+  // Every /ws slot is still free.
+  WsClientOptions o;
+  o.port = server.transport->httpPort();
+  std::vector<std::unique_ptr<WsClient>> ws;
+  for (int i = 0; i < 3; ++i) {
+    auto c = WsClient::connect(o);
+    ASSERT_TRUE(c.ok()) << "WebSocket " << i << ": " << core::formatAll(c.errors());
+    ws.push_back(std::move(c).value());
+  }
+  EXPECT_FALSE(WsClient::connect(o).ok());  // the fourth: 503, the WebSocket limit
+  EXPECT_EQ(server.transport->totals().liveWebSocketPeers, 3u);
 }
 
 TEST(Udp, SizeLimitsBothWays) {
@@ -62,8 +200,9 @@ TEST(Udp, SizeLimitsBothWays) {
   options.udpFragmentBytes = 0;  // never fragment: over maxDatagramBytes is TooLarge
   UdpServer server(options);
   auto client = server.connect();
-  ASSERT_TRUE(client->send(std::vector<std::uint8_t>(1200, 7)).ok());
   ASSERT_TRUE(server.handler.waitFor([&] { return server.handler.opened.size() == 1; }));
+  ASSERT_TRUE(client->send(std::vector<std::uint8_t>(1200, 7)).ok());
+  ASSERT_TRUE(server.handler.waitFor([&] { return server.handler.messages.begin()->second.size() == 2; }));
   const PeerId id = server.handler.locked([&] { return server.handler.opened[0].peer; });
   EXPECT_EQ(server.transport->send(id, std::vector<std::uint8_t>(1201)), SendStatus::TooLarge);
   EXPECT_EQ(server.transport->send(id, std::vector<std::uint8_t>(1200)), SendStatus::Queued);
@@ -71,6 +210,11 @@ TEST(Udp, SizeLimitsBothWays) {
   ASSERT_TRUE(client->send(std::vector<std::uint8_t>(1300, 7)).ok());
   ASSERT_TRUE(server.handler.waitFor([&] { return server.handler.closed.count(id.value) > 0; }));
   EXPECT_EQ(server.handler.locked([&] { return server.handler.closed[id.value]; }), "message too large");
+  // A UdpHello over the limit opens nothing and gets nothing.
+  const auto cookies = server.transport->totals().udpCookiesSent;
+  auto big = server.raw();
+  EXPECT_FALSE(big->open(std::vector<std::uint8_t>(1200, 0x54), 600ms).ok());
+  EXPECT_EQ(server.transport->totals().udpCookiesSent, cookies);
 }
 
 TEST(Udp, LargeMessagesGoAsFragments) {
@@ -78,7 +222,6 @@ TEST(Udp, LargeMessagesGoAsFragments) {
   options.udpFragmentBytes = 300;
   UdpServer server(options);
   auto client = server.connect();
-  ASSERT_TRUE(client->send(bytes("hi")).ok());
   ASSERT_TRUE(server.handler.waitFor([&] { return server.handler.opened.size() == 1; }));
   const PeerId id = server.handler.locked([&] { return server.handler.opened[0].peer; });
   // At or under the fragment size: one datagram, unchanged.
@@ -125,10 +268,8 @@ TEST(Udp, IdlePeersTimeOutKeepAlivesKeepThem) {
   options.udpIdleTimeout = 200ms;
   UdpServer server(options);
   auto idle = server.connect();
-  auto alive = server.connect();
-  ASSERT_TRUE(idle->send(bytes("x")).ok());
   ASSERT_TRUE(server.handler.waitFor([&] { return server.handler.opened.size() == 1; }));
-  ASSERT_TRUE(alive->send(bytes("y")).ok());
+  auto alive = server.connect();
   ASSERT_TRUE(server.handler.waitFor([&] { return server.handler.opened.size() == 2; }));
   const PeerId idleId = server.handler.locked([&] { return server.handler.opened[0].peer; });
   const PeerId aliveId = server.handler.locked([&] { return server.handler.opened[1].peer; });
@@ -143,12 +284,16 @@ TEST(Udp, IdlePeersTimeOutKeepAlivesKeepThem) {
   // (Not asserted: that the live peer is still open; a machine stalled past the timeout may close it too.)
   server.handler.locked([&] {
     EXPECT_EQ(server.handler.messages.size(), 2u);  // keep-alives are not delivered
-    EXPECT_EQ(server.handler.messages[aliveId.value].size(), 1u);
+    EXPECT_EQ(server.handler.messages[aliveId.value].size(), 1u);  // its first message only
     return 0;
   });
-  // The forgotten endpoint comes back as a new peer.
+  // The forgotten endpoint is unproven again: a message opens nothing, a new round trip does.
   const std::string idleRemote = "127.0.0.1:" + std::to_string(idle->localPort());
+  const auto ignored = server.transport->totals().udpIgnored;
   ASSERT_TRUE(idle->send(bytes("back")).ok());
+  for (int i = 0; i < 500 && server.transport->totals().udpIgnored == ignored; ++i) std::this_thread::sleep_for(10ms);
+  EXPECT_EQ(server.transport->totals().udpIgnored, ignored + 1);
+  ASSERT_TRUE(idle->open(hello("back"), 5s).ok());
   ASSERT_TRUE(server.handler.waitFor([&] {
     for (const auto& o : server.handler.opened)
       if (o.remote == idleRemote && o.peer != idleId) return true;
@@ -169,7 +314,6 @@ TEST(Udp, RateLimitAndShutdown) {
   ASSERT_TRUE(server.handler.waitFor([&] { return server.handler.closed.size() >= 1; }));
   EXPECT_EQ(server.handler.locked([&] { return server.handler.closed.begin()->second; }), "rate limit");
   auto quiet = server.connect();
-  ASSERT_TRUE(quiet->send(bytes("q")).ok());
   ASSERT_TRUE(server.handler.waitFor([&] {
     for (const auto& o : server.handler.opened)
       if (!server.handler.closed.count(o.peer.value)) return true;

@@ -3,6 +3,12 @@
 // shutdown, the peer limit, and thousands of connect/disconnect cycles leaving nothing behind.
 #include <gtest/gtest.h>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <thread>
 
 #include "test_handler.hpp"
@@ -177,7 +183,7 @@ TEST(WebSocket, OversizedAndTextFramesCloseWithAReason) {
   Server server(options);
   auto big = server.connect();
   ASSERT_TRUE(big);
-  (void)big->send(std::vector<std::uint8_t>(5000, 1));
+  (void)big->send(std::vector<std::uint8_t>(3000, 1));
   ClientEvent event = big->receive(5s);
   ASSERT_EQ(event.kind, ClientEvent::Kind::Closed);
   EXPECT_EQ(event.closeReason, "message too large");
@@ -197,6 +203,106 @@ TEST(WebSocket, OversizedAndTextFramesCloseWithAReason) {
   ASSERT_TRUE(ok);
   EXPECT_EQ(server.transport->send(server.peer(2), std::vector<std::uint8_t>(1001)), SendStatus::TooLarge);
   EXPECT_EQ(server.transport->send(server.peer(2), std::vector<std::uint8_t>(1000)), SendStatus::Queued);
+}
+
+/// A raw TCP connection to the server with the WebSocket upgrade done by hand, to send frames no
+/// WebSocket library would.
+class RawWebSocket {
+ public:
+  explicit RawWebSocket(std::uint16_t port) {
+    fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in at{};
+    at.sin_family = AF_INET;
+    at.sin_port = htons(port);
+    at.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    connected_ = fd_ >= 0 && ::connect(fd_, reinterpret_cast<sockaddr*>(&at), sizeof at) == 0;
+  }
+  ~RawWebSocket() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  /// Sends the upgrade request; true when the answer is 101.
+  bool upgrade() {
+    const std::string request =
+        "GET /ws HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+        "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n";
+    if (!connected_ || !write(std::vector<std::uint8_t>(request.begin(), request.end()))) return false;
+    std::string answer;
+    while (answer.find("\r\n\r\n") == std::string::npos) {
+      const auto b = read(1, 5s);
+      if (b.empty()) return false;
+      answer += static_cast<char>(b[0]);
+    }
+    return answer.rfind("HTTP/1.1 101", 0) == 0;
+  }
+  void hangUp() {
+    ::close(fd_);
+    fd_ = -1;
+  }
+  bool write(const std::vector<std::uint8_t>& b) {
+    return ::send(fd_, b.data(), b.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(b.size());
+  }
+  /// Up to `n` bytes, waiting at most `timeout` for each; fewer at the end of the stream.
+  std::vector<std::uint8_t> read(std::size_t n, std::chrono::milliseconds timeout) {
+    std::vector<std::uint8_t> out;
+    while (out.size() < n) {
+      pollfd p{fd_, POLLIN, 0};
+      if (::poll(&p, 1, static_cast<int>(timeout.count())) <= 0) break;
+      std::uint8_t c = 0;
+      if (::recv(fd_, &c, 1, 0) != 1) break;
+      out.push_back(c);
+    }
+    return out;
+  }
+
+ private:
+  int fd_ = -1;
+  bool connected_ = false;
+};
+
+TEST(WebSocket, AFrameDeclaringTooMuchIsRefusedBeforeItsPayload) {
+  TransportOptions options = testOptions();
+  options.maxMessageBytes = 1000;
+  options.wsIdleTimeout = std::chrono::milliseconds(120000);  // no ping or idle close in the way
+  Server server(options);
+  RawWebSocket raw(server.transport->httpPort());
+  ASSERT_TRUE(raw.upgrade());
+  const PeerId id = server.peer(0);
+  // FIN + binary, masked, 16-bit length 3000, the mask key, then 10 of the 3000 bytes only.
+  std::vector<std::uint8_t> frame{0x82, 0xfe, 0x0b, 0xb8, 0x11, 0x22, 0x33, 0x44};
+  frame.resize(frame.size() + 10, 0);
+  ASSERT_TRUE(raw.write(frame));
+  // A close frame at once: code 1009 and the reason.
+  const std::string reason = "message too large";
+  const auto close = raw.read(4 + reason.size(), 5s);
+  ASSERT_EQ(close.size(), 4 + reason.size()) << "no close frame within 5 s: the header was not checked";
+  EXPECT_EQ(close[0], 0x88);
+  EXPECT_EQ(close[1], 2 + reason.size());
+  EXPECT_EQ(close[2], 0x03);
+  EXPECT_EQ(close[3], 0xf1);
+  EXPECT_EQ(std::string(close.begin() + 4, close.end()), reason);
+  ASSERT_TRUE(server.handler.waitFor([&] { return server.handler.closed.count(id.value) > 0; }));
+  EXPECT_EQ(server.handler.locked([&] { return server.handler.closed[id.value]; }), reason);
+  EXPECT_TRUE(server.handler.locked([&] { return server.handler.messages.empty(); }));
+}
+
+TEST(WebSocket, AFrameDeclaringAHugeLengthIsClosedAtItsHeader) {
+  TransportOptions options = testOptions();
+  options.wsIdleTimeout = std::chrono::milliseconds(120000);  // no ping or idle close in the way
+  Server server(options);
+  RawWebSocket raw(server.transport->httpPort());
+  ASSERT_TRUE(raw.upgrade());
+  const PeerId id = server.peer(0);
+  // FIN + binary, masked, 64-bit length 2^63 - 1, the mask key; and no payload at all.
+  ASSERT_TRUE(raw.write({0x82, 0xff, 0x7f, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0x11, 0x22, 0x33, 0x44}));
+  // The answer is a close frame: FIN + close, 2 bytes, code 1009 (message too big).
+  const auto close = raw.read(4, 5s);
+  ASSERT_EQ(close.size(), 4u) << "no close frame within 5 s: the header was not checked";
+  EXPECT_EQ(close, (std::vector<std::uint8_t>{0x88, 0x02, 0x03, 0xf1}));
+  EXPECT_TRUE(raw.read(1, 5s).empty());  // then the server ends its side of the stream
+  raw.hangUp();  // as a client does after a close frame
+  ASSERT_TRUE(server.handler.waitFor([&] { return server.handler.closed.count(id.value) > 0; }));
+  EXPECT_EQ(server.handler.locked([&] { return server.handler.closed[id.value]; }), "message too large");
+  EXPECT_TRUE(server.handler.locked([&] { return server.handler.messages.empty(); }));
 }
 
 TEST(WebSocket, RateLimitClosesTheFloodingPeer) {

@@ -8,11 +8,11 @@ export const PROTOCOL_VERSION = 1;
 export const MAGIC = 0x54;
 export const LIMITS = { maxMessageSize: 8 << 20, maxCrowdPayload: 16 << 20, maxWorldSize: 64 << 20,
   maxNameLength: 64, maxTextLength: 1024, maxAgents: 65536, maxJoints: 128, maxExpressionWeights: 64,
-  maxCrowdJson: 1 << 20, minFragments: 2, maxFragments: 8192 };
+  maxCrowdJson: 1 << 20, minFragments: 2, maxFragments: 8192, cookieSize: 16 };
 export const TYPES = ['?', 'Hello', 'Refuse', 'Welcome', 'Join', 'Joined', 'Leave', 'Heartbeat', 'Bye', 'Move',
   'Joints', 'HandJoints', 'FaceExpression', 'Guide', 'Release', 'GuideResult', 'Ack', 'CrowdFrame',
   'Presence', 'ReplayControl', 'ReplayStatus', 'InsertCrowd', 'RemoveCrowd', 'CrowdResult',
-  'Fragment'];
+  'Fragment', 'Cookie', 'UdpHello'];
 /** ReplayControl commands (value: 0 for play/pause, time [s] for seek, factor for speed). */
 export const REPLAY_COMMANDS = Object.freeze({ Play: 0, Pause: 1, Seek: 2, Speed: 3 });
 export const MAX_REPLAY_SPEED = 64;
@@ -68,6 +68,7 @@ class Reader {
   end() { if (this.p !== this.b.length) this.fail('end', `${this.b.length - this.p} trailing bytes`); }
 }
 
+function hex(bytes) { return Array.from(bytes, (b) => b.toString(16).padStart(2, '0')).join(''); }
 function enumByte(r, f, max) { const at = r.p; const v = r.u8(f); if (v > max) r.fail(f, `unknown value ${v} (0..${max})`, at); return v; }
 function flag(r, f) { const at = r.p; const v = r.u8(f); if (v > 1) r.fail(f, `value ${v}, expected 0 or 1`, at); return v === 1; }
 function seconds(r, f) {
@@ -167,6 +168,16 @@ const bodies = {
     if (index >= count) r.fail('index', `index ${index} of ${count} fragments, expected an index below count`, indexAt);
     if (r.p >= r.b.length) r.fail('payload', 'an empty payload, expected at least 1 payload byte');
     return { messageId, index, count, payload: Array.from(r.bytes('payload', r.b.length - r.p)) };
+  },
+  // The UDP handshake (browsers never see it; decoded for tools and tests). Cookies as hex.
+  Cookie: (r) => ({ cookie: hex(r.bytes('cookie', LIMITS.cookieSize)) }),
+  UdpHello: (r) => {
+    const cookie = hex(r.bytes('cookie', LIMITS.cookieSize));
+    let at = r.p; const magic = r.u8('hello');
+    if (magic !== MAGIC) r.fail('hello', `bad magic byte ${magic} of the Hello, expected 0x54`, at);
+    at = r.p; const type = r.u8('hello');
+    if (type !== 1) r.fail('hello', `a message of type ${type} after the cookie, expected a Hello (type 1)`, at);
+    return { cookie, hello: bodies.Hello(r) };
   },
   CrowdFrame: (r) => {
     const at = r.p; const flags = r.u8('flags');

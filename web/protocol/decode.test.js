@@ -107,3 +107,13 @@ test('Fragment: count and index rules', () => {
     (e) => e instanceof ProtocolError && e.field === '/Fragment/index' && e.offset === 3);
   assert.throws(() => decodeAny(new Uint8Array([0x54, 24, 0, 0, 2])), /\/Fragment\/payload/);
 });
+
+// The UDP handshake (types 25, 26): a UdpHello holds a cookie and one whole Hello.
+test('UdpHello: the bytes after the cookie must be a Hello', () => {
+  const hello = [0x54, 1, 1, 0, 1, 3, 0x41, 0x64, 0x61];
+  const ok = decodeAny(new Uint8Array([0x54, 26, ...new Array(16).fill(0), ...hello]));
+  assert.deepEqual(ok, { type: 'UdpHello', cookie: '0'.repeat(32), hello: { protocolVersion: 1, clientKind: 1, clientName: 'Ada' } });
+  assert.throws(() => decodeAny(new Uint8Array([0x54, 26, ...new Array(16).fill(0), 0x54, 4, 3, 0x41, 0x64, 0x61, 0, 0])),
+    (e) => e instanceof ProtocolError && e.field === '/UdpHello/hello' && e.offset === 19);
+  assert.throws(() => decodeAny(new Uint8Array([0x54, 25, ...new Array(17).fill(7)])), /\/Cookie\/end/);
+});

@@ -26,6 +26,10 @@ class Link {
  public:
   virtual ~Link() = default;
   virtual core::Status send(const Bytes& bytes) = 0;
+  /// Sends the session's first message, the Hello (over UDP after the cookie round trip).
+  virtual core::Status start(const Bytes& hello, std::chrono::milliseconds timeout) = 0;
+  /// Repeats the start when no answer came (UDP may have lost it); nothing over WebSocket.
+  virtual void restart() {}
   virtual Received receive(std::chrono::milliseconds wait) = 0;
   virtual void close(const std::string& reason) = 0;
 };
@@ -34,6 +38,7 @@ class WsLink final : public Link {
  public:
   explicit WsLink(std::unique_ptr<server::WsClient> c) : c_(std::move(c)) {}
   core::Status send(const Bytes& bytes) override { return c_->send(bytes); }
+  core::Status start(const Bytes& hello, std::chrono::milliseconds) override { return c_->send(hello); }
   Received receive(std::chrono::milliseconds wait) override {
     server::ClientEvent e = c_->receive(wait);
     switch (e.kind) {
@@ -53,6 +58,8 @@ class UdpLink final : public Link {
  public:
   explicit UdpLink(std::unique_ptr<server::UdpClient> c) : c_(std::move(c)) {}
   core::Status send(const Bytes& bytes) override { return c_->send(bytes); }
+  core::Status start(const Bytes& hello, std::chrono::milliseconds timeout) override { return c_->open(hello, timeout); }
+  void restart() override { (void)c_->reopen(); }
   Received receive(std::chrono::milliseconds wait) override {
     auto d = c_->receive(wait);
     if (!d) return {false, true, {}, {}};
@@ -137,6 +144,9 @@ struct Session::Impl {
       }
       stats.frameDelayMs.push_back((offset - originSeconds) * 1000.0);
       stats.agentsInView = static_cast<std::uint32_t>(applied->view.agents.size());
+      stats.tiersInView = {applied->header.nearCount, applied->header.middleCount, applied->header.farCount};
+      for (std::size_t t = 0; t < 3; ++t) stats.tierSums[t] += stats.tiersInView[t];
+      stats.farMax = std::max(stats.farMax, applied->header.farCount);
       stats.animationInterval = applied->header.animationInterval;
       const std::uint32_t number = applied->header.frameNumber;
       crowd = std::move(applied).value();
@@ -231,14 +241,20 @@ core::Result<std::unique_ptr<Session>> Session::open(const SessionOptions& optio
     if (!c.ok()) return std::move(c).takeErrors();
     impl->link = std::make_unique<WsLink>(std::move(c).value());
   }
-  if (auto s = impl->link->send(protocol::encode(protocol::Hello{protocol::kProtocolVersion, options.kind, options.name})); !s.ok()) {
-    return std::move(s).takeErrors();
-  }
   const auto deadline = Clock::now() + options.timeout;
+  const Bytes hello = protocol::encode(protocol::Hello{protocol::kProtocolVersion, options.kind, options.name});
+  if (auto s = impl->link->start(hello, options.timeout); !s.ok()) return std::move(s).takeErrors();
+  // Over UDP the UdpHello that opens the session may be lost: repeat it after a second of silence.
+  constexpr auto kRetry = std::chrono::milliseconds(1000);
   while (Clock::now() < deadline) {
-    Received r = impl->link->receive(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()));
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+    Received r = impl->link->receive(options.udp ? std::min(left, kRetry) : left);
     if (r.closed) return problem(impl->source, "the server closed the connection before its Welcome: " + r.reason);
-    if (r.timeout) break;
+    if (r.timeout) {
+      if (!options.udp) break;
+      impl->link->restart();
+      continue;
+    }
     auto decoded = protocol::decodeAny(r.message);
     if (!decoded.ok()) return problem(impl->source, "the server's first message does not decode: " + decoded.errors().front().format());
     // Over UDP a large Welcome arrives in Fragments: wait for the whole of it.

@@ -354,7 +354,7 @@ void Hub::onMessage(PeerKey peer, std::span<const std::uint8_t> bytes, double no
   if (it == impl_->clients.end() || it->second.closing) return;
   Client& c = it->second;
   c.lastHeard = now;
-  auto decoded = protocol::decodeAny(bytes);
+  auto decoded = protocol::decodeFromClient(bytes);  // the type first: nothing server → client is decoded
   if (!decoded.ok()) {
     impl_->fail(c, ReasonCode::BadMessage, decoded.errors().front().format());
     return;

@@ -4,6 +4,7 @@
 // limits in protocol.hpp before anything is allocated.
 #include "throng/protocol/messages.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "byte_io.hpp"
@@ -305,6 +306,20 @@ Bytes encode(const Fragment& m) {
   return out;
 }
 
+Bytes encode(const Cookie& m) {
+  Bytes out = start(MessageType::Cookie);
+  ByteWriter(out).bytes(m.cookie);
+  return out;
+}
+
+Bytes encode(const UdpHello& m) {
+  Bytes out = start(MessageType::UdpHello);
+  ByteWriter w(out);
+  w.bytes(m.cookie);
+  w.bytes(encode(m.hello));
+  return out;
+}
+
 Bytes encode(const Message& m) {
   return std::visit([](const auto& v) { return encode(v); }, m);
 }
@@ -318,9 +333,49 @@ const char* messageTypeName(MessageType type) {
                                            "Heartbeat", "Bye", "Move", "Joints", "HandJoints",
                                            "FaceExpression", "Guide", "Release", "GuideResult", "Ack",
                                            "CrowdFrame", "Presence", "ReplayControl", "ReplayStatus",
-                                           "InsertCrowd", "RemoveCrowd", "CrowdResult", "Fragment"};
+                                           "InsertCrowd", "RemoveCrowd", "CrowdResult", "Fragment",
+                                           "Cookie", "UdpHello"};
   const auto i = static_cast<std::uint8_t>(type);
   return i <= kMaxMessageType ? kNames[i] : "?";
+}
+
+Direction messageDirection(MessageType type) {
+  switch (type) {
+    case MessageType::Hello:
+    case MessageType::Join:
+    case MessageType::Leave:
+    case MessageType::Guide:
+    case MessageType::Release:
+    case MessageType::Ack:
+    case MessageType::ReplayControl:
+    case MessageType::InsertCrowd:
+    case MessageType::RemoveCrowd:
+    case MessageType::UdpHello: return Direction::ClientToServer;
+    case MessageType::Heartbeat:
+    case MessageType::Bye:
+    case MessageType::Move:
+    case MessageType::Joints:
+    case MessageType::HandJoints:
+    case MessageType::FaceExpression: return Direction::Both;
+    case MessageType::Refuse:
+    case MessageType::Welcome:
+    case MessageType::Joined:
+    case MessageType::GuideResult:
+    case MessageType::CrowdFrame:
+    case MessageType::Presence:
+    case MessageType::ReplayStatus:
+    case MessageType::CrowdResult:
+    case MessageType::Fragment:
+    case MessageType::Cookie: return Direction::ServerToClient;
+  }
+  return Direction::ServerToClient;
+}
+
+std::size_t maxClientMessageSize(MessageType type) {
+  if (messageDirection(type) == Direction::ServerToClient) return 0;
+  // InsertCrowd: header 2, token 8, requestId ≤ 5, string length ≤ 3, then the crowd file.
+  if (type == MessageType::InsertCrowd) return kMaxCrowdJson + 32;
+  return kMaxClientMessageSize;
 }
 
 core::Result<MessageType> peekType(std::span<const std::uint8_t> bytes) {
@@ -582,6 +637,29 @@ Message decodeBody(MessageType type, ByteReader& r) {
       m.payload.assign(b.begin(), b.end());
       return m;
     }
+    case MessageType::Cookie: {
+      Cookie m;
+      const auto b = r.bytes("cookie", kCookieSize);
+      if (r.ok()) std::copy(b.begin(), b.end(), m.cookie.begin());
+      return m;
+    }
+    case MessageType::UdpHello: {
+      UdpHello m;
+      const auto b = r.bytes("cookie", kCookieSize);
+      if (r.ok()) std::copy(b.begin(), b.end(), m.cookie.begin());
+      // Then a whole Hello message, magic and type included.
+      std::size_t at = r.offset();
+      const std::uint8_t magic = r.u8("hello");
+      if (r.ok() && magic != kMagic) r.fail("hello", at, "bad magic byte " + std::to_string(magic) + " of the Hello", "0x54 ('T')");
+      at = r.offset();
+      const std::uint8_t type = r.u8("hello");
+      if (r.ok() && type != static_cast<std::uint8_t>(MessageType::Hello)) {
+        r.fail("hello", at, "a message of type " + std::to_string(type) + " after the cookie", "a Hello (type 1)");
+      }
+      if (!r.ok()) return m;
+      m.hello = std::get<Hello>(decodeBody(MessageType::Hello, r));
+      return m;
+    }
   }
   return Hello{};  // unreachable: peekType checked the type
 }
@@ -597,6 +675,26 @@ core::Result<Message> decodeAny(std::span<const std::uint8_t> bytes) {
   r.expectEnd();
   if (!r.ok()) return r.error();
   return m;
+}
+
+core::Result<Message> decodeFromClient(std::span<const std::uint8_t> bytes) {
+  auto type = peekType(bytes);
+  if (!type) return std::move(type).takeErrors();
+  ByteReader r(bytes, "message");
+  const char* name = messageTypeName(type.value());
+  if (messageDirection(type.value()) == Direction::ServerToClient) {
+    r.fail("type", 1,
+           std::string(name) + " (type " + std::to_string(static_cast<int>(type.value())) +
+               ") is a server → client message; not decoded",
+           "a client → server message type");
+    return r.error();
+  }
+  if (const std::size_t max = maxClientMessageSize(type.value()); bytes.size() > max) {
+    r.fail("size", 0, std::string(name) + " of " + std::to_string(bytes.size()) + " bytes",
+           "at most " + std::to_string(max) + " bytes for a " + name);
+    return r.error();
+  }
+  return decodeAny(bytes);
 }
 
 Welcome makeWelcome(std::string serverName, float tickRateHz, const std::string& worldJson) {

@@ -176,7 +176,7 @@ void HttpSession::handle(http::request<http::string_body>&& req) {
 }
 
 void HttpSession::upgrade(http::request<http::string_body>&& req) {
-  if (transport_.stopping() || transport_.peerCount() >= transport_.options().maxPeers) {
+  if (transport_.stopping() || transport_.peerCount(PeerKind::WebSocket) >= transport_.options().maxPeers) {
     send(textResponse(http::status::service_unavailable, "text/plain",
                       transport_.stopping() ? "server shutting down\n" : "server full\n", req.version(), false));
     return;

@@ -46,6 +46,8 @@ core::Diagnostics validate(const TransportOptions& o) {
     errors.push_back(optionError("maxQueueBytes", "0 bytes", "at least 1 byte"));
   if (o.maxPeers < 1)
     errors.push_back(optionError("maxPeers", "0 peers", "at least 1 peer"));
+  if (o.enableUdp && o.maxUdpPeers < 1)
+    errors.push_back(optionError("maxUdpPeers", "0 peers", "at least 1 peer"));
   if (o.messagesPerSecond < 0.0 || !(o.burstMessages >= 1.0))
     errors.push_back(optionError("messagesPerSecond", "negative rate or burst below 1", "rate >= 0 per second (0 = unlimited), burst >= 1 message"));
   if (o.udpIdleTimeout.count() <= 0 || o.wsIdleTimeout.count() <= 0 || o.httpTimeout.count() <= 0 || o.closeTimeout.count() <= 0)
@@ -198,6 +200,7 @@ void TransportImpl::shutdown(std::string reason) {
   joinThreads();
   std::lock_guard lock(mutex_);
   peers_.clear();
+  webSocketPeers_ = udpPeers_ = 0;
   http_.clear();
 }
 
@@ -237,25 +240,32 @@ TransportTotals TransportImpl::totals() const {
   t.messagesReceived = messagesReceived_.load();
   t.droppedLatest = droppedLatest_.load();
   t.httpRequests = httpRequests_.load();
+  t.udpCookiesSent = udpCookiesSent_.load();
+  t.udpIgnored = udpIgnored_.load();
   return t;
 }
 
 bool TransportImpl::addPeer(std::shared_ptr<Peer> peer) {
   std::lock_guard lock(mutex_);
-  if (stopping_ || peers_.size() >= options_.maxPeers) return false;
-  peers_.emplace(peer->id().value, std::move(peer));
+  const bool udp = peer->kind() == PeerKind::Udp;
+  std::size_t& count = udp ? udpPeers_ : webSocketPeers_;
+  if (stopping_ || count >= (udp ? options_.maxUdpPeers : options_.maxPeers)) return false;
+  if (peers_.emplace(peer->id().value, std::move(peer)).second) ++count;
   return true;
 }
 
-std::size_t TransportImpl::peerCount() const {
+std::size_t TransportImpl::peerCount(PeerKind kind) const {
   std::lock_guard lock(mutex_);
-  return peers_.size();
+  return kind == PeerKind::Udp ? udpPeers_ : webSocketPeers_;
 }
 
 void TransportImpl::removePeer(PeerId id, bool opened) {
   {
     std::lock_guard lock(mutex_);
-    peers_.erase(id.value);
+    if (const auto it = peers_.find(id.value); it != peers_.end()) {
+      --(it->second->kind() == PeerKind::Udp ? udpPeers_ : webSocketPeers_);
+      peers_.erase(it);
+    }
   }
   if (opened) peersClosed_.fetch_add(1);
   drained_.notify_all();

@@ -42,9 +42,11 @@ class TransportImpl final : public Transport {
   net::io_context& ioc() { return ioc_; }
   bool stopping() const { return stopping_.load(); }
   PeerId nextPeerId() { return PeerId{nextId_.fetch_add(1)}; }
-  /// Registers a peer; false when maxPeers are open or the transport is stopping.
+  /// Registers a peer; false when maxPeers WebSocket (maxUdpPeers UDP) peers of its kind are
+  /// open or the transport is stopping.
   bool addPeer(std::shared_ptr<Peer> peer);
-  std::size_t peerCount() const;
+  /// Open peers of one kind.
+  std::size_t peerCount(PeerKind kind) const;
   /// Unregisters; `opened` says whether onOpen was called (then onClose counts as closed).
   void removePeer(PeerId peer, bool opened);
   void noteOpened() { peersOpened_.fetch_add(1); }
@@ -54,6 +56,8 @@ class TransportImpl final : public Transport {
   void countReceived(Peer& peer, std::size_t bytes);
   void countDropped(Peer& peer, std::size_t n);
   void countHttpRequest() { httpRequests_.fetch_add(1); }
+  void countUdpCookie() { udpCookiesSent_.fetch_add(1); }
+  void countUdpIgnored() { udpIgnored_.fetch_add(1); }
 
  private:
   void doAccept();
@@ -74,6 +78,7 @@ class TransportImpl final : public Transport {
   mutable std::mutex mutex_;
   std::condition_variable drained_;
   std::unordered_map<std::uint64_t, std::shared_ptr<Peer>> peers_;
+  std::size_t webSocketPeers_ = 0, udpPeers_ = 0;  ///< peers_ by kind
   std::unordered_map<std::uint64_t, std::function<void()>> http_;  // id -> closes the socket
   std::uint64_t nextHttpId_ = 1;
 
@@ -81,7 +86,7 @@ class TransportImpl final : public Transport {
   std::atomic<bool> joined_{false};
   std::atomic<std::uint64_t> nextId_{1};
   std::atomic<std::uint64_t> peersOpened_{0}, peersClosed_{0}, bytesSent_{0}, bytesReceived_{0},
-      messagesSent_{0}, messagesReceived_{0}, droppedLatest_{0}, httpRequests_{0};
+      messagesSent_{0}, messagesReceived_{0}, droppedLatest_{0}, httpRequests_{0}, udpCookiesSent_{0}, udpIgnored_{0};
 };
 
 }  // namespace throng::server::detail

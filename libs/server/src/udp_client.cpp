@@ -7,6 +7,7 @@
 
 #include "asio.hpp"
 #include "client_io.hpp"
+#include "throng/protocol/messages.hpp"
 
 namespace throng::server {
 using namespace detail;
@@ -18,6 +19,33 @@ struct UdpClient::Impl {
   std::deque<std::vector<std::uint8_t>> inbox;
   bool receiving = false;
   std::string target;
+  std::vector<std::uint8_t> first;  ///< the message open() carries; empty before open()
+  protocol::CookieBytes cookie{};   ///< the newest cookie from the server (zeros: none yet)
+  bool gotCookie = false;
+
+  std::vector<std::uint8_t> udpHello() const {
+    std::vector<std::uint8_t> out{protocol::kMagic, static_cast<std::uint8_t>(protocol::MessageType::UdpHello)};
+    out.insert(out.end(), cookie.begin(), cookie.end());
+    out.insert(out.end(), first.begin(), first.end());
+    return out;
+  }
+  void sendHello() {
+    const auto bytes = udpHello();
+    error_code ignored;
+    socket.send(net::buffer(bytes), 0, ignored);
+  }
+  /// A Cookie datagram: kept and answered (after open()), never handed to receive().
+  bool takeCookie(const std::vector<std::uint8_t>& d) {
+    if (d.size() != protocol::kCookieMessageSize || d[0] != protocol::kMagic ||
+        d[1] != static_cast<std::uint8_t>(protocol::MessageType::Cookie)) {
+      return false;
+    }
+    if (first.empty()) return false;  // no session asked for: an ordinary datagram
+    std::copy(d.begin() + 2, d.end(), cookie.begin());
+    gotCookie = true;
+    sendHello();
+    return true;
+  }
 
   void startReceive() {
     if (receiving || !socket.is_open()) return;
@@ -25,7 +53,10 @@ struct UdpClient::Impl {
     socket.async_receive(net::buffer(buffer), [this](error_code ec, std::size_t n) {
       receiving = false;
       if (ec == net::error::operation_aborted) return;
-      if (!ec) inbox.emplace_back(buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(n));
+      if (!ec) {
+        std::vector<std::uint8_t> d(buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(n));
+        if (!takeCookie(d)) inbox.push_back(std::move(d));
+      }
       startReceive();  // ICMP "refused" and the like: keep listening
     });
   }
@@ -54,6 +85,46 @@ core::Result<std::unique_ptr<UdpClient>> UdpClient::connect(const std::string& h
   }
   impl->startReceive();
   return std::unique_ptr<UdpClient>(new UdpClient(std::move(impl)));
+}
+
+core::Status UdpClient::open(std::span<const std::uint8_t> first, std::chrono::milliseconds timeout) {
+  Impl& c = *impl_;
+  c.first.assign(first.begin(), first.end());
+  c.cookie = {};
+  c.gotCookie = false;
+  if (c.first.size() + protocol::kCookieMessageSize < protocol::kMinUdpHelloSize) {
+    core::Diagnostic d;
+    d.source = c.target;
+    d.what = "a first message of " + std::to_string(c.first.size()) + " bytes";
+    d.expected = "at least " + std::to_string(protocol::kMinUdpHelloSize - protocol::kCookieMessageSize) + " bytes (a Hello)";
+    return d;
+  }
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (!c.gotCookie && std::chrono::steady_clock::now() < deadline) {
+    c.sendHello();  // without a cookie: the server answers with one
+    c.startReceive();
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    runUntil(c.ioc, [&] { return c.gotCookie; }, std::min(left, std::chrono::milliseconds(250)));
+  }
+  if (!c.gotCookie) {
+    core::Diagnostic d;
+    d.source = c.target;
+    d.what = "no Cookie within " + std::to_string(timeout.count()) + " ms";
+    d.expected = "a throng server (throng serve) at this UDP port";
+    return d;
+  }
+  return core::Ok{};  // takeCookie sent the UdpHello with the cookie
+}
+
+core::Status UdpClient::reopen() {
+  if (impl_->first.empty()) {
+    core::Diagnostic d;
+    d.source = impl_->target;
+    d.what = "reopen() before open()";
+    return d;
+  }
+  impl_->sendHello();
+  return core::Ok{};
 }
 
 core::Status UdpClient::send(std::span<const std::uint8_t> message) {

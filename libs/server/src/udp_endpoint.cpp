@@ -1,6 +1,7 @@
 // throng::server::detail::UdpEndpoint / UdpPeer — one socket, peers keyed by remote endpoint.
-// A datagram is a whole message; an empty one is a keep-alive. A closed peer is forgotten: its
-// next datagram opens a new peer with a new id.
+// A datagram is a whole message; an empty one is a keep-alive. Peers open only after the cookie
+// round trip (docs/protocol.md "Opening a UDP session"): an unproven endpoint never gets more
+// bytes than it sent. A closed peer is forgotten: it has to prove its address again.
 #include "udp_endpoint.hpp"
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <utility>
 
 #include "throng/protocol/fragments.hpp"
+#include "throng/protocol/messages.hpp"
 #include "transport_impl.hpp"
 
 namespace throng::server::detail {
@@ -19,6 +21,12 @@ std::string endpointText(const udp::endpoint& endpoint) {
   const auto address = endpoint.address();
   const std::string host = address.is_v6() ? "[" + address.to_string() + "]" : address.to_string();
   return host + ":" + std::to_string(endpoint.port());
+}
+
+/// A UdpHello: header, cookie, and at least a Hello's worth of bytes (kMinUdpHelloSize).
+bool isUdpHello(std::span<const std::uint8_t> datagram) {
+  return datagram.size() >= protocol::kMinUdpHelloSize && datagram[0] == protocol::kMagic &&
+         datagram[1] == static_cast<std::uint8_t>(protocol::MessageType::UdpHello);
 }
 
 }  // namespace
@@ -91,34 +99,60 @@ void UdpEndpoint::onReceive(error_code ec, std::size_t bytes) {
     doReceive();
     return;
   }
-  const TransportOptions& options = transport_.options();
-  std::shared_ptr<UdpPeer> peer;
+  const auto datagram = std::span<const std::uint8_t>(receiveBuffer_.data(), bytes);
   if (auto it = peers_.find(sender_); it != peers_.end()) {
-    peer = it->second;
-  } else {
-    peer = std::make_shared<UdpPeer>(*this, transport_.nextPeerId(), sender_, options);
-    if (!transport_.addPeer(peer)) {  // full or stopping: ignore the datagram
-      doReceive();
-      return;
-    }
-    peers_.emplace(sender_, peer);
-    transport_.noteOpened();
-    transport_.handler().onOpen(peer->id(), PeerKind::Udp, endpointText(sender_));
-  }
-  peer->lastSeen_ = std::chrono::steady_clock::now();
-  if (!peer->closing_) {
-    if (bytes > options.maxDatagramBytes) {
-      closePeer(peer, "message too large", false);
-    } else if (bytes > 0) {
-      if (!peer->bucket_.take(TokenBucket::Clock::now())) {
-        closePeer(peer, "rate limit", false);
-      } else {
-        transport_.countReceived(*peer, bytes);
-        transport_.handler().onMessage(peer->id(), std::span<const std::uint8_t>(receiveBuffer_.data(), bytes));
-      }
-    }
+    const std::shared_ptr<UdpPeer> peer = it->second;  // a copy: closing it erases the map entry
+    receiveFrom(peer, datagram);
+  } else if (auto peer = handshake(bytes)) {
+    // The message inside the UdpHello (the session's Hello) is the peer's first.
+    receiveFrom(peer, datagram.subspan(protocol::kCookieMessageSize));
   }
   doReceive();
+}
+
+std::shared_ptr<UdpPeer> UdpEndpoint::handshake(std::size_t bytes) {
+  const TransportOptions& options = transport_.options();
+  const auto datagram = std::span<const std::uint8_t>(receiveBuffer_.data(), bytes);
+  if (!isUdpHello(datagram) || bytes > options.maxDatagramBytes) {
+    transport_.countUdpIgnored();  // no answer: whatever it is, the sender proved nothing
+    return nullptr;
+  }
+  const auto now = CookieJar::Clock::now();
+  protocol::CookieBytes cookie{};
+  std::copy_n(datagram.begin() + 2, cookie.size(), cookie.begin());
+  if (!cookies_.check(sender_, cookie, now)) {
+    // No cookie yet (or an old or forged one): answer with this endpoint's cookie, 18 bytes for
+    // at least 24, so a forged source address gains nothing by it.
+    auto reply = std::make_shared<protocol::Bytes>(protocol::encode(protocol::Cookie{cookies_.issue(sender_, now)}));
+    transport_.countUdpCookie();
+    socket_.async_send_to(net::buffer(*reply), sender_, [reply](error_code, std::size_t) {});
+    return nullptr;
+  }
+  auto peer = std::make_shared<UdpPeer>(*this, transport_.nextPeerId(), sender_, options);
+  if (!transport_.addPeer(peer)) {  // full or stopping: ignore the datagram
+    transport_.countUdpIgnored();
+    return nullptr;
+  }
+  peers_.emplace(sender_, peer);
+  transport_.noteOpened();
+  transport_.handler().onOpen(peer->id(), PeerKind::Udp, endpointText(sender_));
+  return peer;
+}
+
+void UdpEndpoint::receiveFrom(const std::shared_ptr<UdpPeer>& peer, std::span<const std::uint8_t> datagram) {
+  const TransportOptions& options = transport_.options();
+  peer->lastSeen_ = std::chrono::steady_clock::now();
+  if (peer->closing_) return;
+  if (datagram.size() > options.maxDatagramBytes) {
+    closePeer(peer, "message too large", false);
+  } else if (!datagram.empty() && !isUdpHello(datagram)) {  // a repeated UdpHello is a keep-alive
+    if (!peer->bucket_.take(TokenBucket::Clock::now())) {
+      closePeer(peer, "rate limit", false);
+    } else {
+      transport_.countReceived(*peer, datagram.size());
+      transport_.handler().onMessage(peer->id(), datagram);
+    }
+  }
 }
 
 void UdpEndpoint::scheduleSweep() {

@@ -1,17 +1,21 @@
-// throng::server::detail::UdpEndpoint — the one UDP socket: a datagram from a new endpoint opens
-// a UdpPeer (while under maxPeers), each datagram is one message, silent peers time out, and each
-// peer's SendQueue goes out one datagram at a time (a message over udpFragmentBytes as several
-// Fragment datagrams, split when it leaves the queue). All on one strand.
+// throng::server::detail::UdpEndpoint — the one UDP socket. An endpoint without a peer gets at most
+// a Cookie (18 bytes) for a UdpHello (≥ 24 bytes) and nothing for anything else; a UdpHello that
+// carries the endpoint's valid cookie opens a UdpPeer (while under maxUdpPeers) and the message
+// inside it is the peer's first. Then each datagram is one message, silent peers time out, and
+// each peer's SendQueue goes out one datagram at a time (a message over udpFragmentBytes as
+// several Fragment datagrams, split when it leaves the queue). All on one strand.
 #pragma once
 #include <chrono>
 #include <map>
 #include <memory>
 #include <string>
+#include <span>
 #include <vector>
 
 #include "asio.hpp"
 #include "peer.hpp"
 #include "token_bucket.hpp"
+#include "udp_cookie.hpp"
 
 namespace throng::server::detail {
 
@@ -62,6 +66,11 @@ class UdpEndpoint final : public std::enable_shared_from_this<UdpEndpoint> {
 
   void doReceive();
   void onReceive(error_code ec, std::size_t bytes);
+  /// A datagram from an endpoint without a peer: answer a UdpHello with a Cookie, or open the
+  /// peer when its cookie is valid (returned; nullptr when nothing was opened).
+  std::shared_ptr<UdpPeer> handshake(std::size_t bytes);
+  /// One message (or keep-alive) from an open peer.
+  void receiveFrom(const std::shared_ptr<UdpPeer>& peer, std::span<const std::uint8_t> datagram);
   void scheduleSweep();
   void sweep();
   void push(const std::shared_ptr<UdpPeer>& peer, QueuedMessage message);
@@ -77,6 +86,7 @@ class UdpEndpoint final : public std::enable_shared_from_this<UdpEndpoint> {
   std::vector<std::uint8_t> receiveBuffer_;
   udp::endpoint sender_;
   std::map<udp::endpoint, std::shared_ptr<UdpPeer>> peers_;
+  CookieJar cookies_;
   bool stopped_ = false;
 };
 

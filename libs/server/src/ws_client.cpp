@@ -79,6 +79,9 @@ struct WsClient::Impl {
       return clientError(options, "send timed out");
     }
     if (result) {
+      // The server may have closed at the frame's header while the rest was still going out: let
+      // the pending read see its close frame first, so the close code and reason are the server's.
+      runUntil(ioc, [&] { return !reading; }, std::chrono::milliseconds(1000));
       markClosed(result);
       return clientError(options, "send failed: " + result.message());
     }

@@ -3,6 +3,8 @@
 // seen, dropping data; a close that takes longer than closeTimeout drops the socket.
 #include "ws_peer.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <span>
 #include <utility>
 
@@ -34,6 +36,14 @@ std::string truncateReason(std::string reason) {
   return reason;
 }
 
+/// Beast refuses a frame header declaring more than this (see start()); between maxMessageBytes
+/// and this, onRead refuses it with a reason as soon as the first bytes of its payload arrive.
+std::size_t headerRefusal(std::size_t maxMessageBytes) {
+  constexpr std::size_t kHeaderRefusal = 4;
+  return maxMessageBytes > std::numeric_limits<std::size_t>::max() / kHeaderRefusal ? maxMessageBytes
+                                                                                  : maxMessageBytes * kHeaderRefusal;
+}
+
 std::string describe(error_code ec) {
   if (ec == beast::error::timeout) return "timeout";
   if (ec == net::error::eof || ec == net::error::connection_reset || ec == net::error::broken_pipe)
@@ -62,7 +72,10 @@ void WsPeer::start(http::request<http::string_body> request) {
   ws_.set_option(timeouts);
   ws_.set_option(websocket::stream_base::decorator(
       [](websocket::response_type& res) { res.set(http::field::server, "throng"); }));
-  ws_.read_message_max(0);  // the size is checked here, so the close can carry a reason
+  // Sizes are checked against the frame headers, before the payload arrives (onRead): a header
+  // declaring more than kHeaderRefusal × maxMessageBytes (up to 2^63 - 1) already fails the read
+  // at the header, in Beast: close code 1009 without a reason text, then Beast's teardown.
+  ws_.read_message_max(headerRefusal(options.maxMessageBytes));
   ws_.binary(true);
   upgrade_ = std::move(request);
   ws_.async_accept(upgrade_, beast::bind_front_handler(&WsPeer::onAccept, shared_from_this()));
@@ -91,7 +104,9 @@ void WsPeer::doRead() {
 void WsPeer::onRead(error_code ec, std::size_t) {
   if (ec) {
     std::string reason;
-    if (ec == websocket::error::closed) {
+    if (ec == websocket::error::message_too_big) {
+      reason = "message too large";  // refused at its frame header (close code 1009 sent)
+    } else if (ec == websocket::error::closed) {
       const auto& peerReason = ws_.reason().reason;
       reason = peerReason.empty() ? std::string("closed by peer") : std::string(peerReason.data(), peerReason.size());
     } else {
@@ -105,7 +120,7 @@ void WsPeer::onRead(error_code ec, std::size_t) {
     if (ws_.got_text()) {
       discarding_ = true;
       beginClose("text frame: binary messages only", CloseKind::BadData, false);
-    } else if (buffer_.size() > transport_.options().maxMessageBytes) {
+    } else if (buffer_.size() > transport_.options().maxMessageBytes || declaredTooLarge()) {
       discarding_ = true;
       beginClose("message too large", CloseKind::TooBig, false);
     } else if (ws_.is_message_done()) {
@@ -114,6 +129,14 @@ void WsPeer::onRead(error_code ec, std::size_t) {
   }
   if (discarding_) buffer_.consume(buffer_.size());
   doRead();
+}
+
+bool WsPeer::declaredTooLarge() {
+  if (ws_.is_message_done()) return false;
+  // What the current frame's header says is still to come (read_size_hint(1): the frame's
+  // remaining bytes while one is under way, 1 between frames).
+  const std::size_t rest = ws_.read_size_hint(1);
+  return rest > 1 && rest > transport_.options().maxMessageBytes - std::min(buffer_.size(), transport_.options().maxMessageBytes);
 }
 
 void WsPeer::deliver() {

@@ -31,6 +31,8 @@ class WsPeer final : public Peer, public std::enable_shared_from_this<WsPeer> {
   void doRead();
   void onRead(error_code ec, std::size_t bytes);
   void deliver();
+  /// The message under way is over maxMessageBytes by what its frame header declares.
+  bool declaredTooLarge();
   void push(QueuedMessage message);
   void doWrite();
   void onWrite(error_code ec, std::size_t bytes);

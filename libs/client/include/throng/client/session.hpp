@@ -4,6 +4,7 @@
 // delta-codes against them), answering heartbeats. Blocking calls with timeouts; no threads of its
 // own, so one thread can drive many sessions (throng loadgen). Reads and writes a socket.
 #pragma once
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -42,6 +43,11 @@ struct SessionStats {
   std::vector<double> frameDelayMs; ///< per crowd frame: arrival minus its slot in the tick schedule [ms]
   double roundTripMs = 0.0;         ///< latest heartbeat round trip
   std::uint32_t agentsInView = 0;   ///< agents in the newest decoded frame
+  /// Agents per detail tier (near, middle, far; docs/protocol.md "Tiers") in the newest decoded frame.
+  std::array<std::uint32_t, 3> tiersInView{};
+  /// Per tier, agents summed over every decoded frame (÷ crowdFrames: the mean per frame).
+  std::array<std::uint64_t, 3> tierSums{};
+  std::uint32_t farMax = 0;         ///< most far-tier agents in any decoded frame
   std::uint32_t animationInterval = 1;  ///< X of the newest frame
 };
 

@@ -3,6 +3,7 @@
 // diagnostic saying what was wrong at which byte). The crowd frame's structs live in
 // crowd_frame.hpp; its delta state in CrowdEncoder / CrowdDecoder. Layouts: docs/protocol.md.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -185,10 +186,28 @@ struct Fragment {
   Bytes payload;                ///< the rest of the datagram
 };
 
+/// A cookie: the server's keyed hash of the client's address, port and a time interval
+/// (docs/protocol.md "Opening a UDP session"). All zero = none yet.
+using CookieBytes = std::array<std::uint8_t, kCookieSize>;
+
+/// The server's answer to a UdpHello from an address it has not seen prove itself: the cookie to
+/// send back. Never larger than the UdpHello it answers (18 bytes against at least 24).
+struct Cookie {
+  CookieBytes cookie{};
+};
+
+/// The first datagram of a UDP session: a cookie (zeros when the client has none yet) and the
+/// session's Hello. The server opens a UDP session only for a UdpHello whose cookie it issued to
+/// that address and port within the last 10 to 20 s, and then treats `hello` as the first message.
+struct UdpHello {
+  CookieBytes cookie{};
+  Hello hello;
+};
+
 using Message = std::variant<Hello, Refuse, Welcome, Join, Joined, Leave, Heartbeat, Bye, Move, Joints,
                              HandJoints, FaceExpression, Guide, Release, GuideResult, Ack, CrowdFrame,
                              Presence, ReplayControl, ReplayStatus, InsertCrowd, RemoveCrowd, CrowdResult,
-                             Fragment>;
+                             Fragment, Cookie, UdpHello>;
 
 [[nodiscard]] Bytes encode(const Hello& m);
 [[nodiscard]] Bytes encode(const Refuse& m);
@@ -214,6 +233,8 @@ using Message = std::variant<Hello, Refuse, Welcome, Join, Joined, Leave, Heartb
 [[nodiscard]] Bytes encode(const RemoveCrowd& m);
 [[nodiscard]] Bytes encode(const CrowdResult& m);
 [[nodiscard]] Bytes encode(const Fragment& m);
+[[nodiscard]] Bytes encode(const Cookie& m);
+[[nodiscard]] Bytes encode(const UdpHello& m);
 [[nodiscard]] Bytes encode(const Message& m);
 
 /// The type byte of a message without decoding it; an error when too short, a bad magic or an
@@ -226,6 +247,15 @@ using Message = std::variant<Hello, Refuse, Welcome, Join, Joined, Leave, Heartb
 /// Strings are bytes (UTF-8 by convention; not validated). A CrowdFrame comes back with its
 /// payload decompressed but not applied: hand it to CrowdDecoder.
 [[nodiscard]] core::Result<Message> decodeAny(std::span<const std::uint8_t> bytes);
+
+/// Decodes a message a client sent (what a server calls): the type is checked before anything
+/// else, so a server → client type (a CrowdFrame, a Welcome: the ones with compressed parts) is
+/// refused from its first two bytes without its body being read or decompressed
+/// (pointer "/message/type"), and the size against that type's bound (kMaxCrowdJson + 32 for
+/// InsertCrowd, kMaxClientMessageSize for the others; pointer "/message/size"). Then decodeAny.
+[[nodiscard]] core::Result<Message> decodeFromClient(std::span<const std::uint8_t> bytes);
+/// The most bytes a client → server message of `type` may have (0 for server → client types).
+[[nodiscard]] std::size_t maxClientMessageSize(MessageType type);
 
 [[nodiscard]] MessageType messageType(const Message& m);
 

@@ -24,6 +24,13 @@ inline constexpr std::size_t kMaxExpressionWeights = 64;     ///< FaceExpression
 inline constexpr std::size_t kMaxCrowdJson = 1u << 20;       ///< InsertCrowd's crowd file text [bytes, UTF-8]
 inline constexpr std::size_t kMinFragments = 2;              ///< Fragment::count, at least
 inline constexpr std::size_t kMaxFragments = 8192;           ///< Fragment::count, at most
+inline constexpr std::size_t kCookieSize = 16;               ///< Cookie / UdpHello cookie [bytes]
+inline constexpr std::size_t kCookieMessageSize = 2 + kCookieSize;      ///< an encoded Cookie [bytes]
+/// The smallest encoded UdpHello [bytes]: header, cookie and a Hello with an empty name (6 bytes).
+/// Larger than a Cookie, so the server's answer never amplifies what it answers.
+inline constexpr std::size_t kMinUdpHelloSize = 2 + kCookieSize + 6;
+/// Largest client → server message other than InsertCrowd [bytes] (a Joints of 128 joints is 785).
+inline constexpr std::size_t kMaxClientMessageSize = 4096;
 
 enum class MessageType : std::uint8_t {
   Hello = 1,           ///< client → server: first message
@@ -50,8 +57,15 @@ enum class MessageType : std::uint8_t {
   RemoveCrowd = 22,    ///< client → server: remove a crowd inserted earlier, by its id
   CrowdResult = 23,    ///< server → client: answer to InsertCrowd / RemoveCrowd
   Fragment = 24,       ///< server → client (UDP only): one piece of a message too large for a datagram
+  Cookie = 25,         ///< server → client (UDP only): proof-of-address cookie answering a UdpHello
+  UdpHello = 26,       ///< client → server (UDP only): a cookie and a Hello; opens a UDP session
 };
-inline constexpr std::uint8_t kMaxMessageType = 24;
+inline constexpr std::uint8_t kMaxMessageType = 26;
+
+/// Who may send a message type.
+enum class Direction : std::uint8_t { ClientToServer, ServerToClient, Both };
+/// The direction of a type (docs/protocol.md "Messages"); ServerToClient for an unknown value.
+[[nodiscard]] Direction messageDirection(MessageType type);
 
 /// Name of a message type ("Hello"); "?" for an unknown value.
 [[nodiscard]] const char* messageTypeName(MessageType type);

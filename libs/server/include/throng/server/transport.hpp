@@ -1,9 +1,10 @@
 // throng::server::Transport — moves whole binary messages between the server and its peers:
 // HTTP (static files, /health, a dynamic hook) and WebSocket (/ws) on one TCP port, datagrams on
 // a UDP port. Message-agnostic: it never looks inside a message. Reads sockets; writes sockets;
-// calls the TransportHandler on its own thread. See docs/server.md ("Transport"). The one place it
-// writes protocol bytes: a message too large for one datagram goes to a UDP peer as Fragment
-// messages (docs/protocol.md "Fragment").
+// calls the TransportHandler on its own thread. See docs/server.md ("Transport"). The places it
+// reads and writes protocol bytes: a message too large for one datagram goes to a UDP peer as
+// Fragment messages (docs/protocol.md "Fragment"), and a UDP peer opens only after a cookie round
+// trip (UdpHello / Cookie, docs/protocol.md "Opening a UDP session").
 #pragma once
 #include <chrono>
 #include <cstddef>
@@ -73,7 +74,10 @@ struct TransportOptions {
   std::size_t udpFragmentBytes = 1200;
   std::size_t maxQueueBytes = 4 << 20;        ///< unsent bytes per peer before "send queue limit"
   std::size_t maxQueueMessages = 256;         ///< unsent messages per peer before "send queue limit"
-  std::size_t maxPeers = 1000;                ///< WebSocket + UDP peers; more are refused (HTTP 503 / ignored)
+  std::size_t maxPeers = 1000;                ///< WebSocket peers; more upgrades are answered HTTP 503
+  /// UDP peers (each opened by a cookie round trip, docs/protocol.md "Opening a UDP session"); a
+  /// proven UdpHello beyond them is ignored. Separate from maxPeers: UDP never takes a /ws slot.
+  std::size_t maxUdpPeers = 1000;
   double messagesPerSecond = 200.0;           ///< incoming rate per peer [1/s]; 0 = unlimited
   double burstMessages = 400.0;               ///< token bucket size [messages]
   std::chrono::milliseconds udpIdleTimeout{10000};  ///< UDP peer silent this long: closed ("timeout")
@@ -87,8 +91,9 @@ struct TransportOptions {
 class TransportHandler {
  public:
   virtual ~TransportHandler() = default;
-  /// A WebSocket completed its handshake, or a datagram arrived from a new endpoint.
-  /// `remote` is "address:port".
+  /// A WebSocket completed its handshake, or a UDP endpoint proved its address (a UdpHello with
+  /// a valid cookie; the message inside it is then the peer's first onMessage). `remote` is
+  /// "address:port".
   virtual void onOpen(PeerId peer, PeerKind kind, std::string remote) = 0;
   /// One whole message (WebSocket binary message or one UDP datagram; empty datagrams are
   /// keep-alives and are not delivered). The span is valid only during the call.
@@ -123,6 +128,10 @@ struct TransportTotals {
   std::uint64_t messagesReceived = 0;
   std::uint64_t droppedLatest = 0;
   std::uint64_t httpRequests = 0;
+  std::uint64_t udpCookiesSent = 0;    ///< Cookie datagrams answering UdpHellos of unproven endpoints
+  /// Datagrams from endpoints without a peer that opened nothing and got no answer (not a
+  /// UdpHello, too short, too large, or the UDP peer limit reached).
+  std::uint64_t udpIgnored = 0;
 };
 
 class Transport {
