@@ -42,10 +42,6 @@ constexpr const char* kWanderRoom = R"({
                    "spawn": {"polygon": [[1, 1], [11, 1], [11, 11], [1, 11]]}, "wander": true}]
 })";
 
-bool contains(const std::string& haystack, const std::string& needle) {
-  return haystack.find(needle) != std::string::npos;
-}
-
 std::vector<json> jsonLines(const std::string& text) {
   std::vector<json> out;
   std::istringstream in(text);

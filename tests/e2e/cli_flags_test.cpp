@@ -53,19 +53,6 @@ constexpr const char* kBadScenario = R"({
   "populations": [{"groups": 3, "spawn": {"polygon": [[1, 1], [3, 1], [3, 3], [1, 3]]}, "goals": ["exitt"]}]
 })";
 
-bool contains(const std::string& haystack, const std::string& needle) {
-  return haystack.find(needle) != std::string::npos;
-}
-
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) {
-    if (!line.empty()) out.push_back(line);
-  }
-  return out;
-}
-
 // ---------------------------------------------------------------- help, version, bad flags
 
 TEST(CliFlags, HelpListsEverySubcommand) {

@@ -31,7 +31,11 @@ fs::path uniqueOutputPath(const char* stream) {
          ("throng-cli-" + std::to_string(::getpid()) + "-" + std::to_string(gCounter++) + "." + stream);
 }
 
-pid_t spawn(const std::vector<std::string>& args, const fs::path& cwd, const fs::path& out, const fs::path& err) {
+/// Starts throng with `args` in `cwd`, stdin from /dev/null and stdout into the file `out`;
+/// stderr goes into the file `err`, or to the descriptor `errFd` when it is >= 0 (a terminal).
+/// `closeFd` (>= 0) is closed in the child (the terminal's other end).
+pid_t spawn(const std::vector<std::string>& args, const fs::path& cwd, const fs::path& out, const fs::path& err,
+            int errFd = -1, int closeFd = -1) {
   std::vector<std::string> argvStrings{THRONG_EXE};
   argvStrings.insert(argvStrings.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -42,9 +46,10 @@ pid_t spawn(const std::vector<std::string>& args, const fs::path& cwd, const fs:
   if (pid == 0) {
     // Child: only async-signal-safe calls until exec.
     const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int e = errFd >= 0 ? errFd : ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int in = ::open("/dev/null", O_RDONLY);
     if (o < 0 || e < 0 || in < 0 || ::chdir(cwd.c_str()) != 0) ::_exit(126);
+    if (closeFd >= 0) ::close(closeFd);
     ::dup2(in, 0);
     ::dup2(o, 1);
     ::dup2(e, 2);
@@ -103,24 +108,7 @@ CliResult runThrongInTerminal(const std::vector<std::string>& args, const fs::pa
   int master = -1, slave = -1;
   if (::openpty(&master, &slave, nullptr, nullptr, &size) != 0) throw std::runtime_error("openpty failed");
   const fs::path outPath = uniqueOutputPath("out");
-  std::vector<std::string> argvStrings{THRONG_EXE};
-  argvStrings.insert(argvStrings.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argvStrings) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error("fork failed");
-  if (pid == 0) {
-    const int o = ::open(outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int in = ::open("/dev/null", O_RDONLY);
-    if (o < 0 || in < 0 || ::chdir(cwd.c_str()) != 0) ::_exit(126);
-    ::close(master);
-    ::dup2(in, 0);
-    ::dup2(o, 1);
-    ::dup2(slave, 2);
-    ::execv(argv[0], argv.data());
-    ::_exit(127);
-  }
+  const pid_t pid = spawn(args, cwd, outPath, {}, slave, master);
   ::close(slave);
   CliResult r;
   char buf[4096];

@@ -3,6 +3,7 @@
 // directory per test that is removed afterwards.
 #pragma once
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -62,5 +63,20 @@ class CliProcess {
 
 /// Reads a whole file ("" when missing).
 std::string readFile(const std::filesystem::path& path);
+
+/// Whether `needle` occurs in `haystack` (for output checks).
+inline bool contains(const std::string& haystack, const std::string& needle) {
+  return haystack.find(needle) != std::string::npos;
+}
+
+/// The non-empty lines of `text`.
+inline std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty()) out.push_back(line);
+  }
+  return out;
+}
 
 }  // namespace throng::e2e

@@ -11,6 +11,7 @@
 #include <sys/resource.h>
 
 #include "cli_runner.hpp"
+#include "sqlite_query.hpp"
 
 namespace throng::e2e {
 namespace {
@@ -36,25 +37,6 @@ const char* kScenario = R"({
   ]
 }
 )";
-
-std::vector<std::vector<std::string>> query(const fs::path& db, const std::string& sql) {
-  sqlite3* h = nullptr;
-  EXPECT_EQ(sqlite3_open_v2(db.c_str(), &h, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
-  std::vector<std::vector<std::string>> rows;
-  sqlite3_stmt* s = nullptr;
-  EXPECT_EQ(sqlite3_prepare_v2(h, sql.c_str(), -1, &s, nullptr), SQLITE_OK) << sqlite3_errmsg(h);
-  while (sqlite3_step(s) == SQLITE_ROW) {
-    std::vector<std::string> row;
-    for (int c = 0; c < sqlite3_column_count(s); ++c) {
-      const auto* t = sqlite3_column_text(s, c);
-      row.emplace_back(t ? reinterpret_cast<const char*>(t) : "");
-    }
-    rows.push_back(std::move(row));
-  }
-  sqlite3_finalize(s);
-  sqlite3_close(h);
-  return rows;
-}
 
 /// Runs throng with files limited to `bytes` (the limit is inherited by the child; the test
 /// process writes nothing while it is set).
@@ -92,11 +74,11 @@ TEST(DiskFull, RunStopsAtTheFirstWriteErrorLeavingAValidPartialFile) {
   // The partial file: one self-contained, consistent SQLite file holding the committed frames.
   EXPECT_FALSE(fs::exists(dir / "square.sqlite-wal"));
   EXPECT_FALSE(fs::exists(dir / "square.sqlite-journal"));
-  EXPECT_EQ(query(dir / "square.sqlite", "PRAGMA integrity_check"), (std::vector<std::vector<std::string>>{{"ok"}}));
-  EXPECT_EQ(query(dir / "square.sqlite", "SELECT value FROM metadata WHERE key = 'throng_completed'"),
+  EXPECT_EQ(queryText(dir / "square.sqlite", "PRAGMA integrity_check"), (std::vector<std::vector<std::string>>{{"ok"}}));
+  EXPECT_EQ(queryText(dir / "square.sqlite", "SELECT value FROM metadata WHERE key = 'throng_completed'"),
             (std::vector<std::vector<std::string>>{{"0"}}));
-  EXPECT_EQ(query(dir / "square.sqlite", "SELECT count(*) FROM throng_frames"), (std::vector<std::vector<std::string>>{{frames}}));
-  const auto last = query(dir / "square.sqlite", "SELECT max(frame) FROM trajectory_data");
+  EXPECT_EQ(queryText(dir / "square.sqlite", "SELECT count(*) FROM throng_frames"), (std::vector<std::vector<std::string>>{{frames}}));
+  const auto last = queryText(dir / "square.sqlite", "SELECT max(frame) FROM trajectory_data");
   ASSERT_EQ(last.size(), 1u);
   EXPECT_EQ(std::stoi(last[0][0]), std::stoi(frames) - 1);
   // `throng info` reads it.

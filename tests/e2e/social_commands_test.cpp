@@ -17,10 +17,6 @@ namespace {
 
 using nlohmann::json;
 
-bool contains(const std::string& haystack, const std::string& needle) {
-  return haystack.find(needle) != std::string::npos;
-}
-
 class SocialCommands : public ::testing::Test {
  protected:
   void SetUp() override {

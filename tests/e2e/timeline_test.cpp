@@ -7,30 +7,12 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "sqlite_query.hpp"
 
 namespace throng::e2e {
 namespace {
 
 const std::filesystem::path kScenario = std::filesystem::path(THRONG_SOURCE_DIR) / "scenarios" / "museum_tour.json";
-
-std::vector<std::vector<std::string>> query(const std::filesystem::path& db, const std::string& sql) {
-  sqlite3* h = nullptr;
-  EXPECT_EQ(sqlite3_open_v2(db.c_str(), &h, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
-  std::vector<std::vector<std::string>> rows;
-  sqlite3_stmt* s = nullptr;
-  EXPECT_EQ(sqlite3_prepare_v2(h, sql.c_str(), -1, &s, nullptr), SQLITE_OK) << sqlite3_errmsg(h);
-  while (sqlite3_step(s) == SQLITE_ROW) {
-    std::vector<std::string> row;
-    for (int c = 0; c < sqlite3_column_count(s); ++c) {
-      const auto* t = sqlite3_column_text(s, c);
-      row.emplace_back(t ? reinterpret_cast<const char*>(t) : "");
-    }
-    rows.push_back(std::move(row));
-  }
-  sqlite3_finalize(s);
-  sqlite3_close(h);
-  return rows;
-}
 
 TEST(Timeline, TourGroupArrivesAndLeaves) {
   ScratchDir dir("timeline");
@@ -43,10 +25,10 @@ TEST(Timeline, TourGroupArrivesAndLeaves) {
     EXPECT_EQ(summary["agents_spawned"].get<int>(), summary["agents_active"].get<int>() + 8);
     hashes[t - 1] = summary["state_hash"].get<std::string>();
     // The 8 tourists: spawned at 20 s (tick 400), left at 60 s (tick 1200), population 1.
-    const auto rows = query(dir / out, "SELECT count(*), min(population), max(population) FROM throng_agents WHERE population = 1");
+    const auto rows = queryText(dir / out, "SELECT count(*), min(population), max(population) FROM throng_agents WHERE population = 1");
     ASSERT_EQ(rows.size(), 1u);
     EXPECT_EQ(rows[0][0], "8");
-    const auto events = query(dir / out, "SELECT kind, count(*), min(tick), max(tick) FROM throng_events WHERE agent >= "
+    const auto events = queryText(dir / out, "SELECT kind, count(*), min(tick), max(tick) FROM throng_events WHERE agent >= "
                                           "(SELECT min(id) FROM throng_agents WHERE population = 1) AND kind IN ('spawn', 'exit') "
                                           "GROUP BY kind ORDER BY kind");
     ASSERT_EQ(events.size(), 2u);
