@@ -32,6 +32,13 @@ inline constexpr double kMaxCoordinate = 100000.0;
 inline constexpr std::size_t kMaxTerrainTriangles = 200000;
 /// Most agents a scenario may spawn in total (groups × largest group size, summed).
 inline constexpr double kMaxAgents = 10000000.0;
+/// Most vertices one polygon may have (walkable, obstacle, point region or spawn): checking stays
+/// near-linear, but no scenario drawn by hand or exported from a model needs more.
+inline constexpr std::size_t kMaxPolygonVertices = 250000;
+/// Most points (and most populations) a file may list: each costs memory and checks (a file of
+/// 600,000 points took 1.3 GB); no meaningful scenario comes near.
+inline constexpr std::size_t kMaxPoints = 100000;
+inline constexpr std::size_t kMaxPopulations = 10000;
 
 [[nodiscard]] ParsedScenario parseScenarioJson(const JsonDocument& doc, core::Diagnostics& diagnostics);
 
