@@ -1,5 +1,6 @@
 // Tests for libs/io/src/json_document.cpp: values, pointer → line:column positions, escapes.
 #include "json_document.hpp"
+#include "throng/core/text.hpp"
 
 #include <gtest/gtest.h>
 

@@ -109,6 +109,23 @@ TEST(ScenarioHostile, ExitOutsideTheWalkableAreaAndPolygonInAWallAreRefused) {
   EXPECT_TRUE(load(kBottleneck, true).ok());
 }
 
+TEST(ScenarioHostile, PointBeyondAFloorsEdgeIsRefusedOnMultiLevelWorlds) {
+  // A hall (12 m x 8 m) of a multi-level world; the interest disc lies 0.6 m beyond its east edge.
+  const std::string text = R"({
+  "format": "throng/1",
+  "terrain": {"vertices": [[0,0,0],[12,0,0],[12,8,0],[0,8,0]], "walkable": [[0,1,2],[0,2,3]]},
+  "points": [{"id": "kiosk", "kind": "interest", "position": [12.6, 4, 0]}],
+  "populations": [{"id": "p", "spawn": {"position": [2, 2, 0]}, "goals": ["kiosk"]}]
+})";
+  const auto ds = errorsOf(text, true);
+  const auto d = at(ds, "/points/0/position");
+  expectAt(d, text, "[12.6, 4, 0]");
+  EXPECT_TRUE(contains(d.what, "interest point \"kiosk\" cannot be reached: (12.6, 4, 0) is off the walkable surface and its "
+                               "radius 0.5 m reaches no ground where agents (radius 0.2 m) can stand; the nearest walkable "
+                               "point is (11.")) << d.format();
+  EXPECT_TRUE(load(edit(text, "[12.6, 4, 0]", "[11.9, 4, 0]"), true).ok());
+}
+
 TEST(ScenarioHostile, AValidationStoppedBySignalSaysSo) {
   std::atomic<int> cancel{2};  // SIGINT already arrived
   LoadOptions options;

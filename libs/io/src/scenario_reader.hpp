@@ -19,6 +19,7 @@
 
 #include "json_document.hpp"
 #include "scenario_parser.hpp"
+#include "throng/core/text.hpp"
 
 namespace throng::io::detail {
 

@@ -4,6 +4,7 @@
 // snapped at their heights, goals reachable across floors. Reads a ParsedScenario; writes
 // diagnostics (and the navmesh it built).
 #include "scenario_validator.hpp"
+#include "throng/core/text.hpp"
 
 #include <boost/geometry.hpp>
 #include <boost/geometry/geometries/multi_polygon.hpp>
@@ -333,11 +334,14 @@ class Validator {
       if (i < parsed_.pointsOk.size() && !parsed_.pointsOk[i]) continue;
       const sim::PointDesc& point = desc_.points[i];
       const float reach = regionReach(point) + 1.0f;
-      if (!snapAt(query, goalTarget(point), point.height, reach)) {
+      const auto snapped = snapAt(query, goalTarget(point), point.height, reach);
+      if (!snapped) {
         error("/points/" + std::to_string(i - firstOwnPoint_),
               "point \"" + point.id + "\" at " + at3(point.position, point.height) +
                   " lies off the walkable surface (nothing walkable within " + num(reach) + levels + ")",
               "a region on a floor, stair or ramp of /terrain/walkable, at that floor's height (z)");
+      } else {
+        checkTerrainArrival(i, *snapped, config.agentRadius);
       }
     }
     std::vector<std::optional<nav::MeshPoint>> starts(desc_.populations.size());
@@ -371,6 +375,27 @@ class Validator {
         }
       }
     }
+  }
+
+  /// checkPointArrival on a multi-level world, for disc regions: the ground nearest the disc's
+  /// centre at its floor's height (`snapped`) must lie within its radius.
+  void checkTerrainArrival(std::size_t i, const nav::MeshPoint& snapped, float agentRadius) {
+    const sim::PointDesc& point = desc_.points[i];
+    if ((point.kind == sim::PointKind::Action && point.stop) || !point.polygon.empty()) return;
+    const float distance = core::length(snapped.p - point.position);
+    if (distance <= point.radius) return;
+    error("/points/" + std::to_string(i - firstOwnPoint_) + "/position",
+          kindName(point) + " \"" + core::printable(point.id, 80) + "\" cannot be reached: " + at3(point.position, point.height) +
+              " is off the walkable surface and its radius " + num(point.radius) + " m reaches no ground where agents (radius " +
+              num(agentRadius) + " m) can stand; the nearest walkable point is " + centimetres(snapped.p) + " at height " +
+              num(std::round(snapped.height * 100.0f) / 100.0f) + " m, " + num(std::round(distance * 100.0f) / 100.0f) + " m away",
+          "a point whose disc reaches a floor, stair or ramp of /terrain/walkable",
+          "move it to " + centimetres(snapped.p) + " or enlarge \"radius\" to at least " +
+              num(std::ceil(distance * 100.0 - 1e-3) / 100.0) + " m");
+  }
+
+  static std::string kindName(const sim::PointDesc& point) {
+    return point.kind == sim::PointKind::Exit ? "exit" : point.kind == sim::PointKind::Action ? "action point" : "interest point";
   }
 
   /// A population's spawn on a multi-level world: its centre (a position, a point's region) or,
@@ -424,9 +449,7 @@ class Validator {
     const sim::PointDesc& point = desc_.points[i];
     if (point.kind == sim::PointKind::Action && point.stop) return;
     const std::string ptr = "/points/" + std::to_string(i - firstOwnPoint_);
-    const std::string kind = point.kind == sim::PointKind::Exit     ? "exit"
-                             : point.kind == sim::PointKind::Action ? "action point"
-                                                                    : "interest point";
+    const std::string kind = kindName(point);
     if (!point.polygon.empty()) {
       const core::Vec2 target = goalTarget(point);
       const auto near = query.nearest(target, regionReach(point) + 1.0f);
@@ -446,7 +469,7 @@ class Validator {
     std::string hint = "move it onto walkable ground";
     if (near) {
       hint = "move it to " + centimetres(near->first) + " or enlarge \"radius\" to at least " +
-             num(std::ceil(distance * 100.0) / 100.0) + " m";
+             num(std::ceil(distance * 100.0 - 1e-3) / 100.0) + " m";
     }
     error(ptr + "/position",
           kind + " \"" + core::printable(point.id, 80) + "\" cannot be reached: " + positionText(point.position) +
