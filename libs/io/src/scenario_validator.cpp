@@ -14,8 +14,8 @@
 
 #include <atomic>
 #include <cmath>
-#include <limits>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 
 namespace throng::io {
@@ -67,10 +67,10 @@ class Validator {
   Validator(const JsonDocument& doc, const ParsedScenario& parsed, core::Diagnostics& diags)
       : doc_(doc), parsed_(parsed), desc_(parsed.desc), diags_(diags) {}
 
-  /// A crowd file: points before `firstOwnPoint` are the world's; the world's navmesh is given.
   /// Stop early (leaving diagnostics incomplete) once `*cancel` is non-zero.
   void cancelWith(const std::atomic<int>* cancel) { cancel_ = cancel; }
 
+  /// A crowd file: points before `firstOwnPoint` are the world's; the world's navmesh is given.
   void useWorld(std::size_t firstOwnPoint, std::shared_ptr<const nav::NavMesh> navmesh) {
     firstOwnPoint_ = firstOwnPoint;
     worldNavmesh_ = std::move(navmesh);
