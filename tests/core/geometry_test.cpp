@@ -1,5 +1,6 @@
 // Tests for libs/core/src/geometry.cpp: areas, containment, intersections, triangulation.
 #include "throng/core/geometry.hpp"
+#include "throng/core/polygon_check.hpp"
 
 #include <gtest/gtest.h>
 
@@ -196,4 +197,27 @@ TEST(Geometry, FindSelfIntersectionIsNearLinear) {
   const auto hit = core::findSelfIntersection(big);
   ASSERT_TRUE(hit.has_value());
   EXPECT_EQ(hit->first, 999u);
+}
+
+TEST(Geometry, CheckSimpleGivesUpOnHostileShapesWithinItsBudget) {
+  // A star of 20,000 spikes: every long edge passes the centre, so a grid cannot separate them
+  // and every pair would be tested (2·10⁸). With a budget the check says "too complex".
+  Polygon star(20000);
+  for (std::size_t i = 0; i < star.size(); ++i) {
+    const double a = 2.0 * 3.14159265358979323846 * double(i) / double(star.size());
+    const double r = i % 2 == 0 ? 50.0 : 0.5;
+    star[i] = Vec2(static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a)));
+  }
+  const auto star_ = core::checkSimple(star, 1000000);
+  EXPECT_TRUE(star_.tooComplex);
+  EXPECT_FALSE(star_.crossing.has_value());
+  // An ordinary outline of 200,000 vertices stays within a few tests per edge.
+  const auto round = core::checkSimple(circle(200000, 1000.0f), 64 * 200000);
+  EXPECT_FALSE(round.tooComplex);
+  EXPECT_FALSE(round.crossing.has_value());
+  // A crossing found within the budget is reported as findSelfIntersection does.
+  const Polygon bowtie{{0, 0}, {2, 2}, {2, 0}, {0, 2}};
+  const auto crossed = core::checkSimple(bowtie, 10);
+  EXPECT_FALSE(crossed.tooComplex);
+  EXPECT_EQ(crossed.crossing, core::findSelfIntersection(bowtie));
 }

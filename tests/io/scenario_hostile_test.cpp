@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 
+#include "scenario_parser.hpp"
 #include "scenario_test_util.hpp"
 #include "throng/core/text.hpp"
 
@@ -124,6 +125,31 @@ TEST(ScenarioHostile, PointBeyondAFloorsEdgeIsRefusedOnMultiLevelWorlds) {
                                "radius 0.5 m reaches no ground where agents (radius 0.2 m) can stand; the nearest walkable "
                                "point is (11.")) << d.format();
   EXPECT_TRUE(load(edit(text, "[12.6, 4, 0]", "[11.9, 4, 0]"), true).ok());
+}
+
+TEST(ScenarioHostile, PolygonsTooBigOrTooTangledAreRefusedWhereTheyStand) {
+  // A star of 40,000 spikes as an obstacle: all its edges pass near the centre (1.6·10⁹ pairs).
+  std::string star = "[";
+  for (int i = 0; i < 40000; ++i) {
+    const double a = 2.0 * 3.14159265358979323846 * i / 40000.0, r = i % 2 == 0 ? 4.0 : 0.1;
+    star += (i ? ",[" : "[") + std::to_string(10 + r * std::cos(a)) + "," + std::to_string(5 + r * std::sin(a)) + "]";
+  }
+  star += "]";
+  std::string text = edit(kBottleneck, "[[9,5.5],[10,5.5],[10,10],[9,10]] ]", "[[9,5.5],[10,5.5],[10,10],[9,10]], " + star + " ]");
+  auto ds = errorsOf(text);
+  ASSERT_EQ(ds.size(), 1u) << core::formatAll(ds);
+  EXPECT_EQ(ds[0].pointer, "/obstacles/2");
+  EXPECT_TRUE(contains(ds[0].what, "polygon of 40000 points is too complex to check for self-intersections")) << ds[0].format();
+  // Over the vertex cap: refused before any check.
+  std::string big = "[";
+  for (std::size_t i = 0; i <= kMaxPolygonVertices; ++i) big += i ? ",[0,0]" : "[0,0]";
+  big += "]";
+  text = edit(kBottleneck, "[[9,5.5],[10,5.5],[10,10],[9,10]] ]", "[[9,5.5],[10,5.5],[10,10],[9,10]], " + big + " ]");
+  ds = errorsOf(text);
+  ASSERT_EQ(ds.size(), 1u) << core::formatAll(ds);
+  EXPECT_EQ(ds[0].pointer, "/obstacles/2");
+  EXPECT_EQ(ds[0].what, "polygon of 250001 points");
+  EXPECT_EQ(ds[0].expected, "at most 250000 points per polygon");
 }
 
 TEST(ScenarioHostile, AValidationStoppedBySignalSaysSo) {

@@ -2,9 +2,11 @@
 // writes nothing but its results. Predicates are evaluated in double precision so that float
 // inputs (a few km at most) give exact orientation signs for well-separated points.
 #include "throng/core/geometry.hpp"
+#include "throng/core/polygon_check.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -105,22 +107,54 @@ bool edgesCross(std::span<const Vec2> poly, std::size_t i, std::size_t j) {
   return dp > 0.0;
 }
 
-std::optional<std::pair<std::size_t, std::size_t>> allPairs(std::span<const Vec2> poly) {
+/// Counts edge-pair tests against a budget; past it the search gives up.
+struct Budget {
+  std::uint64_t left;
+  bool exhausted = false;
+  bool spend() {
+    if (left == 0) {
+      exhausted = true;
+      return false;
+    }
+    --left;
+    return true;
+  }
+};
+
+std::optional<std::pair<std::size_t, std::size_t>> allPairs(std::span<const Vec2> poly, Budget& budget) {
   const std::size_t n = poly.size();
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) {
+      if (!budget.spend()) return std::nullopt;
       if (edgesCross(poly, i, j)) return std::make_pair(i, j);
     }
   }
   return std::nullopt;
 }
 
+std::optional<std::pair<std::size_t, std::size_t>> findWithin(std::span<const Vec2> poly, Budget& budget);
+
 }  // namespace
 
 std::optional<std::pair<std::size_t, std::size_t>> findSelfIntersection(std::span<const Vec2> poly) {
+  Budget unlimited{std::numeric_limits<std::uint64_t>::max()};
+  return findWithin(poly, unlimited);
+}
+
+SimplicityCheck checkSimple(std::span<const Vec2> poly, std::uint64_t maxTests) {
+  Budget budget{maxTests};
+  SimplicityCheck out;
+  out.crossing = findWithin(poly, budget);
+  out.tooComplex = budget.exhausted && !out.crossing;
+  return out;
+}
+
+namespace {
+
+std::optional<std::pair<std::size_t, std::size_t>> findWithin(std::span<const Vec2> poly, Budget& budget) {
   const std::size_t n = poly.size();
   if (n < 3) return std::nullopt;
-  if (n <= 64) return allPairs(poly);
+  if (n <= 64) return allPairs(poly, budget);
   // A uniform grid over the bounding box with about 2n cells: every edge is listed in the cells
   // its bounding box covers, and only edges sharing a cell are tested, each pair once (in the
   // first cell both cover). Near-linear for polygons whose edges are short compared with the
@@ -153,7 +187,7 @@ std::optional<std::pair<std::size_t, std::size_t>> findSelfIntersection(std::spa
     r.y0 = cellY(std::min(a.y, b.y));
     r.y1 = cellY(std::max(a.y, b.y));
     entries += (r.x1 - r.x0 + 1) * (r.y1 - r.y0 + 1);
-    if (entries > 32 * n) return allPairs(poly);  // long edges crossing much of the box
+    if (entries > 32 * n) return allPairs(poly, budget);  // long edges crossing much of the box
   }
   for (const Range& r : ranges) {
     for (std::size_t y = r.y0; y <= r.y1; ++y) {
@@ -165,7 +199,7 @@ std::optional<std::pair<std::size_t, std::size_t>> findSelfIntersection(std::spa
     pairs += 0.5 * double(count[c]) * double(count[c] > 0 ? count[c] - 1 : 0);
     count[c] += count[c - 1];
   }
-  if (pairs > 0.5 * double(n) * double(n - 1)) return allPairs(poly);
+  if (pairs > 0.5 * double(n) * double(n - 1)) return allPairs(poly, budget);
   std::vector<std::size_t> edges(entries);
   std::vector<std::size_t> fill(count.begin(), count.end() - 1);
   for (std::size_t e = 0; e < n; ++e) {  // edges in increasing order within every cell
@@ -188,6 +222,7 @@ std::optional<std::pair<std::size_t, std::size_t>> findSelfIntersection(std::spa
           const Range& rj = ranges[j];
           if (std::max(ri.x0, rj.x0) != cx || std::max(ri.y0, rj.y0) != cy) continue;  // tested in another cell
           if (ri.x1 < rj.x0 || rj.x1 < ri.x0 || ri.y1 < rj.y0 || rj.y1 < ri.y0) continue;
+          if (!budget.spend()) return best;
           if (edgesCross(poly, i, j)) {
             best = std::make_pair(i, j);
             break;
@@ -198,6 +233,8 @@ std::optional<std::pair<std::size_t, std::size_t>> findSelfIntersection(std::spa
   }
   return best;
 }
+
+}  // namespace
 
 Vec2 closestPointOnSegment(Vec2 p, Vec2 a, Vec2 b) {
   const Vec2 ab = b - a;

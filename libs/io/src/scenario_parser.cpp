@@ -11,6 +11,7 @@
 #include <map>
 
 #include "scenario_reader.hpp"
+#include "throng/core/polygon_check.hpp"
 
 namespace throng::io {
 
@@ -53,7 +54,17 @@ bool ScenarioReader::readPolygon(const Json& v, const std::string& ptr, core::Po
     collinear = std::abs(core::cross(out[1] - out[0], out[i] - out[0])) < 1e-9f;
   }
   if (collinear) return zeroArea();
-  if (const auto hit = core::findSelfIntersection(out)) {
+  // Ordinary outlines take a few edge-pair tests per edge; a hostile shape whose long edges all
+  // cross one another (a star of 250,000 spikes) would take every pair: give up past the budget.
+  const std::uint64_t budget = kSelfIntersectionTests + 64 * std::uint64_t(out.size());
+  const core::SimplicityCheck simple = core::checkSimple(out, budget);
+  if (simple.tooComplex) {
+    error(ptr, "polygon of " + std::to_string(out.size()) + " points is too complex to check for self-intersections (" +
+                   std::to_string(budget) + " pairs of edges tested; its long edges cross much of its area)",
+          "a simple polygon of fewer points or shorter edges", "split it into several polygons");
+    return false;
+  }
+  if (const auto hit = simple.crossing) {
     const std::size_t n = out.size();
     const auto edge = [&](std::size_t e) {
       return std::to_string(original[e]) + "→" + std::to_string(original[(e + 1) % n]);
