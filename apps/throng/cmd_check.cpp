@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "output.hpp"
+#include "signal.hpp"
 #include "throng/io/scenario_loader.hpp"
 
 namespace throng::cli {
@@ -27,7 +28,9 @@ AgentRange agentRange(const sim::ScenarioDesc& desc) {
 
 int reportProblems(const core::Diagnostics& diagnostics, bool json) {
   if (json) {
-    printLine(stdout, nlohmann::json{{"ok", false}, {"diagnostics", diagnosticsToJson(diagnostics)}}.dump());
+    nlohmann::json out{{"ok", false}, {"diagnostics", diagnosticsToJson(diagnostics)}};
+    if (diagnostics.size() > kMaxPrintedDiagnostics) out["diagnostics_total"] = diagnostics.size();
+    printLine(stdout, dumpJson(out));
   } else {
     printDiagnostics(diagnostics);
   }
@@ -41,10 +44,12 @@ CLI::App* addCheckCommand(CLI::App& app, CheckOptions& options) {
   cmd->footer(
       "Validate a scenario without running it: parse the JSON, check every value, build the\n"
       "navmesh and check that spawns and goals are reachable. Prints every problem, one line each\n"
-      "(file:line:column JSON-pointer: what; expected ...), and exits 1 if there is any.");
+      "(file:line:column JSON-pointer: what; expected ...), the first 50 and a count of the rest,\n"
+      "and exits 1 if there is any. Ctrl-C stops the checks (exit 130).");
   cmd->add_option("scenario", options.scenario, "Scenario JSON file")->required()->type_name("SCENARIO.json");
   cmd->add_flag("--json", options.json,
-                "Print {\"ok\":bool,\"diagnostics\":[{source,line,column,pointer,what,expected,hint}...]}");
+                "Print {\"ok\":bool,\"diagnostics\":[{source,line,column,pointer,what,expected,hint}...]} (at most 50 "
+                "diagnostics; \"diagnostics_total\" counts them when there are more)");
   return cmd;
 }
 
@@ -52,7 +57,14 @@ int runCheck(const CheckOptions& options) {
   if (auto missing = checkInputFile(options.scenario, "scenario"); !missing.empty()) {
     return reportProblems(missing, options.json);
   }
-  auto loaded = io::loadScenarioFile(options.scenario);
+  InterruptGuard interrupts;  // Ctrl-C stops a long validation (exit 130)
+  io::LoadOptions load;
+  load.cancel = &InterruptGuard::flag();
+  auto loaded = io::loadScenarioFile(options.scenario, load);
+  if (InterruptGuard::requested()) {
+    printLine(stderr, fmt::format("throng: interrupted; {} was not checked completely", displayText(options.scenario)));
+    return kExitInterrupted;
+  }
   if (!loaded) return reportProblems(loaded.errors(), options.json);
 
   const sim::ScenarioDesc& desc = loaded->desc;
@@ -67,12 +79,12 @@ int runCheck(const CheckOptions& options) {
                        {"points", desc.points.size()},
                        {"navmesh_polygons", polygons},
                        {"diagnostics", nlohmann::json::array()}};
-    printLine(stdout, out.dump());
+    printLine(stdout, dumpJson(out));
     return kExitOk;
   }
   const std::string agentText = agents.min == agents.max ? fmt::format("{} agents", agents.min)
                                                          : fmt::format("{}-{} agents", agents.min, agents.max);
-  printLine(stdout, fmt::format("ok: {}: {} populations, {}, {} points, navmesh {} polygons", desc.name,
+  printLine(stdout, fmt::format("ok: {}: {} populations, {}, {} points, navmesh {} polygons", displayText(desc.name),
                                 desc.populations.size(), agentText, desc.points.size(), polygons));
   return kExitOk;
 }

@@ -55,17 +55,17 @@ int runInfo(const InfoOptions& options) {
                        {"format_version", s.formatVersion},
                        {"throng_version", s.throngVersion}};
     out["heights_m"] = s.heights ? nlohmann::json{s.heights->first, s.heights->second} : nlohmann::json(nullptr);
-    printLine(stdout, out.dump());
+    printLine(stdout, dumpJson(out));
     return kExitOk;
   }
   std::string populations;
   for (const auto& [id, count] : s.populations) {
     if (!populations.empty()) populations += ", ";
-    populations += fmt::format("{} ({} agents)", id, count);
+    populations += fmt::format("{} ({} agents)", displayText(id, 80), count);
   }
   if (populations.empty()) populations = "none";
-  printLine(stdout, fmt::format("recording    {}", options.recording));
-  printLine(stdout, fmt::format("scenario     {}", s.scenarioName));
+  printLine(stdout, fmt::format("recording    {}", displayText(options.recording)));
+  printLine(stdout, fmt::format("scenario     {}", displayText(s.scenarioName)));
   printLine(stdout, fmt::format("seed         {}", s.seed));
   printLine(stdout, fmt::format("agents       {}", s.agents));
   printLine(stdout, fmt::format("frames       {} at {:g} fps ({:.2f} s)", s.frames, s.fps, s.duration));
@@ -81,7 +81,7 @@ int runInfo(const InfoOptions& options) {
                                   s.coordinations));
   }
   printLine(stdout, fmt::format("format       JuPedSim trajectory version {}{}", s.formatVersion,
-                                s.throngVersion.empty() ? "" : fmt::format(", written by throng {}", s.throngVersion)));
+                                s.throngVersion.empty() ? "" : fmt::format(", written by throng {}", displayText(s.throngVersion, 80))));
   return kExitOk;
 }
 

@@ -262,13 +262,13 @@ void printSummaryJson(const RunSummary& r) {
                   {"bytes_per_agent_step", p.agentSteps > 0 ? static_cast<double>(r.exchangedBytes) / static_cast<double>(p.agentSteps) : 0.0},
                   {"rank0_share", p.agentSteps > 0 ? static_cast<double>(p.ownedAgentSteps) / static_cast<double>(p.agentSteps) : 0.0}};
   }
-  printLine(stdout, out.dump());
+  printLine(stdout, dumpJson(out));
 }
 
 void printSummaryText(const RunSummary& r) {
   const auto& s = r.stats;
   auto row = [](const char* key, const std::string& value) { printLine(stdout, fmt::format("{:<14}{}", key, value)); };
-  row("scenario", fmt::format("{} (seed {})", r.scenario, r.seed));
+  row("scenario", fmt::format("{} (seed {})", displayText(r.scenario), r.seed));
   row("status", r.end == RunEnd::Interrupted ? "interrupted (recording closed, marked not completed)"
                 : r.end == RunEnd::Finished  ? finishedText(s)
                                              : "duration reached");
@@ -393,7 +393,13 @@ int runOn(const RunOptions& options, const RankPlan& ranks, sim::StepExchange* e
     report(missing);
     return kExitFailure;
   }
-  auto loaded = io::loadScenarioFile(options.scenario);
+  io::LoadOptions load;
+  load.cancel = &InterruptGuard::flag();  // Ctrl-C stops a long validation too
+  auto loaded = io::loadScenarioFile(options.scenario, load);
+  if (!loaded && ranks.anyRank(InterruptGuard::requested())) {
+    if (speaks) printLine(stderr, "throng: interrupted while checking the scenario; nothing written");
+    return kExitInterrupted;
+  }
   if (!loaded) {
     report(loaded.errors());
     return kExitFailure;

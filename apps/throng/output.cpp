@@ -1,6 +1,9 @@
 // throng CLI output helpers — see output.hpp.
 #include "output.hpp"
 
+#include "throng/core/text.hpp"
+
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -11,21 +14,35 @@
 namespace throng::cli {
 
 void printDiagnostics(const core::Diagnostics& diagnostics) {
-  for (const auto& d : diagnostics) printLine(stderr, d.format());
+  const std::size_t shown = std::min(diagnostics.size(), kMaxPrintedDiagnostics);
+  for (std::size_t i = 0; i < shown; ++i) printLine(stderr, diagnostics[i].format());
+  if (diagnostics.size() > shown) {
+    const std::size_t more = diagnostics.size() - shown;
+    printLine(stderr, fmt::format("throng: ... and {} more problem{} (not listed; {} in all)", more, more == 1 ? "" : "s",
+                                  diagnostics.size()));
+  }
 }
 
-nlohmann::json diagnosticsToJson(const core::Diagnostics& diagnostics) {
+nlohmann::json diagnosticsToJson(const core::Diagnostics& diagnostics, std::size_t limit) {
   auto list = nlohmann::json::array();
-  for (const auto& d : diagnostics) {
-    list.push_back({{"source", d.source},
+  const std::size_t shown = std::min(diagnostics.size(), limit);
+  for (std::size_t i = 0; i < shown; ++i) {
+    const core::Diagnostic& d = diagnostics[i];
+    list.push_back({{"source", core::printable(d.source)},
                     {"line", d.line},
                     {"column", d.column},
-                    {"pointer", d.pointer},
-                    {"what", d.what},
-                    {"expected", d.expected},
-                    {"hint", d.hint}});
+                    {"pointer", core::printable(d.pointer)},
+                    {"what", core::printable(d.what)},
+                    {"expected", core::printable(d.expected)},
+                    {"hint", core::printable(d.hint)}});
   }
   return list;
+}
+
+std::string displayText(std::string_view text, std::size_t maxCharacters) { return core::printable(text, maxCharacters); }
+
+std::string dumpJson(const nlohmann::json& value) {
+  return value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 core::Diagnostics checkInputFile(const std::string& path, const char* what) {

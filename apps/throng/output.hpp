@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdio>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -10,11 +11,26 @@
 
 namespace throng::cli {
 
-/// Prints every diagnostic, one line each, on stderr.
+/// At most this many diagnostics are printed (text or JSON); the rest are counted. A hostile file
+/// with 300,000 unknown keys gets 50 lines and "... and 299,950 more problems", not 300,000 lines.
+inline constexpr std::size_t kMaxPrintedDiagnostics = 50;
+
+/// Prints the first kMaxPrintedDiagnostics diagnostics, one line each, on stderr, then
+/// "throng: ... and N more problems (not listed)" when there are more.
 void printDiagnostics(const core::Diagnostics& diagnostics);
 
-/// [{source, line, column, pointer, what, expected, hint}, ...]
-[[nodiscard]] nlohmann::json diagnosticsToJson(const core::Diagnostics& diagnostics);
+/// [{source, line, column, pointer, what, expected, hint}, ...]: the first `limit` diagnostics,
+/// every text made printable (core::printable), so that dumping never fails on bad UTF-8.
+[[nodiscard]] nlohmann::json diagnosticsToJson(const core::Diagnostics& diagnostics,
+                                               std::size_t limit = kMaxPrintedDiagnostics);
+
+/// A name or other string from an input file, as shown in text output: control characters
+/// escaped, invalid UTF-8 as \xNN, at most `maxCharacters` characters.
+[[nodiscard]] std::string displayText(std::string_view text, std::size_t maxCharacters = 200);
+
+/// `value.dump()` that never throws: bytes that are not UTF-8 (a recording written by an older
+/// throng) become U+FFFD.
+[[nodiscard]] std::string dumpJson(const nlohmann::json& value);
 
 /// One diagnostic naming `path` when it is not a readable regular file; empty when it is.
 /// `what` names the kind of file in the message ("scenario", "recording").

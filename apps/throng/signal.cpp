@@ -45,4 +45,6 @@ bool InterruptGuard::requested() { return gSignal.load(std::memory_order_relaxed
 
 int InterruptGuard::signal() { return gSignal.load(std::memory_order_relaxed); }
 
+const std::atomic<int>& InterruptGuard::flag() { return gSignal; }
+
 }  // namespace throng::cli

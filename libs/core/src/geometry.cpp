@@ -2,10 +2,14 @@
 // writes nothing but its results. Predicates are evaluated in double precision so that float
 // inputs (a few km at most) give exact orientation signs for well-separated points.
 #include "throng/core/geometry.hpp"
+#include "throng/core/polygon_check.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <optional>
+#include <vector>
 
 namespace throng::core {
 
@@ -82,34 +86,155 @@ bool segmentsIntersect(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   return false;
 }
 
-std::optional<std::pair<std::size_t, std::size_t>> findSelfIntersection(std::span<const Vec2> poly) {
+namespace {
+
+/// Whether edges i < j of `poly` intersect (the rule findSelfIntersection documents).
+bool edgesCross(std::span<const Vec2> poly, std::size_t i, std::size_t j) {
   const std::size_t n = poly.size();
-  if (n < 3) return std::nullopt;
+  const Vec2 a = poly[i];
+  const Vec2 b = poly[(i + 1) % n];
+  const Vec2 c = poly[j];
+  const Vec2 d = poly[(j + 1) % n];
+  const bool adjacent = (j == i + 1) || (i == 0 && j == n - 1);
+  if (!adjacent) return segmentsIntersect(a, b, c, d);
+  // Adjacent edges share one vertex; they only cross if they fold back onto each other
+  // (a spike: collinear, pointing the same way from the shared vertex).
+  const Vec2 shared = (j == i + 1) ? b : a;
+  const Vec2 p = (j == i + 1) ? a : b;
+  const Vec2 q = (j == i + 1) ? d : c;
+  if (sign(orient(shared, p, q)) != 0) return false;
+  const double dp = (double(p.x) - shared.x) * (double(q.x) - shared.x) + (double(p.y) - shared.y) * (double(q.y) - shared.y);
+  return dp > 0.0;
+}
+
+/// Counts edge-pair tests against a budget; past it the search gives up.
+struct Budget {
+  std::uint64_t left;
+  bool exhausted = false;
+  bool spend() {
+    if (left == 0) {
+      exhausted = true;
+      return false;
+    }
+    --left;
+    return true;
+  }
+};
+
+std::optional<std::pair<std::size_t, std::size_t>> allPairs(std::span<const Vec2> poly, Budget& budget) {
+  const std::size_t n = poly.size();
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec2 a = poly[i];
-    const Vec2 b = poly[(i + 1) % n];
     for (std::size_t j = i + 1; j < n; ++j) {
-      const Vec2 c = poly[j];
-      const Vec2 d = poly[(j + 1) % n];
-      const bool adjacent = (j == i + 1) || (i == 0 && j == n - 1);
-      if (!adjacent) {
-        if (segmentsIntersect(a, b, c, d)) return std::make_pair(i, j);
-        continue;
-      }
-      // Adjacent edges share one vertex; they only cross if they fold back onto each other
-      // (a spike: collinear, pointing the same way from the shared vertex).
-      const Vec2 shared = (j == i + 1) ? b : a;
-      const Vec2 p = (j == i + 1) ? a : b;
-      const Vec2 q = (j == i + 1) ? d : c;
-      if (sign(orient(shared, p, q)) == 0) {
-        const double dp = (double(p.x) - shared.x) * (double(q.x) - shared.x) +
-                          (double(p.y) - shared.y) * (double(q.y) - shared.y);
-        if (dp > 0.0) return std::make_pair(i, j);
-      }
+      if (!budget.spend()) return std::nullopt;
+      if (edgesCross(poly, i, j)) return std::make_pair(i, j);
     }
   }
   return std::nullopt;
 }
+
+std::optional<std::pair<std::size_t, std::size_t>> findWithin(std::span<const Vec2> poly, Budget& budget);
+
+}  // namespace
+
+std::optional<std::pair<std::size_t, std::size_t>> findSelfIntersection(std::span<const Vec2> poly) {
+  Budget unlimited{std::numeric_limits<std::uint64_t>::max()};
+  return findWithin(poly, unlimited);
+}
+
+SimplicityCheck checkSimple(std::span<const Vec2> poly, std::uint64_t maxTests) {
+  Budget budget{maxTests};
+  SimplicityCheck out;
+  out.crossing = findWithin(poly, budget);
+  out.tooComplex = budget.exhausted && !out.crossing;
+  return out;
+}
+
+namespace {
+
+std::optional<std::pair<std::size_t, std::size_t>> findWithin(std::span<const Vec2> poly, Budget& budget) {
+  const std::size_t n = poly.size();
+  if (n < 3) return std::nullopt;
+  if (n <= 64) return allPairs(poly, budget);
+  // A uniform grid over the bounding box with about 2n cells: every edge is listed in the cells
+  // its bounding box covers, and only edges sharing a cell are tested, each pair once (in the
+  // first cell both cover). Near-linear for polygons whose edges are short compared with the
+  // whole; never more tests than all pairs (it falls back to them). Every crossing pair shares a
+  // cell, and the smallest (i, j) found is the one the all-pairs scan finds first.
+  const Aabb box = bounds(poly);
+  const double width = std::max(double(box.max.x) - box.min.x, 1e-9);
+  const double height = std::max(double(box.max.y) - box.min.y, 1e-9);
+  const double cells = 2.0 * double(n);
+  const auto nx = static_cast<std::size_t>(std::clamp(std::ceil(std::sqrt(cells * width / height)), 1.0, cells));
+  const auto ny = static_cast<std::size_t>(std::clamp(std::ceil(cells / double(nx)), 1.0, cells));
+  const auto cellX = [&](float x) {
+    return static_cast<std::size_t>(std::clamp((double(x) - box.min.x) / width * double(nx), 0.0, double(nx - 1)));
+  };
+  const auto cellY = [&](float y) {
+    return static_cast<std::size_t>(std::clamp((double(y) - box.min.y) / height * double(ny), 0.0, double(ny - 1)));
+  };
+  struct Range {
+    std::size_t x0, x1, y0, y1;
+  };
+  std::vector<Range> ranges(n);
+  std::vector<std::size_t> count(nx * ny + 1, 0);
+  std::size_t entries = 0;
+  for (std::size_t e = 0; e < n; ++e) {
+    const Vec2 a = poly[e];
+    const Vec2 b = poly[(e + 1) % n];
+    Range& r = ranges[e];
+    r.x0 = cellX(std::min(a.x, b.x));
+    r.x1 = cellX(std::max(a.x, b.x));
+    r.y0 = cellY(std::min(a.y, b.y));
+    r.y1 = cellY(std::max(a.y, b.y));
+    entries += (r.x1 - r.x0 + 1) * (r.y1 - r.y0 + 1);
+    if (entries > 32 * n) return allPairs(poly, budget);  // long edges crossing much of the box
+  }
+  for (const Range& r : ranges) {
+    for (std::size_t y = r.y0; y <= r.y1; ++y) {
+      for (std::size_t x = r.x0; x <= r.x1; ++x) ++count[y * nx + x + 1];
+    }
+  }
+  double pairs = 0.0;
+  for (std::size_t c = 1; c < count.size(); ++c) {
+    pairs += 0.5 * double(count[c]) * double(count[c] > 0 ? count[c] - 1 : 0);
+    count[c] += count[c - 1];
+  }
+  if (pairs > 0.5 * double(n) * double(n - 1)) return allPairs(poly, budget);
+  std::vector<std::size_t> edges(entries);
+  std::vector<std::size_t> fill(count.begin(), count.end() - 1);
+  for (std::size_t e = 0; e < n; ++e) {  // edges in increasing order within every cell
+    const Range& r = ranges[e];
+    for (std::size_t y = r.y0; y <= r.y1; ++y) {
+      for (std::size_t x = r.x0; x <= r.x1; ++x) edges[fill[y * nx + x]++] = e;
+    }
+  }
+  std::optional<std::pair<std::size_t, std::size_t>> best;
+  for (std::size_t cy = 0; cy < ny; ++cy) {
+    for (std::size_t cx = 0; cx < nx; ++cx) {
+      const std::size_t c = cy * nx + cx;
+      for (std::size_t u = count[c]; u < count[c + 1]; ++u) {
+        const std::size_t i = edges[u];
+        if (best && i > best->first) break;
+        for (std::size_t v = u + 1; v < count[c + 1]; ++v) {
+          const std::size_t j = edges[v];
+          if (best && i == best->first && j >= best->second) break;
+          const Range& ri = ranges[i];
+          const Range& rj = ranges[j];
+          if (std::max(ri.x0, rj.x0) != cx || std::max(ri.y0, rj.y0) != cy) continue;  // tested in another cell
+          if (ri.x1 < rj.x0 || rj.x1 < ri.x0 || ri.y1 < rj.y0 || rj.y1 < ri.y0) continue;
+          if (!budget.spend()) return best;
+          if (edgesCross(poly, i, j)) {
+            best = std::make_pair(i, j);
+            break;
+          }
+        }
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace
 
 Vec2 closestPointOnSegment(Vec2 p, Vec2 a, Vec2 b) {
   const Vec2 ab = b - a;

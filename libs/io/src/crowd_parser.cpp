@@ -63,6 +63,8 @@ ParsedScenario ScenarioReader::runCrowd(const sim::ScenarioDesc& world, const st
   if (auto* x = optional(root, "points")) {
     if (!x->is_array()) {
       error("/points", "wrong type: " + describeType(*x), "an array of point objects");
+    } else if (x->size() > kMaxPoints) {
+      error("/points", std::to_string(x->size()) + " points", "at most " + std::to_string(kMaxPoints) + " points");
     } else {
       desc.points.resize(base + x->size());
       out.pointsOk.resize(base + x->size());
@@ -104,6 +106,7 @@ ParsedScenario ScenarioReader::runCrowd(const sim::ScenarioDesc& world, const st
     }
   }
   pointIds_.clear();
+  indexedIds_ = nullptr;  // resolvePoint re-hashes the new list
   pointHeights_.clear();
   for (const auto& p : desc.points) {
     pointIds_.push_back(p.id);
@@ -116,6 +119,9 @@ ParsedScenario ScenarioReader::runCrowd(const sim::ScenarioDesc& world, const st
       error("/populations", "wrong type: " + describeType(*x), popExpected);
     } else if (x->empty()) {
       error("/populations", "no population", popExpected);
+    } else if (x->size() > kMaxPopulations) {
+      error("/populations", std::to_string(x->size()) + " populations",
+            "at most " + std::to_string(kMaxPopulations) + " populations (give one population more groups)");
     } else {
       desc.populations.resize(x->size());
       out.populationsOk.resize(x->size());

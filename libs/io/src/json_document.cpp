@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <optional>
 
 namespace throng::io {
 
@@ -37,24 +39,84 @@ std::string describeType(const Json& value) {
 }
 
 namespace {
-std::string parentPointer(const std::string& pointer) {
-  const auto slash = pointer.rfind('/');
-  return slash == std::string::npos ? std::string{} : pointer.substr(0, slash);
+
+/// The next reference token of a JSON Pointer starting at `pos` (just after a '/'), unescaped;
+/// `pos` moves past it.
+std::string nextToken(std::string_view pointer, std::size_t& pos) {
+  std::string token;
+  while (pos < pointer.size() && pointer[pos] != '/') {
+    if (pointer[pos] == '~' && pos + 1 < pointer.size() && (pointer[pos + 1] == '0' || pointer[pos + 1] == '1')) {
+      token += pointer[pos + 1] == '0' ? '~' : '/';
+      pos += 2;
+    } else {
+      token += pointer[pos++];
+    }
+  }
+  return token;
 }
+
+/// An array index token: digits without a leading zero ("0", "17"); nullopt otherwise.
+std::optional<std::size_t> arrayIndex(const std::string& token) {
+  if (token.empty() || token.size() > 19 || (token.size() > 1 && token[0] == '0')) return std::nullopt;
+  std::size_t v = 0;
+  for (const char c : token) {
+    if (c < '0' || c > '9') return std::nullopt;
+    v = v * 10 + static_cast<std::size_t>(c - '0');
+  }
+  return v;
+}
+
 }  // namespace
 
-SourcePos JsonDocument::position(const std::string& pointer) const {
-  std::string p = pointer;
-  for (;;) {
-    if (auto it = values_.find(p); it != values_.end()) return it->second;
-    if (p.empty()) return {};
-    p = parentPointer(p);
+std::uint32_t JsonDocument::find(std::string_view pointer, bool& exact) const {
+  exact = false;
+  if (nodes_.empty()) return 0;
+  std::uint32_t node = 0;
+  const Json* value = &root_;
+  std::size_t pos = 0;
+  while (pos < pointer.size()) {
+    if (pointer[pos] != '/') return node;  // not a JSON Pointer: the nearest ancestor so far
+    ++pos;
+    const std::string token = nextToken(pointer, pos);
+    const Node& n = nodes_[node];
+    std::optional<std::size_t> member;
+    if (value->is_array()) {
+      member = arrayIndex(token);
+    } else if (value->is_object()) {
+      if (auto it = keyIndex_.find(node); it != keyIndex_.end()) {
+        if (auto k = it->second.find(token); k != it->second.end()) member = k->second;
+      } else {
+        const auto& object = value->get_ref<const Json::object_t&>();
+        for (std::size_t k = 0; k < object.size(); ++k) {
+          if ((object.begin() + static_cast<std::ptrdiff_t>(k))->first == token) {
+            member = k;
+            break;
+          }
+        }
+      }
+    }
+    if (!member || *member >= n.childCount) return node;
+    const std::uint32_t child = children_[n.firstChild + *member];
+    value = value->is_array() ? &(*value)[*member]
+                              : &(value->get_ref<const Json::object_t&>().begin() + static_cast<std::ptrdiff_t>(*member))->second;
+    node = child;
   }
+  exact = true;
+  return node;
+}
+
+SourcePos JsonDocument::position(const std::string& pointer) const {
+  bool exact = false;
+  const std::uint32_t node = find(pointer, exact);
+  return node < nodes_.size() ? nodes_[node].value : SourcePos{};
 }
 
 SourcePos JsonDocument::keyPosition(const std::string& pointer) const {
-  if (auto it = keys_.find(pointer); it != keys_.end()) return it->second;
-  return position(pointer);
+  bool exact = false;
+  const std::uint32_t node = find(pointer, exact);
+  if (node >= nodes_.size()) return {};
+  if (exact && nodes_[node].key.line > 0) return nodes_[node].key;
+  return nodes_[node].value;
 }
 
 core::Diagnostic JsonDocument::diagnostic(const std::string& pointer, std::string what, std::string expected,
@@ -72,15 +134,37 @@ class JsonReader {
     if (text_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = 3;  // UTF-8 byte order mark
     skipWhitespace();
     if (atEnd()) return fail("empty document", "a JSON object");
-    if (!parseValue(doc_.root_, "", 0)) return false;
+    std::uint32_t root = 0;
+    if (!parseValue(doc_.root_, nullptr, 0, SourcePos{}, root)) return false;
     skipWhitespace();
     if (!atEnd()) return fail("unexpected " + describeHere() + " after the document", "end of file");
+    doc_.nodes_.shrink_to_fit();
+    doc_.children_.shrink_to_fit();
     return true;
   }
 
   core::Diagnostic error() const { return error_; }
 
  private:
+  /// Where the value being read sits, as a chain up to the root: the JSON Pointer is only built
+  /// for a diagnostic.
+  struct Path {
+    const Path* parent;
+    const std::string* key;  ///< object member; null for an array element
+    std::size_t index;
+  };
+
+  static std::string pointerOf(const Path* path) {
+    std::vector<const Path*> chain;
+    for (const Path* p = path; p != nullptr; p = p->parent) chain.push_back(p);
+    std::string out;
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+      out += '/';
+      out += (*it)->key != nullptr ? escapePointerToken(*(*it)->key) : std::to_string((*it)->index);
+    }
+    return out;
+  }
+
   bool atEnd() const { return pos_ >= text_.size(); }
   char peek() const { return atEnd() ? '\0' : text_[pos_]; }
 
@@ -114,20 +198,25 @@ class JsonReader {
     return std::string("character '") + static_cast<char>(c) + "'";
   }
 
-  bool fail(std::string what, std::string expected, std::string hint = {}) {
-    error_ = core::Diagnostic{doc_.source_, line_, column_, "", "JSON syntax error: " + std::move(what),
+  bool fail(std::string what, std::string expected, std::string hint = {}, std::string pointer = {}) {
+    error_ = core::Diagnostic{doc_.source_, line_, column_, std::move(pointer), "JSON syntax error: " + std::move(what),
                               std::move(expected), std::move(hint)};
     return false;
   }
 
-  bool parseValue(Json& out, const std::string& pointer, int depth) {
-    doc_.values_[pointer] = SourcePos{line_, column_};
-    if (depth > JsonDocument::kMaxDepth) {
-      return fail("nesting deeper than " + std::to_string(JsonDocument::kMaxDepth) + " levels", "a shallower document");
-    }
+  /// Reads one value into `out`; `id` receives its node (positions) in doc_.nodes_.
+  bool parseValue(Json& out, const Path* path, int depth, SourcePos keyPos, std::uint32_t& id) {
+    if (doc_.nodes_.size() >= std::numeric_limits<std::uint32_t>::max()) return fail("too many values", "a smaller document");
+    id = static_cast<std::uint32_t>(doc_.nodes_.size());
+    doc_.nodes_.push_back(JsonDocument::Node{SourcePos{line_, column_}, keyPos, 0, 0});
     switch (peek()) {
-      case '{': return parseObject(out, pointer, depth);
-      case '[': return parseArray(out, pointer, depth);
+      case '{':
+      case '[':
+        if (depth >= JsonDocument::kMaxDepth) {
+          return fail("nesting deeper than " + std::to_string(JsonDocument::kMaxDepth) + " levels (arrays and objects inside each other)",
+                      "at most " + std::to_string(JsonDocument::kMaxDepth) + " levels of nesting", "", pointerOf(path));
+        }
+        return peek() == '{' ? parseObject(out, path, depth, id) : parseArray(out, path, depth, id);
       case '"': {
         std::string s;
         if (!parseString(s)) return false;
@@ -152,12 +241,28 @@ class JsonReader {
     return true;
   }
 
-  bool parseObject(Json& out, const std::string& pointer, int depth) {
+  /// Moves the children gathered on pending_ since `first` to doc_.children_ as `id`'s children.
+  void closeContainer(std::uint32_t id, std::size_t first) {
+    JsonDocument::Node& node = doc_.nodes_[id];
+    node.firstChild = static_cast<std::uint32_t>(doc_.children_.size());
+    node.childCount = static_cast<std::uint32_t>(pending_.size() - first);
+    doc_.children_.insert(doc_.children_.end(), pending_.begin() + static_cast<std::ptrdiff_t>(first), pending_.end());
+    pending_.resize(first);
+  }
+
+  /// Objects up to this many keys find duplicates by scanning; bigger ones use a hash index.
+  static constexpr std::size_t kScannedKeys = 16;
+
+  bool parseObject(Json& out, const Path* path, int depth, std::uint32_t id) {
     out = Json::object();
+    auto& members = out.get_ref<Json::object_t&>();
+    std::unordered_map<std::string, std::uint32_t> index;  // filled once members exceed kScannedKeys
+    const std::size_t first = pending_.size();
     advance();  // '{'
     skipWhitespace();
     if (peek() == '}') {
       advance();
+      closeContainer(id, first);
       return true;
     }
     for (;;) {
@@ -169,20 +274,30 @@ class JsonReader {
       const SourcePos keyPos{line_, column_};
       std::string key;
       if (!parseString(key)) return false;
-      const std::string child = pointer + "/" + escapePointerToken(key);
-      if (out.contains(key)) {
-        error_ = core::Diagnostic{doc_.source_, keyPos.line, keyPos.column, child, "duplicate key \"" + key + "\"",
-                                  "each key once per object", ""};
+      const Path here{path, &key, 0};
+      bool duplicate = false;
+      if (members.size() < kScannedKeys) {
+        for (const auto& member : members) duplicate = duplicate || member.first == key;
+      } else {
+        if (index.empty()) {
+          for (std::size_t k = 0; k < members.size(); ++k) index.emplace((members.begin() + static_cast<std::ptrdiff_t>(k))->first, k);
+        }
+        duplicate = !index.emplace(key, static_cast<std::uint32_t>(members.size())).second;
+      }
+      if (duplicate) {
+        error_ = core::Diagnostic{doc_.source_, keyPos.line, keyPos.column, pointerOf(&here),
+                                  "duplicate key \"" + core::printable(key, 80) + "\"", "each key once per object", ""};
         return false;
       }
-      doc_.keys_[child] = keyPos;
       skipWhitespace();
-      if (peek() != ':') return fail("unexpected " + describeHere() + " after key \"" + key + "\"", "':'");
+      if (peek() != ':') return fail("unexpected " + describeHere() + " after key \"" + core::printable(key, 80) + "\"", "':'");
       advance();
       skipWhitespace();
       Json value;
-      if (!parseValue(value, child, depth + 1)) return false;
-      out[key] = std::move(value);
+      std::uint32_t child = 0;
+      if (!parseValue(value, &here, depth + 1, keyPos, child)) return false;
+      pending_.push_back(child);
+      members.emplace_back(std::move(key), std::move(value));  // known to be new: no linear search
       skipWhitespace();
       if (peek() == ',') {
         advance();
@@ -190,26 +305,33 @@ class JsonReader {
       }
       if (peek() == '}') {
         advance();
+        if (!index.empty()) doc_.keyIndex_.emplace(id, std::move(index));
+        closeContainer(id, first);
         return true;
       }
       return fail("unexpected " + describeHere() + " in an object", "',' or '}'");
     }
   }
 
-  bool parseArray(Json& out, const std::string& pointer, int depth) {
+  bool parseArray(Json& out, const Path* path, int depth, std::uint32_t id) {
     out = Json::array();
+    auto& elements = out.get_ref<Json::array_t&>();
+    const std::size_t first = pending_.size();
     advance();  // '['
     skipWhitespace();
     if (peek() == ']') {
       advance();
+      closeContainer(id, first);
       return true;
     }
     for (std::size_t index = 0;; ++index) {
       skipWhitespace();
       if (peek() == ']') return fail("unexpected ']'", "a value", "JSON allows no trailing comma");
-      Json value;
-      if (!parseValue(value, pointer + "/" + std::to_string(index), depth + 1)) return false;
-      out.push_back(std::move(value));
+      const Path here{path, nullptr, index};
+      elements.emplace_back();
+      std::uint32_t child = 0;
+      if (!parseValue(elements.back(), &here, depth + 1, SourcePos{}, child)) return false;
+      pending_.push_back(child);
       skipWhitespace();
       if (peek() == ',') {
         advance();
@@ -217,10 +339,27 @@ class JsonReader {
       }
       if (peek() == ']') {
         advance();
+        closeContainer(id, first);
         return true;
       }
       return fail("unexpected " + describeHere() + " in an array", "',' or ']'");
     }
+  }
+
+  /// Length of the well-formed UTF-8 sequence starting at pos_ (a lead byte >= 0x80); 0 if it is
+  /// not one (stray continuation byte, overlong form, surrogate, beyond U+10FFFF, cut short).
+  std::size_t utf8Length() const {
+    const auto at = [&](std::size_t k) { return pos_ + k < text_.size() ? static_cast<unsigned char>(text_[pos_ + k]) : 0u; };
+    const unsigned c = at(0);
+    const auto cont = [&](std::size_t k, unsigned lo = 0x80, unsigned hi = 0xBF) { return at(k) >= lo && at(k) <= hi; };
+    if (c >= 0xC2 && c <= 0xDF) return cont(1) ? 2 : 0;
+    if (c == 0xE0) return cont(1, 0xA0) && cont(2) ? 3 : 0;
+    if ((c >= 0xE1 && c <= 0xEC) || c == 0xEE || c == 0xEF) return cont(1) && cont(2) ? 3 : 0;
+    if (c == 0xED) return cont(1, 0x80, 0x9F) && cont(2) ? 3 : 0;  // no UTF-16 surrogates
+    if (c == 0xF0) return cont(1, 0x90) && cont(2) && cont(3) ? 4 : 0;
+    if (c >= 0xF1 && c <= 0xF3) return cont(1) && cont(2) && cont(3) ? 4 : 0;
+    if (c == 0xF4) return cont(1, 0x80, 0x8F) && cont(2) && cont(3) ? 4 : 0;
+    return 0;
   }
 
   static void appendUtf8(std::string& s, std::uint32_t cp) {
@@ -268,6 +407,19 @@ class JsonReader {
       if (c < 0x20) {
         return fail("unexpected " + describeHere() + " in a string", "no raw control characters (write \\n, \\t)",
                     c == '\n' ? "a string cannot span lines" : "");
+      }
+      if (c >= 0x80) {
+        const std::size_t n = utf8Length();
+        if (n == 0) {
+          char buf[48];
+          std::snprintf(buf, sizeof buf, "byte 0x%02X in a string is not UTF-8", c);
+          return fail(buf, "UTF-8 text (save the file as UTF-8, or write the character as \\uXXXX)");
+        }
+        for (std::size_t k = 0; k < n; ++k) {
+          out += text_[pos_];
+          advance();
+        }
+        continue;
       }
       if (c != '\\') {
         out += static_cast<char>(c);
@@ -374,6 +526,7 @@ class JsonReader {
   int line_ = 1;
   int column_ = 1;
   core::Diagnostic error_;
+  std::vector<std::uint32_t> pending_;  ///< children of the containers being read, innermost last
 };
 
 core::Result<JsonDocument> JsonDocument::parse(std::string_view text, const std::string& source) {

@@ -1,15 +1,20 @@
-// throng::io::JsonDocument — JSON text parsed into nlohmann::ordered_json values plus a map from
-// every JSON Pointer to the line:column where its value (and, for object members, its key) starts.
-// nlohmann::json keeps no positions, so this is a small recursive-descent reader of RFC 8259 JSON.
-// Reads text; writes the value tree and the position map. Private to throng_io.
+// throng::io::JsonDocument — JSON text parsed into nlohmann::ordered_json values plus, for every
+// value, the line:column where it (and, for object members, its key) starts, looked up by JSON
+// Pointer. nlohmann::json keeps no positions, so this is a small recursive-descent reader of
+// RFC 8259 JSON. Time and memory are linear in the text: positions live in a tree parallel to the
+// values (no pointer strings are built while parsing), duplicate keys are found with a hash index
+// once an object has more than a few keys, strings must be UTF-8 and nesting is bounded.
+// Reads text; writes the value tree and the position tree. Private to throng_io.
 #pragma once
 #include <nlohmann/json.hpp>
 
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <vector>
 
 #include "throng/core/result.hpp"
+#include "throng/core/text.hpp"
 
 namespace throng::io {
 
@@ -23,11 +28,13 @@ struct SourcePos {
 
 class JsonDocument {
  public:
-  /// Limits that keep hostile input cheap: nesting depth and text size.
+  /// Limits that keep hostile input cheap: nesting depth (arrays and objects inside each other)
+  /// and text size.
   static constexpr int kMaxDepth = 64;
   static constexpr std::size_t kMaxBytes = 64u << 20;  ///< 64 MiB
 
-  /// Parses `text`; a syntax error is one diagnostic with line:column and what was expected.
+  /// Parses `text`; a syntax error (also: a string that is not UTF-8, a duplicate key, nesting
+  /// deeper than kMaxDepth) is one diagnostic with line:column and what was expected.
   static core::Result<JsonDocument> parse(std::string_view text, const std::string& source);
 
   [[nodiscard]] const Json& root() const { return root_; }
@@ -44,10 +51,24 @@ class JsonDocument {
 
  private:
   friend class JsonReader;
+  /// One value's positions and where its children's node ids are in children_ (arrays: by index,
+  /// objects: in member order).
+  struct Node {
+    SourcePos value;
+    SourcePos key;  ///< line 0 unless the value is an object member
+    std::uint32_t firstChild = 0;
+    std::uint32_t childCount = 0;
+  };
+  /// The node `pointer` names, or its nearest existing ancestor (`exact` false then).
+  [[nodiscard]] std::uint32_t find(std::string_view pointer, bool& exact) const;
+
   Json root_;
   std::string source_;
-  std::unordered_map<std::string, SourcePos> values_;
-  std::unordered_map<std::string, SourcePos> keys_;
+  std::vector<Node> nodes_;               ///< in document order; nodes_[0] is the root
+  std::vector<std::uint32_t> children_;   ///< node ids, each container's children contiguous
+  /// Objects with many members (node id → key → member index): lookups stay O(1) however many
+  /// keys a hostile object has.
+  std::unordered_map<std::uint32_t, std::unordered_map<std::string, std::uint32_t>> keyIndex_;
 };
 
 /// Escapes one reference token of a JSON Pointer ("~" → "~0", "/" → "~1").

@@ -21,19 +21,36 @@
 
 namespace throng::io {
 
+namespace {
+
+bool cancelled(const LoadOptions& options) {
+  return options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed) != 0;
+}
+
+core::Diagnostic interrupted(const std::string& source) {
+  return core::Diagnostic{source, 0, 0, "", "interrupted: checking stopped by a signal before it was complete", "", ""};
+}
+
+}  // namespace
+
 core::Result<LoadedScenario> parseScenario(std::string_view text, const std::string& source,
                                            const LoadOptions& options) {
   try {
     auto doc = JsonDocument::parse(text, source);
     if (!doc.ok()) return std::move(doc).takeErrors();
+    if (cancelled(options)) return interrupted(source);
     core::Diagnostics diagnostics;
     ParsedScenario parsed = parseScenarioJson(doc.value(), diagnostics);
+    if (cancelled(options)) return interrupted(source);
     MotionClips clips = loadScenarioClips(doc.value(), parsed, diagnostics);
     loadScenarioSocial(doc.value(), parsed, diagnostics);
     std::shared_ptr<const nav::NavMesh> navmesh;
+    if (cancelled(options)) return interrupted(source);
     if (doc.value().root().is_object()) validateScenario(doc.value(), parsed, options, diagnostics, navmesh);
+    if (cancelled(options)) return interrupted(source);
     // Timeline crowds join the scenario as validated (its navmesh when reachability was checked).
     if (diagnostics.empty()) loadScenarioTimeline(doc.value(), parsed.desc, navmesh, diagnostics);
+    if (cancelled(options)) return interrupted(source);
     if (!diagnostics.empty()) {
       // Report in file order: that is how people fix them. The scenario's own come first, then
       // those of its motion clips, file by file.

@@ -11,6 +11,7 @@
 #include <map>
 
 #include "scenario_reader.hpp"
+#include "throng/core/polygon_check.hpp"
 
 namespace throng::io {
 
@@ -26,6 +27,11 @@ bool ScenarioReader::readPolygon(const Json& v, const std::string& ptr, core::Po
   const std::string expected = "a polygon: an array of at least 3 points [x, y] (metres, any winding)";
   if (!v.is_array()) {
     error(ptr, "wrong type: " + describeType(v), expected);
+    return false;
+  }
+  if (v.size() > kMaxPolygonVertices) {
+    error(ptr, "polygon of " + std::to_string(v.size()) + " points",
+          "at most " + std::to_string(kMaxPolygonVertices) + " points per polygon", "simplify the outline or split it");
     return false;
   }
   bool ok = true;
@@ -48,7 +54,17 @@ bool ScenarioReader::readPolygon(const Json& v, const std::string& ptr, core::Po
     collinear = std::abs(core::cross(out[1] - out[0], out[i] - out[0])) < 1e-9f;
   }
   if (collinear) return zeroArea();
-  if (const auto hit = core::findSelfIntersection(out)) {
+  // Ordinary outlines take a few edge-pair tests per edge; a hostile shape whose long edges all
+  // cross one another (a star of 250,000 spikes) would take every pair: give up past the budget.
+  const std::uint64_t budget = kSelfIntersectionTests + 64 * std::uint64_t(out.size());
+  const core::SimplicityCheck simple = core::checkSimple(out, budget);
+  if (simple.tooComplex) {
+    error(ptr, "polygon of " + std::to_string(out.size()) + " points is too complex to check for self-intersections (" +
+                   std::to_string(budget) + " pairs of edges tested; its long edges cross much of its area)",
+          "a simple polygon of fewer points or shorter edges", "split it into several polygons");
+    return false;
+  }
+  if (const auto hit = simple.crossing) {
     const std::size_t n = out.size();
     const auto edge = [&](std::size_t e) {
       return std::to_string(original[e]) + "→" + std::to_string(original[(e + 1) % n]);
@@ -187,13 +203,23 @@ bool ScenarioReader::readPoint(const Json& v, const std::string& ptr, sim::Point
 bool ScenarioReader::resolvePoint(const Json& v, const std::string& ptr, std::uint32_t& out) {
   std::string id;
   if (!readString(v, ptr, "the id of a point in /points (a string)", id)) return false;
-  for (std::size_t i = 0; i < pointIds_.size(); ++i) {
-    if (pointIds_[i] == id) {
-      out = static_cast<std::uint32_t>(i);
-      return true;
-    }
+  if (pointIndex_.size() != pointIds_.size() || indexedIds_ != pointIds_.data()) {
+    // Hashed once per id list: a file with 100,000 points and as many goals stays linear.
+    pointIndex_.clear();
+    for (std::size_t i = pointIds_.size(); i-- > 0;) pointIndex_[pointIds_[i]] = static_cast<std::uint32_t>(i);  // first wins
+    pointIndex_.reserve(pointIds_.size());
+    indexedIds_ = pointIds_.data();
   }
-  const std::string match = core::closestMatch(id, pointIds_);
+  if (auto it = pointIndex_.find(id); it != pointIndex_.end()) {
+    out = it->second;
+    return true;
+  }
+  // "Did you mean" compares with every id: offered while the comparisons stay few.
+  std::string match;
+  if (suggestionWork_ < kSuggestionWork) {
+    suggestionWork_ += pointIds_.size();
+    match = core::closestMatch(id, pointIds_);
+  }
   error(ptr, "unknown point " + quote(id), "an id from /points", match.empty() ? "" : "did you mean " + quote(match) + "?");
   return false;
 }
@@ -400,6 +426,8 @@ ParsedScenario ScenarioReader::run() {
   if (auto* x = optional(root, "points")) {
     if (!x->is_array()) {
       error("/points", "wrong type: " + describeType(*x), "an array of point objects");
+    } else if (x->size() > kMaxPoints) {
+      error("/points", std::to_string(x->size()) + " points", "at most " + std::to_string(kMaxPoints) + " points");
     } else {
       desc.points.resize(x->size());
       out.pointsOk.resize(x->size());
@@ -417,6 +445,7 @@ ParsedScenario ScenarioReader::run() {
     }
   }
   pointIds_.clear();
+  indexedIds_ = nullptr;  // resolvePoint re-hashes the new list
   pointHeights_.clear();
   for (const auto& p : desc.points) {
     pointIds_.push_back(p.id);
@@ -428,6 +457,9 @@ ParsedScenario ScenarioReader::run() {
   if (auto* x = require(root, "", "populations", popExpected)) {
     if (!x->is_array()) {
       error("/populations", "wrong type: " + describeType(*x), popExpected);
+    } else if (x->size() > kMaxPopulations) {
+      error("/populations", std::to_string(x->size()) + " populations",
+            "at most " + std::to_string(kMaxPopulations) + " populations (give one population more groups)");
     } else {
       desc.populations.resize(x->size());
       out.populationsOk.resize(x->size());

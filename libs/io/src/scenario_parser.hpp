@@ -6,6 +6,7 @@
 // reachability) belong to scenario_validator. Reads a JsonDocument;
 // writes a ScenarioDesc and diagnostics. Private to throng_io.
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "json_document.hpp"
@@ -32,6 +33,16 @@ inline constexpr double kMaxCoordinate = 100000.0;
 inline constexpr std::size_t kMaxTerrainTriangles = 200000;
 /// Most agents a scenario may spawn in total (groups × largest group size, summed).
 inline constexpr double kMaxAgents = 10000000.0;
+/// Most vertices one polygon may have (walkable, obstacle, point region or spawn): checking stays
+/// near-linear, but no scenario drawn by hand or exported from a model needs more.
+inline constexpr std::size_t kMaxPolygonVertices = 250000;
+/// Pairs of edges the self-intersection check of one polygon may test, plus 64 per vertex:
+/// polygons up to ~4,000 points are always checked exactly; bigger ones unless hostile.
+inline constexpr std::uint64_t kSelfIntersectionTests = 10000000;
+/// Most points (and most populations) a file may list: each costs memory and checks (a file of
+/// 600,000 points took 1.3 GB); no meaningful scenario comes near.
+inline constexpr std::size_t kMaxPoints = 100000;
+inline constexpr std::size_t kMaxPopulations = 10000;
 
 [[nodiscard]] ParsedScenario parseScenarioJson(const JsonDocument& doc, core::Diagnostics& diagnostics);
 

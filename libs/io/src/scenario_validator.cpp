@@ -4,6 +4,7 @@
 // snapped at their heights, goals reachable across floors. Reads a ParsedScenario; writes
 // diagnostics (and the navmesh it built).
 #include "scenario_validator.hpp"
+#include "throng/core/text.hpp"
 
 #include <boost/geometry.hpp>
 #include <boost/geometry/geometries/multi_polygon.hpp>
@@ -11,8 +12,10 @@
 #include <boost/geometry/geometries/polygon.hpp>
 #include <boost/geometry/algorithms/point_on_surface.hpp>
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 
 namespace throng::io {
@@ -64,6 +67,9 @@ class Validator {
   Validator(const JsonDocument& doc, const ParsedScenario& parsed, core::Diagnostics& diags)
       : doc_(doc), parsed_(parsed), desc_(parsed.desc), diags_(diags) {}
 
+  /// Stop early (leaving diagnostics incomplete) once `*cancel` is non-zero.
+  void cancelWith(const std::atomic<int>* cancel) { cancel_ = cancel; }
+
   /// A crowd file: points before `firstOwnPoint` are the world's; the world's navmesh is given.
   void useWorld(std::size_t firstOwnPoint, std::shared_ptr<const nav::NavMesh> navmesh) {
     firstOwnPoint_ = firstOwnPoint;
@@ -82,33 +88,55 @@ class Validator {
     if (!buildAreas()) return;
     std::vector<std::optional<core::Vec2>> starts(desc_.populations.size());
     for (std::size_t i = 0; i < desc_.populations.size(); ++i) {
+      if (cancelled()) return;
       if (i < parsed_.populationsOk.size() && parsed_.populationsOk[i]) {
         starts[i] = checkSpawn(i);
         checkGuide(i);
       }
     }
-    checkSpawnCapacity(starts);
-    if (options.checkReachability && diags_.empty()) checkReachability(starts, navmesh);
+    if (!cancelled()) checkSpawnCapacity(starts);
+    if (options.checkReachability && diags_.empty() && !cancelled()) checkReachability(starts, navmesh);
   }
 
  private:
+  [[nodiscard]] bool cancelled() const { return cancel_ != nullptr && cancel_->load(std::memory_order_relaxed) != 0; }
+
   void error(const std::string& ptr, std::string what, std::string expected, std::string hint = {}) {
     diags_.push_back(doc_.diagnostic(ptr, std::move(what), std::move(expected), std::move(hint)));
   }
 
+  /// The union of `parts`, merged pairwise in rounds (a balanced tree): each polygon takes part in
+  /// O(log n) merges of growing size, where adding one polygon at a time to the growing union
+  /// made 4,000 small obstacles cost minutes. Empty when cancelled.
+  BMulti unionAll(std::vector<BMulti> parts) const {
+    while (parts.size() > 1) {
+      std::vector<BMulti> next((parts.size() + 1) / 2);
+      for (std::size_t k = 0; k + 1 < parts.size(); k += 2) {
+        if (cancelled()) return {};
+        bg::union_(parts[k], parts[k + 1], next[k / 2]);
+      }
+      if (parts.size() % 2 == 1) next.back() = std::move(parts.back());
+      parts = std::move(next);
+    }
+    return parts.empty() ? BMulti{} : std::move(parts.front());
+  }
+
   bool buildAreas() {
     try {
-      for (const auto& poly : desc_.walkable) {
-        BMulti next;
-        bg::union_(walk_, toBoost(poly), next);
-        walk_ = std::move(next);
-      }
-      free_ = walk_;
+      std::vector<BMulti> walkable;
+      for (const auto& poly : desc_.walkable) walkable.push_back(BMulti{toBoost(poly)});
+      walk_ = unionAll(std::move(walkable));
+      std::vector<BMulti> obstacles;
       for (const auto& poly : desc_.obstacles) {
         obstacles_.push_back(toBoost(poly));
-        BMulti next;
-        bg::difference(free_, obstacles_.back(), next);
-        free_ = std::move(next);
+        obstacles.push_back(BMulti{obstacles_.back()});
+      }
+      const BMulti blocked = unionAll(std::move(obstacles));
+      if (cancelled()) return false;
+      if (blocked.empty()) {
+        free_ = walk_;
+      } else {
+        bg::difference(walk_, blocked, free_);
       }
     } catch (const std::exception& e) {
       error("/walkable", std::string("cannot combine the walkable and obstacle polygons: ") + e.what(),
@@ -443,11 +471,14 @@ class Validator {
       if (i < parsed_.pointsOk.size() && !parsed_.pointsOk[i]) continue;
       const sim::PointDesc& point = desc_.points[i];
       const float reach = regionReach(point) + 1.0f;
-      if (!snapAt(query, goalTarget(point), point.height, reach)) {
+      const auto snapped = snapAt(query, goalTarget(point), point.height, reach);
+      if (!snapped) {
         error("/points/" + std::to_string(i - firstOwnPoint_),
               "point \"" + point.id + "\" at " + at3(point.position, point.height) +
                   " lies off the walkable surface (nothing walkable within " + num(reach) + levels + ")",
               "a region on a floor, stair or ramp of /terrain/walkable, at that floor's height (z)");
+      } else {
+        checkTerrainArrival(i, *snapped, config.agentRadius);
       }
     }
     std::vector<std::optional<nav::MeshPoint>> starts(desc_.populations.size());
@@ -482,6 +513,27 @@ class Validator {
         }
       }
     }
+  }
+
+  /// checkPointArrival on a multi-level world, for disc regions: the ground nearest the disc's
+  /// centre at its floor's height (`snapped`) must lie within its radius.
+  void checkTerrainArrival(std::size_t i, const nav::MeshPoint& snapped, float agentRadius) {
+    const sim::PointDesc& point = desc_.points[i];
+    if ((point.kind == sim::PointKind::Action && point.stop) || !point.polygon.empty()) return;
+    const float distance = core::length(snapped.p - point.position);
+    if (distance <= point.radius) return;
+    error("/points/" + std::to_string(i - firstOwnPoint_) + "/position",
+          kindName(point) + " \"" + core::printable(point.id, 80) + "\" cannot be reached: " + at3(point.position, point.height) +
+              " is off the walkable surface and its radius " + num(point.radius) + " m reaches no ground where agents (radius " +
+              num(agentRadius) + " m) can stand; the nearest walkable point is " + centimetres(snapped.p) + " at height " +
+              num(std::round(snapped.height * 100.0f) / 100.0f) + " m, " + num(std::round(distance * 100.0f) / 100.0f) + " m away",
+          "a point whose disc reaches a floor, stair or ramp of /terrain/walkable",
+          "move it to " + centimetres(snapped.p) + " or enlarge \"radius\" to at least " +
+              num(std::ceil(distance * 100.0 - 1e-3) / 100.0) + " m");
+  }
+
+  static std::string kindName(const sim::PointDesc& point) {
+    return point.kind == sim::PointKind::Exit ? "exit" : point.kind == sim::PointKind::Action ? "action point" : "interest point";
   }
 
   /// A population's spawn on a multi-level world: its centre (a position, a point's region) or,
@@ -525,6 +577,73 @@ class Validator {
     return std::nullopt;
   }
 
+  /// An agent arrives at an interest point, an exit or a non-stopping action point when its centre
+  /// is inside the point's region (a stopping action point: near a target snapped to the navmesh,
+  /// always reachable). Agents' centres stay on the navmesh (the walkable area minus obstacles,
+  /// eroded by the agent radius), so a region that holds no navmesh ground — a disc drawn inside a
+  /// wall — is never reached, and the run ends with every agent stuck in front of it. Says where
+  /// the point is, why it cannot be reached and the nearest ground agents can stand on.
+  void checkPointArrival(const nav::NavQuery& query, std::size_t i, float agentRadius) {
+    const sim::PointDesc& point = desc_.points[i];
+    if (point.kind == sim::PointKind::Action && point.stop) return;
+    const std::string ptr = "/points/" + std::to_string(i - firstOwnPoint_);
+    const std::string kind = kindName(point);
+    if (!point.polygon.empty()) {
+      const core::Vec2 target = goalTarget(point);
+      const auto near = query.nearest(target, regionReach(point) + 1.0f);
+      if (near && core::pointInPolygon(point.polygon, near->first)) return;
+      BMulti overlap;
+      bg::intersection(toBoost(point.polygon), free_, overlap);
+      if (bg::area(overlap) > 1e-6) return;
+      error(ptr + "/polygon",
+            kind + " \"" + core::printable(point.id, 80) + "\" cannot be reached: its polygon covers no walkable ground (" +
+                positionText(target) + ")" + nearestText(near, target),
+            "a region that overlaps /walkable clear of /obstacles", "move the polygon onto walkable ground");
+      return;
+    }
+    const auto near = query.nearest(point.position, point.radius + 3.0f);
+    const float distance = near ? core::length(near->first - point.position) : std::numeric_limits<float>::infinity();
+    if (distance <= point.radius) return;
+    std::string hint = "move it onto walkable ground";
+    if (near) {
+      hint = "move it to " + centimetres(near->first) + " or enlarge \"radius\" to at least " +
+             num(std::ceil(distance * 100.0 - 1e-3) / 100.0) + " m";
+    }
+    error(ptr + "/position",
+          kind + " \"" + core::printable(point.id, 80) + "\" cannot be reached: " + positionText(point.position) +
+              " and its radius " + num(point.radius) + " m reaches no ground where agents (radius " + num(agentRadius) +
+              " m) can stand" + nearestText(near, point.position),
+          "a point whose disc reaches walkable ground clear of /obstacles", hint);
+  }
+
+  /// "(x, y) is inside obstacle /obstacles/k", "(x, y) is outside the walkable area" or
+  /// "(x, y) is too close to a wall".
+  std::string positionText(core::Vec2 p) const {
+    std::string problem = positionProblem(p);
+    if (problem.empty()) problem = "(" + num(p.x) + ", " + num(p.y) + ") is too close to a wall or obstacle";
+    return problem;
+  }
+
+  /// "; the nearest walkable point is (x, y), d m away" (or that there is none nearby).
+  static std::string nearestText(const std::optional<std::pair<core::Vec2, nav::PolyRef>>& near, core::Vec2 from) {
+    if (!near) return "; no walkable ground nearby";
+    return "; the nearest walkable point is " + centimetres(near->first) + ", " +
+           num(std::round(core::length(near->first - from) * 100.0f) / 100.0f) + " m away";
+  }
+
+  /// "(19.75, 0)": a point to the centimetre (num() keeps 3 significant digits).
+  static std::string centimetres(core::Vec2 p) {
+    const auto one = [](float v) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.2f", std::round(double(v) * 100.0) / 100.0);
+      std::string s = buf;
+      while (s.back() == '0') s.pop_back();
+      if (s.back() == '.') s.pop_back();
+      return s == "-0" ? std::string("0") : s;
+    };
+    return "(" + one(p.x) + ", " + one(p.y) + ")";
+  }
+
   void checkReachability(const std::vector<std::optional<core::Vec2>>& starts, std::shared_ptr<const nav::NavMesh>& navmesh) {
     nav::NavMeshConfig config;
     const auto mesh = navmeshFor(config);
@@ -535,6 +654,7 @@ class Validator {
     // Every point must touch the walkable area, used as a goal or not: a point out in the void is
     // a typo in its coordinates.
     for (std::size_t i = firstOwnPoint_; i < desc_.points.size(); ++i) {
+      if (cancelled()) return;
       const sim::PointDesc& point = desc_.points[i];
       float reach = point.radius;
       if (!point.polygon.empty()) {
@@ -546,9 +666,12 @@ class Validator {
               "point \"" + point.id + "\" at (" + num(point.position.x) + ", " + num(point.position.y) +
                   ") lies outside the walkable area (no walkable ground within " + num(reach + 1.0f) + " m)",
               "a region that overlaps /walkable");
+      } else {
+        checkPointArrival(query, i, config.agentRadius);
       }
     }
     for (std::size_t i = 0; i < desc_.populations.size(); ++i) {
+      if (cancelled()) return;
       if (!starts[i]) continue;
       const sim::PopulationDesc& pop = desc_.populations[i];
       const std::string ptr = "/populations/" + std::to_string(i);
@@ -594,6 +717,7 @@ class Validator {
   std::vector<BPolygon> obstacles_;
   std::size_t firstOwnPoint_ = 0;
   std::shared_ptr<const nav::NavMesh> worldNavmesh_;
+  const std::atomic<int>* cancel_ = nullptr;
 };
 
 }  // namespace
@@ -602,7 +726,9 @@ void validateScenario(const JsonDocument& doc, const ParsedScenario& parsed, con
                       core::Diagnostics& diagnostics, std::shared_ptr<const nav::NavMesh>& navmesh) {
   core::Diagnostics own;
   try {
-    Validator(doc, parsed, own).run(options, navmesh);
+    Validator v(doc, parsed, own);
+    v.cancelWith(options.cancel);
+    v.run(options, navmesh);
   } catch (const std::exception& e) {
     own.push_back(doc.diagnostic("", std::string("cannot validate the geometry: ") + e.what(), "simple polygons"));
   }
@@ -617,7 +743,9 @@ void validateCrowd(const JsonDocument& doc, const ParsedScenario& parsed, std::s
     const bool check = navmesh != nullptr;
     v.useWorld(firstOwnPoint, std::move(navmesh));
     std::shared_ptr<const nav::NavMesh> unused;
-    v.run(LoadOptions{check}, unused);
+    LoadOptions options;
+    options.checkReachability = check;
+    v.run(options, unused);
   } catch (const std::exception& e) {
     own.push_back(doc.diagnostic("", std::string("cannot validate the crowd's geometry: ") + e.what(), "simple polygons"));
   }

@@ -2,6 +2,7 @@
 // Every problem is reported as a Diagnostic with file:line:column, JSON pointer, what is wrong and
 // what was expected; nothing stops at the first error.
 #pragma once
+#include <atomic>
 #include <map>
 #include <memory>
 #include <string>
@@ -30,6 +31,9 @@ struct LoadOptions {
   /// Build the navmesh and check that spawns and goals are connected. Off only for fuzzing the
   /// parser and for structural checks where speed matters.
   bool checkReachability = true;
+  /// When set, loading stops soon after `*cancel` becomes non-zero (a signal handler sets it:
+  /// Ctrl-C during `throng check`) and returns one diagnostic saying it was interrupted.
+  const std::atomic<int>* cancel = nullptr;
 };
 
 /// Parses and validates scenario JSON. `source` names the text in diagnostics (usually the path);
