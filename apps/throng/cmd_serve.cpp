@@ -85,10 +85,6 @@ class Bridge final : public server::TransportHandler, public hub::Outbox {
   server::Transport* transport_ = nullptr;
 };
 
-/// JSON text that never throws: a string that is not UTF-8 (a name, an id a client or a scenario
-/// gave) is written with U+FFFD in place of its bad bytes instead of failing the response.
-std::string dumpJson(const nlohmann::json& j) { return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace); }
-
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
