@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include <fcntl.h>
 #include <pty.h>
@@ -156,6 +157,25 @@ CliResult CliProcess::wait() {
   r.out = readFile(outPath_);
   r.err = readFile(errPath_);
   return r;
+}
+
+CliResult CliProcess::wait(std::chrono::milliseconds limit) {
+  const auto end = std::chrono::steady_clock::now() + limit;
+  while (pid_ > 0 && std::chrono::steady_clock::now() < end) {
+    int status = 0;
+    const pid_t done = ::waitpid(pid_, &status, WNOHANG);
+    if (done == pid_) {
+      CliResult r;
+      r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      pid_ = -1;
+      r.out = readFile(outPath_);
+      r.err = readFile(errPath_);
+      return r;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  signal(SIGKILL);
+  return wait();
 }
 
 std::string CliProcess::outSoFar() const { return readFile(outPath_); }

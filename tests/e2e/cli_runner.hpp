@@ -2,6 +2,7 @@
 // definition) in a working directory, capturing exit code, stdout and stderr; and a scratch
 // directory per test that is removed afterwards.
 #pragma once
+#include <chrono>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -54,6 +55,8 @@ class CliProcess {
   [[nodiscard]] std::string outSoFar() const;
   /// Waits for the process to end and returns what it printed.
   CliResult wait();
+  /// The same, but kills it (exit code 128 + SIGKILL) when it has not ended within `limit`.
+  CliResult wait(std::chrono::milliseconds limit);
 
  private:
   pid_t pid_ = -1;

@@ -142,6 +142,26 @@ TEST(HostileInput, CtrlCStopsALongValidation) {
   }
 }
 
+TEST(HostileInput, CtrlCStopsANavigationMeshBuild) {
+  // A 700 m square at 5 cm cells: half a minute of Recast tiles on this machine's kind. Ctrl-C
+  // one second in must end `check` between two tiles, not after the last one.
+  ScratchDir dir("signav");
+  const json scenario{{"format", "throng/1"},
+                      {"name", "bignav"},
+                      {"navCellSize", 0.05},
+                      {"walkable", {{{0, 0}, {700, 0}, {700, 700}, {0, 700}}}},
+                      {"points", {{{"id", "exit"}, {"kind", "exit"}, {"position", {690, 690}}, {"radius", 1}}}},
+                      {"populations", {{{"id", "p"}, {"groups", 2}, {"spawn", {{"polygon", {{1, 1}, {5, 1}, {5, 5}, {1, 5}}}}}, {"goals", {"exit"}}}}}};
+  const fs::path path = dir.write("bignav.json", scenario.dump());
+  CliProcess process({"check", path.string()}, dir.path());
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  process.signal(SIGINT);
+  // Between two tiles is well under a second; 10 s leaves room for a loaded machine.
+  const CliResult r = process.wait(std::chrono::seconds(10));
+  EXPECT_EQ(r.exitCode, 130) << r.err;
+  EXPECT_TRUE(contains(r.err, "throng: interrupted; ")) << r.err;
+}
+
 TEST(HostileInput, AHugePolygonIsChecked) {
   // A 200,000-vertex walkable circle (4 MB): the self-intersection test compared every pair of
   // edges and the navmesh rasterizer every edge for every row (over a minute); both are now

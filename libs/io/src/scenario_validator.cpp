@@ -411,6 +411,7 @@ class Validator {
   std::shared_ptr<const nav::NavMesh> navmeshFor(nav::NavMeshConfig& config) {
     config.agentRadius = desc_.maxRadius();
     config.cellSize = desc_.navCellSize;
+    config.cancel = cancel_;
     if (worldNavmesh_) {
       config.agentRadius = worldNavmesh_->config().agentRadius;
       return worldNavmesh_;

@@ -2,6 +2,7 @@
 // triangles) share: diagnostics helpers, Detour's reference-bit limits, and the assembly of built
 // tiles into one dtNavMesh plus its area table for randomPoint. Reads built tiles; writes the mesh.
 #pragma once
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -17,6 +18,11 @@ inline constexpr const char* kSource = "navmesh";
 // Detour packs tile index, polygon index and a salt into a dtPolyRef; the salt needs >= 10 bits.
 inline constexpr int kRefBits = static_cast<int>(sizeof(dtPolyRef) * 8);
 inline constexpr int kMinSaltBits = 10;
+
+/// Whether a build was asked to stop (NavMeshConfig::cancel).
+inline bool cancelled(const std::atomic<int>* cancel) {
+  return cancel != nullptr && cancel->load(std::memory_order_relaxed) != 0;
+}
 
 inline core::Diagnostic diag(std::string pointer, std::string what, std::string expected, std::string hint = {}) {
   core::Diagnostic d;

@@ -209,10 +209,14 @@ core::Result<std::shared_ptr<const NavMesh>> NavMesh::build(std::span<const Poly
   const auto obstacleRaster = detail::prepare(obstacles);
   std::vector<detail::TileOutput> tiles(static_cast<std::size_t>(tileCount));
   tbb::parallel_for(std::size_t{0}, tiles.size(), [&](std::size_t i) {
+    if (detail::cancelled(cfg.cancel)) return;  // Ctrl-C: the remaining tiles are skipped
     const int tx = static_cast<int>(i % static_cast<std::size_t>(tilesX));
     const int ty = static_cast<int>(i / static_cast<std::size_t>(tilesX));
     tiles[i] = detail::buildTile(settings, tx, ty, walkRaster, obstacleRaster);
   });
+  if (detail::cancelled(cfg.cancel)) {
+    return diag("", "interrupted: the navigation mesh build was stopped by a signal", "");
+  }
   detail::TileGrid grid;
   grid.originX = settings.originX;
   grid.originY = settings.originY;
@@ -230,6 +234,7 @@ core::Result<std::shared_ptr<const NavMesh>> NavMesh::build(std::span<const Poly
   std::shared_ptr<NavMesh> out(new NavMesh());
   out->mesh_ = mesh;
   out->config_ = cfg;
+  out->config_.cancel = nullptr;  // only for the build: the flag need not outlive it
   out->bounds_ = box;
   return std::shared_ptr<const NavMesh>(std::move(out));
 }

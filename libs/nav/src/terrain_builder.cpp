@@ -207,10 +207,14 @@ core::Result<std::shared_ptr<const NavMesh>> NavMesh::buildFromTerrain(const Ter
 
   std::vector<detail::TileOutput> built(tiles);
   tbb::parallel_for(std::size_t{0}, tiles, [&](std::size_t i) {
+    if (detail::cancelled(cfg.cancel)) return;  // Ctrl-C: the remaining tiles are skipped
     const int tx = static_cast<int>(i % static_cast<std::size_t>(tilesX));
     const int ty = static_cast<int>(i / static_cast<std::size_t>(tilesX));
     built[i] = detail::buildTerrainTile(settings, tx, ty, input, walkByTile[i], obsByTile[i]);
   });
+  if (detail::cancelled(cfg.cancel)) {
+    return diag("", "interrupted: the navigation mesh build was stopped by a signal", "");
+  }
 
   detail::TileGrid grid;
   grid.originX = settings.tile.originX;
@@ -250,6 +254,7 @@ core::Result<std::shared_ptr<const NavMesh>> NavMesh::buildFromTerrain(const Ter
   std::shared_ptr<NavMesh> out(new NavMesh());
   out->mesh_ = mesh;
   out->config_ = cfg;
+  out->config_.cancel = nullptr;  // only for the build: the flag need not outlive it
   out->bounds_ = box;
   out->layered_ = true;
   out->minHeight_ = lo <= hi ? lo : 0.0f;

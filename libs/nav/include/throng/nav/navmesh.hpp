@@ -3,6 +3,7 @@
 // a World is built; read-only afterwards, so any number of NavQuery objects (one per thread) can
 // query it at once.
 #pragma once
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -34,6 +35,9 @@ struct NavMeshConfig {
   float tileSize = 24.0f;    ///< tile edge [m] [Limit: > 4 * cellSize]. Smaller tiles mean smaller polygons and
                              ///< closer-to-shortest A* paths (300 m pillar field: mean path/straight ratio
                              ///< 1.026 at 24 m, 1.073 at 48 m) for ~10% more build time.
+  /// When set, a build stops between tiles soon after `*cancel` becomes non-zero (a signal handler
+  /// sets it: Ctrl-C during `throng check`) and fails with an "interrupted" diagnostic. Not owned.
+  const std::atomic<int>* cancel = nullptr;
 };
 
 /// A world's 3D walking geometry (multi-level worlds: floors joined by stairs or ramps). Scenario
