@@ -10,29 +10,25 @@
 
 namespace throng::core {
 
-namespace {
-
-/// Length of the well-formed UTF-8 sequence at text[i]; 0 when it is not one.
-std::size_t utf8Length(std::string_view text, std::size_t i) {
+std::size_t utf8SequenceLength(std::string_view text, std::size_t i) {
   const auto at = [&](std::size_t k) { return i + k < text.size() ? static_cast<unsigned char>(text[i + k]) : 0u; };
   const auto cont = [&](std::size_t k, unsigned lo = 0x80, unsigned hi = 0xBF) { return at(k) >= lo && at(k) <= hi; };
   const unsigned c = at(0);
+  if (i >= text.size()) return 0;
   if (c < 0x80) return 1;
   if (c >= 0xC2 && c <= 0xDF) return cont(1) ? 2 : 0;
   if (c == 0xE0) return cont(1, 0xA0) && cont(2) ? 3 : 0;
   if ((c >= 0xE1 && c <= 0xEC) || c == 0xEE || c == 0xEF) return cont(1) && cont(2) ? 3 : 0;
-  if (c == 0xED) return cont(1, 0x80, 0x9F) && cont(2) ? 3 : 0;
+  if (c == 0xED) return cont(1, 0x80, 0x9F) && cont(2) ? 3 : 0;  // no UTF-16 surrogates
   if (c == 0xF0) return cont(1, 0x90) && cont(2) && cont(3) ? 4 : 0;
   if (c >= 0xF1 && c <= 0xF3) return cont(1) && cont(2) && cont(3) ? 4 : 0;
   if (c == 0xF4) return cont(1, 0x80, 0x8F) && cont(2) && cont(3) ? 4 : 0;
   return 0;
 }
 
-}  // namespace
-
 bool isUtf8(std::string_view text) {
   for (std::size_t i = 0; i < text.size();) {
-    const std::size_t n = utf8Length(text, i);
+    const std::size_t n = utf8SequenceLength(text, i);
     if (n == 0) return false;
     i += n;
   }
@@ -50,7 +46,7 @@ std::string printable(std::string_view text, std::size_t maxCodePoints) {
     }
     ++kept;
     const auto c = static_cast<unsigned char>(text[i]);
-    const std::size_t n = utf8Length(text, i);
+    const std::size_t n = utf8SequenceLength(text, i);
     char buf[8];
     if (n == 0) {
       std::snprintf(buf, sizeof buf, "\\x%02X", c);

@@ -1,6 +1,8 @@
 // Text checks for what clients send (see text.hpp).
 #include "throng/hub/text.hpp"
 
+#include "throng/core/text.hpp"
+
 #include <cstdint>
 #include <cstdio>
 
@@ -8,32 +10,7 @@ namespace throng::hub {
 namespace {
 
 /// The length of the well-formed UTF-8 sequence starting at `i`, or 0 when it is ill-formed.
-std::size_t sequenceAt(std::string_view s, std::size_t i) {
-  const auto b = [&](std::size_t k) { return static_cast<std::uint8_t>(s[k]); };
-  const std::uint8_t c = b(i);
-  if (c < 0x80) return 1;
-  std::size_t n = 0;
-  std::uint8_t lo = 0x80, hi = 0xBF;  // the allowed range of the second byte
-  if (c >= 0xC2 && c <= 0xDF) {
-    n = 2;
-  } else if (c >= 0xE0 && c <= 0xEF) {
-    n = 3;
-    if (c == 0xE0) lo = 0xA0;  // no overlong forms
-    if (c == 0xED) hi = 0x9F;  // no surrogates
-  } else if (c >= 0xF0 && c <= 0xF4) {
-    n = 4;
-    if (c == 0xF0) lo = 0x90;  // no overlong forms
-    if (c == 0xF4) hi = 0x8F;  // nothing above U+10FFFF
-  } else {
-    return 0;
-  }
-  if (i + n > s.size()) return 0;
-  if (b(i + 1) < lo || b(i + 1) > hi) return 0;
-  for (std::size_t k = 2; k < n; ++k) {
-    if ((b(i + k) & 0xC0u) != 0x80u) return 0;
-  }
-  return n;
-}
+std::size_t sequenceAt(std::string_view s, std::size_t i) { return core::utf8SequenceLength(s, i); }
 
 std::string hex(std::uint8_t c) {
   char buf[8];

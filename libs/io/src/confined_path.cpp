@@ -3,19 +3,16 @@
 
 #include <system_error>
 
+#include "throng/core/text.hpp"
+
 namespace throng::io::detail {
 
 namespace fs = std::filesystem;
 
 namespace {
 
-/// The path as written, quoted, control characters shown as '?', long ones cut.
-std::string quoted(const std::string& s) {
-  std::string q = "\"";
-  for (const char c : s.substr(0, 120)) q += (static_cast<unsigned char>(c) < 0x20) ? '?' : c;
-  if (s.size() > 120) q += "...";
-  return q + "\"";
-}
+/// The path as written, quoted and safe to echo (core::printable: escapes, at most 120 characters).
+std::string quoted(const std::string& s) { return "\"" + core::printable(s, 120) + "\""; }
 
 bool isAbsolute(const std::string& named) {
   return fs::path(named).is_absolute() || (!named.empty() && (named.front() == '/' || named.front() == '\\')) ||

@@ -4,6 +4,8 @@
 // diagnostic ("unexpected X; expected Y") at the offending line:column.
 #include "json_document.hpp"
 
+#include "throng/core/text.hpp"
+
 #include <charconv>
 #include <cstdio>
 #include <cmath>
@@ -346,22 +348,6 @@ class JsonReader {
     }
   }
 
-  /// Length of the well-formed UTF-8 sequence starting at pos_ (a lead byte >= 0x80); 0 if it is
-  /// not one (stray continuation byte, overlong form, surrogate, beyond U+10FFFF, cut short).
-  std::size_t utf8Length() const {
-    const auto at = [&](std::size_t k) { return pos_ + k < text_.size() ? static_cast<unsigned char>(text_[pos_ + k]) : 0u; };
-    const unsigned c = at(0);
-    const auto cont = [&](std::size_t k, unsigned lo = 0x80, unsigned hi = 0xBF) { return at(k) >= lo && at(k) <= hi; };
-    if (c >= 0xC2 && c <= 0xDF) return cont(1) ? 2 : 0;
-    if (c == 0xE0) return cont(1, 0xA0) && cont(2) ? 3 : 0;
-    if ((c >= 0xE1 && c <= 0xEC) || c == 0xEE || c == 0xEF) return cont(1) && cont(2) ? 3 : 0;
-    if (c == 0xED) return cont(1, 0x80, 0x9F) && cont(2) ? 3 : 0;  // no UTF-16 surrogates
-    if (c == 0xF0) return cont(1, 0x90) && cont(2) && cont(3) ? 4 : 0;
-    if (c >= 0xF1 && c <= 0xF3) return cont(1) && cont(2) && cont(3) ? 4 : 0;
-    if (c == 0xF4) return cont(1, 0x80, 0x8F) && cont(2) && cont(3) ? 4 : 0;
-    return 0;
-  }
-
   static void appendUtf8(std::string& s, std::uint32_t cp) {
     if (cp < 0x80) {
       s += static_cast<char>(cp);
@@ -409,7 +395,7 @@ class JsonReader {
                     c == '\n' ? "a string cannot span lines" : "");
       }
       if (c >= 0x80) {
-        const std::size_t n = utf8Length();
+        const std::size_t n = core::utf8SequenceLength(text_, pos_);
         if (n == 0) {
           char buf[48];
           std::snprintf(buf, sizeof buf, "byte 0x%02X in a string is not UTF-8", c);

@@ -13,6 +13,10 @@ namespace throng::core {
 /// points kept (then "..." marks the cut; never inside a character).
 [[nodiscard]] std::string printable(std::string_view text, std::size_t maxCodePoints = static_cast<std::size_t>(-1));
 
+/// Length of the well-formed UTF-8 sequence starting at text[i] (1 for ASCII); 0 when it is not
+/// one (stray continuation byte, overlong form, surrogate, beyond U+10FFFF, cut short).
+[[nodiscard]] std::size_t utf8SequenceLength(std::string_view text, std::size_t i);
+
 /// Whether `text` is well-formed UTF-8 (no overlong forms, surrogates or code points > U+10FFFF).
 [[nodiscard]] bool isUtf8(std::string_view text);
 
