@@ -241,6 +241,53 @@ TEST(Groups, PermanentFollowerAdoptsTheLeadersGoals) {
   EXPECT_EQ(w->stats().exited, 4u);
 }
 
+// Followers walk to their leader's goals (World::Impl::currentGoalPoint, goals.cpp): they must also
+// slow down for the leader's action point, not for whatever their own list has at that index (the
+// steer phase once read the population's own goals and walked full speed into the stop).
+TEST(Groups, FollowersSlowDownForTheLeadersActionPoint) {
+  sim::ScenarioDesc d = hall(1, 1, false);
+  d.steering.accelerationTime = d.dt;  // no lag: the speed is the desired one
+  sim::PointDesc bench;
+  bench.id = "bench";
+  bench.kind = sim::PointKind::Action;
+  bench.position = {40, 10};
+  bench.radius = 1.0f;
+  bench.stop = true;
+  bench.actionDuration = 2.0f;
+  d.points.push_back(bench);                 // index 2
+  d.populations[0].goals = {0, 2};           // middle, then the bench (stop)
+  d.populations[0].speedSd = 0.0f;
+  sim::PopulationDesc follower = d.populations[0];
+  follower.id = "followers";
+  follower.goals = {0, 1};                   // its own list: middle, then the exit (no stop)
+  follower.spawn.polygon = {{1, 1}, {6, 1}, {6, 6}, {1, 6}};
+  follower.follow.mode = sim::FollowMode::Permanent;
+  follower.follow.population = 0;
+  follower.follow.group = 0;
+  d.populations.push_back(follower);
+  auto w = make(d);
+  ASSERT_TRUE(w);
+  core::TaskSystem tasks(1);
+  const sim::GroupId follows = w->group("followers", 0);
+  ASSERT_FALSE(follows.isNull());
+  const std::uint32_t followerId = w->groupInfo(follows)->members.at(0);
+  float lastSpeed = -1.0f, arrivalSpeed = -1.0f;
+  while (w->stats().time < 120 && arrivalSpeed < 0.0f) {
+    w->step(tasks);
+    const auto frame = w->snapshot();
+    for (const auto& e : frame->events) {
+      if (e.kind == sim::EventKind::ActionStart && e.agent == followerId) arrivalSpeed = lastSpeed;
+    }
+    for (std::size_t i = 0; i < frame->size(); ++i) {
+      if (frame->ids[i] == followerId) lastSpeed = std::hypot(frame->velX[i], frame->velY[i]);
+    }
+  }
+  ASSERT_GE(arrivalSpeed, 0.0f) << "the follower reached the leader's bench";
+  // Walking speed 1.3 m/s; slowing over steering.arrivalTime (0.5 s) it arrives within 0.3 m of its
+  // target at about 0.6 m/s (1.3 m/s when it does not slow down).
+  EXPECT_LT(arrivalSpeed, 0.9f) << "the follower slowed down before the stop";
+}
+
 TEST(Groups, TemporaryFollowingAlternates) {
   sim::ScenarioDesc d = hall(1, 2, true);
   d.populations[0].wander = true;  // the leader walks around for the whole run

@@ -99,7 +99,8 @@ void ScenarioReader::readSteering(const Json& v, const std::string& ptr, sim::St
   if (!isObject(v, ptr, "an object of steering parameters")) return;
   checkKeys(v, ptr,
             {"timeHorizon", "timeHorizonObstacle", "neighbourDistance", "maxNeighbours", "accelerationTime",
-             "denseNeighbourDistance", "denseThreshold", "lodDistance"},
+             "denseNeighbourDistance", "denseThreshold", "lodDistance", "cornerReach", "levelLookAhead", "arrivalTime",
+             "formationSpeedUp", "stuckPatience", "stuckAttempt"},
             "steering");
   const bool rangeOk = readFloatKeys(v, ptr, {{"timeHorizon", {0, 60, true, "s"}, &s.timeHorizon},
                                               {"timeHorizonObstacle", {0, 60, true, "s"}, &s.timeHorizonObstacle},
@@ -108,6 +109,16 @@ void ScenarioReader::readSteering(const Json& v, const std::string& ptr, sim::St
   if (auto* x = optional(v, "maxNeighbours")) {
     double d;
     if (readInteger(*x, ptr + "/maxNeighbours", 1, 1000, "agents", d)) s.maxNeighbours = static_cast<std::uint32_t>(d);
+  }
+  // The preferred velocity (steer phase): path corners, arrival, formation, deadlock breaking.
+  readFloatKeys(v, ptr, {{"cornerReach", {0, 5, true, "m"}, &s.cornerReach},
+                         {"arrivalTime", {0, 10, true, "s"}, &s.arrivalTime},
+                         {"formationSpeedUp", {1, 3, false, ""}, &s.formationSpeedUp},
+                         {"stuckPatience", {0, 60, true, "s"}, &s.stuckPatience},
+                         {"stuckAttempt", {0, 60, true, "s"}, &s.stuckAttempt}});
+  if (auto* x = optional(v, "levelLookAhead")) {
+    double d;
+    if (readInteger(*x, ptr + "/levelLookAhead", 1, 16, "corners", d)) s.levelLookAhead = static_cast<std::uint32_t>(d);
   }
   // The crowd model's density-dependent range and multiresolution (Musse et al. §3.2.4).
   readFloatKeys(v, ptr, {{"denseThreshold", {0, 100, true, "agents/m²"}, &s.denseThreshold},
@@ -298,7 +309,8 @@ bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::
   if (!isObject(v, ptr, "a population object {\"id\", \"groups\", \"size\", \"spawn\", \"goals\", ...}")) return false;
   checkKeys(v, ptr,
             {"id", "groups", "size", "spawn", "start", "goals", "speed", "radius", "wander", "paths", "autoNearDistance",
-             "flocking", "waitTimeout", "groupSpacing", "follow", "guide", "sociological", "interests", "interestsPerAgent", "preferences"},
+             "flocking", "waitTimeout", "groupSpacing", "follow", "guide", "sociological", "interests", "interestsPerAgent", "preferences",
+             "model"},
             "a population");
   bool ok = true;
   p.id = "population" + std::to_string(index);
@@ -350,6 +362,7 @@ bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::
   if (auto* x = optional(v, "speed")) ok = readSpeed(*x, ptr + "/speed", p) && ok;
   if (auto* x = optional(v, "radius")) ok = readFloat(*x, ptr + "/radius", {0.05, 1.0, false, "m"}, p.radius) && ok;
   if (auto* x = optional(v, "wander")) ok = readBool(*x, ptr + "/wander", p.wander) && ok;
+  if (auto* x = optional(v, "model")) ok = readModel(*x, ptr + "/model", p.model) && ok;
   ok = readInterests(v, ptr, p) && ok;
   return readCrowdKeys(v, ptr, index, p) && ok;
 }

@@ -301,6 +301,8 @@ class ScenarioReader {
   bool readSpeed(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   bool readGoals(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   bool readCrowdKeys(const Json& v, const std::string& ptr, std::size_t index, sim::PopulationDesc& p);
+  /// "model" (scenario_model_parser.cpp): a model name, or {"name", parameters of that model}.
+  bool readModel(const Json& v, const std::string& ptr, sim::ModelDesc& m);
   bool readFollow(const Json& v, const std::string& ptr, std::size_t index, sim::FollowDesc& f);
   bool readGuide(const Json& v, const std::string& ptr, sim::GuideDesc& g);
   bool readGuideScript(const Json& v, const std::string& ptr, std::vector<sim::GuideWaypoint>& out, bool& firstTimeOk);

@@ -261,4 +261,40 @@ std::vector<Polygon> NavMesh::polygons() const {
   return out;
 }
 
+std::vector<core::Segment> NavMesh::boundary(std::vector<float>* heights) const {
+  std::vector<core::Segment> out;
+  const dtNavMesh* nav = mesh_;
+  if (nav == nullptr) return out;
+  for (int t = 0; t < nav->getMaxTiles(); ++t) {
+    const dtMeshTile* tile = nav->getTile(t);
+    if (tile == nullptr || tile->header == nullptr) continue;
+    for (int p = 0; p < tile->header->polyCount; ++p) {
+      const dtPoly& poly = tile->polys[p];
+      if (poly.getType() != DT_POLYTYPE_GROUND) continue;
+      for (int e = 0; e < poly.vertCount; ++e) {
+        bool boundary;
+        if (poly.neis[e] & DT_EXT_LINK) {
+          // Tile border: a wall only where no link crosses this edge.
+          boundary = true;
+          for (unsigned int k = poly.firstLink; k != DT_NULL_LINK; k = tile->links[k].next) {
+            if (tile->links[k].edge == e) { boundary = false; break; }
+          }
+        } else {
+          boundary = poly.neis[e] == 0;
+        }
+        if (!boundary) continue;
+        const float* va = &tile->verts[poly.verts[e] * 3];
+        const float* vb = &tile->verts[poly.verts[(e + 1) % poly.vertCount] * 3];
+        // Recast is y-up: our plane is (x, z).
+        out.push_back({core::Vec2{va[0], va[2]}, core::Vec2{vb[0], vb[2]}});
+        if (heights) {
+          heights->push_back(va[1]);
+          heights->push_back(vb[1]);
+        }
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace throng::nav

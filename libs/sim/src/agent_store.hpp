@@ -30,7 +30,28 @@ inline constexpr std::uint16_t kNoClip = 0xffff;
 /// retargeting (guidance, following) leaves the agent alone; it rejoins its group when done.
 [[nodiscard]] inline bool holdsOwnTarget(GoalState s) { return s == GoalState::Acting || s == GoalState::Scripted; }
 
+/// "None" for a stable agent id.
 inline constexpr std::uint32_t kNoAgent = 0xffffffffu;
+/// "None" for a stable group id.
+inline constexpr std::uint32_t kNoGroup = 0xffffffffu;
+/// "None" for a point index (ScenarioDesc::points), as the recorded events write it.
+inline constexpr std::uint32_t kNoPoint = 0xffffffffu;
+/// "None" for an index into a side table (GroupState::extra, GroupExtra::route) or a coordination id.
+inline constexpr std::uint32_t kNoIndex = 0xffffffffu;
+
+/// A goal change decide asks the group pass for (target draws are serial).
+enum class GoalPending : std::uint8_t {
+  None = 0,
+  NextGoal = 1,          ///< go on to the next goal of the list
+  NextWanderTarget = 2,  ///< wandering: draw the next random target
+};
+
+/// What meeting an agent of another group did to this one (sociological model, decide → group pass).
+enum class SocialEffect : std::uint8_t {
+  None = 0,
+  JoinGroup = 1,    ///< joins the other agent's group
+  FollowAgent = 2,  ///< follows the other agent for a while
+};
 
 /// Columns are grouped by the features that use them. The optional groups exist (have one entry per
 /// row) only when the scenario can use them; otherwise they stay empty and the accessors below
@@ -66,7 +87,7 @@ struct AgentStore {
   std::vector<float> progressDistance;    ///< distance to target at the last progress check [m]
   std::vector<float> stuckTime;           ///< how long the agent has wanted to walk but barely moved [s]
   std::vector<std::uint8_t> dynamicTarget; ///< target set by a guide or a followed agent: approached slowing down
-  std::vector<std::uint8_t> goalPending;  ///< decide → group pass: 1 = go on to the next goal, 2 = next wander target
+  std::vector<GoalPending> goalPending;  ///< decide → group pass
   std::vector<std::int32_t> targetSub;    ///< sub-region holding the target (index into pointSubOffset space), -1 none
   std::vector<std::uint16_t> animClip;    ///< motion clip playing (animation.hpp)
   std::vector<float> animPhase;           ///< its phase in [0, 1)
@@ -81,7 +102,7 @@ struct AgentStore {
   bool sociological = false;
   std::vector<std::uint32_t> followAgent; ///< stable id of the agent followed, kNoAgent if none
   std::vector<std::uint32_t> followUntil; ///< tick that following ends (32 bits, as actionEndTick)
-  std::vector<std::uint8_t> socialEffect; ///< decide → group pass: 0 none, 1 join, 2 follow (+ other agent in socialOther)
+  std::vector<SocialEffect> socialEffect; ///< decide → group pass (the other agent in socialOther)
   std::vector<std::uint32_t> socialOther; ///< the agent met
   // Common Ground (social.cpp; only when the scenario's social section is on).
   bool commonGround = false;

@@ -59,11 +59,7 @@ void World::Impl::decideGroups(const core::TaskSystem& tasks) {
     startCoordinations();
     runCoordinations();
   }
-  if (busyDirty) {
-    busyGroups.clear();
-    for (std::uint32_t gid = 0; gid < groups.size(); ++gid) if (groups[gid].busy) busyGroups.push_back(gid);
-    busyDirty = false;
-  }
+  groups.refreshBusy();
   updateGuidance();
   updateFollowing();
   if (anySocial) applySocialEffects();
@@ -73,85 +69,9 @@ void World::Impl::decideGroups(const core::TaskSystem& tasks) {
   updateGroupShapes(tasks);
 }
 
-void World::Impl::applyPendingGoals() {
-  // Rows flagged by decide, chunk by chunk: ascending row order, whatever the threads.
-  const nav::NavQuery& query = *mainQuery;
-  for (ChunkOutput& c : chunks) {
-    for (const std::uint32_t r : c.pendingRows) {
-      const std::uint8_t pending = agents.goalPending[r];
-      agents.goalPending[r] = 0;
-      if (pending == 1) {
-        advanceGoal(r, query);
-      } else if (pending == 2) {
-        setGoal(r, static_cast<std::uint32_t>(activeGoals(groups[agents.group[r]]).size()), query);
-      }
-    }
-    c.pendingRows.clear();
-  }
-}
-
-void World::Impl::bezierPath(std::size_t row, const nav::NavQuery& query) {
-  // Seek goal with a Bézier curve (Musse et al. §3.2.2), verified inside the walkable surface by
-  // the control boxes' convex-hull property; where no curve fits, the navmesh path is used and the
-  // fallback is recorded.
-  const core::Vec2 from{agents.posX[row], agents.posY[row]};
-  const core::Vec2 to{agents.targetX[row], agents.targetY[row]};
-  const crowd::NavMeshWalkable walkable(query);
-  core::Rng rng(desc.seed, (static_cast<std::uint64_t>(agents.id[row]) << 20) ^ agents.targetDraws[row],
-                core::RngPurpose::Behaviour);
-  const auto curve = crowd::buildPath(from, to, walkable, crowd::BezierPathParams{}, rng);
-  const std::vector<std::uint32_t>& goals = activeGoals(groups[agents.group[row]]);
-  const std::uint32_t cursor = agents.goalCursor[row];
-  if (!curve) {
-    pendingEvents.push_back({tick, agents.id[row], EventKind::PathFallback, cursor < goals.size() ? goals[cursor] : kNoAgent, 0});
-    return;  // needPath stays set: plan asks the navmesh
-  }
-  std::vector<core::Vec2> points;
-  crowd::sample(curve->points, 0.1f, points);
-  if (!points.empty() && core::lengthSq(points.front() - from) < 1e-6f) points.erase(points.begin());
-  agents.corners[row].assign(points);
-  agents.needPath[row] = 0;
-}
-
-void World::Impl::reconstructGoals(std::uint32_t gid, core::Vec2 anchor) {
-  // Paths automatic reconstruction (Musse et al. §3.1.2): a random final action point, a Bézier
-  // curve from the group's initial position to it, and every interest point near the curve
-  // becomes a goal on the way, in the order the curve passes them.
-  GroupState& g = groups[gid];
-  const PopulationDesc& pop = desc.populations[g.population];
-  std::vector<std::uint32_t> actions, interests;
-  std::vector<crowd::Region> regions;
-  for (std::uint32_t p = 0; p < desc.points.size(); ++p) {
-    const PointDesc& point = desc.points[p];
-    if (point.kind == PointKind::Action) actions.push_back(p);
-    if (point.kind == PointKind::Interest) {
-      interests.push_back(p);
-      regions.push_back(point.polygon.empty() ? crowd::Region::disc(point.position, point.radius) : crowd::Region::poly(point.polygon));
-    }
-  }
-  if (actions.empty()) return;  // validation requires one; keep the explicit list otherwise
-  core::Rng rng(desc.seed, gid, core::RngPurpose::Goal);
-  const std::uint32_t final = actions[rng.uniformInt(0, static_cast<std::uint32_t>(actions.size() - 1))];
-  const crowd::NavMeshWalkable walkable(*mainQuery);
-  const auto path = crowd::reconstructPath(anchor, desc.points[final].position, regions, pop.autoNearDistance,
-                                           crowd::ReconstructParams{}, rng, &walkable);
-  std::vector<std::uint32_t> goals;
-  if (path) {
-    for (std::uint32_t ip : path->visited) {
-      const std::uint32_t point = interests[ip];
-      if (goals.empty() || goals.back() != point) goals.push_back(point);
-    }
-  } else {
-    pendingEvents.push_back({tick, kNoAgent, EventKind::PathFallback, final, gid});
-  }
-  goals.push_back(final);
-  g.goalList = static_cast<std::uint32_t>(goalLists.size());
-  goalLists.push_back(std::move(goals));
-}
-
 void World::Impl::applyGroupCommands() {
   for (const GroupCommand& c : commands) {
-    GroupRoute& x = routeFor(c.group);
+    GroupRoute& x = groups.routeFor(c.group);
     if (c.guide) {
       x.guidedByApi = true;
       x.guide = c.position;
@@ -166,11 +86,11 @@ void World::Impl::applyGroupCommands() {
 void World::Impl::updateGuidance() {
   const nav::NavQuery& query = *mainQuery;
   const float now = static_cast<float>(static_cast<double>(tick) * desc.dt);
-  for (const std::uint32_t gid : busyGroups) {
+  for (const std::uint32_t gid : groups.busy()) {
     GroupState& g = groups[gid];
-    if (!hasRoute(g)) continue;  // never guided
-    GroupRoute& x = groupRoutes[extraOf(g).route];
-    const GroupExtra& shape = extraOf(g);
+    if (!groups.hasRoute(g)) continue;  // never guided
+    GroupRoute& x = groups.routeFor(gid);
+    const GroupExtra& shape = groups.extraOf(g);
     const PopulationDesc& pop = desc.populations[g.population];
     const GuideDesc& script = pop.guide;
     bool guided = x.guidedByApi;
@@ -227,10 +147,10 @@ void World::Impl::updateGuidance() {
 
 void World::Impl::updateFollowing() {
   const nav::NavQuery& query = *mainQuery;
-  for (const std::uint32_t gid : busyGroups) {
+  for (const std::uint32_t gid : groups.busy()) {
     GroupState& g = groups[gid];
-    if (!hasRoute(g)) continue;  // follows nobody
-    GroupRoute& x = groupRoutes[extraOf(g).route];
+    if (!groups.hasRoute(g)) continue;  // follows nobody
+    GroupRoute& x = groups.routeFor(gid);
     if (x.followGroup == kNoAgent || g.guided) continue;
     const FollowDesc& f = desc.populations[g.population].follow;
     const GroupState& leader = groups[x.followGroup];
@@ -252,7 +172,7 @@ void World::Impl::updateFollowing() {
         x.ownCursor = g.cursor;
         g.following = true;
         g.cursor = leader.cursor;
-        extraOf(g).waiting = false;
+        groups.extraOf(g).waiting = false;
         for (std::uint32_t id : g.members) {
           const std::uint32_t r = rowOfId[id];
           if (agents.goalState[r] != GoalState::Exited && !holdsOwnTarget(agents.goalState[r])) setGoal(r, g.cursor, query);
@@ -260,7 +180,7 @@ void World::Impl::updateFollowing() {
       } else {
         g.following = false;
         g.cursor = x.ownCursor;
-        extraOf(g).waiting = false;
+        groups.extraOf(g).waiting = false;
         for (std::uint32_t id : g.members) {
           const std::uint32_t r = rowOfId[id];
           if (agents.goalState[r] != GoalState::Exited && !holdsOwnTarget(agents.goalState[r])) setGoal(r, g.cursor, query);
@@ -273,7 +193,7 @@ void World::Impl::updateFollowing() {
 void World::Impl::applySocialEffects() {
   const nav::NavQuery& query = *mainQuery;
   for (std::size_t r = 0; r < agents.size(); ++r) {
-    if (agents.followAgent[r] == kNoAgent && agents.socialEffect[r] == 0) continue;
+    if (agents.followAgent[r] == kNoAgent && agents.socialEffect[r] == SocialEffect::None) continue;
     // Ongoing following of another agent: chase it, end it when time is up or it left.
     if (agents.followAgent[r] != kNoAgent) {
       const std::uint32_t other = agents.followAgent[r] < rowOfId.size() ? rowOfId[agents.followAgent[r]] : kNoAgent;
@@ -294,13 +214,13 @@ void World::Impl::applySocialEffects() {
         }
       }
     }
-    const std::uint32_t effect = agents.socialEffect[r];
-    if (effect == 0) continue;
-    agents.socialEffect[r] = 0;
+    const SocialEffect effect = agents.socialEffect[r];
+    if (effect == SocialEffect::None) continue;
+    agents.socialEffect[r] = SocialEffect::None;
     const std::uint32_t other = agents.socialOther[r] < rowOfId.size() ? rowOfId[agents.socialOther[r]] : kNoAgent;
     if (other == kNoAgent) continue;
     const SociologicalDesc& social = desc.populations[agents.population[r]].sociological;
-    if (effect == 1) {
+    if (effect == SocialEffect::JoinGroup) {
       // Join the other agent's group: adopt its goals and speed.
       const std::uint32_t from = agents.group[r], to = agents.group[other];
       if (from == to || groups[to].guided) continue;
@@ -310,11 +230,11 @@ void World::Impl::applySocialEffects() {
       members.insert(std::upper_bound(members.begin(), members.end(), agents.id[r]), agents.id[r]);
       agents.group[r] = to;
       agents.groupSize[r] = static_cast<std::uint16_t>(std::min<std::size_t>(members.size(), 0xffff));
-      markBusy(to);
+      groups.markBusy(to);
       if (groups[to].flocks(desc.populations[groups[to].population])) agents.speed[r] = groupSpeed(to);
       pendingEvents.push_back({tick, agents.id[r], EventKind::JoinGroup, from, to});
       if (agents.goalState[r] != GoalState::Acting) setGoal(r, groups[to].cursor, query);
-    } else if (effect == 2) {
+    } else if (effect == SocialEffect::FollowAgent) {
       agents.followAgent[r] = agents.id[other];
       agents.followUntil[r] = static_cast<std::uint32_t>(tick + static_cast<std::uint64_t>(std::lround(social.followDuration / desc.dt)));
       agents.goalState[r] = GoalState::Seeking;
@@ -326,9 +246,9 @@ void World::Impl::applySocialEffects() {
 
 void World::Impl::updateWaiting() {
   const nav::NavQuery& query = *mainQuery;
-  for (const std::uint32_t gid : busyGroups) {
+  for (const std::uint32_t gid : groups.busy()) {
     GroupState& g = groups[gid];
-    GroupExtra& x = extraOf(g);
+    GroupExtra& x = groups.extraOf(g);
     const PopulationDesc& pop = desc.populations[g.population];
     if (x.coordination != kNoAgent) continue;  // members are playing a script: nobody waits or leaves
     if (!g.flocks(pop) || g.guided) {
@@ -350,7 +270,7 @@ void World::Impl::updateWaiting() {
     const bool timedOut = static_cast<double>(tick - x.waitStart) * desc.dt >= pop.waitTimeout;
     if (!everyone && !timedOut) continue;
     // A following group never overtakes: it leaves a goal only once the followed group has left it.
-    const std::uint32_t followed = routeOf(g).followGroup;
+    const std::uint32_t followed = groups.routeOf(g).followGroup;
     if (g.following && !groups[followed].members.empty() && groups[followed].cursor <= g.cursor) continue;
     const std::uint32_t missing = static_cast<std::uint32_t>(g.expected > waiting ? g.expected - waiting : 0);
     pendingEvents.push_back({tick, g.members.front(), everyone ? EventKind::GroupRelease : EventKind::GroupTimeout, point,
@@ -365,7 +285,7 @@ void World::Impl::updateWaiting() {
 }
 
 void World::Impl::updateLeaders() {
-  for (const std::uint32_t gid : busyGroups) {
+  for (const std::uint32_t gid : groups.busy()) {
     GroupState& g = groups[gid];
     if (g.members.empty()) {
       g.leader = kNoAgent;
@@ -394,16 +314,16 @@ void World::Impl::updateLeaders() {
 
 void World::Impl::updateGroupShapes(const core::TaskSystem& tasks) {
   // Parallel over groups: a group writes its own centroid and heading and its members' rows only.
-  tasks.parallelFor(busyGroups.size(), tasks.grain(512), [&](std::size_t begin, std::size_t end) {
+  tasks.parallelFor(groups.busy().size(), tasks.grain(512), [&](std::size_t begin, std::size_t end) {
     WorkerScratch& ws = worker(tasks);
-    for (std::size_t i = begin; i < end; ++i) shapeGroup(groups[busyGroups[i]], ws);
+    for (std::size_t i = begin; i < end; ++i) shapeGroup(groups[groups.busy()[i]], ws);
   });
 }
 
 void World::Impl::shapeGroup(GroupState& g, WorkerScratch& ws) {
   const PopulationDesc& pop = desc.populations[g.population];
   if (g.members.empty()) return;
-  GroupExtra& x = extraOf(g);
+  GroupExtra& x = groups.extraOf(g);
   const bool flocking = g.flocks(pop) && g.members.size() >= 2 && x.coordination == kNoAgent;
   if (!flocking && !g.guided) {
     for (std::uint32_t id : g.members) agents.setFormVel(rowOfId[id], 0.0f, 0.0f);

@@ -218,6 +218,7 @@ void World::Impl::insertCrowdNow(CrowdState& c) {
     anySocial = anySocial || pop.sociological.enabled;
     desc.populations.push_back(std::move(pop));
   }
+  configureModels();  // a crowd may walk with a model the world had no use for
   if (desc.social.enabled) {
     attractionPoints.clear();
     for (std::uint32_t p = 0; p < desc.points.size(); ++p) {
@@ -234,26 +235,7 @@ void World::Impl::insertCrowdNow(CrowdState& c) {
     }
   }
 
-  // Groups: sizes drawn per stable group id (as planPopulations), own goal lists.
-  for (std::uint32_t p = firstPopulation; p < desc.populations.size(); ++p) {
-    const PopulationDesc& pop = desc.populations[p];
-    const auto goalList = static_cast<std::uint32_t>(goalLists.size());
-    goalLists.push_back(pop.goals);
-    firstGroupId.push_back(static_cast<std::uint32_t>(groups.size()));
-    std::vector<std::uint32_t> sizes(pop.groups);
-    for (std::uint32_t g = 0; g < pop.groups; ++g) {
-      const auto gid = static_cast<std::uint32_t>(groups.size());
-      core::Rng rng(desc.seed, gid, core::RngPurpose::GroupSize);
-      sizes[g] = pop.sizeMin == pop.sizeMax ? pop.sizeMin : rng.uniformInt(pop.sizeMin, pop.sizeMax);
-      stats.scheduled += sizes[g];
-      GroupState state;
-      state.population = static_cast<std::uint16_t>(p);
-      state.expected = sizes[g];
-      state.goalList = goalList;
-      groups.push_back(std::move(state));
-    }
-    groupSizes.push_back(std::move(sizes));
-  }
+  registerGroups(firstPopulation);  // as the scenario's own groups
 
   // Optional agent columns the new populations need and the world did not have yet.
   bool formation = false, sociological = false;
@@ -271,27 +253,9 @@ void World::Impl::insertCrowdNow(CrowdState& c) {
     agents.sociological = true;
     agents.followAgent.assign(rows, kNoAgent);
     agents.followUntil.assign(rows, 0);
-    agents.socialEffect.assign(rows, 0);
+    agents.socialEffect.assign(rows, SocialEffect::None);
     agents.socialOther.assign(rows, 0);
   }
-
-  // Busy groups, routes and cold parts, as planPopulations does for the scenario's own groups.
-  for (auto gid = firstGroup; gid < groups.size(); ++gid) {
-    const PopulationDesc& pop = desc.populations[groups[gid].population];
-    const FollowDesc& f = pop.follow;
-    if (f.mode != FollowMode::None && f.population < firstGroupId.size() && f.group < desc.populations[f.population].groups) {
-      const std::uint32_t followed = firstGroupId[f.population] + f.group;
-      markBusy(followed);
-      routeFor(gid).followGroup = followed;
-    }
-    if (!pop.guide.script.empty()) routeFor(gid);
-    if ((pop.flocking && groups[gid].expected >= 2) || pop.sociological.enabled) markBusy(gid);
-    if (desc.social.enabled && groups[gid].extra == kNoAgent) {
-      groups[gid].extra = static_cast<std::uint32_t>(groupExtras.size());
-      groupExtras.emplace_back();
-    }
-  }
-  busyDirty = true;
 
   c.info.applied = true;
   c.info.insertTick = tick;

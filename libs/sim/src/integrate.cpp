@@ -66,10 +66,8 @@ void World::Impl::integrate(const core::TaskSystem& tasks) {
       // Animation: the walk cycle advances with distance, idle with time, an action with its clock.
       const float step = core::length(moved);
       if (agents.goalState[row] == GoalState::Acting) {
-        const GroupState& g = groups[agents.group[row]];
-        const std::vector<std::uint32_t>& goals = activeGoals(g);
-        const std::uint32_t cursor = agents.goalCursor[row];
-        const std::uint32_t point = cursor < goals.size() ? goals[cursor] : 0;
+        const std::uint32_t goal = currentGoalPoint(row);
+        const std::uint32_t point = goal == kNoPoint ? 0 : goal;
         const float total = std::max(h, desc.points[point].actionDuration);
         const float left = static_cast<float>(agents.actionEndTick[row] > tick ? agents.actionEndTick[row] - tick : 0) * h;
         setClip(row, pointClip[point], std::clamp(1.0f - left / total, 0.0f, 0.999f));

@@ -28,10 +28,7 @@ void World::Impl::plan() {
     nav::PathResult result = pathQueue->take(t);
     if (result.status == nav::PathStatus::Failed) continue;
     if (result.status == nav::PathStatus::Partial) {
-      const PopulationDesc& pop = desc.populations[agents.population[row]];
-      const std::uint32_t cursor = agents.goalCursor[row];
-      const std::uint32_t point = cursor < pop.goals.size() ? pop.goals[cursor] : static_cast<std::uint32_t>(-1);
-      pendingEvents.push_back({tick, agents.id[row], EventKind::PathPartial, point, 0});
+      pendingEvents.push_back({tick, agents.id[row], EventKind::PathPartial, currentGoalPoint(row), 0});
     }
     agents.corners[row].assign(result.corners);
   }

@@ -79,7 +79,7 @@ void World::Impl::generateGoal(std::size_t row, ChunkOutput& out, const nav::Nav
   const SocialDesc& social = desc.social;
   if (!social.enabled || agents.desirePoint[row] != kNoAgent || tick < agents.socialReady[row]) return;
   const GroupState& g = groups[agents.group[row]];
-  if (extraOf(g).coordination != kNoAgent || g.guided || g.following || agents.followedAgent(row) != kNoAgent) return;
+  if (groups.extraOf(g).coordination != kNoAgent || g.guided || g.following || agents.followedAgent(row) != kNoAgent) return;
   const std::uint32_t id = agents.id[row];
   const core::Vec2 pos{agents.posX[row], agents.posY[row]};
   auto want = [&](std::uint32_t point, GoalTrigger trigger) {
@@ -139,7 +139,7 @@ void World::Impl::startCoordinations() {
       if (point == kNoAgent || agents.goalState[row] != GoalState::Seeking || agents.coordination[row] != kNoAgent) continue;
       const std::uint32_t gid = agents.group[row];
       GroupState& g = groups[gid];
-      if (extraOf(g).coordination != kNoAgent) continue;  // a mate got there first this tick
+      if (groups.extraOf(g).coordination != kNoAgent) continue;  // a mate got there first this tick
       const std::uint32_t aId = agents.id[row];
       const PointDesc& place = desc.points[point];
 
@@ -305,8 +305,8 @@ void World::Impl::startCoordinations() {
         agents.needPath[r] = 0;
         agents.ticket[r] = 0;
       }
-      if (!alone) extraOf(g).coordination = c.record.id;
-      markBusy(gid);
+      if (!alone) groups.extraOf(g).coordination = c.record.id;
+      groups.markBusy(gid);
       pendingEvents.push_back({tick, aId, EventKind::GoalGenerated, point, static_cast<std::uint32_t>(trigger)});
       pendingEvents.push_back({tick, aId, EventKind::CoordinationStart, c.record.id, gid});
       coordinations.emplace(c.record.id, std::move(c));

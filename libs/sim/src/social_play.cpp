@@ -226,11 +226,11 @@ void World::Impl::runCoordinations() {
 void World::Impl::finishCoordination(ActiveCoordination& c, double now) {
   c.record.end = now;
   if (c.record.executeTime <= 0.0) c.record.executeTime = now;
-  GroupExtra& x = extraOf(groups[c.record.group]);
+  GroupExtra& x = groups.extraOf(groups[c.record.group]);
   if (x.coordination == c.record.id) x.coordination = kNoAgent;
   if (c.divides && !c.reunitedOnReturn) {
     x.reunite = c.record.id;
-    markBusy(c.record.group);
+    groups.markBusy(c.record.group);
   }
   pendingEvents.push_back({tick, c.record.initiator, EventKind::CoordinationEnd, c.record.id,
                            static_cast<std::uint32_t>(c.record.outcome)});
@@ -238,9 +238,9 @@ void World::Impl::finishCoordination(ActiveCoordination& c, double now) {
 }
 
 void World::Impl::checkReunions() {
-  for (const std::uint32_t gid : busyGroups) {
+  for (const std::uint32_t gid : groups.busy()) {
     GroupState& g = groups[gid];
-    GroupExtra& x = extraOf(g);
+    GroupExtra& x = groups.extraOf(g);
     if (x.reunite == kNoAgent || x.coordination != kNoAgent) continue;
     if (g.members.size() < 2) {
       x.reunite = kNoAgent;

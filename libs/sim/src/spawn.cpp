@@ -122,30 +122,7 @@ core::Vec2 sampleDisc(core::Vec2 centre, float radius, core::Rng& rng) {
 }  // namespace
 
 void World::Impl::planPopulations() {
-  for (const PopulationDesc& pop : desc.populations) goalLists.push_back(pop.goals);
-  std::size_t totalGroups = 0;
-  for (const PopulationDesc& pop : desc.populations) totalGroups += pop.groups;
-  groups.reserve(totalGroups);
-  std::uint32_t scheduled = 0;
-  std::uint32_t groupId = 0;
-  for (std::size_t p = 0; p < desc.populations.size(); ++p) {
-    const PopulationDesc& pop = desc.populations[p];
-    firstGroupId.push_back(groupId);
-    std::vector<std::uint32_t> sizes(pop.groups);
-    for (std::uint32_t g = 0; g < pop.groups; ++g) {
-      core::Rng rng(desc.seed, groupId + g, core::RngPurpose::GroupSize);
-      sizes[g] = pop.sizeMin == pop.sizeMax ? pop.sizeMin : rng.uniformInt(pop.sizeMin, pop.sizeMax);
-      scheduled += sizes[g];
-      GroupState state;
-      state.population = static_cast<std::uint16_t>(p);
-      state.expected = sizes[g];
-      state.goalList = static_cast<std::uint32_t>(p);
-      groups.push_back(std::move(state));
-    }
-    groupId += pop.groups;
-    groupSizes.push_back(std::move(sizes));
-  }
-  stats.scheduled = scheduled;
+  const std::uint32_t scheduled = registerGroups(0);
   // Optional agent columns: only the features some population (or the scenario) uses.
   for (const PopulationDesc& pop : desc.populations) {
     agents.formation = agents.formation || (pop.flocking && pop.sizeMax >= 2);
@@ -154,33 +131,58 @@ void World::Impl::planPopulations() {
   agents.commonGround = desc.social.enabled;
   // Every agent that will ever exist is known: exact capacity, no doubling slack on the columns.
   agents.forEachColumn([&](auto& column) { column.reserve(scheduled); });
-  // Cold group parts: at most one per busy group (a follower and the group it follows: two).
-  std::size_t extras = 0;
-  for (const GroupState& g : groups) {
-    const PopulationDesc& pop = desc.populations[g.population];
-    if (desc.social.enabled) ++extras;
-    else extras += (pop.follow.mode != FollowMode::None ? 2 : 0) +
-                   ((pop.flocking && g.expected >= 2) || !pop.guide.script.empty() || pop.sociological.enabled ? 1 : 0);
+}
+
+std::uint32_t World::Impl::registerGroups(std::uint32_t firstPopulation) {
+  // Group sizes are drawn per stable group id, so a group is the same whether its population came
+  // with the scenario or with a crowd.
+  THRONG_ASSERT(groupSizes.size() == firstPopulation && firstGroupId.size() == firstPopulation);
+  const std::uint32_t firstGroup = groups.size();
+  std::uint32_t gid = firstGroup, scheduled = 0;
+  std::size_t extras = 0;  // cold parts: at most one per busy group (a follower and the group it follows: two)
+  for (std::size_t p = firstPopulation; p < desc.populations.size(); ++p) {
+    const PopulationDesc& pop = desc.populations[p];
+    std::vector<std::uint32_t> sizes(pop.groups);
+    for (std::uint32_t& size : sizes) {
+      core::Rng rng(desc.seed, gid++, core::RngPurpose::GroupSize);
+      size = pop.sizeMin == pop.sizeMax ? pop.sizeMin : rng.uniformInt(pop.sizeMin, pop.sizeMax);
+      scheduled += size;
+      if (desc.social.enabled) ++extras;
+      else extras += (pop.follow.mode != FollowMode::None ? 2 : 0) +
+                     ((pop.flocking && size >= 2) || !pop.guide.script.empty() || pop.sociological.enabled ? 1 : 0);
+    }
+    groupSizes.push_back(std::move(sizes));
   }
-  groupExtras.reserve(std::min(extras, groups.size()));
-  for (std::uint32_t gid = 0; gid < groups.size(); ++gid) {
-    GroupState& g = groups[gid];
-    const PopulationDesc& pop = desc.populations[g.population];
+  groups.reserve(gid, std::min<std::size_t>(extras, gid));
+  // One goal list per population (automatic goals add one per group when it spawns), then its groups.
+  for (std::size_t p = firstPopulation; p < desc.populations.size(); ++p) {
+    const auto goalList = static_cast<std::uint32_t>(goalLists.size());
+    goalLists.push_back(desc.populations[p].goals);
+    firstGroupId.push_back(groups.size());
+    for (const std::uint32_t size : groupSizes[p]) {
+      GroupState state;
+      state.population = static_cast<std::uint16_t>(p);
+      state.expected = size;
+      state.goalList = goalList;
+      groups.add(std::move(state));
+    }
+  }
+  stats.scheduled += scheduled;
+  // Busy groups, routes and cold parts.
+  for (std::uint32_t gid = firstGroup; gid < groups.size(); ++gid) {
+    const PopulationDesc& pop = desc.populations[groups[gid].population];
     const FollowDesc& f = pop.follow;
     if (f.mode != FollowMode::None && f.population < firstGroupId.size() && f.group < desc.populations[f.population].groups) {
       const std::uint32_t followed = firstGroupId[f.population] + f.group;
-      markBusy(followed);
-      routeFor(gid).followGroup = followed;
+      groups.markBusy(followed);
+      groups.routeFor(gid).followGroup = followed;
     }
-    if (!pop.guide.script.empty()) routeFor(gid);
-    if ((pop.flocking && g.expected >= 2) || pop.sociological.enabled) markBusy(gid);
+    if (!pop.guide.script.empty()) groups.routeFor(gid);
+    if ((pop.flocking && groups[gid].expected >= 2) || pop.sociological.enabled) groups.markBusy(gid);
     // Common Ground may start a coordination in any group (a lone visit too).
-    if (desc.social.enabled && g.extra == kNoAgent) {
-      g.extra = static_cast<std::uint32_t>(groupExtras.size());
-      groupExtras.emplace_back();
-    }
+    if (desc.social.enabled) groups.giveExtra(gid);
   }
-  busyDirty = true;
+  return scheduled;
 }
 
 float World::Impl::groupSpeed(std::uint32_t gid) const {

@@ -1,5 +1,5 @@
 // Walls — the boundary of the walkable area as line segments, for ORCA's wall half-planes.
-// Taken from the navigation mesh's outer edges (edges with no neighbouring polygon), so walls are
+// Taken from the navigation mesh's outer edges (nav::NavMesh::boundary), so walls are
 // right however walkable polygons touch or overlap and however obstacles cross them. The navmesh is
 // already eroded by the body radius, so the segments bound agent centres. Built once; read-only.
 #pragma once
@@ -33,9 +33,5 @@ class Walls {
   std::vector<std::uint32_t> cellStart_;
   std::vector<std::uint32_t> items_;
 };
-
-/// Outer edges of the navmesh polygons (no neighbour, no cross-tile link). `heights`, when given,
-/// receives the height at both ends of each segment.
-std::vector<core::Segment> navMeshBoundary(const nav::NavMesh& mesh, std::vector<float>* heights = nullptr);
 
 }  // namespace throng::sim

@@ -16,7 +16,7 @@ namespace {
 // SlotMap filled in id order hands out) and needs no table.
 GroupId handleOf(std::uint32_t gid) { return GroupId{gid + 1, 1}; }
 
-std::optional<std::uint32_t> groupOf(const std::vector<GroupState>& groups, GroupId handle) {
+std::optional<std::uint32_t> groupOf(const GroupTable& groups, GroupId handle) {
   if (handle.index == 0 || handle.index > groups.size() || handle.generation != 1) return std::nullopt;
   return handle.index - 1;
 }
@@ -74,6 +74,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   w.planPopulations();
   for (const PopulationDesc& pop : desc.populations) w.anySocial = w.anySocial || pop.sociological.enabled;
   w.navRadius = desc.maxRadius();
+  w.configureModels();
   w.initTimeline();
   w.applyCommands();  // populations starting at t = 0 are present in the first snapshot
   return world;
@@ -103,6 +104,7 @@ void World::Impl::ensureScratch(const core::TaskSystem& tasks) {
   while (scratch.size() < needed) {
     WorkerScratch ws;
     ws.query = std::make_unique<nav::NavQuery>(navmesh);
+    addModelScratch(ws);
     scratch.push_back(std::move(ws));
   }
 }
@@ -210,8 +212,8 @@ std::optional<GroupInfo> World::groupInfo(GroupId handle) const {
   const auto id = groupOf(w.groups, handle);
   if (!id) return std::nullopt;
   const GroupState& g = w.groups[*id];
-  const GroupExtra& x = w.extraOf(g);
-  const GroupRoute& route = w.routeOf(g);
+  const GroupExtra& x = w.groups.extraOf(g);
+  const GroupRoute& route = w.groups.routeOf(g);
   GroupInfo info;
   info.id = *id;
   info.population = g.population;

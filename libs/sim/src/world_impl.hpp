@@ -4,16 +4,20 @@
 //   sense.cpp      grid rebuild and k-nearest neighbours
 //   decide.cpp     goal logic: regions reached, actions, exits, new targets
 //   plan.cpp       budgeted path planning through nav::PathQueue
-//   steer.cpp      preferred velocity along the path, then ORCA
+//   goals.cpp      one home for goals: active list, current point, set/advance, targets, Bézier
+//   steer.cpp      preferred velocity along the path, then the population's avoidance model
+//   models/        the avoidance models behind OperationalModel (ORCA, collision-free speed)
 //   integrate.cpp  commit velocities, move along the navmesh, headings, statistics
 //   world.cpp      the tick, emit (removal, frame), creation
 #pragma once
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include "agent_store.hpp"
+#include "group_table.hpp"
 #include "throng/core/assert.hpp"
 #include "spatial_grid.hpp"
 #include "walls.hpp"
@@ -21,64 +25,16 @@
 #include "throng/crowd/subregions.hpp"
 #include "throng/nav/navmesh.hpp"
 #include "throng/nav/path_queue.hpp"
-#include "throng/sim/orca.hpp"
+#include "models/operational_model.hpp"
 #include "throng/sim/world.hpp"
 
 namespace throng::sim {
 
-/// Margin kept between agent centres and the eroded navmesh boundary by ORCA [m].
-inline constexpr float kWallMargin = 0.01f;
 /// Detour node expansions the plan phase may spend per tick (time-slicing, as dtPathQueue).
 inline constexpr int kPathIterationsPerTick = 20000;
 /// Period of the progress check that triggers a re-plan for an agent that is stuck [s].
 inline constexpr float kProgressCheckPeriod = 4.0f;
 
-/// Guidance and following of a group (§3.2.6, §3.2.5): only groups with a guide script, guided
-/// through the API, or following another group have one (World::Impl::groupRoutes).
-struct GroupRoute {
-  core::Vec2 guide;
-  float guideHeight = 0.0f;  ///< floor height of the guide [m] (multi-level worlds)
-  core::Vec2 guidePlanned{1e30f, 1e30f};  ///< guide position the members' paths were planned for
-  std::uint32_t followGroup = kNoAgent;  ///< group followed while `following`
-  std::uint32_t followToggle = 0;        ///< tick the current (temporary) period ends (32 bits, as actionEndTick)
-  std::uint32_t ownCursor = 0;           ///< own cursor saved while following temporarily
-  bool guidedByApi = false;
-};
-
-/// The part of a group that lone agents never need: waiting, formation shape, Common Ground. Only
-/// groups that may need it have one (World::Impl::groupExtras): busy groups (GroupState::busy)
-/// and, when Common Ground is on, every group. Others read the defaults (World::Impl::extraOf).
-struct GroupExtra {
-  // Formation.
-  core::Vec2 centroid, heading{1.0f, 0.0f};
-  // Waiting (flocking rule 4).
-  std::uint32_t waitStart = 0;           ///< tick the wait began (32 bits, as actionEndTick)
-  // Common Ground (social.cpp).
-  std::uint32_t coordination = kNoAgent;  ///< id of the coordination its members play now
-  std::uint32_t reunite = kNoAgent;       ///< a divide ended: id of that coordination until the group is whole again
-  std::uint32_t route = kNoAgent;         ///< index into World::Impl::groupRoutes, kNoAgent: none
-  bool waiting = false;
-};
-
-/// One social group (Musse et al. §3.1.2: a crowd is a set of groups), indexed by the stable group
-/// id; written only by the serial group pass (groups.cpp) and by spawning. 40 bytes: what every
-/// group, even a lone agent's, needs; the rest is in its GroupExtra, if it has one. The shared
-/// walking speed of a flocking group is drawn again when needed (World::Impl::groupSpeed).
-struct GroupState {
-  MemberList members;                  ///< stable ids present in the world, ascending
-  std::uint32_t expected = 0;          ///< members that will be spawned
-  std::uint32_t leader = kNoAgent;
-  std::uint32_t goalList = 0;          ///< own goal list: index into World::Impl::goalLists
-  std::uint32_t cursor = 0;            ///< goal the group is heading for (index into the active list)
-  std::uint32_t extra = kNoAgent;      ///< index into World::Impl::groupExtras, kNoAgent: none
-  std::uint16_t population = 0;
-  bool busy : 1 = false;               ///< visited by the group pass every tick (World::Impl::busyGroups)
-  bool guided : 1 = false;             ///< guidance (§3.2.6) on: read by every member in decide
-  bool following : 1 = false;          ///< following another group (§3.2.5) now: read by activeGoals
-
-  [[nodiscard]] bool flocks(const PopulationDesc& pop) const { return pop.flocking && expected >= 2; }
-};
-static_assert(sizeof(GroupState) <= 40);
 
 /// One Common Ground interaction being carried out (or a lone visit): the planned action script
 /// and where each actor is in it. Times of entries not yet started shift by `slip`, the overrun of
@@ -122,9 +78,8 @@ struct CrowdCommand {
 /// Per-worker scratch: navmesh queries and buffers reused across agents (never shared by threads).
 struct WorkerScratch {
   std::unique_ptr<nav::NavQuery> query;
-  std::vector<OrcaLine> lines;
-  std::vector<OrcaLine> projected;
-  std::vector<std::uint32_t> wallIds;
+  /// Per ModelKind: the model's working memory, made by the model (models/operational_model.hpp).
+  std::array<std::unique_ptr<ModelScratch>, kModelCount> modelScratch;
   std::vector<std::pair<float, std::uint32_t>> order, line;  // formation
 };
 
@@ -169,54 +124,11 @@ struct World::Impl {
     bool placed = true;  ///< every agent found a free spot on the navmesh inside the spawn area
   };
 
-  // Groups.
-  std::vector<GroupState> groups;
-  std::vector<GroupExtra> groupExtras;      ///< cold group data, see GroupExtra
-  /// Goal lists (point indices): one per population first, then one per automatic-goals group.
+  // Groups (group_table.hpp): groups, their cold parts and routes, the busy set.
+  GroupTable groups;
+  /// Goal lists (point indices): one per population first, then one per automatic-goals group (goals.cpp).
   std::vector<std::vector<std::uint32_t>> goalLists;
   std::vector<GroupCommand> commands;
-  /// Groups the group pass visits every tick (GroupState::busy): flocking groups of 2+, guided,
-  /// following or followed, or sociable ones. Lone agents with none of these need no per-tick group
-  /// work. Group handles are {stable id + 1, generation 1}: groups are never removed.
-  std::vector<std::uint32_t> busyGroups;  ///< ascending
-  bool busyDirty = true;
-  void markBusy(std::uint32_t gid) {
-    GroupState& g = groups[gid];
-    if (!g.busy) { g.busy = true; busyDirty = true; }
-    if (g.extra == kNoAgent) {
-      g.extra = static_cast<std::uint32_t>(groupExtras.size());
-      groupExtras.emplace_back();
-    }
-  }
-  /// The group's cold part (the defaults when it has none). The reference is invalidated by markBusy.
-  [[nodiscard]] const GroupExtra& extraOf(const GroupState& g) const {
-    static const GroupExtra kNone;
-    return g.extra == kNoAgent ? kNone : groupExtras[g.extra];
-  }
-  /// The cold part of a busy group (or, with Common Ground on, of any group): it always has one.
-  [[nodiscard]] GroupExtra& extraOf(GroupState& g) {
-    THRONG_ASSERT(g.extra != kNoAgent);
-    return groupExtras[g.extra];
-  }
-  std::vector<GroupRoute> groupRoutes;      ///< see GroupRoute
-  /// The group's guidance and following state (the defaults when it has none).
-  [[nodiscard]] const GroupRoute& routeOf(const GroupState& g) const {
-    static const GroupRoute kNone;
-    const std::uint32_t r = extraOf(g).route;
-    return r == kNoAgent ? kNone : groupRoutes[r];
-  }
-  /// The group's guidance and following state, created on first use (serial code only; marks the
-  /// group busy). The reference is invalidated by the next routeFor.
-  GroupRoute& routeFor(std::uint32_t gid) {
-    markBusy(gid);
-    GroupExtra& x = groupExtras[groups[gid].extra];
-    if (x.route == kNoAgent) {
-      x.route = static_cast<std::uint32_t>(groupRoutes.size());
-      groupRoutes.emplace_back();
-    }
-    return groupRoutes[x.route];
-  }
-  [[nodiscard]] bool hasRoute(const GroupState& g) const { return extraOf(g).route != kNoAgent; }
   std::vector<core::Vec2> viewers;
   std::vector<std::uint32_t> rowOfId;       ///< stable id → row (kNoAgent if gone), rebuilt when rows change
   bool rowsChanged = true;                  ///< set by spawning and by removals
@@ -289,7 +201,12 @@ struct World::Impl {
   [[nodiscard]] bool crowdsPending() const { return !crowdCommands.empty() || timelineNext < desc.timeline.size(); }
 
   // Phases.
+  /// Groups of the scenario's populations, their sizes and the agent columns they need (creation).
   void planPopulations();
+  /// Registers the groups of populations [firstPopulation, end) (spawn.cpp): goal lists, first
+  /// group ids, sizes drawn per stable group id, busy groups, routes and cold parts. Shared by
+  /// creation and run-time insertion. Returns the agents scheduled.
+  std::uint32_t registerGroups(std::uint32_t firstPopulation);
   void applyCommands();
   /// Spawns the populations due this tick, in order (spawn.cpp): random free spots in each
   /// spawn area; when that fails for some population, the populations whose areas overlap it are
@@ -301,6 +218,16 @@ struct World::Impl {
   void addSpawnedAgents(const SpawnPlan& plan);
   void sense(const core::TaskSystem& tasks);
   void decide(const core::TaskSystem& tasks);
+  // Steps of decide (decide.cpp), per agent; each writes only `row` and the chunk's output.
+  void decideRow(std::size_t row, std::uint64_t checkEvery, ChunkOutput& out, const nav::NavQuery& query);
+  /// Walking to a goal: arrived (exit, action, goal reached) or checking progress.
+  void seekGoal(std::size_t row, const GroupState& g, std::uint64_t checkEvery, ChunkOutput& out);
+  /// At its goal: wait for the group (flocking rule 4) or ask the group pass for the next goal.
+  void reachGoal(std::size_t row, const GroupState& g, ChunkOutput& out);
+  /// Every check period: re-plan when no closer to the target (and farther than minDistance) [m].
+  void checkProgress(std::size_t row, std::uint64_t checkEvery, float minDistance);
+  /// Sociological model: meetings with agents of other groups may set socialEffect.
+  void meetOthers(std::size_t row, const SociologicalDesc& social, ChunkOutput& out);
   void decideGroups(const core::TaskSystem& tasks);  ///< group pass (groups.cpp), after the per-agent part of decide
   void plan();
   void steer(const core::TaskSystem& tasks);
@@ -317,12 +244,16 @@ struct World::Impl {
   void advanceGoal(std::size_t row, const nav::NavQuery& query);
   /// Points `row` at goal `cursor` of its group's active goal list (or wandering / Done past it).
   void setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQuery& query);
-  /// The goal list a group follows now: its own, or the followed group's while following.
-  [[nodiscard]] const std::vector<std::uint32_t>& activeGoals(const GroupState& g) const {
-    return goalLists[g.following && routeOf(g).followGroup != kNoAgent ? groups[routeOf(g).followGroup].goalList : g.goalList];
-  }
-  // Group pass steps (groups.cpp).
+  /// The goal list a group follows now: its own, or the followed group's while following (goals.cpp).
+  [[nodiscard]] const std::vector<std::uint32_t>& activeGoals(const GroupState& g) const;
+  /// The point `row` is heading for (from its group's active goal list), kNoPoint past the last.
+  [[nodiscard]] std::uint32_t currentGoalPoint(std::size_t row) const;
+  /// Whether `row` stops at the end of its current path (an action point's stop, or its last goal
+  /// when it does not wander), so it slows down on the last leg.
+  [[nodiscard]] bool stopsAtGoal(std::size_t row) const;
+  /// Applies the goal changes decide asked for (AgentStore::goalPending), in row order (goals.cpp).
   void applyPendingGoals();
+  // Group pass steps (groups.cpp).
   /// Releases the sub-region `row` was targeting (its occupancy drops).
   void releaseTarget(std::size_t row);
   /// Replaces the navmesh request of `row` by a Bézier path when its population asks for one.
@@ -360,8 +291,19 @@ struct World::Impl {
   void assignOwners();
   /// Sends what steer wrote for the owned rows, applies every other rank's values.
   void exchangeSteer();
-  /// Steers one agent (steer.cpp): writes prefVel, newVel and the corner index of `row` only.
-  void steerRow(std::size_t row, WorkerScratch& ws);
+
+  // Steering (steer.cpp) and the avoidance models (models/).
+  /// One instance per model some population walks with, by ModelKind (null: unused).
+  std::array<std::unique_ptr<OperationalModel>, kModelCount> models;
+  /// Creates the models the populations need and (re)reads their parameters (creation, insertion).
+  void configureModels();
+  /// Gives a worker the scratch of every model in use.
+  void addModelScratch(WorkerScratch& ws) const;
+  [[nodiscard]] ModelKind modelOf(std::size_t row) const { return desc.populations[agents.population[row]].model.kind; }
+  /// The preferred velocity of `row` (writes prefVel and the corner index of `row` only).
+  void preferredVelocity(std::size_t row, WorkerScratch& ws);
+  /// Moves on along the path's corners once near the current one and the next is in sight.
+  void advanceCorner(std::size_t row, core::Vec2 pos, WorkerScratch& ws);
 };
 
 }  // namespace throng::sim

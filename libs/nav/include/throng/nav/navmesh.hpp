@@ -79,6 +79,11 @@ class NavMesh {
   [[nodiscard]] std::size_t polygonCount() const;
   /// Outline of every polygon (for viewers and debugging), in the plane.
   [[nodiscard]] std::vector<Polygon> polygons() const;
+  /// The walls: outer edges of the polygons (edges with no neighbouring polygon and no cross-tile
+  /// link), in the plane. `heights`, when given, receives the height at both ends of each edge
+  /// (two values per edge, in order). The mesh is eroded by the body radius, so these bound agent
+  /// centres.
+  [[nodiscard]] std::vector<core::Segment> boundary(std::vector<float>* heights = nullptr) const;
 
  private:
   NavMesh() = default;

@@ -13,6 +13,7 @@
 #include "throng/social/behaviour_db.hpp"
 #include "throng/social/coordination.hpp"
 #include "throng/social/sensing.hpp"
+#include "throng/sim/models.hpp"
 
 namespace throng::sim {
 
@@ -129,6 +130,9 @@ struct PopulationDesc {
   /// attracted by; each agent draws `interestsPerAgent` of them (seeded, without repetition).
   std::vector<std::string> interests;
   std::uint32_t interestsPerAgent = 2;
+  /// The operational (avoidance) model its members walk with and its parameters (models.hpp):
+  /// scenario key "model"; ORCA with its defaults unless the scenario names another.
+  ModelDesc model;
   /// Common Ground: its members' preference for micro-behaviours (name → multiplier of the
   /// database weight, >= 0; 0 = never). Names must exist in the micro-behaviour database.
   std::map<std::string, double, std::less<>> preferences;
@@ -149,6 +153,14 @@ struct SteeringDesc {
   /// Multiresolution: agents farther than this from every viewer (World::setViewers) steer with a
   /// cheaper method (4 neighbours, no wall half-planes; the navmesh still holds them). 0 = off.
   float lodDistance = 0.0f;             ///< [m]
+  // The preferred velocity (steer phase, every model): following the path, arriving, formation,
+  // deadlock breaking. Defaults are throng's, chosen on the bundled scenarios (docs/crowd-model.md).
+  float cornerReach = 0.5f;        ///< distance at which a path corner counts as passed [m] [Limit: > 0, <= 5]
+  std::uint32_t levelLookAhead = 3;///< corners looked ahead for one in sight on multi-level worlds [Limit: 1..16]
+  float arrivalTime = 0.5f;        ///< approaching a stop, agents slow down over this time [s] [Limit: > 0, <= 10]
+  float formationSpeedUp = 1.25f;  ///< members catching up may walk this much faster than their speed [Limit: 1..3]
+  float stuckPatience = 1.0f;      ///< wanting to walk but barely moving this long starts deadlock breaking [s] [Limit: > 0, <= 60]
+  float stuckAttempt = 0.8f;       ///< length of one deadlock-breaking attempt (a new direction each) [s] [Limit: > 0, <= 60]
 };
 
 /// A stochastic goal of the goal generator (Park et al. §3.3): at `rate` per agent and second an

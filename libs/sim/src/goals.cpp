@@ -1,0 +1,203 @@
+// goals — one home for where an agent is going (Musse et al. §3.1: goals are interest and action
+// points visited in order): the active goal list of a group (its own, or the followed group's),
+// the current goal point of an agent, setting and advancing goals, drawing a target inside a goal's
+// region (sub-regions, §3.1.3) and releasing it, Bézier paths to it (§3.2.2), automatic goals
+// (§3.1.2) and the pending goal changes decide hands to the group pass. Serial code (the group pass
+// and spawning) writes goals; the parallel phases only read them (currentGoalPoint, stopsAtGoal).
+#include <algorithm>
+#include <cmath>
+
+#include "throng/crowd/bezier_path.hpp"
+#include "throng/crowd/path_reconstruction.hpp"
+#include "throng/crowd/walkable.hpp"
+#include "world_impl.hpp"
+
+namespace throng::sim {
+
+const std::vector<std::uint32_t>& World::Impl::activeGoals(const GroupState& g) const {
+  return goalLists[g.following && groups.routeOf(g).followGroup != kNoGroup ? groups[groups.routeOf(g).followGroup].goalList : g.goalList];
+}
+
+std::uint32_t World::Impl::currentGoalPoint(std::size_t row) const {
+  const std::vector<std::uint32_t>& goals = activeGoals(groups[agents.group[row]]);
+  const std::uint32_t cursor = agents.goalCursor[row];
+  return cursor < goals.size() ? goals[cursor] : kNoPoint;
+}
+
+bool World::Impl::stopsAtGoal(std::size_t row) const {
+  const std::uint32_t point = currentGoalPoint(row);
+  if (point == kNoPoint) return !desc.populations[agents.population[row]].wander;  // done: stands there
+  const PointDesc& p = desc.points[point];
+  return p.kind == PointKind::Action && p.stop;
+}
+
+void World::Impl::releaseTarget(std::size_t row) {
+  if (agents.targetSub[row] >= 0) {
+    --subOccupancy[static_cast<std::size_t>(agents.targetSub[row])];
+    agents.targetSub[row] = -1;
+  }
+}
+
+core::Vec2 World::Impl::drawTarget(std::size_t row, const PointDesc& point, const nav::NavQuery& query) {
+  // Sub-regions (Musse et al. §3.1.3): the target lies in a sub-region of the goal's region picked
+  // by proximity and by how many agents already target it, so group members take similar but never
+  // identical paths and spread over the region. Serial (group pass / spawning): occupancy is shared.
+  core::Rng rng(desc.seed, (static_cast<std::uint64_t>(agents.id[row]) << 20) ^ agents.targetDraws[row]++,
+                core::RngPurpose::Target);
+  releaseTarget(row);
+  const auto p = static_cast<std::size_t>(&point - desc.points.data());
+  const std::uint32_t first = subOffset[p], last = subOffset[p + 1];
+  core::Vec2 target = point.position;
+  if (last > first) {
+    const std::span<const crowd::Subregion> subs(subregions.data() + first, last - first);
+    const std::span<const std::uint32_t> occupancy(subOccupancy.data() + first, last - first);
+    const std::size_t k = crowd::pickSubregion(subs, core::Vec2{agents.posX[row], agents.posY[row]}, occupancy, rng);
+    target = crowd::samplePoint(subs[k], rng);
+    agents.targetSub[row] = static_cast<std::int32_t>(first + k);
+    ++subOccupancy[first + k];
+  }
+  if (agents.levels) {
+    // Multi-level world: the point's height picks the floor the target is snapped onto.
+    auto hit = query.snap(target, point.height, 3.0f);
+    if (!hit) hit = query.snap(point.position, point.height, 10.0f);
+    agents.setTargetHeight(row, hit ? hit->height : point.height);
+    return hit ? hit->p : target;
+  }
+  if (auto hit = query.nearest(target, 3.0f)) return hit->first;
+  if (auto hit = query.nearest(point.position, 10.0f)) return hit->first;
+  return target;
+}
+
+void World::Impl::advanceGoal(std::size_t row, const nav::NavQuery& query) {
+  setGoal(row, agents.goalCursor[row] + 1, query);
+}
+
+void World::Impl::setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQuery& query) {
+  const GroupState& g = groups[agents.group[row]];
+  const PopulationDesc& pop = desc.populations[g.population];
+  const std::vector<std::uint32_t>& goals = activeGoals(g);
+  agents.goalCursor[row] = cursor;
+  agents.ticket[row] = 0;  // a path still queued for the old goal expires unread
+  agents.dynamicTarget[row] = 0;
+  agents.corners[row].clear();
+  agents.progressDistance[row] = 1e30f;
+  if (cursor < goals.size()) {
+    const core::Vec2 t = drawTarget(row, desc.points[goals[cursor]], query);
+    agents.targetX[row] = t.x;
+    agents.targetY[row] = t.y;
+    agents.needPath[row] = 1;
+    agents.goalState[row] = GoalState::Seeking;
+    agents.mode[row] = AgentMode::Walking;
+    if (pop.bezierPaths) bezierPath(row, query);
+  } else if (pop.wander) {
+    // Random points of the walkable area; a flocking group shares one per release (its cursor).
+    const bool together = g.flocks(pop) && g.expected >= 2;
+    const std::uint32_t gid = agents.group[row];
+    core::Rng rng = together ? core::Rng(desc.seed, (static_cast<std::uint64_t>(gid) << 32) ^ cursor ^ 0x5a5a0000u, core::RngPurpose::Goal)
+                             : core::Rng(desc.seed, (static_cast<std::uint64_t>(agents.id[row]) << 20) ^ agents.targetDraws[row]++,
+                                         core::RngPurpose::Goal);
+    releaseTarget(row);
+    const float r0 = static_cast<float>(rng.uniform()), r1 = static_cast<float>(rng.uniform()),
+                r2 = static_cast<float>(rng.uniform());
+    if (agents.levels) {
+      const auto p = query.randomMeshPoint(r0, r1, r2);
+      if (p) {
+        agents.targetX[row] = p->p.x;
+        agents.targetY[row] = p->p.y;
+        agents.targetZ[row] = p->height;
+      } else {
+        agents.targetSelf(row);
+      }
+    } else {
+      const auto p = query.randomPoint(r0, r1, r2);
+      agents.targetX[row] = p ? p->x : agents.posX[row];
+      agents.targetY[row] = p ? p->y : agents.posY[row];
+    }
+    agents.needPath[row] = 1;
+    agents.goalState[row] = GoalState::Seeking;
+    agents.mode[row] = AgentMode::Walking;
+  } else {
+    releaseTarget(row);
+    agents.goalState[row] = GoalState::Done;
+    agents.mode[row] = AgentMode::Waiting;
+    agents.targetSelf(row);
+  }
+}
+
+void World::Impl::applyPendingGoals() {
+  // Rows flagged by decide, chunk by chunk: ascending row order, whatever the threads.
+  const nav::NavQuery& query = *mainQuery;
+  for (ChunkOutput& c : chunks) {
+    for (const std::uint32_t r : c.pendingRows) {
+      const GoalPending pending = agents.goalPending[r];
+      agents.goalPending[r] = GoalPending::None;
+      if (pending == GoalPending::NextGoal) {
+        advanceGoal(r, query);
+      } else if (pending == GoalPending::NextWanderTarget) {
+        setGoal(r, static_cast<std::uint32_t>(activeGoals(groups[agents.group[r]]).size()), query);
+      }
+    }
+    c.pendingRows.clear();
+  }
+}
+
+void World::Impl::bezierPath(std::size_t row, const nav::NavQuery& query) {
+  // Seek goal with a Bézier curve (Musse et al. §3.2.2), verified inside the walkable surface by
+  // the control boxes' convex-hull property; where no curve fits, the navmesh path is used and the
+  // fallback is recorded.
+  const core::Vec2 from{agents.posX[row], agents.posY[row]};
+  const core::Vec2 to{agents.targetX[row], agents.targetY[row]};
+  const crowd::NavMeshWalkable walkable(query);
+  core::Rng rng(desc.seed, (static_cast<std::uint64_t>(agents.id[row]) << 20) ^ agents.targetDraws[row],
+                core::RngPurpose::Behaviour);
+  const auto curve = crowd::buildPath(from, to, walkable, crowd::BezierPathParams{}, rng);
+  const std::vector<std::uint32_t>& goals = activeGoals(groups[agents.group[row]]);
+  const std::uint32_t cursor = agents.goalCursor[row];
+  if (!curve) {
+    pendingEvents.push_back({tick, agents.id[row], EventKind::PathFallback, cursor < goals.size() ? goals[cursor] : kNoAgent, 0});
+    return;  // needPath stays set: plan asks the navmesh
+  }
+  std::vector<core::Vec2> points;
+  crowd::sample(curve->points, 0.1f, points);
+  if (!points.empty() && core::lengthSq(points.front() - from) < 1e-6f) points.erase(points.begin());
+  agents.corners[row].assign(points);
+  agents.needPath[row] = 0;
+}
+
+void World::Impl::reconstructGoals(std::uint32_t gid, core::Vec2 anchor) {
+  // Paths automatic reconstruction (Musse et al. §3.1.2): a random final action point, a Bézier
+  // curve from the group's initial position to it, and every interest point near the curve
+  // becomes a goal on the way, in the order the curve passes them.
+  GroupState& g = groups[gid];
+  const PopulationDesc& pop = desc.populations[g.population];
+  std::vector<std::uint32_t> actions, interests;
+  std::vector<crowd::Region> regions;
+  for (std::uint32_t p = 0; p < desc.points.size(); ++p) {
+    const PointDesc& point = desc.points[p];
+    if (point.kind == PointKind::Action) actions.push_back(p);
+    if (point.kind == PointKind::Interest) {
+      interests.push_back(p);
+      regions.push_back(point.polygon.empty() ? crowd::Region::disc(point.position, point.radius) : crowd::Region::poly(point.polygon));
+    }
+  }
+  if (actions.empty()) return;  // validation requires one; keep the explicit list otherwise
+  core::Rng rng(desc.seed, gid, core::RngPurpose::Goal);
+  const std::uint32_t final = actions[rng.uniformInt(0, static_cast<std::uint32_t>(actions.size() - 1))];
+  const crowd::NavMeshWalkable walkable(*mainQuery);
+  const auto path = crowd::reconstructPath(anchor, desc.points[final].position, regions, pop.autoNearDistance,
+                                           crowd::ReconstructParams{}, rng, &walkable);
+  std::vector<std::uint32_t> goals;
+  if (path) {
+    for (std::uint32_t ip : path->visited) {
+      const std::uint32_t point = interests[ip];
+      if (goals.empty() || goals.back() != point) goals.push_back(point);
+    }
+  } else {
+    pendingEvents.push_back({tick, kNoAgent, EventKind::PathFallback, final, gid});
+  }
+  goals.push_back(final);
+  g.goalList = static_cast<std::uint32_t>(goalLists.size());
+  goalLists.push_back(std::move(goals));
+}
+
+}  // namespace throng::sim

@@ -1,0 +1,85 @@
+// OperationalModel — the seam between the steer phase and the avoidance model (after JuPedSim's
+// OperationalModel: compute from a const view, then commit). Steer computes every agent's
+// preferred velocity (steer.cpp); then, for runs of consecutive rows whose populations walk with
+// the same model, it calls that model's computeVelocities, which reads the agents' columns, the
+// neighbours found by `sense` and the walls, and writes only the new velocity of the rows it is
+// given. `integrate` commits those velocities. One object per model in use, shared by all threads:
+// computeVelocities is const and keeps per-thread state in the ModelScratch it is handed.
+//
+// Adding a model (docs/architecture.md): one file in this folder defining the model class, its
+// parameter table and its `…ModelInfo()`/`make…Model()` pair, declared at the end of this header;
+// one ModelKind value (throng/sim/models.hpp); one line in models.cpp's catalogue.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "../agent_store.hpp"
+#include "../walls.hpp"
+#include "throng/core/vec2.hpp"
+#include "throng/sim/models.hpp"
+#include "throng/sim/scenario.hpp"
+
+namespace throng::sim {
+
+/// What a model may read while it computes (all of it read-only during the steer phase).
+struct ModelInput {
+  const AgentStore& agents;   ///< every column; neighbours[row * maxNeighbours …] from sense
+  const Walls& walls;         ///< the walkable area's boundary
+  const ScenarioDesc& desc;   ///< dt, steering, populations (each with its ModelDesc)
+  std::span<const core::Vec2> viewers;  ///< for the level of detail (World::setViewers)
+
+  /// Multiresolution (Musse et al. §3.2.4): an agent farther than steering.lodDistance from every
+  /// viewer may be steered more cheaply (what "cheaper" means is the model's choice).
+  [[nodiscard]] bool reducedDetail(core::Vec2 pos) const {
+    const float lod = desc.steering.lodDistance;
+    if (lod <= 0.0f || viewers.empty()) return false;
+    float nearest = 1e30f;
+    for (const core::Vec2& v : viewers) nearest = std::min(nearest, core::lengthSq(v - pos));
+    return nearest > lod * lod;
+  }
+};
+
+/// The rows a call handles: rows[begin, end) of a list, or the rows begin … end-1 themselves when
+/// `list` is null (the whole world, not partitioned).
+struct RowRange {
+  const std::uint32_t* list = nullptr;
+  std::size_t begin = 0, end = 0;
+  [[nodiscard]] std::size_t row(std::size_t i) const { return list != nullptr ? list[i] : i; }
+};
+
+/// Where a model writes: the new velocity column [m/s]; only the rows it was given.
+struct VelocityOutput {
+  std::span<float> x, y;
+};
+
+/// A model's per-thread working memory (half-planes, wall ids, …), made by the model.
+class ModelScratch {
+ public:
+  virtual ~ModelScratch() = default;
+};
+
+class OperationalModel {
+ public:
+  virtual ~OperationalModel() = default;
+  [[nodiscard]] virtual ModelKind kind() const = 0;
+  /// Reads the model's typed parameters of every population (at creation and whenever crowds add
+  /// populations at run time).
+  virtual void configure(const ScenarioDesc& desc) = 0;
+  [[nodiscard]] virtual std::unique_ptr<ModelScratch> makeScratch() const = 0;
+  /// New velocities of the given rows from their preferred velocities (prefVelX/Y), positions,
+  /// velocities, bodies, neighbours and the walls. Writes out.x/out.y of those rows only.
+  virtual void computeVelocities(const ModelInput& in, RowRange rows, ModelScratch& scratch,
+                                 VelocityOutput out) const = 0;
+};
+
+// The models (one file each in this folder).
+const ModelInfo& orcaModelInfo();
+std::unique_ptr<OperationalModel> makeOrcaModel();
+const ModelInfo& collisionFreeSpeedModelInfo();
+std::unique_ptr<OperationalModel> makeCollisionFreeSpeedModel();
+
+/// A new instance of the model `kind` (models.cpp).
+std::unique_ptr<OperationalModel> makeModel(ModelKind kind);
+
+}  // namespace throng::sim

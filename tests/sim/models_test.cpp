@@ -1,0 +1,176 @@
+// Tests for the operational-model seam: libs/sim/src/models/ (the catalogue, ORCA and the
+// collision-free speed model behind OperationalModel) and the steer phase that dispatches to them.
+#include "throng/sim/models.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <string>
+
+#include "throng/sim/world.hpp"
+
+using namespace throng;
+
+namespace {
+
+sim::ScenarioDesc corridor(std::uint32_t agents, sim::ModelKind model) {
+  sim::ScenarioDesc d;
+  d.name = "corridor";
+  d.seed = 5;
+  d.walkable = {{{0, 0}, {20, 0}, {20, 3}, {0, 3}}};
+  sim::PointDesc exit;
+  exit.id = "exit";
+  exit.kind = sim::PointKind::Exit;
+  exit.polygon = {{19, 0}, {20, 0}, {20, 3}, {19, 3}};
+  exit.position = {19.5f, 1.5f};
+  d.points = {exit};
+  sim::PopulationDesc p;
+  p.id = "walkers";
+  p.groups = agents;
+  p.spawn.kind = sim::SpawnKind::Polygon;
+  p.spawn.polygon = {{0.5f, 0.3f}, {6, 0.3f}, {6, 2.7f}, {0.5f, 2.7f}};
+  p.goals = {0};
+  p.speedMean = 1.3f;
+  p.speedSd = 0.15f;
+  p.model = sim::ModelDesc(model);
+  d.populations = {p};
+  return d;
+}
+
+struct ModelRun {
+  std::uint64_t hash = 0;
+  float minGap = 1e9f;  ///< smallest centre distance minus both radii [m]
+  std::uint32_t exited = 0;
+  double time = 0;
+};
+
+ModelRun simulate(const sim::ScenarioDesc& d, int threads, double maxTime, std::size_t grainLimit = 0) {
+  auto created = sim::World::create(d);
+  EXPECT_TRUE(created.ok()) << (created.ok() ? "" : core::formatAll(created.errors()));
+  if (!created.ok()) return {};
+  sim::World& w = *created.value();
+  core::TaskSystem tasks(threads);
+  tasks.setGrainLimit(grainLimit);
+  ModelRun run;
+  while (!w.finished() && w.stats().time < maxTime) {
+    w.step(tasks);
+    const auto f = w.snapshot();
+    for (std::size_t i = 0; i < f->size(); ++i) {
+      for (std::size_t j = i + 1; j < f->size(); ++j) {
+        const float dx = f->posX[i] - f->posX[j], dy = f->posY[i] - f->posY[j];
+        run.minGap = std::min(run.minGap, std::sqrt(dx * dx + dy * dy) - 0.4f);
+      }
+    }
+    run.hash = run.hash * 1099511628211ull ^ w.stateHash();
+  }
+  run.exited = w.stats().exited;
+  run.time = w.stats().time;
+  return run;
+}
+
+}  // namespace
+
+TEST(Models, TheCatalogueDeclaresEveryModelWithLimitsAndDefaults) {
+  std::set<std::string> names;
+  ASSERT_EQ(sim::modelCatalogue().size(), sim::kModelCount);
+  for (std::size_t k = 0; k < sim::kModelCount; ++k) {
+    const auto kind = static_cast<sim::ModelKind>(k);
+    const sim::ModelInfo& info = sim::modelInfo(kind);
+    EXPECT_EQ(info.kind, kind);
+    EXPECT_FALSE(info.name.empty());
+    EXPECT_FALSE(info.source.empty()) << info.name << ": the paper it implements";
+    EXPECT_TRUE(names.insert(std::string(info.name)).second) << "duplicate model name " << info.name;
+    EXPECT_EQ(sim::findModel(info.name), &info);
+    ASSERT_LE(info.parameters.size(), sim::kMaxModelParameters);
+    const sim::ModelDesc desc(kind);
+    std::set<std::string> keys;
+    for (const sim::ModelParameter& p : info.parameters) {
+      EXPECT_TRUE(keys.insert(std::string(p.key)).second) << info.name << ": duplicate parameter " << p.key;
+      EXPECT_TRUE(p.accepts(p.defaultValue)) << info.name << "." << p.key << ": default outside its limits";
+      EXPECT_FALSE(p.meaning.empty()) << info.name << "." << p.key;
+      EXPECT_FALSE(p.source.empty()) << info.name << "." << p.key << ": cite where the default comes from";
+      EXPECT_EQ(desc.value(p.key), p.defaultValue) << info.name << "." << p.key;
+    }
+  }
+  EXPECT_EQ(sim::findModel("social-force"), nullptr);
+  EXPECT_EQ(sim::ModelDesc().kind, sim::ModelKind::Orca) << "scenarios that name no model walk with ORCA";
+}
+
+TEST(Models, ParametersAreSetByKeyOnlyForTheirModel) {
+  sim::ModelDesc orca;
+  EXPECT_TRUE(orca.set("yieldResponsibility", 0.6f));
+  EXPECT_FLOAT_EQ(orca.value("yieldResponsibility"), 0.6f);
+  EXPECT_FALSE(orca.set("timeGap", 2.0f)) << "timeGap is a parameter of the collision-free speed model";
+  sim::ModelDesc cfsm(sim::ModelKind::CollisionFreeSpeed);
+  EXPECT_TRUE(cfsm.set("timeGap", 2.0f));
+  EXPECT_FLOAT_EQ(cfsm.value("timeGap"), 2.0f);
+}
+
+// The second model behind the seam: a population that names it walks with it.
+TEST(Models, CollisionFreeSpeedWalkersLeaveTheCorridorWithoutOverlapping) {
+  const ModelRun r = simulate(corridor(30, sim::ModelKind::CollisionFreeSpeed), 1, 120);
+  EXPECT_EQ(r.exited, 30u);
+  EXPECT_GT(r.minGap, -0.05f) << "bodies overlapped by more than 5 cm";
+  const ModelRun orca = simulate(corridor(30, sim::ModelKind::Orca), 1, 120);
+  EXPECT_EQ(orca.exited, 30u);
+  EXPECT_NE(r.hash, orca.hash) << "the population's model must drive its agents";
+}
+
+TEST(Models, TwoPopulationsWithDifferentModelsShareAWorld) {
+  sim::ScenarioDesc d = corridor(15, sim::ModelKind::Orca);
+  sim::PopulationDesc other = d.populations[0];
+  other.id = "headway";
+  other.model = sim::ModelDesc(sim::ModelKind::CollisionFreeSpeed);
+  d.populations.push_back(other);
+  const ModelRun mixed = simulate(d, 1, 120);
+  EXPECT_EQ(mixed.exited, 30u);
+  EXPECT_GT(mixed.minGap, -0.05f);
+  d.populations[1].model = sim::ModelDesc(sim::ModelKind::Orca);
+  EXPECT_NE(simulate(d, 1, 120).hash, mixed.hash);
+}
+
+// Tordeux et al. 2016: the speed is (s − ℓ)/T behind someone slower, so a fast walker settles at
+// the slow one's speed a time gap behind (ℓ + T·v), never closer than ℓ.
+TEST(Models, CollisionFreeSpeedKeepsTheTimeGapBehindASlowerWalker) {
+  sim::ScenarioDesc d = corridor(1, sim::ModelKind::CollisionFreeSpeed);
+  d.walkable = {{{0, 0}, {40, 0}, {40, 0.8f}, {0, 0.8f}}};  // single file
+  d.points[0].polygon = {{39, 0}, {40, 0}, {40, 0.8f}, {39, 0.8f}};
+  d.points[0].position = {39.5f, 0.4f};
+  sim::PopulationDesc& slow = d.populations[0];
+  slow.id = "slow";
+  slow.speedMean = 0.5f;
+  slow.speedSd = 0.0f;
+  slow.spawn.kind = sim::SpawnKind::Position;
+  slow.spawn.position = {6, 0.4f};
+  sim::PopulationDesc fast = slow;
+  fast.id = "fast";
+  fast.speedMean = 1.3f;
+  fast.spawn.position = {1, 0.4f};
+  d.populations.push_back(fast);
+  auto created = sim::World::create(d);
+  ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
+  sim::World& w = *created.value();
+  core::TaskSystem tasks(1);
+  float minGap = 1e9f, lastGap = 0.0f, fastSpeed = 0.0f;
+  while (w.stats().time < 30) {
+    w.step(tasks);
+    const auto f = w.snapshot();
+    if (f->size() != 2) break;
+    const float gap = std::abs(f->posX[0] - f->posX[1]);
+    minGap = std::min(minGap, gap);
+    lastGap = gap;
+    fastSpeed = std::hypot(f->velX[1], f->velY[1]);
+  }
+  const float timeGap = sim::ModelDesc(sim::ModelKind::CollisionFreeSpeed).value("timeGap");
+  EXPECT_GT(minGap, 0.4f) << "never closer than the two radii";
+  EXPECT_NEAR(fastSpeed, 0.5f, 0.05f) << "the fast walker settles at the slow one's speed";
+  EXPECT_NEAR(lastGap, 0.4f + timeGap * 0.5f, 0.1f) << "a time gap behind";
+}
+
+TEST(Models, CollisionFreeSpeedIsTheSameForAnyThreadCount) {
+  const sim::ScenarioDesc d = corridor(60, sim::ModelKind::CollisionFreeSpeed);
+  const ModelRun one = simulate(d, 1, 20, 4);
+  EXPECT_EQ(simulate(d, 2, 20, 4).hash, one.hash);
+  EXPECT_EQ(simulate(d, 8, 20, 4).hash, one.hash);
+}
