@@ -31,6 +31,18 @@ bool World::Impl::stopsAtGoal(std::size_t row) const {
   return p.kind == PointKind::Action && p.stop;
 }
 
+void World::Impl::addPointGeometry(const PointDesc& p) {
+  // Its bounds and its region's sub-regions (Musse et al. §3.1.3), with no one targeting them yet.
+  pointBounds.push_back(p.polygon.empty() ? core::Aabb{{p.position.x - p.radius, p.position.y - p.radius},
+                                                       {p.position.x + p.radius, p.position.y + p.radius}}
+                                          : core::bounds(p.polygon));
+  const crowd::Region region = p.polygon.empty() ? crowd::Region::disc(p.position, p.radius) : crowd::Region::poly(p.polygon);
+  std::vector<crowd::Subregion> subs = crowd::divideRegion(region);
+  subregions.insert(subregions.end(), std::make_move_iterator(subs.begin()), std::make_move_iterator(subs.end()));
+  subOffset.push_back(static_cast<std::uint32_t>(subregions.size()));
+  subOccupancy.resize(subregions.size(), 0);
+}
+
 void World::Impl::releaseTarget(std::size_t row) {
   if (agents.targetSub[row] >= 0) {
     --subOccupancy[static_cast<std::size_t>(agents.targetSub[row])];

@@ -172,22 +172,13 @@ void World::Impl::insertCrowdNow(CrowdState& c) {
   const auto firstPoint = static_cast<std::uint32_t>(desc.points.size());
   const auto firstPopulation = static_cast<std::uint32_t>(desc.populations.size());
   const auto firstGroup = static_cast<std::uint32_t>(groups.size());
-  auto mapPoint = [&](std::uint32_t i) { return i < cd.basePoints ? i : firstPoint + (i - cd.basePoints); };
-  auto mapPopulation = [&](std::uint32_t i) { return i < cd.basePopulations ? i : firstPopulation + (i - cd.basePopulations); };
   const double now = static_cast<double>(tick) * desc.dt;
 
   // Points: geometry, sub-regions, clips, categories.
   for (const PointDesc& p : cd.points) {
     desc.points.push_back(p);
-    pointBounds.push_back(p.polygon.empty() ? core::Aabb{{p.position.x - p.radius, p.position.y - p.radius},
-                                                         {p.position.x + p.radius, p.position.y + p.radius}}
-                                            : core::bounds(p.polygon));
-    const crowd::Region region = p.polygon.empty() ? crowd::Region::disc(p.position, p.radius) : crowd::Region::poly(p.polygon);
-    std::vector<crowd::Subregion> subs = crowd::divideRegion(region);
-    subregions.insert(subregions.end(), std::make_move_iterator(subs.begin()), std::make_move_iterator(subs.end()));
-    subOffset.push_back(static_cast<std::uint32_t>(subregions.size()));
+    addPointGeometry(p);
   }
-  subOccupancy.resize(subregions.size(), 0);
   pointClip = pointClips(desc);  // the crowd's actions are the world's (checkCrowd): old indices stay
   pointCategory.resize(desc.points.size(), -1);
   for (std::uint32_t p = firstPoint; p < desc.points.size(); ++p) {
@@ -204,20 +195,7 @@ void World::Impl::insertCrowdNow(CrowdState& c) {
     categoryPoints[index].push_back(p);
   }
 
-  // Populations, with indices into the world's point and population lists.
-  for (const PopulationDesc& source : cd.populations) {
-    PopulationDesc pop = source;
-    for (std::uint32_t& g : pop.goals) g = mapPoint(g);
-    if (pop.spawn.kind == SpawnKind::Point) pop.spawn.point = mapPoint(pop.spawn.point);
-    if (pop.follow.mode != FollowMode::None) pop.follow.population = mapPopulation(pop.follow.population);
-    // Times in a crowd count from its insertion: spawn, guide script and release.
-    for (GuideWaypoint& w : pop.guide.script) w.time += static_cast<float>(now);
-    if (pop.guide.release >= 0.0f) pop.guide.release += static_cast<float>(now);
-    populationStartTick.push_back(tick + ticksOf(pop.start, desc.dt));
-    populationSpawned.push_back(0);
-    anySocial = anySocial || pop.sociological.enabled;
-    desc.populations.push_back(std::move(pop));
-  }
+  addCrowdPopulations(cd, firstPoint, firstPopulation, now);
   configureModels();  // a crowd may walk with a model the world had no use for
   if (desc.social.enabled) {
     attractionPoints.clear();
@@ -237,25 +215,7 @@ void World::Impl::insertCrowdNow(CrowdState& c) {
 
   registerGroups(firstPopulation);  // as the scenario's own groups
 
-  // Optional agent columns the new populations need and the world did not have yet.
-  bool formation = false, sociological = false;
-  for (std::uint32_t p = firstPopulation; p < desc.populations.size(); ++p) {
-    formation = formation || (desc.populations[p].flocking && desc.populations[p].sizeMax >= 2);
-    sociological = sociological || desc.populations[p].sociological.enabled;
-  }
-  const std::size_t rows = agents.size();
-  if (formation && !agents.formation) {
-    agents.formation = true;
-    agents.formVelX.assign(rows, 0.0f);
-    agents.formVelY.assign(rows, 0.0f);
-  }
-  if (sociological && !agents.sociological) {
-    agents.sociological = true;
-    agents.followAgent.assign(rows, kNoAgent);
-    agents.followUntil.assign(rows, 0);
-    agents.socialEffect.assign(rows, SocialEffect::None);
-    agents.socialOther.assign(rows, 0);
-  }
+  addColumnsFor(firstPopulation);
 
   c.info.applied = true;
   c.info.insertTick = tick;
@@ -329,6 +289,47 @@ std::vector<CrowdInfo> World::crowds() const {
     }
   }
   return out;
+}
+
+void World::Impl::addCrowdPopulations(const CrowdDesc& cd, std::uint32_t firstPoint, std::uint32_t firstPopulation,
+                                      double now) {
+  // Indices into the world's point and population lists; times count from the insertion.
+  auto mapPoint = [&](std::uint32_t i) { return i < cd.basePoints ? i : firstPoint + (i - cd.basePoints); };
+  auto mapPopulation = [&](std::uint32_t i) { return i < cd.basePopulations ? i : firstPopulation + (i - cd.basePopulations); };
+  for (const PopulationDesc& source : cd.populations) {
+    PopulationDesc pop = source;
+    for (std::uint32_t& g : pop.goals) g = mapPoint(g);
+    if (pop.spawn.kind == SpawnKind::Point) pop.spawn.point = mapPoint(pop.spawn.point);
+    if (pop.follow.mode != FollowMode::None) pop.follow.population = mapPopulation(pop.follow.population);
+    // Times in a crowd count from its insertion: spawn, guide script and release.
+    for (GuideWaypoint& w : pop.guide.script) w.time += static_cast<float>(now);
+    if (pop.guide.release >= 0.0f) pop.guide.release += static_cast<float>(now);
+    populationStartTick.push_back(tick + ticksOf(pop.start, desc.dt));
+    populationSpawned.push_back(0);
+    anySocial = anySocial || pop.sociological.enabled;
+    desc.populations.push_back(std::move(pop));
+  }
+}
+
+void World::Impl::addColumnsFor(std::uint32_t firstPopulation) {
+  bool formation = false, sociological = false;
+  for (std::uint32_t p = firstPopulation; p < desc.populations.size(); ++p) {
+    formation = formation || (desc.populations[p].flocking && desc.populations[p].sizeMax >= 2);
+    sociological = sociological || desc.populations[p].sociological.enabled;
+  }
+  const std::size_t rows = agents.size();
+  if (formation && !agents.formation) {
+    agents.formation = true;
+    agents.formVelX.assign(rows, 0.0f);
+    agents.formVelY.assign(rows, 0.0f);
+  }
+  if (sociological && !agents.sociological) {
+    agents.sociological = true;
+    agents.followAgent.assign(rows, kNoAgent);
+    agents.followUntil.assign(rows, 0);
+    agents.socialEffect.assign(rows, SocialEffect::None);
+    agents.socialOther.assign(rows, 0);
+  }
 }
 
 }  // namespace throng::sim

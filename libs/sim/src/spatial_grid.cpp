@@ -141,17 +141,20 @@ std::size_t writeRanked(Candidates& c, std::size_t k, std::uint32_t* ranked, std
 
 }  // namespace
 
-std::size_t SpatialGrid::nearest(float x, float y, float range, std::size_t k, std::uint32_t self,
-                                 std::uint32_t* out) const {
-  if (k == 0) return 0;
+namespace {
+
+/// Scratch for one query: the candidate arrays (on the stack for small k, per-thread heap for large).
+struct QueryScratch {
   alignas(16) float stackD2[kStackCandidates];
   std::uint32_t stackRow[kStackCandidates];
   std::uint64_t stackKeys[kStackCandidates];
-  Candidates c{stackD2, stackRow, kStackCandidates};
   std::uint32_t stackRanked[kStackCandidates];
+  Candidates c{stackD2, stackRow, kStackCandidates};
   std::uint64_t* keys = stackKeys;
   std::uint32_t* ranked = stackRanked;
-  if (k > kStackCandidates / 4) {  // large k: heap scratch, kept per thread
+
+  explicit QueryScratch(std::size_t k) {
+    if (k <= kStackCandidates / 4) return;
     thread_local std::vector<float> heapD2;
     thread_local std::vector<std::uint32_t> heapRow;
     thread_local std::vector<std::uint64_t> heapKeys;
@@ -167,24 +170,30 @@ std::size_t SpatialGrid::nearest(float x, float y, float range, std::size_t k, s
     keys = heapKeys.data();
     ranked = heapRanked.data();
   }
-  // Admission: distance² < limit (range² at first; after a selection pass, just above the k-th
-  // smallest distance², so ties with it are kept and settled by row at the end). Self is the only
-  // candidate with its row.
-  const float rangeSq = range * range;
-  float limit = rangeSq;
-  const float* ex = cellX_.data();
-  const float* ey = cellY_.data();
-  const std::uint32_t* er = rows_.data();
-  const F4 qx = {x, x, x, x}, qy = {y, y, y, y};
-  const I4 selfRow = {static_cast<std::int32_t>(self), static_cast<std::int32_t>(self), static_cast<std::int32_t>(self),
-                      static_cast<std::int32_t>(self)};
-  const I4 lane = {0, 1, 2, 3};
-  const I4 infBits = {0x7f800000, 0x7f800000, 0x7f800000, 0x7f800000};
-  // Gathers entries [first, last) (cells of one grid row are contiguous: one span per grid row),
-  // four at a time and without branches: every entry is stored, those that cannot be neighbours
-  // (self, out of range or past the limit, lanes beyond the span) with distance² = +inf; narrow()
-  // drops them. The arrays' slack makes the last group of four readable.
-  auto scan = [&](std::uint32_t first, std::uint32_t last) {
+};
+
+/// Gathers candidates around (x, y). Admission: distance² < limit (range² at first; after a
+/// selection pass, just above the k-th smallest distance², so ties with it are kept and settled by
+/// row at the end). Self is the only candidate with its row.
+struct Gather {
+  Candidates& c;
+  std::size_t k;
+  std::uint64_t* keys;
+  float rangeSq;
+  float limit;
+  const float* ex;
+  const float* ey;
+  const std::uint32_t* er;
+  F4 qx, qy;
+  I4 selfRow;
+
+  /// Entries [first, last) (cells of one grid row are contiguous: one span per grid row), four at
+  /// a time and without branches: every entry is stored, those that cannot be neighbours (self,
+  /// out of range or past the limit, lanes beyond the span) with distance² = +inf; narrow() drops
+  /// them. The arrays' slack makes the last group of four readable.
+  inline void operator()(std::uint32_t first, std::uint32_t last) {
+    const I4 lane = {0, 1, 2, 3};
+    const I4 infBits = {0x7f800000, 0x7f800000, 0x7f800000, 0x7f800000};
     while (first < last) {
       if (c.n + 4 > c.capacity) {
         keepSmallest(c, k, keys);
@@ -213,14 +222,37 @@ std::size_t SpatialGrid::nearest(float x, float y, float range, std::size_t k, s
       c.n = n;
       first = stop;
     }
-  };
-  // Are there at least k candidates with distance² < limitSq (then no farther cell matters)?
-  auto haveK = [&](float limitSq) {
+  }
+
+  /// Are there at least k candidates with distance² < limitSq (then no farther cell matters)?
+  [[nodiscard]] bool haveK(float limitSq) const {
     if (c.n < k) return false;
     std::size_t below = 0;
     for (std::size_t i = 0; i < c.n; ++i) below += static_cast<std::size_t>(c.d2[i] < limitSq);
     return below >= k;
-  };
+  }
+};
+
+}  // namespace
+
+std::size_t SpatialGrid::nearest(float x, float y, float range, std::size_t k, std::uint32_t self,
+                                 std::uint32_t* out) const {
+  if (k == 0) return 0;
+  QueryScratch scratch(k);
+  const auto s = static_cast<std::int32_t>(self);
+  Gather gather{scratch.c, k, scratch.keys, range * range, range * range, cellX_.data(), cellY_.data(), rows_.data(),
+                F4{x, x, x, x}, F4{y, y, y, y}, I4{s, s, s, s}};
+  const int blockCells = gatherRings(x, y, range, gather);
+  // Uniform density over the block read first: the k-th neighbour is expected at π r² ρ = k.
+  Candidates& c = scratch.c;
+  const float area = static_cast<float>(blockCells) * cellSize_ * cellSize_;
+  narrow(c, k, static_cast<float>(k) * area / (3.14159265f * static_cast<float>(std::max<std::size_t>(c.n, 1))), gather.limit);
+  if (c.n > kRankMax && c.n > k) keepSmallest(c, k, scratch.keys);
+  return writeRanked(c, k, scratch.ranked, out);
+}
+
+template <class G>
+int SpatialGrid::gatherRings(float x, float y, float range, G& gather) const {
   auto cellIndex = [&](int gx, int gy) {
     return static_cast<std::size_t>(gy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(gx);
   };
@@ -234,32 +266,26 @@ std::size_t SpatialGrid::nearest(float x, float y, float range, std::size_t k, s
   // Rings 0..firstRings at once, one span per grid row (extra cells only cost time: the ranking
   // is exact over any superset of the true neighbours).
   const int firstRings = std::min(kFirstRings, maxRing);
-  int blockCells = 1;
-  {
-    const int gx0 = std::max(0, cx - firstRings), gx1 = std::min(nx_ - 1, cx + firstRings);
-    const int gy0 = std::max(0, cy - firstRings), gy1 = std::min(ny_ - 1, cy + firstRings);
-    blockCells = (gx1 - gx0 + 1) * (gy1 - gy0 + 1);
-    for (int gy = gy0; gy <= gy1; ++gy) scan(cellStart_[cellIndex(gx0, gy)], cellStart_[cellIndex(gx1, gy) + 1]);
-  }
+  const int bx0 = std::max(0, cx - firstRings), bx1 = std::min(nx_ - 1, cx + firstRings);
+  const int by0 = std::max(0, cy - firstRings), by1 = std::min(ny_ - 1, cy + firstRings);
+  const int blockCells = (bx1 - bx0 + 1) * (by1 - by0 + 1);
+  for (int gy = by0; gy <= by1; ++gy) gather(cellStart_[cellIndex(bx0, gy)], cellStart_[cellIndex(bx1, gy) + 1]);
+  const float rangeSq = range * range;
   for (int ring = firstRings + 1; ring <= maxRing; ++ring) {
     const float minDist = static_cast<float>(ring - 1) * cellSize_ + edge;
     if (minDist * minDist >= rangeSq) break;
-    if (haveK(minDist * minDist)) break;
+    if (gather.haveK(minDist * minDist)) break;
     const int x0 = cx - ring, x1 = cx + ring, y0 = cy - ring, y1 = cy + ring;
     if (x0 < 0 && y0 < 0 && x1 >= nx_ && y1 >= ny_) break;  // the ring lies wholly outside the grid
     const int gx0 = std::max(0, x0), gx1 = std::min(nx_ - 1, x1);
-    if (y0 >= 0) scan(cellStart_[cellIndex(gx0, y0)], cellStart_[cellIndex(gx1, y0) + 1]);
-    if (y1 < ny_) scan(cellStart_[cellIndex(gx0, y1)], cellStart_[cellIndex(gx1, y1) + 1]);
+    if (y0 >= 0) gather(cellStart_[cellIndex(gx0, y0)], cellStart_[cellIndex(gx1, y0) + 1]);
+    if (y1 < ny_) gather(cellStart_[cellIndex(gx0, y1)], cellStart_[cellIndex(gx1, y1) + 1]);
     for (int gy = std::max(0, y0 + 1); gy <= std::min(ny_ - 1, y1 - 1); ++gy) {
-      if (x0 >= 0) scan(cellStart_[cellIndex(x0, gy)], cellStart_[cellIndex(x0, gy) + 1]);
-      if (x1 < nx_) scan(cellStart_[cellIndex(x1, gy)], cellStart_[cellIndex(x1, gy) + 1]);
+      if (x0 >= 0) gather(cellStart_[cellIndex(x0, gy)], cellStart_[cellIndex(x0, gy) + 1]);
+      if (x1 < nx_) gather(cellStart_[cellIndex(x1, gy)], cellStart_[cellIndex(x1, gy) + 1]);
     }
   }
-  // Uniform density over the block read first: the k-th neighbour is expected at π r² ρ = k.
-  const float area = static_cast<float>(blockCells) * cellSize_ * cellSize_;
-  narrow(c, k, static_cast<float>(k) * area / (3.14159265f * static_cast<float>(std::max<std::size_t>(c.n, 1))), limit);
-  if (c.n > kRankMax && c.n > k) keepSmallest(c, k, keys);
-  return writeRanked(c, k, ranked, out);
+  return blockCells;
 }
 
 }  // namespace throng::sim

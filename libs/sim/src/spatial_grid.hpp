@@ -71,6 +71,11 @@ class SpatialGrid {
   [[nodiscard]] std::span<const std::uint32_t> rowsInCellOrder() const { return {rows_.data(), size_}; }
 
  private:
+  /// Feeds `gather` the cell spans around (x, y): the block of the first rings at once, then ring
+  /// by ring until the range is covered or gather has k candidates nearer than the next ring.
+  /// Returns the number of cells in the first block (for the density estimate).
+  template <class G>
+  int gatherRings(float x, float y, float range, G& gather) const;
   /// floor(v) clamped to [0, n): truncation equals floor on [0, n), and everything below 0 (NaN
   /// too) clamps to 0 either way — without a call to floorf (no SSE4.1 in the baseline ISA).
   static int toCell(float v, int n) {

@@ -55,22 +55,10 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
     w.populationStartTick.push_back(static_cast<std::uint64_t>(std::ceil(pop.start / desc.dt - 1e-6)));
     w.populationSpawned.push_back(0);
   }
-  for (const PointDesc& p : desc.points) {
-    w.pointBounds.push_back(p.polygon.empty()
-                                ? core::Aabb{{p.position.x - p.radius, p.position.y - p.radius},
-                                             {p.position.x + p.radius, p.position.y + p.radius}}
-                                : core::bounds(p.polygon));
-  }
+  w.subOffset.push_back(0);
+  for (const PointDesc& p : desc.points) w.addPointGeometry(p);
   w.pointClip = pointClips(desc);
   w.initSocial();
-  w.subOffset.push_back(0);
-  for (const PointDesc& p : desc.points) {
-    const crowd::Region region = p.polygon.empty() ? crowd::Region::disc(p.position, p.radius) : crowd::Region::poly(p.polygon);
-    std::vector<crowd::Subregion> subs = crowd::divideRegion(region);
-    w.subregions.insert(w.subregions.end(), std::make_move_iterator(subs.begin()), std::make_move_iterator(subs.end()));
-    w.subOffset.push_back(static_cast<std::uint32_t>(w.subregions.size()));
-  }
-  w.subOccupancy.assign(w.subregions.size(), 0);
   w.planPopulations();
   for (const PopulationDesc& pop : desc.populations) w.anySocial = w.anySocial || pop.sociological.enabled;
   w.navRadius = desc.maxRadius();

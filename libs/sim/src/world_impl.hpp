@@ -197,6 +197,10 @@ struct World::Impl {
   /// Timeline entries and API crowd commands due this tick, in that order (from applyCommands).
   void applyCrowdCommands();
   void insertCrowdNow(CrowdState& crowd);
+  /// The crowd's populations, with indices into the world's lists and times from `now` [s].
+  void addCrowdPopulations(const CrowdDesc& crowd, std::uint32_t firstPoint, std::uint32_t firstPopulation, double now);
+  /// Optional agent columns populations [firstPopulation, end) need and the world did not have yet.
+  void addColumnsFor(std::uint32_t firstPopulation);
   void removeCrowdNow(CrowdState& crowd);
   [[nodiscard]] bool crowdsPending() const { return !crowdCommands.empty() || timelineNext < desc.timeline.size(); }
 
@@ -254,6 +258,8 @@ struct World::Impl {
   /// Applies the goal changes decide asked for (AgentStore::goalPending), in row order (goals.cpp).
   void applyPendingGoals();
   // Group pass steps (groups.cpp).
+  /// A point's bounds and sub-regions (creation and insertion; goals.cpp).
+  void addPointGeometry(const PointDesc& p);
   /// Releases the sub-region `row` was targeting (its occupancy drops).
   void releaseTarget(std::size_t row);
   /// Replaces the navmesh request of `row` by a Bézier path when its population asks for one.
