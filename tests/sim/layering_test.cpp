@@ -4,7 +4,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
+#include <set>
+#include <vector>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -33,4 +36,105 @@ TEST(Layering, SimulationLibrariesDoNoIo) {
     }
   }
   EXPECT_GT(checked, 10);
+}
+
+namespace {
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Every library under libs/ and the throng libraries its CMake target links (throng::X).
+std::map<std::string, std::set<std::string>> linkedLibraries() {
+  std::map<std::string, std::set<std::string>> deps;
+  const std::regex link(R"(target_link_libraries\s*\(\s*throng_(\w+)([^)]*)\))");
+  const std::regex dep(R"(throng::(\w+))");
+  for (const auto& dir : fs::directory_iterator(fs::path(THRONG_SOURCE_DIR) / "libs")) {
+    if (!dir.is_directory()) continue;
+    deps[dir.path().filename().string()];
+    const std::string cmake = readFile(dir.path() / "CMakeLists.txt");
+    for (auto m = std::sregex_iterator(cmake.begin(), cmake.end(), link); m != std::sregex_iterator(); ++m) {
+      const std::string args = (*m)[2];
+      for (auto d = std::sregex_iterator(args.begin(), args.end(), dep); d != std::sregex_iterator(); ++d) {
+        deps[(*m)[1]].insert((*d)[1]);
+      }
+    }
+  }
+  return deps;
+}
+
+std::set<std::string> closure(const std::map<std::string, std::set<std::string>>& deps, const std::string& lib) {
+  std::set<std::string> seen;
+  std::vector<std::string> todo{lib};
+  while (!todo.empty()) {
+    const std::string l = todo.back();
+    todo.pop_back();
+    if (!seen.insert(l).second || !deps.count(l)) continue;
+    for (const std::string& d : deps.at(l)) todo.push_back(d);
+  }
+  return seen;
+}
+
+}  // namespace
+
+// The dependency diagram of docs/architecture.md, enforced: a library's sources include public
+// headers only of the libraries its CMake target links (directly or through them), and no
+// library's CMake reaches into another library's private src/.
+TEST(Layering, LibrariesIncludeOnlyWhatTheyLink) {
+  const auto deps = linkedLibraries();
+  ASSERT_GE(deps.size(), 10u);
+  const std::regex include(R"(#\s*include\s*[<"]throng/(\w+)/)");
+  int checked = 0;
+  for (const auto& [lib, direct] : deps) {
+    const std::set<std::string> allowed = closure(deps, lib);
+    for (const auto& entry : fs::recursive_directory_iterator(fs::path(THRONG_SOURCE_DIR) / "libs" / lib)) {
+      const auto ext = entry.path().extension();
+      if (!entry.is_regular_file() || (ext != ".cpp" && ext != ".hpp" && ext != ".in")) continue;
+      std::ifstream in(entry.path());
+      std::string line;
+      for (int lineNo = 1; std::getline(in, line); ++lineNo) {
+        std::smatch m;
+        if (!std::regex_search(line, m, include) || allowed.count(m[1])) continue;
+        ADD_FAILURE() << entry.path() << ":" << lineNo << ": library " << lib << " includes throng/" << m[1]
+                      << " but its CMake target does not link throng::" << m[1];
+      }
+      ++checked;
+    }
+    const std::string cmake = readFile(fs::path(THRONG_SOURCE_DIR) / "libs" / lib / "CMakeLists.txt");
+    const std::regex privateSrc(R"(libs/(\w+)/src)");
+    for (auto m = std::sregex_iterator(cmake.begin(), cmake.end(), privateSrc); m != std::sregex_iterator(); ++m) {
+      EXPECT_EQ((*m)[1], lib) << "libs/" << lib << "/CMakeLists.txt reaches into libs/" << (*m)[1] << "/src";
+    }
+  }
+  EXPECT_GT(checked, 100);
+}
+
+// Apps and benchmarks use libraries through their public headers only.
+TEST(Layering, AppsAndBenchesUseNoLibrarysPrivateSources) {
+  const std::regex privateInclude(R"(#\s*include\s*"[^"]*(libs/\w+/src/|\.\./src/|\.\./\.\./libs/))");
+  for (const char* dir : {"apps", "benches", "examples"}) {
+    for (const auto& entry : fs::recursive_directory_iterator(fs::path(THRONG_SOURCE_DIR) / dir)) {
+      const auto ext = entry.path().extension();
+      if (!entry.is_regular_file() || (ext != ".cpp" && ext != ".hpp" && ext != ".c" && ext != ".txt")) continue;
+      const std::string text = readFile(entry.path());
+      EXPECT_FALSE(std::regex_search(text, privateInclude)) << entry.path() << " includes a library's private source";
+      if (entry.path().filename() == "CMakeLists.txt") {
+        EXPECT_EQ(text.find("libs/"), std::string::npos) << entry.path() << " names a library's sources directly";
+      }
+    }
+  }
+}
+
+// docs/architecture.md shows every library (and names no library that does not exist).
+TEST(Layering, TheArchitecturePageShowsEveryLibrary) {
+  const std::string doc = readFile(fs::path(THRONG_SOURCE_DIR) / "docs" / "architecture.md");
+  const auto deps = linkedLibraries();
+  for (const auto& [lib, direct] : deps) {
+    EXPECT_NE(doc.find("libs/" + lib + "/"), std::string::npos) << "docs/architecture.md does not show libs/" << lib << "/";
+  }
+  const std::regex named(R"(libs/(\w+)/)");
+  for (auto m = std::sregex_iterator(doc.begin(), doc.end(), named); m != std::sregex_iterator(); ++m) {
+    EXPECT_TRUE(deps.count((*m)[1])) << "docs/architecture.md names libs/" << (*m)[1] << "/, which does not exist";
+  }
 }

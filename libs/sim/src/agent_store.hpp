@@ -36,6 +36,8 @@ inline constexpr std::uint32_t kNoAgent = 0xffffffffu;
 inline constexpr std::uint32_t kNoGroup = 0xffffffffu;
 /// "None" for a point index (ScenarioDesc::points), as the recorded events write it.
 inline constexpr std::uint32_t kNoPoint = 0xffffffffu;
+/// "None" for a row of the AgentStore (World::Impl::rowOfId of an agent gone).
+inline constexpr std::uint32_t kNoRow = 0xffffffffu;
 /// "None" for an index into a side table (GroupState::extra, GroupExtra::route) or a coordination id.
 inline constexpr std::uint32_t kNoIndex = 0xffffffffu;
 
@@ -106,10 +108,10 @@ struct AgentStore {
   std::vector<std::uint32_t> socialOther; ///< the agent met
   // Common Ground (social.cpp; only when the scenario's social section is on).
   bool commonGround = false;
-  std::vector<std::uint32_t> coordination;  ///< id of the coordination it plays a script in, kNoAgent if none
+  std::vector<std::uint32_t> coordination;  ///< id of the coordination it plays a script in, kNoIndex if none
   std::vector<std::uint8_t> scriptWalk;     ///< while Scripted: 1 = walking to its target, 0 = standing
   std::vector<std::uint16_t> scriptClip;    ///< while Scripted: animation clip played, kNoClip = walk/idle by motion
-  std::vector<std::uint32_t> desirePoint;   ///< decide → group pass: generated goal (point), kNoAgent if none
+  std::vector<std::uint32_t> desirePoint;   ///< decide → group pass: generated goal (point), kNoPoint if none
   std::vector<std::uint8_t> desireTrigger;  ///< its GoalTrigger
   std::vector<std::uint32_t> socialReady;   ///< first tick a new goal may be generated (cooldown; 32 bits)
   std::vector<std::uint64_t> interests;     ///< bit c: interested in category c (World::Impl::categories)
@@ -150,7 +152,7 @@ struct AgentStore {
   /// floors are 2 m or more apart).
   static constexpr float kSameLevel = 1.2f;
   [[nodiscard]] std::uint32_t followedAgent(std::size_t row) const { return sociological ? followAgent[row] : kNoAgent; }
-  [[nodiscard]] std::uint32_t coordinationOf(std::size_t row) const { return commonGround ? coordination[row] : kNoAgent; }
+  [[nodiscard]] std::uint32_t coordinationOf(std::size_t row) const { return commonGround ? coordination[row] : kNoIndex; }
   [[nodiscard]] bool scriptWalking(std::size_t row) const { return commonGround && scriptWalk[row] != 0; }
   [[nodiscard]] std::uint16_t scriptClipOf(std::size_t row) const { return commonGround ? scriptClip[row] : kNoClip; }
 

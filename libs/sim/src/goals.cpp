@@ -18,6 +18,11 @@ const std::vector<std::uint32_t>& World::Impl::activeGoals(const GroupState& g) 
   return goalLists[g.following && groups.routeOf(g).followGroup != kNoGroup ? groups[groups.routeOf(g).followGroup].goalList : g.goalList];
 }
 
+std::uint32_t World::Impl::groupGoalPoint(const GroupState& g) const {
+  const std::vector<std::uint32_t>& goals = activeGoals(g);
+  return g.cursor < goals.size() ? goals[g.cursor] : kNoPoint;
+}
+
 std::uint32_t World::Impl::currentGoalPoint(std::size_t row) const {
   const std::vector<std::uint32_t>& goals = activeGoals(groups[agents.group[row]]);
   const std::uint32_t cursor = agents.goalCursor[row];
@@ -166,7 +171,7 @@ void World::Impl::bezierPath(std::size_t row, const nav::NavQuery& query) {
   const std::vector<std::uint32_t>& goals = activeGoals(groups[agents.group[row]]);
   const std::uint32_t cursor = agents.goalCursor[row];
   if (!curve) {
-    pendingEvents.push_back({tick, agents.id[row], EventKind::PathFallback, cursor < goals.size() ? goals[cursor] : kNoAgent, 0});
+    pendingEvents.push_back({tick, agents.id[row], EventKind::PathFallback, cursor < goals.size() ? goals[cursor] : kNoPoint, 0});
     return;  // needPath stays set: plan asks the navmesh
   }
   std::vector<core::Vec2> points;

@@ -38,7 +38,7 @@ struct GroupExtra {
   // Common Ground (social.cpp).
   std::uint32_t coordination = kNoIndex;  ///< id of the coordination its members play now
   std::uint32_t reunite = kNoIndex;       ///< a divide ended: id of that coordination until the group is whole again
-  std::uint32_t route = kNoAgent;         ///< index into GroupTable::routeFor, kNoAgent: none
+  std::uint32_t route = kNoIndex;         ///< index into the table's routes, kNoIndex: none
   bool waiting = false;
 };
 

@@ -49,7 +49,7 @@ GuideWaypoint interpolateGuide(const std::vector<GuideWaypoint>& script, float t
 
 void World::Impl::decideGroups(const core::TaskSystem& tasks) {
   if (rowsChanged) {
-    rowOfId.assign(nextAgentId, kNoAgent);
+    rowOfId.assign(nextAgentId, kNoRow);
     for (std::size_t r = 0; r < agents.size(); ++r) rowOfId[agents.id[r]] = static_cast<std::uint32_t>(r);
     rowsChanged = false;
   }
@@ -151,7 +151,7 @@ void World::Impl::updateFollowing() {
     GroupState& g = groups[gid];
     if (!groups.hasRoute(g)) continue;  // follows nobody
     GroupRoute& x = groups.routeFor(gid);
-    if (x.followGroup == kNoAgent || g.guided) continue;
+    if (x.followGroup == kNoGroup || g.guided) continue;
     const FollowDesc& f = desc.populations[g.population].follow;
     const GroupState& leader = groups[x.followGroup];
     bool following = g.following;
@@ -196,8 +196,8 @@ void World::Impl::applySocialEffects() {
     if (agents.followAgent[r] == kNoAgent && agents.socialEffect[r] == SocialEffect::None) continue;
     // Ongoing following of another agent: chase it, end it when time is up or it left.
     if (agents.followAgent[r] != kNoAgent) {
-      const std::uint32_t other = agents.followAgent[r] < rowOfId.size() ? rowOfId[agents.followAgent[r]] : kNoAgent;
-      if (other == kNoAgent || tick >= agents.followUntil[r] || agents.goalState[r] == GoalState::Exited) {
+      const std::uint32_t other = agents.followAgent[r] < rowOfId.size() ? rowOfId[agents.followAgent[r]] : kNoRow;
+      if (other == kNoRow || tick >= agents.followUntil[r] || agents.goalState[r] == GoalState::Exited) {
         pendingEvents.push_back({tick, agents.id[r], EventKind::FollowAgentEnd, agents.followAgent[r], 0});
         agents.followAgent[r] = kNoAgent;
         if (agents.goalState[r] != GoalState::Exited) setGoal(r, agents.goalCursor[r], query);
@@ -218,7 +218,7 @@ void World::Impl::applySocialEffects() {
     if (effect == SocialEffect::None) continue;
     agents.socialEffect[r] = SocialEffect::None;
     const std::uint32_t other = agents.socialOther[r] < rowOfId.size() ? rowOfId[agents.socialOther[r]] : kNoAgent;
-    if (other == kNoAgent) continue;
+    if (other == kNoRow) continue;
     const SociologicalDesc& social = desc.populations[agents.population[r]].sociological;
     if (effect == SocialEffect::JoinGroup) {
       // Join the other agent's group: adopt its goals and speed.
@@ -250,17 +250,16 @@ void World::Impl::updateWaiting() {
     GroupState& g = groups[gid];
     GroupExtra& x = groups.extraOf(g);
     const PopulationDesc& pop = desc.populations[g.population];
-    if (x.coordination != kNoAgent) continue;  // members are playing a script: nobody waits or leaves
+    if (x.coordination != kNoIndex) continue;  // members are playing a script: nobody waits or leaves
     if (!g.flocks(pop) || g.guided) {
       // Without flocking the group's position in its goal list is its leader's.
-      if (g.leader != kNoAgent && rowOfId[g.leader] != kNoAgent) g.cursor = agents.goalCursor[rowOfId[g.leader]];
+      if (g.leader != kNoAgent && rowOfId[g.leader] != kNoRow) g.cursor = agents.goalCursor[rowOfId[g.leader]];
       continue;
     }
     std::uint32_t waiting = 0;
     for (std::uint32_t id : g.members) waiting += agents.goalState[rowOfId[id]] == GoalState::WaitingForGroup;
     if (waiting == 0) continue;
-    const std::vector<std::uint32_t>& goals = activeGoals(g);
-    const std::uint32_t point = g.cursor < goals.size() ? goals[g.cursor] : kNoAgent;
+    const std::uint32_t point = groupGoalPoint(g);
     if (!x.waiting) {
       x.waiting = true;
       x.waitStart = static_cast<std::uint32_t>(tick);
@@ -324,7 +323,7 @@ void World::Impl::shapeGroup(GroupState& g, WorkerScratch& ws) {
   const PopulationDesc& pop = desc.populations[g.population];
   if (g.members.empty()) return;
   GroupExtra& x = groups.extraOf(g);
-  const bool flocking = g.flocks(pop) && g.members.size() >= 2 && x.coordination == kNoAgent;
+  const bool flocking = g.flocks(pop) && g.members.size() >= 2 && x.coordination == kNoIndex;
   if (!flocking && !g.guided) {
     for (std::uint32_t id : g.members) agents.setFormVel(rowOfId[id], 0.0f, 0.0f);
     return;

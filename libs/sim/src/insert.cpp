@@ -4,7 +4,7 @@
 // tick: its points and populations are appended to the description, its groups get the next
 // stable group ids, its agents the next agent ids as they spawn, and the optional agent columns it
 // needs (formation, sociological model) are created. A removal takes the crowd's agents out at the
-// start of the tick (an Exit event each, a = kNoAgent). Everything is serial and in command order,
+// start of the tick (an Exit event each, a = kNoPoint). Everything is serial and in command order,
 // so trajectories never depend on the thread count. Reads and writes World::Impl only.
 #include <algorithm>
 #include <cmath>
@@ -243,7 +243,7 @@ void World::Impl::removeCrowdNow(CrowdState& c) {
     if (agents.population[r] < first || agents.population[r] >= last) continue;
     keep[r] = 0;
     any = true;
-    pendingEvents.push_back({tick, agents.id[r], EventKind::Exit, kNoAgent, c.info.index});
+    pendingEvents.push_back({tick, agents.id[r], EventKind::Exit, kNoPoint, c.info.index});
     ++stats.removed;
     releaseTarget(r);
     GroupState& g = groups[agents.group[r]];

@@ -240,8 +240,8 @@ void World::Impl::addSpawnedAgents(const SpawnPlan& plan) {
       agents.targetSub[row] = -1;
       if (agents.sociological) agents.followAgent[row] = kNoAgent;
       if (agents.commonGround) {
-        agents.coordination[row] = kNoAgent;
-        agents.desirePoint[row] = kNoAgent;
+        agents.coordination[row] = kNoIndex;
+        agents.desirePoint[row] = kNoPoint;
         agents.scriptClip[row] = kNoClip;
       }
       // Interests matter only to the goal generator (Common Ground on).

@@ -32,10 +32,10 @@ core::Vec2 unstick(core::Vec2 desired, const SteeringDesc& s, std::uint64_t seed
 
 void World::Impl::steer(const core::TaskSystem& tasks) {
   // Partitioned (partition.cpp): only the rows this rank owns; exchangeSteer brings the rest.
-  const bool partitioned = exchange != nullptr;
+  const bool partitioned = partition.exchange != nullptr;
   if (partitioned) assignOwners();
-  const std::uint32_t* list = partitioned ? ownedRows.data() : nullptr;
-  const std::size_t n = partitioned ? ownedRows.size() : agents.size();
+  const std::uint32_t* list = partitioned ? partition.ownedRows.data() : nullptr;
+  const std::size_t n = partitioned ? partition.ownedRows.size() : agents.size();
   const ModelInput input{agents, walls, desc, viewers};
   const VelocityOutput out{agents.newVelX, agents.newVelY};
   tasks.parallelFor(n, grainFor(n, tasks), [&](std::size_t begin, std::size_t end) {

@@ -1,3 +1,5 @@
+// Walls (walls.hpp): the navmesh boundary (nav::NavMesh::boundary) in a uniform grid of cells, the
+// disc query ORCA uses and the floor check on multi-level worlds.
 #include "walls.hpp"
 
 #include "agent_store.hpp"

@@ -82,7 +82,7 @@ void World::step(const core::TaskSystem& tasks, PhaseObserver* observer) {
   { Scope s(observer, "decide"); w.decide(tasks); }
   { Scope s(observer, "plan"); w.plan(); }
   { Scope s(observer, "steer"); w.steer(tasks); }
-  if (w.exchange != nullptr) { Scope s(observer, "exchange"); w.exchangeSteer(); }
+  if (w.partition.exchange != nullptr) { Scope s(observer, "exchange"); w.exchangeSteer(); }
   { Scope s(observer, "integrate"); w.integrate(tasks); }
   { Scope s(observer, "emit"); w.emit(); }
 }
@@ -208,13 +208,12 @@ std::optional<GroupInfo> World::groupInfo(GroupId handle) const {
   info.members = g.members.toVector();
   info.leader = g.leader;
   info.goalIndex = g.cursor;
-  const std::vector<std::uint32_t>& goals = w.activeGoals(g);
-  info.goalPoint = g.cursor < goals.size() ? goals[g.cursor] : kNoAgent;
+  info.goalPoint = w.groupGoalPoint(g);
   info.waiting = x.waiting;
   info.guided = g.guided;
   info.guide = route.guide;
   info.following = g.following;
-  info.followedGroup = g.following ? route.followGroup : kNoAgent;
+  info.followedGroup = g.following ? route.followGroup : kNoGroup;
   return info;
 }
 
@@ -236,7 +235,7 @@ bool World::release(GroupId handle) {
 
 std::optional<AgentInfo> World::agentInfo(std::uint32_t id) const {
   const Impl& w = *impl_;
-  if (id >= w.rowOfId.size() || w.rowOfId[id] == kNoAgent) return std::nullopt;
+  if (id >= w.rowOfId.size() || w.rowOfId[id] == kNoRow) return std::nullopt;
   const std::uint32_t row = w.rowOfId[id];
   const AgentStore& a = w.agents;
   AgentInfo info;
@@ -254,8 +253,7 @@ std::optional<AgentInfo> World::agentInfo(std::uint32_t id) const {
   if (row < a.followAgent.size()) info.followedAgent = a.followAgent[row];
   const GroupState& g = w.groups[a.group[row]];
   info.guided = g.guided;
-  const std::vector<std::uint32_t>& goals = w.activeGoals(g);
-  if (a.goalCursor[row] < goals.size()) info.goalPoint = goals[a.goalCursor[row]];
+  if (const std::uint32_t goal = w.currentGoalPoint(row); goal != kNoPoint) info.goalPoint = goal;
   switch (a.goalState[row]) {
     case GoalState::Seeking: info.state = "walking to its goal"; break;
     case GoalState::Acting: info.state = "at an action point"; break;

@@ -93,6 +93,20 @@ struct ChunkOutput {
   std::vector<std::uint32_t> desireRows;   ///< rows whose desirePoint was set (goal generator), ascending
 };
 
+/// The steer phase shared with other ranks (partition.hpp, partition.cpp). Unset (exchange ==
+/// nullptr), none of this is touched and steer visits every row as always.
+struct PartitionState {
+  StepExchange* exchange = nullptr;
+  PartitionOptions options;
+  PartitionStats stats;
+  std::vector<float> cuts;                   ///< ranks - 1 strip cuts in x, ascending [m]
+  std::vector<std::uint16_t> ownerOfId;      ///< rank that steered each stable id last tick, 0xffff: none yet
+  std::vector<std::uint16_t> rowOwner;       ///< this tick's owner of every row
+  std::vector<std::uint32_t> ownedRows;      ///< rows this rank steers this tick, ascending
+  std::vector<std::byte> steerSend, steerGathered;
+  std::vector<std::size_t> steerSizes;
+};
+
 /// Occupied discs while agents are placed (spawn.cpp).
 class SpawnOccupancy;
 
@@ -130,7 +144,7 @@ struct World::Impl {
   std::vector<std::vector<std::uint32_t>> goalLists;
   std::vector<GroupCommand> commands;
   std::vector<core::Vec2> viewers;
-  std::vector<std::uint32_t> rowOfId;       ///< stable id → row (kNoAgent if gone), rebuilt when rows change
+  std::vector<std::uint32_t> rowOfId;       ///< stable id → row (kNoRow if gone), rebuilt when rows change
   bool rowsChanged = true;                  ///< set by spawning and by removals
   bool anySocial = false;                   ///< some population has the sociological model on
   std::vector<std::uint32_t> followingRows; ///< rows following another agent (sociological), ascending
@@ -250,6 +264,8 @@ struct World::Impl {
   void setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQuery& query);
   /// The goal list a group follows now: its own, or the followed group's while following (goals.cpp).
   [[nodiscard]] const std::vector<std::uint32_t>& activeGoals(const GroupState& g) const;
+  /// The point the group is heading for (its cursor in its active list), kNoPoint past the last.
+  [[nodiscard]] std::uint32_t groupGoalPoint(const GroupState& g) const;
   /// The point `row` is heading for (from its group's active goal list), kNoPoint past the last.
   [[nodiscard]] std::uint32_t currentGoalPoint(std::size_t row) const;
   /// Whether `row` stops at the end of its current path (an action point's stop, or its last goal
@@ -282,18 +298,9 @@ struct World::Impl {
     return tasks.grain(n < 4096 ? 256 : 1024);
   }
 
-  // Partition (partition.hpp, partition.cpp): the steer phase shared with other ranks. Unset
-  // (exchange == nullptr), none of this is touched and steer visits every row as always.
-  StepExchange* exchange = nullptr;
-  PartitionOptions partitionOptions;
-  PartitionStats partitionStats;
-  std::vector<float> cuts;                   ///< ranks - 1 strip cuts in x, ascending [m]
-  std::vector<std::uint16_t> ownerOfId;      ///< rank that steered each stable id last tick, 0xffff: none yet
-  std::vector<std::uint16_t> rowOwner;       ///< this tick's owner of every row
-  std::vector<std::uint32_t> ownedRows;      ///< rows this rank steers this tick, ascending
-  std::vector<std::byte> steerSend, steerGathered;
-  std::vector<std::size_t> steerSizes;
-  /// Chooses (every partitionOptions.rebalanceTicks ticks) the cuts and this tick's owner of every row.
+  // Partition (partition.hpp, partition.cpp): the steer phase shared with other ranks.
+  PartitionState partition;
+  /// Chooses (every partition.options.rebalanceTicks ticks) the cuts and this tick's owner of every row.
   void assignOwners();
   /// Sends what steer wrote for the owned rows, applies every other rank's values.
   void exchangeSteer();
