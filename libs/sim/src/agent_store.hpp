@@ -104,8 +104,8 @@ struct AgentStore {
   bool sociological = false;
   std::vector<std::uint32_t> followAgent; ///< stable id of the agent followed, kNoAgent if none
   std::vector<std::uint32_t> followUntil; ///< tick that following ends (32 bits, as actionEndTick)
-  std::vector<SocialEffect> socialEffect; ///< decide → group pass (the other agent in socialOther)
-  std::vector<std::uint32_t> socialOther; ///< the agent met
+  std::vector<SocialEffect> sociologicalEffect; ///< decide → group pass (the other agent in sociologicalOther)
+  std::vector<std::uint32_t> sociologicalOther; ///< the agent met
   // Common Ground (social.cpp; only when the scenario's social section is on).
   bool commonGround = false;
   std::vector<std::uint32_t> coordination;  ///< id of the coordination it plays a script in, kNoIndex if none
@@ -167,7 +167,7 @@ struct AgentStore {
     f(animClip); f(animPhase); f(goalPending); f(targetSub); f(dynamicTarget);
     if (levels) { f(posZ); f(targetZ); }
     if (formation) { f(formVelX); f(formVelY); }
-    if (sociological) { f(followAgent); f(followUntil); f(socialEffect); f(socialOther); }
+    if (sociological) { f(followAgent); f(followUntil); f(sociologicalEffect); f(sociologicalOther); }
     if (commonGround) {
       f(coordination); f(scriptWalk); f(scriptClip); f(desirePoint); f(desireTrigger); f(socialReady); f(interests);
       f(visited);

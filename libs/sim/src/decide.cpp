@@ -60,7 +60,7 @@ void World::Impl::decideRow(std::size_t row, std::uint64_t checkEvery, ChunkOutp
   }
   // Common Ground goal generator: needs and places in view.
   if (agents.goalState[row] == GoalState::Seeking && desc.social.enabled) generateGoal(row, out, query);
-  if (agents.sociological) agents.socialEffect[row] = SocialEffect::None;
+  if (agents.sociological) agents.sociologicalEffect[row] = SocialEffect::None;
   const PopulationDesc& pop = desc.populations[g.population];
   if (pop.sociological.enabled && agents.goalState[row] == GoalState::Seeking && agents.followAgent[row] == kNoAgent &&
       !g.guided) {
@@ -160,12 +160,12 @@ void World::Impl::meetOthers(std::size_t row, const SociologicalDesc& social, Ch
     const double pJoin = social.changeGroupRate * social.sociability * desc.dt;
     const double pFollow = social.followAgentRate * social.sociability * desc.dt;
     if (u < pJoin) {
-      agents.socialEffect[row] = SocialEffect::JoinGroup;
+      agents.sociologicalEffect[row] = SocialEffect::JoinGroup;
     } else if (u < pJoin + pFollow) {
-      agents.socialEffect[row] = SocialEffect::FollowAgent;
+      agents.sociologicalEffect[row] = SocialEffect::FollowAgent;
     }
-    if (agents.socialEffect[row] != SocialEffect::None) {
-      agents.socialOther[row] = agents.id[o];
+    if (agents.sociologicalEffect[row] != SocialEffect::None) {
+      agents.sociologicalOther[row] = agents.id[o];
       break;
     }
   }

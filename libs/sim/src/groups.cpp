@@ -62,7 +62,7 @@ void World::Impl::decideGroups(const core::TaskSystem& tasks) {
   groups.refreshBusy();
   updateGuidance();
   updateFollowing();
-  if (anySocial) applySocialEffects();
+  if (anySociological) applySocialEffects();
   updateWaiting();
   if (desc.social.enabled) checkReunions();
   updateLeaders();
@@ -193,7 +193,7 @@ void World::Impl::updateFollowing() {
 void World::Impl::applySocialEffects() {
   const nav::NavQuery& query = *mainQuery;
   for (std::size_t r = 0; r < agents.size(); ++r) {
-    if (agents.followAgent[r] == kNoAgent && agents.socialEffect[r] == SocialEffect::None) continue;
+    if (agents.followAgent[r] == kNoAgent && agents.sociologicalEffect[r] == SocialEffect::None) continue;
     // Ongoing following of another agent: chase it, end it when time is up or it left.
     if (agents.followAgent[r] != kNoAgent) {
       const std::uint32_t other = agents.followAgent[r] < rowOfId.size() ? rowOfId[agents.followAgent[r]] : kNoRow;
@@ -214,10 +214,10 @@ void World::Impl::applySocialEffects() {
         }
       }
     }
-    const SocialEffect effect = agents.socialEffect[r];
+    const SocialEffect effect = agents.sociologicalEffect[r];
     if (effect == SocialEffect::None) continue;
-    agents.socialEffect[r] = SocialEffect::None;
-    const std::uint32_t other = agents.socialOther[r] < rowOfId.size() ? rowOfId[agents.socialOther[r]] : kNoAgent;
+    agents.sociologicalEffect[r] = SocialEffect::None;
+    const std::uint32_t other = agents.sociologicalOther[r] < rowOfId.size() ? rowOfId[agents.sociologicalOther[r]] : kNoAgent;
     if (other == kNoRow) continue;
     const SociologicalDesc& social = desc.populations[agents.population[r]].sociological;
     if (effect == SocialEffect::JoinGroup) {

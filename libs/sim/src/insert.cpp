@@ -34,14 +34,14 @@ core::Diagnostics World::Impl::checkCrowd(const CrowdDesc& crowd) const {
     out.push_back({source, 0, 0, std::move(pointer), std::move(what), std::move(expected), ""});
   };
   if (crowd.id.empty()) error("/id", "empty crowd id", "a non-empty id");
-  for (const CrowdState& c : crowds) {
+  for (const CrowdState& c : insertion.crowds) {
     if (c.info.id == crowd.id) error("/id", "crowd id \"" + crowd.id + "\" is already taken", "an id no crowd of this world has");
   }
   // Ids taken by the world and by every crowd queued so far.
   std::set<std::string, std::less<>> pointIds, populationIds;
   for (const PointDesc& p : desc.points) pointIds.insert(p.id);
   for (const PopulationDesc& p : desc.populations) populationIds.insert(p.id);
-  for (const CrowdState& c : crowds) {
+  for (const CrowdState& c : insertion.crowds) {
     if (c.info.applied) continue;
     pointIds.insert(c.pointIds.begin(), c.pointIds.end());
     populationIds.insert(c.populationIds.begin(), c.populationIds.end());
@@ -53,7 +53,7 @@ core::Diagnostics World::Impl::checkCrowd(const CrowdDesc& crowd) const {
     }
   }
   std::size_t populationsAfter = desc.populations.size() + crowd.populations.size();
-  for (const CrowdState& c : crowds) {
+  for (const CrowdState& c : insertion.crowds) {
     if (!c.info.applied) populationsAfter += c.populationIds.size();
   }
   if (populationsAfter > kMaxPopulations) {
@@ -104,9 +104,9 @@ core::Diagnostics World::Impl::checkCrowd(const CrowdDesc& crowd) const {
         error(ptr + "/follow", "followed population or group out of range", "a group of a population of the world or of the crowd");
       }
     }
-    if (pop.radius > navRadius + 1e-6f) {
+    if (pop.radius > insertion.navRadius + 1e-6f) {
       error(ptr + "/radius",
-            "body radius " + std::to_string(pop.radius) + " m exceeds the world's navmesh erosion radius " + std::to_string(navRadius) + " m",
+            "body radius " + std::to_string(pop.radius) + " m exceeds the world's navmesh erosion radius " + std::to_string(insertion.navRadius) + " m",
             "a radius <= the largest radius of the scenario's own populations");
     }
     if (pop.groups == 0 || pop.sizeMin == 0 || pop.sizeMin > pop.sizeMax) {
@@ -117,9 +117,9 @@ core::Diagnostics World::Impl::checkCrowd(const CrowdDesc& crowd) const {
   if (agents > kMaxInsertAgents) {
     error("/populations", "the crowd may spawn " + std::to_string(agents) + " agents",
           "at most " + std::to_string(kMaxInsertAgents) + " agents per insertion");
-  } else if (insertedAgents + agents > kMaxInsertedAgents) {
+  } else if (insertion.insertedAgents + agents > kMaxInsertedAgents) {
     error("/populations",
-          "the crowd may spawn " + std::to_string(agents) + " agents; " + std::to_string(insertedAgents) +
+          "the crowd may spawn " + std::to_string(agents) + " agents; " + std::to_string(insertion.insertedAgents) +
               " were inserted into this world already",
           "at most " + std::to_string(kMaxInsertedAgents) + " inserted agents per world in all");
   }
@@ -130,39 +130,39 @@ std::uint32_t World::Impl::queueCrowd(const CrowdDesc& crowd) {
   CrowdState c;
   c.desc = crowd;
   c.info.id = crowd.id;
-  c.info.index = static_cast<std::uint32_t>(crowds.size());
+  c.info.index = static_cast<std::uint32_t>(insertion.crowds.size());
   for (const PointDesc& p : crowd.points) c.pointIds.push_back(p.id);
   for (const PopulationDesc& p : crowd.populations) c.populationIds.push_back(p.id);
-  insertedAgents += crowd.maxAgents();
-  crowds.push_back(std::move(c));
-  return crowds.back().info.index;
+  insertion.insertedAgents += crowd.maxAgents();
+  insertion.crowds.push_back(std::move(c));
+  return insertion.crowds.back().info.index;
 }
 
 void World::Impl::initTimeline() {
-  for (const TimelineEntry& e : desc.timeline) timelineTick.push_back(ticksOf(e.time, desc.dt));
+  for (const TimelineEntry& e : desc.timeline) insertion.timelineTick.push_back(ticksOf(e.time, desc.dt));
 }
 
 void World::Impl::applyCrowdCommands() {
-  while (timelineNext < desc.timeline.size() && timelineTick[timelineNext] <= tick) {
-    const TimelineEntry& e = desc.timeline[timelineNext++];
+  while (insertion.timelineNext < desc.timeline.size() && insertion.timelineTick[insertion.timelineNext] <= tick) {
+    const TimelineEntry& e = desc.timeline[insertion.timelineNext++];
     if (e.action == TimelineAction::Insert) {
       // io validated the whole timeline; a crowd that no longer fits is skipped, never half-applied.
       if (checkCrowd(e.crowd).empty()) {
         const std::uint32_t index = queueCrowd(e.crowd);
-        insertCrowdNow(crowds[index]);
+        insertCrowdNow(insertion.crowds[index]);
       }
     } else {
-      for (CrowdState& c : crowds) {
+      for (CrowdState& c : insertion.crowds) {
         if (c.info.id == e.crowdId) removeCrowdNow(c);
       }
     }
   }
-  if (crowdCommands.empty()) return;
-  const std::vector<CrowdCommand> commands = std::move(crowdCommands);
-  crowdCommands.clear();
+  if (insertion.commands.empty()) return;
+  const std::vector<CrowdCommand> commands = std::move(insertion.commands);
+  insertion.commands.clear();
   for (const CrowdCommand& c : commands) {
-    if (c.insert) insertCrowdNow(crowds[c.crowd]);
-    else removeCrowdNow(crowds[c.crowd]);
+    if (c.insert) insertCrowdNow(insertion.crowds[c.crowd]);
+    else removeCrowdNow(insertion.crowds[c.crowd]);
   }
 }
 
@@ -261,18 +261,18 @@ core::Result<std::uint32_t> World::insertCrowd(const CrowdDesc& crowd) {
   core::Diagnostics problems = w.checkCrowd(crowd);
   if (!problems.empty()) return problems;
   const std::uint32_t index = w.queueCrowd(crowd);
-  w.crowdCommands.push_back({index, true});
+  w.insertion.commands.push_back({index, true});
   return index;
 }
 
 bool World::removeCrowd(std::string_view id) {
   Impl& w = *impl_;
-  for (const CrowdState& c : w.crowds) {
+  for (const CrowdState& c : w.insertion.crowds) {
     if (c.info.id != id || c.info.removed) continue;
-    for (const CrowdCommand& cmd : w.crowdCommands) {
+    for (const CrowdCommand& cmd : w.insertion.commands) {
       if (!cmd.insert && cmd.crowd == c.info.index) return false;  // already queued
     }
-    w.crowdCommands.push_back({c.info.index, false});
+    w.insertion.commands.push_back({c.info.index, false});
     return true;
   }
   return false;
@@ -281,7 +281,7 @@ bool World::removeCrowd(std::string_view id) {
 std::vector<CrowdInfo> World::crowds() const {
   const Impl& w = *impl_;
   std::vector<CrowdInfo> out;
-  for (const CrowdState& c : w.crowds) out.push_back(c.info);
+  for (const CrowdState& c : w.insertion.crowds) out.push_back(c.info);
   for (std::size_t r = 0; r < w.agents.size(); ++r) {
     const std::uint32_t p = w.agents.population[r];
     for (CrowdInfo& info : out) {
@@ -306,7 +306,7 @@ void World::Impl::addCrowdPopulations(const CrowdDesc& cd, std::uint32_t firstPo
     if (pop.guide.release >= 0.0f) pop.guide.release += static_cast<float>(now);
     populationStartTick.push_back(tick + ticksOf(pop.start, desc.dt));
     populationSpawned.push_back(0);
-    anySocial = anySocial || pop.sociological.enabled;
+    anySociological = anySociological || pop.sociological.enabled;
     desc.populations.push_back(std::move(pop));
   }
 }
@@ -327,8 +327,8 @@ void World::Impl::addColumnsFor(std::uint32_t firstPopulation) {
     agents.sociological = true;
     agents.followAgent.assign(rows, kNoAgent);
     agents.followUntil.assign(rows, 0);
-    agents.socialEffect.assign(rows, SocialEffect::None);
-    agents.socialOther.assign(rows, 0);
+    agents.sociologicalEffect.assign(rows, SocialEffect::None);
+    agents.sociologicalOther.assign(rows, 0);
   }
 }
 

@@ -60,8 +60,8 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   w.pointClip = pointClips(desc);
   w.initSocial();
   w.planPopulations();
-  for (const PopulationDesc& pop : desc.populations) w.anySocial = w.anySocial || pop.sociological.enabled;
-  w.navRadius = desc.maxRadius();
+  for (const PopulationDesc& pop : desc.populations) w.anySociological = w.anySociological || pop.sociological.enabled;
+  w.insertion.navRadius = desc.maxRadius();
   w.configureModels();
   w.initTimeline();
   w.applyCommands();  // populations starting at t = 0 are present in the first snapshot

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "agent_store.hpp"
+#include "crowd_insertion.hpp"
 #include "group_table.hpp"
 #include "throng/core/assert.hpp"
 #include "spatial_grid.hpp"
@@ -59,20 +60,6 @@ struct GroupCommand {
   bool guide = false;  ///< false = release
   core::Vec2 position;
   float height = 0.0f;  ///< the guide's floor height [m] (multi-level worlds)
-};
-
-/// An inserted crowd (insert.cpp): queued by World::insertCrowd or the timeline, applied at the
-/// start of a tick, maybe removed later.
-struct CrowdState {
-  CrowdDesc desc;                  ///< kept until applied, then cleared (its parts live in World::Impl::desc)
-  CrowdInfo info;
-  std::vector<std::string> pointIds, populationIds;  ///< taken ids (clash checks, also while queued)
-};
-
-/// A crowd command, applied in order at the start of the next tick.
-struct CrowdCommand {
-  std::uint32_t crowd = 0;  ///< index into World::Impl::crowds
-  bool insert = true;       ///< false = remove
 };
 
 /// Per-worker scratch: navmesh queries and buffers reused across agents (never shared by threads).
@@ -146,7 +133,7 @@ struct World::Impl {
   std::vector<core::Vec2> viewers;
   std::vector<std::uint32_t> rowOfId;       ///< stable id → row (kNoRow if gone), rebuilt when rows change
   bool rowsChanged = true;                  ///< set by spawning and by removals
-  bool anySocial = false;                   ///< some population has the sociological model on
+  bool anySociological = false;                   ///< some population has the sociological model on
   std::vector<std::uint32_t> followingRows; ///< rows following another agent (sociological), ascending
 
   // Per-point cached geometry and action clips.
@@ -197,13 +184,8 @@ struct World::Impl {
   /// pendingEvents with the spawn runs written out in place (empties both).
   std::vector<Event> takeEvents();
 
-  // Inserted crowds (insert.cpp).
-  std::vector<CrowdState> crowds;
-  std::vector<CrowdCommand> crowdCommands;
-  std::vector<std::uint64_t> timelineTick;  ///< per desc.timeline entry: the tick it applies at
-  std::size_t timelineNext = 0;             ///< first timeline entry not applied yet
-  std::uint64_t insertedAgents = 0;         ///< most agents all insertions may add (kMaxInsertedAgents)
-  float navRadius = 0.0f;                   ///< the navmesh's erosion radius (the scenario's largest body) [m]
+  // Inserted crowds (insert.cpp, crowd_insertion.hpp).
+  CrowdInsertion insertion;
   /// Checks a crowd against the world and the crowds queued before it (nothing changes on failure).
   [[nodiscard]] core::Diagnostics checkCrowd(const CrowdDesc& crowd) const;
   std::uint32_t queueCrowd(const CrowdDesc& crowd);
@@ -216,7 +198,9 @@ struct World::Impl {
   /// Optional agent columns populations [firstPopulation, end) need and the world did not have yet.
   void addColumnsFor(std::uint32_t firstPopulation);
   void removeCrowdNow(CrowdState& crowd);
-  [[nodiscard]] bool crowdsPending() const { return !crowdCommands.empty() || timelineNext < desc.timeline.size(); }
+  [[nodiscard]] bool crowdsPending() const {
+    return !insertion.commands.empty() || insertion.timelineNext < desc.timeline.size();
+  }
 
   // Phases.
   /// Groups of the scenario's populations, their sizes and the agent columns they need (creation).
@@ -244,7 +228,7 @@ struct World::Impl {
   void reachGoal(std::size_t row, const GroupState& g, ChunkOutput& out);
   /// Every check period: re-plan when no closer to the target (and farther than minDistance) [m].
   void checkProgress(std::size_t row, std::uint64_t checkEvery, float minDistance);
-  /// Sociological model: meetings with agents of other groups may set socialEffect.
+  /// Sociological model: meetings with agents of other groups may set sociologicalEffect.
   void meetOthers(std::size_t row, const SociologicalDesc& social, ChunkOutput& out);
   void decideGroups(const core::TaskSystem& tasks);  ///< group pass (groups.cpp), after the per-agent part of decide
   void plan();
