@@ -21,7 +21,7 @@
 #include "validators.hpp"
 #include "throng/client/session.hpp"
 #include "throng/core/rng.hpp"
-#include "throng/server/http_client.hpp"
+#include "throng/client/http_client.hpp"
 
 namespace throng::cli {
 namespace {
@@ -219,7 +219,7 @@ int runLoadgen(const LoadgenOptions& options) {
   const double elapsed = seconds();
   // The server's view (tick time under this load) before the clients leave.
   nlohmann::json server;
-  if (auto reply = server::httpRequest(url->host, url->port, "GET", "/api/status"); reply && reply->status == 200) {
+  if (auto reply = client::httpRequest(url->host, url->port, "GET", "/api/status"); reply && reply->status == 200) {
     server = nlohmann::json::parse(reply->body, nullptr, false);
   }
   for (Participant& p : people) {

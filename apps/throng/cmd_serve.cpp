@@ -1,7 +1,7 @@
 // `throng serve SCENARIO.json` — runs the simulation in real time and serves it into a shared
 // world (docs/server.md): HTTP (the browser viewer's files, the motion clips, /api/status) and
 // WebSocket (/ws) on one port, the same protocol over UDP on another. The hub (libs/hub) does the
-// sessions and crowd messages; the transport (libs/server) the sockets; this file wires them to
+// sessions and crowd messages; the transport (libs/transport) the sockets; this file wires them to
 // the World and keeps the tick on time. Reads the scenario and its clips; writes sockets, a status
 // line on stderr (terminal only) and a summary on stdout. Ctrl-C tells every client why, then stops.
 #include <algorithm>
@@ -31,7 +31,7 @@
 #include "throng/hub/tick_watch.hpp"
 #include "throng/hub/world_description.hpp"
 #include "throng/io/scenario_loader.hpp"
-#include "throng/server/transport.hpp"
+#include "throng/transport/transport.hpp"
 #include "throng/sim/animation.hpp"
 #include "throng/sim/world.hpp"
 
@@ -42,39 +42,39 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 /// Connects the transport's callbacks to the hub, and the hub's sends to the transport.
-class Bridge final : public server::TransportHandler, public hub::Outbox {
+class Bridge final : public transport::TransportHandler, public hub::Outbox {
  public:
   explicit Bridge(Clock::time_point start) : start_(start) {}
-  void attach(hub::Hub* h, server::Transport* t) {
+  void attach(hub::Hub* h, transport::Transport* t) {
     hub_ = h;
     transport_ = t;
   }
   [[nodiscard]] double now() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
   // TransportHandler (transport thread).
-  void onOpen(server::PeerId peer, server::PeerKind kind, std::string remote) override {
+  void onOpen(transport::PeerId peer, transport::PeerKind kind, std::string remote) override {
     if (hub_) hub_->onOpen(peer.value, std::move(remote), now());
   }
-  void onMessage(server::PeerId peer, std::span<const std::uint8_t> message) override {
+  void onMessage(transport::PeerId peer, std::span<const std::uint8_t> message) override {
     if (hub_) hub_->onMessage(peer.value, message, now());
   }
-  void onClose(server::PeerId peer, std::string_view reason) override {
+  void onClose(transport::PeerId peer, std::string_view reason) override {
     if (hub_) hub_->onClose(peer.value, reason);
   }
 
   // Outbox (either thread, hub mutex held; the transport only posts).
   void send(hub::PeerKey peer, std::vector<std::uint8_t> message, bool latest, std::uint32_t slot) override {
     if (transport_) {
-      transport_->send(server::PeerId{peer}, std::move(message),
-                       latest ? server::SendClass::Latest : server::SendClass::Reliable, slot);
+      transport_->send(transport::PeerId{peer}, std::move(message),
+                       latest ? transport::SendClass::Latest : transport::SendClass::Reliable, slot);
     }
   }
   void close(hub::PeerKey peer, std::string reason) override {
-    if (transport_) transport_->close(server::PeerId{peer}, std::move(reason));
+    if (transport_) transport_->close(transport::PeerId{peer}, std::move(reason));
   }
   [[nodiscard]] std::optional<hub::LinkCounters> link(hub::PeerKey peer) const override {
     if (!transport_) return std::nullopt;
-    auto s = transport_->stats(server::PeerId{peer});
+    auto s = transport_->stats(transport::PeerId{peer});
     if (!s) return std::nullopt;
     return hub::LinkCounters{s->bytesSent, s->droppedLatest, s->queueBytes};
   }
@@ -82,7 +82,7 @@ class Bridge final : public server::TransportHandler, public hub::Outbox {
  private:
   Clock::time_point start_;
   hub::Hub* hub_ = nullptr;
-  server::Transport* transport_ = nullptr;
+  transport::Transport* transport_ = nullptr;
 };
 
 double percentile(std::vector<double> v, double p) {
@@ -253,7 +253,7 @@ int runServe(const ServeOptions& options) {
   hubOptions.replay = replay.has_value();
   hub::Hub hub(hubOptions, worldJson, static_cast<float>(tickRate), motions, bridge);
 
-  server::TransportOptions t;
+  transport::TransportOptions t;
   t.bindAddress = options.bind;
   t.httpPort = static_cast<std::uint16_t>(options.port);
   t.udpPort = static_cast<std::uint16_t>(options.udpPort);
@@ -281,7 +281,7 @@ int runServe(const ServeOptions& options) {
   std::vector<std::shared_ptr<std::promise<std::string>>> groupQueries;  ///< GET /api/groups
   std::vector<std::shared_ptr<std::promise<std::string>>> crowdQueries;  ///< GET /api/crowds
   const std::vector<sim::ClipInfo> clipTable = sim::animationClips(scenario->desc);
-  t.httpHandler = [&](std::string_view target) -> std::optional<server::HttpResponse> {
+  t.httpHandler = [&](std::string_view target) -> std::optional<transport::HttpResponse> {
     const std::string_view path = target.substr(0, target.find('?'));
     if (path == "/api/groups" || path == "/api/crowds") {
       auto query = std::make_shared<std::promise<std::string>>();
@@ -291,9 +291,9 @@ int runServe(const ServeOptions& options) {
         (path == "/api/groups" ? groupQueries : crowdQueries).push_back(query);
       }
       if (future.wait_for(std::chrono::milliseconds(1000)) != std::future_status::ready) {
-        return server::HttpResponse{503, "application/json", R"({"error":"the simulation did not answer in time"})", {}};
+        return transport::HttpResponse{503, "application/json", R"({"error":"the simulation did not answer in time"})", {}};
       }
-      return server::HttpResponse{200, "application/json", future.get(), {}};
+      return transport::HttpResponse{200, "application/json", future.get(), {}};
     }
     constexpr std::string_view kAgent = "/api/agent/";
     if (path.starts_with(kAgent)) {
@@ -301,7 +301,7 @@ int runServe(const ServeOptions& options) {
       std::uint64_t id = 0;
       const bool numeric = !digits.empty() && digits.size() <= 9 &&
                            std::all_of(digits.begin(), digits.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
-      if (!numeric) return server::HttpResponse{400, "application/json", R"({"error":"expected /api/agent/<id>, id a number"})", {}};
+      if (!numeric) return transport::HttpResponse{400, "application/json", R"({"error":"expected /api/agent/<id>, id a number"})", {}};
       for (char ch : digits) id = id * 10 + static_cast<std::uint64_t>(ch - '0');
       auto query = std::make_shared<AgentQuery>();
       query->id = static_cast<std::uint32_t>(id);
@@ -311,10 +311,10 @@ int runServe(const ServeOptions& options) {
         queries.push_back(query);
       }
       if (future.wait_for(std::chrono::milliseconds(1000)) != std::future_status::ready) {
-        return server::HttpResponse{503, "application/json", R"({"error":"the simulation did not answer in time"})", {}};
+        return transport::HttpResponse{503, "application/json", R"({"error":"the simulation did not answer in time"})", {}};
       }
       const std::optional<sim::AgentInfo> info = future.get();
-      if (!info) return server::HttpResponse{404, "application/json", R"j({"error":"no such agent (not spawned yet, or left)"})j", {}};
+      if (!info) return transport::HttpResponse{404, "application/json", R"j({"error":"no such agent (not spawned yet, or left)"})j", {}};
       const sim::ScenarioDesc& d = scenario->desc;
       nlohmann::json j = {{"id", info->id}, {"group", info->group},
                           {"population", info->population < d.populations.size() ? d.populations[info->population].id : ""},
@@ -338,7 +338,7 @@ int runServe(const ServeOptions& options) {
                           {"targetAgent", r.targetType == 2 ? nlohmann::json(r.targetAgent) : nlohmann::json(nullptr)}});
       }
       j["script"] = std::move(script);
-      return server::HttpResponse{200, "application/json", dumpJson(j), {}};
+      return transport::HttpResponse{200, "application/json", dumpJson(j), {}};
     }
     if (path == "/api/status") {
       const hub::HubStatus s = hub.status();
@@ -358,30 +358,30 @@ int runServe(const ServeOptions& options) {
                      {"longest_ms", r.longestMs}, {"running_ms", r.runningMs}, {"rate", tickRate},
                      {"publish_median_ms", publishMedianMs}, {"publish_p99_ms", publishP99Ms}};
       }
-      return server::HttpResponse{200, "application/json", dumpJson(j), {}};
+      return transport::HttpResponse{200, "application/json", dumpJson(j), {}};
     }
-    if (path == "/api/world") return server::HttpResponse{200, "application/json", worldJson, {}};
+    if (path == "/api/world") return transport::HttpResponse{200, "application/json", worldJson, {}};
     constexpr std::string_view kMotions = "/motions/";
     if (path.starts_with(kMotions) && path.ends_with(".bvh")) {
       const std::string_view id = path.substr(kMotions.size(), path.size() - kMotions.size() - 4);
       std::size_t index = 0;
       for (char ch : id) {
-        if (ch < '0' || ch > '9' || index > 100000) return server::HttpResponse{404, "text/plain", "no such clip\n", {}};
+        if (ch < '0' || ch > '9' || index > 100000) return transport::HttpResponse{404, "text/plain", "no such clip\n", {}};
         index = index * 10 + static_cast<std::size_t>(ch - '0');
       }
       if (id.empty() || index >= motions.clips().size() || motions.clipFile(index).empty()) {
-        return server::HttpResponse{404, "text/plain", "no such clip\n", {}};
+        return transport::HttpResponse{404, "text/plain", "no such clip\n", {}};
       }
-      return server::HttpResponse{200, "text/plain; charset=utf-8", {}, motions.clipFile(index)};
+      return transport::HttpResponse{200, "text/plain; charset=utf-8", {}, motions.clipFile(index)};
     }
     return std::nullopt;
   };
-  auto started = server::Transport::start(t, bridge);
+  auto started = transport::Transport::start(t, bridge);
   if (!started) {
     printDiagnostics(started.errors());
     return kExitFailure;
   }
-  std::unique_ptr<server::Transport> transport = std::move(started).value();
+  std::unique_ptr<transport::Transport> transport = std::move(started).value();
   bridge.attach(&hub, transport.get());
   const std::string host = options.bind == "0.0.0.0" ? "127.0.0.1" : options.bind;
   if (!options.quiet) {
@@ -559,7 +559,7 @@ int runServe(const ServeOptions& options) {
   const std::string goodbye = InterruptGuard::requested() ? "server shutting down (Ctrl-C)" : "server shutting down";
   hub.shutdown(goodbye);
   transport->shutdown(goodbye);
-  const server::TransportTotals totals = transport->totals();
+  const transport::TransportTotals totals = transport->totals();
   const hub::HubStatus s = hub.status();
   const double wall = bridge.now();
   const hub::TickReport ticks = tickWatch.report(wall);
