@@ -1,6 +1,6 @@
 // `throng bench` — times the full tick, then DetourCrowd on the same navmesh and agent count, and
 // prints agent-steps/s, ms per tick (median, p99), peak RSS and bytes per agent. Two kinds of
-// scenario: in-memory ones (bench_scenarios.hpp) at each --agents count, timed for a number of
+// scenario: in-memory ones (throng/bench/scenarios.hpp) at each --agents count, timed for a number of
 // ticks after a warm-up; and scenario files ("mall" or PATH.json) run from the start to their end,
 // also reporting simulated time, wall time and × real time. With --record each configuration is
 // timed again while writing a recording (io::Recorder, frames at --fps, as `throng run` does) to a
@@ -25,20 +25,19 @@
 #include <unistd.h>
 
 #include "phase_timer.hpp"
-#include "bench_scenarios.hpp"
+#include "bench_files.hpp"
 #include "cmd_bench_runner.hpp"
 #include "commands.hpp"
 #include "output.hpp"
 #include "progress.hpp"
 #include "signal.hpp"
 #include "validators.hpp"
+#include "throng/bench/detour_crowd_baseline.hpp"
+#include "throng/bench/scenarios.hpp"
 #include "throng/core/parallel.hpp"
 #include "throng/io/recorder.hpp"
 #include "throng/io/scenario_loader.hpp"
 #include "throng/sim/world.hpp"
-#if THRONG_HAVE_BASELINES
-#include "baselines/detour_crowd_baseline.hpp"
-#endif
 
 namespace throng::cli {
 namespace {
@@ -225,16 +224,15 @@ std::optional<Measurement> BenchRunner::timeThrong(const sim::ScenarioDesc& desc
 
 std::optional<Measurement> BenchRunner::timeBaseline(const sim::ScenarioDesc& desc,
                                                      const std::shared_ptr<const nav::NavMesh>& navmesh, int ticks) {
-#if THRONG_HAVE_BASELINES
   const std::size_t n = agentCount(desc);
   const std::string label = fmt::format("detourcrowd {} N={}", label_, n);
   status(label + ": starting", true);
-  baselines::BaselineConfig config;
+  bench::BaselineConfig config;
   config.navmesh = navmesh;
-  config.starts = drawBenchStarts(navmesh, n, options_.seed);
-  config.radius = kBenchRadius;
-  config.speed = kBenchSpeed;
-  config.dt = kBenchDt;
+  config.starts = bench::drawStarts(navmesh, n, options_.seed);
+  config.radius = bench::kRadius;
+  config.speed = bench::kSpeed;
+  config.dt = bench::kDt;
   config.seed = options_.seed;
   config.warmupTicks = options_.warmup;
   config.ticks = ticks;
@@ -245,7 +243,7 @@ std::optional<Measurement> BenchRunner::timeBaseline(const sim::ScenarioDesc& de
            done == total);
   };
   ::malloc_trim(0);
-  auto result = baselines::runDetourCrowd(config);
+  auto result = bench::runDetourCrowd(config);
   if (!result) {
     progress_.clear();
     printLine(stderr, "throng: DetourCrowd baseline failed:");
@@ -263,16 +261,10 @@ std::optional<Measurement> BenchRunner::timeBaseline(const sim::ScenarioDesc& de
   m.bytesPerAgent = result->bytesPerAgent;
   m.meanSpeed = result->meanSpeed;
   m.peakRssBytes = peakRss();
-  m.simulatedSeconds = result->ticks * static_cast<double>(kBenchDt);
+  m.simulatedSeconds = result->ticks * static_cast<double>(bench::kDt);
   m.wallSeconds = m.agentStepsPerSec > 0 ? static_cast<double>(result->ticks * result->agents) / m.agentStepsPerSec
                                          : 0.0;
   return m;
-#else
-  (void)desc;
-  (void)navmesh;
-  (void)ticks;
-  return std::nullopt;
-#endif
 }
 
 void BenchRunner::printHeader() const {
@@ -349,8 +341,8 @@ void BenchRunner::printFootnotes() const {
   } else {
     printLine(stdout, fmt::format("scenario: {} — square of side sqrt(N) m (1 agent/m²), radius {} m, speed {} m/s, "
                                   "dt {} s, agents wander between random points{}",
-                                  label_, kBenchRadius, kBenchSpeed, kBenchDt,
-                                  layout_ == BenchLayout::Navmesh ? "; 1 m pillars every 8 m" : ""));
+                                  label_, bench::kRadius, bench::kSpeed, bench::kDt,
+                                  layout_ == bench::Layout::Navmesh ? "; 1 m pillars every 8 m" : ""));
     printLine(stdout, fmt::format("timing: {} untimed warm-up ticks, then each tick timed alone (steady_clock)",
                                   options_.warmup));
     printLine(stdout, "bytes/agent: growth of resident memory from before World::create to after warm-up, divided "
@@ -378,18 +370,13 @@ int BenchRunner::runLayouts() {
                                                             : options_.agents;
   std::vector<int> threadCounts = options_.threads.empty() ? std::vector<int>{1, 2} : options_.threads;
   if (options_.duration) notes_.push_back("--duration is used with scenario files only (here: --ticks)");
-  bool baselineAvailable = true;
-#if !THRONG_HAVE_BASELINES
-  baselineAvailable = false;
-  if (!options_.noBaseline) notes_.push_back("DetourCrowd baseline not built (THRONG_BUILD_BENCHES=OFF)");
-#endif
   InterruptGuard interrupts;
   printHeader();
   for (const std::size_t n : counts) {
-    const sim::ScenarioDesc desc = makeBenchScenario(layout_, n, options_.seed);
+    const sim::ScenarioDesc desc = bench::makeScenario(layout_, n, options_.seed);
     duration_ = desc.duration;
     status(fmt::format("{} N={}: building navmesh", label_, n), true);
-    auto navmesh = buildBenchNavMesh(desc);
+    auto navmesh = bench::buildNavMesh(desc);
     if (!navmesh) {
       progress_.clear();
       printDiagnostics(navmesh.errors());
@@ -413,7 +400,7 @@ int BenchRunner::runLayouts() {
       }
     }
     std::optional<Measurement> baseline;
-    if (!InterruptGuard::requested() && !options_.noBaseline && baselineAvailable) {
+    if (!InterruptGuard::requested() && !options_.noBaseline) {
       if (n <= options_.baselineMax) {
         baseline = timeBaseline(desc, *navmesh, std::max(ticks, 1));
       } else {

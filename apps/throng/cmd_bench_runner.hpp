@@ -11,15 +11,16 @@
 #include <string>
 #include <vector>
 
-#include "bench_scenarios.hpp"
+#include "bench_files.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
+#include "throng/bench/scenarios.hpp"
 #include "throng/nav/navmesh.hpp"
 #include "throng/sim/scenario.hpp"
 
 namespace throng::cli::bench_detail {
 
-/// The engine name DetourCrowd's rows carry (baselines::BaselineResult::engine).
+/// The engine name DetourCrowd's rows carry (bench::BaselineResult::engine).
 inline constexpr const char* kDetourCrowdEngine = "detourcrowd";
 
 struct Measurement {
@@ -48,7 +49,7 @@ class BenchRunner {
  public:
   explicit BenchRunner(const BenchOptions& options)
       : options_(options),
-        fileMode_(!benchLayoutFromName(options.scenario, layout_)),
+        fileMode_(!bench::layoutFromName(options.scenario)),
         progress_(stderr, true) {}
 
   int run();
@@ -69,12 +70,12 @@ class BenchRunner {
   void printFootnotes() const;
 
   const BenchOptions& options_;
-  BenchLayout layout_ = BenchLayout::Random;
+  bench::Layout layout_ = bench::layoutFromName(options_.scenario).value_or(bench::Layout::Random);
   bool fileMode_ = false;
   std::string label_;         ///< the "scenario" column: layout name or the file's name without .json
   std::string filePath_;      ///< file mode: the scenario file read
   std::string scenarioText_;  ///< file mode: its text (stored in --record recordings)
-  double dt_ = kBenchDt;      ///< time step of the scenario [s]
+  double dt_ = bench::kDt;     ///< time step of the scenario [s]
   double duration_ = 0.0;     ///< file mode: simulated time at most [s]
   ProgressLine progress_;
   std::vector<std::string> notes_;

@@ -1,6 +1,6 @@
-// throng::baselines — DetourCrowd (recastnavigation's dtCrowd) on a throng NavMesh, the reference
-// our crowd engine is benchmarked against. Agents walk to random navmesh points and pick a new one
-// on arrival. Reads the NavMesh; measures only dtCrowd::update() of the measured ticks.
+// throng::bench::runDetourCrowd — DetourCrowd (recastnavigation's dtCrowd) on a throng NavMesh,
+// the reference our crowd engine is benchmarked against. Agents walk to random navmesh points and
+// pick a new one on arrival. Reads the NavMesh; measures only dtCrowd::update() of the measured ticks.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -12,7 +12,7 @@
 #include "throng/core/vec2.hpp"
 #include "throng/nav/navmesh.hpp"
 
-namespace throng::baselines {
+namespace throng::bench {
 
 /// dtCrowd stores agent and neighbour-grid pool indices as unsigned short (0xffff = end of list)
 /// and sizes the proximity grid pool at 4 items per agent, so above this many agents its neighbour
@@ -47,4 +47,4 @@ struct BaselineResult {
 /// Runs the baseline. Fails with a diagnostic for bad config or when dtCrowd cannot be set up.
 core::Result<BaselineResult> runDetourCrowd(const BaselineConfig& config);
 
-}  // namespace throng::baselines
+}  // namespace throng::bench

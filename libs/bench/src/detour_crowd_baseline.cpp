@@ -1,4 +1,4 @@
-// throng::baselines::runDetourCrowd — DetourCrowd on a throng NavMesh with random goals. Timing
+// throng::bench::runDetourCrowd — DetourCrowd on a throng NavMesh with random goals. Timing
 // (std::chrono::steady_clock; benchmarks only) covers dtCrowd::update() of the measured ticks and
 // nothing else: goal picking and arrival checks run between updates, untimed.
 //
@@ -7,7 +7,7 @@
 // crowd's own arrays (agents, corridors, local boundaries, proximity grid, path queue, obstacle
 // avoidance query) and excludes the shared navmesh. Allocator reuse of freed memory can make it
 // read low for tiny crowds; it is meaningful for thousands of agents.
-#include "baselines/detour_crowd_baseline.hpp"
+#include "throng/bench/detour_crowd_baseline.hpp"
 
 #include <DetourCrowd.h>
 #include <unistd.h>
@@ -19,7 +19,7 @@
 
 #include "throng/core/rng.hpp"
 
-namespace throng::baselines {
+namespace throng::bench {
 namespace {
 
 core::Diagnostic diag(std::string pointer, std::string what, std::string expected) {
@@ -159,4 +159,4 @@ core::Result<BaselineResult> runDetourCrowd(const BaselineConfig& config) {
   return result;
 }
 
-}  // namespace throng::baselines
+}  // namespace throng::bench
