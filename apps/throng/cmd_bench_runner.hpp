@@ -17,6 +17,11 @@
 #include "throng/bench/scenarios.hpp"
 #include "throng/nav/navmesh.hpp"
 #include "throng/sim/scenario.hpp"
+#include "throng/sim/world.hpp"
+
+namespace throng::io {
+class Recorder;
+}  // namespace throng::io
 
 namespace throng::cli::bench_detail {
 
@@ -62,6 +67,13 @@ class BenchRunner {
   std::optional<Measurement> timeThrong(const sim::ScenarioDesc& desc,
                                         const std::shared_ptr<const nav::NavMesh>& navmesh, int threads,
                                         int& ticks, bool record);
+  /// --record's recording of one configuration at `path`; nullptr after printing why not.
+  std::unique_ptr<io::Recorder> openRecording(const sim::ScenarioDesc& desc, double fps, const std::string& path);
+  /// Closes --record's recording (`completed` unless interrupted): close time and frames into `m`;
+  /// false after printing why it failed.
+  bool closeRecording(io::Recorder& recorder, const std::string& label, bool completed, Measurement& m);
+  /// The progress line during the timed ticks (`ticks` <= 0: automatic count).
+  void drawTickProgress(const std::string& label, const sim::World& w, std::uint64_t tick, int ticks, double totalSeconds);
   std::optional<Measurement> timeBaseline(const sim::ScenarioDesc& desc,
                                           const std::shared_ptr<const nav::NavMesh>& navmesh, int ticks);
   void status(const std::string& text, bool force = false);
