@@ -83,96 +83,96 @@ void HttpSession::onRead(error_code ec, std::size_t) {
 
 void HttpSession::handle(http::request<http::string_body>&& req) {
   transport_.countHttpRequest();
-  const TransportOptions& options = transport_.options();
-  const unsigned version = req.version();
-  const bool keepAlive = req.keep_alive() && !transport_.stopping();
   const std::string_view target(req.target().data(), req.target().size());
-
   if (websocket::is_upgrade(req)) {
     if (targetPath(target) == kWebSocketPath) {
       upgrade(std::move(req));
       return;
     }
-    send(textResponse(http::status::not_found, "text/plain", "no WebSocket here; use /ws\n", version, false));
+    send(textResponse(http::status::not_found, "text/plain", "no WebSocket here; use /ws\n", req.version(), false));
     return;
   }
-  const bool head = req.method() == http::verb::head;
-  if (!head && req.method() != http::verb::get) {
-    auto res = textResponse(http::status::method_not_allowed, "text/plain", "method not allowed; expected GET or HEAD\n", version, keepAlive);
+  const Reply reply{req.version(), req.keep_alive() && !transport_.stopping(), req.method() == http::verb::head};
+  if (!reply.head && req.method() != http::verb::get) {
+    auto res = textResponse(http::status::method_not_allowed, "text/plain", "method not allowed; expected GET or HEAD\n",
+                            reply.version, reply.keepAlive);
     res.set(http::field::allow, "GET, HEAD");
     send(std::move(res));
     return;
   }
+  if (targetPath(target) == "/health") {
+    sendText(reply, http::status::ok, "application/json", "{\"status\":\"ok\"}\n");
+    return;
+  }
+  if (serveDynamic(reply, target)) return;
+  const StaticFile file = resolveStaticFile(transport_.options().staticRoot, target);
+  switch (file.lookup) {
+    case StaticLookup::BadTarget:
+      sendText(reply, http::status::bad_request, "text/plain", "bad request target\n");
+      return;
+    case StaticLookup::NotFound:
+      sendText(reply, http::status::not_found, "text/plain", "not found\n");
+      return;
+    case StaticLookup::Found:
+      sendFile(reply, file.path, contentTypeFor(file.path));
+      return;
+  }
+}
 
-  auto sendFile = [&](const std::filesystem::path& path, std::string_view contentType) {
-    http::file_body::value_type body;
-    error_code fileEc;
-    body.open(path.c_str(), beast::file_mode::scan, fileEc);
-    if (fileEc) {
-      send(textResponse(http::status::not_found, "text/plain", "not found\n", version, keepAlive));
-      return;
-    }
-    const auto size = body.size();
-    if (head) {
-      http::response<http::empty_body> res{http::status::ok, version};
-      res.set(http::field::server, "throng");
-      res.set(http::field::content_type, beast::string_view(contentType.data(), contentType.size()));
-      res.content_length(size);
-      res.keep_alive(keepAlive);
-      send(std::move(res));
-      return;
-    }
-    http::response<http::file_body> res{std::piecewise_construct, std::make_tuple(std::move(body)),
-                                         std::make_tuple(http::status::ok, version)};
+bool HttpSession::serveDynamic(const Reply& reply, std::string_view target) {
+  const TransportOptions& options = transport_.options();
+  if (!options.httpHandler) return false;
+  std::optional<HttpResponse> dynamic;
+  try {
+    dynamic = options.httpHandler(target);
+  } catch (const std::exception& e) {
+    sendText(reply, http::status::internal_server_error, "text/plain", std::string("internal error: ") + e.what() + "\n");
+    return true;
+  }
+  if (!dynamic) return false;
+  if (!dynamic->file.empty()) {
+    sendFile(reply, dynamic->file, dynamic->contentType);
+  } else {
+    sendText(reply, static_cast<http::status>(dynamic->status), dynamic->contentType, std::move(dynamic->body));
+  }
+  return true;
+}
+
+void HttpSession::sendFile(const Reply& reply, const std::filesystem::path& path, std::string_view contentType) {
+  http::file_body::value_type body;
+  error_code fileEc;
+  body.open(path.c_str(), beast::file_mode::scan, fileEc);
+  if (fileEc) {
+    send(textResponse(http::status::not_found, "text/plain", "not found\n", reply.version, reply.keepAlive));
+    return;
+  }
+  const auto size = body.size();
+  if (reply.head) {
+    http::response<http::empty_body> res{http::status::ok, reply.version};
     res.set(http::field::server, "throng");
     res.set(http::field::content_type, beast::string_view(contentType.data(), contentType.size()));
     res.content_length(size);
-    res.keep_alive(keepAlive);
+    res.keep_alive(reply.keepAlive);
     send(std::move(res));
-  };
-  auto sendText = [&](http::status status, std::string_view contentType, std::string body) {
-    auto res = textResponse(status, contentType, std::move(body), version, keepAlive);
-    if (head) {
-      const auto length = res.body().size();
-      res.body().clear();
-      res.content_length(length);
-    }
-    send(std::move(res));
-  };
-
-  if (targetPath(target) == "/health") {
-    sendText(http::status::ok, "application/json", "{\"status\":\"ok\"}\n");
     return;
   }
-  if (options.httpHandler) {
-    std::optional<HttpResponse> dynamic;
-    try {
-      dynamic = options.httpHandler(target);
-    } catch (const std::exception& e) {
-      sendText(http::status::internal_server_error, "text/plain", std::string("internal error: ") + e.what() + "\n");
-      return;
-    }
-    if (dynamic) {
-      if (!dynamic->file.empty()) {
-        sendFile(dynamic->file, dynamic->contentType);
-      } else {
-        sendText(static_cast<http::status>(dynamic->status), dynamic->contentType, std::move(dynamic->body));
-      }
-      return;
-    }
+  http::response<http::file_body> res{std::piecewise_construct, std::make_tuple(std::move(body)),
+                                       std::make_tuple(http::status::ok, reply.version)};
+  res.set(http::field::server, "throng");
+  res.set(http::field::content_type, beast::string_view(contentType.data(), contentType.size()));
+  res.content_length(size);
+  res.keep_alive(reply.keepAlive);
+  send(std::move(res));
+}
+
+void HttpSession::sendText(const Reply& reply, http::status status, std::string_view contentType, std::string body) {
+  auto res = textResponse(status, contentType, std::move(body), reply.version, reply.keepAlive);
+  if (reply.head) {
+    const auto length = res.body().size();
+    res.body().clear();
+    res.content_length(length);
   }
-  const StaticFile file = resolveStaticFile(options.staticRoot, target);
-  switch (file.lookup) {
-    case StaticLookup::BadTarget:
-      sendText(http::status::bad_request, "text/plain", "bad request target\n");
-      return;
-    case StaticLookup::NotFound:
-      sendText(http::status::not_found, "text/plain", "not found\n");
-      return;
-    case StaticLookup::Found:
-      sendFile(file.path, contentTypeFor(file.path));
-      return;
-  }
+  send(std::move(res));
 }
 
 void HttpSession::upgrade(http::request<http::string_body>&& req) {

@@ -3,9 +3,11 @@
 // and the static root, and hands an upgrade on /ws to a new WsPeer.
 #pragma once
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "throng/net/asio.hpp"
 
@@ -24,7 +26,18 @@ class HttpSession final : public std::enable_shared_from_this<HttpSession> {
  private:
   void doRead();
   void onRead(error_code ec, std::size_t bytes);
+  /// How a request is answered: its HTTP version, keep-alive, and HEAD (headers only).
+  struct Reply {
+    unsigned version = 11;
+    bool keepAlive = false;
+    bool head = false;
+  };
+  /// One request: the /ws upgrade, 405, /health, the dynamic hook, then the static files.
   void handle(http::request<http::string_body>&& request);
+  /// TransportOptions::httpHandler's answer, if it has one (a throwing hook answers 500).
+  bool serveDynamic(const Reply& reply, std::string_view target);
+  void sendFile(const Reply& reply, const std::filesystem::path& path, std::string_view contentType);
+  void sendText(const Reply& reply, http::status status, std::string_view contentType, std::string body);
   void upgrade(http::request<http::string_body>&& request);
   template <class Body>
   void send(http::response<Body>&& response);
