@@ -229,6 +229,17 @@ struct Hub::Impl {
     input.participants.erase(c.participantId);
   }
 
+  // applyToWorld's steps, on the simulation thread with input.mutex held.
+  /// Guide and Release requests in order, each answered with a GuideResult (unless its
+  /// participant left).
+  void applyGuideRequests(sim::World& world);
+  /// One Guide or Release; nullopt when the participant asking to guide left meanwhile.
+  std::optional<protocol::GuideResult> applyGuideRequest(sim::World& world, const GuideRequest& r);
+  /// The crowd worker's finished requests: insertions queued into the World, removals carried
+  /// out, each answered with a CrowdResult.
+  void applyCrowdRequests(sim::World& world);
+  /// Each guided group heads for its guide's avatar; the avatars become the World's viewers.
+  void followAvatars(sim::World& world);
   /// One message from a client: Hello first (greet), then one handler per client → server type.
   void handle(Client& c, const protocol::Message& message, double now);
   /// The first message: a Hello of this protocol version, room on the server and a UTF-8 name;
@@ -622,63 +633,67 @@ void Hub::Impl::on(Client& c, const M& m, double) {
            " is sent by the server, not by clients");
 }
 
-void Hub::applyToWorld(sim::World& world) {
-  Impl& h = *impl_;
-  std::unique_lock lock(h.input.mutex);  // never the main mutex: publish may be encoding meanwhile
-  auto& in = h.input;
-  for (const GuideRequest& r : in.requests) {
-    const sim::GroupId handle = world.groupById(r.group);
-    protocol::GuideResult result{r.group, false, false, ReasonCode::None};
-    const bool present = in.participants.count(r.participantId) != 0;
-    auto owner = in.guideOf.find(r.group);
-    if (handle.isNull()) {
-      result.reason = ReasonCode::UnknownGroup;
-    } else if (r.guide) {
-      const auto count = static_cast<std::size_t>(std::count_if(
-          in.guideOf.begin(), in.guideOf.end(), [&](const auto& e) { return e.second == r.participantId; }));
-      if (owner != in.guideOf.end() && owner->second != r.participantId) {
-        result.reason = ReasonCode::GroupTaken;
-      } else if (owner == in.guideOf.end() && count >= h.options.maxGuidedGroups) {
-        result.reason = ReasonCode::RateLimited;
-      } else if (!present) {
-        continue;  // left meanwhile
-      } else {
-        in.guideOf[r.group] = r.participantId;
-        if (auto a = in.avatars.find(r.participantId); a != in.avatars.end()) world.guide(handle, a->second, Impl::heightOf(in, r.participantId));
-        result.guiding = result.ok = true;
-      }
+std::optional<protocol::GuideResult> Hub::Impl::applyGuideRequest(sim::World& world, const GuideRequest& r) {
+  auto& in = input;
+  const sim::GroupId handle = world.groupById(r.group);
+  protocol::GuideResult result{r.group, false, false, ReasonCode::None};
+  const bool present = in.participants.count(r.participantId) != 0;
+  auto owner = in.guideOf.find(r.group);
+  if (handle.isNull()) {
+    result.reason = ReasonCode::UnknownGroup;
+  } else if (r.guide) {
+    const auto count = static_cast<std::size_t>(std::count_if(
+        in.guideOf.begin(), in.guideOf.end(), [&](const auto& e) { return e.second == r.participantId; }));
+    if (owner != in.guideOf.end() && owner->second != r.participantId) {
+      result.reason = ReasonCode::GroupTaken;
+    } else if (owner == in.guideOf.end() && count >= options.maxGuidedGroups) {
+      result.reason = ReasonCode::RateLimited;
+    } else if (!present) {
+      return std::nullopt;  // left meanwhile
     } else {
-      if (owner == in.guideOf.end() || owner->second != r.participantId) {
-        result.reason = ReasonCode::NotGuiding;
-      } else {
-        in.guideOf.erase(owner);
-        world.release(handle);
-        result.ok = true;
-      }
+      in.guideOf[r.group] = r.participantId;
+      if (auto a = in.avatars.find(r.participantId); a != in.avatars.end()) world.guide(handle, a->second, heightOf(in, r.participantId));
+      result.guiding = result.ok = true;
     }
-    if (r.answer && present) h.outbox.send(r.peer, protocol::encode(result), false, 0);
+  } else {
+    if (owner == in.guideOf.end() || owner->second != r.participantId) {
+      result.reason = ReasonCode::NotGuiding;
+    } else {
+      in.guideOf.erase(owner);
+      world.release(handle);
+      result.ok = true;
+    }
   }
-  in.requests.clear();
-  // Crowds inserted and removed at the participants' request, in the order they came. Insertions
-  // were parsed and validated on the crowd worker; here they are only queued into the World
-  // (World::insertCrowd checks their ids against the crowds queued since), so they take effect at
-  // the next tick boundary. A crowd belongs to whoever inserted it: only they remove it.
+  return result;
+}
+
+void Hub::Impl::applyGuideRequests(sim::World& world) {
+  for (const GuideRequest& r : input.requests) {
+    const auto result = applyGuideRequest(world, r);
+    if (result && r.answer && input.participants.count(r.participantId) != 0) {
+      outbox.send(r.peer, protocol::encode(*result), false, 0);
+    }
+  }
+  input.requests.clear();
+}
+
+void Hub::Impl::applyCrowdRequests(sim::World& world) {
   std::vector<CrowdDone> done;
   {
-    std::lock_guard workLock(h.work.mutex);
-    done.swap(h.work.done);
+    std::lock_guard workLock(work.mutex);
+    done.swap(work.done);
   }
   for (CrowdDone& d : done) {
     const CrowdRequest& r = d.request;
-    if (in.participants.count(r.participantId) == 0) continue;  // left meanwhile: nobody asks any more
+    if (input.participants.count(r.participantId) == 0) continue;  // left meanwhile: nobody asks any more
     CrowdOutcome outcome;
     if (!r.insert) {
-      outcome = removeCrowdById(world, r.payload, &in.owners, r.participantId);
+      outcome = removeCrowdById(world, r.payload, &input.owners, r.participantId);
     } else if (d.parsed.crowd) {
       outcome = queueCrowd(world, *d.parsed.crowd);
       if (outcome.ok) {
-        in.owners.add(outcome.id, r.participantId, r.name);
-        ++in.crowdsQueued;
+        input.owners.add(outcome.id, r.participantId, r.name);
+        ++input.crowdsQueued;
       }
     } else {
       outcome = std::move(d.parsed.refusal);
@@ -686,17 +701,34 @@ void Hub::applyToWorld(sim::World& world) {
     protocol::CrowdResult result{r.requestId, outcome.ok, outcome.index,
                                  std::string(cutUtf8(outcome.id, protocol::kMaxNameLength)), std::move(outcome.text)};
     if (!outcome.ok) result.text = diagnosticsText(outcome.diagnostics, protocol::kMaxTextLength);
-    h.outbox.send(r.peer, protocol::encode(result), false, 0);
+    outbox.send(r.peer, protocol::encode(result), false, 0);
   }
-  // Dynamic goals: each guided group walks to its guide's avatar (the World replans only when it
-  // moved far enough); the avatars are the viewers of multiresolution steering.
+}
+
+void Hub::Impl::followAvatars(sim::World& world) {
   std::vector<core::Vec2> viewers;
-  viewers.reserve(in.avatars.size());
-  for (const auto& [participant, position] : in.avatars) viewers.push_back(position);
-  for (const auto& [group, participant] : in.guideOf) {
-    if (auto a = in.avatars.find(participant); a != in.avatars.end()) world.guide(world.groupById(group), a->second, Impl::heightOf(in, participant));
+  viewers.reserve(input.avatars.size());
+  for (const auto& [participant, position] : input.avatars) viewers.push_back(position);
+  for (const auto& [group, participant] : input.guideOf) {
+    if (auto a = input.avatars.find(participant); a != input.avatars.end()) {
+      world.guide(world.groupById(group), a->second, heightOf(input, participant));
+    }
   }
   world.setViewers(std::move(viewers));
+}
+
+void Hub::applyToWorld(sim::World& world) {
+  Impl& h = *impl_;
+  std::unique_lock lock(h.input.mutex);  // never the main mutex: publish may be encoding meanwhile
+  h.applyGuideRequests(world);
+  // Crowds inserted and removed at the participants' request, in the order they came. Insertions
+  // were parsed and validated on the crowd worker; here they are only queued into the World
+  // (World::insertCrowd checks their ids against the crowds queued since), so they take effect at
+  // the next tick boundary. A crowd belongs to whoever inserted it: only they remove it.
+  h.applyCrowdRequests(world);
+  // Dynamic goals: each guided group walks to its guide's avatar (the World replans only when it
+  // moved far enough); the avatars are the viewers of multiresolution steering.
+  h.followAvatars(world);
   lock.unlock();
   h.refreshCrowdContext(world, false);
 }
