@@ -11,7 +11,7 @@
 #include <cstdlib>
 #include <numeric>
 
-#include "bench_scenarios.hpp"
+#include "throng/bench/scenarios.hpp"
 #include "throng/protocol/crowd_encoder.hpp"
 #include "throng/sim/animation.hpp"
 #include "throng/sim/world.hpp"
@@ -64,13 +64,13 @@ int main(int argc, char** argv) {
   core::TaskSystem tasks(2);
   for (const std::size_t agents : {100u, 1000u, 10000u}) {
     for (const float rate : {10.0f, 25.0f}) {
-      sim::ScenarioDesc desc = cli::makeBenchScenario(cli::BenchLayout::Random, agents, 1);
+      sim::ScenarioDesc desc = bench::makeScenario(bench::Layout::Random, agents, 1);
       desc.dt = 1.0f / rate;
-      auto navmesh = cli::buildBenchNavMesh(desc);
+      auto navmesh = bench::buildNavMesh(desc);
       if (!navmesh) return 1;
       auto world = sim::World::create(desc, navmesh.value());
       if (!world) return 1;
-      const float c = cli::benchSide(agents) * 0.5f;
+      const float c = bench::squareSide(agents) * 0.5f;
       for (int i = 0; i < 30; ++i) world.value()->step(tasks);  // spawned, paths planned, walking
       protocol::CrowdEncoder enc;
       std::size_t keyBytes = 0, deltaBytes = 0, deltas = 0;

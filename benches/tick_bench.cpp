@@ -3,7 +3,7 @@
 // Counter agent_steps/s = agents × ticks per second of wall time.
 #include <benchmark/benchmark.h>
 
-#include "bench_scenarios.hpp"
+#include "throng/bench/scenarios.hpp"
 #include "throng/sim/world.hpp"
 
 namespace {
@@ -13,8 +13,8 @@ using namespace throng;
 void BM_Tick(benchmark::State& state) {
   const auto agents = static_cast<std::size_t>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
-  const sim::ScenarioDesc desc = cli::makeBenchScenario(cli::BenchLayout::Random, agents, 1);
-  auto navmesh = cli::buildBenchNavMesh(desc);
+  const sim::ScenarioDesc desc = bench::makeScenario(bench::Layout::Random, agents, 1);
+  auto navmesh = bench::buildNavMesh(desc);
   if (!navmesh) {
     state.SkipWithError("navmesh build failed");
     return;

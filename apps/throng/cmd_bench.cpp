@@ -1,6 +1,6 @@
 // `throng bench` — times the full tick, then DetourCrowd on the same navmesh and agent count, and
 // prints agent-steps/s, ms per tick (median, p99), peak RSS and bytes per agent. Two kinds of
-// scenario: in-memory ones (bench_scenarios.hpp) at each --agents count, timed for a number of
+// scenario: in-memory ones (throng/bench/scenarios.hpp) at each --agents count, timed for a number of
 // ticks after a warm-up; and scenario files ("mall" or PATH.json) run from the start to their end,
 // also reporting simulated time, wall time and × real time. With --record each configuration is
 // timed again while writing a recording (io::Recorder, frames at --fps, as `throng run` does) to a
@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <optional>
 
 #include <CLI/CLI.hpp>
@@ -25,20 +26,19 @@
 #include <unistd.h>
 
 #include "phase_timer.hpp"
-#include "bench_scenarios.hpp"
+#include "bench_files.hpp"
 #include "cmd_bench_runner.hpp"
 #include "commands.hpp"
 #include "output.hpp"
 #include "progress.hpp"
 #include "signal.hpp"
 #include "validators.hpp"
+#include "throng/bench/detour_crowd_baseline.hpp"
+#include "throng/bench/scenarios.hpp"
 #include "throng/core/parallel.hpp"
 #include "throng/io/recorder.hpp"
 #include "throng/io/scenario_loader.hpp"
 #include "throng/sim/world.hpp"
-#if THRONG_HAVE_BASELINES
-#include "baselines/detour_crowd_baseline.hpp"
-#endif
 
 namespace throng::cli {
 namespace {
@@ -82,12 +82,123 @@ double percentile(std::vector<double> values, double q) {
 
 double roundMicro(double v) { return std::round(v * 1e6) / 1e6; }
 
+/// When the timed ticks of one configuration stop. In-memory: a fixed --ticks, or (ticks <= 0) as
+/// many as fit in kTargetSecondsPerConfig. File: the scenario's end (finished or duration, --ticks
+/// caps), checked at frame ticks so runs with and without --record cover the same ticks.
+struct TickPlan {
+  bool fileMode = false;
+  std::uint64_t stride = 1;      ///< ticks between recorded frames
+  std::uint64_t totalTicks = 0;  ///< file mode: ticks to the end
+  int ticks = 0;                 ///< --ticks (<= 0: automatic)
+
+  [[nodiscard]] bool done(std::uint64_t tick, const sim::World& w, double totalSeconds) const {
+    if (fileMode) return tick % stride == 0 && (w.finished() || tick >= totalTicks);
+    return ticks > 0 ? tick >= static_cast<std::uint64_t>(ticks)
+                     : (tick >= kMaxAutoTicks || (tick >= kMinAutoTicks && totalSeconds >= kTargetSecondsPerConfig));
+  }
+};
+
+/// What the timed ticks measured.
+struct TimedTicks {
+  std::vector<double> ms;     ///< each tick [ms]
+  double totalSeconds = 0.0;  ///< their sum [s]
+  double rssPeak = 0.0;       ///< resident memory, sampled (file mode) and at the end [bytes]
+  std::size_t agentsPeak = 0; ///< most agents present at once
+};
+
+/// Steps and times each tick until the plan is done or Ctrl-C, recording every stride-th frame;
+/// `onTick(tick, totalSeconds)` after each (the progress line).
+TimedTicks runTimedTicks(sim::World& w, const core::TaskSystem& tasks, io::Recorder* recorder, const TickPlan& plan,
+                         sim::PhaseObserver* phases, const std::function<void(std::uint64_t, double)>& onTick) {
+  TimedTicks t;
+  t.rssPeak = currentRss();
+  t.agentsPeak = w.stats().active;
+  for (std::uint64_t tick = 0; !InterruptGuard::requested(); ++tick) {
+    if (plan.done(tick, w, t.totalSeconds)) break;
+    const auto t0 = Clock::now();
+    w.step(tasks, phases);
+    if (recorder && (tick + 1) % plan.stride == 0) recorder->push(w.snapshot());
+    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    t.totalSeconds += seconds;
+    t.ms.push_back(seconds * 1000.0);
+    t.agentsPeak = std::max<std::size_t>(t.agentsPeak, w.stats().active);
+    if (plan.fileMode && tick % kRssSampleTicks == 0) t.rssPeak = std::max(t.rssPeak, currentRss());
+    onTick(tick, t.totalSeconds);
+  }
+  t.rssPeak = std::max(t.rssPeak, currentRss());
+  return t;
+}
+
+/// The world's counters before the timed ticks, to measure the timed ticks alone.
+struct WorldBefore {
+  std::uint64_t agentSteps = 0;
+  double time = 0.0;     ///< [s]
+  double walked = 0.0;   ///< [m]
+};
+
+/// Rates, percentiles and memory of the timed ticks into `m`.
+void fillMeasurement(bench_detail::Measurement& m, const TimedTicks& timed, const sim::WorldStats& after, const WorldBefore& before,
+                     double dt) {
+  const auto steps = static_cast<double>(after.agentSteps - before.agentSteps);
+  m.agentStepsPerSec = timed.totalSeconds > 0 ? steps / timed.totalSeconds : 0.0;
+  // Distance walked per agent-second, over every agent of the timed ticks (as DetourCrowd's).
+  m.meanSpeed = steps > 0 ? (after.walkedDistance - before.walked) / (steps * dt) : 0.0;
+  m.msMedian = percentile(timed.ms, 0.5);
+  m.msP99 = percentile(timed.ms, 0.99);
+  m.peakRssBytes = peakRss();
+  m.simulatedSeconds = after.time - before.time;
+  m.wallSeconds = timed.totalSeconds;
+}
+
 }  // namespace
 
 namespace bench_detail {
 
 void BenchRunner::status(const std::string& text, bool force) {
   if (force || progress_.due()) progress_.draw(text);
+}
+
+std::unique_ptr<io::Recorder> BenchRunner::openRecording(const sim::ScenarioDesc& desc, double fps,
+                                                         const std::string& path) {
+  io::RecordingOptions recording;
+  recording.path = path;
+  recording.force = true;
+  recording.fps = fps;
+  recording.seed = desc.seed;
+  recording.scenarioText = scenarioText_;
+  auto opened = io::Recorder::open(desc, recording);
+  if (!opened) {
+    progress_.clear();
+    printLine(stderr, "throng: bench --record: cannot open the temporary recording:");
+    printDiagnostics(opened.errors());
+    return nullptr;
+  }
+  return std::move(*opened);
+}
+
+bool BenchRunner::closeRecording(io::Recorder& recorder, const std::string& label, bool completed, Measurement& m) {
+  // Closing flushes the frames still queued and checkpoints the file.
+  status(label + ": closing the recording", true);
+  const auto t0 = Clock::now();
+  const core::Status closed = recorder.close(completed);
+  m.closeSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  if (!closed) {
+    progress_.clear();
+    printDiagnostics(closed.errors());
+    return false;
+  }
+  m.frames = recorder.framesWritten();
+  return true;
+}
+
+void BenchRunner::drawTickProgress(const std::string& label, const sim::World& w, std::uint64_t tick, int ticks,
+                                   double totalSeconds) {
+  if (!progress_.due()) return;
+  progress_.draw(fileMode_ ? fmt::format("{}: t = {:.0f}/{:.0f} s, {} agents", label, w.stats().time, duration_,
+                                         w.stats().active)
+                 : ticks > 0 ? fmt::format("{}: tick {}/{}", label, tick + 1, ticks)
+                             : fmt::format("{}: tick {} ({:.1f}/{:.0f} s)", label, tick + 1, totalSeconds,
+                                           kTargetSecondsPerConfig));
 }
 
 std::optional<Measurement> BenchRunner::timeThrong(const sim::ScenarioDesc& desc,
@@ -109,28 +220,20 @@ std::optional<Measurement> BenchRunner::timeThrong(const sim::ScenarioDesc& desc
   const core::TaskSystem tasks(threads);
   sim::World& w = **world;
 
-  // Frames every `stride` ticks, as `throng run`; file runs stop only at a frame tick (with or
-  // without --record) so both figures cover the same ticks.
+  // Frames every `stride` ticks, as `throng run`.
   double fps = options_.fps;
-  const std::uint64_t stride = benchFrameStride(options_.fps, dt_, fps);
+  TickPlan plan;
+  plan.fileMode = fileMode_;
+  plan.stride = benchFrameStride(options_.fps, dt_, fps);
+  plan.ticks = ticks;
+  const auto toEnd = static_cast<std::uint64_t>(std::max(0LL, std::llround(duration_ / dt_)));
+  plan.totalTicks = ticks > 0 ? std::min<std::uint64_t>(toEnd, static_cast<std::uint64_t>(ticks)) : toEnd;
   std::optional<TempRecording> temp;  // declared before the recorder: the file is deleted after it closes
   std::unique_ptr<io::Recorder> recorder;
   if (record) {
     temp.emplace();
-    io::RecordingOptions recording;
-    recording.path = temp->path();
-    recording.force = true;
-    recording.fps = fps;
-    recording.seed = desc.seed;
-    recording.scenarioText = scenarioText_;
-    auto opened = io::Recorder::open(desc, recording);
-    if (!opened) {
-      progress_.clear();
-      printLine(stderr, "throng: bench --record: cannot open the temporary recording:");
-      printDiagnostics(opened.errors());
-      return std::nullopt;
-    }
-    recorder = std::move(*opened);
+    recorder = openRecording(desc, fps, temp->path());
+    if (!recorder) return std::nullopt;
   }
 
   for (int i = 0; !fileMode_ && i < options_.warmup && !InterruptGuard::requested(); ++i) {
@@ -140,101 +243,50 @@ std::optional<Measurement> BenchRunner::timeThrong(const sim::ScenarioDesc& desc
   double bytesPerAgent = n > 0 ? std::max(0.0, currentRss() - rssBefore) / static_cast<double>(n) : 0.0;
   if (recorder) recorder->push(w.snapshot());  // frame 0: the state before the first timed tick
 
-  // In-memory: fixed --ticks, or (ticks <= 0) as many as fit in kTargetSecondsPerConfig. File: to
-  // the end (finished or duration, --ticks caps), checked at frame ticks.
-  const std::uint64_t totalTicks = [&] {
-    auto t = static_cast<std::uint64_t>(std::max(0LL, std::llround(duration_ / dt_)));
-    return ticks > 0 ? std::min<std::uint64_t>(t, static_cast<std::uint64_t>(ticks)) : t;
-  }();
-  const bool fixed = ticks > 0;
-  std::vector<double> ms;
   PhaseTimer phases;  // --phase-times: the timed ticks only
-  const std::uint64_t stepsBefore = w.stats().agentSteps;
-  const double timeBefore = w.stats().time;
-  const double walkedBefore = w.stats().walkedDistance;
-  double totalSeconds = 0.0;
-  double rssPeak = currentRss();
-  std::size_t agentsPeak = w.stats().active;
-  for (std::uint64_t tick = 0; !InterruptGuard::requested(); ++tick) {
-    if (fileMode_) {
-      if (tick % stride == 0 && (w.finished() || tick >= totalTicks)) break;
-    } else if (fixed ? tick >= static_cast<std::uint64_t>(ticks)
-                     : (tick >= kMaxAutoTicks || (tick >= kMinAutoTicks && totalSeconds >= kTargetSecondsPerConfig))) {
-      break;
-    }
-    const auto t0 = Clock::now();
-    w.step(tasks, options_.phaseTimes ? &phases : nullptr);
-    if (recorder && (tick + 1) % stride == 0) recorder->push(w.snapshot());
-    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    totalSeconds += seconds;
-    ms.push_back(seconds * 1000.0);
-    agentsPeak = std::max<std::size_t>(agentsPeak, w.stats().active);
-    if (fileMode_ && tick % kRssSampleTicks == 0) rssPeak = std::max(rssPeak, currentRss());
-    if (progress_.due()) {
-      progress_.draw(fileMode_ ? fmt::format("{}: t = {:.0f}/{:.0f} s, {} agents", label, w.stats().time, duration_,
-                                             w.stats().active)
-                     : fixed   ? fmt::format("{}: tick {}/{}", label, tick + 1, ticks)
-                               : fmt::format("{}: tick {} ({:.1f}/{:.0f} s)", label, tick + 1, totalSeconds,
-                                             kTargetSecondsPerConfig));
-    }
-  }
-  rssPeak = std::max(rssPeak, currentRss());
+  const WorldBefore before{w.stats().agentSteps, w.stats().time, w.stats().walkedDistance};
+  TimedTicks timed = runTimedTicks(w, tasks, recorder.get(), plan, options_.phaseTimes ? &phases : nullptr,
+                                   [&](std::uint64_t tick, double totalSeconds) {
+                                     drawTickProgress(label, w, tick, ticks, totalSeconds);
+                                   });
   const bool interrupted = InterruptGuard::requested();
   Measurement m;
   if (recorder) {
-    // Closing flushes the frames still queued and checkpoints the file: part of a whole run's cost,
-    // so counted in a file scenario's wall time; an in-memory row times the ticks only.
-    status(label + ": closing the recording", true);
-    const auto t0 = Clock::now();
-    const core::Status closed = recorder->close(!interrupted);
-    m.closeSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    if (fileMode_) totalSeconds += m.closeSeconds;
-    if (!closed) {
-      progress_.clear();
-      printDiagnostics(closed.errors());
-      return std::nullopt;
-    }
+    if (!closeRecording(*recorder, label, !interrupted, m)) return std::nullopt;
+    // Part of a whole run's cost, so counted in a file scenario's wall time; an in-memory row
+    // times the ticks only.
+    if (fileMode_) timed.totalSeconds += m.closeSeconds;
     m.recordedFps = fps;
-    m.frames = recorder->framesWritten();
   }
-  ticks = static_cast<int>(ms.size());
+  ticks = static_cast<int>(timed.ms.size());
   if (interrupted) return std::nullopt;
   for (const auto& [name, seconds] : phases.totals()) {
     m.phaseMs.emplace_back(name, ticks > 0 ? 1000.0 * seconds / ticks : 0.0);
   }
   if (fileMode_) {
-    bytesPerAgent = agentsPeak > 0 ? std::max(0.0, rssPeak - rssBefore) / static_cast<double>(agentsPeak) : 0.0;
+    bytesPerAgent = timed.agentsPeak > 0 ? std::max(0.0, timed.rssPeak - rssBefore) / static_cast<double>(timed.agentsPeak)
+                                         : 0.0;
   }
-
   m.engine = record ? "throng+rec" : "throng";
-  m.agents = fileMode_ ? agentsPeak : n;
+  m.agents = fileMode_ ? timed.agentsPeak : n;
   m.threads = tasks.threads();
   m.ticks = ticks;
-  const auto steps = static_cast<double>(w.stats().agentSteps - stepsBefore);
-  m.agentStepsPerSec = totalSeconds > 0 ? steps / totalSeconds : 0.0;
-  // Distance walked per agent-second, over every agent of the timed ticks (as DetourCrowd's).
-  m.meanSpeed = steps > 0 ? (w.stats().walkedDistance - walkedBefore) / (steps * dt_) : 0.0;
-  m.msMedian = percentile(ms, 0.5);
-  m.msP99 = percentile(ms, 0.99);
   m.bytesPerAgent = bytesPerAgent;
-  m.peakRssBytes = peakRss();
-  m.simulatedSeconds = w.stats().time - timeBefore;
-  m.wallSeconds = totalSeconds;
+  fillMeasurement(m, timed, w.stats(), before, dt_);
   return m;
 }
 
 std::optional<Measurement> BenchRunner::timeBaseline(const sim::ScenarioDesc& desc,
                                                      const std::shared_ptr<const nav::NavMesh>& navmesh, int ticks) {
-#if THRONG_HAVE_BASELINES
   const std::size_t n = agentCount(desc);
   const std::string label = fmt::format("detourcrowd {} N={}", label_, n);
   status(label + ": starting", true);
-  baselines::BaselineConfig config;
+  bench::BaselineConfig config;
   config.navmesh = navmesh;
-  config.starts = drawBenchStarts(navmesh, n, options_.seed);
-  config.radius = kBenchRadius;
-  config.speed = kBenchSpeed;
-  config.dt = kBenchDt;
+  config.starts = bench::drawStarts(navmesh, n, options_.seed);
+  config.radius = bench::kRadius;
+  config.speed = bench::kSpeed;
+  config.dt = bench::kDt;
   config.seed = options_.seed;
   config.warmupTicks = options_.warmup;
   config.ticks = ticks;
@@ -245,7 +297,7 @@ std::optional<Measurement> BenchRunner::timeBaseline(const sim::ScenarioDesc& de
            done == total);
   };
   ::malloc_trim(0);
-  auto result = baselines::runDetourCrowd(config);
+  auto result = bench::runDetourCrowd(config);
   if (!result) {
     progress_.clear();
     printLine(stderr, "throng: DetourCrowd baseline failed:");
@@ -263,16 +315,10 @@ std::optional<Measurement> BenchRunner::timeBaseline(const sim::ScenarioDesc& de
   m.bytesPerAgent = result->bytesPerAgent;
   m.meanSpeed = result->meanSpeed;
   m.peakRssBytes = peakRss();
-  m.simulatedSeconds = result->ticks * static_cast<double>(kBenchDt);
+  m.simulatedSeconds = result->ticks * static_cast<double>(bench::kDt);
   m.wallSeconds = m.agentStepsPerSec > 0 ? static_cast<double>(result->ticks * result->agents) / m.agentStepsPerSec
                                          : 0.0;
   return m;
-#else
-  (void)desc;
-  (void)navmesh;
-  (void)ticks;
-  return std::nullopt;
-#endif
 }
 
 void BenchRunner::printHeader() const {
@@ -349,8 +395,8 @@ void BenchRunner::printFootnotes() const {
   } else {
     printLine(stdout, fmt::format("scenario: {} — square of side sqrt(N) m (1 agent/m²), radius {} m, speed {} m/s, "
                                   "dt {} s, agents wander between random points{}",
-                                  label_, kBenchRadius, kBenchSpeed, kBenchDt,
-                                  layout_ == BenchLayout::Navmesh ? "; 1 m pillars every 8 m" : ""));
+                                  label_, bench::kRadius, bench::kSpeed, bench::kDt,
+                                  layout_ == bench::Layout::Navmesh ? "; 1 m pillars every 8 m" : ""));
     printLine(stdout, fmt::format("timing: {} untimed warm-up ticks, then each tick timed alone (steady_clock)",
                                   options_.warmup));
     printLine(stdout, "bytes/agent: growth of resident memory from before World::create to after warm-up, divided "
@@ -378,18 +424,13 @@ int BenchRunner::runLayouts() {
                                                             : options_.agents;
   std::vector<int> threadCounts = options_.threads.empty() ? std::vector<int>{1, 2} : options_.threads;
   if (options_.duration) notes_.push_back("--duration is used with scenario files only (here: --ticks)");
-  bool baselineAvailable = true;
-#if !THRONG_HAVE_BASELINES
-  baselineAvailable = false;
-  if (!options_.noBaseline) notes_.push_back("DetourCrowd baseline not built (THRONG_BUILD_BENCHES=OFF)");
-#endif
   InterruptGuard interrupts;
   printHeader();
   for (const std::size_t n : counts) {
-    const sim::ScenarioDesc desc = makeBenchScenario(layout_, n, options_.seed);
+    const sim::ScenarioDesc desc = bench::makeScenario(layout_, n, options_.seed);
     duration_ = desc.duration;
     status(fmt::format("{} N={}: building navmesh", label_, n), true);
-    auto navmesh = buildBenchNavMesh(desc);
+    auto navmesh = bench::buildNavMesh(desc);
     if (!navmesh) {
       progress_.clear();
       printDiagnostics(navmesh.errors());
@@ -413,7 +454,7 @@ int BenchRunner::runLayouts() {
       }
     }
     std::optional<Measurement> baseline;
-    if (!InterruptGuard::requested() && !options_.noBaseline && baselineAvailable) {
+    if (!InterruptGuard::requested() && !options_.noBaseline) {
       if (n <= options_.baselineMax) {
         baseline = timeBaseline(desc, *navmesh, std::max(ticks, 1));
       } else {

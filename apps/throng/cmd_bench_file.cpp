@@ -14,7 +14,7 @@
 
 #include <fmt/format.h>
 
-#include "bench_scenarios.hpp"
+#include "bench_files.hpp"
 #include "cmd_bench_runner.hpp"
 #include "commands.hpp"
 #include "output.hpp"

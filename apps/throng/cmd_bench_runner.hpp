@@ -11,15 +11,21 @@
 #include <string>
 #include <vector>
 
-#include "bench_scenarios.hpp"
+#include "bench_files.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
+#include "throng/bench/scenarios.hpp"
 #include "throng/nav/navmesh.hpp"
 #include "throng/sim/scenario.hpp"
+#include "throng/sim/world.hpp"
+
+namespace throng::io {
+class Recorder;
+}  // namespace throng::io
 
 namespace throng::cli::bench_detail {
 
-/// The engine name DetourCrowd's rows carry (baselines::BaselineResult::engine).
+/// The engine name DetourCrowd's rows carry (bench::BaselineResult::engine).
 inline constexpr const char* kDetourCrowdEngine = "detourcrowd";
 
 struct Measurement {
@@ -48,7 +54,7 @@ class BenchRunner {
  public:
   explicit BenchRunner(const BenchOptions& options)
       : options_(options),
-        fileMode_(!benchLayoutFromName(options.scenario, layout_)),
+        fileMode_(!bench::layoutFromName(options.scenario)),
         progress_(stderr, true) {}
 
   int run();
@@ -61,6 +67,13 @@ class BenchRunner {
   std::optional<Measurement> timeThrong(const sim::ScenarioDesc& desc,
                                         const std::shared_ptr<const nav::NavMesh>& navmesh, int threads,
                                         int& ticks, bool record);
+  /// --record's recording of one configuration at `path`; nullptr after printing why not.
+  std::unique_ptr<io::Recorder> openRecording(const sim::ScenarioDesc& desc, double fps, const std::string& path);
+  /// Closes --record's recording (`completed` unless interrupted): close time and frames into `m`;
+  /// false after printing why it failed.
+  bool closeRecording(io::Recorder& recorder, const std::string& label, bool completed, Measurement& m);
+  /// The progress line during the timed ticks (`ticks` <= 0: automatic count).
+  void drawTickProgress(const std::string& label, const sim::World& w, std::uint64_t tick, int ticks, double totalSeconds);
   std::optional<Measurement> timeBaseline(const sim::ScenarioDesc& desc,
                                           const std::shared_ptr<const nav::NavMesh>& navmesh, int ticks);
   void status(const std::string& text, bool force = false);
@@ -69,12 +82,12 @@ class BenchRunner {
   void printFootnotes() const;
 
   const BenchOptions& options_;
-  BenchLayout layout_ = BenchLayout::Random;
+  bench::Layout layout_ = bench::layoutFromName(options_.scenario).value_or(bench::Layout::Random);
   bool fileMode_ = false;
   std::string label_;         ///< the "scenario" column: layout name or the file's name without .json
   std::string filePath_;      ///< file mode: the scenario file read
   std::string scenarioText_;  ///< file mode: its text (stored in --record recordings)
-  double dt_ = kBenchDt;      ///< time step of the scenario [s]
+  double dt_ = bench::kDt;     ///< time step of the scenario [s]
   double duration_ = 0.0;     ///< file mode: simulated time at most [s]
   ProgressLine progress_;
   std::vector<std::string> notes_;

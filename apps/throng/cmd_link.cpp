@@ -7,6 +7,10 @@
 // --duration, on Ctrl-C, when the host detaches or when its heartbeat stops; then removes the
 // segment. Reads the scenario and its clips; writes the segment, the socket, lines on stdout and
 // problems on stderr.
+//
+// The parts: FrameWriter (a frame into the segment), HostInputApplier (avatars and guides into the
+// World), answerRequests (crowd insertion and removal), HostWatch (attach, detach, heartbeat) and
+// LinkLoop (the real-time loop).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -237,6 +241,206 @@ void answerRequests(link::Segment& segment, sim::World& world) {
   }
 }
 
+
+/// The segment's name: --shm with a leading '/', else /throng-<pid> (with --socket); empty when
+/// neither flag was given.
+std::string segmentName(const LinkOptions& options) {
+  std::string name = options.shm;
+  if (name.empty() && options.socket.empty()) return {};
+  if (name.empty()) name = fmt::format("/throng-{}", getpid());
+  if (name[0] != '/') name.insert(name.begin(), '/');
+  return name;
+}
+
+link::SegmentOptions segmentOptions(const LinkOptions& options, const sim::ScenarioDesc& desc,
+                                    const hub::MotionLibrary& motions, double tickRate) {
+  link::SegmentOptions so;
+  so.maxAgents = static_cast<std::uint32_t>(options.maxAgents);
+  so.maxDetailed = static_cast<std::uint32_t>(options.maxDetailed);
+  so.maxJoints = static_cast<std::uint32_t>(motions.jointCount());
+  so.maxAvatars = static_cast<std::uint32_t>(options.maxAvatars);
+  so.maxGuides = static_cast<std::uint32_t>(options.maxGuides);
+  so.maxClips = static_cast<std::uint32_t>(motions.clips().size());
+  so.dt = desc.dt;
+  so.tickRate = tickRate;
+  so.heartbeatTimeoutMs = static_cast<std::uint32_t>(std::lround(options.hostTimeout * 1000.0));
+  so.lockstep = options.lockstep;
+  so.force = options.force;
+  so.scenario = desc.name.empty() ? fs::path(options.scenario).stem().string() : desc.name;
+  return so;
+}
+
+/// Skeleton and clips, written once before hosts may read.
+void writeSkeletonAndClips(link::Segment& segment, const hub::MotionLibrary& motions) {
+  const hub::Skeleton& skeleton = motions.skeleton();
+  for (std::size_t j = 0; j < skeleton.names.size(); ++j) {
+    throng_link_joint& out = segment.skeleton()[j];
+    copyName(out.name, sizeof out.name, skeleton.names[j]);
+    out.parent = skeleton.parents[j];
+    std::copy(skeleton.offsets[j].begin(), skeleton.offsets[j].end(), out.offset);
+  }
+  for (std::size_t c = 0; c < motions.clips().size(); ++c) {
+    throng_link_clip& out = segment.clips()[c];
+    copyName(out.name, sizeof out.name, motions.clips()[c].name);
+    out.duration = motions.clips()[c].duration;
+    out.loops = motions.clips()[c].loops ? 1u : 0u;
+  }
+  segment.setCounts(static_cast<std::uint32_t>(skeleton.names.size()), static_cast<std::uint32_t>(motions.clips().size()));
+}
+
+/// The UNIX-socket handshake (--socket), or nullptr without it; false when it failed (printed).
+bool startHandshake(const LinkOptions& options, const std::string& name, std::unique_ptr<link::HandshakeServer>& out) {
+  if (options.socket.empty()) return true;
+  const bool quiet = options.quiet;
+  auto started = link::HandshakeServer::start(options.socket, name, options.force,
+                                              [quiet](bool refused, const std::string& message) {
+                                                if (refused) printLine(stderr, "throng link: " + message);
+                                                else if (!quiet) printLine(stdout, "throng link: " + message);
+                                              });
+  if (!started) {
+    printDiagnostics(started.errors());
+    return false;
+  }
+  out = std::move(started).value();
+  return true;
+}
+
+/// Why the link ended (or a host left) and the exit code that goes with it.
+struct LinkEnd {
+  std::string reason;
+  int exitCode = kExitOk;
+};
+
+/// The host's side of the header: it attaches (version check), leaves, or falls silent.
+class HostWatch {
+ public:
+  HostWatch(throng_link_header& h, const LinkOptions& options) : h_(h), options_(options) {}
+
+  [[nodiscard]] bool attached() const { return attached_; }
+
+  /// Reads the host's state: attaches a host of the right version (refuses another), and says
+  /// when an attached host detached or its heartbeat stopped for --host-timeout (then detached).
+  std::optional<LinkEnd> poll() {
+    const std::uint32_t hostState = __atomic_load_n(&h_.host_state, __ATOMIC_ACQUIRE);
+    if (!attached_ && hostState == THRONG_LINK_HOST_ATTACHED) attach();
+    if (!attached_) return std::nullopt;
+    const std::uint64_t beat = __atomic_load_n(&h_.host_heartbeat, __ATOMIC_ACQUIRE);
+    std::optional<LinkEnd> gone;
+    if (hostState == THRONG_LINK_HOST_DETACHED) {
+      gone = LinkEnd{"host detached", kExitOk};
+    } else if (beat != lastBeat_) {
+      lastBeat_ = beat;
+      lastChange_ = Clock::now();
+    } else if (secondsSince(lastChange_) >= options_.hostTimeout) {
+      gone = LinkEnd{fmt::format("host stopped: no heartbeat for {:.1f} s", secondsSince(lastChange_)), kExitFailure};
+    }
+    if (gone) attached_ = false;
+    return gone;
+  }
+  /// Ready for the next host (--keep-alive).
+  void reset() { __atomic_store_n(&h_.host_state, THRONG_LINK_HOST_NONE, __ATOMIC_RELEASE); }
+
+ private:
+  void attach() {
+    if (h_.host_version != THRONG_LINK_VERSION) {
+      const std::string why = fmt::format("host (pid {}) speaks link version {}, this crowd speaks version {}: refused",
+                                          h_.host_pid, h_.host_version, THRONG_LINK_VERSION);
+      copyName(h_.message, sizeof h_.message, why);
+      __atomic_store_n(&h_.host_state, THRONG_LINK_HOST_REFUSED, __ATOMIC_RELEASE);
+      printLine(stderr, "throng link: " + why);
+      return;
+    }
+    attached_ = true;
+    lastBeat_ = __atomic_load_n(&h_.host_heartbeat, __ATOMIC_ACQUIRE);
+    lastChange_ = Clock::now();
+    if (!options_.quiet) printLine(stdout, fmt::format("throng link: host attached (pid {})", h_.host_pid));
+  }
+
+  throng_link_header& h_;
+  const LinkOptions& options_;
+  bool attached_ = false;
+  std::uint64_t lastBeat_ = 0;
+  Clock::time_point lastChange_ = Clock::now();
+};
+
+/// The real-time loop: the host's state, its input and requests, one World step and one frame per
+/// period (or per input_written with --lockstep), until --duration, Ctrl-C, a damaged header or
+/// the host leaving (unless --keep-alive).
+class LinkLoop {
+ public:
+  LinkLoop(const LinkOptions& options, link::Segment& segment, sim::World& world, const hub::MotionLibrary& motions)
+      : options_(options), segment_(segment), world_(world), tasks_(options.threads), writer_(segment, motions),
+        host_(segment.header(), options) {}
+
+  LinkEnd run(double tickRate, Clock::time_point start) {
+    const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / tickRate));
+    auto next = Clock::now();
+    while (true) {
+      if (InterruptGuard::requested()) return {"interrupted (Ctrl-C)", kExitInterrupted};
+      // The layout is this process's own copy, so a damaged header cannot make it crash; but hosts
+      // address the segment through the header, so a damaged one ends the link.
+      if (const auto why = segment_.damaged()) return {"the segment's header was overwritten (" + *why + "): stopped", kExitFailure};
+      if (options_.duration && secondsSince(start) >= *options_.duration) return {"duration reached", kExitOk};
+      if (auto gone = host_.poll()) {
+        if (auto end = hostLeft(*gone)) return *end;
+      }
+      // Lockstep: the host sets the pace; beat while waiting so it knows we are alive.
+      if (options_.lockstep && !segment_.waitInput(100)) {
+        segment_.beat();
+        continue;
+      }
+      tick();
+      next += period;
+      const auto now = Clock::now();
+      if (now > next) {
+        next = now;  // late: never catch up in a burst
+      } else {
+        std::this_thread::sleep_until(next);
+      }
+    }
+  }
+  [[nodiscard]] std::uint64_t ticks() const { return ticks_; }
+
+ private:
+  /// The host left: its groups go back to their goals; the link ends, or waits for the next host.
+  std::optional<LinkEnd> hostLeft(const LinkEnd& gone) {
+    applier_.releaseAll(world_);
+    detailIds_.clear();
+    if (!options_.keepAlive) {
+      if (gone.exitCode != kExitOk) printLine(stderr, "throng link: " + gone.reason);
+      return gone;
+    }
+    printLine(gone.exitCode == kExitOk ? stdout : stderr, "throng link: " + gone.reason + "; waiting for the next host");
+    host_.reset();
+    return std::nullopt;
+  }
+
+  /// The host's input and requests, one step, one frame.
+  void tick() {
+    if (host_.attached()) {
+      if (auto in = segment_.readInput()) {
+        applier_.apply(*in, world_);
+        detailIds_ = std::move(in->detailIds);
+      }
+    }
+    answerRequests(segment_, world_);
+    world_.step(tasks_);
+    const sim::FramePtr frame = world_.snapshot();
+    writer_.write(*frame, world_, detailIds_);
+    ++ticks_;
+  }
+
+  const LinkOptions& options_;
+  link::Segment& segment_;
+  sim::World& world_;
+  core::TaskSystem tasks_;
+  FrameWriter writer_;
+  HostInputApplier applier_;
+  HostWatch host_;
+  std::vector<std::uint32_t> detailIds_;
+  std::uint64_t ticks_ = 0;
+};
+
 }  // namespace
 
 CLI::App* addLinkCommand(CLI::App& app, LinkOptions& options) {
@@ -295,13 +499,11 @@ CLI::App* addLinkCommand(CLI::App& app, LinkOptions& options) {
 
 int runLink(const LinkOptions& options) {
   InterruptGuard interrupts;
-  std::string name = options.shm;
-  if (name.empty() && options.socket.empty()) {
+  const std::string name = segmentName(options);
+  if (name.empty()) {
     printLine(stderr, "throng link: give --shm NAME (the segment's name), --socket PATH, or both");
     return kExitUsage;
   }
-  if (name.empty()) name = fmt::format("/throng-{}", getpid());
-  if (name[0] != '/') name.insert(name.begin(), '/');
   if (auto missing = checkInputFile(options.scenario, "scenario"); !missing.empty()) {
     printDiagnostics(missing);
     return kExitFailure;
@@ -309,61 +511,17 @@ int runLink(const LinkOptions& options) {
   auto live = makeLiveWorld(io::loadScenarioFile(options.scenario), options.seed,
                             fs::path(options.scenario).parent_path(), "link", options.quiet);
   if (!live) return kExitFailure;
-  io::LoadedScenario* loaded = &live->scenario;
-  std::unique_ptr<sim::World>& world = live->world;
-  const hub::MotionLibrary& motions = live->motions;
-  const double tickRate = options.tick ? *options.tick : 1.0 / loaded->desc.dt;
-
-  link::SegmentOptions so;
-  so.maxAgents = static_cast<std::uint32_t>(options.maxAgents);
-  so.maxDetailed = static_cast<std::uint32_t>(options.maxDetailed);
-  so.maxJoints = static_cast<std::uint32_t>(motions.jointCount());
-  so.maxAvatars = static_cast<std::uint32_t>(options.maxAvatars);
-  so.maxGuides = static_cast<std::uint32_t>(options.maxGuides);
-  so.maxClips = static_cast<std::uint32_t>(motions.clips().size());
-  so.dt = loaded->desc.dt;
-  so.tickRate = tickRate;
-  so.heartbeatTimeoutMs = static_cast<std::uint32_t>(std::lround(options.hostTimeout * 1000.0));
-  so.lockstep = options.lockstep;
-  so.force = options.force;
-  so.scenario = loaded->desc.name.empty() ? fs::path(options.scenario).stem().string() : loaded->desc.name;
+  const double tickRate = options.tick ? *options.tick : 1.0 / live->scenario.desc.dt;
+  const link::SegmentOptions so = segmentOptions(options, live->scenario.desc, live->motions, tickRate);
   auto made = link::Segment::create(name, so);
   if (!made) {
     printDiagnostics(made.errors());
     return kExitFailure;
   }
   std::unique_ptr<link::Segment> segment = std::move(made).value();
-  // Skeleton and clips, written once before hosts may read.
-  const hub::Skeleton& skeleton = motions.skeleton();
-  for (std::size_t j = 0; j < skeleton.names.size(); ++j) {
-    throng_link_joint& out = segment->skeleton()[j];
-    copyName(out.name, sizeof out.name, skeleton.names[j]);
-    out.parent = skeleton.parents[j];
-    std::copy(skeleton.offsets[j].begin(), skeleton.offsets[j].end(), out.offset);
-  }
-  for (std::size_t c = 0; c < motions.clips().size(); ++c) {
-    throng_link_clip& out = segment->clips()[c];
-    copyName(out.name, sizeof out.name, motions.clips()[c].name);
-    out.duration = motions.clips()[c].duration;
-    out.loops = motions.clips()[c].loops ? 1u : 0u;
-  }
-  segment->setCounts(static_cast<std::uint32_t>(skeleton.names.size()),
-                     static_cast<std::uint32_t>(motions.clips().size()));
-
+  writeSkeletonAndClips(*segment, live->motions);
   std::unique_ptr<link::HandshakeServer> handshake;
-  if (!options.socket.empty()) {
-    const bool quiet = options.quiet;
-    auto started = link::HandshakeServer::start(options.socket, name, options.force,
-                                                [quiet](bool refused, const std::string& message) {
-                                                  if (refused) printLine(stderr, "throng link: " + message);
-                                                  else if (!quiet) printLine(stdout, "throng link: " + message);
-                                                });
-    if (!started) {
-      printDiagnostics(started.errors());
-      return kExitFailure;
-    }
-    handshake = std::move(started).value();
-  }
+  if (!startHandshake(options, name, handshake)) return kExitFailure;
   segment->start();
   // Launchers and tests wait for these lines (printed even with --quiet).
   printLine(stdout, fmt::format("throng link: {} — segment {} (layout version {}), {:.4g} ticks/s{}", so.scenario, name,
@@ -371,109 +529,18 @@ int runLink(const LinkOptions& options) {
   if (handshake) printLine(stdout, fmt::format("  socket     {}", options.socket));
   printLine(stdout, "  waiting for a host (Ctrl-C to stop)");
 
-  core::TaskSystem tasks(options.threads);
-  FrameWriter writer(*segment, motions);
-  HostInputApplier applier;
-  throng_link_header& h = segment->header();
+  LinkLoop loop(options, *segment, *live->world, live->motions);
   const auto start = Clock::now();
-  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / tickRate));
-  auto next = Clock::now();
-  bool attached = false;
-  std::uint64_t lastHostBeat = 0;
-  auto lastHostChange = Clock::now();
-  std::vector<std::uint32_t> detailIds;
-  std::uint64_t ticks = 0;
-  int exitCode = kExitOk;
-  std::string endReason = "duration reached";
-  while (true) {
-    if (InterruptGuard::requested()) {
-      endReason = "interrupted (Ctrl-C)";
-      exitCode = kExitInterrupted;
-      break;
-    }
-    // The layout is this process's own copy, so a damaged header cannot make it crash; but hosts
-    // address the segment through the header, so a damaged one ends the link.
-    if (const auto why = segment->damaged()) {
-      endReason = "the segment's header was overwritten (" + *why + "): stopped";
-      exitCode = kExitFailure;
-      break;
-    }
-    if (options.duration && secondsSince(start) >= *options.duration) break;
-    // The host: attach (version check), leave, or fall silent.
-    const std::uint32_t hostState = __atomic_load_n(&h.host_state, __ATOMIC_ACQUIRE);
-    if (!attached && hostState == THRONG_LINK_HOST_ATTACHED) {
-      if (h.host_version != THRONG_LINK_VERSION) {
-        const std::string why = fmt::format("host (pid {}) speaks link version {}, this crowd speaks version {}: refused",
-                                            h.host_pid, h.host_version, THRONG_LINK_VERSION);
-        copyName(h.message, sizeof h.message, why);
-        __atomic_store_n(&h.host_state, THRONG_LINK_HOST_REFUSED, __ATOMIC_RELEASE);
-        printLine(stderr, "throng link: " + why);
-      } else {
-        attached = true;
-        lastHostBeat = __atomic_load_n(&h.host_heartbeat, __ATOMIC_ACQUIRE);
-        lastHostChange = Clock::now();
-        if (!options.quiet) printLine(stdout, fmt::format("throng link: host attached (pid {})", h.host_pid));
-      }
-    }
-    if (attached) {
-      const std::uint64_t beat = __atomic_load_n(&h.host_heartbeat, __ATOMIC_ACQUIRE);
-      std::string gone;
-      if (hostState == THRONG_LINK_HOST_DETACHED) {
-        gone = "host detached";
-      } else if (beat != lastHostBeat) {
-        lastHostBeat = beat;
-        lastHostChange = Clock::now();
-      } else if (secondsSince(lastHostChange) >= options.hostTimeout) {
-        gone = fmt::format("host stopped: no heartbeat for {:.1f} s", secondsSince(lastHostChange));
-        exitCode = kExitFailure;
-      }
-      if (!gone.empty()) {
-        applier.releaseAll(*world);
-        detailIds.clear();
-        attached = false;
-        if (!options.keepAlive) {
-          endReason = gone;
-          if (exitCode != kExitOk) printLine(stderr, "throng link: " + gone);
-          break;
-        }
-        printLine(exitCode == kExitOk ? stdout : stderr, "throng link: " + gone + "; waiting for the next host");
-        exitCode = kExitOk;
-        __atomic_store_n(&h.host_state, THRONG_LINK_HOST_NONE, __ATOMIC_RELEASE);
-      }
-    }
-    // Lockstep: the host sets the pace; beat while waiting so it knows we are alive.
-    if (options.lockstep && !segment->waitInput(100)) {
-      segment->beat();
-      continue;
-    }
-    if (attached) {
-      if (auto in = segment->readInput()) {
-        applier.apply(*in, *world);
-        detailIds = std::move(in->detailIds);
-      }
-    }
-    answerRequests(*segment, *world);
-    world->step(tasks);
-    const sim::FramePtr frame = world->snapshot();
-    writer.write(*frame, *world, detailIds);
-    ++ticks;
-    next += period;
-    const auto now = Clock::now();
-    if (now > next) {
-      next = now;  // late: never catch up in a burst
-    } else {
-      std::this_thread::sleep_until(next);
-    }
-  }
-  segment->stop(endReason);
+  const LinkEnd end = loop.run(tickRate, start);
+  segment->stop(end.reason);
   handshake.reset();
   segment.reset();  // removes the segment's name; hosts still mapping it read STOPPED and the reason
-  if (!options.quiet || exitCode != kExitOk) {
-    printLine(exitCode == kExitOk ? stdout : stderr,
-              fmt::format("throng link: {} after {}: {} ticks; segment {} removed", endReason,
-                          formatSeconds(secondsSince(start)), ticks, name));
+  if (!options.quiet || end.exitCode != kExitOk) {
+    printLine(end.exitCode == kExitOk ? stdout : stderr,
+              fmt::format("throng link: {} after {}: {} ticks; segment {} removed", end.reason,
+                          formatSeconds(secondsSince(start)), loop.ticks(), name));
   }
-  return exitCode;
+  return end.exitCode;
 }
 
 }  // namespace throng::cli

@@ -375,22 +375,15 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
 
 namespace {
 
-/// The run on one rank (of one, or of an MPI job: then `exchange` shares the steer phase).
-int runOn(const RunOptions& options, const RankPlan& ranks, sim::StepExchange* exchange) {
-  const auto setupStart = Clock::now();
-  // Installed first so Ctrl-C during a long load is handled too (before any file exists).
-  InterruptGuard interrupts;
-  const bool speaks = ranks.speaks();  // only rank 0 prints; every rank takes the same path
-  auto warn = [&](const std::string& message) {
-    if (!options.quiet && speaks) printLine(stderr, "throng: warning: " + message);
-  };
-  auto report = [&](const core::Diagnostics& diagnostics) {
-    if (speaks) printDiagnostics(diagnostics);
-  };
+/// The exit code of a step that ends the run early; nullopt: go on.
+using EarlyExit = std::optional<int>;
 
-  // 1. Load and validate: nothing is written when the scenario is bad.
+/// Loads and validates the scenario (Ctrl-C stops a long validation); nothing is written when it
+/// is bad. Every rank takes the same path; only rank 0 prints.
+EarlyExit loadForRun(const RunOptions& options, const RankPlan& ranks, std::optional<io::LoadedScenario>& out) {
+  const bool speaks = ranks.speaks();
   if (auto missing = checkInputFile(options.scenario, "scenario"); !missing.empty()) {
-    report(missing);
+    if (speaks) printDiagnostics(missing);
     return kExitFailure;
   }
   io::LoadOptions load;
@@ -401,10 +394,15 @@ int runOn(const RunOptions& options, const RankPlan& ranks, sim::StepExchange* e
     return kExitInterrupted;
   }
   if (!loaded) {
-    report(loaded.errors());
+    if (speaks) printDiagnostics(loaded.errors());
     return kExitFailure;
   }
-  sim::ScenarioDesc& desc = loaded->desc;
+  out.emplace(std::move(loaded).value());
+  return std::nullopt;
+}
+
+/// --seed, --common-ground and --duration over the scenario's own values.
+EarlyExit applyOverrides(const RunOptions& options, bool speaks, sim::ScenarioDesc& desc) {
   if (options.seed) desc.seed = *options.seed;
   if (options.commonGround) {
     if (!desc.social.enabled) {
@@ -417,35 +415,24 @@ int runOn(const RunOptions& options, const RankPlan& ranks, sim::StepExchange* e
     desc.social.commonGround = *options.commonGround;
   }
   if (options.duration) desc.duration = static_cast<float>(*options.duration);
+  return std::nullopt;
+}
 
-  const FramePlan plan = planFrames(options.fps, desc.dt);
-  if (!plan.exact) {
-    warn(fmt::format("--fps {:g} does not divide the tick rate {:g} Hz (dt = {:g} s); recording every {} ticks "
-                     "= {:.4g} fps",
-                     options.fps, 1.0 / desc.dt, desc.dt, plan.stride, plan.fps));
-  }
-
-  auto world = sim::World::create(desc, loaded->navmesh);
-  if (!world) {
-    report(world.errors());
-    return kExitFailure;
-  }
-
-  if (ranks.anyRank(InterruptGuard::requested())) {
-    if (speaks) printLine(stderr, "throng: interrupted before simulating; nothing written");
-    return kExitInterrupted;
-  }
-
-  // 2. Open the recording (rank 0 only): a bad or existing path fails before any simulation.
+io::RecordingOptions recordingOptions(const RunOptions& options, const io::LoadedScenario& loaded, const FramePlan& plan) {
   io::RecordingOptions recording;
   recording.path = options.out.empty() ? defaultOutput(options.scenario) : options.out;
   recording.force = options.force;
   recording.fps = plan.fps;
-  recording.seed = desc.seed;
-  recording.scenarioText = loaded->text;
-  std::unique_ptr<io::Recorder> recorder;
+  recording.seed = loaded.desc.seed;
+  recording.scenarioText = loaded.text;
+  return recording;
+}
+
+/// Opens the recording (rank 0 only): a bad or existing path fails before any simulation.
+EarlyExit openRecorder(const sim::ScenarioDesc& desc, const io::RecordingOptions& recording, const RankPlan& ranks,
+                       std::unique_ptr<io::Recorder>& recorder) {
   bool openFailed = false;
-  if (speaks) {
+  if (ranks.speaks()) {
     auto opened = io::Recorder::open(desc, recording);
     if (!opened) {
       printDiagnostics(opened.errors());
@@ -455,6 +442,98 @@ int runOn(const RunOptions& options, const RankPlan& ranks, sim::StepExchange* e
     }
   }
   if (ranks.anyRank(openFailed)) return kExitFailure;
+  return std::nullopt;
+}
+
+/// Closes the recording, completed unless interrupted or a write failed; a failure says how much
+/// of the file holds.
+EarlyExit closeRecording(io::Recorder* recorder, RunEnd end, const sim::World& world, const std::string& path) {
+  if (recorder) {
+    const core::Status closed = recorder->close(end != RunEnd::Interrupted && end != RunEnd::WriteError);
+    if (!closed) {
+      printDiagnostics(closed.errors());
+      printLine(stderr, fmt::format("throng: {} at t = {:.2f} s; {} holds the {} frames written before the error and "
+                                    "is marked not completed",
+                                    end == RunEnd::WriteError ? "stopped at the first write error" : "the recording failed",
+                                    world.stats().time, path, recorder->framesWritten()));
+      return kExitFailure;
+    }
+  }
+  if (end == RunEnd::WriteError) return kExitFailure;  // another rank's recorder failed (MPI)
+  return std::nullopt;
+}
+
+/// What the summary reports, from the world at the end and the run's own counters.
+void summarize(RunSummary& summary, const sim::ScenarioDesc& desc, const LoopResult& loop, const sim::World& world,
+               StallTracker& stalls, const io::Recorder* recorder, const std::string& path, const FramePlan& plan,
+               const PhaseTimer& phaseTimer) {
+  summary.scenario = desc.name;
+  summary.seed = desc.seed;
+  summary.end = loop.end;
+  summary.stats = world.stats();
+  summary.hasExit = desc.hasExit();
+  summary.evacuation = isEvacuation(desc);
+  summary.stalls = stalls.finish(summary.stats.time);
+  summary.stallSeconds = stalls.minSeconds();
+  summary.stallRadius = stalls.radius();
+  summary.wallSeconds = loop.wallSeconds;
+  summary.recording = path;
+  summary.frames = recorder ? recorder->framesWritten() : 0;
+  summary.fps = plan.fps;
+  summary.stateHash = world.stateHash();
+  summary.partition = world.partitionStats();
+  summary.exchangedBytes = summary.partition.gatheredBytes;
+  summary.phaseSeconds = phaseTimer.totals();  // every rank's blocks, as every rank received them
+}
+
+/// Prints the summary (rank 0: JSON or text) and gives the exit code.
+int finishRun(const RunOptions& options, const RunSummary& summary, bool speaks) {
+  if (!speaks) return summary.end == RunEnd::Interrupted ? kExitInterrupted : kExitOk;
+  if (options.json) printSummaryJson(summary);
+  else if (!options.quiet) printSummaryText(summary);
+  if (summary.end == RunEnd::Interrupted) {
+    if (options.quiet && !options.json) {
+      printLine(stderr, fmt::format("throng: interrupted at t = {:.2f} s; {} is closed and marked not completed",
+                                    summary.stats.time, summary.recording));
+    }
+    return kExitInterrupted;
+  }
+  return kExitOk;
+}
+
+/// The run on one rank (of one, or of an MPI job: then `exchange` shares the steer phase).
+int runOn(const RunOptions& options, const RankPlan& ranks, sim::StepExchange* exchange) {
+  const auto setupStart = Clock::now();
+  // Installed first so Ctrl-C during a long load is handled too (before any file exists).
+  InterruptGuard interrupts;
+  const bool speaks = ranks.speaks();  // only rank 0 prints; every rank takes the same path
+
+  // 1. Load and validate: nothing is written when the scenario is bad.
+  std::optional<io::LoadedScenario> loaded;
+  if (auto exit = loadForRun(options, ranks, loaded)) return *exit;
+  sim::ScenarioDesc& desc = loaded->desc;
+  if (auto exit = applyOverrides(options, speaks, desc)) return *exit;
+  const FramePlan plan = planFrames(options.fps, desc.dt);
+  if (!plan.exact && !options.quiet && speaks) {
+    printLine(stderr, "throng: warning: " +
+                          fmt::format("--fps {:g} does not divide the tick rate {:g} Hz (dt = {:g} s); recording every {} "
+                                      "ticks = {:.4g} fps",
+                                      options.fps, 1.0 / desc.dt, desc.dt, plan.stride, plan.fps));
+  }
+  auto world = sim::World::create(desc, loaded->navmesh);
+  if (!world) {
+    if (speaks) printDiagnostics(world.errors());
+    return kExitFailure;
+  }
+  if (ranks.anyRank(InterruptGuard::requested())) {
+    if (speaks) printLine(stderr, "throng: interrupted before simulating; nothing written");
+    return kExitInterrupted;
+  }
+
+  // 2. Open the recording.
+  const io::RecordingOptions recording = recordingOptions(options, *loaded, plan);
+  std::unique_ptr<io::Recorder> recorder;
+  if (auto exit = openRecorder(desc, recording, ranks, recorder)) return *exit;
 
   // 3. Simulate.
   const core::TaskSystem tasks(options.threads);
@@ -470,47 +549,9 @@ int runOn(const RunOptions& options, const RankPlan& ranks, sim::StepExchange* e
     loop = simulate(**world, recorder.get(), tasks, totalTicks, plan, desc.duration, progress, ranks,
                     options.phaseTimes ? &phaseTimer : nullptr, speaks ? &stalls : nullptr);
   }
-  if (recorder) {
-    const core::Status closed = recorder->close(loop.end != RunEnd::Interrupted && loop.end != RunEnd::WriteError);
-    if (!closed) {
-      printDiagnostics(closed.errors());
-      printLine(stderr, fmt::format("throng: {} at t = {:.2f} s; {} holds the {} frames written before the error and "
-                                    "is marked not completed",
-                                    loop.end == RunEnd::WriteError ? "stopped at the first write error" : "the recording failed",
-                                    (*world)->stats().time, recording.path, recorder->framesWritten()));
-      return kExitFailure;
-    }
-  }
-  if (loop.end == RunEnd::WriteError) return kExitFailure;  // another rank's recorder failed (MPI)
-
-  summary.scenario = desc.name;
-  summary.seed = desc.seed;
-  summary.end = loop.end;
-  summary.stats = (*world)->stats();
-  summary.hasExit = desc.hasExit();
-  summary.evacuation = isEvacuation(desc);
-  summary.stalls = stalls.finish(summary.stats.time);
-  summary.stallSeconds = stalls.minSeconds();
-  summary.stallRadius = stalls.radius();
-  summary.wallSeconds = loop.wallSeconds;
-  summary.recording = recording.path;
-  summary.frames = recorder ? recorder->framesWritten() : 0;
-  summary.fps = plan.fps;
-  summary.stateHash = (*world)->stateHash();
-  summary.partition = (*world)->partitionStats();
-  summary.exchangedBytes = summary.partition.gatheredBytes;
-  summary.phaseSeconds = phaseTimer.totals();  // every rank's blocks, as every rank received them
-  if (!speaks) return loop.end == RunEnd::Interrupted ? kExitInterrupted : kExitOk;
-  if (options.json) printSummaryJson(summary);
-  else if (!options.quiet) printSummaryText(summary);
-  if (loop.end == RunEnd::Interrupted) {
-    if (options.quiet && !options.json) {
-      printLine(stderr, fmt::format("throng: interrupted at t = {:.2f} s; {} is closed and marked not completed",
-                                    summary.stats.time, recording.path));
-    }
-    return kExitInterrupted;
-  }
-  return kExitOk;
+  if (auto exit = closeRecording(recorder.get(), loop.end, **world, recording.path)) return *exit;
+  summarize(summary, desc, loop, **world, stalls, recorder.get(), recording.path, plan, phaseTimer);
+  return finishRun(options, summary, speaks);
 }
 
 }  // namespace

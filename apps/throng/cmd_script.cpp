@@ -5,6 +5,7 @@
 // with their entries and the per-frame trajectory (time, position, velocity, heading, clip).
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <set>
 
 #include <CLI/CLI.hpp>
@@ -148,6 +149,116 @@ void printCoordination(const io::CoordinationInfo& c, const std::vector<io::Scri
   printLine(stdout, "");
 }
 
+
+/// The agent's trajectory from a recording with Common Ground data; nullopt after printing why
+/// not (no file, no Common Ground data, no such agent).
+std::optional<io::AgentTrack> readTrack(const std::string& path, std::uint32_t agent) {
+  if (auto missing = checkInputFile(path, "recording"); !missing.empty()) {
+    printDiagnostics(missing);
+    return std::nullopt;
+  }
+  const auto hasCg = io::hasCommonGroundData(path);
+  if (!hasCg) {
+    printDiagnostics(hasCg.errors());
+    return std::nullopt;
+  }
+  if (!hasCg.value()) {
+    printLine(stderr, fmt::format("{}: no Common Ground data in {}; expected a recording of a scenario with a "
+                                  "\"social\" section", path, path));
+    return std::nullopt;
+  }
+  auto track = io::readAgentTrack(path, agent);
+  if (!track) {
+    printDiagnostics(track.errors());
+    return std::nullopt;
+  }
+  if (!track->known) {
+    const auto summary = io::readRecordingSummary(path);
+    printLine(stderr, fmt::format("{}: agent {} not found; expected a stable agent id{}", path, agent,
+                                  summary && summary->agents > 0
+                                      ? fmt::format(" (the recording has {} agents)", summary->agents) : ""));
+    return std::nullopt;
+  }
+  return std::move(track).value();
+}
+
+/// Every coordination, finished or not, and the ids of those the agent took part in (by its own
+/// entries, or as an actor: a lone visit, or an actor whose entries were not recorded); nullopt
+/// after printing a read error.
+std::optional<std::set<std::uint32_t>> agentCoordinations(const std::string& path, std::uint32_t agent,
+                                                          std::vector<io::CoordinationInfo>& all) {
+  const auto own = io::readScript(path, agent);
+  auto finished = io::readCoordinations(path);
+  const auto unfinished = io::readUnfinishedCoordinations(path);
+  if (!own || !finished || !unfinished) {
+    printDiagnostics(!own ? own.errors() : !finished ? finished.errors() : unfinished.errors());
+    return std::nullopt;
+  }
+  all = std::move(finished).value();
+  all.insert(all.end(), unfinished->begin(), unfinished->end());
+  std::set<std::uint32_t> ids;
+  for (const auto& e : own.value()) ids.insert(e.coordination);
+  for (const auto& c : all) {
+    if (c.initiator == agent || std::find(c.respondents.begin(), c.respondents.end(), agent) != c.respondents.end()) {
+      ids.insert(c.id);
+    }
+  }
+  return ids;
+}
+
+/// Coordination `id` from the list; when the file has entries but no coordination row or start
+/// event (a file cut short), one made up from the entries (actors, the trajectory's group).
+io::CoordinationInfo coordinationOf(std::uint32_t id, const std::vector<io::CoordinationInfo>& list,
+                                    const std::vector<io::ScriptEntryInfo>& entries, const io::AgentTrack& track,
+                                    std::uint32_t agent) {
+  const auto it = std::find_if(list.begin(), list.end(), [&](const io::CoordinationInfo& c) { return c.id == id; });
+  if (it != list.end()) return *it;
+  io::CoordinationInfo c;
+  c.id = id;
+  c.finished = false;
+  c.group = track.group.value_or(0);  // the trajectory's group numbering
+  c.initiator = agent;
+  c.start = c.execute = c.end = std::nan("");
+  for (const auto& e : entries) {
+    if (e.role == "initiator") c.initiator = e.agent;
+  }
+  for (const auto& e : entries) {
+    if (e.agent != c.initiator && std::find(c.respondents.begin(), c.respondents.end(), e.agent) == c.respondents.end()) {
+      c.respondents.push_back(e.agent);
+    }
+  }
+  return c;
+}
+
+/// The per-frame trajectory for --json.
+json trajectoryJson(const io::AgentTrack& track) {
+  json traj = json::array();
+  for (const io::TrackSample& s : track.samples) {
+    json row{{"frame", s.frame}, {"time", number(s.time)}, {"x", number(s.x)},      {"y", number(s.y)},
+             {"vx", number(s.vx)}, {"vy", number(s.vy)},   {"ori_x", number(s.oriX)}, {"ori_y", number(s.oriY)}};
+    if (s.clip >= 0) {
+      row["clip"] = s.clip;
+      if (static_cast<std::size_t>(s.clip) < track.clips.size()) row["clip_name"] = track.clips[static_cast<std::size_t>(s.clip)];
+      row["phase"] = number(s.phase);
+    }
+    traj.push_back(std::move(row));
+  }
+  return traj;
+}
+
+/// The trajectory's one-line summary.
+void printTrajectory(std::uint32_t agent, const io::AgentTrack& track) {
+  const auto& samples = track.samples;
+  if (samples.empty()) {
+    printLine(stdout, fmt::format("trajectory   agent {}: no recorded frames", agent));
+    return;
+  }
+  printLine(stdout, fmt::format("trajectory   agent {}{}: {} frames, t = {:.2f} .. {:.2f} s, from ({:.2f}, {:.2f}) to ({:.2f}, {:.2f})",
+                                agent, track.group ? fmt::format(" (group {})", *track.group) : "",
+                                samples.size(), samples.front().time, samples.back().time, samples.front().x,
+                                samples.front().y, samples.back().x, samples.back().y));
+}
+
 }  // namespace
 
 CLI::App* addScriptCommand(CLI::App& app, ScriptOptions& options) {
@@ -171,48 +282,12 @@ CLI::App* addScriptCommand(CLI::App& app, ScriptOptions& options) {
 
 int runScript(const ScriptOptions& options) {
   const std::string& path = options.recording;
-  if (auto missing = checkInputFile(path, "recording"); !missing.empty()) {
-    printDiagnostics(missing);
-    return kExitFailure;
-  }
-  const auto hasCg = io::hasCommonGroundData(path);
-  if (!hasCg) {
-    printDiagnostics(hasCg.errors());
-    return kExitFailure;
-  }
-  if (!hasCg.value()) {
-    printLine(stderr, fmt::format("{}: no Common Ground data in {}; expected a recording of a scenario with a "
-                                  "\"social\" section", path, path));
-    return kExitFailure;
-  }
-  auto track = io::readAgentTrack(path, options.agent);
-  if (!track) {
-    printDiagnostics(track.errors());
-    return kExitFailure;
-  }
-  if (!track->known) {
-    const auto summary = io::readRecordingSummary(path);
-    printLine(stderr, fmt::format("{}: agent {} not found; expected a stable agent id{}", path, options.agent,
-                                  summary && summary->agents > 0
-                                      ? fmt::format(" (the recording has {} agents)", summary->agents) : ""));
-    return kExitFailure;
-  }
-  const auto own = io::readScript(path, options.agent);
-  auto all = io::readCoordinations(path);
-  const auto unfinished = io::readUnfinishedCoordinations(path);
-  if (!own || !all || !unfinished) {
-    printDiagnostics(!own ? own.errors() : !all ? all.errors() : unfinished.errors());
-    return kExitFailure;
-  }
-  all->insert(all->end(), unfinished->begin(), unfinished->end());
-  std::set<std::uint32_t> ids;
-  for (const auto& e : own.value()) ids.insert(e.coordination);
-  for (const auto& c : all.value()) {  // a lone visit, or an actor whose entries were not recorded
-    if (c.initiator == options.agent ||
-        std::find(c.respondents.begin(), c.respondents.end(), options.agent) != c.respondents.end()) {
-      ids.insert(c.id);
-    }
-  }
+  const std::optional<io::AgentTrack> track = readTrack(path, options.agent);
+  if (!track) return kExitFailure;
+  std::vector<io::CoordinationInfo> all;
+  auto found = agentCoordinations(path, options.agent, all);
+  if (!found) return kExitFailure;
+  std::set<std::uint32_t> ids = std::move(*found);
   if (options.coordination) {
     if (ids.count(*options.coordination) == 0) {
       printLine(stderr, fmt::format("{}: agent {} took no part in coordination {}; expected one of: {}", path,
@@ -225,31 +300,12 @@ int runScript(const ScriptOptions& options) {
 
   json coordinations = json::array();
   for (const std::uint32_t id : ids) {
-    const auto& list = all.value();
-    const auto it = std::find_if(list.begin(), list.end(), [&](const io::CoordinationInfo& c) { return c.id == id; });
     auto entries = io::readCoordinationScript(path, id);
     if (!entries) {
       printDiagnostics(entries.errors());
       return kExitFailure;
     }
-    io::CoordinationInfo c;
-    if (it != list.end()) {
-      c = *it;
-    } else {  // entries without a coordination row or start event (a file cut short): show them anyway
-      c.id = id;
-      c.finished = false;
-      c.group = track->group.value_or(0);  // the trajectory's group numbering
-      c.initiator = options.agent;
-      c.start = c.execute = c.end = std::nan("");
-      for (const auto& e : *entries) {
-        if (e.role == "initiator") c.initiator = e.agent;
-      }
-      for (const auto& e : *entries) {
-        if (e.agent != c.initiator && std::find(c.respondents.begin(), c.respondents.end(), e.agent) == c.respondents.end()) {
-          c.respondents.push_back(e.agent);
-        }
-      }
-    }
+    const io::CoordinationInfo c = coordinationOf(id, all, *entries, *track, options.agent);
     if (options.json) {
       json j = coordinationJson(c);
       j["entries"] = json::array();
@@ -260,37 +316,18 @@ int runScript(const ScriptOptions& options) {
     }
   }
 
-  const auto& samples = track->samples;
   if (options.json) {
-    json traj = json::array();
-    for (const io::TrackSample& s : samples) {
-      json row{{"frame", s.frame}, {"time", number(s.time)}, {"x", number(s.x)},      {"y", number(s.y)},
-               {"vx", number(s.vx)}, {"vy", number(s.vy)},   {"ori_x", number(s.oriX)}, {"ori_y", number(s.oriY)}};
-      if (s.clip >= 0) {
-        row["clip"] = s.clip;
-        if (static_cast<std::size_t>(s.clip) < track->clips.size()) row["clip_name"] = track->clips[static_cast<std::size_t>(s.clip)];
-        row["phase"] = number(s.phase);
-      }
-      traj.push_back(std::move(row));
-    }
     json out{{"recording", path},
              {"agent", options.agent},
              {"group", track->group ? json(*track->group) : json(nullptr)},
              {"population", track->population},
              {"coordinations", std::move(coordinations)},
-             {"trajectory", std::move(traj)}};
+             {"trajectory", trajectoryJson(*track)}};
     printLine(stdout, out.dump());
     return kExitOk;
   }
   if (ids.empty()) printLine(stdout, fmt::format("agent {} took part in no coordination", options.agent));
-  if (samples.empty()) {
-    printLine(stdout, fmt::format("trajectory   agent {}: no recorded frames", options.agent));
-  } else {
-    printLine(stdout, fmt::format("trajectory   agent {}{}: {} frames, t = {:.2f} .. {:.2f} s, from ({:.2f}, {:.2f}) to ({:.2f}, {:.2f})",
-                                  options.agent, track->group ? fmt::format(" (group {})", *track->group) : "",
-                                  samples.size(), samples.front().time, samples.back().time, samples.front().x,
-                                  samples.front().y, samples.back().x, samples.back().y));
-  }
+  printTrajectory(options.agent, *track);
   return kExitOk;
 }
 

@@ -1,9 +1,14 @@
 // `throng serve SCENARIO.json` — runs the simulation in real time and serves it into a shared
 // world (docs/server.md): HTTP (the browser viewer's files, the motion clips, /api/status) and
 // WebSocket (/ws) on one port, the same protocol over UDP on another. The hub (libs/hub) does the
-// sessions and crowd messages; the transport (libs/server) the sockets; this file wires them to
+// sessions and crowd messages; the transport (libs/transport) the sockets; this file wires them to
 // the World and keeps the tick on time. Reads the scenario and its clips; writes sockets, a status
 // line on stderr (terminal only) and a summary on stdout. Ctrl-C tells every client why, then stops.
+//
+// The parts: Bridge (transport callbacks → hub, hub sends → transport), Served (the scenario or
+// recording and its World), WorldQueries (HTTP questions answered between ticks), HttpApi (the
+// dynamic HTTP paths), Publisher (crowd frames encoded on their own thread), TickLoop (the real-time
+// loop) and printSummary.
 #include <algorithm>
 #include <chrono>
 #include <cstring>
@@ -31,7 +36,7 @@
 #include "throng/hub/tick_watch.hpp"
 #include "throng/hub/world_description.hpp"
 #include "throng/io/scenario_loader.hpp"
-#include "throng/server/transport.hpp"
+#include "throng/transport/transport.hpp"
 #include "throng/sim/animation.hpp"
 #include "throng/sim/world.hpp"
 
@@ -42,39 +47,39 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 /// Connects the transport's callbacks to the hub, and the hub's sends to the transport.
-class Bridge final : public server::TransportHandler, public hub::Outbox {
+class Bridge final : public transport::TransportHandler, public hub::Outbox {
  public:
   explicit Bridge(Clock::time_point start) : start_(start) {}
-  void attach(hub::Hub* h, server::Transport* t) {
+  void attach(hub::Hub* h, transport::Transport* t) {
     hub_ = h;
     transport_ = t;
   }
   [[nodiscard]] double now() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
   // TransportHandler (transport thread).
-  void onOpen(server::PeerId peer, server::PeerKind kind, std::string remote) override {
+  void onOpen(transport::PeerId peer, transport::PeerKind kind, std::string remote) override {
     if (hub_) hub_->onOpen(peer.value, std::move(remote), now());
   }
-  void onMessage(server::PeerId peer, std::span<const std::uint8_t> message) override {
+  void onMessage(transport::PeerId peer, std::span<const std::uint8_t> message) override {
     if (hub_) hub_->onMessage(peer.value, message, now());
   }
-  void onClose(server::PeerId peer, std::string_view reason) override {
+  void onClose(transport::PeerId peer, std::string_view reason) override {
     if (hub_) hub_->onClose(peer.value, reason);
   }
 
   // Outbox (either thread, hub mutex held; the transport only posts).
   void send(hub::PeerKey peer, std::vector<std::uint8_t> message, bool latest, std::uint32_t slot) override {
     if (transport_) {
-      transport_->send(server::PeerId{peer}, std::move(message),
-                       latest ? server::SendClass::Latest : server::SendClass::Reliable, slot);
+      transport_->send(transport::PeerId{peer}, std::move(message),
+                       latest ? transport::SendClass::Latest : transport::SendClass::Reliable, slot);
     }
   }
   void close(hub::PeerKey peer, std::string reason) override {
-    if (transport_) transport_->close(server::PeerId{peer}, std::move(reason));
+    if (transport_) transport_->close(transport::PeerId{peer}, std::move(reason));
   }
   [[nodiscard]] std::optional<hub::LinkCounters> link(hub::PeerKey peer) const override {
     if (!transport_) return std::nullopt;
-    auto s = transport_->stats(server::PeerId{peer});
+    auto s = transport_->stats(transport::PeerId{peer});
     if (!s) return std::nullopt;
     return hub::LinkCounters{s->bytesSent, s->droppedLatest, s->queueBytes};
   }
@@ -82,7 +87,7 @@ class Bridge final : public server::TransportHandler, public hub::Outbox {
  private:
   Clock::time_point start_;
   hub::Hub* hub_ = nullptr;
-  server::Transport* transport_ = nullptr;
+  transport::Transport* transport_ = nullptr;
 };
 
 double percentile(std::vector<double> v, double p) {
@@ -150,6 +155,535 @@ core::Result<io::LoadedScenario> parseStoredScenario(const hub::Replay& replay, 
   return std::move(*first);
 }
 
+
+/// The scenario served: simulated live, or a recording (`throng run`'s SQLite file) played back.
+struct Served {
+  LiveWorld live;
+  std::optional<hub::Replay> replay;
+  double tickRate = 0.0;  ///< ticks per second in real time
+  std::string worldJson;  ///< the world description (Welcome, /api/world)
+};
+
+/// Opens the scenario or the recording and builds the World; diagnostics printed, nullopt on failure.
+std::optional<Served> openServed(const ServeOptions& options) {
+  if (auto missing = checkInputFile(options.scenario, "scenario"); !missing.empty()) {
+    printDiagnostics(missing);
+    return std::nullopt;
+  }
+  std::optional<hub::Replay> replay;
+  if (isRecording(options.scenario)) {
+    auto opened = hub::Replay::open(options.scenario);
+    if (!opened) {
+      printDiagnostics(opened.errors());
+      return std::nullopt;
+    }
+    replay.emplace(std::move(opened).value());
+  }
+  fs::path storedScenarioDir;
+  auto loaded = replay ? parseStoredScenario(*replay, options.scenario, storedScenarioDir)
+                       : io::loadScenarioFile(options.scenario);
+  const fs::path scenarioDir = replay ? storedScenarioDir : fs::path(options.scenario).parent_path();
+  auto live = makeLiveWorld(std::move(loaded), options.seed, scenarioDir, "serve", options.quiet);
+  if (!live) return std::nullopt;
+  const double dt = live->scenario.desc.dt;
+  const double tickRate = options.tick ? *options.tick : replay ? std::max(1.0, replay->fps()) : 1.0 / dt;
+  std::string worldJson = hub::describeWorld(live->scenario, live->motions, *live->world, tickRate);
+  if (replay) {
+    nlohmann::json described = nlohmann::json::parse(worldJson);
+    described["replay"] = {{"duration", replay->duration()}, {"fps", replay->fps()}, {"frames", replay->frameCount()}};
+    worldJson = dumpJson(described);
+  }
+  return Served{std::move(*live), std::move(replay), tickRate, std::move(worldJson)};
+}
+
+hub::HubOptions hubOptionsFor(const ServeOptions& options, const Served& served) {
+  hub::HubOptions hubOptions;
+  const std::string& name = served.live.scenario.desc.name;
+  // Sent in Welcome and printed: valid UTF-8, control characters escaped, at most 64 bytes.
+  hubOptions.serverName =
+      hub::printable(name.empty() ? fs::path(options.scenario).stem().string() : name, protocol::kMaxNameLength);
+  hubOptions.maxClients = static_cast<std::size_t>(options.maxClients);
+  hubOptions.granularity.budgetKbitPerSecond = options.budgetKbit;
+  hubOptions.replay = served.replay.has_value();
+  return hubOptions;
+}
+
+/// The transport's options, without the HTTP hook; `web` is the viewer's directory when it is built.
+transport::TransportOptions transportOptionsFor(const ServeOptions& options, const fs::path& web) {
+  transport::TransportOptions t;
+  t.bindAddress = options.bind;
+  t.httpPort = static_cast<std::uint16_t>(options.port);
+  t.udpPort = static_cast<std::uint16_t>(options.udpPort);
+  t.maxPeers = static_cast<std::size_t>(options.maxClients) + 16;  // room to refuse politely
+  t.maxUdpPeers = t.maxPeers;  // a separate budget: UDP peers never take a /ws slot
+  t.maxDatagramBytes = 65507;  // the largest datagram accepted from a UDP client
+  t.udpFragmentBytes = static_cast<std::size_t>(options.udpFragment);  // larger messages go as Fragments
+  if (!web.empty()) t.staticRoot = web;
+  return t;
+}
+
+/// Tick and publish times of the last 10 s, for /api/status: written by the simulation thread once
+/// a second, read on the transport thread.
+struct TickWindow {
+  std::mutex mutex;
+  double tickMedianMs = 0.0, tickP99Ms = 0.0, publishMedianMs = 0.0, publishP99Ms = 0.0;
+};
+
+/// The groups as they are now (most spawn after the start, so the world description lacks them).
+nlohmann::json groupsJson(const sim::World& world) {
+  nlohmann::json groups = nlohmann::json::array();
+  // world.desc(): crowds inserted at run time appended their populations (and groups).
+  const sim::ScenarioDesc& desc = world.desc();
+  for (std::size_t g = 0; g < world.groupCount(); ++g) {
+    const auto info = world.groupInfo(world.groupById(static_cast<std::uint32_t>(g)));
+    if (!info) continue;
+    groups.push_back({{"id", info->id},
+                      {"population", info->population < desc.populations.size() ? desc.populations[info->population].id
+                                                                                 : std::string()},
+                      {"members", info->members}, {"leader", info->leader}, {"guided", info->guided},
+                      {"waiting", info->waiting}});
+  }
+  return groups;
+}
+
+/// Crowds inserted at run time (InsertCrowd, timeline), in insertion order, with their owners.
+nlohmann::json crowdsJson(const sim::World& world, const std::map<std::string, std::uint32_t>& owners) {
+  nlohmann::json crowds = nlohmann::json::array();
+  const sim::ScenarioDesc& desc = world.desc();
+  for (const sim::CrowdInfo& c : world.crowds()) {
+    nlohmann::json populations = nlohmann::json::array();
+    for (std::uint32_t p = c.firstPopulation; p < c.firstPopulation + c.populations && p < desc.populations.size(); ++p) {
+      populations.push_back(desc.populations[p].id);
+    }
+    // Its owner: the participant that inserted it (only it may remove it); null: the scenario's.
+    const auto owner = owners.find(c.id);
+    crowds.push_back({{"id", c.id}, {"index", c.index}, {"applied", c.applied}, {"removed", c.removed},
+                      {"insertTick", c.insertTick}, {"populations", populations},
+                      {"owner", owner == owners.end() ? nlohmann::json(nullptr) : nlohmann::json(owner->second)}});
+  }
+  return crowds;
+}
+
+/// Questions about the World asked by HTTP handlers (GET /api/agent/<id>, /api/groups,
+/// /api/crowds) and answered by the simulation thread between ticks, the only thread that may read
+/// the World.
+class WorldQueries {
+ public:
+  std::future<std::optional<sim::AgentInfo>> askAgent(std::uint32_t id) {
+    auto query = std::make_shared<AgentQuery>();
+    query->id = id;
+    auto future = query->answer.get_future();
+    std::lock_guard lock(mutex_);
+    agents_.push_back(std::move(query));
+    return future;
+  }
+  std::future<std::string> askGroups() { return ask(groups_); }
+  std::future<std::string> askCrowds() { return ask(crowds_); }
+
+  /// Answers every waiting question; `world` null (a replay): no agent, no groups, no crowds.
+  void answer(const sim::World* world, const hub::Hub& hub) {
+    std::lock_guard lock(mutex_);
+    for (const auto& q : agents_) q->answer.set_value(world ? world->agentInfo(q->id) : std::nullopt);
+    agents_.clear();
+    if (!groups_.empty()) {
+      const std::string text = dumpJson(world ? groupsJson(*world) : nlohmann::json::array());
+      for (const auto& q : groups_) q->set_value(text);
+      groups_.clear();
+    }
+    if (!crowds_.empty()) {
+      const std::string text = dumpJson(world ? crowdsJson(*world, hub.crowdOwners()) : nlohmann::json::array());
+      for (const auto& q : crowds_) q->set_value(text);
+      crowds_.clear();
+    }
+  }
+
+ private:
+  struct AgentQuery {
+    std::uint32_t id = 0;
+    std::promise<std::optional<sim::AgentInfo>> answer;
+  };
+  using TextQueries = std::vector<std::shared_ptr<std::promise<std::string>>>;
+  std::future<std::string> ask(TextQueries& queries) {
+    auto query = std::make_shared<std::promise<std::string>>();
+    auto future = query->get_future();
+    std::lock_guard lock(mutex_);
+    queries.push_back(std::move(query));
+    return future;
+  }
+
+  std::mutex mutex_;
+  std::vector<std::shared_ptr<AgentQuery>> agents_;
+  TextQueries groups_;  ///< GET /api/groups
+  TextQueries crowds_;  ///< GET /api/crowds
+};
+
+transport::HttpResponse jsonResponse(unsigned status, std::string body) {
+  return transport::HttpResponse{status, "application/json", std::move(body), {}};
+}
+
+/// What the simulation thread did not answer within a second.
+transport::HttpResponse simulationTimeout() {
+  return jsonResponse(503, R"({"error":"the simulation did not answer in time"})");
+}
+
+/// One agent's state, goal, coordination and Common Ground script, for GET /api/agent/<id>.
+nlohmann::json agentJson(const sim::AgentInfo& info, const sim::ScenarioDesc& d, const std::vector<sim::ClipInfo>& clips,
+                         const std::vector<sim::ScriptRecord>& records) {
+  nlohmann::json j = {{"id", info.id}, {"group", info.group},
+                      {"population", info.population < d.populations.size() ? d.populations[info.population].id : ""},
+                      {"state", info.state}, {"position", {info.position.x, info.position.y}},
+                      {"target", {info.target.x, info.target.y}}, {"speed", info.speed},
+                      {"guided", info.guided},
+                      {"behaviour", info.clip < clips.size() ? clips[info.clip].name : "?"}};
+  if (info.goalPoint < d.points.size()) {
+    const sim::PointDesc& p = d.points[info.goalPoint];
+    j["goal"] = {{"point", p.id}, {"category", p.category}, {"action", p.action}};
+  } else {
+    j["goal"] = nullptr;
+  }
+  j["coordination"] = info.coordination == 0xffffffffu ? nlohmann::json(nullptr) : nlohmann::json(info.coordination);
+  j["following"] = info.followedAgent == 0xffffffffu ? nlohmann::json(nullptr) : nlohmann::json(info.followedAgent);
+  nlohmann::json script = nlohmann::json::array();
+  for (const sim::ScriptRecord& r : records) {
+    script.push_back({{"coordination", r.coordination}, {"seq", r.seq}, {"role", r.role}, {"step", r.step},
+                      {"behaviour", r.behaviour}, {"motion", r.motion}, {"start", r.start}, {"duration", r.duration},
+                      {"plannedStart", r.plannedStart}, {"plannedDuration", r.plannedDuration},
+                      {"targetAgent", r.targetType == 2 ? nlohmann::json(r.targetAgent) : nlohmann::json(nullptr)}});
+  }
+  j["script"] = std::move(script);
+  return j;
+}
+
+/// The server's dynamic HTTP paths (TransportOptions::httpHandler, on the transport thread):
+/// /api/groups, /api/crowds, /api/agent/<id>, /api/status, /api/world and /motions/<n>.bvh.
+class HttpApi {
+ public:
+  HttpApi(const Served& served, hub::Hub& hub, const Bridge& bridge, WorldQueries& queries, TickWindow& window,
+          const hub::TickWatch& tickWatch)
+      : served_(served),
+        hub_(hub),
+        bridge_(bridge),
+        queries_(queries),
+        window_(window),
+        tickWatch_(tickWatch),
+        clipTable_(sim::animationClips(served.live.scenario.desc)) {}
+
+  std::optional<transport::HttpResponse> operator()(std::string_view target) const {
+    const std::string_view path = target.substr(0, target.find('?'));
+    if (path == "/api/groups" || path == "/api/crowds") {
+      return waitForText(path == "/api/groups" ? queries_.askGroups() : queries_.askCrowds());
+    }
+    constexpr std::string_view kAgent = "/api/agent/";
+    if (path.starts_with(kAgent)) return agent(path.substr(kAgent.size()));
+    if (path == "/api/status") return status();
+    if (path == "/api/world") return jsonResponse(200, served_.worldJson);
+    constexpr std::string_view kMotions = "/motions/";
+    if (path.starts_with(kMotions) && path.ends_with(".bvh")) {
+      return motion(path.substr(kMotions.size(), path.size() - kMotions.size() - 4));
+    }
+    return std::nullopt;
+  }
+
+ private:
+  static transport::HttpResponse waitForText(std::future<std::string> future) {
+    if (future.wait_for(std::chrono::milliseconds(1000)) != std::future_status::ready) return simulationTimeout();
+    return jsonResponse(200, future.get());
+  }
+
+  transport::HttpResponse agent(std::string_view digits) const {
+    const bool numeric = !digits.empty() && digits.size() <= 9 &&
+                         std::all_of(digits.begin(), digits.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+    if (!numeric) return jsonResponse(400, R"({"error":"expected /api/agent/<id>, id a number"})");
+    std::uint64_t id = 0;
+    for (char ch : digits) id = id * 10 + static_cast<std::uint64_t>(ch - '0');
+    auto future = queries_.askAgent(static_cast<std::uint32_t>(id));
+    if (future.wait_for(std::chrono::milliseconds(1000)) != std::future_status::ready) return simulationTimeout();
+    const std::optional<sim::AgentInfo> info = future.get();
+    if (!info) return jsonResponse(404, R"j({"error":"no such agent (not spawned yet, or left)"})j");
+    return jsonResponse(200, dumpJson(agentJson(*info, served_.live.scenario.desc, clipTable_, hub_.agentScript(info->id))));
+  }
+
+  transport::HttpResponse status() const {
+    const hub::HubStatus s = hub_.status();
+    nlohmann::json clients = nlohmann::json::array();
+    for (const hub::ClientStatus& c : s.perClient) {
+      clients.push_back({{"name", c.name}, {"participant", c.participant}, {"participantId", c.participantId},
+                         {"granularity", c.granularity}, {"granularityReason", c.granularityReason}, {"kbitPerSecond", c.kbitPerSecond},
+                         {"roundTripMs", c.roundTripMs}, {"framesSent", c.framesSent},
+                         {"agentsInView", c.agentsInView}, {"guiding", c.guiding}});
+    }
+    nlohmann::json j = {{"clients", s.clients}, {"participants", s.participants}, {"crowdFrames", s.crowdFrames},
+                        {"crowdBytes", s.crowdBytes}, {"perClient", std::move(clients)}};
+    {
+      const hub::TickReport r = tickWatch_.report(bridge_.now());
+      std::lock_guard lock(window_.mutex);
+      j["tick"] = {{"median_ms", window_.tickMedianMs}, {"p99_ms", window_.tickP99Ms}, {"late", r.late}, {"stalls", r.stalls},
+                   {"longest_ms", r.longestMs}, {"running_ms", r.runningMs}, {"rate", served_.tickRate},
+                   {"publish_median_ms", window_.publishMedianMs}, {"publish_p99_ms", window_.publishP99Ms}};
+    }
+    return jsonResponse(200, dumpJson(j));
+  }
+
+  transport::HttpResponse motion(std::string_view id) const {
+    const hub::MotionLibrary& motions = served_.live.motions;
+    std::size_t index = 0;
+    for (char ch : id) {
+      if (ch < '0' || ch > '9' || index > 100000) return transport::HttpResponse{404, "text/plain", "no such clip\n", {}};
+      index = index * 10 + static_cast<std::size_t>(ch - '0');
+    }
+    if (id.empty() || index >= motions.clips().size() || motions.clipFile(index).empty()) {
+      return transport::HttpResponse{404, "text/plain", "no such clip\n", {}};
+    }
+    return transport::HttpResponse{200, "text/plain; charset=utf-8", {}, motions.clipFile(index)};
+  }
+
+  const Served& served_;
+  hub::Hub& hub_;
+  const Bridge& bridge_;
+  WorldQueries& queries_;
+  TickWindow& window_;
+  const hub::TickWatch& tickWatch_;
+  const std::vector<sim::ClipInfo> clipTable_;
+};
+
+/// Encodes and sends each client's crowd frame on its own thread, so the tick stays on time
+/// whatever the clients cost; when it falls behind it skips to the newest frame.
+class Publisher {
+ public:
+  Publisher(hub::Hub& hub, const Bridge& bridge, int threads)
+      : hub_(hub), bridge_(bridge), tasks_(threads), thread_([this] { loop(); }) {}
+  ~Publisher() { stop(); }
+  Publisher(const Publisher&) = delete;
+  Publisher& operator=(const Publisher&) = delete;
+
+  /// The newest frame; one not yet taken is replaced (and counted as skipped).
+  void offer(sim::FramePtr frame) {
+    {
+      std::lock_guard lock(mutex_);
+      if (pending_) ++skipped_;
+      pending_ = std::move(frame);
+    }
+    ready_.notify_one();
+  }
+  /// The last `n` publish times [ms].
+  std::vector<double> recentMs(std::size_t n) {
+    std::lock_guard lock(mutex_);
+    n = std::min(ms_.size(), n);
+    return {ms_.end() - static_cast<std::ptrdiff_t>(n), ms_.end()};
+  }
+  /// Ends the thread (a frame waiting is dropped). Idempotent.
+  void stop() {
+    {
+      std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    ready_.notify_one();
+    if (thread_.joinable()) thread_.join();
+  }
+  // After stop():
+  [[nodiscard]] const std::vector<double>& ms() const { return ms_; }
+  [[nodiscard]] std::uint64_t skipped() const { return skipped_; }
+
+ private:
+  void loop() {
+    while (true) {
+      sim::FramePtr frame;
+      {
+        std::unique_lock lock(mutex_);
+        ready_.wait(lock, [&] { return pending_ != nullptr || stop_; });
+        if (stop_) return;
+        frame = std::move(pending_);
+        pending_.reset();
+      }
+      const auto p0 = Clock::now();
+      hub_.publish(*frame, bridge_.now(), &tasks_);
+      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - p0).count();
+      std::lock_guard lock(mutex_);
+      ms_.push_back(ms);
+    }
+  }
+
+  hub::Hub& hub_;
+  const Bridge& bridge_;
+  core::TaskSystem tasks_;
+  std::mutex mutex_;
+  std::condition_variable ready_;
+  sim::FramePtr pending_;
+  bool stop_ = false;
+  std::vector<double> ms_;
+  std::uint64_t skipped_ = 0;
+  std::thread thread_;  // last: starts once everything above exists
+};
+
+/// The real-time loop on the simulation thread: one frame per period (stepped, or the recording's
+/// at the replay clock), questions answered, the frame handed to the publisher, the status window
+/// and line refreshed once a second. Runs until Ctrl-C or --duration.
+class TickLoop {
+ public:
+  TickLoop(const ServeOptions& options, Served& served, hub::Hub& hub, const Bridge& bridge, WorldQueries& queries,
+           TickWindow& window, hub::TickWatch& tickWatch, Publisher& publisher)
+      : options_(options),
+        served_(served),
+        hub_(hub),
+        bridge_(bridge),
+        queries_(queries),
+        window_(window),
+        tickWatch_(tickWatch),
+        publisher_(publisher),
+        clock_(served.replay ? served.replay->duration() : 0.0, true),
+        tasks_(options.threads),
+        terminal_(isatty(fileno(stderr)) != 0) {}
+
+  /// Why it ended: "interrupted (Ctrl-C)" or "duration reached".
+  std::string run() {
+    const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / served_.tickRate));
+    auto next = Clock::now();
+    while (true) {
+      if (InterruptGuard::requested()) return "interrupted (Ctrl-C)";
+      if (options_.duration && bridge_.now() >= *options_.duration) return "duration reached";
+      const auto t0 = Clock::now();
+      tickWatch_.started(bridge_.now());
+      const sim::FramePtr frame = nextFrame();
+      hub_.observe(*frame);
+      queries_.answer(served_.replay ? nullptr : served_.live.world.get(), hub_);
+      const auto t1 = Clock::now();
+      publisher_.offer(frame);
+      tickMs_.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+      next += period;
+      tickWatch_.finished(bridge_.now(), t1 > next);
+      if (t1 > next) {
+        next = t1;  // late: start the next tick now, never try to catch up in a burst
+      } else {
+        std::this_thread::sleep_until(next);
+      }
+      const double now = bridge_.now();
+      if (now - lastWindow_ >= 1.0) refreshWindow(now);
+      if (!options_.quiet && terminal_ && now - lastStatus_ >= 1.0) printStatus(*frame, now);
+    }
+  }
+  [[nodiscard]] const std::vector<double>& tickMs() const { return tickMs_; }
+  [[nodiscard]] bool terminal() const { return terminal_; }
+
+ private:
+  sim::FramePtr nextFrame() {
+    if (!served_.replay) {
+      hub_.applyToWorld(*served_.live.world);
+      served_.live.world->step(tasks_);
+      return served_.live.world->snapshot();
+    }
+    // Playback: the clients' controls move the clock; the frame is the recorded one at its time.
+    bool changed = false;
+    for (const protocol::ReplayControl& c : hub_.takeReplayControls()) changed = clock_.apply(c) || changed;
+    const double wall = bridge_.now();
+    changed = clock_.advance(wall - lastReplayWall_) || changed;
+    lastReplayWall_ = wall;
+    if (changed || wall - lastReplayStatus_ >= 1.0) {
+      lastReplayStatus_ = wall;
+      hub_.broadcast(protocol::encode(clock_.status()));
+    }
+    return served_.replay->frameAt(clock_.time());
+  }
+
+  /// Tick and publish percentiles over the last 10 s, for /api/status.
+  void refreshWindow(double now) {
+    lastWindow_ = now;
+    const std::size_t recent = std::min<std::size_t>(tickMs_.size(), static_cast<std::size_t>(served_.tickRate * 10));
+    std::vector<double> window(tickMs_.end() - static_cast<std::ptrdiff_t>(recent), tickMs_.end());
+    std::vector<double> publishWindow = publisher_.recentMs(recent);
+    std::lock_guard lock(window_.mutex);
+    window_.tickMedianMs = percentile(window, 0.5);
+    window_.tickP99Ms = percentile(window, 0.99);
+    window_.publishMedianMs = percentile(publishWindow, 0.5);
+    window_.publishP99Ms = percentile(publishWindow, 0.99);
+  }
+
+  /// The status line on a terminal's stderr.
+  void printStatus(const sim::Frame& frame, double now) {
+    const hub::HubStatus s = hub_.status();
+    const double kbit = static_cast<double>(s.crowdBytes - lastBytes_) * 8.0 / 1000.0 / (now - lastStatus_);
+    lastBytes_ = s.crowdBytes;
+    lastStatus_ = now;
+    double p99 = 0.0;
+    {
+      std::lock_guard lock(window_.mutex);
+      p99 = window_.tickP99Ms;
+    }
+    std::fprintf(stderr, "\r  t %s  agents %zu  clients %zu (%zu participants)  tick p99 %.1f ms  out %.0f kbit/s   ",
+                 formatSeconds(frame.time).c_str(), frame.size(), s.clients, s.participants, p99, kbit);
+    std::fflush(stderr);
+  }
+
+  const ServeOptions& options_;
+  Served& served_;
+  hub::Hub& hub_;
+  const Bridge& bridge_;
+  WorldQueries& queries_;
+  TickWindow& window_;
+  hub::TickWatch& tickWatch_;
+  Publisher& publisher_;
+  hub::ReplayClock clock_;
+  core::TaskSystem tasks_;
+  const bool terminal_;
+  std::vector<double> tickMs_;
+  double lastStatus_ = 0.0, lastWindow_ = 0.0, lastReplayWall_ = 0.0, lastReplayStatus_ = -1.0;
+  std::uint64_t lastBytes_ = 0;
+};
+
+/// The addresses served, on stdout.
+void printBanner(const std::string& serverName, double tickRate, const ServeOptions& options,
+                 const transport::Transport& transport, bool haveViewer) {
+  const std::string host = options.bind == "0.0.0.0" ? "127.0.0.1" : options.bind;
+  printLine(stdout, fmt::format("throng serve: {} — {:.4g} ticks/s", serverName, tickRate));
+  printLine(stdout, fmt::format("  viewer     http://{}:{}/{}", host, transport.httpPort(),
+                                haveViewer ? "" : "  (not built: scripts/demo.sh builds it)"));
+  printLine(stdout, fmt::format("  websocket  ws://{}:{}/ws", host, transport.httpPort()));
+  printLine(stdout, fmt::format("  udp        {}:{}", host, transport.udpPort()));
+  printLine(stdout, "  Ctrl-C to stop");
+}
+
+/// What a run of the server did, for the summary.
+struct ServeSummary {
+  std::string endReason;
+  double wall = 0.0;                      ///< [s]
+  double tickRate = 0.0;
+  const std::vector<double>* tickMs = nullptr;
+  const std::vector<double>* publishMs = nullptr;
+  std::uint64_t framesSkipped = 0;
+  hub::TickReport ticks;
+  transport::TransportTotals totals;
+  hub::HubStatus hub;
+};
+
+/// The summary on stdout: one JSON object (--json) or three lines (unless --quiet).
+void printSummary(const ServeOptions& options, const ServeSummary& r) {
+  const std::vector<double>& tickMs = *r.tickMs;
+  const std::vector<double>& publishMs = *r.publishMs;
+  const std::uint64_t overruns = r.ticks.late;
+  if (options.json) {
+    nlohmann::json j = {{"scenario", options.scenario}, {"end", r.endReason}, {"seconds", r.wall},
+                        {"ticks", tickMs.size()}, {"tickRate", r.tickRate},
+                        {"ms_per_tick_median", percentile(tickMs, 0.5)}, {"ms_per_tick_p99", percentile(tickMs, 0.99)},
+                        {"overruns", overruns}, {"stalls", r.ticks.stalls}, {"longest_tick_ms", r.ticks.longestMs},
+                        {"publish_ms_median", percentile(publishMs, 0.5)},
+                        {"publish_ms_p99", percentile(publishMs, 0.99)}, {"frames_skipped", r.framesSkipped},
+                        {"peers_opened", r.totals.peersOpened},
+                        {"crowd_frames", r.hub.crowdFrames}, {"crowd_bytes", r.hub.crowdBytes},
+                        {"bytes_sent", r.totals.bytesSent}, {"bytes_received", r.totals.bytesReceived},
+                        {"closed_for_errors", r.hub.closedForErrors}, {"http_requests", r.totals.httpRequests}};
+    printLine(stdout, dumpJson(j));
+  } else if (!options.quiet) {
+    printLine(stdout, fmt::format("throng serve: {} after {}: {} ticks, tick median {:.2f} ms, p99 {:.2f} ms, {} late",
+                                  r.endReason, formatSeconds(r.wall), tickMs.size(), percentile(tickMs, 0.5),
+                                  percentile(tickMs, 0.99), overruns));
+    printLine(stdout, fmt::format("  crowd frames: encoding for every client median {:.2f} ms, p99 {:.2f} ms per tick; "
+                                  "{} ticks skipped by the publisher",
+                                  percentile(publishMs, 0.5), percentile(publishMs, 0.99), r.framesSkipped));
+    printLine(stdout, fmt::format("  {} connections, {} crowd frames, {} sent, {} received", r.totals.peersOpened,
+                                  r.hub.crowdFrames, formatBytes(static_cast<double>(r.totals.bytesSent)),
+                                  formatBytes(static_cast<double>(r.totals.bytesReceived))));
+  }
+}
+
 }  // namespace
 
 CLI::App* addServeCommand(CLI::App& app, ServeOptions& options) {
@@ -209,384 +743,49 @@ CLI::App* addServeCommand(CLI::App& app, ServeOptions& options) {
 
 int runServe(const ServeOptions& options) {
   InterruptGuard interrupts;
-  if (auto missing = checkInputFile(options.scenario, "scenario"); !missing.empty()) {
-    printDiagnostics(missing);
-    return kExitFailure;
-  }
-  // A recording (`throng run`'s SQLite file) is played back instead of simulated.
-  std::optional<hub::Replay> replay;
-  if (isRecording(options.scenario)) {
-    auto opened = hub::Replay::open(options.scenario);
-    if (!opened) {
-      printDiagnostics(opened.errors());
-      return kExitFailure;
-    }
-    replay.emplace(std::move(opened).value());
-  }
-  fs::path storedScenarioDir;
-  auto loaded = replay ? parseStoredScenario(*replay, options.scenario, storedScenarioDir)
-                       : io::loadScenarioFile(options.scenario);
-  const fs::path scenarioDir = replay ? storedScenarioDir : fs::path(options.scenario).parent_path();
-  auto live = makeLiveWorld(std::move(loaded), options.seed, scenarioDir, "serve", options.quiet);
-  if (!live) return kExitFailure;
-  io::LoadedScenario* const scenario = &live->scenario;
-  std::unique_ptr<sim::World>& world = live->world;
-  const hub::MotionLibrary& motions = live->motions;
-  const double dt = scenario->desc.dt;
-  const double tickRate = options.tick ? *options.tick : replay ? std::max(1.0, replay->fps()) : 1.0 / dt;
-  std::string worldJson = hub::describeWorld(*scenario, motions, *world, tickRate);
-  if (replay) {
-    nlohmann::json described = nlohmann::json::parse(worldJson);
-    described["replay"] = {{"duration", replay->duration()}, {"fps", replay->fps()}, {"frames", replay->frameCount()}};
-    worldJson = dumpJson(described);
-  }
-  hub::ReplayClock clock(replay ? replay->duration() : 0.0, true);
-
+  std::optional<Served> served = openServed(options);
+  if (!served) return kExitFailure;
   const Clock::time_point start = Clock::now();
   Bridge bridge(start);
-  hub::HubOptions hubOptions;
-  // Sent in Welcome and printed: valid UTF-8, control characters escaped, at most 64 bytes.
-  hubOptions.serverName = hub::printable(
-      scenario->desc.name.empty() ? fs::path(options.scenario).stem().string() : scenario->desc.name, protocol::kMaxNameLength);
-  hubOptions.maxClients = static_cast<std::size_t>(options.maxClients);
-  hubOptions.granularity.budgetKbitPerSecond = options.budgetKbit;
-  hubOptions.replay = replay.has_value();
-  hub::Hub hub(hubOptions, worldJson, static_cast<float>(tickRate), motions, bridge);
+  const hub::HubOptions hubOptions = hubOptionsFor(options, *served);
+  hub::Hub hub(hubOptions, served->worldJson, static_cast<float>(served->tickRate), served->live.motions, bridge);
 
-  server::TransportOptions t;
-  t.bindAddress = options.bind;
-  t.httpPort = static_cast<std::uint16_t>(options.port);
-  t.udpPort = static_cast<std::uint16_t>(options.udpPort);
-  t.maxPeers = static_cast<std::size_t>(options.maxClients) + 16;  // room to refuse politely
-  t.maxUdpPeers = t.maxPeers;  // a separate budget: UDP peers never take a /ws slot
-  t.maxDatagramBytes = 65507;  // the largest datagram accepted from a UDP client
-  t.udpFragmentBytes = static_cast<std::size_t>(options.udpFragment);  // larger messages go as Fragments
   const fs::path web = webRoot(options.web);
   std::error_code ec;
   const bool haveViewer = !web.empty() && fs::is_regular_file(web / "index.html", ec);
-  if (haveViewer) t.staticRoot = web;
-  // Tick times of the last 10 s, for /api/status (read on the transport thread).
-  std::mutex tickMutex;
-  double tickMedianMs = 0.0, tickP99Ms = 0.0, publishMedianMs = 0.0, publishP99Ms = 0.0;
+  transport::TransportOptions t = transportOptionsFor(options, haveViewer ? web : fs::path());
+  TickWindow tickWindow;
   // Late and stalled ticks, the one running now included (a tick stuck for 14 s shows at once).
-  hub::TickWatch tickWatch(1.0 / tickRate);
-  // Questions about one agent (GET /api/agent/<id>) are answered by the simulation thread between
-  // ticks, the only thread that may read the World.
-  struct AgentQuery {
-    std::uint32_t id = 0;
-    std::promise<std::optional<sim::AgentInfo>> answer;
-  };
-  std::mutex queryMutex;
-  std::vector<std::shared_ptr<AgentQuery>> queries;
-  std::vector<std::shared_ptr<std::promise<std::string>>> groupQueries;  ///< GET /api/groups
-  std::vector<std::shared_ptr<std::promise<std::string>>> crowdQueries;  ///< GET /api/crowds
-  const std::vector<sim::ClipInfo> clipTable = sim::animationClips(scenario->desc);
-  t.httpHandler = [&](std::string_view target) -> std::optional<server::HttpResponse> {
-    const std::string_view path = target.substr(0, target.find('?'));
-    if (path == "/api/groups" || path == "/api/crowds") {
-      auto query = std::make_shared<std::promise<std::string>>();
-      auto future = query->get_future();
-      {
-        std::lock_guard lock(queryMutex);
-        (path == "/api/groups" ? groupQueries : crowdQueries).push_back(query);
-      }
-      if (future.wait_for(std::chrono::milliseconds(1000)) != std::future_status::ready) {
-        return server::HttpResponse{503, "application/json", R"({"error":"the simulation did not answer in time"})", {}};
-      }
-      return server::HttpResponse{200, "application/json", future.get(), {}};
-    }
-    constexpr std::string_view kAgent = "/api/agent/";
-    if (path.starts_with(kAgent)) {
-      const std::string_view digits = path.substr(kAgent.size());
-      std::uint64_t id = 0;
-      const bool numeric = !digits.empty() && digits.size() <= 9 &&
-                           std::all_of(digits.begin(), digits.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
-      if (!numeric) return server::HttpResponse{400, "application/json", R"({"error":"expected /api/agent/<id>, id a number"})", {}};
-      for (char ch : digits) id = id * 10 + static_cast<std::uint64_t>(ch - '0');
-      auto query = std::make_shared<AgentQuery>();
-      query->id = static_cast<std::uint32_t>(id);
-      auto future = query->answer.get_future();
-      {
-        std::lock_guard lock(queryMutex);
-        queries.push_back(query);
-      }
-      if (future.wait_for(std::chrono::milliseconds(1000)) != std::future_status::ready) {
-        return server::HttpResponse{503, "application/json", R"({"error":"the simulation did not answer in time"})", {}};
-      }
-      const std::optional<sim::AgentInfo> info = future.get();
-      if (!info) return server::HttpResponse{404, "application/json", R"j({"error":"no such agent (not spawned yet, or left)"})j", {}};
-      const sim::ScenarioDesc& d = scenario->desc;
-      nlohmann::json j = {{"id", info->id}, {"group", info->group},
-                          {"population", info->population < d.populations.size() ? d.populations[info->population].id : ""},
-                          {"state", info->state}, {"position", {info->position.x, info->position.y}},
-                          {"target", {info->target.x, info->target.y}}, {"speed", info->speed},
-                          {"guided", info->guided},
-                          {"behaviour", info->clip < clipTable.size() ? clipTable[info->clip].name : "?"}};
-      if (info->goalPoint < d.points.size()) {
-        const sim::PointDesc& p = d.points[info->goalPoint];
-        j["goal"] = {{"point", p.id}, {"category", p.category}, {"action", p.action}};
-      } else {
-        j["goal"] = nullptr;
-      }
-      j["coordination"] = info->coordination == 0xffffffffu ? nlohmann::json(nullptr) : nlohmann::json(info->coordination);
-      j["following"] = info->followedAgent == 0xffffffffu ? nlohmann::json(nullptr) : nlohmann::json(info->followedAgent);
-      nlohmann::json script = nlohmann::json::array();
-      for (const sim::ScriptRecord& r : hub.agentScript(info->id)) {
-        script.push_back({{"coordination", r.coordination}, {"seq", r.seq}, {"role", r.role}, {"step", r.step},
-                          {"behaviour", r.behaviour}, {"motion", r.motion}, {"start", r.start}, {"duration", r.duration},
-                          {"plannedStart", r.plannedStart}, {"plannedDuration", r.plannedDuration},
-                          {"targetAgent", r.targetType == 2 ? nlohmann::json(r.targetAgent) : nlohmann::json(nullptr)}});
-      }
-      j["script"] = std::move(script);
-      return server::HttpResponse{200, "application/json", dumpJson(j), {}};
-    }
-    if (path == "/api/status") {
-      const hub::HubStatus s = hub.status();
-      nlohmann::json clients = nlohmann::json::array();
-      for (const hub::ClientStatus& c : s.perClient) {
-        clients.push_back({{"name", c.name}, {"participant", c.participant}, {"participantId", c.participantId},
-                           {"granularity", c.granularity}, {"granularityReason", c.granularityReason}, {"kbitPerSecond", c.kbitPerSecond},
-                           {"roundTripMs", c.roundTripMs}, {"framesSent", c.framesSent},
-                           {"agentsInView", c.agentsInView}, {"guiding", c.guiding}});
-      }
-      nlohmann::json j = {{"clients", s.clients}, {"participants", s.participants}, {"crowdFrames", s.crowdFrames},
-                          {"crowdBytes", s.crowdBytes}, {"perClient", std::move(clients)}};
-      {
-        const hub::TickReport r = tickWatch.report(bridge.now());
-        std::lock_guard lock(tickMutex);
-        j["tick"] = {{"median_ms", tickMedianMs}, {"p99_ms", tickP99Ms}, {"late", r.late}, {"stalls", r.stalls},
-                     {"longest_ms", r.longestMs}, {"running_ms", r.runningMs}, {"rate", tickRate},
-                     {"publish_median_ms", publishMedianMs}, {"publish_p99_ms", publishP99Ms}};
-      }
-      return server::HttpResponse{200, "application/json", dumpJson(j), {}};
-    }
-    if (path == "/api/world") return server::HttpResponse{200, "application/json", worldJson, {}};
-    constexpr std::string_view kMotions = "/motions/";
-    if (path.starts_with(kMotions) && path.ends_with(".bvh")) {
-      const std::string_view id = path.substr(kMotions.size(), path.size() - kMotions.size() - 4);
-      std::size_t index = 0;
-      for (char ch : id) {
-        if (ch < '0' || ch > '9' || index > 100000) return server::HttpResponse{404, "text/plain", "no such clip\n", {}};
-        index = index * 10 + static_cast<std::size_t>(ch - '0');
-      }
-      if (id.empty() || index >= motions.clips().size() || motions.clipFile(index).empty()) {
-        return server::HttpResponse{404, "text/plain", "no such clip\n", {}};
-      }
-      return server::HttpResponse{200, "text/plain; charset=utf-8", {}, motions.clipFile(index)};
-    }
-    return std::nullopt;
-  };
-  auto started = server::Transport::start(t, bridge);
+  hub::TickWatch tickWatch(1.0 / served->tickRate);
+  WorldQueries queries;
+  t.httpHandler = HttpApi(*served, hub, bridge, queries, tickWindow, tickWatch);
+  auto started = transport::Transport::start(t, bridge);
   if (!started) {
     printDiagnostics(started.errors());
     return kExitFailure;
   }
-  std::unique_ptr<server::Transport> transport = std::move(started).value();
+  std::unique_ptr<transport::Transport> transport = std::move(started).value();
   bridge.attach(&hub, transport.get());
-  const std::string host = options.bind == "0.0.0.0" ? "127.0.0.1" : options.bind;
-  if (!options.quiet) {
-    printLine(stdout, fmt::format("throng serve: {} — {:.4g} ticks/s", hubOptions.serverName, tickRate));
-    printLine(stdout, fmt::format("  viewer     http://{}:{}/{}", host, transport->httpPort(),
-                                  haveViewer ? "" : "  (not built: scripts/demo.sh builds it)"));
-    printLine(stdout, fmt::format("  websocket  ws://{}:{}/ws", host, transport->httpPort()));
-    printLine(stdout, fmt::format("  udp        {}:{}", host, transport->udpPort()));
-    printLine(stdout, "  Ctrl-C to stop");
-  }
+  if (!options.quiet) printBanner(hubOptions.serverName, served->tickRate, options, *transport, haveViewer);
 
-  core::TaskSystem tasks(options.threads);
-  // The publisher: encodes and sends each client's crowd frame on its own thread, so the tick
-  // stays on time whatever the clients cost; when it falls behind it skips to the newest frame.
-  core::TaskSystem publishTasks(options.threads);
-  std::mutex frameMutex;
-  std::condition_variable frameReady;
-  sim::FramePtr pending;
-  bool stopPublisher = false;
-  std::vector<double> publishMs;
-  std::uint64_t framesSkipped = 0;
-  std::thread publisher([&] {
-    while (true) {
-      sim::FramePtr frame;
-      {
-        std::unique_lock lock(frameMutex);
-        frameReady.wait(lock, [&] { return pending != nullptr || stopPublisher; });
-        if (stopPublisher) return;
-        frame = std::move(pending);
-        pending.reset();
-      }
-      const auto p0 = Clock::now();
-      hub.publish(*frame, bridge.now(), &publishTasks);
-      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - p0).count();
-      std::lock_guard lock(frameMutex);
-      publishMs.push_back(ms);
-    }
-  });
-  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / tickRate));
-  std::vector<double> tickMs;
-  auto next = Clock::now();
-  double lastStatus = 0.0, lastWindow = 0.0, lastReplayWall = 0.0, lastReplayStatus = -1.0;
-  std::uint64_t lastBytes = 0;
-  const bool terminal = isatty(fileno(stderr)) != 0;
-  std::string endReason = "duration reached";
-  while (true) {
-    if (InterruptGuard::requested()) {
-      endReason = "interrupted (Ctrl-C)";
-      break;
-    }
-    if (options.duration && bridge.now() >= *options.duration) break;
-    const auto t0 = Clock::now();
-    tickWatch.started(bridge.now());
-    sim::FramePtr frame;
-    if (replay) {
-      // Playback: the clients' controls move the clock; the frame is the recorded one at its time.
-      bool changed = false;
-      for (const protocol::ReplayControl& c : hub.takeReplayControls()) changed = clock.apply(c) || changed;
-      const double wall = bridge.now();
-      changed = clock.advance(wall - lastReplayWall) || changed;
-      lastReplayWall = wall;
-      if (changed || wall - lastReplayStatus >= 1.0) {
-        lastReplayStatus = wall;
-        hub.broadcast(protocol::encode(clock.status()));
-      }
-      frame = replay->frameAt(clock.time());
-    } else {
-      hub.applyToWorld(*world);
-      world->step(tasks);
-      frame = world->snapshot();
-    }
-    hub.observe(*frame);
-    {
-      std::lock_guard lock(queryMutex);
-      for (const auto& q : queries) q->answer.set_value(replay ? std::nullopt : world->agentInfo(q->id));
-      queries.clear();
-      if (!groupQueries.empty()) {
-        // The groups as they are now (most spawn after the start, so the world description lacks them).
-        nlohmann::json groups = nlohmann::json::array();
-        if (!replay) {
-          // world->desc(): crowds inserted at run time appended their populations (and groups).
-          const sim::ScenarioDesc& desc = world->desc();
-          for (std::size_t g = 0; g < world->groupCount(); ++g) {
-            const auto info = world->groupInfo(world->groupById(static_cast<std::uint32_t>(g)));
-            if (!info) continue;
-            groups.push_back({{"id", info->id},
-                              {"population", info->population < desc.populations.size()
-                                                 ? desc.populations[info->population].id
-                                                 : std::string()},
-                              {"members", info->members}, {"leader", info->leader}, {"guided", info->guided},
-                              {"waiting", info->waiting}});
-          }
-        }
-        const std::string text = dumpJson(groups);
-        for (const auto& q : groupQueries) q->set_value(text);
-        groupQueries.clear();
-      }
-      if (!crowdQueries.empty()) {
-        // Crowds inserted at run time (InsertCrowd, timeline), in insertion order.
-        nlohmann::json crowds = nlohmann::json::array();
-        if (!replay) {
-          const sim::ScenarioDesc& desc = world->desc();
-          const std::map<std::string, std::uint32_t> owners = hub.crowdOwners();
-          for (const sim::CrowdInfo& c : world->crowds()) {
-            nlohmann::json populations = nlohmann::json::array();
-            for (std::uint32_t p = c.firstPopulation; p < c.firstPopulation + c.populations && p < desc.populations.size(); ++p) {
-              populations.push_back(desc.populations[p].id);
-            }
-            // Its owner: the participant that inserted it (only it may remove it); null: the scenario's.
-            const auto owner = owners.find(c.id);
-            crowds.push_back({{"id", c.id}, {"index", c.index}, {"applied", c.applied}, {"removed", c.removed},
-                              {"insertTick", c.insertTick}, {"populations", populations},
-                              {"owner", owner == owners.end() ? nlohmann::json(nullptr) : nlohmann::json(owner->second)}});
-          }
-        }
-        const std::string text = dumpJson(crowds);
-        for (const auto& q : crowdQueries) q->set_value(text);
-        crowdQueries.clear();
-      }
-    }
-    const auto t1 = Clock::now();
-    {
-      std::lock_guard lock(frameMutex);
-      if (pending) ++framesSkipped;
-      pending = frame;
-    }
-    frameReady.notify_one();
-    tickMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-    next += period;
-    tickWatch.finished(bridge.now(), t1 > next);
-    if (t1 > next) {
-      next = t1;  // late: start the next tick now, never try to catch up in a burst
-    } else {
-      std::this_thread::sleep_until(next);
-    }
-    const double now = bridge.now();
-    if (now - lastWindow >= 1.0) {
-      lastWindow = now;
-      const std::size_t recent = std::min<std::size_t>(tickMs.size(), static_cast<std::size_t>(tickRate * 10));
-      std::vector<double> window(tickMs.end() - static_cast<std::ptrdiff_t>(recent), tickMs.end());
-      std::vector<double> publishWindow;
-      {
-        std::lock_guard lock(frameMutex);
-        const std::size_t n = std::min(publishMs.size(), recent);
-        publishWindow.assign(publishMs.end() - static_cast<std::ptrdiff_t>(n), publishMs.end());
-      }
-      std::lock_guard lock(tickMutex);
-      tickMedianMs = percentile(window, 0.5);
-      tickP99Ms = percentile(window, 0.99);
-      publishMedianMs = percentile(publishWindow, 0.5);
-      publishP99Ms = percentile(publishWindow, 0.99);
-    }
-    if (!options.quiet && terminal && now - lastStatus >= 1.0) {
-      const hub::HubStatus s = hub.status();
-      const double kbit = static_cast<double>(s.crowdBytes - lastBytes) * 8.0 / 1000.0 / (now - lastStatus);
-      lastBytes = s.crowdBytes;
-      lastStatus = now;
-      double p99 = 0.0;
-      {
-        std::lock_guard lock(tickMutex);
-        p99 = tickP99Ms;
-      }
-      std::fprintf(stderr, "\r  t %s  agents %zu  clients %zu (%zu participants)  tick p99 %.1f ms  out %.0f kbit/s   ",
-                   formatSeconds(frame->time).c_str(), frame->size(), s.clients, s.participants, p99, kbit);
-      std::fflush(stderr);
-    }
-  }
-  {
-    std::lock_guard lock(frameMutex);
-    stopPublisher = true;
-  }
-  frameReady.notify_one();
-  publisher.join();
-  if (!options.quiet && terminal) std::fputs("\n", stderr);
+  Publisher publisher(hub, bridge, options.threads);
+  TickLoop loop(options, *served, hub, bridge, queries, tickWindow, tickWatch, publisher);
+  ServeSummary summary;
+  summary.endReason = loop.run();
+  publisher.stop();
+  if (!options.quiet && loop.terminal()) std::fputs("\n", stderr);
   const std::string goodbye = InterruptGuard::requested() ? "server shutting down (Ctrl-C)" : "server shutting down";
   hub.shutdown(goodbye);
   transport->shutdown(goodbye);
-  const server::TransportTotals totals = transport->totals();
-  const hub::HubStatus s = hub.status();
-  const double wall = bridge.now();
-  const hub::TickReport ticks = tickWatch.report(wall);
-  const std::uint64_t overruns = ticks.late;
-  if (options.json) {
-    nlohmann::json j = {{"scenario", options.scenario}, {"end", endReason}, {"seconds", wall},
-                        {"ticks", tickMs.size()}, {"tickRate", tickRate},
-                        {"ms_per_tick_median", percentile(tickMs, 0.5)}, {"ms_per_tick_p99", percentile(tickMs, 0.99)},
-                        {"overruns", overruns}, {"stalls", ticks.stalls}, {"longest_tick_ms", ticks.longestMs},
-                        {"publish_ms_median", percentile(publishMs, 0.5)},
-                        {"publish_ms_p99", percentile(publishMs, 0.99)}, {"frames_skipped", framesSkipped},
-                        {"peers_opened", totals.peersOpened},
-                        {"crowd_frames", s.crowdFrames}, {"crowd_bytes", s.crowdBytes},
-                        {"bytes_sent", totals.bytesSent}, {"bytes_received", totals.bytesReceived},
-                        {"closed_for_errors", s.closedForErrors}, {"http_requests", totals.httpRequests}};
-    printLine(stdout, dumpJson(j));
-  } else if (!options.quiet) {
-    printLine(stdout, fmt::format("throng serve: {} after {}: {} ticks, tick median {:.2f} ms, p99 {:.2f} ms, {} late",
-                                  endReason, formatSeconds(wall), tickMs.size(), percentile(tickMs, 0.5),
-                                  percentile(tickMs, 0.99), overruns));
-    printLine(stdout, fmt::format("  crowd frames: encoding for every client median {:.2f} ms, p99 {:.2f} ms per tick; "
-                                  "{} ticks skipped by the publisher",
-                                  percentile(publishMs, 0.5), percentile(publishMs, 0.99), framesSkipped));
-    printLine(stdout, fmt::format("  {} connections, {} crowd frames, {} sent, {} received", totals.peersOpened,
-                                  s.crowdFrames, formatBytes(static_cast<double>(totals.bytesSent)),
-                                  formatBytes(static_cast<double>(totals.bytesReceived))));
-  }
+  summary.totals = transport->totals();
+  summary.hub = hub.status();
+  summary.wall = bridge.now();
+  summary.ticks = tickWatch.report(summary.wall);
+  summary.tickRate = served->tickRate;
+  summary.tickMs = &loop.tickMs();
+  summary.publishMs = &publisher.ms();
+  summary.framesSkipped = publisher.skipped();
+  printSummary(options, summary);
   return InterruptGuard::requested() ? kExitInterrupted : kExitOk;
 }
 

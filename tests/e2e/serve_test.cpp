@@ -15,8 +15,8 @@
 
 #include "cli_runner.hpp"
 #include "throng/client/session.hpp"
-#include "throng/server/http_client.hpp"
-#include "throng/server/ws_client.hpp"
+#include "throng/client/http_client.hpp"
+#include "throng/client/ws_client.hpp"
 
 namespace throng::e2e {
 namespace {
@@ -149,9 +149,9 @@ TEST(Serve, UdpClientsGetTheCrowdAndCtrlCTellsClientsWhy) {
 
 TEST(Serve, BadMessagesCloseOnlyTheirConnectionWithAReason) {
   Server server;
-  server::WsClientOptions o;
+  client::WsClientOptions o;
   o.port = server.port;
-  auto raw = server::WsClient::connect(o);
+  auto raw = client::WsClient::connect(o);
   ASSERT_TRUE(raw.ok());
   auto good = open(server.options("good"));
   ASSERT_TRUE(good);
@@ -160,8 +160,8 @@ TEST(Serve, BadMessagesCloseOnlyTheirConnectionWithAReason) {
   bool closed = false;
   std::string why;
   for (int i = 0; i < 50 && !closed; ++i) {
-    const server::ClientEvent e = raw.value()->receive(100ms);
-    if (e.kind == server::ClientEvent::Kind::Closed) {
+    const client::ClientEvent e = raw.value()->receive(100ms);
+    if (e.kind == client::ClientEvent::Kind::Closed) {
       closed = true;
       why = e.closeReason;
     }
@@ -181,30 +181,30 @@ TEST(Serve, ConnectDisconnectCyclesLeaveNoClientBehindAndHttpServesClipsAndStatu
     if (i % 2 == 0) s->close();  // the others just drop the connection
   }
   std::this_thread::sleep_for(300ms);
-  auto status = server::httpRequest("127.0.0.1", server.port, "GET", "/api/status");
+  auto status = client::httpRequest("127.0.0.1", server.port, "GET", "/api/status");
   ASSERT_TRUE(status.ok());
   ASSERT_EQ(status->status, 200u);
   const auto j = nlohmann::json::parse(status->body);
   EXPECT_EQ(j["clients"], 0) << status->body;
   EXPECT_GE(j["tick"]["rate"].get<double>(), 1.0);
-  auto clip = server::httpRequest("127.0.0.1", server.port, "GET", "/motions/1.bvh");
+  auto clip = client::httpRequest("127.0.0.1", server.port, "GET", "/motions/1.bvh");
   ASSERT_TRUE(clip.ok());
   EXPECT_EQ(clip->status, 200u);
   EXPECT_EQ(clip->body.rfind("HIERARCHY", 0), 0u);
-  auto missing = server::httpRequest("127.0.0.1", server.port, "GET", "/motions/999.bvh");
+  auto missing = client::httpRequest("127.0.0.1", server.port, "GET", "/motions/999.bvh");
   ASSERT_TRUE(missing.ok());
   EXPECT_EQ(missing->status, 404u);
   // Who is agent 0 (the viewer's click panel): its group, state, goal, behaviour, script.
-  auto agent = server::httpRequest("127.0.0.1", server.port, "GET", "/api/agent/0");
+  auto agent = client::httpRequest("127.0.0.1", server.port, "GET", "/api/agent/0");
   ASSERT_TRUE(agent.ok());
   ASSERT_EQ(agent->status, 200u) << agent->body;
   const auto a = nlohmann::json::parse(agent->body);
   EXPECT_EQ(a["id"], 0);
   EXPECT_TRUE(a.contains("group") && a.contains("state") && a.contains("behaviour") && a.contains("script"));
-  auto gone = server::httpRequest("127.0.0.1", server.port, "GET", "/api/agent/99999");
+  auto gone = client::httpRequest("127.0.0.1", server.port, "GET", "/api/agent/99999");
   ASSERT_TRUE(gone.ok());
   EXPECT_EQ(gone->status, 404u);
-  auto bad = server::httpRequest("127.0.0.1", server.port, "GET", "/api/agent/x1");
+  auto bad = client::httpRequest("127.0.0.1", server.port, "GET", "/api/agent/x1");
   ASSERT_TRUE(bad.ok());
   EXPECT_EQ(bad->status, 400u);
   auto fresh = open(server.options("after"));
@@ -341,7 +341,7 @@ TEST(Serve, LoadgenCountsAgentsPerTierAndTheSquaresCentreSeesAllAnimated) {
 /// Ids of the agents in the groups of population `population` (GET /api/groups).
 std::set<std::uint32_t> membersOf(std::uint16_t port, const std::string& population) {
   std::set<std::uint32_t> ids;
-  auto groups = server::httpRequest("127.0.0.1", port, "GET", "/api/groups");
+  auto groups = client::httpRequest("127.0.0.1", port, "GET", "/api/groups");
   EXPECT_TRUE(groups.ok() && groups->status == 200u);
   if (!groups.ok() || groups->status != 200u) return ids;
   for (const auto& g : nlohmann::json::parse(groups->body)) {
@@ -393,7 +393,7 @@ TEST(Serve, AParticipantInsertsACrowdAnotherClientSeesItAndRemovalMakesItGo) {
   EXPECT_EQ(ids.size(), 20u);
   EXPECT_EQ(visible(*watcher, ids), ids.size());
   EXPECT_GE(watcher->crowd()->view.agents.size(), before + 20);
-  auto listed = server::httpRequest("127.0.0.1", server.port, "GET", "/api/crowds");
+  auto listed = client::httpRequest("127.0.0.1", server.port, "GET", "/api/crowds");
   ASSERT_TRUE(listed.ok());
   ASSERT_EQ(listed->status, 200u);
   auto crowds = nlohmann::json::parse(listed->body);
@@ -417,7 +417,7 @@ TEST(Serve, AParticipantInsertsACrowdAnotherClientSeesItAndRemovalMakesItGo) {
   EXPECT_TRUE(curator->crowdResults()[2].ok) << curator->crowdResults()[2].text;
   pumpFor({curator.get(), watcher.get()}, 500ms);
   EXPECT_EQ(visible(*watcher, ids), 0u);
-  listed = server::httpRequest("127.0.0.1", server.port, "GET", "/api/crowds");
+  listed = client::httpRequest("127.0.0.1", server.port, "GET", "/api/crowds");
   ASSERT_TRUE(listed.ok());
   EXPECT_EQ(nlohmann::json::parse(listed->body)[0]["removed"], true);
   EXPECT_TRUE(watcher->open() && curator->open());
@@ -473,7 +473,7 @@ TEST(Serve, AHugeCrowdRequestIsRefusedAndTheWorldKeepsTickingForEveryone) {
   EXPECT_GT(watcher->stats().crowdFrames, framesBefore + 5);
   EXPECT_TRUE(watcher->open() && curator->open());
   // The status reports late and stalled ticks (and the one running now).
-  auto status = server::httpRequest("127.0.0.1", server.port, "GET", "/api/status");
+  auto status = client::httpRequest("127.0.0.1", server.port, "GET", "/api/status");
   ASSERT_TRUE(status.ok());
   ASSERT_EQ(status->status, 200u);
   const auto j = nlohmann::json::parse(status->body);
@@ -498,12 +498,12 @@ TEST(Serve, ANameThatIsNotUtf8IsRefusedAndTheStatusStaysJson) {
   ASSERT_TRUE(joined.ok());
   pumpFor({odd.get()}, 300ms);
   for (const char* path : {"/api/status", "/api/crowds", "/api/groups", "/api/world"}) {
-    auto r = server::httpRequest("127.0.0.1", server.port, "GET", path);
+    auto r = client::httpRequest("127.0.0.1", server.port, "GET", path);
     ASSERT_TRUE(r.ok()) << path;
     EXPECT_EQ(r->status, 200u) << path << ": " << r->body;
     EXPECT_NO_THROW((void)nlohmann::json::parse(r->body)) << path;
   }
-  auto status = server::httpRequest("127.0.0.1", server.port, "GET", "/api/status");
+  auto status = client::httpRequest("127.0.0.1", server.port, "GET", "/api/status");
   ASSERT_TRUE(status.ok());
   const auto j = nlohmann::json::parse(status->body);
   ASSERT_EQ(j["perClient"].size(), 1u) << status->body;
@@ -534,7 +534,7 @@ TEST(Serve, OnlyTheParticipantThatInsertedACrowdRemovesIt) {
   EXPECT_FALSE(mallory->crowdResults()[0].ok);
   EXPECT_NE(mallory->crowdResults()[0].text.find("belongs to participant " + std::to_string(a->participantId) + " ('alice')"),
             std::string::npos) << mallory->crowdResults()[0].text;
-  auto listed = server::httpRequest("127.0.0.1", server.port, "GET", "/api/crowds");
+  auto listed = client::httpRequest("127.0.0.1", server.port, "GET", "/api/crowds");
   ASSERT_TRUE(listed.ok());
   auto crowds = nlohmann::json::parse(listed->body);
   ASSERT_EQ(crowds.size(), 1u) << listed->body;

@@ -13,8 +13,8 @@
 
 #include "cli_runner.hpp"
 #include "throng/client/session.hpp"
-#include "throng/server/http_client.hpp"
-#include "throng/server/udp_client.hpp"
+#include "throng/client/http_client.hpp"
+#include "throng/client/udp_client.hpp"
 
 namespace throng::e2e {
 namespace {
@@ -41,9 +41,9 @@ TEST(ServeUdpHandshake, RawSourcesOpenNothingAndGetNoMoreThanTheySent) {
 
   const protocol::Bytes bareHello = protocol::encode(protocol::Hello{protocol::kProtocolVersion, protocol::ClientKind::Native, "x"});
   ASSERT_EQ(bareHello.size(), 7u);
-  std::vector<std::unique_ptr<server::UdpClient>> sources;
+  std::vector<std::unique_ptr<client::UdpClient>> sources;
   for (int i = 0; i < 60; ++i) {
-    auto c = server::UdpClient::connect("127.0.0.1", udpPort);
+    auto c = client::UdpClient::connect("127.0.0.1", udpPort);
     ASSERT_TRUE(c.ok());
     sources.push_back(std::move(c).value());
     ASSERT_TRUE(sources.back()->send({}).ok());
@@ -51,7 +51,7 @@ TEST(ServeUdpHandshake, RawSourcesOpenNothingAndGetNoMoreThanTheySent) {
   }
   // And 20 that send 2 bytes of junk (an unknown type): once each was answered with a Bye.
   for (int i = 0; i < 20; ++i) {
-    auto c = server::UdpClient::connect("127.0.0.1", udpPort);
+    auto c = client::UdpClient::connect("127.0.0.1", udpPort);
     ASSERT_TRUE(c.ok());
     sources.push_back(std::move(c).value());
     ASSERT_TRUE(sources.back()->send(protocol::Bytes{0x54, 0xee}).ok());
@@ -78,7 +78,7 @@ TEST(ServeUdpHandshake, RawSourcesOpenNothingAndGetNoMoreThanTheySent) {
   }
   EXPECT_EQ(received, 0u) << "bytes sent to unproven UDP sources";
   // The server saw two clients, not 62.
-  auto status = server::httpRequest("127.0.0.1", port, "GET", "/api/status");
+  auto status = client::httpRequest("127.0.0.1", port, "GET", "/api/status");
   ASSERT_TRUE(status.ok());
   ASSERT_EQ(status->status, 200u) << status->body;
   const auto json = nlohmann::json::parse(status->body, nullptr, false);

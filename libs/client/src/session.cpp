@@ -5,8 +5,8 @@
 
 #include <algorithm>
 
-#include "throng/server/udp_client.hpp"
-#include "throng/server/ws_client.hpp"
+#include "throng/client/udp_client.hpp"
+#include "throng/client/ws_client.hpp"
 
 namespace throng::client {
 namespace {
@@ -36,27 +36,27 @@ class Link {
 
 class WsLink final : public Link {
  public:
-  explicit WsLink(std::unique_ptr<server::WsClient> c) : c_(std::move(c)) {}
+  explicit WsLink(std::unique_ptr<WsClient> c) : c_(std::move(c)) {}
   core::Status send(const Bytes& bytes) override { return c_->send(bytes); }
   core::Status start(const Bytes& hello, std::chrono::milliseconds) override { return c_->send(hello); }
   Received receive(std::chrono::milliseconds wait) override {
-    server::ClientEvent e = c_->receive(wait);
+    ClientEvent e = c_->receive(wait);
     switch (e.kind) {
-      case server::ClientEvent::Kind::Message: return {false, false, std::move(e.message), {}};
-      case server::ClientEvent::Kind::Closed: return {true, false, {}, e.closeReason};
-      case server::ClientEvent::Kind::Timeout: break;
+      case ClientEvent::Kind::Message: return {false, false, std::move(e.message), {}};
+      case ClientEvent::Kind::Closed: return {true, false, {}, e.closeReason};
+      case ClientEvent::Kind::Timeout: break;
     }
     return {false, true, {}, {}};
   }
   void close(const std::string& reason) override { c_->close(reason); }
 
  private:
-  std::unique_ptr<server::WsClient> c_;
+  std::unique_ptr<WsClient> c_;
 };
 
 class UdpLink final : public Link {
  public:
-  explicit UdpLink(std::unique_ptr<server::UdpClient> c) : c_(std::move(c)) {}
+  explicit UdpLink(std::unique_ptr<UdpClient> c) : c_(std::move(c)) {}
   core::Status send(const Bytes& bytes) override { return c_->send(bytes); }
   core::Status start(const Bytes& hello, std::chrono::milliseconds timeout) override { return c_->open(hello, timeout); }
   void restart() override { (void)c_->reopen(); }
@@ -68,7 +68,7 @@ class UdpLink final : public Link {
   void close(const std::string&) override {}
 
  private:
-  std::unique_ptr<server::UdpClient> c_;
+  std::unique_ptr<UdpClient> c_;
 };
 
 core::Diagnostic problem(const std::string& source, const std::string& what, const std::string& expected = {}) {
@@ -227,17 +227,17 @@ core::Result<std::unique_ptr<Session>> Session::open(const SessionOptions& optio
   impl->options = options;
   if (options.udp) {
     impl->source = "udp://" + options.host + ":" + std::to_string(options.udpPort);
-    auto c = server::UdpClient::connect(options.host, options.udpPort);
+    auto c = UdpClient::connect(options.host, options.udpPort);
     if (!c.ok()) return std::move(c).takeErrors();
     impl->link = std::make_unique<UdpLink>(std::move(c).value());
   } else {
     impl->source = "ws://" + options.host + ":" + std::to_string(options.port) + options.path;
-    server::WsClientOptions w;
+    WsClientOptions w;
     w.host = options.host;
     w.port = options.port;
     w.path = options.path;
     w.timeout = options.timeout;
-    auto c = server::WsClient::connect(w);
+    auto c = WsClient::connect(w);
     if (!c.ok()) return std::move(c).takeErrors();
     impl->link = std::make_unique<WsLink>(std::move(c).value());
   }

@@ -229,7 +229,47 @@ struct Hub::Impl {
     input.participants.erase(c.participantId);
   }
 
+  // applyToWorld's steps, on the simulation thread with input.mutex held.
+  /// Guide and Release requests in order, each answered with a GuideResult (unless its
+  /// participant left).
+  void applyGuideRequests(sim::World& world);
+  /// One Guide or Release; nullopt when the participant asking to guide left meanwhile.
+  std::optional<protocol::GuideResult> applyGuideRequest(sim::World& world, const GuideRequest& r);
+  /// The crowd worker's finished requests: insertions queued into the World, removals carried
+  /// out, each answered with a CrowdResult.
+  void applyCrowdRequests(sim::World& world);
+  /// Each guided group heads for its guide's avatar; the avatars become the World's viewers.
+  void followAvatars(sim::World& world);
+  /// One message from a client: Hello first (greet), then one handler per client → server type.
   void handle(Client& c, const protocol::Message& message, double now);
+  /// The first message: a Hello of this protocol version, room on the server and a UTF-8 name;
+  /// answered with the Welcome, who is here and what the participants said last.
+  void greet(Client& c, const protocol::Message& message);
+  void on(Client& c, const protocol::Join& m, double now);
+  void on(Client& c, const protocol::Leave& m, double now);
+  void on(Client& c, const protocol::Heartbeat& m, double now);  ///< a ping answered, or a round trip measured
+  void on(Client& c, const protocol::Bye& m, double now);
+  void on(Client& c, const protocol::Move& m, double now);
+  void on(Client& c, const protocol::Joints& m, double now);
+  void on(Client& c, const protocol::HandJoints& m, double now);
+  void on(Client& c, const protocol::FaceExpression& m, double now);
+  void on(Client& c, const protocol::ReplayControl& m, double now);
+  void on(Client& c, const protocol::Guide& m, double now);
+  void on(Client& c, const protocol::Release& m, double now);
+  void on(Client& c, const protocol::InsertCrowd& m, double now);  ///< rate limits, then the crowd worker's queue
+  void on(Client& c, const protocol::RemoveCrowd& m, double now);
+  void on(Client& c, const protocol::Ack& m, double now);
+  void on(Client& c, const protocol::Hello& m, double now);  ///< a second Hello
+  /// Any server → client type: the client is closed.
+  template <class M>
+  void on(Client& c, const M& m, double now);
+  /// Joints, HandJoints, FaceExpression: checked (token, rate) and relayed.
+  template <class M>
+  void relayState(Client& c, const M& m, double now);
+  /// Guide or Release of `group`, for applyToWorld (refused at once on a recording).
+  void requestGuidance(Client& c, std::uint64_t token, std::uint32_t group, bool guide, double now);
+  /// A CrowdResult refusing request `requestId` with `text`.
+  void answerCrowd(const Client& c, std::uint32_t requestId, const std::string& id, std::string text);
   /// Builds and encodes client `c`'s crowd frame (no sending: parallel over clients).
   core::Result<protocol::EncodedCrowdFrame> encodeCrowd(Client& c, const sim::Frame& frame);
 };
@@ -363,259 +403,297 @@ void Hub::onMessage(PeerKey peer, std::span<const std::uint8_t> bytes, double no
 }
 
 void Hub::Impl::handle(Client& c, const protocol::Message& message, double now) {
-  using namespace protocol;
   if (!c.welcomed) {
-    const auto* hello = std::get_if<Hello>(&message);
-    if (hello == nullptr) {
-      fail(c, ReasonCode::UnexpectedMessage,
-           std::string("expected Hello as the first message, got ") + messageTypeName(messageType(message)));
-      return;
-    }
-    if (hello->protocolVersion != kProtocolVersion) {
-      refuse(c, ReasonCode::VersionMismatch,
-             "this server speaks protocol version " + std::to_string(kProtocolVersion) + ", the client " +
-                 std::to_string(hello->protocolVersion));
-      return;
-    }
-    const auto welcomed = static_cast<std::size_t>(std::count_if(
-        clients.begin(), clients.end(), [](const auto& e) { return e.second.welcomed && !e.second.closing; }));
-    if (welcomed >= options.maxClients) {
-      refuse(c, ReasonCode::ServerFull, "server full: " + std::to_string(options.maxClients) + " clients (--max-clients)");
-      return;
-    }
-    if (const auto bad = invalidUtf8At(hello->clientName)) {
-      refuse(c, ReasonCode::BadMessage,
-             "Hello: clientName is not UTF-8 at " + describeByte(hello->clientName, *bad) + "; expected a UTF-8 name");
-      return;
-    }
-    c.welcomed = true;
-    c.name = hello->clientName;
-    outbox.send(c.peer, welcome, false, 0);
-    // Who is here, and everything participants said last, so the newcomer sees their avatars at once.
-    for (auto& [peer, other] : clients) {
-      if (peer == c.peer) continue;
-      if (other.participant && !other.closing) {
-        outbox.send(c.peer, protocol::encode(protocol::Presence{other.participantId, true, other.name}), false, 0);
-      }
-      for (const auto& [type, state] : other.lastState) outbox.send(c.peer, state, true, relaySlot(other.participantId, type));
-    }
+    greet(c, message);
     return;
   }
-  std::visit(
-      [&](const auto& m) {
-        using M = std::decay_t<decltype(m)>;
-        if constexpr (std::is_same_v<M, Join>) {
-          if (c.participant) {
-            fail(c, ReasonCode::UnexpectedMessage, "Join: this client already is participant " + std::to_string(c.participantId));
-            return;
-          }
-          if (const auto bad = invalidUtf8At(m.name)) {
-            fail(c, ReasonCode::BadMessage, "Join: name is not UTF-8 at " + describeByte(m.name, *bad) + "; expected a UTF-8 name");
-            return;
-          }
-          c.participant = true;
-          c.participantId = nextParticipantId++;
-          do c.token = tokenSource(); while (c.token == 0);
-          if (!m.name.empty()) c.name = m.name;
-          {
-            std::lock_guard lock(input.mutex);
-            input.participants[c.participantId] = c.peer;
-          }
-          outbox.send(c.peer, encode(Joined{c.participantId, c.token}), false, 0);
-          announce(c, true, 0);
-        } else if constexpr (std::is_same_v<M, Leave>) {
-          if (!owns(c, m.token, "Leave")) return;
-          dropParticipant(c);
-          c.participant = false;
-          c.avatar.reset();
-          c.lastState.clear();
-        } else if constexpr (std::is_same_v<M, Heartbeat>) {
-          if (m.token != 0 && c.participant && m.token != c.token) {
-            fail(c, ReasonCode::BadToken, "Heartbeat with a token that is not this participant's");
-            return;
-          }
-          c.peerTimeUs = m.timeUs;
-          if (m.echoUs == 0) {
-            // A ping: answer at once, so the client's round trip holds no waiting.
-            outbox.send(c.peer, encode(Heartbeat{0, static_cast<std::uint64_t>(now * 1e6), m.timeUs}), false, 0);
-          } else {
-            const double rtt = now * 1e3 - static_cast<double>(m.echoUs) / 1e3;
-            if (rtt >= 0.0 && rtt < 1e7) c.roundTripMs = rtt;
-          }
-        } else if constexpr (std::is_same_v<M, Bye>) {
-          c.closing = true;
-          outbox.close(c.peer, "client quit");
-        } else if constexpr (std::is_same_v<M, Move>) {
-          if (!owns(c, m.subject.value, "Move") || m.subject.kind != Subject::Kind::Token || !allowState(c, now)) return;
-          if (m.seq < c.moveSeq && c.moveSeq - m.seq < 0x80000000u) return;  // reordered (UDP): older than the last
-          if (!std::isfinite(m.x) || !std::isfinite(m.y) || !std::isfinite(m.z) || !std::isfinite(m.yaw)) {
-            fail(c, ReasonCode::BadMessage, "Move: position and yaw must be finite numbers");
-            return;
-          }
-          c.moveSeq = m.seq;
-          c.avatar = core::Vec2{m.x, m.y};
-          c.avatarZ = m.z;
-          {
-            std::lock_guard lock(input.mutex);
-            input.avatars[c.participantId] = *c.avatar;
-            input.avatarHeights[c.participantId] = m.z;
-          }
-          relay(c, m);
-        } else if constexpr (std::is_same_v<M, Joints> || std::is_same_v<M, HandJoints> || std::is_same_v<M, FaceExpression>) {
-          if (!owns(c, m.subject.value, messageTypeName(messageType(Message{m}))) ||
-              m.subject.kind != Subject::Kind::Token || !allowState(c, now)) {
-            return;
-          }
-          relay(c, m);
-        } else if constexpr (std::is_same_v<M, ReplayControl>) {
-          if (!options.replay) {
-            fail(c, ReasonCode::UnexpectedMessage, "ReplayControl: this server runs a live world, not a recording");
-            return;
-          }
-          if (m.token != 0 && (!c.participant || m.token != c.token)) {
-            fail(c, ReasonCode::BadToken, "ReplayControl with a token that is not this client's");
-            return;
-          }
-          if (!allowState(c, now)) return;
-          std::lock_guard lock(input.mutex);
-          input.replayControls.push_back(m);
-        } else if constexpr (std::is_same_v<M, Guide> || std::is_same_v<M, Release>) {
-          constexpr bool guide = std::is_same_v<M, Guide>;
-          if (!owns(c, m.token, guide ? "Guide" : "Release") || !allowState(c, now)) return;
-          if (options.replay) {
-            // A recording cannot be steered: say so, keep the session.
-            outbox.send(c.peer, encode(GuideResult{m.groupId, false, false, ReasonCode::UnknownGroup}), false, 0);
-            return;
-          }
-          std::lock_guard lock(input.mutex);
-          input.requests.push_back({c.peer, c.participantId, m.groupId, guide, true});
-        } else if constexpr (std::is_same_v<M, InsertCrowd> || std::is_same_v<M, RemoveCrowd>) {
-          constexpr bool insert = std::is_same_v<M, InsertCrowd>;
-          if (!owns(c, m.token, insert ? "InsertCrowd" : "RemoveCrowd") || !allowState(c, now)) return;
-          auto answer = [&](const std::string& id, std::string text) {
-            outbox.send(c.peer, encode(CrowdResult{m.requestId, false, 0, id, std::move(text)}), false, 0);
-          };
-          if constexpr (insert) {
-            if (options.replay) {
-              answer("", "this server plays a recording: crowds cannot be inserted");
-              return;
-            }
-            while (!c.crowdInserts.empty() && now - c.crowdInserts.front() >= kCrowdInsertWindowSeconds) {
-              c.crowdInserts.pop_front();
-            }
-            if (c.crowdInserts.size() >= options.crowdInsertsPerMinute) {
-              const double wait = kCrowdInsertWindowSeconds - (now - c.crowdInserts.front());
-              answer("", "rate limited: at most " + std::to_string(options.crowdInsertsPerMinute) +
-                             " crowd insertions per participant per minute; try again in " +
-                             std::to_string(static_cast<int>(std::ceil(wait))) + " s");
-              return;
-            }
-            {
-              std::lock_guard lock(work.mutex);
-              const auto pending = static_cast<std::size_t>(
-                  std::count_if(work.queue.begin(), work.queue.end(), [](const CrowdRequest& r) { return r.insert; }));
-              if (pending >= options.maxPendingCrowdInserts) {
-                answer("", "busy: " + std::to_string(pending) +
-                               " crowd insertions are waiting to be validated; try again in a few seconds");
-                return;
-              }
-              c.crowdInserts.push_back(now);
-              work.queue.push_back({c.peer, c.participantId, c.name, m.requestId, true, m.crowdJson});
-            }
-            work.changed.notify_all();
-          } else {
-            if (options.replay) {
-              answer(std::string(cutUtf8(printable(m.crowdId, protocol::kMaxNameLength), protocol::kMaxNameLength)),
-                     "this server plays a recording: crowds cannot be removed");
-              return;
-            }
-            if (const auto bad = invalidUtf8At(m.crowdId)) {
-              answer("", "remove /crowdId: not UTF-8 at " + describeByte(m.crowdId, *bad) + "; expected the id of a crowd");
-              return;
-            }
-            {
-              std::lock_guard lock(work.mutex);
-              work.queue.push_back({c.peer, c.participantId, c.name, m.requestId, false, m.crowdId});
-            }
-            work.changed.notify_all();
-          }
-        } else if constexpr (std::is_same_v<M, Ack>) {
-          if (m.token != 0 && c.participant && m.token != c.token) {
-            fail(c, ReasonCode::BadToken, "Ack with a token that is not this participant's");
-            return;
-          }
-          if (m.frameNumber >= c.encoder.nextFrameNumber()) {
-            fail(c, ReasonCode::BadMessage, "Ack of frame " + std::to_string(m.frameNumber) + " which was never sent");
-            return;
-          }
-          c.acked = std::max(c.acked, m.frameNumber);
-        } else if constexpr (std::is_same_v<M, Hello>) {
-          fail(c, ReasonCode::UnexpectedMessage, "Hello: the session is already open");
-        } else {
-          fail(c, ReasonCode::UnexpectedMessage,
-               std::string(messageTypeName(messageType(Message{m}))) + " is sent by the server, not by clients");
-        }
-      },
-      message);
+  std::visit([&](const auto& m) { on(c, m, now); }, message);
 }
 
-void Hub::applyToWorld(sim::World& world) {
-  Impl& h = *impl_;
-  std::unique_lock lock(h.input.mutex);  // never the main mutex: publish may be encoding meanwhile
-  auto& in = h.input;
-  for (const GuideRequest& r : in.requests) {
-    const sim::GroupId handle = world.groupById(r.group);
-    protocol::GuideResult result{r.group, false, false, ReasonCode::None};
-    const bool present = in.participants.count(r.participantId) != 0;
-    auto owner = in.guideOf.find(r.group);
-    if (handle.isNull()) {
-      result.reason = ReasonCode::UnknownGroup;
-    } else if (r.guide) {
-      const auto count = static_cast<std::size_t>(std::count_if(
-          in.guideOf.begin(), in.guideOf.end(), [&](const auto& e) { return e.second == r.participantId; }));
-      if (owner != in.guideOf.end() && owner->second != r.participantId) {
-        result.reason = ReasonCode::GroupTaken;
-      } else if (owner == in.guideOf.end() && count >= h.options.maxGuidedGroups) {
-        result.reason = ReasonCode::RateLimited;
-      } else if (!present) {
-        continue;  // left meanwhile
-      } else {
-        in.guideOf[r.group] = r.participantId;
-        if (auto a = in.avatars.find(r.participantId); a != in.avatars.end()) world.guide(handle, a->second, Impl::heightOf(in, r.participantId));
-        result.guiding = result.ok = true;
-      }
-    } else {
-      if (owner == in.guideOf.end() || owner->second != r.participantId) {
-        result.reason = ReasonCode::NotGuiding;
-      } else {
-        in.guideOf.erase(owner);
-        world.release(handle);
-        result.ok = true;
-      }
-    }
-    if (r.answer && present) h.outbox.send(r.peer, protocol::encode(result), false, 0);
+void Hub::Impl::greet(Client& c, const protocol::Message& message) {
+  using namespace protocol;
+  const auto* hello = std::get_if<Hello>(&message);
+  if (hello == nullptr) {
+    fail(c, ReasonCode::UnexpectedMessage,
+         std::string("expected Hello as the first message, got ") + messageTypeName(messageType(message)));
+    return;
   }
-  in.requests.clear();
-  // Crowds inserted and removed at the participants' request, in the order they came. Insertions
-  // were parsed and validated on the crowd worker; here they are only queued into the World
-  // (World::insertCrowd checks their ids against the crowds queued since), so they take effect at
-  // the next tick boundary. A crowd belongs to whoever inserted it: only they remove it.
+  if (hello->protocolVersion != kProtocolVersion) {
+    refuse(c, ReasonCode::VersionMismatch,
+           "this server speaks protocol version " + std::to_string(kProtocolVersion) + ", the client " +
+               std::to_string(hello->protocolVersion));
+    return;
+  }
+  const auto welcomed = static_cast<std::size_t>(std::count_if(
+      clients.begin(), clients.end(), [](const auto& e) { return e.second.welcomed && !e.second.closing; }));
+  if (welcomed >= options.maxClients) {
+    refuse(c, ReasonCode::ServerFull, "server full: " + std::to_string(options.maxClients) + " clients (--max-clients)");
+    return;
+  }
+  if (const auto bad = invalidUtf8At(hello->clientName)) {
+    refuse(c, ReasonCode::BadMessage,
+           "Hello: clientName is not UTF-8 at " + describeByte(hello->clientName, *bad) + "; expected a UTF-8 name");
+    return;
+  }
+  c.welcomed = true;
+  c.name = hello->clientName;
+  outbox.send(c.peer, welcome, false, 0);
+  // Who is here, and everything participants said last, so the newcomer sees their avatars at once.
+  for (auto& [peer, other] : clients) {
+    if (peer == c.peer) continue;
+    if (other.participant && !other.closing) {
+      outbox.send(c.peer, encode(Presence{other.participantId, true, other.name}), false, 0);
+    }
+    for (const auto& [type, state] : other.lastState) outbox.send(c.peer, state, true, relaySlot(other.participantId, type));
+  }
+}
+
+void Hub::Impl::on(Client& c, const protocol::Join& m, double) {
+  if (c.participant) {
+    fail(c, ReasonCode::UnexpectedMessage, "Join: this client already is participant " + std::to_string(c.participantId));
+    return;
+  }
+  if (const auto bad = invalidUtf8At(m.name)) {
+    fail(c, ReasonCode::BadMessage, "Join: name is not UTF-8 at " + describeByte(m.name, *bad) + "; expected a UTF-8 name");
+    return;
+  }
+  c.participant = true;
+  c.participantId = nextParticipantId++;
+  do c.token = tokenSource(); while (c.token == 0);
+  if (!m.name.empty()) c.name = m.name;
+  {
+    std::lock_guard lock(input.mutex);
+    input.participants[c.participantId] = c.peer;
+  }
+  outbox.send(c.peer, protocol::encode(protocol::Joined{c.participantId, c.token}), false, 0);
+  announce(c, true, 0);
+}
+
+void Hub::Impl::on(Client& c, const protocol::Leave& m, double) {
+  if (!owns(c, m.token, "Leave")) return;
+  dropParticipant(c);
+  c.participant = false;
+  c.avatar.reset();
+  c.lastState.clear();
+}
+
+void Hub::Impl::on(Client& c, const protocol::Heartbeat& m, double now) {
+  if (m.token != 0 && c.participant && m.token != c.token) {
+    fail(c, ReasonCode::BadToken, "Heartbeat with a token that is not this participant's");
+    return;
+  }
+  c.peerTimeUs = m.timeUs;
+  if (m.echoUs == 0) {
+    // A ping: answer at once, so the client's round trip holds no waiting.
+    outbox.send(c.peer, protocol::encode(protocol::Heartbeat{0, static_cast<std::uint64_t>(now * 1e6), m.timeUs}), false, 0);
+  } else {
+    const double rtt = now * 1e3 - static_cast<double>(m.echoUs) / 1e3;
+    if (rtt >= 0.0 && rtt < 1e7) c.roundTripMs = rtt;
+  }
+}
+
+void Hub::Impl::on(Client& c, const protocol::Bye&, double) {
+  c.closing = true;
+  outbox.close(c.peer, "client quit");
+}
+
+void Hub::Impl::on(Client& c, const protocol::Move& m, double now) {
+  if (!owns(c, m.subject.value, "Move") || m.subject.kind != protocol::Subject::Kind::Token || !allowState(c, now)) return;
+  if (m.seq < c.moveSeq && c.moveSeq - m.seq < 0x80000000u) return;  // reordered (UDP): older than the last
+  if (!std::isfinite(m.x) || !std::isfinite(m.y) || !std::isfinite(m.z) || !std::isfinite(m.yaw)) {
+    fail(c, ReasonCode::BadMessage, "Move: position and yaw must be finite numbers");
+    return;
+  }
+  c.moveSeq = m.seq;
+  c.avatar = core::Vec2{m.x, m.y};
+  c.avatarZ = m.z;
+  {
+    std::lock_guard lock(input.mutex);
+    input.avatars[c.participantId] = *c.avatar;
+    input.avatarHeights[c.participantId] = m.z;
+  }
+  relay(c, m);
+}
+
+template <class M>
+void Hub::Impl::relayState(Client& c, const M& m, double now) {
+  if (!owns(c, m.subject.value, protocol::messageTypeName(protocol::messageType(protocol::Message{m}))) ||
+      m.subject.kind != protocol::Subject::Kind::Token || !allowState(c, now)) {
+    return;
+  }
+  relay(c, m);
+}
+
+void Hub::Impl::on(Client& c, const protocol::Joints& m, double now) { relayState(c, m, now); }
+void Hub::Impl::on(Client& c, const protocol::HandJoints& m, double now) { relayState(c, m, now); }
+void Hub::Impl::on(Client& c, const protocol::FaceExpression& m, double now) { relayState(c, m, now); }
+
+void Hub::Impl::on(Client& c, const protocol::ReplayControl& m, double now) {
+  if (!options.replay) {
+    fail(c, ReasonCode::UnexpectedMessage, "ReplayControl: this server runs a live world, not a recording");
+    return;
+  }
+  if (m.token != 0 && (!c.participant || m.token != c.token)) {
+    fail(c, ReasonCode::BadToken, "ReplayControl with a token that is not this client's");
+    return;
+  }
+  if (!allowState(c, now)) return;
+  std::lock_guard lock(input.mutex);
+  input.replayControls.push_back(m);
+}
+
+void Hub::Impl::requestGuidance(Client& c, std::uint64_t token, std::uint32_t group, bool guide, double now) {
+  if (!owns(c, token, guide ? "Guide" : "Release") || !allowState(c, now)) return;
+  if (options.replay) {
+    // A recording cannot be steered: say so, keep the session.
+    outbox.send(c.peer, protocol::encode(protocol::GuideResult{group, false, false, ReasonCode::UnknownGroup}), false, 0);
+    return;
+  }
+  std::lock_guard lock(input.mutex);
+  input.requests.push_back({c.peer, c.participantId, group, guide, true});
+}
+
+void Hub::Impl::on(Client& c, const protocol::Guide& m, double now) { requestGuidance(c, m.token, m.groupId, true, now); }
+void Hub::Impl::on(Client& c, const protocol::Release& m, double now) { requestGuidance(c, m.token, m.groupId, false, now); }
+
+void Hub::Impl::answerCrowd(const Client& c, std::uint32_t requestId, const std::string& id, std::string text) {
+  outbox.send(c.peer, protocol::encode(protocol::CrowdResult{requestId, false, 0, id, std::move(text)}), false, 0);
+}
+
+void Hub::Impl::on(Client& c, const protocol::InsertCrowd& m, double now) {
+  if (!owns(c, m.token, "InsertCrowd") || !allowState(c, now)) return;
+  if (options.replay) {
+    answerCrowd(c, m.requestId, "", "this server plays a recording: crowds cannot be inserted");
+    return;
+  }
+  while (!c.crowdInserts.empty() && now - c.crowdInserts.front() >= kCrowdInsertWindowSeconds) c.crowdInserts.pop_front();
+  if (c.crowdInserts.size() >= options.crowdInsertsPerMinute) {
+    const double wait = kCrowdInsertWindowSeconds - (now - c.crowdInserts.front());
+    answerCrowd(c, m.requestId, "",
+                "rate limited: at most " + std::to_string(options.crowdInsertsPerMinute) +
+                    " crowd insertions per participant per minute; try again in " +
+                    std::to_string(static_cast<int>(std::ceil(wait))) + " s");
+    return;
+  }
+  {
+    std::lock_guard lock(work.mutex);
+    const auto pending = static_cast<std::size_t>(
+        std::count_if(work.queue.begin(), work.queue.end(), [](const CrowdRequest& r) { return r.insert; }));
+    if (pending >= options.maxPendingCrowdInserts) {
+      answerCrowd(c, m.requestId, "",
+                  "busy: " + std::to_string(pending) +
+                      " crowd insertions are waiting to be validated; try again in a few seconds");
+      return;
+    }
+    c.crowdInserts.push_back(now);
+    work.queue.push_back({c.peer, c.participantId, c.name, m.requestId, true, m.crowdJson});
+  }
+  work.changed.notify_all();
+}
+
+void Hub::Impl::on(Client& c, const protocol::RemoveCrowd& m, double now) {
+  if (!owns(c, m.token, "RemoveCrowd") || !allowState(c, now)) return;
+  if (options.replay) {
+    answerCrowd(c, m.requestId,
+                std::string(cutUtf8(printable(m.crowdId, protocol::kMaxNameLength), protocol::kMaxNameLength)),
+                "this server plays a recording: crowds cannot be removed");
+    return;
+  }
+  if (const auto bad = invalidUtf8At(m.crowdId)) {
+    answerCrowd(c, m.requestId, "", "remove /crowdId: not UTF-8 at " + describeByte(m.crowdId, *bad) + "; expected the id of a crowd");
+    return;
+  }
+  {
+    std::lock_guard lock(work.mutex);
+    work.queue.push_back({c.peer, c.participantId, c.name, m.requestId, false, m.crowdId});
+  }
+  work.changed.notify_all();
+}
+
+void Hub::Impl::on(Client& c, const protocol::Ack& m, double) {
+  if (m.token != 0 && c.participant && m.token != c.token) {
+    fail(c, ReasonCode::BadToken, "Ack with a token that is not this participant's");
+    return;
+  }
+  if (m.frameNumber >= c.encoder.nextFrameNumber()) {
+    fail(c, ReasonCode::BadMessage, "Ack of frame " + std::to_string(m.frameNumber) + " which was never sent");
+    return;
+  }
+  c.acked = std::max(c.acked, m.frameNumber);
+}
+
+void Hub::Impl::on(Client& c, const protocol::Hello&, double) {
+  fail(c, ReasonCode::UnexpectedMessage, "Hello: the session is already open");
+}
+
+template <class M>
+void Hub::Impl::on(Client& c, const M& m, double) {
+  fail(c, ReasonCode::UnexpectedMessage,
+       std::string(protocol::messageTypeName(protocol::messageType(protocol::Message{m}))) +
+           " is sent by the server, not by clients");
+}
+
+std::optional<protocol::GuideResult> Hub::Impl::applyGuideRequest(sim::World& world, const GuideRequest& r) {
+  auto& in = input;
+  const sim::GroupId handle = world.groupById(r.group);
+  protocol::GuideResult result{r.group, false, false, ReasonCode::None};
+  const bool present = in.participants.count(r.participantId) != 0;
+  auto owner = in.guideOf.find(r.group);
+  if (handle.isNull()) {
+    result.reason = ReasonCode::UnknownGroup;
+  } else if (r.guide) {
+    const auto count = static_cast<std::size_t>(std::count_if(
+        in.guideOf.begin(), in.guideOf.end(), [&](const auto& e) { return e.second == r.participantId; }));
+    if (owner != in.guideOf.end() && owner->second != r.participantId) {
+      result.reason = ReasonCode::GroupTaken;
+    } else if (owner == in.guideOf.end() && count >= options.maxGuidedGroups) {
+      result.reason = ReasonCode::RateLimited;
+    } else if (!present) {
+      return std::nullopt;  // left meanwhile
+    } else {
+      in.guideOf[r.group] = r.participantId;
+      if (auto a = in.avatars.find(r.participantId); a != in.avatars.end()) world.guide(handle, a->second, heightOf(in, r.participantId));
+      result.guiding = result.ok = true;
+    }
+  } else {
+    if (owner == in.guideOf.end() || owner->second != r.participantId) {
+      result.reason = ReasonCode::NotGuiding;
+    } else {
+      in.guideOf.erase(owner);
+      world.release(handle);
+      result.ok = true;
+    }
+  }
+  return result;
+}
+
+void Hub::Impl::applyGuideRequests(sim::World& world) {
+  for (const GuideRequest& r : input.requests) {
+    const auto result = applyGuideRequest(world, r);
+    if (result && r.answer && input.participants.count(r.participantId) != 0) {
+      outbox.send(r.peer, protocol::encode(*result), false, 0);
+    }
+  }
+  input.requests.clear();
+}
+
+void Hub::Impl::applyCrowdRequests(sim::World& world) {
   std::vector<CrowdDone> done;
   {
-    std::lock_guard workLock(h.work.mutex);
-    done.swap(h.work.done);
+    std::lock_guard workLock(work.mutex);
+    done.swap(work.done);
   }
   for (CrowdDone& d : done) {
     const CrowdRequest& r = d.request;
-    if (in.participants.count(r.participantId) == 0) continue;  // left meanwhile: nobody asks any more
+    if (input.participants.count(r.participantId) == 0) continue;  // left meanwhile: nobody asks any more
     CrowdOutcome outcome;
     if (!r.insert) {
-      outcome = removeCrowdById(world, r.payload, &in.owners, r.participantId);
+      outcome = removeCrowdById(world, r.payload, &input.owners, r.participantId);
     } else if (d.parsed.crowd) {
       outcome = queueCrowd(world, *d.parsed.crowd);
       if (outcome.ok) {
-        in.owners.add(outcome.id, r.participantId, r.name);
-        ++in.crowdsQueued;
+        input.owners.add(outcome.id, r.participantId, r.name);
+        ++input.crowdsQueued;
       }
     } else {
       outcome = std::move(d.parsed.refusal);
@@ -623,17 +701,34 @@ void Hub::applyToWorld(sim::World& world) {
     protocol::CrowdResult result{r.requestId, outcome.ok, outcome.index,
                                  std::string(cutUtf8(outcome.id, protocol::kMaxNameLength)), std::move(outcome.text)};
     if (!outcome.ok) result.text = diagnosticsText(outcome.diagnostics, protocol::kMaxTextLength);
-    h.outbox.send(r.peer, protocol::encode(result), false, 0);
+    outbox.send(r.peer, protocol::encode(result), false, 0);
   }
-  // Dynamic goals: each guided group walks to its guide's avatar (the World replans only when it
-  // moved far enough); the avatars are the viewers of multiresolution steering.
+}
+
+void Hub::Impl::followAvatars(sim::World& world) {
   std::vector<core::Vec2> viewers;
-  viewers.reserve(in.avatars.size());
-  for (const auto& [participant, position] : in.avatars) viewers.push_back(position);
-  for (const auto& [group, participant] : in.guideOf) {
-    if (auto a = in.avatars.find(participant); a != in.avatars.end()) world.guide(world.groupById(group), a->second, Impl::heightOf(in, participant));
+  viewers.reserve(input.avatars.size());
+  for (const auto& [participant, position] : input.avatars) viewers.push_back(position);
+  for (const auto& [group, participant] : input.guideOf) {
+    if (auto a = input.avatars.find(participant); a != input.avatars.end()) {
+      world.guide(world.groupById(group), a->second, heightOf(input, participant));
+    }
   }
   world.setViewers(std::move(viewers));
+}
+
+void Hub::applyToWorld(sim::World& world) {
+  Impl& h = *impl_;
+  std::unique_lock lock(h.input.mutex);  // never the main mutex: publish may be encoding meanwhile
+  h.applyGuideRequests(world);
+  // Crowds inserted and removed at the participants' request, in the order they came. Insertions
+  // were parsed and validated on the crowd worker; here they are only queued into the World
+  // (World::insertCrowd checks their ids against the crowds queued since), so they take effect at
+  // the next tick boundary. A crowd belongs to whoever inserted it: only they remove it.
+  h.applyCrowdRequests(world);
+  // Dynamic goals: each guided group walks to its guide's avatar (the World replans only when it
+  // moved far enough); the avatars are the viewers of multiresolution steering.
+  h.followAvatars(world);
   lock.unlock();
   h.refreshCrowdContext(world, false);
 }

@@ -32,17 +32,23 @@ struct CrowdEncoder::Impl {
     }
     return nullptr;
   }
+  /// Keeps what the client will reconstruct from frame `number`, for deltas against it.
+  void remember(std::uint32_t number, QView view, const CrowdView& sent) {
+    history.emplace_back(number, std::move(view));
+    jointCounts.push_back(sent.jointCount);
+    ticks.push_back(sent.simTick);
+    intervals.push_back(sent.animationInterval);
+    while (history.size() > options.historyFrames) {
+      history.pop_front();
+      jointCounts.pop_front();
+      ticks.pop_front();
+      intervals.pop_front();
+    }
+    ++next;
+  }
 };
 
 namespace {
-
-/// Column writers of one payload.
-struct Columns {
-  std::vector<std::uint8_t> ids, masks, tiers, xs, ys, zs, yaws, clips, phases, poses, table;
-  std::uint32_t lastId = 0;
-  bool first = true;
-  std::size_t records = 0;
-};
 
 core::Diagnostic encodeError(std::string what, std::string expected) {
   core::Diagnostic d;
@@ -56,6 +62,152 @@ std::int64_t wrapDelta(std::uint32_t target, std::uint32_t base, int bits) {
   const std::uint32_t mask = (1u << bits) - 1;
   std::uint32_t d = (target - base) & mask;
   return d >= (1u << (bits - 1)) ? static_cast<std::int64_t>(d) - (std::int64_t{1} << bits) : d;
+}
+
+
+/// The view quantized as the client will reconstruct it, in id order; an error for a view the
+/// protocol cannot carry (too many agents or joints, X = 0, an id twice).
+core::Result<QView> quantizeView(const CrowdView& view, std::uint8_t jointShift) {
+  if (view.agents.size() > kMaxAgents) {
+    return encodeError(std::to_string(view.agents.size()) + " agents in view", "at most " + std::to_string(kMaxAgents));
+  }
+  if (view.jointCount > kMaxJoints) {
+    return encodeError("jointCount " + std::to_string(view.jointCount), "at most " + std::to_string(kMaxJoints));
+  }
+  if (view.animationInterval == 0) return encodeError("animationInterval 0", "X ≥ 1");
+  QView target;
+  target.reserve(view.agents.size());
+  for (const AgentState& a : view.agents) target.push_back(detail::quantizeAgent(a, view.jointCount, jointShift));
+  std::sort(target.begin(), target.end(), [](const QAgent& a, const QAgent& b) { return a.id < b.id; });
+  for (std::size_t i = 1; i < target.size(); ++i) {
+    if (target[i].id == target[i - 1].id) {
+      return encodeError("duplicate agent id " + std::to_string(target[i].id), "each agent once per view");
+    }
+  }
+  return target;
+}
+
+/// What a frame refreshes: a key frame everything; animation every X-th frame; far agents every
+/// farInterval-th.
+struct FrameKind {
+  bool key = true;
+  bool anim = true;
+  bool far = true;
+  std::uint8_t jointCount = 0;
+  std::uint8_t shift = 0;  ///< joint angle precision dropped [bits]
+};
+
+/// One payload being written: the removals (ids as gaps), then one record per agent that changed,
+/// column by column, and the pose table (distinct target poses, each coded against its first
+/// user's base).
+class PayloadWriter {
+ public:
+  explicit PayloadWriter(const FrameKind& kind) : kind_(kind) {}
+
+  /// Agent `id` of the base left the view.
+  void removal(std::uint32_t id) {
+    ByteWriter(removals_).varint(removalCount_ == 0 ? id : id - lastRemoved_ - 1);
+    lastRemoved_ = id;
+    ++removalCount_;
+  }
+
+  /// Target agent `t` against what the client has (`st`: the base's agent when `known`, else
+  /// new); `st` becomes what the client will have. Returns whether a record was written.
+  bool agent(const QAgent& t, QAgent& st, bool known) {
+    st.id = t.id;
+    if (known && !kind_.far && st.tier == Tier::Far && t.tier == Tier::Far) return false;  // far, not refreshed
+    const std::uint8_t mask = changes(t, st, known);
+    if (mask == 0 && known) return false;  // unchanged: no record
+    ByteWriter(ids_).varint(records_ == 0 ? t.id : t.id - lastRecord_ - 1);
+    lastRecord_ = t.id;
+    masks_.push_back(mask);
+    ++records_;
+    return true;
+  }
+
+  /// The payload: removals, records column by column, the pose table.
+  [[nodiscard]] std::vector<std::uint8_t> finish() const {
+    std::vector<std::uint8_t> p;
+    ByteWriter w(p);
+    w.varint(removalCount_);
+    w.bytes(removals_);
+    w.varint(records_);
+    for (const auto* col : {&ids_, &masks_, &tiers_, &xs_, &ys_, &zs_, &yaws_, &clips_, &phases_, &poses_}) w.bytes(*col);
+    w.varint(poseIndex_.size());
+    w.bytes(table_);
+    return p;
+  }
+  [[nodiscard]] std::size_t records() const { return records_; }
+  [[nodiscard]] std::size_t removals() const { return removalCount_; }
+  [[nodiscard]] std::size_t poses() const { return poseIndex_.size(); }
+
+ private:
+  /// Writes the fields of `t` that differ from `st` into their columns; returns the record's mask.
+  std::uint8_t changes(const QAgent& t, QAgent& st, bool known) {
+    std::uint8_t mask = 0;
+    const bool tierChanged = st.tier != t.tier;
+    if (tierChanged) {
+      mask |= detail::kMaskTier;
+      ByteWriter(tiers_).u8(static_cast<std::uint8_t>(t.tier));
+    }
+    detail::applyTierRules(st, t.tier, kind_.jointCount);
+    if (t.x != st.x) { mask |= detail::kMaskX; ByteWriter(xs_).svarint(std::int64_t{t.x} - st.x); st.x = t.x; }
+    if (t.y != st.y) { mask |= detail::kMaskY; ByteWriter(ys_).svarint(std::int64_t{t.y} - st.y); st.y = t.y; }
+    if (t.z != st.z) { mask |= detail::kMaskZ; ByteWriter(zs_).svarint(std::int64_t{t.z} - st.z); st.z = t.z; }
+    if (t.tier != Tier::Far && t.yaw != st.yaw) {
+      mask |= detail::kMaskYaw;
+      ByteWriter(yaws_).svarint(t.tier == Tier::Near ? wrapDelta(t.yaw, st.yaw, 16) : wrapDelta(t.yaw >> 8, st.yaw >> 8, 8));
+      st.yaw = t.yaw;
+    }
+    const bool refreshAnim = kind_.anim || !known || tierChanged;
+    if (t.tier != Tier::Far && refreshAnim) mask |= animation(t, st);
+    return mask;
+  }
+
+  /// Clip, phase and (near agents) pose of `t` against `st`; returns their mask bits.
+  std::uint8_t animation(const QAgent& t, QAgent& st) {
+    std::uint8_t mask = 0;
+    if (t.clip != st.clip) { mask |= detail::kMaskClip; ByteWriter(clips_).varint(t.clip); st.clip = t.clip; }
+    if (t.phase != st.phase) { mask |= detail::kMaskPhase; ByteWriter(phases_).svarint(wrapDelta(t.phase, st.phase, 8)); st.phase = t.phase; }
+    if (t.tier == Tier::Near && t.joints != st.joints) {
+      mask |= detail::kMaskPose;
+      auto [it, added] = poseIndex_.try_emplace(t.joints, static_cast<std::uint32_t>(poseIndex_.size()));
+      if (added) {
+        const int bits = 16 - kind_.shift;
+        ByteWriter table(table_);
+        for (std::size_t j = 0; j < t.joints.size(); ++j) {
+          table.svarint(wrapDelta(detail::jointUnits(t.joints[j], kind_.shift), detail::jointUnits(st.joints[j], kind_.shift), bits));
+        }
+      }
+      ByteWriter(poses_).varint(it->second);
+      st.joints = t.joints;
+    }
+    return mask;
+  }
+
+  FrameKind kind_;
+  std::vector<std::uint8_t> ids_, masks_, tiers_, xs_, ys_, zs_, yaws_, clips_, phases_, poses_, table_, removals_;
+  std::map<std::vector<std::uint16_t>, std::uint32_t> poseIndex_;  ///< distinct target poses → index
+  std::uint32_t lastRecord_ = 0, lastRemoved_ = 0;
+  std::size_t records_ = 0, removalCount_ = 0;
+};
+
+/// Walks the target view against the base (both in id order): removals for base agents that left,
+/// records for the others; returns what the client will have after the frame.
+QView writeAgents(const QView& target, const QView& base, PayloadWriter& writer) {
+  QView result;
+  result.reserve(target.size());
+  std::size_t bi = 0;
+  for (const QAgent& t : target) {
+    while (bi < base.size() && base[bi].id < t.id) writer.removal(base[bi++].id);  // left view
+    const bool known = bi < base.size() && base[bi].id == t.id;
+    QAgent st = known ? base[bi] : QAgent{};
+    if (known) ++bi;
+    writer.agent(t, st, known);
+    result.push_back(std::move(st));
+  }
+  for (; bi < base.size(); ++bi) writer.removal(base[bi].id);
+  return result;
 }
 
 }  // namespace
@@ -97,134 +249,32 @@ std::optional<CrowdView> CrowdEncoder::sentView(std::uint32_t frameNumber) const
 core::Result<EncodedCrowdFrame> CrowdEncoder::encode(const CrowdView& view, std::uint32_t ackedFrame) {
   Impl& s = *impl_;
   const CrowdEncoderOptions& o = s.options;
-  if (view.agents.size() > kMaxAgents) {
-    return encodeError(std::to_string(view.agents.size()) + " agents in view", "at most " + std::to_string(kMaxAgents));
-  }
-  if (view.jointCount > kMaxJoints) {
-    return encodeError("jointCount " + std::to_string(view.jointCount), "at most " + std::to_string(kMaxJoints));
-  }
-  if (view.animationInterval == 0) return encodeError("animationInterval 0", "X ≥ 1");
-
-  QView target;
-  target.reserve(view.agents.size());
-  for (const AgentState& a : view.agents) target.push_back(detail::quantizeAgent(a, view.jointCount, o.jointShift));
-  std::sort(target.begin(), target.end(), [](const QAgent& a, const QAgent& b) { return a.id < b.id; });
-  for (std::size_t i = 1; i < target.size(); ++i) {
-    if (target[i].id == target[i - 1].id) {
-      return encodeError("duplicate agent id " + std::to_string(target[i].id), "each agent once per view");
-    }
-  }
+  auto target = quantizeView(view, o.jointShift);
+  if (!target) return std::move(target).takeErrors();
 
   const std::uint32_t frameNumber = s.next;
   const QView* base = ackedFrame != 0 ? s.find(ackedFrame) : nullptr;
   static const QView kEmpty;
-  const QView& b = base ? *base : kEmpty;
-  const bool key = base == nullptr;
-  const bool animFrame = key || frameNumber % view.animationInterval == 0;
-  const bool farFrame = key || frameNumber % o.farInterval == 0;
-  const std::uint8_t J = view.jointCount;
-  const std::uint8_t shift = o.jointShift;
-
-  Columns c;
-  std::vector<std::uint8_t> removals;
-  std::size_t removalCount = 0;
-  std::uint32_t lastRemoved = 0;
-  QView result;
-  result.reserve(target.size());
-  // Pose table: distinct target poses → index; each entry coded against its first user's base.
-  std::map<std::vector<std::uint16_t>, std::uint32_t> poseIndex;
-  ByteWriter wIds(c.ids), wTiers(c.tiers), wX(c.xs), wY(c.ys), wZ(c.zs), wYaw(c.yaws), wClip(c.clips),
-      wPhase(c.phases), wPose(c.poses), wTable(c.table), wRem(removals);
-  std::uint32_t lastRecord = 0;
-
-  std::size_t bi = 0;
-  for (const QAgent& t : target) {
-    while (bi < b.size() && b[bi].id < t.id) {  // left view
-      wRem.varint(removalCount == 0 ? b[bi].id : b[bi].id - lastRemoved - 1);
-      lastRemoved = b[bi].id;
-      ++removalCount;
-      ++bi;
-    }
-    const bool known = bi < b.size() && b[bi].id == t.id;
-    QAgent st = known ? b[bi] : QAgent{};
-    if (known) ++bi;
-    st.id = t.id;
-    if (known && !farFrame && st.tier == Tier::Far && t.tier == Tier::Far) {  // far, not refreshed
-      result.push_back(std::move(st));
-      continue;
-    }
-    std::uint8_t mask = 0;
-    const bool tierChanged = st.tier != t.tier;
-    if (tierChanged) {
-      mask |= detail::kMaskTier;
-      wTiers.u8(static_cast<std::uint8_t>(t.tier));
-    }
-    detail::applyTierRules(st, t.tier, J);
-    if (t.x != st.x) { mask |= detail::kMaskX; wX.svarint(std::int64_t{t.x} - st.x); st.x = t.x; }
-    if (t.y != st.y) { mask |= detail::kMaskY; wY.svarint(std::int64_t{t.y} - st.y); st.y = t.y; }
-    if (t.z != st.z) { mask |= detail::kMaskZ; wZ.svarint(std::int64_t{t.z} - st.z); st.z = t.z; }
-    if (t.tier != Tier::Far && t.yaw != st.yaw) {
-      mask |= detail::kMaskYaw;
-      if (t.tier == Tier::Near) {
-        wYaw.svarint(wrapDelta(t.yaw, st.yaw, 16));
-      } else {
-        wYaw.svarint(wrapDelta(t.yaw >> 8, st.yaw >> 8, 8));
-      }
-      st.yaw = t.yaw;
-    }
-    const bool refreshAnim = animFrame || !known || tierChanged;
-    if (t.tier != Tier::Far && refreshAnim) {
-      if (t.clip != st.clip) { mask |= detail::kMaskClip; wClip.varint(t.clip); st.clip = t.clip; }
-      if (t.phase != st.phase) { mask |= detail::kMaskPhase; wPhase.svarint(wrapDelta(t.phase, st.phase, 8)); st.phase = t.phase; }
-      if (t.tier == Tier::Near && t.joints != st.joints) {
-        mask |= detail::kMaskPose;
-        auto [it, added] = poseIndex.try_emplace(t.joints, static_cast<std::uint32_t>(poseIndex.size()));
-        if (added) {
-          const int bits = 16 - shift;
-          for (std::size_t j = 0; j < t.joints.size(); ++j) {
-            wTable.svarint(wrapDelta(detail::jointUnits(t.joints[j], shift), detail::jointUnits(st.joints[j], shift), bits));
-          }
-        }
-        wPose.varint(it->second);
-        st.joints = t.joints;
-      }
-    }
-    if (mask == 0 && known) {  // unchanged: no record
-      result.push_back(std::move(st));
-      continue;
-    }
-    wIds.varint(c.records == 0 ? t.id : t.id - lastRecord - 1);
-    lastRecord = t.id;
-    c.masks.push_back(mask);
-    ++c.records;
-    result.push_back(std::move(st));
-  }
-  for (; bi < b.size(); ++bi) {
-    wRem.varint(removalCount == 0 ? b[bi].id : b[bi].id - lastRemoved - 1);
-    lastRemoved = b[bi].id;
-    ++removalCount;
-  }
+  FrameKind kind;
+  kind.key = base == nullptr;
+  kind.anim = kind.key || frameNumber % view.animationInterval == 0;
+  kind.far = kind.key || frameNumber % o.farInterval == 0;
+  kind.jointCount = view.jointCount;
+  kind.shift = o.jointShift;
+  PayloadWriter writer(kind);
+  QView result = writeAgents(target.value(), base ? *base : kEmpty, writer);
 
   CrowdFrame frame;
-  std::vector<std::uint8_t>& p = frame.payload;
-  ByteWriter w(p);
-  w.varint(removalCount);
-  w.bytes(removals);
-  w.varint(c.records);
-  for (const auto* col : {&c.ids, &c.masks, &c.tiers, &c.xs, &c.ys, &c.zs, &c.yaws, &c.clips, &c.phases, &c.poses}) {
-    w.bytes(*col);
-  }
-  w.varint(poseIndex.size());
-  w.bytes(c.table);
-
+  frame.payload = writer.finish();
+  const std::vector<std::uint8_t>& p = frame.payload;
   CrowdFrameHeader& h = frame.header;
   h.frameNumber = frameNumber;
-  h.baseFrame = key ? 0 : ackedFrame;
-  h.farIncluded = farFrame;
+  h.baseFrame = kind.key ? 0 : ackedFrame;
+  h.farIncluded = kind.far;
   h.simTick = view.simTick;
   h.animationInterval = view.animationInterval;
-  h.jointCount = J;
-  h.jointShift = shift;
+  h.jointCount = kind.jointCount;
+  h.jointShift = kind.shift;
   for (const QAgent& a : result) {
     (a.tier == Tier::Near ? h.nearCount : a.tier == Tier::Middle ? h.middleCount : h.farCount)++;
   }
@@ -238,21 +288,10 @@ core::Result<EncodedCrowdFrame> CrowdEncoder::encode(const CrowdView& view, std:
   EncodedCrowdFrame out;
   out.bytes = detail::encodeCrowdFrame(frame, h.compressed ? &compressed : nullptr);
   out.header = h;
-  out.records = c.records;
-  out.removals = removalCount;
-  out.poses = poseIndex.size();
-
-  s.history.emplace_back(frameNumber, std::move(result));
-  s.jointCounts.push_back(J);
-  s.ticks.push_back(view.simTick);
-  s.intervals.push_back(view.animationInterval);
-  while (s.history.size() > o.historyFrames) {
-    s.history.pop_front();
-    s.jointCounts.pop_front();
-    s.ticks.pop_front();
-    s.intervals.pop_front();
-  }
-  ++s.next;
+  out.records = writer.records();
+  out.removals = writer.removals();
+  out.poses = writer.poses();
+  s.remember(frameNumber, std::move(result), view);
   return out;
 }
 
