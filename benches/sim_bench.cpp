@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "spatial_grid.hpp"
+#include "throng/sim/spatial_grid.hpp"
 #include "throng/core/rng.hpp"
 #include "throng/sim/orca.hpp"
 

@@ -1,5 +1,5 @@
 // Tests for libs/sim/src/spatial_grid.cpp.
-#include "spatial_grid.hpp"
+#include "throng/sim/spatial_grid.hpp"
 
 #include <gtest/gtest.h>
 

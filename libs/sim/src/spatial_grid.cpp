@@ -1,6 +1,6 @@
 // SpatialGrid (spatial_grid.hpp): the counting-sort rebuild of the grid each tick and the k-nearest
 // query (a SIMD gather of candidate spans ring by ring, then exact ranking with ties by row).
-#include "spatial_grid.hpp"
+#include "throng/sim/spatial_grid.hpp"
 
 #include <algorithm>
 #include <bit>

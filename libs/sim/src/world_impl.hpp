@@ -20,7 +20,7 @@
 #include "crowd_insertion.hpp"
 #include "group_table.hpp"
 #include "throng/core/assert.hpp"
-#include "spatial_grid.hpp"
+#include "throng/sim/spatial_grid.hpp"
 #include "walls.hpp"
 #include "throng/core/rng.hpp"
 #include "throng/crowd/subregions.hpp"
