@@ -1,4 +1,4 @@
-// Fuzz target for throng::io::readRecordingSummary (libs/io/src/recording_reader.cpp) and the
+// Fuzz target for throng::io::readRecordingSummary (libs/recording/src/recording_reader.cpp) and the
 // Common Ground readers and metrics (recording_social.cpp, recording_metrics.cpp): the input
 // bytes become a file on disk (SQLite reads files, not buffers) and are summarised read-only.
 // Any input must give a summary or a diagnostic: no crash, hang, leak or write.
@@ -11,8 +11,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "throng/io/recorder.hpp"
-#include "throng/io/recording_social.hpp"
+#include "throng/recording/recorder.hpp"
+#include "throng/recording/recording_social.hpp"
 
 namespace {
 

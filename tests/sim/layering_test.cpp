@@ -1,16 +1,21 @@
 // The simulation core does no I/O: no source of libs/{core,nav,sim} may include files, clocks,
-// sockets, or the io/net layers (GUIDE §2).
+// sockets, or the io/net layers (GUIDE §2). The file-format libraries link only downward:
+// motion → core; io (scenario loading) → core, nav, sim, social, motion; recording → core, nav,
+// sim, social (never io, motion, hub or the network libraries).
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace fs = std::filesystem;
 
 TEST(Layering, SimulationLibrariesDoNoIo) {
-  const std::regex forbidden(R"(#\s*include\s*[<"](fstream|chrono|iostream|sys/socket\.h|netinet/.*|boost/asio.*|throng/io/.*|throng/net/.*|sqlite3\.h)[>"])");
+  const std::regex forbidden(R"(#\s*include\s*[<"](fstream|chrono|iostream|sys/socket\.h|netinet/.*|boost/asio.*|throng/(io|recording|motion)/.*|throng/net/.*|sqlite3\.h)[>"])");
   // <cstdio> is allowed for snprintf formatting; printing or opening files is not.
   const std::regex io(R"(\b(fopen|printf|puts|fputs)\s*\(|std::(cout|cerr|clog)\b)");
   int checked = 0;
@@ -33,4 +38,41 @@ TEST(Layering, SimulationLibrariesDoNoIo) {
     }
   }
   EXPECT_GT(checked, 10);
+}
+
+namespace {
+
+/// The throng libraries whose headers `lib` includes ("throng/<name>/..."), with where each was seen.
+std::vector<std::pair<std::string, std::string>> throngIncludes(const char* lib) {
+  const std::regex include(R"(#\s*include\s*[<"]throng/([a-z_]+)/)");
+  std::vector<std::pair<std::string, std::string>> found;
+  for (const auto& entry : fs::recursive_directory_iterator(fs::path(THRONG_SOURCE_DIR) / "libs" / lib)) {
+    if (!entry.is_regular_file()) continue;
+    std::ifstream in(entry.path());
+    std::string line;
+    int lineNo = 0;
+    while (std::getline(in, line)) {
+      ++lineNo;
+      std::smatch m;
+      if (std::regex_search(line, m, include)) {
+        found.emplace_back(m[1].str(), entry.path().string() + ":" + std::to_string(lineNo) + ": " + line);
+      }
+    }
+  }
+  return found;
+}
+
+}  // namespace
+
+TEST(Layering, FileFormatLibrariesLinkOnlyDownward) {
+  const std::vector<std::pair<const char*, std::set<std::string>>> allowed{
+      {"motion", {"core", "motion"}},
+      {"io", {"core", "nav", "sim", "social", "motion", "io"}},
+      {"recording", {"core", "nav", "sim", "social", "recording"}},
+  };
+  for (const auto& [lib, may] : allowed) {
+    const auto found = throngIncludes(lib);
+    EXPECT_FALSE(found.empty()) << lib;
+    for (const auto& [name, where] : found) EXPECT_TRUE(may.count(name)) << where;
+  }
 }

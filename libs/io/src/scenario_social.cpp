@@ -8,7 +8,7 @@
 #include "confined_path.hpp"
 #include "scenario_reader.hpp"
 #include "social_defaults.hpp"
-#include "throng/io/bvh.hpp"
+#include "throng/motion/bvh.hpp"
 #include "throng/io/social_db.hpp"
 #include "throng/social/behaviour_db.hpp"
 
@@ -114,7 +114,7 @@ void loadScenarioSocial(const JsonDocument& doc, ParsedScenario& parsed, core::D
            "\"motions\" is the clip directory relative to the scenario (now " + quote(social.motions) + ")");
       continue;
     }
-    auto loaded = loadBvhFile(path.string());
+    auto loaded = motion::loadBvhFile(path.string());
     if (!loaded.ok()) {
       diagnostics.insert(diagnostics.end(), loaded.errors().begin(), loaded.errors().end());
       fail(ptr, "micro-behaviour clip " + quote(rel.generic_string()) + " is not valid BVH", "a valid BVH file");

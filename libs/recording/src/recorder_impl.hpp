@@ -15,7 +15,7 @@
 #include <unordered_set>
 #include <vector>
 
-#include "throng/io/recorder.hpp"
+#include "throng/recording/recorder.hpp"
 
 #include "recording_schema.hpp"
 

@@ -10,7 +10,7 @@
 //
 // The Common Ground tables (throng_coordinations, throng_script) are written by
 // recorder_social.cpp; Recorder::Impl is declared in recorder_impl.hpp.
-#include "throng/io/recorder.hpp"
+#include "throng/recording/recorder.hpp"
 
 #include <unistd.h>
 
@@ -26,7 +26,7 @@
 #include <unordered_set>
 
 #include "recorder_impl.hpp"
-#include "world_footprint.hpp"
+#include "throng/core/footprint.hpp"
 #include "recording_scenario.hpp"
 #include "recording_schema.hpp"
 #include "recording_text.hpp"
@@ -161,7 +161,7 @@ bool Recorder::Impl::writeScenario(const sim::ScenarioDesc& scenario) {
       }
       triangles.push_back(tri);
     }
-    const Footprint footprint = unionOfTriangles(triangles);
+    const core::Footprint footprint = core::unionOfTriangles(triangles);
     return walkableAreaWkt(footprint.outer, footprint.holes);
   }();
   geometryHash = recording::geometryHash(area.wkt);

@@ -11,7 +11,7 @@
 
 #include "recording_schema.hpp"
 #include "recording_text.hpp"
-#include "throng/io/recorder.hpp"
+#include "throng/recording/recorder.hpp"
 
 namespace throng::io {
 namespace {

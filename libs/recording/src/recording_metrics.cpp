@@ -11,7 +11,7 @@
 #include <unordered_map>
 
 #include "recording_social_read.hpp"
-#include "throng/io/recording_social.hpp"
+#include "throng/recording/recording_social.hpp"
 
 namespace throng::io {
 namespace {
