@@ -1,7 +1,8 @@
 // The simulation core does no I/O: no source of libs/{core,nav,sim} may include files, clocks,
 // sockets, or the io/net layers (GUIDE §2). The file-format libraries link only downward:
 // motion → core; io (scenario loading) → core, nav, sim, social, motion; recording → core, nav,
-// sim, social (never io, motion, hub or the network libraries).
+// sim, social (never io, motion, hub or the network libraries), and it is the one SQLite layer:
+// no other library or app includes sqlite3.h.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -75,4 +76,26 @@ TEST(Layering, FileFormatLibrariesLinkOnlyDownward) {
     EXPECT_FALSE(found.empty()) << lib;
     for (const auto& [name, where] : found) EXPECT_TRUE(may.count(name)) << where;
   }
+}
+
+TEST(Layering, OnlyTheRecordingLibraryOpensSqlite) {
+  const std::regex sqlite(R"(#\s*include\s*[<"]sqlite3\.h[>"])");
+  int checked = 0;
+  for (const char* top : {"libs", "apps"}) {
+    for (const auto& entry : fs::recursive_directory_iterator(fs::path(THRONG_SOURCE_DIR) / top)) {
+      if (!entry.is_regular_file()) continue;
+      const auto ext = entry.path().extension();
+      if (ext != ".cpp" && ext != ".hpp" && ext != ".h") continue;
+      if (entry.path().string().find("/libs/recording/") != std::string::npos) continue;
+      std::ifstream in(entry.path());
+      std::string line;
+      int lineNo = 0;
+      while (std::getline(in, line)) {
+        ++lineNo;
+        EXPECT_FALSE(std::regex_search(line, sqlite)) << entry.path() << ":" << lineNo << ": " << line;
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 100);
 }
