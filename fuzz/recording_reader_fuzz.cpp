@@ -1,7 +1,7 @@
-// Fuzz target for throng::io::readRecordingSummary (libs/recording/src/recording_reader.cpp) and the
-// Common Ground readers and metrics (recording_social.cpp, recording_metrics.cpp) and the replay
-// frames (frame_reader.cpp): the input bytes become a file on disk (SQLite reads files, not
-// buffers) and are summarised read-only.
+// Fuzz target for throng::io::readRecordingSummary (libs/recording/src/recording_reader.cpp), the
+// Common Ground readers and metrics (recording_social.cpp, metrics_queries.cpp,
+// metrics_analysis.cpp) and the replay frames (frame_reader.cpp): the input bytes become a file on
+// disk (SQLite reads files, not buffers) and are summarised read-only.
 // Any input must give a summary or a diagnostic: no crash, hang, leak or write.
 // Corpus: fuzz/corpus/recording_reader/ (tiny valid recordings and junk).
 #include <unistd.h>
