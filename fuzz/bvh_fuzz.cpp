@@ -1,4 +1,4 @@
-// libFuzzer target for the BVH motion clip parser (libs/io bvh_parser): arbitrary bytes →
+// libFuzzer target for the BVH motion clip parser (libs/motion bvh_parser): arbitrary bytes →
 // parseBvh. Reads the input only. Checks that nothing crashes, throws or hangs, and that results
 // are coherent: a parsed clip's joints form a tree in file order, its channel columns tile the
 // frame row, and it holds frameCount × channelCount finite values; a rejected input has located
@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "throng/io/bvh.hpp"
+#include "throng/motion/bvh.hpp"
 
 namespace {
 
@@ -21,7 +21,7 @@ void check(bool condition) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  const auto r = throng::io::parseBvh(text, "fuzz.bvh");
+  const auto r = throng::motion::parseBvh(text, "fuzz.bvh");
   if (!r.ok()) {
     check(!r.errors().empty());
     for (const auto& d : r.errors()) {
@@ -33,7 +33,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   const auto& clip = r.value();
   check(clip.name == "fuzz");
-  check(!clip.joints.empty() && clip.joints.size() <= throng::io::kMaxBvhJoints);
+  check(!clip.joints.empty() && clip.joints.size() <= throng::motion::kMaxBvhJoints);
   check(clip.joints[0].parent == -1);
   std::size_t column = 0;
   for (std::size_t i = 0; i < clip.joints.size(); ++i) {
@@ -46,8 +46,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const float v : j.offset) check(std::isfinite(v));
   }
   check(column == clip.channelCount && clip.channelCount >= 1);
-  check(clip.frameCount >= 1 && clip.frameCount <= throng::io::kMaxBvhFrames);
-  check(clip.frameTime > 0.0 && clip.frameTime <= throng::io::kMaxBvhFrameTime);
+  check(clip.frameCount >= 1 && clip.frameCount <= throng::motion::kMaxBvhFrames);
+  check(clip.frameTime > 0.0 && clip.frameTime <= throng::motion::kMaxBvhFrameTime);
   check(clip.values.size() == clip.frameCount * clip.channelCount);
   for (const float v : clip.values) check(std::isfinite(v));
   check(clip.duration() > 0.0);

@@ -1,6 +1,7 @@
-// Fuzz target for throng::io::readRecordingSummary (libs/io/src/recording_reader.cpp) and the
-// Common Ground readers and metrics (recording_social.cpp, recording_metrics.cpp): the input
-// bytes become a file on disk (SQLite reads files, not buffers) and are summarised read-only.
+// Fuzz target for throng::io::readRecordingSummary (libs/recording/src/recording_reader.cpp), the
+// Common Ground readers and metrics (recording_social.cpp, metrics_queries.cpp,
+// metrics_analysis.cpp) and the replay frames (frame_reader.cpp): the input bytes become a file on
+// disk (SQLite reads files, not buffers) and are summarised read-only.
 // Any input must give a summary or a diagnostic: no crash, hang, leak or write.
 // Corpus: fuzz/corpus/recording_reader/ (tiny valid recordings and junk).
 #include <unistd.h>
@@ -11,8 +12,9 @@
 #include <cstdlib>
 #include <string>
 
-#include "throng/io/recorder.hpp"
-#include "throng/io/recording_social.hpp"
+#include "throng/recording/frame_reader.hpp"
+#include "throng/recording/recorder.hpp"
+#include "throng/recording/recording_social.hpp"
 
 namespace {
 
@@ -66,6 +68,22 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto metrics = throng::io::computeMetrics(path);
   if (!metrics.ok() && metrics.errors().empty()) std::abort();
   if (metrics.ok() && (metrics->cohesion.shareTogether < 0.0 || metrics->cohesion.shareTogether > 1.0)) std::abort();
+
+  // The frames for replay (hub::Replay), within a small memory budget: one frame per frame
+  // number, times from 0 and non-decreasing, every per-agent column as long as ids.
+  const auto frames = throng::io::readRecordedFrames(path, throng::io::FrameReadOptions{std::size_t{64} << 20});
+  if (!frames.ok() && frames.errors().empty()) std::abort();
+  if (frames.ok()) {
+    if (frames->frames.empty() || frames->frames.size() != frames->times.size() || frames->times[0] != 0.0) std::abort();
+    for (std::size_t i = 0; i < frames->frames.size(); ++i) {
+      const throng::sim::Frame& fr = *frames->frames[i];
+      if (i > 0 && frames->times[i] < frames->times[i - 1]) std::abort();
+      if (fr.posX.size() != fr.ids.size() || fr.clip.size() != fr.ids.size() || fr.phase.size() != fr.ids.size() ||
+          fr.mode.size() != fr.ids.size()) {
+        std::abort();
+      }
+    }
+  }
   removeFiles(path);
   return 0;
 }

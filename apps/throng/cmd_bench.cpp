@@ -36,7 +36,7 @@
 #include "throng/bench/detour_crowd_baseline.hpp"
 #include "throng/bench/scenarios.hpp"
 #include "throng/core/parallel.hpp"
-#include "throng/io/recorder.hpp"
+#include "throng/recording/recorder.hpp"
 #include "throng/io/scenario_loader.hpp"
 #include "throng/sim/world.hpp"
 

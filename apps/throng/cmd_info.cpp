@@ -7,7 +7,7 @@
 
 #include "commands.hpp"
 #include "output.hpp"
-#include "throng/io/recorder.hpp"
+#include "throng/recording/recorder.hpp"
 
 namespace throng::cli {
 

@@ -11,7 +11,7 @@
 #include "commands.hpp"
 #include "output.hpp"
 #include "progress.hpp"
-#include "throng/io/recording_social.hpp"
+#include "throng/recording/recording_social.hpp"
 #include "validators.hpp"
 
 namespace throng::cli {

@@ -24,7 +24,7 @@
 #include "stall_tracker.hpp"
 #include "validators.hpp"
 #include "throng/core/parallel.hpp"
-#include "throng/io/recorder.hpp"
+#include "throng/recording/recorder.hpp"
 #include "throng/io/scenario_loader.hpp"
 #include "throng/sim/world.hpp"
 #if THRONG_HAVE_MPI

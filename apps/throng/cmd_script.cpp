@@ -15,8 +15,8 @@
 
 #include "commands.hpp"
 #include "output.hpp"
-#include "throng/io/recorder.hpp"
-#include "throng/io/recording_social.hpp"
+#include "throng/recording/recorder.hpp"
+#include "throng/recording/recording_social.hpp"
 
 namespace throng::cli {
 namespace {

@@ -1,5 +1,5 @@
 // End-to-end tests of `throng script` and `throng metrics` on the hand-built Common Ground
-// recording of tests/io/social_recording_fixture.hpp: text and JSON output, exit codes for an
+// recording of tests/recording/social_recording_fixture.hpp: text and JSON output, exit codes for an
 // unknown agent (1), bad flags (2) and a recording without Common Ground tables (1).
 #include <gtest/gtest.h>
 #include <sqlite3.h>

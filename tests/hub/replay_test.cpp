@@ -15,7 +15,7 @@
 
 #include "throng/core/parallel.hpp"
 #include "throng/hub/replay.hpp"
-#include "throng/io/recorder.hpp"
+#include "throng/recording/recorder.hpp"
 #include "throng/io/scenario_loader.hpp"
 #include "throng/sim/world.hpp"
 

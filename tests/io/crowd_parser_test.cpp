@@ -191,7 +191,7 @@ TEST(CrowdParser, TheWorldOverloadSeesInsertedCrowds) {
 }
 
 TEST(ScenarioTimeline, CrowdFilesAreLoadedAndChecked) {
-  test::TempDir dir;
+  throng::test::TempDir dir;
   const std::filesystem::path root = dir.path();
   std::filesystem::create_directories(root / "crowds");
   std::ofstream(root / "crowds" / "tour.json") << kGood;

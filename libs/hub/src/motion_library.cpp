@@ -9,13 +9,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::shared_ptr<const io::MotionClip> loadClip(const fs::path& path, std::vector<std::string>& warnings) {
-  auto clip = io::loadBvhFile(path.string());
+std::shared_ptr<const motion::MotionClip> loadClip(const fs::path& path, std::vector<std::string>& warnings) {
+  auto clip = motion::loadBvhFile(path.string());
   if (!clip.ok()) {
     warnings.push_back(clip.errors().front().format());
     return nullptr;
   }
-  return std::make_shared<const io::MotionClip>(std::move(clip).value());
+  return std::make_shared<const motion::MotionClip>(std::move(clip).value());
 }
 
 }  // namespace
@@ -27,7 +27,7 @@ MotionLibrary MotionLibrary::load(const io::LoadedScenario& scenario, const fs::
   const std::string motionsDir = scenario.desc.social.motions.empty() ? std::string("motions") : scenario.desc.social.motions;
   for (const sim::ClipInfo& info : lib.clips_) {
     fs::path file;
-    std::shared_ptr<const io::MotionClip> motion;
+    std::shared_ptr<const motion::MotionClip> motion;
     if (auto it = scenario.clips.find(info.file); !info.file.empty() && it != scenario.clips.end()) {
       file = scenarioDir / info.file;
       motion = it->second;
@@ -47,11 +47,11 @@ MotionLibrary MotionLibrary::load(const io::LoadedScenario& scenario, const fs::
     lib.motions_.push_back(std::move(motion));
   }
   // The skeleton: that of the walk clip, else of the first clip that loaded.
-  const io::MotionClip* reference = nullptr;
+  const motion::MotionClip* reference = nullptr;
   if (lib.motions_.size() > sim::kClipWalk && lib.motions_[sim::kClipWalk]) reference = lib.motions_[sim::kClipWalk].get();
   for (std::size_t i = 0; reference == nullptr && i < lib.motions_.size(); ++i) reference = lib.motions_[i].get();
   if (reference != nullptr) {
-    for (const io::MotionClip::Joint& j : reference->joints) {
+    for (const motion::MotionClip::Joint& j : reference->joints) {
       lib.skeleton_.names.push_back(j.name);
       lib.skeleton_.parents.push_back(j.parent);
       lib.skeleton_.offsets.push_back(j.offset);
@@ -64,13 +64,13 @@ MotionLibrary MotionLibrary::load(const io::LoadedScenario& scenario, const fs::
       for (std::size_t j = 0; j < cols.size(); ++j) {
         const int index = motion->findJoint(lib.skeleton_.names[j]);
         if (index < 0) continue;
-        const io::MotionClip::Joint& joint = motion->joints[static_cast<std::size_t>(index)];
+        const motion::MotionClip::Joint& joint = motion->joints[static_cast<std::size_t>(index)];
         for (std::size_t c = 0; c < joint.channels.size(); ++c) {
           const int column = static_cast<int>(joint.firstChannel + c);
           switch (joint.channels[c]) {
-            case io::MotionChannel::Xrotation: cols[j][0] = column; break;
-            case io::MotionChannel::Yrotation: cols[j][1] = column; break;
-            case io::MotionChannel::Zrotation: cols[j][2] = column; break;
+            case motion::MotionChannel::Xrotation: cols[j][0] = column; break;
+            case motion::MotionChannel::Yrotation: cols[j][1] = column; break;
+            case motion::MotionChannel::Zrotation: cols[j][2] = column; break;
             default: break;
           }
         }
@@ -84,7 +84,7 @@ MotionLibrary MotionLibrary::load(const io::LoadedScenario& scenario, const fs::
 void MotionLibrary::sample(std::uint16_t clip, float phase, std::span<float> out) const {
   std::fill(out.begin(), out.end(), 0.0f);
   if (clip >= motions_.size() || !motions_[clip]) return;
-  const io::MotionClip& motion = *motions_[clip];
+  const motion::MotionClip& motion = *motions_[clip];
   const float p = std::isfinite(phase) ? std::clamp(phase, 0.0f, 1.0f) : 0.0f;
   const std::size_t frame = std::min(motion.frameCount - 1, static_cast<std::size_t>(p * static_cast<float>(motion.frameCount)));
   const auto& cols = columns_[clip];

@@ -1,5 +1,5 @@
 // throng::io scenario clips — resolves each action point's "clip" against the scenario's
-// directory, loads it with loadBvhFile and fills the point's defaults from it (see
+// directory, loads it with motion::loadBvhFile and fills the point's defaults from it (see
 // scenario_clips.hpp). Reads clip files and one directory tree (bounded); writes the parsed
 // scenario's points, the clip map and diagnostics.
 #include "scenario_clips.hpp"
@@ -62,7 +62,7 @@ std::vector<std::string> clipCandidates(const fs::path& dir) {
 
 /// What happened to one clip path (loaded once, however many points use it).
 struct ClipLoad {
-  std::shared_ptr<const MotionClip> clip;  ///< null when it failed
+  std::shared_ptr<const motion::MotionClip> clip;  ///< null when it failed
   std::string what;                        ///< the failure, said at each point using it
   std::string expected;
   std::string hint;
@@ -128,9 +128,9 @@ class ClipLoader {
       if (!match.empty() && match != clip) load.hint = "did you mean " + quote(match) + "?";
       return load;
     }
-    auto result = loadBvhFile(path.string());
+    auto result = motion::loadBvhFile(path.string());
     if (result.ok()) {
-      load.clip = std::make_shared<const MotionClip>(std::move(result).value());
+      load.clip = std::make_shared<const motion::MotionClip>(std::move(result).value());
       return load;
     }
     const core::Diagnostics& errors = result.errors();

@@ -369,7 +369,6 @@ bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::
 
 ParsedScenario ScenarioReader::run() {
   ParsedScenario out;
-  sim::ScenarioDesc& desc = out.desc;
   const std::size_t before = diags_.size();
   const Json& root = doc_.root();
   if (!isObject(root, "", "a scenario object {\"format\": \"throng/1\", ...}")) return out;
@@ -377,6 +376,26 @@ ParsedScenario ScenarioReader::run() {
             {"$schema", "format", "name", "seed", "duration", "dt", "walkable", "obstacles", "terrain", "points",
              "populations", "steering", "navCellSize", "social", "timeline"},
             "the scenario");
+  readScenarioHeader(root, out.desc);
+  readTiming(root, out.desc);
+  readGeometry(root, out);
+  readPointList(root, out);
+  indexPoints(out.desc);
+  readPopulationList(root, out);
+  if (auto* x = optional(root, "social")) {
+    if (multiLevel_) {
+      refuseOnLevels("/social", "the \"social\" section (Common Ground)", "no \"social\" section next to \"terrain\"", true);
+    } else {
+      readSocial(*x, "/social", out.desc.social);
+    }
+  }
+  if (auto* x = optional(root, "timeline")) readTimeline(*x, "/timeline", out.desc.timeline);
+  checkCategories(out);
+  out.structureOk = diags_.size() == before;
+  return out;
+}
+
+void ScenarioReader::readScenarioHeader(const Json& root, sim::ScenarioDesc& desc) {
   if (auto* x = require(root, "", "format", "\"throng/1\"")) {
     if (readString(*x, "/format", "\"throng/1\"", desc.format) && desc.format != "throng/1") {
       error("/format", "unsupported format " + quote(desc.format), "\"throng/1\"");
@@ -399,6 +418,9 @@ ParsedScenario ScenarioReader::run() {
       desc.seed = static_cast<std::uint64_t>(x->get<std::int64_t>());
     }
   }
+}
+
+void ScenarioReader::readTiming(const Json& root, sim::ScenarioDesc& desc) {
   if (auto* x = optional(root, "duration")) readFloat(*x, "/duration", {0, 1e6, true, "s"}, desc.duration);
   if (auto* x = optional(root, "dt")) readFloat(*x, "/dt", {0.001, 0.5, false, "s"}, desc.dt);
   if (auto* x = optional(root, "navCellSize")) {
@@ -417,46 +439,59 @@ ParsedScenario ScenarioReader::run() {
     error("/duration", "duration " + num(desc.duration) + " s is shorter than one step (dt " + num(desc.dt) + " s)",
           "a number >= dt");
   }
-  if (const Json* terrain = optional(root, "terrain")) {
-    // A multi-level world: its geometry is the terrain's triangles, never 2D polygons.
-    multiLevel_ = true;
-    out.terrainOk = readTerrain(*terrain, "/terrain", desc.terrain);
-    for (const char* key : {"walkable", "obstacles"}) {
-      const Json* x = optional(root, key);
-      if (x == nullptr || (x->is_array() && x->empty())) continue;
-      error(std::string("/") + key,
-            std::string("a multi-level world takes its ") + (key[0] == 'w' ? "walkable surface" : "obstacles") +
-                " from /terrain/" + key,
-            std::string("no \"") + key + "\" (or an empty array) next to \"terrain\"",
-            std::string("move the ") + (key[0] == 'w' ? "floors" : "obstacles") + " into /terrain/" + key + " as triangles",
-            true);
-    }
-  } else {
+}
+
+void ScenarioReader::readGeometry(const Json& root, ParsedScenario& out) {
+  sim::ScenarioDesc& desc = out.desc;
+  const Json* terrain = optional(root, "terrain");
+  if (terrain == nullptr) {
     readPolygonList(root, "walkable", true, desc.walkable, out.walkableOk);
     readPolygonList(root, "obstacles", false, desc.obstacles, out.obstaclesOk);
+    return;
   }
+  // A multi-level world: its geometry is the terrain's triangles, never 2D polygons.
+  multiLevel_ = true;
+  out.terrainOk = readTerrain(*terrain, "/terrain", desc.terrain);
+  for (const char* key : {"walkable", "obstacles"}) {
+    const Json* x = optional(root, key);
+    if (x == nullptr || (x->is_array() && x->empty())) continue;
+    error(std::string("/") + key,
+          std::string("a multi-level world takes its ") + (key[0] == 'w' ? "walkable surface" : "obstacles") +
+              " from /terrain/" + key,
+          std::string("no \"") + key + "\" (or an empty array) next to \"terrain\"",
+          std::string("move the ") + (key[0] == 'w' ? "floors" : "obstacles") + " into /terrain/" + key + " as triangles",
+          true);
+  }
+}
 
-  if (auto* x = optional(root, "points")) {
-    if (!x->is_array()) {
-      error("/points", "wrong type: " + describeType(*x), "an array of point objects");
-    } else if (x->size() > kMaxPoints) {
-      error("/points", std::to_string(x->size()) + " points", "at most " + std::to_string(kMaxPoints) + " points");
-    } else {
-      desc.points.resize(x->size());
-      out.pointsOk.resize(x->size());
-      std::map<std::string, std::size_t> seen;
-      for (std::size_t i = 0; i < x->size(); ++i) {
-        const std::string ptr = "/points/" + std::to_string(i);
-        out.pointsOk[i] = readPoint((*x)[i], ptr, desc.points[i]);
-        const std::string& id = desc.points[i].id;
-        if (id.empty()) continue;
-        if (auto [it, fresh] = seen.emplace(id, i); !fresh) {
-          error(ptr + "/id", "duplicate point id " + quote(id), "ids unique within /points",
-                "first used at /points/" + std::to_string(it->second));
-        }
-      }
+void ScenarioReader::readPointList(const Json& root, ParsedScenario& out) {
+  sim::ScenarioDesc& desc = out.desc;
+  auto* x = optional(root, "points");
+  if (x == nullptr) return;
+  if (!x->is_array()) {
+    error("/points", "wrong type: " + describeType(*x), "an array of point objects");
+    return;
+  }
+  if (x->size() > kMaxPoints) {
+    error("/points", std::to_string(x->size()) + " points", "at most " + std::to_string(kMaxPoints) + " points");
+    return;
+  }
+  desc.points.resize(x->size());
+  out.pointsOk.resize(x->size());
+  std::map<std::string, std::size_t> seen;
+  for (std::size_t i = 0; i < x->size(); ++i) {
+    const std::string ptr = "/points/" + std::to_string(i);
+    out.pointsOk[i] = readPoint((*x)[i], ptr, desc.points[i]);
+    const std::string& id = desc.points[i].id;
+    if (id.empty()) continue;
+    if (auto [it, fresh] = seen.emplace(id, i); !fresh) {
+      error(ptr + "/id", "duplicate point id " + quote(id), "ids unique within /points",
+            "first used at /points/" + std::to_string(it->second));
     }
   }
+}
+
+void ScenarioReader::indexPoints(const sim::ScenarioDesc& desc) {
   pointIds_.clear();
   indexedIds_ = nullptr;  // resolvePoint re-hashes the new list
   pointHeights_.clear();
@@ -465,40 +500,34 @@ ParsedScenario ScenarioReader::run() {
     pointHeights_.push_back(p.height);
     hasActionPoint_ = hasActionPoint_ || p.kind == sim::PointKind::Action;
   }
+}
 
+void ScenarioReader::readPopulationList(const Json& root, ParsedScenario& out) {
+  sim::ScenarioDesc& desc = out.desc;
   const std::string popExpected = "an array of population objects";
-  if (auto* x = require(root, "", "populations", popExpected)) {
-    if (!x->is_array()) {
-      error("/populations", "wrong type: " + describeType(*x), popExpected);
-    } else if (x->size() > kMaxPopulations) {
-      error("/populations", std::to_string(x->size()) + " populations",
-            "at most " + std::to_string(kMaxPopulations) + " populations (give one population more groups)");
-    } else {
-      desc.populations.resize(x->size());
-      out.populationsOk.resize(x->size());
-      std::map<std::string, std::size_t> seen;
-      for (std::size_t i = 0; i < x->size(); ++i) {
-        const std::string ptr = "/populations/" + std::to_string(i);
-        out.populationsOk[i] = readPopulation((*x)[i], ptr, i, desc.populations[i]);
-        if (auto [it, fresh] = seen.emplace(desc.populations[i].id, i); !fresh) {
-          error(ptr + "/id", "duplicate population id " + quote(desc.populations[i].id), "ids unique within /populations",
-                "first used at /populations/" + std::to_string(it->second));
-        }
-      }
-      resolveFollows(out);
+  auto* x = require(root, "", "populations", popExpected);
+  if (x == nullptr) return;
+  if (!x->is_array()) {
+    error("/populations", "wrong type: " + describeType(*x), popExpected);
+    return;
+  }
+  if (x->size() > kMaxPopulations) {
+    error("/populations", std::to_string(x->size()) + " populations",
+          "at most " + std::to_string(kMaxPopulations) + " populations (give one population more groups)");
+    return;
+  }
+  desc.populations.resize(x->size());
+  out.populationsOk.resize(x->size());
+  std::map<std::string, std::size_t> seen;
+  for (std::size_t i = 0; i < x->size(); ++i) {
+    const std::string ptr = "/populations/" + std::to_string(i);
+    out.populationsOk[i] = readPopulation((*x)[i], ptr, i, desc.populations[i]);
+    if (auto [it, fresh] = seen.emplace(desc.populations[i].id, i); !fresh) {
+      error(ptr + "/id", "duplicate population id " + quote(desc.populations[i].id), "ids unique within /populations",
+            "first used at /populations/" + std::to_string(it->second));
     }
   }
-  if (auto* x = optional(root, "social")) {
-    if (multiLevel_) {
-      refuseOnLevels("/social", "the \"social\" section (Common Ground)", "no \"social\" section next to \"terrain\"", true);
-    } else {
-      readSocial(*x, "/social", desc.social);
-    }
-  }
-  if (auto* x = optional(root, "timeline")) readTimeline(*x, "/timeline", desc.timeline);
-  checkCategories(out);
-  out.structureOk = diags_.size() == before;
-  return out;
+  resolveFollows(out);
 }
 
 }  // namespace detail

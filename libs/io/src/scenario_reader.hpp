@@ -19,6 +19,7 @@
 
 #include "json_document.hpp"
 #include "scenario_parser.hpp"
+#include "throng/sim/animation.hpp"
 #include "throng/core/text.hpp"
 
 namespace throng::io::detail {
@@ -67,6 +68,27 @@ class ScenarioReader {
                           const std::vector<std::string>& takenPopulations, std::string& crowdId);
 
  private:
+  // The steps of run() (scenario_parser.cpp), in order.
+  void readScenarioHeader(const Json& root, sim::ScenarioDesc& desc);  ///< format, $schema, name, seed
+  void readTiming(const Json& root, sim::ScenarioDesc& desc);          ///< duration, dt, navCellSize, steering
+  void readGeometry(const Json& root, ParsedScenario& out);            ///< walkable + obstacles, or terrain
+  void readPointList(const Json& root, ParsedScenario& out);
+  /// The point ids and heights that goals and spawns resolve against (run and runCrowd).
+  void indexPoints(const sim::ScenarioDesc& desc);
+  void readPopulationList(const Json& root, ParsedScenario& out);
+  // The steps of runCrowd() (crowd_parser.cpp), in order.
+  void readCrowdHeader(const Json& root, std::string& crowdId);  ///< format, $schema, id
+  void adoptWorld(const sim::ScenarioDesc& world, ParsedScenario& out);
+  void readCrowdPointList(const Json& root, const sim::ScenarioDesc& world, const std::vector<std::string>& takenPoints,
+                          ParsedScenario& out);
+  /// A stopping action point of a crowd must play an action the world already has a clip for.
+  void checkCrowdAction(const Json& v, const std::string& ptr, const sim::PointDesc& p,
+                        const std::vector<sim::ClipInfo>& clips);
+  void readCrowdPopulationList(const Json& root, const sim::ScenarioDesc& world,
+                               const std::vector<std::string>& takenPopulations, ParsedScenario& out);
+  /// "follow" names a population of the world or of the crowd file.
+  void resolveCrowdFollows(const sim::ScenarioDesc& world, ParsedScenario& out);
+
   void error(const std::string& ptr, std::string what, std::string expected, std::string hint = {}, bool atKey = false) {
     diags_.push_back(doc_.diagnostic(ptr, std::move(what), std::move(expected), std::move(hint), atKey));
   }

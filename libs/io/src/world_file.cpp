@@ -20,7 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gltf_scene.hpp"
-#include "world_footprint.hpp"
+#include "throng/core/footprint.hpp"
 
 namespace throng::io {
 
@@ -81,7 +81,7 @@ class WorldBuilder {
       root["populations"] = std::move(populations_);
       return root;
     }
-    Footprint floor = unionOfTriangles(floorTriangles_);
+    core::Footprint floor = core::unionOfTriangles(floorTriangles_);
     if (!walkableNodes_.empty() && floor.outer.empty()) {
       error("", "the walkable meshes cover no area on the ground plane", "floor triangles that are not vertical");
     }
@@ -392,7 +392,7 @@ class WorldBuilder {
       walkableNodes_.push_back(&n);
       floorTriangles_.insert(floorTriangles_.end(), tris.begin(), tris.end());
     } else {
-      Footprint fp = unionOfTriangles(tris);
+      core::Footprint fp = core::unionOfTriangles(tris);
       if (fp.outer.empty()) error(label, "the obstacle mesh covers no area on the ground plane", "a mesh with a footprint");
       obstacleFootprints_.emplace_back(label, std::move(fp));
     }
@@ -473,7 +473,7 @@ class WorldBuilder {
   std::string sceneLabel_ = "the scene";
   std::vector<const GltfNode*> walkableNodes_;
   std::vector<std::array<core::Vec2, 3>> floorTriangles_;
-  std::vector<std::pair<std::string, Footprint>> obstacleFootprints_;
+  std::vector<std::pair<std::string, core::Footprint>> obstacleFootprints_;
   // Multi-level worlds: walkable heights seen, and the terrain (ground x, y, height z).
   double minHeight_ = std::numeric_limits<double>::infinity();
   double maxHeight_ = -std::numeric_limits<double>::infinity();

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "throng/io/bvh.hpp"
+#include "throng/motion/bvh.hpp"
 #include "throng/io/scenario_loader.hpp"
 #include "throng/sim/animation.hpp"
 
@@ -49,7 +49,7 @@ class MotionLibrary {
   Skeleton skeleton_;
   std::vector<sim::ClipInfo> clips_;
   std::vector<std::filesystem::path> files_;
-  std::vector<std::shared_ptr<const io::MotionClip>> motions_;  ///< null: no samples
+  std::vector<std::shared_ptr<const motion::MotionClip>> motions_;  ///< null: no samples
   /// Per clip, per skeleton joint, the columns of its X, Y and Z rotation channels (-1: none).
   std::vector<std::vector<std::array<int, 3>>> columns_;
 };

@@ -1,7 +1,7 @@
 // throng::hub replay — what `throng serve FILE.sqlite` plays instead of a live simulation: Replay
 // reads a recording written by `throng run` (JuPedSim trajectory tables + throng's tables,
 // docs/recording-format.md) into memory and hands out its frames by time; ReplayClock is the
-// timeline that ReplayControl messages drive (play, pause, seek, speed). Reads the SQLite file
+// timeline that ReplayControl messages drive (play, pause, seek, speed). Reads the recording
 // once, at open; writes nothing.
 #pragma once
 #include <cstddef>

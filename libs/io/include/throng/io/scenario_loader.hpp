@@ -9,7 +9,7 @@
 #include <string_view>
 
 #include "throng/core/result.hpp"
-#include "throng/io/bvh.hpp"
+#include "throng/motion/bvh.hpp"
 #include "throng/nav/navmesh.hpp"
 #include "throng/sim/scenario.hpp"
 
@@ -17,7 +17,7 @@ namespace throng::io {
 
 /// Motion clips of a scenario's action points, keyed by sim::PointDesc::clip (the path as written
 /// in the scenario); each file is loaded once however many points use it.
-using MotionClips = std::map<std::string, std::shared_ptr<const MotionClip>>;
+using MotionClips = std::map<std::string, std::shared_ptr<const motion::MotionClip>>;
 
 struct LoadedScenario {
   sim::ScenarioDesc desc;

@@ -1,6 +1,7 @@
-// throng::io Common Ground reader helpers — shared by recording_social.cpp (coordinations, scripts,
-// tracks) and recording_metrics.cpp (metrics): opening a recording read-only with the checks every
-// reader makes, table/column probes, NULL-aware column access and the diagnostics they give.
+// throng::io recording reader helpers — shared by recording_social.cpp (coordinations, scripts,
+// tracks), the metrics queries and frame_reader.cpp (frames for replay): opening a recording
+// read-only with the checks every reader makes, table/column probes, metadata values, NULL-aware
+// column access and the diagnostics they give.
 #pragma once
 #include <sqlite3.h>
 

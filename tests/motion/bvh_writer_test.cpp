@@ -1,4 +1,4 @@
-// Tests for libs/io/src/bvh_writer.cpp and the bundled motion library (scenarios/motions/, made by
+// Tests for libs/motion/src/bvh_writer.cpp and the bundled motion library (scenarios/motions/, made by
 // scripts/generate_motions.py, documented in docs/motion-library.md): every clip loads with its
 // documented duration and moves as described; writeBvh → parseBvh is exact for every bundled clip
 // and for awkward numbers; saveBvhFile writes atomically and reports failures naming the path.
@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "throng/io/bvh.hpp"
-#include "throng/io/bvh_writer.hpp"
+#include "throng/motion/bvh.hpp"
+#include "throng/motion/bvh_writer.hpp"
 
 using namespace throng;
 namespace fs = std::filesystem;
@@ -29,14 +29,14 @@ const std::map<std::string, double> kLibrary = {
     {"wave", 1.60},     {"call_out", 1.20},     {"look_at", 1.20},    {"nod", 0.80},
     {"point_toward", 1.40}, {"point_down", 1.20}, {"talk", 2.00}};
 
-io::MotionClip load(const std::string& name) {
-  auto r = io::loadBvhFile(kMotions + name + ".bvh");
+motion::MotionClip load(const std::string& name) {
+  auto r = motion::loadBvhFile(kMotions + name + ".bvh");
   EXPECT_TRUE(r.ok()) << (r.ok() ? "" : core::formatAll(r.errors()));
-  return r.ok() ? std::move(r).value() : io::MotionClip{};
+  return r.ok() ? std::move(r).value() : motion::MotionClip{};
 }
 
 /// Column of `joint`'s channel `k` (bundled clips: Zrotation Xrotation Yrotation after the root's positions).
-std::size_t column(const io::MotionClip& clip, const std::string& joint, std::size_t k) {
+std::size_t column(const motion::MotionClip& clip, const std::string& joint, std::size_t k) {
   const int j = clip.findJoint(joint);
   EXPECT_GE(j, 0) << joint;
   return j < 0 ? 0 : clip.joints[static_cast<std::size_t>(j)].firstChannel + k;
@@ -45,13 +45,13 @@ constexpr std::size_t kZ = 0, kX = 1, kY = 2;  // rotation channels of a non-roo
 constexpr std::size_t kRootY = 5;               // root: X Y Z position, then Z X Y rotation
 
 /// Largest |value| difference of any channel between frames a and b.
-float frameDistance(const io::MotionClip& clip, std::size_t a, std::size_t b) {
+float frameDistance(const motion::MotionClip& clip, std::size_t a, std::size_t b) {
   float d = 0.0f;
   for (std::size_t c = 0; c < clip.channelCount; ++c) d = std::max(d, std::fabs(clip.value(a, c) - clip.value(b, c)));
   return d;
 }
 
-void expectSameClip(const io::MotionClip& a, const io::MotionClip& b) {
+void expectSameClip(const motion::MotionClip& a, const motion::MotionClip& b) {
   EXPECT_EQ(a.name, b.name);
   ASSERT_EQ(a.joints.size(), b.joints.size());
   for (std::size_t j = 0; j < a.joints.size(); ++j) {
@@ -119,10 +119,10 @@ Frame Time: 0.0333333
 1 1.5 2 3 4 5 11 21
 )";
 
-io::MotionClip smallClip() {
-  auto r = io::parseBvh(kSmallClipText, "tmp/small.bvh");
+motion::MotionClip smallClip() {
+  auto r = motion::parseBvh(kSmallClipText, "tmp/small.bvh");
   EXPECT_TRUE(r.ok()) << (r.ok() ? "" : core::formatAll(r.errors()));
-  return r.ok() ? std::move(r).value() : io::MotionClip{};
+  return r.ok() ? std::move(r).value() : motion::MotionClip{};
 }
 
 }  // namespace
@@ -135,7 +135,7 @@ TEST(MotionLibrary, EveryBundledClipLoadsWithItsDocumentedDuration) {
                                           "l_elbow",      "l_wrist",    "r_shoulder", "r_elbow",   "r_wrist"};
   for (const auto& [name, duration] : kLibrary) {
     SCOPED_TRACE(name);
-    const io::MotionClip clip = load(name);
+    const motion::MotionClip clip = load(name);
     EXPECT_EQ(clip.name, name);
     EXPECT_DOUBLE_EQ(clip.frameTime, 0.04);  // 25 frames per second
     EXPECT_NEAR(clip.duration(), duration, 1e-9);
@@ -153,7 +153,7 @@ TEST(MotionLibrary, EveryBundledClipLoadsWithItsDocumentedDuration) {
 TEST(MotionLibrary, ClipsAreSmoothAndGesturesStartAndEndAtRest) {
   for (const auto& [name, duration] : kLibrary) {
     SCOPED_TRACE(name);
-    const io::MotionClip clip = load(name);
+    const motion::MotionClip clip = load(name);
     ASSERT_GT(clip.frameCount, 1u);
     // Eased keyframes: no rotation jumps more than 18° between frames, no root move over 2 cm.
     for (std::size_t f = 1; f < clip.frameCount; ++f) {
@@ -164,29 +164,29 @@ TEST(MotionLibrary, ClipsAreSmoothAndGesturesStartAndEndAtRest) {
     }
   }
   // Gestures played once return to the pose they started in (the rest pose, shared by all).
-  const io::MotionClip wave = load("wave");
+  const motion::MotionClip wave = load("wave");
   for (const std::string name : {"wave", "call_out", "nod", "point_toward", "point_down"}) {
     SCOPED_TRACE(name);
-    const io::MotionClip clip = load(name);
+    const motion::MotionClip clip = load(name);
     EXPECT_LT(frameDistance(clip, 0, clip.frameCount - 1), 1e-3f);
     for (std::size_t c = 0; c < clip.channelCount; ++c) EXPECT_NEAR(clip.value(0, c), wave.value(0, c), 1e-3f) << c;
   }
   // talk loops like idle and walk: its last frame is one ordinary step away from its first.
-  const io::MotionClip talk = load("talk");
+  const motion::MotionClip talk = load("talk");
   EXPECT_LT(frameDistance(talk, talk.frameCount - 1, 0), 8.0f);
 }
 
 TEST(MotionLibrary, ClipsMoveAsDocumented) {
-  const auto mid = [](const io::MotionClip& c) { return c.frameCount / 2; };
+  const auto mid = [](const motion::MotionClip& c) { return c.frameCount / 2; };
   {  // turn: the root ends rotated 90° to the left (positive Y), in place.
-    const io::MotionClip c = load("turn");
+    const motion::MotionClip c = load("turn");
     EXPECT_NEAR(c.value(0, kRootY), 0.0f, 1e-3f);
     EXPECT_NEAR(c.value(c.frameCount - 1, kRootY), 90.0f, 1e-3f);
     EXPECT_NEAR(c.value(c.frameCount - 1, 0), 0.0f, 1e-3f);
     EXPECT_NEAR(c.value(c.frameCount - 1, 2), 0.0f, 1e-3f);
   }
   {  // wave: right upper arm out to the side, forearm up, elbow angle oscillating.
-    const io::MotionClip c = load("wave");
+    const motion::MotionClip c = load("wave");
     EXPECT_LT(c.value(mid(c), column(c, "r_shoulder", kZ)), -80.0f);
     const std::size_t elbow = column(c, "r_elbow", kZ);
     float lo = 0.0f, hi = -180.0f;
@@ -197,36 +197,36 @@ TEST(MotionLibrary, ClipsMoveAsDocumented) {
     EXPECT_GT(hi - lo, 25.0f);
   }
   {  // call_out: both arms forward and folded up to the mouth.
-    const io::MotionClip c = load("call_out");
+    const motion::MotionClip c = load("call_out");
     for (const std::string side : {"l", "r"}) {
       EXPECT_LT(c.value(mid(c), column(c, side + "_shoulder", kX)), -50.0f) << side;
       EXPECT_LT(c.value(mid(c), column(c, side + "_elbow", kX)), -120.0f) << side;
     }
   }
   {  // look_at: the head turns left and holds to the last frame.
-    const io::MotionClip c = load("look_at");
+    const motion::MotionClip c = load("look_at");
     EXPECT_GT(c.value(c.frameCount - 1, column(c, "skullbase", kY)), 35.0f);
     EXPECT_NEAR(c.value(c.frameCount - 1, column(c, "skullbase", kY)), c.value(mid(c), column(c, "skullbase", kY)), 1.0f);
   }
   {  // nod: chin down (positive X) early in the clip.
-    const io::MotionClip c = load("nod");
+    const motion::MotionClip c = load("nod");
     float peak = 0.0f;
     for (std::size_t f = 0; f < c.frameCount; ++f) peak = std::max(peak, c.value(f, column(c, "skullbase", kX)));
     EXPECT_GT(peak, 12.0f);
   }
   {  // point_toward: the right arm forward at shoulder height, elbow nearly straight.
-    const io::MotionClip c = load("point_toward");
+    const motion::MotionClip c = load("point_toward");
     EXPECT_LT(c.value(mid(c), column(c, "r_shoulder", kX)), -80.0f);
     EXPECT_GT(c.value(mid(c), column(c, "r_elbow", kX)), -5.0f);
   }
   {  // point_down: the right arm forward-down, the head looks down.
-    const io::MotionClip c = load("point_down");
+    const motion::MotionClip c = load("point_down");
     EXPECT_LT(c.value(mid(c), column(c, "r_shoulder", kX)), -35.0f);
     EXPECT_GT(c.value(mid(c), column(c, "r_shoulder", kX)), -60.0f);
     EXPECT_GT(c.value(mid(c), column(c, "skullbase", kX)), 15.0f);
   }
   {  // talk: forearms raised throughout.
-    const io::MotionClip c = load("talk");
+    const motion::MotionClip c = load("talk");
     for (std::size_t f = 0; f < c.frameCount; ++f) EXPECT_LT(c.value(f, column(c, "r_elbow", kX)), -25.0f) << f;
   }
 }
@@ -236,22 +236,22 @@ TEST(MotionLibrary, ClipsMoveAsDocumented) {
 TEST(BvhWriter, EveryBundledClipRoundTripsExactly) {
   for (const auto& [name, duration] : kLibrary) {
     SCOPED_TRACE(name);
-    const io::MotionClip clip = load(name);
-    const std::string text = io::writeBvh(clip);
-    auto again = io::parseBvh(text, "elsewhere/" + name + ".bvh");
+    const motion::MotionClip clip = load(name);
+    const std::string text = motion::writeBvh(clip);
+    auto again = motion::parseBvh(text, "elsewhere/" + name + ".bvh");
     ASSERT_TRUE(again.ok()) << core::formatAll(again.errors());
     expectSameClip(clip, *again);
-    EXPECT_EQ(io::writeBvh(*again), text);  // writing is deterministic and stable
+    EXPECT_EQ(motion::writeBvh(*again), text);  // writing is deterministic and stable
   }
 }
 
 TEST(BvhWriter, WritesTheDocumentedLayout) {
-  const std::string text = io::writeBvh(smallClip());
+  const std::string text = motion::writeBvh(smallClip());
   EXPECT_EQ(text, kSmallClipText);
 }
 
 TEST(BvhWriter, AwkwardNumbersRoundTripExactly) {
-  io::MotionClip clip = smallClip();
+  motion::MotionClip clip = smallClip();
   const std::vector<float> awkward = {-0.0f, 1e-7f, 123456.789f, 1e9f, -1e9f, 1.17549435e-38f, 3.4028e-30f,
                                       0.1f, 1.0f / 3.0f, -2.0f / 7.0f, 16777217.0f, 0.95f, 1e-45f, 9.99999e8f};
   clip.frameCount = awkward.size();
@@ -261,25 +261,25 @@ TEST(BvhWriter, AwkwardNumbersRoundTripExactly) {
   }
   clip.frameTime = 1.0 / 30.0;
   clip.joints[2].offset = {1.0f / 3.0f, -1e-6f, 7.25f};
-  ASSERT_TRUE(io::checkMotionClip(clip, "x").ok());
-  auto again = io::parseBvh(io::writeBvh(clip), "tmp/small.bvh");
+  ASSERT_TRUE(motion::checkMotionClip(clip, "x").ok());
+  auto again = motion::parseBvh(motion::writeBvh(clip), "tmp/small.bvh");
   ASSERT_TRUE(again.ok()) << core::formatAll(again.errors());
   expectSameClip(clip, *again);
-  EXPECT_EQ(io::writeBvh(clip).find("-0 "), std::string::npos);  // -0 is written as 0
+  EXPECT_EQ(motion::writeBvh(clip).find("-0 "), std::string::npos);  // -0 is written as 0
 }
 
 TEST(BvhWriter, CheckReportsClipsThatCannotBeWritten) {
-  const io::MotionClip good = smallClip();
-  const core::Status goodStatus = io::checkMotionClip(good, "out.bvh");
+  const motion::MotionClip good = smallClip();
+  const core::Status goodStatus = motion::checkMotionClip(good, "out.bvh");
   ASSERT_TRUE(goodStatus.ok()) << core::formatAll(goodStatus.errors());
-  const auto firstError = [](const io::MotionClip& c) {
-    auto s = io::checkMotionClip(c, "out.bvh");
+  const auto firstError = [](const motion::MotionClip& c) {
+    auto s = motion::checkMotionClip(c, "out.bvh");
     EXPECT_FALSE(s.ok());
     if (s.ok()) return core::Diagnostic{};
     EXPECT_EQ(s.errors()[0].source, "out.bvh");
     return s.errors()[0];
   };
-  io::MotionClip c = good;
+  motion::MotionClip c = good;
   c.joints[1].name = "two words";
   EXPECT_NE(firstError(c).what.find("\"two words\""), std::string::npos);
   c = good;
@@ -298,7 +298,7 @@ TEST(BvhWriter, CheckReportsClipsThatCannotBeWritten) {
   c.frameTime = 0.0;
   EXPECT_NE(firstError(c).what.find("frame time"), std::string::npos);
   c = good;
-  c.joints[2].channels.push_back(io::MotionChannel::Xrotation);
+  c.joints[2].channels.push_back(motion::MotionChannel::Xrotation);
   EXPECT_NE(firstError(c).what.find("twice"), std::string::npos);
 }
 
@@ -308,11 +308,11 @@ TEST(BvhWriter, SaveWritesAFileThatLoadsBackAndReplacesAnOldOne) {
   const fs::path dir = scratchDir("save");
   const std::string path = (dir / "wave.bvh").string();
   { std::ofstream(path) << "old contents"; }
-  const io::MotionClip wave = load("wave");
-  const core::Status saved = io::saveBvhFile(path, wave);
+  const motion::MotionClip wave = load("wave");
+  const core::Status saved = motion::saveBvhFile(path, wave);
   ASSERT_TRUE(saved.ok()) << core::formatAll(saved.errors());
   EXPECT_EQ(filesIn(dir), std::vector<std::string>{"wave.bvh"});  // no temporary file left
-  auto loaded = io::loadBvhFile(path);
+  auto loaded = motion::loadBvhFile(path);
   ASSERT_TRUE(loaded.ok()) << core::formatAll(loaded.errors());
   expectSameClip(wave, *loaded);
   const auto perms = fs::status(path).permissions();
@@ -321,11 +321,11 @@ TEST(BvhWriter, SaveWritesAFileThatLoadsBackAndReplacesAnOldOne) {
 
 TEST(BvhWriter, SaveToAnUnwritablePathNamesItAndLeavesNoFile) {
   const fs::path dir = scratchDir("unwritable");
-  const io::MotionClip nod = load("nod");
+  const motion::MotionClip nod = load("nod");
 
   // A directory that does not exist.
   const std::string missing = (dir / "no_such_dir" / "nod.bvh").string();
-  const core::Status s = io::saveBvhFile(missing, nod);
+  const core::Status s = motion::saveBvhFile(missing, nod);
   ASSERT_FALSE(s.ok());
   ASSERT_EQ(s.errors().size(), 1u);
   EXPECT_EQ(s.errors()[0].source, missing);
@@ -338,7 +338,7 @@ TEST(BvhWriter, SaveToAnUnwritablePathNamesItAndLeavesNoFile) {
   // The path is a directory: the rename fails; the directory and its folder are left as they were.
   const fs::path taken = dir / "taken.bvh";
   fs::create_directories(taken / "inside");
-  const core::Status t = io::saveBvhFile(taken.string(), nod);
+  const core::Status t = motion::saveBvhFile(taken.string(), nod);
   ASSERT_FALSE(t.ok());
   EXPECT_EQ(t.errors()[0].source, taken.string());
   EXPECT_NE(t.errors()[0].what.find("rename"), std::string::npos) << t.errors()[0].format();
@@ -346,15 +346,15 @@ TEST(BvhWriter, SaveToAnUnwritablePathNamesItAndLeavesNoFile) {
   EXPECT_EQ(filesIn(dir), std::vector<std::string>{"taken.bvh"});
 
   // Not a file path at all.
-  const core::Status e = io::saveBvhFile((dir / "").string(), nod);
+  const core::Status e = motion::saveBvhFile((dir / "").string(), nod);
   ASSERT_FALSE(e.ok());
   EXPECT_EQ(filesIn(dir), std::vector<std::string>{"taken.bvh"});
 
   // A clip that cannot be written: no file either.
-  io::MotionClip broken = nod;
+  motion::MotionClip broken = nod;
   broken.values.resize(3);
   const std::string brokenPath = (dir / "broken.bvh").string();
-  const core::Status b = io::saveBvhFile(brokenPath, broken);
+  const core::Status b = motion::saveBvhFile(brokenPath, broken);
   ASSERT_FALSE(b.ok());
   EXPECT_EQ(b.errors()[0].source, brokenPath);
   EXPECT_FALSE(fs::exists(brokenPath));

@@ -1,4 +1,4 @@
-// A temporary directory for the io tests (recordings, damaged databases), removed with everything
+// A temporary directory for tests (recordings, damaged databases, files to load), removed with everything
 // in it when the test ends, even where a test made it read-only.
 #pragma once
 #include <stdlib.h>
@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-namespace throng::io::test {
+namespace throng::test {
 
 class TempDir {
  public:
@@ -28,4 +28,4 @@ class TempDir {
   std::string path_;
 };
 
-}  // namespace throng::io::test
+}  // namespace throng::test

@@ -2,7 +2,7 @@
 // readCoordinationScript and readAgentTrack (recording_social.hpp): read `throng_coordinations`,
 // `throng_script`, `trajectory_data`, `throng_frames`, `throng_animation` and `throng_points`
 // read-only and check every enum text and id, naming the table and row of the first bad value.
-#include "throng/io/recording_social.hpp"
+#include "throng/recording/recording_social.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// Tests for throng::io::Recorder (libs/io/src/recorder.cpp, walkable_area_wkt.cpp): the file is
+// Tests for throng::io::Recorder (libs/recording/src/recorder.cpp, walkable_area_wkt.cpp): the file is
 // read back with raw SQL exactly as PedPy and JuPedSim read it, plus throng's own tables, path
 // checks, backpressure and a writer killed mid-run.
 #include <gtest/gtest.h>
@@ -22,14 +22,14 @@
 #include <vector>
 
 #include "temp_dir.hpp"
-#include "throng/io/recorder.hpp"
+#include "throng/recording/recorder.hpp"
 
 namespace throng::io {
 namespace {
 
 namespace fs = std::filesystem;
 
-using test::TempDir;
+using throng::test::TempDir;
 
 /// The bottleneck: a 20 m x 10 m room split by a wall at x = 9..10 with a 1 m gap at y = 4.5..5.5.
 sim::ScenarioDesc bottleneck() {

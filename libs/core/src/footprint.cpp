@@ -1,6 +1,6 @@
-// throng::io world footprints — union of projected triangles with Boost.Geometry (see
-// world_footprint.hpp).
-#include "world_footprint.hpp"
+// throng::core footprints — union of projected triangles with Boost.Geometry (see
+// throng/core/footprint.hpp).
+#include "throng/core/footprint.hpp"
 
 #include <cmath>
 
@@ -9,7 +9,7 @@
 #include <boost/geometry/geometries/point_xy.hpp>
 #include <boost/geometry/geometries/polygon.hpp>
 
-namespace throng::io {
+namespace throng::core {
 
 namespace {
 
@@ -77,4 +77,4 @@ Footprint unionOfTriangles(const std::vector<std::array<core::Vec2, 3>>& triangl
   return out;
 }
 
-}  // namespace throng::io
+}  // namespace throng::core

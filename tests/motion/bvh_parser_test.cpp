@@ -1,19 +1,36 @@
-// Tests for libs/io/src/bvh_parser.cpp: a valid file's hierarchy and values, every class of error
+// Tests for libs/motion/src/bvh_parser.cpp: a valid file's hierarchy and values, every class of error
 // with its line:column, the limits, and the bundled clips in scenarios/motions/.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
+#include <utility>
 
-#include "throng/io/bvh.hpp"
-#include "scenario_test_util.hpp"
+#include "throng/motion/bvh.hpp"
 
 using namespace throng;
-using throng::io::test::posOf;
-using throng::io::test::contains;
-using io::MotionChannel;
+using motion::MotionChannel;
 
 namespace {
+
+/// 1-based line:column of the `nth` occurrence of `needle` in `text` (ASCII: columns count bytes).
+std::pair<int, int> posOf(const std::string& text, const std::string& needle, std::size_t nth = 0) {
+  std::size_t at = text.find(needle);
+  for (std::size_t k = 0; k < nth && at != std::string::npos; ++k) at = text.find(needle, at + 1);
+  EXPECT_NE(at, std::string::npos) << needle;
+  int line = 1, col = 1;
+  for (std::size_t i = 0; i < at && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
+  }
+  return {line, col};
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 const char* kClip = R"(HIERARCHY
 ROOT hips
@@ -50,7 +67,7 @@ std::string edit(std::string text, const std::string& from, const std::string& t
 }
 
 core::Diagnostics errorsOf(const std::string& text) {
-  auto r = io::parseBvh(text, "t.bvh");
+  auto r = motion::parseBvh(text, "t.bvh");
   EXPECT_FALSE(r.ok()) << "expected errors for:\n" << text;
   return r.ok() ? core::Diagnostics{} : r.errors();
 }
@@ -72,9 +89,9 @@ std::string bundled(const std::string& name) { return std::string(THRONG_SOURCE_
 }  // namespace
 
 TEST(BvhParser, ReadsHierarchyChannelsAndValues) {
-  auto r = io::parseBvh(kClip, "motions/demo.bvh");
+  auto r = motion::parseBvh(kClip, "motions/demo.bvh");
   ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
-  const io::MotionClip& clip = *r;
+  const motion::MotionClip& clip = *r;
   EXPECT_EQ(clip.name, "demo");
   ASSERT_EQ(clip.joints.size(), 3u);
   EXPECT_EQ(clip.joints[0].name, "hips");
@@ -93,7 +110,7 @@ TEST(BvhParser, ReadsHierarchyChannelsAndValues) {
   ASSERT_EQ(clip.joints[1].channels.size(), 3u);
   EXPECT_EQ(clip.joints[1].channels[0], MotionChannel::Yrotation);
   EXPECT_EQ(clip.joints[1].channels[2], MotionChannel::Zrotation);
-  EXPECT_EQ(io::channelName(clip.joints[1].channels[1]), "Xrotation");
+  EXPECT_EQ(motion::channelName(clip.joints[1].channels[1]), "Xrotation");
   EXPECT_EQ(clip.joints[0].firstChannel, 0u);
   EXPECT_EQ(clip.joints[1].firstChannel, 6u);
   EXPECT_EQ(clip.joints[2].firstChannel, 9u);
@@ -120,7 +137,7 @@ TEST(BvhParser, AcceptsCrlfTabsBlankLinesAndPlusSigns) {
   text = edit(text, "Frame\tTime:", "Frame Time:");
   text = edit(text, "0\t1\t0\t0\t0\t0\t10", "0\t+1\t0\t0\t0\t0\t10");
   text += "\r\n\r\n";
-  auto r = io::parseBvh(text, "t.bvh");
+  auto r = motion::parseBvh(text, "t.bvh");
   ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
   EXPECT_FLOAT_EQ(r->value(0, 1), 1.0f);
   EXPECT_EQ(r->frameCount, 2u);
@@ -289,18 +306,18 @@ TEST(BvhParser, ColumnsCountCodePoints) {
 }
 
 TEST(BvhParser, FileLimitAndMissingFile) {
-  const std::string huge(io::kMaxBvhBytes + 1, ' ');
+  const std::string huge(motion::kMaxBvhBytes + 1, ' ');
   const auto ds = errorsOf(huge);
   ASSERT_EQ(ds.size(), 1u);
   EXPECT_EQ(ds[0].expected, "at most 67108864 bytes (64 MiB)");
 
-  auto missing = io::loadBvhFile(bundled("nope.bvh"));
+  auto missing = motion::loadBvhFile(bundled("nope.bvh"));
   ASSERT_FALSE(missing.ok());
   ASSERT_EQ(missing.errors().size(), 1u);
   EXPECT_EQ(missing.errors()[0].line, 0);
   EXPECT_TRUE(contains(missing.errors()[0].what, "cannot open file")) << missing.errors()[0].format();
 
-  auto dir = io::loadBvhFile(std::string(THRONG_SOURCE_DIR) + "/scenarios/motions");
+  auto dir = motion::loadBvhFile(std::string(THRONG_SOURCE_DIR) + "/scenarios/motions");
   ASSERT_FALSE(dir.ok());
   EXPECT_TRUE(contains(dir.errors()[0].what, "not a regular file")) << dir.errors()[0].format();
 }
@@ -312,7 +329,7 @@ TEST(BvhParser, BundledClipsLoadWithTheirDurations) {
   const std::vector<std::pair<std::string, double>> clips = {{"look", 4.0}, {"idle", 2.0}, {"walk", 1.12}};
   for (const auto& [name, duration] : clips) {
     SCOPED_TRACE(name);
-    auto r = io::loadBvhFile(bundled(name + ".bvh"));
+    auto r = motion::loadBvhFile(bundled(name + ".bvh"));
     ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
     EXPECT_EQ(r->name, name);
     EXPECT_NEAR(r->duration(), duration, 1e-9);
@@ -324,7 +341,7 @@ TEST(BvhParser, BundledClipsLoadWithTheirDurations) {
 
 TEST(BvhParser, BundledClipsMoveAsDescribed) {
   // look: head turns left (positive Y rotation of skullbase) and back; neutral at both ends.
-  auto look = io::loadBvhFile(bundled("look.bvh"));
+  auto look = motion::loadBvhFile(bundled("look.bvh"));
   ASSERT_TRUE(look.ok());
   const auto& head = look->joints[static_cast<std::size_t>(look->findJoint("skullbase"))];
   const std::size_t yaw = head.firstChannel + 2;  // Zrotation Xrotation Yrotation
@@ -334,7 +351,7 @@ TEST(BvhParser, BundledClipsMoveAsDescribed) {
   EXPECT_GT(look->value(look->frameCount / 2, yaw), 25.0f);
 
   // walk: the hips swing in antiphase, half a cycle apart.
-  auto walk = io::loadBvhFile(bundled("walk.bvh"));
+  auto walk = motion::loadBvhFile(bundled("walk.bvh"));
   ASSERT_TRUE(walk.ok());
   const std::size_t lHip = walk->joints[static_cast<std::size_t>(walk->findJoint("l_hip"))].firstChannel + 1;
   const std::size_t rHip = walk->joints[static_cast<std::size_t>(walk->findJoint("r_hip"))].firstChannel + 1;

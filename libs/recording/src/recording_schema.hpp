@@ -223,15 +223,19 @@ inline void bindReal(sqlite3_stmt* s, int i, double v) { sqlite3_bind_double(s, 
 inline constexpr int kProgressPeriod = 10000;
 inline constexpr std::uint64_t kMaxProgressCalls = 2'000'000;
 
+/// Whether queries are bounded by kMaxProgressCalls (Bounded: summaries and metrics) or may read a
+/// whole recording however large (Unbounded: the frame reader, whose caller bounds the size first).
+enum class WorkLimit { Bounded, Unbounded };
+
 class ReadOnlyDb {
  public:
-  explicit ReadOnlyDb(const std::string& path) {
+  explicit ReadOnlyDb(const std::string& path, WorkLimit limit = WorkLimit::Bounded) {
     rc_ = sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX, nullptr);
     if (rc_ == SQLITE_OK) {
       // Untrusted content: no schema-defined functions with side effects, no writable schema.
       sqlite3_db_config(db_, SQLITE_DBCONFIG_TRUSTED_SCHEMA, 0, nullptr);
       sqlite3_db_config(db_, SQLITE_DBCONFIG_DEFENSIVE, 1, nullptr);
-      sqlite3_progress_handler(db_, kProgressPeriod, &ReadOnlyDb::onProgress, this);
+      if (limit == WorkLimit::Bounded) sqlite3_progress_handler(db_, kProgressPeriod, &ReadOnlyDb::onProgress, this);
     }
   }
   ~ReadOnlyDb() { sqlite3_close(db_); }

@@ -1,7 +1,7 @@
-// throng::io motion clip writer — MotionClip → BVH text (writeBvh), the checks that make that text
+// throng::motion motion clip writer — MotionClip → BVH text (writeBvh), the checks that make that text
 // valid (checkMotionClip) and an atomic file save (saveBvhFile: temporary file in the same
 // directory, fsync, rename). Numbers use std::to_chars' shortest round-trip form.
-#include "throng/io/bvh_writer.hpp"
+#include "throng/motion/bvh_writer.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -18,7 +18,7 @@
 #include <string_view>
 #include <vector>
 
-namespace throng::io {
+namespace throng::motion {
 namespace {
 
 /// Shortest decimal that reads back to the same float (or double); "-0" becomes "0".
@@ -268,4 +268,4 @@ core::Status saveBvhFile(const std::string& path, const MotionClip& clip) {
   return core::Ok{};
 }
 
-}  // namespace throng::io
+}  // namespace throng::motion

@@ -1,9 +1,9 @@
-// throng::io BVH parser — Biovision Hierarchy text → MotionClip (see throng/io/bvh.hpp for the
+// throng::motion BVH parser — Biovision Hierarchy text → MotionClip (see throng/motion/bvh.hpp for the
 // grammar). A cursor walks the text keeping line:column (columns count Unicode code points, as in
 // json_document); the hierarchy is read by recursive descent bounded by kMaxBvhDepth, the MOTION
 // section one line per frame. Reads text or one file; writes the clip and diagnostics. No
 // exception escapes: even an internal failure becomes a diagnostic.
-#include "throng/io/bvh.hpp"
+#include "throng/motion/bvh.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -16,7 +16,7 @@
 #include <set>
 #include <sstream>
 
-namespace throng::io {
+namespace throng::motion {
 
 namespace {
 
@@ -476,4 +476,4 @@ core::Result<MotionClip> loadBvhFile(const std::string& path) {
   }
 }
 
-}  // namespace throng::io
+}  // namespace throng::motion

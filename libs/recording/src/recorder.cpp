@@ -10,7 +10,7 @@
 //
 // The Common Ground tables (throng_coordinations, throng_script) are written by
 // recorder_social.cpp; Recorder::Impl is declared in recorder_impl.hpp.
-#include "throng/io/recorder.hpp"
+#include "throng/recording/recorder.hpp"
 
 #include <unistd.h>
 
@@ -26,7 +26,7 @@
 #include <unordered_set>
 
 #include "recorder_impl.hpp"
-#include "world_footprint.hpp"
+#include "throng/core/footprint.hpp"
 #include "recording_scenario.hpp"
 #include "recording_schema.hpp"
 #include "recording_text.hpp"
@@ -161,7 +161,7 @@ bool Recorder::Impl::writeScenario(const sim::ScenarioDesc& scenario) {
       }
       triangles.push_back(tri);
     }
-    const Footprint footprint = unionOfTriangles(triangles);
+    const core::Footprint footprint = core::unionOfTriangles(triangles);
     return walkableAreaWkt(footprint.outer, footprint.holes);
   }();
   geometryHash = recording::geometryHash(area.wkt);
@@ -212,7 +212,11 @@ bool Recorder::Impl::markSeen(std::uint32_t id) {
 
 bool Recorder::Impl::writeFrame(const sim::Frame& f) {
   const auto frame = static_cast<std::int64_t>(nextFrame);
-  // Events first: a Spawn names the agent's population and group before its first row.
+  return writeEvents(f, frame) && writeAgentsSeen(f, frame) && writeTrajectoryRows(f, frame) &&
+         writeHeights(f, frame) && writeSocial(f) && writeFrameRows(f, frame);
+}
+
+bool Recorder::Impl::writeEvents(const sim::Frame& f, std::int64_t frame) {
   for (const sim::Event& e : f.events) {
     sqlite3_stmt* s = insertEvent.get();
     bindInt(s, 1, frame);
@@ -240,14 +244,16 @@ bool Recorder::Impl::writeFrame(const sim::Frame& f) {
       if (!run(updateExit)) return false;
     }
   }
+  return true;
+}
 
+bool Recorder::Impl::writeAgentsSeen(const sim::Frame& f, std::int64_t frame) {
   const std::size_t n = f.ids.size();
   if (f.posX.size() < n || f.posY.size() < n) {
     return fail("frame " + std::to_string(frame) + ": " + std::to_string(n) + " ids but " +
                 std::to_string(std::min(f.posX.size(), f.posY.size())) + " positions");
   }
   const bool hasOri = f.oriX.size() >= n && f.oriY.size() >= n;
-  const bool hasAnimation = f.clip.size() >= n && f.phase.size() >= n;
   for (std::size_t i = 0; i < n; ++i) {
     const double x = f.posX[i], y = f.posY[i];
     const double ox = hasOri ? f.oriX[i] : 1.0, oy = hasOri ? f.oriY[i] : 0.0;
@@ -262,6 +268,13 @@ bool Recorder::Impl::writeFrame(const sim::Frame& f) {
       if (!run(insertAgentSeen)) return false;
     }
   }
+  return true;
+}
+
+bool Recorder::Impl::writeTrajectoryRows(const sim::Frame& f, std::int64_t frame) {
+  const std::size_t n = f.ids.size();
+  const bool hasOri = f.oriX.size() >= n && f.oriY.size() >= n;
+  const bool hasAnimation = f.clip.size() >= n && f.phase.size() >= n;
   // Rows go in blocks of kRowBlock per statement (one VDBE run each), the rest one by one; the
   // table gets the same rows in the same order either way.
   auto bindRow = [&](sqlite3_stmt* s, int base, std::size_t i) {
@@ -295,17 +308,21 @@ bool Recorder::Impl::writeFrame(const sim::Frame& f) {
       if (!run(insertAnimation)) return false;
     }
   }
+  return true;
+}
 
-  if (hasHeights) {
-    for (std::size_t k = 0; k < n; ++k) {
-      bindInt(insertHeight.get(), 1, frame);
-      bindInt(insertHeight.get(), 2, f.ids[k]);
-      bindReal(insertHeight.get(), 3, static_cast<double>(f.height(k)));
-      if (!run(insertHeight)) return false;
-    }
+bool Recorder::Impl::writeHeights(const sim::Frame& f, std::int64_t frame) {
+  if (!hasHeights) return true;
+  for (std::size_t k = 0; k < f.ids.size(); ++k) {
+    bindInt(insertHeight.get(), 1, frame);
+    bindInt(insertHeight.get(), 2, f.ids[k]);
+    bindReal(insertHeight.get(), 3, static_cast<double>(f.height(k)));
+    if (!run(insertHeight)) return false;
   }
-  if (!writeSocial(f)) return false;
+  return true;
+}
 
+bool Recorder::Impl::writeFrameRows(const sim::Frame& f, std::int64_t frame) {
   bindInt(insertFrameData.get(), 1, frame);
   bindInt(insertFrameData.get(), 2, geometryHash);
   if (!run(insertFrameData)) return false;
@@ -313,7 +330,7 @@ bool Recorder::Impl::writeFrame(const sim::Frame& f) {
   bindInt(s, 1, frame);
   bindInt(s, 2, static_cast<std::int64_t>(f.tick));
   bindReal(s, 3, f.time);
-  bindInt(s, 4, static_cast<std::int64_t>(n));
+  bindInt(s, 4, static_cast<std::int64_t>(f.ids.size()));
   return run(insertFrame);
 }
 

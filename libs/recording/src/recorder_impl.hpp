@@ -15,7 +15,7 @@
 #include <unordered_set>
 #include <vector>
 
-#include "throng/io/recorder.hpp"
+#include "throng/recording/recorder.hpp"
 
 #include "recording_schema.hpp"
 
@@ -146,7 +146,14 @@ struct Recorder::Impl {
   }
 
   bool writeScenario(const sim::ScenarioDesc& scenario);
+  /// One frame, in the order readers rely on: events (a Spawn names the agent before its first
+  /// row), agents first seen, trajectory and animation rows, heights, Common Ground, frame rows.
   bool writeFrame(const sim::Frame& frame);
+  bool writeEvents(const sim::Frame& frame, std::int64_t index);
+  bool writeAgentsSeen(const sim::Frame& frame, std::int64_t index);  ///< also checks the frame's columns
+  bool writeTrajectoryRows(const sim::Frame& frame, std::int64_t index);
+  bool writeHeights(const sim::Frame& frame, std::int64_t index);
+  bool writeFrameRows(const sim::Frame& frame, std::int64_t index);
   bool writeSocial(const sim::Frame& frame);
   bool markSeen(std::uint32_t id);
   void workerLoop();

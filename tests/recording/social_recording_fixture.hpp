@@ -1,5 +1,5 @@
 // Test fixture: a small Common Ground recording with known answers, written through
-// throng::io::Recorder from hand-built frames (used by tests/io/recording_social_test.cpp and
+// throng::io::Recorder from hand-built frames (used by tests/recording/recording_social_test.cpp and
 // tests/e2e/social_commands_test.cpp). docs/social-metrics.md derives the expected metrics.
 //
 // Scenario: a 20 m x 10 m room; points 0 "wc" (restroom, (5, 5)), 1 "shoes" (shoes, (15, 5)),
@@ -16,7 +16,7 @@
 #include <memory>
 #include <string>
 
-#include "throng/io/recorder.hpp"
+#include "throng/recording/recorder.hpp"
 
 namespace throng::testing {
 

@@ -1,4 +1,4 @@
-// throng::io motion clips — Biovision Hierarchy (BVH) text parsed into a MotionClip: a skeleton
+// throng::motion motion clips — Biovision Hierarchy (BVH) text parsed into a MotionClip: a skeleton
 // (joints with offsets and channels) plus one row of channel values per frame. Action points of a
 // scenario reference clips ("clip": "motions/look.bvh"); the clip's length gives the action's
 // duration, and the viewer animates agents with it. Reads text (or one file); writes nothing.
@@ -24,7 +24,7 @@
 
 #include "throng/core/result.hpp"
 
-namespace throng::io {
+namespace throng::motion {
 
 /// Limits that keep hostile input cheap; exceeding one is a diagnostic, never a truncation.
 inline constexpr std::size_t kMaxBvhBytes = 64u << 20;   ///< file size [bytes] (64 MiB)
@@ -77,4 +77,4 @@ core::Result<MotionClip> parseBvh(std::string_view text, const std::string& sour
 /// file is one diagnostic with line 0 naming the path.
 core::Result<MotionClip> loadBvhFile(const std::string& path);
 
-}  // namespace throng::io
+}  // namespace throng::motion

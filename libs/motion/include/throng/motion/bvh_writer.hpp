@@ -1,4 +1,4 @@
-// throng::io motion clip writer — a MotionClip (see bvh.hpp) as Biovision Hierarchy (BVH) text that
+// throng::motion motion clip writer — a MotionClip (see bvh.hpp) as Biovision Hierarchy (BVH) text that
 // parseBvh reads back to the same clip: same joints (names, parents, offsets, channels in the same
 // order, End Sites), frame count, frame time and values. Writes text, or one file atomically.
 //
@@ -11,9 +11,9 @@
 #include <string>
 
 #include "throng/core/result.hpp"
-#include "throng/io/bvh.hpp"
+#include "throng/motion/bvh.hpp"
 
-namespace throng::io {
+namespace throng::motion {
 
 /// BVH text for `clip`. The clip should be well formed (as parseBvh returns it: joints depth-first
 /// with parents before children, unique single-word names, values.size() == frameCount ×
@@ -36,4 +36,4 @@ core::Status checkMotionClip(const MotionClip& clip, const std::string& source);
 /// untouched) and the diagnostic names `path` (line 0), what failed and why (the system's error).
 core::Status saveBvhFile(const std::string& path, const MotionClip& clip);
 
-}  // namespace throng::io
+}  // namespace throng::motion

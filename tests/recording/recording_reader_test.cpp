@@ -1,4 +1,4 @@
-// Tests for throng::io::readRecordingSummary (libs/io/src/recording_reader.cpp): throng's own
+// Tests for throng::io::readRecordingSummary (libs/recording/src/recording_reader.cpp): throng's own
 // recordings, foreign JuPedSim files of versions 1–3, and files that are not recordings at all,
 // each of which must give one diagnostic naming the file.
 #include <gtest/gtest.h>
@@ -10,14 +10,14 @@
 #include <string>
 
 #include "temp_dir.hpp"
-#include "throng/io/recorder.hpp"
+#include "throng/recording/recorder.hpp"
 
 namespace throng::io {
 namespace {
 
 namespace fs = std::filesystem;
 
-using test::TempDir;
+using throng::test::TempDir;
 
 /// Creates an SQLite file from a script (tables of another writer, or damaged ones).
 void makeDb(const std::string& path, const std::string& sql) {

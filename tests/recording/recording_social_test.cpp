@@ -1,7 +1,8 @@
 // Tests for the Common Ground part of recordings: the recorder's throng_coordinations /
-// throng_script tables, point categories and metadata (libs/io/src/recorder.cpp), the readers and
-// metrics of throng/io/recording_social.hpp (recording_social.cpp, recording_metrics.cpp) on the
-// hand-built fixture of social_recording_fixture.hpp, and their diagnostics on old or bad files.
+// throng_script tables, point categories and metadata (libs/recording/src/recorder.cpp), the
+// readers and metrics of throng/recording/recording_social.hpp (recording_social.cpp,
+// metrics_queries.cpp, metrics_analysis.cpp) on the hand-built fixture of
+// social_recording_fixture.hpp, and their diagnostics on old or bad files.
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 #include <unistd.h>
@@ -14,14 +15,14 @@
 
 #include "temp_dir.hpp"
 #include "social_recording_fixture.hpp"
-#include "throng/io/recording_social.hpp"
+#include "throng/recording/recording_social.hpp"
 
 namespace throng::io {
 namespace {
 
 namespace fs = std::filesystem;
 
-using test::TempDir;
+using throng::test::TempDir;
 
 /// Runs SQL on a file (read-write) and returns the first column of every row as text.
 std::vector<std::string> sql(const std::string& path, const std::string& query) {
