@@ -1,4 +1,4 @@
-// Fuzz target for throng::io::readRecordingSummary (libs/recording/src/recording_reader.cpp), the
+// Fuzz target for throng::recording::readRecordingSummary (libs/recording/src/recording_reader.cpp), the
 // Common Ground readers and metrics (recording_social.cpp, metrics_queries.cpp,
 // metrics_analysis.cpp) and the replay frames (frame_reader.cpp): the input bytes become a file on
 // disk (SQLite reads files, not buffers) and are summarised read-only.
@@ -50,28 +50,28 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size > 0 && std::fwrite(data, 1, size, f) != size) std::abort();
   std::fclose(f);
 
-  const auto summary = throng::io::readRecordingSummary(path);
+  const auto summary = throng::recording::readRecordingSummary(path);
   if (!summary.ok() && summary.errors().empty()) std::abort();  // a failure must say why
   if (summary.ok() && summary->fps <= 0.0) std::abort();       // the reader validates fps
 
   // The Common Ground readers and metrics: a value or a diagnostic, never a crash.
-  const auto coordinations = throng::io::readCoordinations(path);
+  const auto coordinations = throng::recording::readCoordinations(path);
   if (!coordinations.ok() && coordinations.errors().empty()) std::abort();
-  const auto script = throng::io::readScript(path, 0);
+  const auto script = throng::recording::readScript(path, 0);
   if (!script.ok() && script.errors().empty()) std::abort();
   if (coordinations.ok() && !coordinations->empty()) {
-    const auto all = throng::io::readCoordinationScript(path, coordinations.value().front().id);
+    const auto all = throng::recording::readCoordinationScript(path, coordinations.value().front().id);
     if (!all.ok() && all.errors().empty()) std::abort();
   }
-  const auto track = throng::io::readAgentTrack(path, 0);
+  const auto track = throng::recording::readAgentTrack(path, 0);
   if (!track.ok() && track.errors().empty()) std::abort();
-  const auto metrics = throng::io::computeMetrics(path);
+  const auto metrics = throng::recording::computeMetrics(path);
   if (!metrics.ok() && metrics.errors().empty()) std::abort();
   if (metrics.ok() && (metrics->cohesion.shareTogether < 0.0 || metrics->cohesion.shareTogether > 1.0)) std::abort();
 
   // The frames for replay (hub::Replay), within a small memory budget: one frame per frame
   // number, times from 0 and non-decreasing, every per-agent column as long as ids.
-  const auto frames = throng::io::readRecordedFrames(path, throng::io::FrameReadOptions{std::size_t{64} << 20});
+  const auto frames = throng::recording::readRecordedFrames(path, throng::recording::FrameReadOptions{std::size_t{64} << 20});
   if (!frames.ok() && frames.errors().empty()) std::abort();
   if (frames.ok()) {
     if (frames->frames.empty() || frames->frames.size() != frames->times.size() || frames->times[0] != 0.0) std::abort();

@@ -3,7 +3,7 @@
 // scenario: in-memory ones (throng/bench/scenarios.hpp) at each --agents count, timed for a number of
 // ticks after a warm-up; and scenario files ("mall" or PATH.json) run from the start to their end,
 // also reporting simulated time, wall time and × real time. With --record each configuration is
-// timed again while writing a recording (io::Recorder, frames at --fps, as `throng run` does) to a
+// timed again while writing a recording (recording::Recorder, frames at --fps, as `throng run` does) to a
 // temporary file that is deleted afterwards. Reads the process's memory counters (/proc/self/statm,
 // getrusage) and the scenario file; writes a table or JSON lines on stdout and a progress line on a
 // terminal's stderr.
@@ -108,7 +108,7 @@ struct TimedTicks {
 
 /// Steps and times each tick until the plan is done or Ctrl-C, recording every stride-th frame;
 /// `onTick(tick, totalSeconds)` after each (the progress line).
-TimedTicks runTimedTicks(sim::World& w, const core::TaskSystem& tasks, io::Recorder* recorder, const TickPlan& plan,
+TimedTicks runTimedTicks(sim::World& w, const core::TaskSystem& tasks, recording::Recorder* recorder, const TickPlan& plan,
                          sim::PhaseObserver* phases, const std::function<void(std::uint64_t, double)>& onTick) {
   TimedTicks t;
   t.rssPeak = currentRss();
@@ -158,15 +158,15 @@ void BenchRunner::status(const std::string& text, bool force) {
   if (force || progress_.due()) progress_.draw(text);
 }
 
-std::unique_ptr<io::Recorder> BenchRunner::openRecording(const sim::ScenarioDesc& desc, double fps,
+std::unique_ptr<recording::Recorder> BenchRunner::openRecording(const sim::ScenarioDesc& desc, double fps,
                                                          const std::string& path) {
-  io::RecordingOptions recording;
+  recording::RecordingOptions recording;
   recording.path = path;
   recording.force = true;
   recording.fps = fps;
   recording.seed = desc.seed;
   recording.scenarioText = scenarioText_;
-  auto opened = io::Recorder::open(desc, recording);
+  auto opened = recording::Recorder::open(desc, recording);
   if (!opened) {
     progress_.clear();
     printLine(stderr, "throng: bench --record: cannot open the temporary recording:");
@@ -176,7 +176,7 @@ std::unique_ptr<io::Recorder> BenchRunner::openRecording(const sim::ScenarioDesc
   return std::move(*opened);
 }
 
-bool BenchRunner::closeRecording(io::Recorder& recorder, const std::string& label, bool completed, Measurement& m) {
+bool BenchRunner::closeRecording(recording::Recorder& recorder, const std::string& label, bool completed, Measurement& m) {
   // Closing flushes the frames still queued and checkpoints the file.
   status(label + ": closing the recording", true);
   const auto t0 = Clock::now();
@@ -229,7 +229,7 @@ std::optional<Measurement> BenchRunner::timeThrong(const sim::ScenarioDesc& desc
   const auto toEnd = static_cast<std::uint64_t>(std::max(0LL, std::llround(duration_ / dt_)));
   plan.totalTicks = ticks > 0 ? std::min<std::uint64_t>(toEnd, static_cast<std::uint64_t>(ticks)) : toEnd;
   std::optional<TempRecording> temp;  // declared before the recorder: the file is deleted after it closes
-  std::unique_ptr<io::Recorder> recorder;
+  std::unique_ptr<recording::Recorder> recorder;
   if (record) {
     temp.emplace();
     recorder = openRecording(desc, fps, temp->path());

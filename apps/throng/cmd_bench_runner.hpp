@@ -68,10 +68,10 @@ class BenchRunner {
                                         const std::shared_ptr<const nav::NavMesh>& navmesh, int threads,
                                         int& ticks, bool record);
   /// --record's recording of one configuration at `path`; nullptr after printing why not.
-  std::unique_ptr<io::Recorder> openRecording(const sim::ScenarioDesc& desc, double fps, const std::string& path);
+  std::unique_ptr<recording::Recorder> openRecording(const sim::ScenarioDesc& desc, double fps, const std::string& path);
   /// Closes --record's recording (`completed` unless interrupted): close time and frames into `m`;
   /// false after printing why it failed.
-  bool closeRecording(io::Recorder& recorder, const std::string& label, bool completed, Measurement& m);
+  bool closeRecording(recording::Recorder& recorder, const std::string& label, bool completed, Measurement& m);
   /// The progress line during the timed ticks (`ticks` <= 0: automatic count).
   void drawTickProgress(const std::string& label, const sim::World& w, std::uint64_t tick, int ticks, double totalSeconds);
   std::optional<Measurement> timeBaseline(const sim::ScenarioDesc& desc,

@@ -30,12 +30,12 @@ int runInfo(const InfoOptions& options) {
     printDiagnostics(missing);
     return kExitFailure;
   }
-  auto summary = io::readRecordingSummary(options.recording);
+  auto summary = recording::readRecordingSummary(options.recording);
   if (!summary) {
     printDiagnostics(summary.errors());
     return kExitFailure;
   }
-  const io::RecordingSummary& s = *summary;
+  const recording::RecordingSummary& s = *summary;
   if (options.json) {
     auto populations = nlohmann::json::array();
     for (const auto& [id, count] : s.populations) populations.push_back({{"id", id}, {"agents", count}});

@@ -19,7 +19,7 @@ namespace {
 
 using nlohmann::json;
 
-json densityJson(const io::DensityStats& d) {
+json densityJson(const recording::DensityStats& d) {
   json j{{"category", d.category}, {"samples", d.samples}, {"mean", d.mean}, {"p95", d.p95}, {"max", d.max}};
   if (d.point.empty()) {
     j["points"] = d.points;
@@ -30,15 +30,15 @@ json densityJson(const io::DensityStats& d) {
   return j;
 }
 
-json toJson(const io::SocialMetrics& m) {
+json toJson(const recording::SocialMetrics& m) {
   json bins = json::array();
-  for (const io::ArrivalBin& b : m.arrivals) {
+  for (const recording::ArrivalBin& b : m.arrivals) {
     bins.push_back({{"start", b.start}, {"visits", b.visits}, {"by_category", b.byCategory}, {"exits", b.exits}});
   }
   json congestion = json::array(), worst = json::array();
   for (const auto& d : m.congestion) congestion.push_back(densityJson(d));
   for (const auto& d : m.worstPoints) worst.push_back(densityJson(d));
-  const io::CoordinationStats& c = m.coordinations;
+  const recording::CoordinationStats& c = m.coordinations;
   return {{"recording", m.path},
           {"common_ground", m.commonGround.empty() ? json(nullptr) : json(m.commonGround)},
           {"fps", m.fps},
@@ -81,7 +81,7 @@ std::string countsText(const std::map<std::string, std::uint64_t>& counts) {
   return out.empty() ? "none" : out;
 }
 
-void printReport(const io::SocialMetrics& m) {
+void printReport(const recording::SocialMetrics& m) {
   printLine(stdout, fmt::format("recording      {}", m.path));
   printLine(stdout, fmt::format("common ground  {}", m.commonGround.empty() ? "no social section" : m.commonGround));
   printLine(stdout, fmt::format("frames         {} at {:g} fps ({})", m.frames, m.fps, formatSeconds(m.duration)));
@@ -103,7 +103,7 @@ void printReport(const io::SocialMetrics& m) {
   }
   header += fmt::format(" {:>7}", "exits");
   printLine(stdout, header);
-  for (const io::ArrivalBin& b : m.arrivals) {
+  for (const recording::ArrivalBin& b : m.arrivals) {
     std::string row = fmt::format("  {:>13g} {:>7}", b.start, b.visits);
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const auto it = b.byCategory.find(columns[c]);
@@ -135,7 +135,7 @@ void printReport(const io::SocialMetrics& m) {
                                 m.cohesion.shareTogether * 100.0));
   printLine(stdout, "");
 
-  const io::CoordinationStats& c = m.coordinations;
+  const recording::CoordinationStats& c = m.coordinations;
   printLine(stdout, fmt::format("Coordinations: {} ({} goals generated)", c.total, c.goalsGenerated));
   printLine(stdout, fmt::format("  by outcome       {}", countsText(c.byOutcome)));
   printLine(stdout, fmt::format("  by plan          {}", countsText(c.byPlan)));
@@ -175,7 +175,7 @@ int runMetrics(const MetricsCmdOptions& options) {
     printDiagnostics(missing);
     return kExitFailure;
   }
-  io::MetricsOptions mo;
+  recording::MetricsOptions mo;
   mo.radius = options.radius;
   mo.bin = options.bin;
   ProgressLine progress(stderr, true);  // draws only on a terminal
@@ -185,7 +185,7 @@ int runMetrics(const MetricsCmdOptions& options) {
       progress.draw(fmt::format("reading trajectories {} {:3.0f}%", formatBar(fraction, 30), fraction * 100.0));
     };
   }
-  auto metrics = io::computeMetrics(options.recording, mo);
+  auto metrics = recording::computeMetrics(options.recording, mo);
   progress.clear();
   if (!metrics) {
     printDiagnostics(metrics.errors());

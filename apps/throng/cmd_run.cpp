@@ -110,7 +110,7 @@ std::optional<std::string> stallState(const sim::World& world, std::uint32_t id)
 /// stride so the last frame carries every event (an empty world steps in no time). Under MPI every
 /// rank takes the same decisions: a signal is looked at (collectively) at frame ticks only, and
 /// only rank 0 has a recorder; the others drop their snapshots (snapshot() also clears the events).
-LoopResult simulate(sim::World& world, io::Recorder* recorder, const core::TaskSystem& tasks,
+LoopResult simulate(sim::World& world, recording::Recorder* recorder, const core::TaskSystem& tasks,
                     std::uint64_t totalTicks, const FramePlan& plan, double duration, ProgressLine& progress,
                     const RankPlan& ranks, sim::PhaseObserver* phases, StallTracker* stalls) {
   LoopResult result;
@@ -418,8 +418,8 @@ EarlyExit applyOverrides(const RunOptions& options, bool speaks, sim::ScenarioDe
   return std::nullopt;
 }
 
-io::RecordingOptions recordingOptions(const RunOptions& options, const io::LoadedScenario& loaded, const FramePlan& plan) {
-  io::RecordingOptions recording;
+recording::RecordingOptions recordingOptions(const RunOptions& options, const io::LoadedScenario& loaded, const FramePlan& plan) {
+  recording::RecordingOptions recording;
   recording.path = options.out.empty() ? defaultOutput(options.scenario) : options.out;
   recording.force = options.force;
   recording.fps = plan.fps;
@@ -429,11 +429,11 @@ io::RecordingOptions recordingOptions(const RunOptions& options, const io::Loade
 }
 
 /// Opens the recording (rank 0 only): a bad or existing path fails before any simulation.
-EarlyExit openRecorder(const sim::ScenarioDesc& desc, const io::RecordingOptions& recording, const RankPlan& ranks,
-                       std::unique_ptr<io::Recorder>& recorder) {
+EarlyExit openRecorder(const sim::ScenarioDesc& desc, const recording::RecordingOptions& recording, const RankPlan& ranks,
+                       std::unique_ptr<recording::Recorder>& recorder) {
   bool openFailed = false;
   if (ranks.speaks()) {
-    auto opened = io::Recorder::open(desc, recording);
+    auto opened = recording::Recorder::open(desc, recording);
     if (!opened) {
       printDiagnostics(opened.errors());
       openFailed = true;
@@ -447,7 +447,7 @@ EarlyExit openRecorder(const sim::ScenarioDesc& desc, const io::RecordingOptions
 
 /// Closes the recording, completed unless interrupted or a write failed; a failure says how much
 /// of the file holds.
-EarlyExit closeRecording(io::Recorder* recorder, RunEnd end, const sim::World& world, const std::string& path) {
+EarlyExit closeRecording(recording::Recorder* recorder, RunEnd end, const sim::World& world, const std::string& path) {
   if (recorder) {
     const core::Status closed = recorder->close(end != RunEnd::Interrupted && end != RunEnd::WriteError);
     if (!closed) {
@@ -465,7 +465,7 @@ EarlyExit closeRecording(io::Recorder* recorder, RunEnd end, const sim::World& w
 
 /// What the summary reports, from the world at the end and the run's own counters.
 void summarize(RunSummary& summary, const sim::ScenarioDesc& desc, const LoopResult& loop, const sim::World& world,
-               StallTracker& stalls, const io::Recorder* recorder, const std::string& path, const FramePlan& plan,
+               StallTracker& stalls, const recording::Recorder* recorder, const std::string& path, const FramePlan& plan,
                const PhaseTimer& phaseTimer) {
   summary.scenario = desc.name;
   summary.seed = desc.seed;
@@ -531,8 +531,8 @@ int runOn(const RunOptions& options, const RankPlan& ranks, sim::StepExchange* e
   }
 
   // 2. Open the recording.
-  const io::RecordingOptions recording = recordingOptions(options, *loaded, plan);
-  std::unique_ptr<io::Recorder> recorder;
+  const recording::RecordingOptions recording = recordingOptions(options, *loaded, plan);
+  std::unique_ptr<recording::Recorder> recorder;
   if (auto exit = openRecorder(desc, recording, ranks, recorder)) return *exit;
 
   // 3. Simulate.

@@ -24,7 +24,7 @@ namespace {
 using nlohmann::json;
 
 /// "A", "B", "C1".. from the coordination's actor list; the role when the agent is not in it.
-std::string actorLabel(const io::CoordinationInfo& c, const io::ScriptEntryInfo& e) {
+std::string actorLabel(const recording::CoordinationInfo& c, const recording::ScriptEntryInfo& e) {
   if (e.agent == c.initiator) return "A";
   for (std::size_t i = 0; i < c.respondents.size(); ++i) {
     if (c.respondents[i] == e.agent) return i == 0 ? "B" : fmt::format("C{}", i);
@@ -34,7 +34,7 @@ std::string actorLabel(const io::CoordinationInfo& c, const io::ScriptEntryInfo&
 
 std::string timeText(double t) { return std::isfinite(t) ? fmt::format("{:.2f}", t) : "-"; }
 
-std::string targetText(const io::ScriptEntryInfo& e) {
+std::string targetText(const recording::ScriptEntryInfo& e) {
   const std::string at = std::isfinite(e.targetX) && std::isfinite(e.targetY)
                              ? fmt::format("({:.2f}, {:.2f})", e.targetX, e.targetY) : std::string("(?)");
   if (e.targetType == "agent") return fmt::format("agent {} {}", e.targetAgent.value_or(0), at);
@@ -44,14 +44,14 @@ std::string targetText(const io::ScriptEntryInfo& e) {
 
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-json entryJson(const io::CoordinationInfo& c, const io::ScriptEntryInfo& e) {
+json entryJson(const recording::CoordinationInfo& c, const recording::ScriptEntryInfo& e) {
   json target{{"type", e.targetType}};
   if (e.targetAgent) target["agent"] = *e.targetAgent;
   if (e.targetType != "none") {
     target["x"] = number(e.targetX);
     target["y"] = number(e.targetY);
   }
-  return {{"step", io::scriptStepLabel(e.step, e.part, 0)},
+  return {{"step", recording::scriptStepLabel(e.step, e.part, 0)},
           {"step_number", e.step},
           {"part", e.part},
           {"attempt", e.attempt},
@@ -74,7 +74,7 @@ constexpr const char* kUnfinished = "unfinished at end of recording";
 
 json text(const std::string& s) { return s.empty() ? json(nullptr) : json(s); }
 
-json coordinationJson(const io::CoordinationInfo& c) {
+json coordinationJson(const recording::CoordinationInfo& c) {
   if (!c.finished) {
     return {{"id", c.id},
             {"group", c.group},
@@ -111,7 +111,7 @@ json coordinationJson(const io::CoordinationInfo& c) {
           {"finished", true}};
 }
 
-void printCoordination(const io::CoordinationInfo& c, const std::vector<io::ScriptEntryInfo>& entries) {
+void printCoordination(const recording::CoordinationInfo& c, const std::vector<recording::ScriptEntryInfo>& entries) {
   std::string respondents;
   for (std::size_t i = 0; i < c.respondents.size(); ++i) {
     respondents += fmt::format("{}{} {}", i == 0 ? "" : ", ", i == 0 ? std::string("B") : fmt::format("C{}", i),
@@ -140,9 +140,9 @@ void printCoordination(const io::CoordinationInfo& c, const std::vector<io::Scri
   printLine(stdout, fmt::format("  {:<12} {:<10} {:<14} {:<20} {:<28} {:>9} {:>9} {:>9}", "step", "actor", "motion",
                                 "behaviour", "target", "planned", "start", "duration"));
   if (entries.empty()) printLine(stdout, "  (no script entries recorded)");
-  for (const io::ScriptEntryInfo& e : entries) {
+  for (const recording::ScriptEntryInfo& e : entries) {
     printLine(stdout, fmt::format("  {:<12} {:<10} {:<14} {:<20} {:<28} {:>9} {:>9} {:>9}",
-                                  io::scriptStepLabel(e.step, e.part, e.attempt),
+                                  recording::scriptStepLabel(e.step, e.part, e.attempt),
                                   fmt::format("{} {}", actorLabel(c, e), e.agent), e.motion, e.behaviour, targetText(e),
                                   timeText(e.plannedStart), timeText(e.start), timeText(e.duration)));
   }
@@ -152,12 +152,12 @@ void printCoordination(const io::CoordinationInfo& c, const std::vector<io::Scri
 
 /// The agent's trajectory from a recording with Common Ground data; nullopt after printing why
 /// not (no file, no Common Ground data, no such agent).
-std::optional<io::AgentTrack> readTrack(const std::string& path, std::uint32_t agent) {
+std::optional<recording::AgentTrack> readTrack(const std::string& path, std::uint32_t agent) {
   if (auto missing = checkInputFile(path, "recording"); !missing.empty()) {
     printDiagnostics(missing);
     return std::nullopt;
   }
-  const auto hasCg = io::hasCommonGroundData(path);
+  const auto hasCg = recording::hasCommonGroundData(path);
   if (!hasCg) {
     printDiagnostics(hasCg.errors());
     return std::nullopt;
@@ -167,13 +167,13 @@ std::optional<io::AgentTrack> readTrack(const std::string& path, std::uint32_t a
                                   "\"social\" section", path, path));
     return std::nullopt;
   }
-  auto track = io::readAgentTrack(path, agent);
+  auto track = recording::readAgentTrack(path, agent);
   if (!track) {
     printDiagnostics(track.errors());
     return std::nullopt;
   }
   if (!track->known) {
-    const auto summary = io::readRecordingSummary(path);
+    const auto summary = recording::readRecordingSummary(path);
     printLine(stderr, fmt::format("{}: agent {} not found; expected a stable agent id{}", path, agent,
                                   summary && summary->agents > 0
                                       ? fmt::format(" (the recording has {} agents)", summary->agents) : ""));
@@ -186,10 +186,10 @@ std::optional<io::AgentTrack> readTrack(const std::string& path, std::uint32_t a
 /// entries, or as an actor: a lone visit, or an actor whose entries were not recorded); nullopt
 /// after printing a read error.
 std::optional<std::set<std::uint32_t>> agentCoordinations(const std::string& path, std::uint32_t agent,
-                                                          std::vector<io::CoordinationInfo>& all) {
-  const auto own = io::readScript(path, agent);
-  auto finished = io::readCoordinations(path);
-  const auto unfinished = io::readUnfinishedCoordinations(path);
+                                                          std::vector<recording::CoordinationInfo>& all) {
+  const auto own = recording::readScript(path, agent);
+  auto finished = recording::readCoordinations(path);
+  const auto unfinished = recording::readUnfinishedCoordinations(path);
   if (!own || !finished || !unfinished) {
     printDiagnostics(!own ? own.errors() : !finished ? finished.errors() : unfinished.errors());
     return std::nullopt;
@@ -208,12 +208,12 @@ std::optional<std::set<std::uint32_t>> agentCoordinations(const std::string& pat
 
 /// Coordination `id` from the list; when the file has entries but no coordination row or start
 /// event (a file cut short), one made up from the entries (actors, the trajectory's group).
-io::CoordinationInfo coordinationOf(std::uint32_t id, const std::vector<io::CoordinationInfo>& list,
-                                    const std::vector<io::ScriptEntryInfo>& entries, const io::AgentTrack& track,
+recording::CoordinationInfo coordinationOf(std::uint32_t id, const std::vector<recording::CoordinationInfo>& list,
+                                    const std::vector<recording::ScriptEntryInfo>& entries, const recording::AgentTrack& track,
                                     std::uint32_t agent) {
-  const auto it = std::find_if(list.begin(), list.end(), [&](const io::CoordinationInfo& c) { return c.id == id; });
+  const auto it = std::find_if(list.begin(), list.end(), [&](const recording::CoordinationInfo& c) { return c.id == id; });
   if (it != list.end()) return *it;
-  io::CoordinationInfo c;
+  recording::CoordinationInfo c;
   c.id = id;
   c.finished = false;
   c.group = track.group.value_or(0);  // the trajectory's group numbering
@@ -231,9 +231,9 @@ io::CoordinationInfo coordinationOf(std::uint32_t id, const std::vector<io::Coor
 }
 
 /// The per-frame trajectory for --json.
-json trajectoryJson(const io::AgentTrack& track) {
+json trajectoryJson(const recording::AgentTrack& track) {
   json traj = json::array();
-  for (const io::TrackSample& s : track.samples) {
+  for (const recording::TrackSample& s : track.samples) {
     json row{{"frame", s.frame}, {"time", number(s.time)}, {"x", number(s.x)},      {"y", number(s.y)},
              {"vx", number(s.vx)}, {"vy", number(s.vy)},   {"ori_x", number(s.oriX)}, {"ori_y", number(s.oriY)}};
     if (s.clip >= 0) {
@@ -247,7 +247,7 @@ json trajectoryJson(const io::AgentTrack& track) {
 }
 
 /// The trajectory's one-line summary.
-void printTrajectory(std::uint32_t agent, const io::AgentTrack& track) {
+void printTrajectory(std::uint32_t agent, const recording::AgentTrack& track) {
   const auto& samples = track.samples;
   if (samples.empty()) {
     printLine(stdout, fmt::format("trajectory   agent {}: no recorded frames", agent));
@@ -282,9 +282,9 @@ CLI::App* addScriptCommand(CLI::App& app, ScriptOptions& options) {
 
 int runScript(const ScriptOptions& options) {
   const std::string& path = options.recording;
-  const std::optional<io::AgentTrack> track = readTrack(path, options.agent);
+  const std::optional<recording::AgentTrack> track = readTrack(path, options.agent);
   if (!track) return kExitFailure;
-  std::vector<io::CoordinationInfo> all;
+  std::vector<recording::CoordinationInfo> all;
   auto found = agentCoordinations(path, options.agent, all);
   if (!found) return kExitFailure;
   std::set<std::uint32_t> ids = std::move(*found);
@@ -300,12 +300,12 @@ int runScript(const ScriptOptions& options) {
 
   json coordinations = json::array();
   for (const std::uint32_t id : ids) {
-    auto entries = io::readCoordinationScript(path, id);
+    auto entries = recording::readCoordinationScript(path, id);
     if (!entries) {
       printDiagnostics(entries.errors());
       return kExitFailure;
     }
-    const io::CoordinationInfo c = coordinationOf(id, all, *entries, *track, options.agent);
+    const recording::CoordinationInfo c = coordinationOf(id, all, *entries, *track, options.agent);
     if (options.json) {
       json j = coordinationJson(c);
       j["entries"] = json::array();

@@ -52,12 +52,12 @@ std::vector<sim::FramePtr> recordMuseum(const std::string& path, std::string& sc
   auto world = sim::World::create(loaded->desc, loaded->navmesh);
   EXPECT_TRUE(world) << core::formatAll(world.errors());
   if (!world) return {};
-  io::RecordingOptions options;
+  recording::RecordingOptions options;
   options.path = path;
   options.fps = kFps;
   options.seed = loaded->desc.seed;
   options.scenarioText = loaded->text;
-  auto recorder = io::Recorder::open(loaded->desc, options);
+  auto recorder = recording::Recorder::open(loaded->desc, options);
   EXPECT_TRUE(recorder) << core::formatAll(recorder.errors());
   if (!recorder) return {};
   const auto stride = std::max<long>(1, std::lround(1.0 / (kFps * loaded->desc.dt)));

@@ -13,7 +13,7 @@
 #include "temp_dir.hpp"
 #include "throng/recording/frame_reader.hpp"
 
-namespace throng::io {
+namespace throng::recording {
 namespace {
 
 using throng::test::TempDir;
@@ -170,4 +170,4 @@ TEST(FrameReader, RefusalsNameTheFileAndWhatWasWrong) {
 }
 
 }  // namespace
-}  // namespace throng::io
+}  // namespace throng::recording

@@ -9,7 +9,7 @@
 
 #include "metrics_analysis.hpp"
 
-namespace throng::io::metrics {
+namespace throng::recording::metrics {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -179,4 +179,4 @@ TEST(MetricsAnalysis, CoordinationStatistics) {
 }
 
 }  // namespace
-}  // namespace throng::io::metrics
+}  // namespace throng::recording::metrics

@@ -1,4 +1,4 @@
-// Tests for throng::io::Recorder (libs/recording/src/recorder.cpp, walkable_area_wkt.cpp): the file is
+// Tests for throng::recording::Recorder (libs/recording/src/recorder.cpp, walkable_area_wkt.cpp): the file is
 // read back with raw SQL exactly as PedPy and JuPedSim read it, plus throng's own tables, path
 // checks, backpressure and a writer killed mid-run.
 #include <gtest/gtest.h>
@@ -24,7 +24,7 @@
 #include "temp_dir.hpp"
 #include "throng/recording/recorder.hpp"
 
-namespace throng::io {
+namespace throng::recording {
 namespace {
 
 namespace fs = std::filesystem;
@@ -484,4 +484,4 @@ TEST(Recorder, KilledWriterLeavesEverythingUpToTheLastCommittedBatch) {
 }
 
 }  // namespace
-}  // namespace throng::io
+}  // namespace throng::recording

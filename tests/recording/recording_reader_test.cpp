@@ -1,4 +1,4 @@
-// Tests for throng::io::readRecordingSummary (libs/recording/src/recording_reader.cpp): throng's own
+// Tests for throng::recording::readRecordingSummary (libs/recording/src/recording_reader.cpp): throng's own
 // recordings, foreign JuPedSim files of versions 1–3, and files that are not recordings at all,
 // each of which must give one diagnostic naming the file.
 #include <gtest/gtest.h>
@@ -12,7 +12,7 @@
 #include "temp_dir.hpp"
 #include "throng/recording/recorder.hpp"
 
-namespace throng::io {
+namespace throng::recording {
 namespace {
 
 namespace fs = std::filesystem;
@@ -223,4 +223,4 @@ TEST(RecordingReader, DoesNotModifyTheFile) {
 }
 
 }  // namespace
-}  // namespace throng::io
+}  // namespace throng::recording

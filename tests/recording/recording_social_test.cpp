@@ -17,7 +17,7 @@
 #include "social_recording_fixture.hpp"
 #include "throng/recording/recording_social.hpp"
 
-namespace throng::io {
+namespace throng::recording {
 namespace {
 
 namespace fs = std::filesystem;
@@ -238,4 +238,4 @@ TEST(SocialReaders, ForeignFilesAndBadOptions) {
 }
 
 }  // namespace
-}  // namespace throng::io
+}  // namespace throng::recording

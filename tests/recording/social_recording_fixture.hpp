@@ -1,5 +1,5 @@
 // Test fixture: a small Common Ground recording with known answers, written through
-// throng::io::Recorder from hand-built frames (used by tests/recording/recording_social_test.cpp and
+// throng::recording::Recorder from hand-built frames (used by tests/recording/recording_social_test.cpp and
 // tests/e2e/social_commands_test.cpp). docs/social-metrics.md derives the expected metrics.
 //
 // Scenario: a 20 m x 10 m room; points 0 "wc" (restroom, (5, 5)), 1 "shoes" (shoes, (15, 5)),
@@ -76,13 +76,13 @@ inline sim::ScriptRecord scriptEntry(std::uint32_t coordination, std::uint32_t a
 
 /// Writes the fixture recording to `path`; returns "" or the recorder's error.
 inline std::string writeSocialRecording(const std::string& path) {
-  io::RecordingOptions o;
+  recording::RecordingOptions o;
   o.path = path;
   o.fps = 10.0;
   o.seed = 1;
   o.scenarioText = R"({"format":"throng/1","name":"cg-fixture"})";
   o.framesPerBatch = 2;
-  auto rec = io::Recorder::open(socialScenario(), o);
+  auto rec = recording::Recorder::open(socialScenario(), o);
   if (!rec.ok()) return core::formatAll(rec.errors());
   using K = sim::EventKind;
   for (std::uint64_t f = 0; f < 5; ++f) {

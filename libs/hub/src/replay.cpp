@@ -17,13 +17,13 @@ constexpr double kMinSpeed = 1.0 / 1024.0;  ///< slowest speed factor (stays > 0
 }  // namespace
 
 struct Replay::Data {
-  io::RecordedFrames recorded;
+  recording::RecordedFrames recorded;
 };
 
 Replay::Replay(std::shared_ptr<const Data> data) : data_(std::move(data)) {}
 
 core::Result<Replay> Replay::open(const std::string& path) {
-  auto recorded = io::readRecordedFrames(path, io::FrameReadOptions{kMaxReplayBytes});
+  auto recorded = recording::readRecordedFrames(path, recording::FrameReadOptions{kMaxReplayBytes});
   if (!recorded) return recorded.errors();
   auto data = std::make_shared<Data>();
   data->recorded = std::move(recorded).value();

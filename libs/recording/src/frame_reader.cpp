@@ -1,4 +1,4 @@
-// throng::io recorded frames — readRecordedFrames (frame_reader.hpp): checks the file, reads the
+// throng::recording recorded frames — readRecordedFrames (frame_reader.hpp): checks the file, reads the
 // header (scenario, fps), sizes the frames (refusing what would not fit in memory), then fills them
 // table by table — ticks and times, positions and headings, heights, clips and phases — and derives
 // the clips and phases the file lacks. Reads the SQLite file read-only, once; writes nothing.
@@ -15,7 +15,7 @@
 
 #include "recording_social_read.hpp"
 
-namespace throng::io {
+namespace throng::recording {
 namespace {
 
 using recording::ReadOnlyDb;
@@ -321,4 +321,4 @@ core::Result<RecordedFrames> readRecordedFrames(const std::string& path, const F
   return std::move(reader).finish();
 }
 
-}  // namespace throng::io
+}  // namespace throng::recording

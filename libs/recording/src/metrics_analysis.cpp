@@ -1,11 +1,11 @@
-// throng::io metrics analysis — the tallies and statistics of metrics_analysis.hpp: arrival bins,
+// throng::recording metrics analysis — the tallies and statistics of metrics_analysis.hpp: arrival bins,
 // the key-point grid and congestion histograms, group cohesion, coordination statistics. Pure
 // functions of the values they are given; reads and writes memory only.
 #include "metrics_analysis.hpp"
 
 #include <numbers>
 
-namespace throng::io::metrics {
+namespace throng::recording::metrics {
 
 DensityStats densityOf(const std::vector<std::uint64_t>& histogram, double area) {
   DensityStats d;
@@ -278,4 +278,4 @@ CoordinationStats coordinationStats(const std::vector<CoordinationInfo>& coordin
   return cs;
 }
 
-}  // namespace throng::io::metrics
+}  // namespace throng::recording::metrics

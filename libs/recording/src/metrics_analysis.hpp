@@ -1,4 +1,4 @@
-// throng::io metrics analysis — the pure half of computeMetrics (recording_social.hpp, definitions
+// throng::recording metrics analysis — the pure half of computeMetrics (recording_social.hpp, definitions
 // in docs/social-metrics.md): (a) arrivals and exits per time bin, (b) congestion — the density
 // of agents around key points, (c) group cohesion, (d) coordination statistics. Computed from plain
 // values that metrics_queries.cpp reads from a recording; no SQLite, no files. The trajectory is
@@ -15,7 +15,7 @@
 
 #include "throng/recording/recording_social.hpp"
 
-namespace throng::io::metrics {
+namespace throng::recording::metrics {
 
 /// A point with a category: a key point of the congestion measure.
 struct KeyPoint {
@@ -149,4 +149,4 @@ void PointGrid::near(const std::vector<KeyPoint>& points, double x, double y, F&
   }
 }
 
-}  // namespace throng::io::metrics
+}  // namespace throng::recording::metrics

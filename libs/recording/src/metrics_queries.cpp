@@ -1,4 +1,4 @@
-// throng::io metrics queries — computeMetrics (recording_social.hpp; definitions in
+// throng::recording metrics queries — computeMetrics (recording_social.hpp; definitions in
 // docs/social-metrics.md): the evaluation of Park et al. (arrival rate at designated destinations
 // over time, congestion at key points) plus group cohesion and Common Ground coordination
 // statistics. This file reads: throng_frames, throng_points, throng_events, throng_coordinations,
@@ -13,7 +13,7 @@
 #include "recording_social_read.hpp"
 #include "throng/recording/recording_social.hpp"
 
-namespace throng::io {
+namespace throng::recording {
 namespace {
 
 using namespace recording;
@@ -257,4 +257,4 @@ core::Result<SocialMetrics> computeMetrics(const std::string& path, const Metric
   }
 }
 
-}  // namespace throng::io
+}  // namespace throng::recording

@@ -1,4 +1,4 @@
-// throng::io::Recorder — writes frames to SQLite (JuPedSim trajectory format v2 + throng_*
+// throng::recording::Recorder — writes frames to SQLite (JuPedSim trajectory format v2 + throng_*
 // tables, see recording_schema.hpp and docs/recording-format.md). open() checks the path and
 // creates the schema on the caller's thread; push() hands frames to a bounded queue; a worker
 // thread writes them in WAL transactions of framesPerBatch frames; close() drains, writes the
@@ -36,7 +36,7 @@
 #define THRONG_VERSION "unknown"
 #endif
 
-namespace throng::io {
+namespace throng::recording {
 namespace recorder_detail {
 
 core::Diagnostic diag(const std::string& path, std::string what, std::string expected,
@@ -491,4 +491,4 @@ std::uint64_t Recorder::framesWritten() const {
   return impl_ ? impl_->committed.load(std::memory_order_acquire) : 0;
 }
 
-}  // namespace throng::io
+}  // namespace throng::recording

@@ -1,4 +1,4 @@
-// throng::io::Recorder::Impl — the recorder's state shared by its source files: the SQLite
+// throng::recording::Recorder::Impl — the recorder's state shared by its source files: the SQLite
 // connection and prepared statements, the frame queue between push() and the worker thread, and
 // the worker's bookkeeping. recorder.cpp opens, writes frames and closes (see its header comment);
 // recorder_social.cpp writes the Common Ground tables. Private to throng_io.
@@ -19,7 +19,7 @@
 
 #include "recording_schema.hpp"
 
-namespace throng::io {
+namespace throng::recording {
 namespace recorder_detail {
 
 /// Rows per multi-row INSERT of the per-frame tables.
@@ -161,4 +161,4 @@ struct Recorder::Impl {
   void writeFinal(bool completed);
 };
 
-}  // namespace throng::io
+}  // namespace throng::recording

@@ -1,4 +1,4 @@
-// throng::io::Recorder, Common Ground tables — writes a frame's finished coordinations
+// throng::recording::Recorder, Common Ground tables — writes a frame's finished coordinations
 // (throng_coordinations) and played script entries (throng_script) with the statements that
 // Recorder::Impl::prepareAll() prepared (recorder.cpp), on the recorder's worker thread inside the
 // frame's transaction. Record fields become text with throng::social's names
@@ -13,7 +13,7 @@
 #include "recorder_impl.hpp"
 #include "recording_schema.hpp"
 
-namespace throng::io {
+namespace throng::recording {
 namespace {
 
 using recording::bindInt;
@@ -124,4 +124,4 @@ bool Recorder::Impl::writeSocial(const sim::Frame& f) {
   return true;
 }
 
-}  // namespace throng::io
+}  // namespace throng::recording

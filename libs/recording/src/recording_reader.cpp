@@ -1,4 +1,4 @@
-// throng::io recording reader — readRecordingSummary: opens a recording read-only and summarises
+// throng::recording recording reader — readRecordingSummary: opens a recording read-only and summarises
 // it (format version, frames, agents, rows, fps, throng's provenance), one named step per part. Accepts any JuPedSim
 // trajectory file (versions 1–3); throng's own tables are optional. Any other file, however
 // damaged, gives one diagnostic naming the file and what was expected; nothing is written.
@@ -13,7 +13,7 @@
 #include "recording_text.hpp"
 #include "throng/recording/recorder.hpp"
 
-namespace throng::io {
+namespace throng::recording {
 namespace {
 
 using recording::ReadOnlyDb;
@@ -226,4 +226,4 @@ core::Result<RecordingSummary> readRecordingSummary(const std::string& path) {
   }
 }
 
-}  // namespace throng::io
+}  // namespace throng::recording

@@ -1,4 +1,4 @@
-// throng::io recording scenario tables — writes the scenario's points and populations into
+// throng::recording recording scenario tables — writes the scenario's points and populations into
 // `throng_points` and `throng_populations` (see recording_schema.hpp, docs/recording-format.md)
 // when a recording is created. Reads the ScenarioDesc; writes rows in the caller's transaction.
 #include "recording_scenario.hpp"
@@ -9,7 +9,7 @@
 #include "recording_text.hpp"
 #include "walkable_area_wkt.hpp"
 
-namespace throng::io::recording {
+namespace throng::recording {
 namespace {
 
 const char* pointKindText(sim::PointKind kind) {
@@ -140,4 +140,4 @@ std::string writeScenarioTables(sqlite3* db, const sim::ScenarioDesc& scenario) 
   return {};
 }
 
-}  // namespace throng::io::recording
+}  // namespace throng::recording

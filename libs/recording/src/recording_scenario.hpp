@@ -1,4 +1,4 @@
-// throng::io recording scenario tables — the scenario's points and populations as rows of
+// throng::recording recording scenario tables — the scenario's points and populations as rows of
 // `throng_points` and `throng_populations`, written once when a recording is created.
 #pragma once
 #include <sqlite3.h>
@@ -7,10 +7,10 @@
 
 #include "throng/sim/scenario.hpp"
 
-namespace throng::io::recording {
+namespace throng::recording {
 
 /// Inserts one row per point and per population (inside the caller's transaction). Returns
 /// SQLite's message on failure, an empty string on success.
 [[nodiscard]] std::string writeScenarioTables(sqlite3* db, const sim::ScenarioDesc& scenario);
 
-}  // namespace throng::io::recording
+}  // namespace throng::recording

@@ -1,4 +1,4 @@
-// throng::io recording schema — the table layout shared by the recorder (writes) and the
+// throng::recording recording schema — the table layout shared by the recorder (writes) and the
 // recording reader (reads): JuPedSim's SQLite trajectory format, version 2, plus throng's own
 // `throng_*` tables. docs/recording-format.md documents every table; keep the two in step.
 //
@@ -13,7 +13,7 @@
 #include <string>
 #include <string_view>
 
-namespace throng::io::recording {
+namespace throng::recording {
 
 inline constexpr int kFormatVersion = 2;  ///< metadata `version` written
 inline constexpr int kMinReadVersion = 1; ///< versions the reader accepts
@@ -268,4 +268,4 @@ inline std::int64_t geometryHash(std::string_view wkt) {
   return static_cast<std::int64_t>(h);
 }
 
-}  // namespace throng::io::recording
+}  // namespace throng::recording

@@ -1,4 +1,4 @@
-// throng::io Common Ground recording readers — readCoordinations, readScript,
+// throng::recording Common Ground recording readers — readCoordinations, readScript,
 // readCoordinationScript and readAgentTrack (recording_social.hpp): read `throng_coordinations`,
 // `throng_script`, `trajectory_data`, `throng_frames`, `throng_animation` and `throng_points`
 // read-only and check every enum text and id, naming the table and row of the first bad value.
@@ -14,7 +14,7 @@
 #include "recording_social_read.hpp"
 #include "throng/social/behaviour_db.hpp"
 
-namespace throng::io {
+namespace throng::recording {
 namespace {
 
 using namespace recording;
@@ -389,4 +389,4 @@ core::Result<AgentTrack> readAgentTrack(const std::string& path, std::uint32_t a
   }
 }
 
-}  // namespace throng::io
+}  // namespace throng::recording

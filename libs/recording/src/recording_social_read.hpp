@@ -1,4 +1,4 @@
-// throng::io recording reader helpers — shared by recording_social.cpp (coordinations, scripts,
+// throng::recording recording reader helpers — shared by recording_social.cpp (coordinations, scripts,
 // tracks), the metrics queries and frame_reader.cpp (frames for replay): opening a recording
 // read-only with the checks every reader makes, table/column probes, metadata values, NULL-aware
 // column access and the diagnostics they give.
@@ -16,7 +16,7 @@
 #include "recording_schema.hpp"
 #include "throng/core/diagnostic.hpp"
 
-namespace throng::io::recording {
+namespace throng::recording {
 
 inline constexpr const char* kExpectedCgFile =
     "a recording made by 'throng run' of a scenario with a \"social\" section";
@@ -154,4 +154,4 @@ inline std::optional<double> recordingFps(const ReadOnlyDb& db) {
   return v;
 }
 
-}  // namespace throng::io::recording
+}  // namespace throng::recording

@@ -1,4 +1,4 @@
-// throng::io recording text — how numbers become text in a recording: metadata values (TEXT
+// throng::recording recording text — how numbers become text in a recording: metadata values (TEXT
 // column, written the way Python's str(float) writes them, as JuPedSim does) and WKT coordinates
 // (shortest round-trip decimal, trimmed like shapely.to_wkt). Reads nothing, writes strings.
 #pragma once
@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-namespace throng::io::recording {
+namespace throng::recording {
 
 /// Shortest decimal that reads back as exactly `v` ("4.5", "20", "1e+22"); -0 becomes "0".
 inline std::string shortestText(double v) {
@@ -61,4 +61,4 @@ inline std::optional<std::int64_t> parseInt(std::string_view s) {
   return std::nullopt;
 }
 
-}  // namespace throng::io::recording
+}  // namespace throng::recording

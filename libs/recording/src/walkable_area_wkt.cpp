@@ -1,4 +1,4 @@
-// throng::io walkable-area WKT — Boost.Geometry union / difference of the scenario polygons and
+// throng::recording walkable-area WKT — Boost.Geometry union / difference of the scenario polygons and
 // a WKT writer in shapely's layout ("POLYGON ((0 0, 20 0, …), (…))"), as JuPedSim's
 // Geometry.as_wkt() writes it (shapely.to_wkt with full precision).
 #include "walkable_area_wkt.hpp"
@@ -10,7 +10,7 @@
 
 #include "recording_text.hpp"
 
-namespace throng::io::recording {
+namespace throng::recording {
 namespace {
 
 namespace bg = boost::geometry;
@@ -130,4 +130,4 @@ std::string polygonWkt(const core::Polygon& polygon) {
   return s;
 }
 
-}  // namespace throng::io::recording
+}  // namespace throng::recording

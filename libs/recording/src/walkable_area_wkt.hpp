@@ -1,4 +1,4 @@
-// throng::io walkable-area WKT — the walkable area of a scenario (union of the walkable polygons
+// throng::recording walkable-area WKT — the walkable area of a scenario (union of the walkable polygons
 // minus the obstacles) as the WKT a JuPedSim recording stores in `geometry.wkt`. Reads the
 // scenario's polygons; writes a string. Computed with Boost.Geometry so that obstacles touching
 // or crossing the walkable boundary still give a valid (OGC / shapely) polygon.
@@ -8,7 +8,7 @@
 
 #include "throng/core/geometry.hpp"
 
-namespace throng::io::recording {
+namespace throng::recording {
 
 struct WalkableAreaWkt {
   std::string wkt;      ///< "POLYGON ((…), (…))", "MULTIPOLYGON (…)" when disconnected, or "POLYGON EMPTY"
@@ -26,4 +26,4 @@ struct WalkableAreaWkt {
 /// WKT of a single polygon (a point's region, a spawn polygon), closed and counter-clockwise.
 [[nodiscard]] std::string polygonWkt(const core::Polygon& polygon);
 
-}  // namespace throng::io::recording
+}  // namespace throng::recording

@@ -1,4 +1,4 @@
-// throng::io recorded frames — every frame of a `throng run` recording read into memory as an
+// throng::recording recorded frames — every frame of a `throng run` recording read into memory as an
 // immutable sim::Frame, for replaying it (hub::Replay): positions and headings (trajectory_data),
 // heights (throng_heights), clips and phases (throng_animation, or derived from the motion when
 // the file has none), ticks and times (throng_frames), plus the fps and the scenario JSON
@@ -13,7 +13,7 @@
 #include "throng/sim/animation.hpp"
 #include "throng/sim/frame.hpp"
 
-namespace throng::io {
+namespace throng::recording {
 
 // How a recording without throng_animation rows is animated: clip 1 (walk) where the agent moved
 // faster than kStandingSpeed since the previous frame, else clip 0 (idle); the walk phase advances
@@ -52,4 +52,4 @@ struct RecordedFrames {
 /// agent id outside [0, 2^32) or a non-finite position in trajectory_data, an unreadable table.
 core::Result<RecordedFrames> readRecordedFrames(const std::string& path, const FrameReadOptions& options = {});
 
-}  // namespace throng::io
+}  // namespace throng::recording

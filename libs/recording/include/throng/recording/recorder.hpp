@@ -1,4 +1,4 @@
-// throng::io::Recorder — writes frames to SQLite in JuPedSim's trajectory format (version 2) plus
+// throng::recording::Recorder — writes frames to SQLite in JuPedSim's trajectory format (version 2) plus
 // throng's own tables, on its own thread, in batched WAL transactions. Lossless with backpressure:
 // push() blocks while the queue is full. A killed process leaves a valid file holding everything
 // up to the last committed batch; close() (also on Ctrl-C) leaves a complete single file.
@@ -13,7 +13,7 @@
 #include "throng/sim/frame.hpp"
 #include "throng/sim/scenario.hpp"
 
-namespace throng::io {
+namespace throng::recording {
 
 struct RecordingOptions {
   std::string path;                ///< output file (.sqlite)
@@ -78,4 +78,4 @@ struct RecordingSummary {
 /// Opens a recording read-only and summarises it; bad or foreign files give a diagnostic.
 core::Result<RecordingSummary> readRecordingSummary(const std::string& path);
 
-}  // namespace throng::io
+}  // namespace throng::recording

@@ -1,4 +1,4 @@
-// throng::io Common Ground recording readers — read what the recorder wrote about the social model
+// throng::recording Common Ground recording readers — read what the recorder wrote about the social model
 // (Park, Peng, Quek, Cao): the coordinations (`throng_coordinations`), the per-character action
 // scripts (`throng_script`, the shape of the paper's Tables 3 and 5), an agent's trajectory, and
 // the evaluation metrics of docs/social-metrics.md (arrival rate at destinations over time,
@@ -16,7 +16,7 @@
 
 #include "throng/core/result.hpp"
 
-namespace throng::io {
+namespace throng::recording {
 
 /// One row of `throng_coordinations`: a Common Ground interaction or a lone visit.
 struct CoordinationInfo {
@@ -182,4 +182,4 @@ struct SocialMetrics {
 /// Computes every metric in one ordered pass over trajectory_data (docs/social-metrics.md).
 core::Result<SocialMetrics> computeMetrics(const std::string& path, const MetricsOptions& options = {});
 
-}  // namespace throng::io
+}  // namespace throng::recording
