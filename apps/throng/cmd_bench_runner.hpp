@@ -19,9 +19,9 @@
 #include "throng/sim/scenario.hpp"
 #include "throng/sim/world.hpp"
 
-namespace throng::io {
+namespace throng::recording {
 class Recorder;
-}  // namespace throng::io
+}  // namespace throng::recording
 
 namespace throng::cli::bench_detail {
 
