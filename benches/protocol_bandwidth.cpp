@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
       protocol::CrowdFrameHeader last;
       for (int n = 0; n <= frames; ++n) {
         world.value()->step(tasks);
-        auto e = enc.encode(viewOf(*world.value()->snapshot(), c, c), ack);
+        auto e = enc.encode(viewOf(*world.value()->takeFrame(), c, c), ack);
         if (!e) return 1;
         if (e.value().keyFrame()) {
           keyBytes = e.value().bytes.size();

@@ -117,7 +117,7 @@ TimedTicks runTimedTicks(sim::World& w, const core::TaskSystem& tasks, recording
     if (plan.done(tick, w, t.totalSeconds)) break;
     const auto t0 = Clock::now();
     w.step(tasks, phases);
-    if (recorder && (tick + 1) % plan.stride == 0) recorder->push(w.snapshot());
+    if (recorder && (tick + 1) % plan.stride == 0) recorder->push(w.takeFrame());
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     t.totalSeconds += seconds;
     t.ms.push_back(seconds * 1000.0);
@@ -241,7 +241,7 @@ std::optional<Measurement> BenchRunner::timeThrong(const sim::ScenarioDesc& desc
     status(fmt::format("{}: warm-up {}/{}", label, i + 1, options_.warmup));
   }
   double bytesPerAgent = n > 0 ? std::max(0.0, currentRss() - rssBefore) / static_cast<double>(n) : 0.0;
-  if (recorder) recorder->push(w.snapshot());  // frame 0: the state before the first timed tick
+  if (recorder) recorder->push(w.takeFrame());  // frame 0: the state before the first timed tick
 
   PhaseTimer phases;  // --phase-times: the timed ticks only
   const WorldBefore before{w.stats().agentSteps, w.stats().time, w.stats().walkedDistance};

@@ -425,7 +425,7 @@ class LinkLoop {
     }
     answerRequests(segment_, world_);
     world_.step(tasks_);
-    const sim::FramePtr frame = world_.snapshot();
+    const sim::FramePtr frame = world_.takeFrame();
     writer_.write(*frame, world_, detailIds_);
     ++ticks_;
   }

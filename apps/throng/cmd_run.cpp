@@ -109,7 +109,7 @@ std::optional<std::string> stallState(const sim::World& world, std::uint32_t id)
 /// is finished, or on a signal; except after a signal it steps on to the next multiple of the
 /// stride so the last frame carries every event (an empty world steps in no time). Under MPI every
 /// rank takes the same decisions: a signal is looked at (collectively) at frame ticks only, and
-/// only rank 0 has a recorder; the others drop their snapshots (snapshot() also clears the events).
+/// only rank 0 has a recorder; the others drop their frames (takeFrame() also clears the events).
 LoopResult simulate(sim::World& world, recording::Recorder* recorder, const core::TaskSystem& tasks,
                     std::uint64_t totalTicks, const FramePlan& plan, double duration, ProgressLine& progress,
                     const RankPlan& ranks, sim::PhaseObserver* phases, StallTracker* stalls) {
@@ -119,7 +119,7 @@ LoopResult simulate(sim::World& world, recording::Recorder* recorder, const core
     if (stalls != nullptr) stalls->observe(*frame, [&world](std::uint32_t id) { return stallState(world, id); });
     if (recorder != nullptr) recorder->push(std::move(frame));
   };
-  push(world.snapshot());  // frame 0: the initial state at tick 0
+  push(world.takeFrame());  // frame 0: the initial state at tick 0
   std::uint64_t tick = 0;
   while (true) {
     const bool atFrame = tick % plan.stride == 0;
@@ -146,7 +146,7 @@ LoopResult simulate(sim::World& world, recording::Recorder* recorder, const core
     }
     world.step(tasks, phases);
     ++tick;
-    if (tick % plan.stride == 0) push(world.snapshot());
+    if (tick % plan.stride == 0) push(world.takeFrame());
     if (progress.due()) {
       const auto& s = world.stats();
       progress.draw(formatRunProgress({s.time, duration, s.active, s.exited, secondsSince(start)}, progress.width()));

@@ -569,7 +569,7 @@ class TickLoop {
     if (!served_.replay) {
       hub_.applyToWorld(*served_.live.world);
       served_.live.world->step(tasks_);
-      return served_.live.world->snapshot();
+      return served_.live.world->takeFrame();
     }
     // Playback: the clients' controls move the clock; the frame is the recorded one at its time.
     bool changed = false;

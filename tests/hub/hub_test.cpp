@@ -105,7 +105,7 @@ struct HubFixture : ::testing::Test {
     hub->applyToWorld(*world);
     world->step(tasks);
     now += world->desc().dt;
-    hub->publish(*world->snapshot(), now);
+    hub->publish(*world->takeFrame(), now);
   }
 
   std::unique_ptr<io::LoadedScenario> scenario;
@@ -202,7 +202,7 @@ TEST_F(HubFixture, AGuidedGroupFollowsTheAvatarAndAnotherClientSeesIt) {
   // Group 0's members, and a spot 8 m away from them where the avatar stands.
   const auto info = world->groupInfo(world->groupById(0));
   ASSERT_TRUE(info && !info->members.empty());
-  auto frame = world->snapshot();
+  auto frame = world->takeFrame();
   auto centroid = [&](const sim::Frame& f) {
     core::Vec2 c{};
     int n = 0;
@@ -240,14 +240,14 @@ TEST_F(HubFixture, AGuidedGroupFollowsTheAvatarAndAnotherClientSeesIt) {
     if (last) say(2, encode(Ack{0, last->header.frameNumber}));
     outbox.drain(1);
   }
-  const core::Vec2 end = centroid(*world->snapshot());
+  const core::Vec2 end = centroid(*world->takeFrame());
   const core::Vec2 avatar{move.x, move.y};
   EXPECT_LT(core::length(end - avatar), core::length(start - avatar) - 2.0f)
       << "group went from " << start.x << "," << start.y << " to " << end.x << "," << end.y;
   ASSERT_TRUE(last.has_value());
   EXPECT_NE(last->header.baseFrame, 0u);  // acknowledged: delta frames
   // What client 2 decoded is where the world has the agents (1 cm quantization).
-  auto snap = world->snapshot();
+  auto snap = world->takeFrame();
   std::size_t matched = 0;
   for (const AgentState& s : last->view.agents) {
     for (std::size_t r = 0; r < snap->size(); ++r) {
@@ -277,7 +277,7 @@ TEST_F(HubFixture, NearAgentsCarryJointPoses) {
   connect(1);
   const Joined a = join(1, "near");
   for (int i = 0; i < 20; ++i) tick();
-  auto snap = world->snapshot();
+  auto snap = world->takeFrame();
   ASSERT_GT(snap->size(), 0u);
   Move move;
   move.subject = {Subject::Kind::Token, a.token};
@@ -308,7 +308,7 @@ TEST_F(HubFixture, SilentClientsTimeOutAndFloodsAreCut) {
   const Joined b = join(2, "flood");
   now += 11.0;  // client 1 says nothing for 11 s; client 2 keeps talking
   say(2, encode(Heartbeat{b.token, 1, 0}));
-  hub->publish(*world->snapshot(), now);
+  hub->publish(*world->takeFrame(), now);
   EXPECT_TRUE(outbox.closed.count(1));
   const auto got7 = outbox.drain(1);
   const Bye* bye = find<Bye>(got7);
@@ -384,7 +384,7 @@ TEST_F(HubFixture, AClientThatNeverReadsIsCutOffAndTheOthersGoOn) {
     now += 1.0;
     say(1, encode(Heartbeat{0, 1, 0}));  // it talks, but never reads
     say(2, encode(Heartbeat{0, 1, 0}));
-    hub->publish(*world->snapshot(), now);
+    hub->publish(*world->takeFrame(), now);
   }
   ASSERT_TRUE(outbox.closed.count(1));
   EXPECT_NE(outbox.closed[1].find("slow client"), std::string::npos) << outbox.closed[1];
@@ -409,7 +409,7 @@ std::string visitors(const std::string& id = "late-visitors", int groups = 2, in
 
 /// Agents of the world's snapshot whose population index is at least `firstPopulation`.
 std::size_t agentsFrom(sim::World& world, std::uint32_t firstPopulation) {
-  auto snap = world.snapshot();
+  auto snap = world.takeFrame();
   std::size_t n = 0;
   for (std::size_t r = 0; r < snap->size(); ++r) {
     auto info = world.agentInfo(snap->ids[r]);
@@ -455,7 +455,7 @@ TEST_F(HubFixture, AnInsertedCrowdsAgentsAppearForEveryClient) {
     seen.clear();
     for (const AgentState& s : d->view.agents) seen.insert(s.id);
   }
-  auto snap = world->snapshot();
+  auto snap = world->takeFrame();
   std::size_t inserted = 0;
   for (std::size_t i = 0; i < snap->size(); ++i) {
     auto info = world->agentInfo(snap->ids[i]);
@@ -495,7 +495,7 @@ TEST_F(HubFixture, ABadCrowdIsRefusedWithDiagnosticsAndTheWorldIsUntouched) {
   EXPECT_NE(r->text.find("/populations/0/spawn"), std::string::npos) << r->text;
   EXPECT_NE(r->text.find("hall"), std::string::npos) << r->text;
   EXPECT_TRUE(world->crowds().empty());
-  EXPECT_EQ(world->snapshot()->size(), twin->snapshot()->size());
+  EXPECT_EQ(world->takeFrame()->size(), twin->takeFrame()->size());
   EXPECT_EQ(world->stateHash(), twin->stateHash());
   EXPECT_TRUE(outbox.closed.empty());  // a bad crowd file is no protocol error: the session stays
 }

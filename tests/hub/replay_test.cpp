@@ -68,10 +68,10 @@ std::vector<sim::FramePtr> recordMuseum(const std::string& path, std::string& sc
     frames.push_back(f);
     recorder.value()->push(std::move(f));
   };
-  push((*world)->snapshot());
+  push((*world)->takeFrame());
   for (long tick = 1; tick <= ticks; ++tick) {
     (*world)->step(tasks);
-    if (tick % stride == 0) push((*world)->snapshot());
+    if (tick % stride == 0) push((*world)->takeFrame());
   }
   const auto closed = recorder.value()->close(true);
   EXPECT_TRUE(closed) << core::formatAll(closed.errors());

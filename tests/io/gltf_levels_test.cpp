@@ -172,7 +172,7 @@ TEST(GltfLevels, TwoFloorsRunsToTheEnd) {
   std::map<std::uint32_t, std::uint32_t> populationOf;
   while (!world.finished() && world.stats().time < 150.0) {
     world.step(tasks);
-    const auto f = world.snapshot();
+    const auto f = world.takeFrame();
     for (std::size_t i = 0; i < f->size(); ++i) {
       auto [it, fresh] = range.try_emplace(f->ids[i], f->height(i), f->height(i));
       it->second.first = std::min(it->second.first, f->height(i));

@@ -57,12 +57,12 @@ TEST(CrowdPaths, GroupMembersSpreadOverAnActionPointsRegion) {
   int acting = 0;
   for (int i = 0; i < 1200 && acting < 4; ++i) {
     w.value()->step(tasks);
-    const auto f = w.value()->snapshot();
+    const auto f = w.value()->takeFrame();
     acting = 0;
     for (auto m : f->mode) acting += m == sim::AgentMode::Acting;
   }
   ASSERT_EQ(acting, 4) << "everyone reached the painting";
-  const auto f = w.value()->snapshot();
+  const auto f = w.value()->takeFrame();
   for (std::size_t i = 0; i < f->size(); ++i) {
     EXPECT_LT(core::distance(core::Vec2{f->posX[i], f->posY[i]}, core::Vec2{25, 10}), 2.0f + 0.3f) << "inside the region";
     EXPECT_NEAR(f->oriX[i], 1.0f, 1e-5f) << "facing the painting";
@@ -103,7 +103,7 @@ TEST(CrowdPaths, BezierSeekGoalStaysInsideAndFallsBackBehindWalls) {
   float closest = 1e9f;
   while (w.value()->stats().time < 90 && !w.value()->finished()) {
     w.value()->step(tasks);
-    const auto f = w.value()->snapshot();
+    const auto f = w.value()->takeFrame();
     for (const auto& e : f->events) fallbacks += e.kind == sim::EventKind::PathFallback;
     for (std::size_t i = 0; i < f->size(); ++i) {
       const float dx = std::max({13.0f - f->posX[i], 0.0f, f->posX[i] - 17.0f});

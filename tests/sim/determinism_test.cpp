@@ -43,7 +43,7 @@ Trace run(const io::LoadedScenario& s, int threads, std::size_t grainLimit, int 
     if (hook) hook(w, i);
     w.step(tasks);
     t.hashes.push_back(w.stateHash());
-    const auto f = w.snapshot();
+    const auto f = w.takeFrame();
     t.events.insert(t.events.end(), f->events.begin(), f->events.end());
     for (const ScriptRecord& r : f->script) {
       std::uint64_t bits = 0;

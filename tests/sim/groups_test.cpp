@@ -83,7 +83,7 @@ Cohesion measure(const sim::ScenarioDesc& d, double seconds) {
   std::size_t distN = 0, pairN = 0;
   while (w->stats().time < seconds && !w->finished()) {
     w->step(tasks);
-    const auto f = w->snapshot();
+    const auto f = w->takeFrame();
     if (w->stats().tick < 40) continue;  // let groups form up after spawning
     std::map<std::uint32_t, std::size_t> row;
     for (std::size_t i = 0; i < f->size(); ++i) row[f->ids[i]] = i;
@@ -225,7 +225,7 @@ TEST(Groups, PermanentFollowerAdoptsTheLeadersGoals) {
   while (w->stats().time < 150 && !w->finished()) {
     w->step(tasks);
     const auto li = w->groupInfo(leader), fi = w->groupInfo(follows);
-    for (const auto& e : w->snapshot()->events) {
+    for (const auto& e : w->takeFrame()->events) {
       if (e.kind != sim::EventKind::GoalReached) continue;
       auto& visits = std::count(li->members.begin(), li->members.end(), e.agent) ? leaderVisits : followerVisits;
       if (visits.empty() || visits.back() != e.a) visits.push_back(e.a);
@@ -274,7 +274,7 @@ TEST(Groups, FollowersSlowDownForTheLeadersActionPoint) {
   float lastSpeed = -1.0f, arrivalSpeed = -1.0f;
   while (w->stats().time < 120 && arrivalSpeed < 0.0f) {
     w->step(tasks);
-    const auto frame = w->snapshot();
+    const auto frame = w->takeFrame();
     for (const auto& e : frame->events) {
       if (e.kind == sim::EventKind::ActionStart && e.agent == followerId) arrivalSpeed = lastSpeed;
     }
@@ -325,7 +325,7 @@ TEST(Groups, ScriptedGuideLeadsTheGroup) {
   ASSERT_TRUE(info);
   EXPECT_TRUE(info->guided);
   ASSERT_EQ(info->members.size(), 3u) << "nobody left through the exit while guided";
-  const auto f = w->snapshot();
+  const auto f = w->takeFrame();
   for (std::size_t i = 0; i < f->size(); ++i) {
     EXPECT_LT(core::distance(core::Vec2{f->posX[i], f->posY[i]}, core::Vec2{45, 4}), 4.0f)
         << "member " << f->ids[i] << " ends within a few metres of the guide's last position";
@@ -345,7 +345,7 @@ TEST(Groups, ApiGuidanceAndReleaseResumeOwnGoals) {
   for (int i = 0; i < 400; ++i) w->step(tasks);  // 20 s following an avatar standing at (10, 15)
   auto info = w->groupInfo(g);
   ASSERT_TRUE(info && info->guided);
-  const auto f = w->snapshot();
+  const auto f = w->takeFrame();
   for (std::size_t i = 0; i < f->size(); ++i) {
     EXPECT_LT(core::distance(core::Vec2{f->posX[i], f->posY[i]}, core::Vec2{10, 15}), 3.5f);
   }
@@ -427,7 +427,7 @@ TEST(Groups, MultiresolutionSteeringFarFromViewersStaysSafe) {
   float minWallGap = 1e9f;
   while (w->stats().time < 120 && !w->finished()) {
     w->step(tasks);
-    const auto f = w->snapshot();
+    const auto f = w->takeFrame();
     for (std::size_t i = 0; i < f->size(); ++i) {
       minWallGap = std::min({minWallGap, f->posX[i], kRoomW - f->posX[i], f->posY[i], kRoomH - f->posY[i]});
     }

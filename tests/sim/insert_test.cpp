@@ -71,7 +71,7 @@ TEST(InsertCrowd, AgentsAppearAtTheNextTickWithTheNextIds) {
   auto w = make(d);
   core::TaskSystem tasks(1);
   for (int i = 0; i < 10; ++i) w->step(tasks);
-  const auto before = w->snapshot();
+  const auto before = w->takeFrame();
   const std::uint32_t groupsBefore = static_cast<std::uint32_t>(w->groupCount());
   const std::uint32_t spawnedBefore = w->stats().spawned;
   auto index = w->insertCrowd(tourCrowd(d));
@@ -79,7 +79,7 @@ TEST(InsertCrowd, AgentsAppearAtTheNextTickWithTheNextIds) {
   EXPECT_EQ(index.value(), 0u);
   EXPECT_EQ(w->desc().populations.size(), 1u);  // queued: nothing changed yet
   w->step(tasks);
-  const auto f = w->snapshot();
+  const auto f = w->takeFrame();
   ASSERT_EQ(f->ids.size(), before->ids.size() + 3);
   std::vector<std::uint32_t> spawned;
   for (const Event& e : f->events) {
@@ -126,14 +126,14 @@ TEST(InsertCrowd, RemovalMakesItsAgentsLeaveAtTheNextTick) {
   core::TaskSystem tasks(1);
   ASSERT_TRUE(w->insertCrowd(tourCrowd(d, 5)).ok());
   for (int i = 0; i < 40; ++i) w->step(tasks);
-  (void)w->snapshot();
+  (void)w->takeFrame();
   ASSERT_EQ(w->stats().active, 9u);
   EXPECT_TRUE(w->removeCrowd("tour"));
   EXPECT_FALSE(w->removeCrowd("tour"));    // already queued
   EXPECT_FALSE(w->removeCrowd("nobody"));
   EXPECT_EQ(w->stats().active, 9u);        // not before the next tick
   w->step(tasks);
-  const auto f = w->snapshot();
+  const auto f = w->takeFrame();
   EXPECT_EQ(f->ids.size(), 4u);
   EXPECT_TRUE(std::all_of(f->ids.begin(), f->ids.end(), [](std::uint32_t id) { return id < 4; }));
   int left = 0;
@@ -151,7 +151,7 @@ TEST(InsertCrowd, RemovalMakesItsAgentsLeaveAtTheNextTick) {
   EXPECT_FALSE(w->removeCrowd("tour"));
   // The world goes on.
   for (int i = 0; i < 20; ++i) w->step(tasks);
-  EXPECT_EQ(w->snapshot()->ids.size(), 4u);
+  EXPECT_EQ(w->takeFrame()->ids.size(), 4u);
 }
 
 TEST(InsertCrowd, RemovingBeforeTheSpawnCancelsIt) {
@@ -181,7 +181,7 @@ TEST(InsertCrowd, SpawnTimesCountFromTheInsertion) {
   std::uint64_t spawnTick = 0;
   for (int i = 0; i < 100 && spawnTick == 0; ++i) {
     w->step(tasks);
-    const FramePtr f = w->snapshot();
+    const FramePtr f = w->takeFrame();
     for (const Event& e : f->events) if (e.kind == EventKind::Spawn) spawnTick = e.tick;
   }
   EXPECT_EQ(spawnTick, 140u);  // inserted at tick 100, + 2 s / 0.05 s
@@ -260,7 +260,7 @@ TEST(InsertCrowd, TimelineIsAppliedAtItsTimes) {
   std::vector<std::uint64_t> spawnTicks, removeTicks;
   while (w->stats().time < 20.0) {
     w->step(tasks);
-    const FramePtr f = w->snapshot();
+    const FramePtr f = w->takeFrame();
     for (const Event& e : f->events) {
       if (e.kind == EventKind::Spawn && e.a > 0) spawnTicks.push_back(e.tick);
       if (e.kind == EventKind::Exit && e.a == 0xffffffffu) removeTicks.push_back(e.tick);

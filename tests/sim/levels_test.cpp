@@ -76,7 +76,7 @@ LevelRun simulate(const sim::ScenarioDesc& d, int threads, double maxTime) {
   core::TaskSystem tasks(threads);
   while (!w.finished() && w.stats().time < maxTime) {
     w.step(tasks);
-    const auto f = w.snapshot();
+    const auto f = w.takeFrame();
     EXPECT_EQ(f->posZ.size(), f->size());
     for (std::size_t i = 0; i < f->size(); ++i) {
       Track& t = run.tracks[f->ids[i]];
@@ -187,14 +187,14 @@ TEST(Levels, AGuideOnTheUpperFloorLeadsItsGroupUpTheRamp) {
   float passedY = 0;
   for (int i = 0; i < 900; ++i) {
     w.step(tasks);
-    const auto f = w.snapshot();
+    const auto f = w.takeFrame();
     lowest = 1e9f;
     for (std::size_t k = 0; k < f->size(); ++k) {
       lowest = std::min(lowest, f->height(k));
       passedY = std::max(passedY, f->posY[k]);
     }
   }
-  const auto f = w.snapshot();
+  const auto f = w.takeFrame();
   ASSERT_EQ(f->size(), 4u);
   EXPECT_GT(passedY, 10.0f) << "they went by the ramp";
   EXPECT_GT(lowest, 2.8f) << "every member is upstairs with the guide";

@@ -55,7 +55,7 @@ ModelRun simulate(const sim::ScenarioDesc& d, int threads, double maxTime, std::
   ModelRun run;
   while (!w.finished() && w.stats().time < maxTime) {
     w.step(tasks);
-    const auto f = w.snapshot();
+    const auto f = w.takeFrame();
     for (std::size_t i = 0; i < f->size(); ++i) {
       for (std::size_t j = i + 1; j < f->size(); ++j) {
         const float dx = f->posX[i] - f->posX[j], dy = f->posY[i] - f->posY[j];
@@ -155,7 +155,7 @@ TEST(Models, CollisionFreeSpeedKeepsTheTimeGapBehindASlowerWalker) {
   float minGap = 1e9f, lastGap = 0.0f, fastSpeed = 0.0f;
   while (w.stats().time < 30) {
     w.step(tasks);
-    const auto f = w.snapshot();
+    const auto f = w.takeFrame();
     if (f->size() != 2) break;
     const float gap = std::abs(f->posX[0] - f->posX[1]);
     minGap = std::min(minGap, gap);

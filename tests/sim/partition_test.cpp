@@ -79,7 +79,7 @@ Trace runAlone(const std::string& scenario, int ticks) {
   for (int i = 0; i < ticks; ++i) {
     w->step(tasks);
     t.hashes.push_back(w->stateHash());
-    t.events += w->snapshot()->events.size();
+    t.events += w->takeFrame()->events.size();
   }
   return t;
 }
@@ -103,7 +103,7 @@ std::vector<Trace> runRanks(const std::string& scenario, int ticks, std::uint32_
       for (int i = 0; i < ticks; ++i) {
         worlds[r]->step(tasks);
         traces[r].hashes.push_back(worlds[r]->stateHash());
-        traces[r].events += worlds[r]->snapshot()->events.size();
+        traces[r].events += worlds[r]->takeFrame()->events.size();
       }
       traces[r].partition = worlds[r]->partitionStats();
     });

@@ -12,7 +12,7 @@ inline std::vector<Event> runEvents(World& w, double seconds, int threads = 1) {
   std::vector<Event> events;
   while (w.stats().time < seconds && !w.finished()) {
     w.step(tasks);
-    const auto f = w.snapshot();
+    const auto f = w.takeFrame();
     events.insert(events.end(), f->events.begin(), f->events.end());
   }
   return events;

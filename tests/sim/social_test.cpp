@@ -65,7 +65,7 @@ Outcome run(World& w, double seconds, int threads = 1) {
   Outcome out;
   while (w.stats().time < seconds && !w.finished()) {
     w.step(tasks);
-    const auto f = w.snapshot();
+    const auto f = w.takeFrame();
     out.events.insert(out.events.end(), f->events.begin(), f->events.end());
     out.script.insert(out.script.end(), f->script.begin(), f->script.end());
     out.coordinations.insert(out.coordinations.end(), f->coordinations.begin(), f->coordinations.end());

@@ -79,7 +79,7 @@ TEST(Spawn, FourPerSquareMetreInARingAllInsideWithoutOverlap) {
   ASSERT_TRUE(w.ok()) << core::formatAll(w.errors());
   core::TaskSystem tasks(1);
   w.value()->step(tasks);
-  const auto f = w.value()->snapshot();
+  const auto f = w.value()->takeFrame();
   EXPECT_EQ(w.value()->stats().spawned, agents);
   expectWellPlaced(*f, 0.2f, agents);
 }
@@ -92,9 +92,9 @@ TEST(Spawn, PopulationsSharingTheRingAreLaidOutTogether) {
   ASSERT_TRUE(w.ok()) << core::formatAll(w.errors());
   core::TaskSystem tasks(1);
   w.value()->step(tasks);
-  expectWellPlaced(*w.value()->snapshot(), 0.2f, 3 * groups);
+  expectWellPlaced(*w.value()->takeFrame(), 0.2f, 3 * groups);
   // Group members stand together: each within 2 m of its group's first member.
-  const auto f = w.value()->snapshot();
+  const auto f = w.value()->takeFrame();
   for (std::size_t i = 0; i < f->size(); ++i) {
     const std::size_t first = i - i % 3;
     EXPECT_LT(core::length(core::Vec2{f->posX[i] - f->posX[first], f->posY[i] - f->posY[first]}), 2.0f) << "agent " << f->ids[i];
@@ -116,7 +116,7 @@ TEST(Spawn, InsertedCrowdInACrowdedRingIsPlacedInside) {
   c.populations = {standing("late", more, 1, 0.2f)};
   ASSERT_TRUE(w.value()->insertCrowd(c).ok());
   w.value()->step(tasks);
-  expectWellPlaced(*w.value()->snapshot(), 0.2f, 40 + more);
+  expectWellPlaced(*w.value()->takeFrame(), 0.2f, 40 + more);
 }
 
 TEST(Spawn, CrowdedLayoutIsTheSameForAnyThreadCount) {
@@ -170,7 +170,7 @@ TEST(Spawn, CrowdedFloorsOfAMultiLevelWorldEachKeepTheirOwn) {
   ASSERT_TRUE(w.ok()) << core::formatAll(w.errors());
   core::TaskSystem tasks(1);
   w.value()->step(tasks);
-  const auto f = w.value()->snapshot();
+  const auto f = w.value()->takeFrame();
   ASSERT_EQ(f->size(), 124u);
   for (std::size_t i = 0; i < f->size(); ++i) {
     const float floor = f->ids[i] < 62 ? 0.0f : 3.0f;

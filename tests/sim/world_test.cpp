@@ -49,7 +49,7 @@ RunResult simulate(const sim::ScenarioDesc& d, int threads, double maxTime) {
   RunResult run;
   while (!w.finished() && w.stats().time < maxTime) {
     w.step(tasks);
-    const auto f = w.snapshot();
+    const auto f = w.takeFrame();
     if (run.firstX < 0.0f && f->size() > 0) run.firstX = f->posX[0];
     for (std::size_t i = 0; i < f->size(); ++i) {
       for (std::size_t j = i + 1; j < f->size(); ++j) {

@@ -1,4 +1,4 @@
-// World — creation, the tick's phase order, the emit phase (removal, statistics) and snapshots.
+// World — creation, the tick's phase order, the emit phase (removal, statistics) and frames (takeFrame).
 #include "throng/sim/world.hpp"
 
 #include <algorithm>
@@ -64,7 +64,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   w.insertion.navRadius = desc.maxRadius();
   w.configureModels();
   w.initTimeline();
-  w.applyCommands();  // populations starting at t = 0 are present in the first snapshot
+  w.applyCommands();  // populations starting at t = 0 are present in the first frame
   return world;
 }
 
@@ -143,7 +143,7 @@ void World::Impl::emit() {
   stats.active = static_cast<std::uint32_t>(agents.size());
 }
 
-FramePtr World::snapshot() {
+FramePtr World::takeFrame() {
   Impl& w = *impl_;
   auto frame = std::make_shared<Frame>();
   const AgentStore& a = w.agents;

@@ -169,10 +169,10 @@ struct World::Impl {
   // Threads.
   mutable std::vector<WorkerScratch> scratch;
   std::vector<ChunkOutput> chunks;
-  std::vector<Event> pendingEvents;  // since the last snapshot
-  /// Spawn events since the last snapshot, kept compactly: `count` agents with consecutive ids from
+  std::vector<Event> pendingEvents;  // since the last frame taken
+  /// Spawn events since the last frame taken, kept compactly: `count` agents with consecutive ids from
   /// `firstAgent` (the first one member `member` of group `group`, then in group order) entered at
-  /// `tick`; their events belong before pendingEvents[at]. snapshot() writes them out in place, so
+  /// `tick`; their events belong before pendingEvents[at]. takeFrame() writes them out in place, so
   /// a frame's events are the same as if each had been stored (24 bytes per agent otherwise).
   struct SpawnRun {
     std::size_t at = 0;

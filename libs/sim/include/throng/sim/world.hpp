@@ -165,8 +165,10 @@ class World {
   /// Viewer positions for multiresolution steering (SteeringDesc::lodDistance).
   void setViewers(std::vector<core::Vec2> viewers);
 
-  /// Snapshot of the current state plus the events since the previous snapshot.
-  [[nodiscard]] FramePtr snapshot();
+  /// Takes the frame of this tick: the current state plus the events, Common Ground script entries
+  /// and finished coordinations since the previous call, which are drained (call it once per tick
+  /// you want to keep, or lose those events).
+  [[nodiscard]] FramePtr takeFrame();
 
   /// True when nothing is left to simulate: every agent spawned has exited and none is scheduled
   /// (only when the scenario has exits or finite goals; wandering crowds never finish).
