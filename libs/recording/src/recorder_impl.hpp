@@ -1,7 +1,7 @@
 // throng::recording::Recorder::Impl — the recorder's state shared by its source files: the SQLite
 // connection and prepared statements, the frame queue between push() and the worker thread, and
 // the worker's bookkeeping. recorder.cpp opens, writes frames and closes (see its header comment);
-// recorder_social.cpp writes the Common Ground tables. Private to throng_io.
+// recorder_social.cpp writes the Common Ground tables. Private to throng_recording.
 #pragma once
 
 #include <atomic>

@@ -21,7 +21,7 @@ enum class GoalState : std::uint8_t {
   Done = 2,     ///< every goal visited, nothing more to do
   Exited = 3,   ///< reached an exit: removed in this tick's emit phase
   WaitingForGroup = 4,  ///< at its group's goal, waiting until the others arrive (flocking rule 4)
-  Scripted = 5,  ///< playing its action script of a Common Ground coordination (social.cpp)
+  Scripted = 5,  ///< playing its action script of a Common Ground coordination (common_ground_play.cpp)
 };
 
 inline constexpr std::uint16_t kNoClip = 0xffff;
@@ -106,7 +106,7 @@ struct AgentStore {
   std::vector<std::uint32_t> followUntil; ///< tick that following ends (32 bits, as actionEndTick)
   std::vector<SocialEffect> sociologicalEffect; ///< decide → group pass (the other agent in sociologicalOther)
   std::vector<std::uint32_t> sociologicalOther; ///< the agent met
-  // Common Ground (social.cpp; only when the scenario's social section is on).
+  // Common Ground (common_ground*.cpp; only when the scenario's social section is on).
   bool commonGround = false;
   std::vector<std::uint32_t> coordination;  ///< id of the coordination it plays a script in, kNoIndex if none
   std::vector<std::uint8_t> scriptWalk;     ///< while Scripted: 1 = walking to its target, 0 = standing

@@ -35,7 +35,7 @@ struct GroupExtra {
   core::Vec2 centroid, heading{1.0f, 0.0f};
   // Waiting (flocking rule 4).
   std::uint32_t waitStart = 0;           ///< tick the wait began (32 bits, as actionEndTick)
-  // Common Ground (social.cpp).
+  // Common Ground (common_ground.cpp).
   std::uint32_t coordination = kNoIndex;  ///< id of the coordination its members play now
   std::uint32_t reunite = kNoIndex;       ///< a divide ended: id of that coordination until the group is whole again
   std::uint32_t route = kNoIndex;         ///< index into the table's routes, kNoIndex: none

@@ -78,7 +78,7 @@ core::Diagnostics World::Impl::checkCrowd(const CrowdDesc& crowd) const {
     }
   }
   if (desc.social.enabled) {
-    std::set<std::string, std::less<>> categories(this->categories.begin(), this->categories.end());
+    std::set<std::string, std::less<>> categories(commonGround.categories.begin(), commonGround.categories.end());
     for (const PointDesc& p : crowd.points) if (!p.category.empty()) categories.insert(p.category);
     if (categories.size() > kMaxCategories) {
       error("/points", std::to_string(categories.size()) + " point categories", "at most " + std::to_string(kMaxCategories));
@@ -180,38 +180,11 @@ void World::Impl::insertCrowdNow(CrowdState& c) {
     addPointGeometry(p);
   }
   pointClip = pointClips(desc);  // the crowd's actions are the world's (checkCrowd): old indices stay
-  pointCategory.resize(desc.points.size(), -1);
-  for (std::uint32_t p = firstPoint; p < desc.points.size(); ++p) {
-    const std::string& cat = desc.points[p].category;
-    if (cat.empty()) continue;
-    auto it = std::find(categories.begin(), categories.end(), cat);
-    if (it == categories.end()) {
-      categories.push_back(cat);
-      categoryPoints.emplace_back();
-      it = categories.end() - 1;
-    }
-    const auto index = static_cast<std::size_t>(it - categories.begin());
-    pointCategory[p] = static_cast<std::int32_t>(index);
-    categoryPoints[index].push_back(p);
-  }
+  commonGround.addPoints(desc.points, firstPoint);
 
   addCrowdPopulations(cd, firstPoint, firstPopulation, now);
   configureModels();  // a crowd may walk with a model the world had no use for
-  if (desc.social.enabled) {
-    attractionPoints.clear();
-    for (std::uint32_t p = 0; p < desc.points.size(); ++p) {
-      if (pointCategory[p] < 0) continue;
-      const bool wanted = std::any_of(desc.populations.begin(), desc.populations.end(), [&](const PopulationDesc& pop) {
-        return std::find(pop.interests.begin(), pop.interests.end(), desc.points[p].category) != pop.interests.end();
-      });
-      if (wanted) attractionPoints.push_back(p);
-    }
-    needCategory.clear();
-    for (const NeedDesc& need : desc.social.needs) {
-      const auto it = std::find(categories.begin(), categories.end(), need.category);
-      needCategory.push_back(it == categories.end() ? -1 : static_cast<std::int32_t>(it - categories.begin()));
-    }
-  }
+  if (desc.social.enabled) commonGround.refreshInterests(desc);
 
   registerGroups(firstPopulation);  // as the scenario's own groups
 

@@ -74,7 +74,7 @@ void World::Impl::integrate(const core::TaskSystem& tasks) {
       } else if (agents.goalState[row] == GoalState::Scripted && agents.scriptClipOf(row) != kNoClip) {
         // A micro-behaviour clip of an action script (wave, nod, ...), played once.
         const std::uint16_t clip = agents.scriptClip[row];
-        const float phase = agents.animClip[row] == clip ? agents.animPhase[row] + h / clipDuration[clip] : 0.0f;
+        const float phase = agents.animClip[row] == clip ? agents.animPhase[row] + h / commonGround.clipDuration[clip] : 0.0f;
         setClip(row, clip, std::min(phase, 0.999f));
       } else if (step > 0.1f * h) {
         setClip(row, kClipWalk, agents.animPhase[row] + step / kWalkCycleLength);

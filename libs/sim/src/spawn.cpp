@@ -251,8 +251,8 @@ void World::Impl::addSpawnedAgents(const SpawnPlan& plan) {
         std::vector<std::string> pool = pop.interests;
         for (std::uint32_t k = 0; k < pop.interestsPerAgent && !pool.empty(); ++k) {
           const std::uint32_t pick = interestRng.uniformInt(0, static_cast<std::uint32_t>(pool.size() - 1));
-          const auto c = std::find(categories.begin(), categories.end(), pool[pick]);
-          if (c != categories.end() && c - categories.begin() < 64) agents.interests[row] |= std::uint64_t{1} << (c - categories.begin());
+          const std::int32_t c = commonGround.categoryIndex(pool[pick]);
+          if (c >= 0 && c < 64) agents.interests[row] |= std::uint64_t{1} << c;
           pool.erase(pool.begin() + pick);
         }
       }

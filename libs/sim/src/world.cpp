@@ -58,7 +58,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   w.subOffset.push_back(0);
   for (const PointDesc& p : desc.points) w.addPointGeometry(p);
   w.pointClip = pointClips(desc);
-  w.initSocial();
+  w.initCommonGround();
   w.planPopulations();
   for (const PopulationDesc& pop : desc.populations) w.anySociological = w.anySociological || pop.sociological.enabled;
   w.insertion.navRadius = desc.maxRadius();
@@ -162,10 +162,10 @@ FramePtr World::takeFrame() {
   frame->phase = a.animPhase;
   frame->events = w.takeEvents();
   w.pendingEvents.clear();
-  frame->script = std::move(w.pendingScript);
-  w.pendingScript.clear();
-  frame->coordinations = std::move(w.pendingCoordinations);
-  w.pendingCoordinations.clear();
+  frame->script = std::move(w.commonGround.pendingScript);
+  w.commonGround.pendingScript.clear();
+  frame->coordinations = std::move(w.commonGround.pendingCoordinations);
+  w.commonGround.pendingCoordinations.clear();
   return frame;
 }
 

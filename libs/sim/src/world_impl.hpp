@@ -3,6 +3,7 @@
 //   insert.cpp     crowds inserted and removed at run time (API and scenario timeline)
 //   sense.cpp      grid rebuild and k-nearest neighbours
 //   decide.cpp     goal logic: regions reached, actions, exits, new targets
+//   common_ground.cpp, common_ground_play.cpp  the Common Ground model (goals, coordinations, scripts)
 //   plan.cpp       budgeted path planning through nav::PathQueue
 //   goals.cpp      one home for goals: active list, current point, set/advance, targets, Bézier
 //   steer.cpp      preferred velocity along the path, then the population's avoidance model
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "agent_store.hpp"
+#include "common_ground_state.hpp"
 #include "crowd_insertion.hpp"
 #include "group_table.hpp"
 #include "throng/core/assert.hpp"
@@ -36,23 +38,6 @@ inline constexpr int kPathIterationsPerTick = 20000;
 /// Period of the progress check that triggers a re-plan for an agent that is stuck [s].
 inline constexpr float kProgressCheckPeriod = 4.0f;
 
-
-/// One Common Ground interaction being carried out (or a lone visit): the planned action script
-/// and where each actor is in it. Times of entries not yet started shift by `slip`, the overrun of
-/// walks that took longer than planned (paths bend, crowds slow), so every response still starts
-/// after the motion it answers.
-struct ActiveCoordination {
-  CoordinationRecord record;            ///< filled as it goes; published when it ends
-  std::vector<std::uint32_t> actors;    ///< stable ids: [0] A, [1] B, then companions
-  social::ActionScript script;
-  std::vector<std::uint32_t> cursor;    ///< per actor: entry being played (== size: done)
-  std::vector<double> started;          ///< per actor: actual start of the current entry, < 0 not started
-  std::vector<std::uint8_t> left;       ///< per actor: has left the script (resumed or gone)
-  double slip = 0.0;                    ///< [s]
-  double deadline = 0.0;                ///< [s] every actor is released by then, whatever happened
-  bool divides = false;                 ///< a divide plan: the group waits to be whole again
-  bool reunitedOnReturn = false;        ///< divide-and-wait: A walked back to B
-};
 
 /// A command from the World API, applied in order at the start of the next tick.
 struct GroupCommand {
@@ -145,23 +130,34 @@ struct World::Impl {
   std::vector<std::uint32_t> subOffset;
   std::vector<std::uint32_t> subOccupancy;
 
-  // Common Ground (social.cpp).
-  std::vector<std::string> categories;        ///< distinct point categories, in point order
-  std::vector<std::int32_t> pointCategory;    ///< per point: index into categories, -1 none
-  std::vector<std::vector<std::uint32_t>> categoryPoints;  ///< per category: its points
-  std::vector<std::int32_t> needCategory;     ///< per SocialDesc::needs entry: index into categories, -1 none
-  std::vector<std::uint32_t> attractionPoints;///< points with a category some population is interested in
-  std::vector<float> clipDuration;            ///< per animation clip (animationClips) [s]
-  std::map<std::string, std::uint16_t, std::less<>> clipIndex;  ///< animation clip name → index
-  std::map<std::uint32_t, ActiveCoordination> coordinations;    ///< active, by id (start order)
-  std::uint32_t nextCoordinationId = 0;
-  std::vector<ScriptRecord> pendingScript;            ///< since the last snapshot
-  std::vector<CoordinationRecord> pendingCoordinations;
-  void initSocial();
+  // Common Ground (common_ground.cpp, common_ground_play.cpp; its state in common_ground_state.hpp).
+  CommonGroundState commonGround;
+  /// The Common Ground state of the scenario's points, interests and animation clips (creation).
+  void initCommonGround();
   /// Goal generator for one agent (parallel, in decide): may set desirePoint and list the row.
   void generateGoal(std::size_t row, ChunkOutput& out, const nav::NavQuery& query);
   void startCoordinations();    ///< group pass: desires → coordinations (planner) or lone visits
+  // Steps of startCoordinations (common_ground.cpp).
+  void startCoordination(std::uint32_t row);
+  [[nodiscard]] std::vector<std::uint32_t> availableMates(const GroupState& g, std::uint32_t initiator) const;
+  [[nodiscard]] social::Goal coordinationGoal(std::uint32_t point, GoalTrigger trigger, const std::vector<std::uint32_t>& mates) const;
+  /// The grounding planner's script for A, B and the companions; false when it has none.
+  bool planGrounding(ActiveCoordination& c, std::uint32_t row, const std::vector<std::uint32_t>& mates,
+                     const social::Goal& goal, core::Vec2 destination, double now);
+  void planLoneVisit(ActiveCoordination& c, std::uint32_t row, const social::Goal& goal, core::Vec2 destination,
+                     double now) const;
+  void beginCoordination(ActiveCoordination c, bool alone, double now);
   void runCoordinations();      ///< group pass: plays every active script one tick
+  // Steps of runCoordinations (common_ground_play.cpp).
+  void playCoordination(ActiveCoordination& c, double now);
+  void playActor(ActiveCoordination& c, std::size_t actor, std::uint32_t row, double now);
+  /// Whether the actor's current entry is over (walks: arrived, stuck near, or given up; others:
+  /// their time is up); turns it toward the entry's target meanwhile.
+  bool entryComplete(ActiveCoordination& c, std::size_t actor, std::uint32_t row, const social::ScriptEntry& e, double now);
+  void turnToward(const ActiveCoordination& c, std::uint32_t row, const social::ScriptEntry& e);
+  void publishEntry(const ActiveCoordination& c, std::size_t actor, const social::ScriptEntry& e, double start, double duration);
+  /// The actor leaves the script and goes back to its group's navigation.
+  void leaveScript(ActiveCoordination& c, std::size_t actor);
   void beginEntry(ActiveCoordination& c, std::size_t actor, std::size_t row, double now);
   void finishCoordination(ActiveCoordination& c, double now);
   void checkReunions();
