@@ -36,7 +36,7 @@ TEST(ScenarioSocial, ValidSectionFillsTheDescription) {
      "attraction": {"probability": 0.2, "expectedVisit": 45, "checkPeriod": 1},
      "coordination": {"turnRate": 2, "responseTimeout": 3, "maxAttempts": 4, "touchDistance": 0.8}})"));
   ASSERT_TRUE(r.ok()) << r.errors().front().format();
-  const sim::SocialDesc& s = r.value().desc.social;
+  const sim::CommonGroundDesc& s = r.value().desc.social;
   EXPECT_TRUE(s.enabled);
   EXPECT_FALSE(s.commonGround);
   EXPECT_FLOAT_EQ(s.cooldown, 30.0f);

@@ -332,7 +332,7 @@ class ScenarioReader {
   // Common Ground (scenario_social_parser.cpp).
   bool readCategory(const Json& v, const std::string& ptr, std::string& out);
   bool readInterests(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
-  void readSocial(const Json& v, const std::string& ptr, sim::SocialDesc& s);
+  void readSocial(const Json& v, const std::string& ptr, sim::CommonGroundDesc& s);
   /// Needs and interests name categories some point has.
   void checkCategories(const ParsedScenario& out);
   void resolveFollows(ParsedScenario& out);

@@ -162,7 +162,7 @@ class SocialLoader {
 
   const JsonDocument& doc_;
   ParsedScenario& parsed_;
-  sim::SocialDesc& social_;
+  sim::CommonGroundDesc& social_;
   core::Diagnostics& diagnostics_;
   const fs::path dir_;
   const std::string namer_;

@@ -78,7 +78,7 @@ bool ScenarioReader::readInterests(const Json& v, const std::string& ptr, sim::P
   return ok;
 }
 
-void ScenarioReader::readSocial(const Json& v, const std::string& ptr, sim::SocialDesc& s) {
+void ScenarioReader::readSocial(const Json& v, const std::string& ptr, sim::CommonGroundDesc& s) {
   if (!isObject(v, ptr, "a social object {\"needs\", \"attraction\", \"senses\", ...}")) return;
   checkKeys(v, ptr,
             {"commonGround", "senses", "needs", "attraction", "coordination", "cooldown", "microBehaviours", "macroPlans",

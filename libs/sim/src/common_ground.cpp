@@ -54,7 +54,7 @@ void World::Impl::initCommonGround() {
 }
 
 void World::Impl::generateGoal(std::size_t row, ChunkOutput& out, const nav::NavQuery& query) {
-  const SocialDesc& social = desc.social;
+  const CommonGroundDesc& social = desc.social;
   if (!social.enabled || agents.desirePoint[row] != kNoAgent || tick < agents.socialReady[row]) return;
   const GroupState& g = groups[agents.group[row]];
   if (groups.extraOf(g).coordination != kNoAgent || g.guided || g.following || agents.followedAgent(row) != kNoAgent) return;
@@ -158,7 +158,7 @@ std::vector<std::uint32_t> World::Impl::availableMates(const GroupState& g, std:
 
 social::Goal World::Impl::coordinationGoal(std::uint32_t point, GoalTrigger trigger, const std::vector<std::uint32_t>& mates) const {
   // The goal: what the macro-plan rules read.
-  const SocialDesc& social = desc.social;
+  const CommonGroundDesc& social = desc.social;
   const PointDesc& place = desc.points[point];
   social::Goal goal;
   goal.kind = social::GoalKind::Personal;
@@ -198,7 +198,7 @@ social::Body sensedBody(const AgentStore& agents, std::uint32_t r) {
 
 bool World::Impl::planGrounding(ActiveCoordination& c, std::uint32_t row, const std::vector<std::uint32_t>& mates,
                                 const social::Goal& goal, core::Vec2 destination, double now) {
-  const SocialDesc& social = desc.social;
+  const CommonGroundDesc& social = desc.social;
   const nav::NavQuery& query = *mainQuery;
   const core::Vec2 aPos{agents.posX[row], agents.posY[row]};
   const social::NavMeshOcclusion walls(query);
@@ -256,7 +256,7 @@ bool World::Impl::planGrounding(ActiveCoordination& c, std::uint32_t row, const 
 void World::Impl::planLoneVisit(ActiveCoordination& c, std::uint32_t row, const social::Goal& goal, core::Vec2 destination,
                                 double now) const {
   // A lone visit: walk to the goal, stay the plan's visit duration, walk on (no grounding).
-  const SocialDesc& social = desc.social;
+  const CommonGroundDesc& social = desc.social;
   const core::Vec2 aPos{agents.posX[row], agents.posY[row]};
   const auto chosen = social::selectPlan(social.macro, goal, core::distance(goal.position, aPos));
   const social::PlanKind kind = chosen ? social.macro.plans[*chosen].kind : social::PlanKind::DivideAndProceed;

@@ -37,7 +37,7 @@ struct CommonGroundState {
   std::vector<std::string> categories;        ///< distinct point categories, in point order
   std::vector<std::int32_t> pointCategory;    ///< per point: index into categories, -1 none
   std::vector<std::vector<std::uint32_t>> categoryPoints;  ///< per category: its points
-  std::vector<std::int32_t> needCategory;     ///< per SocialDesc::needs entry: index into categories, -1 none
+  std::vector<std::int32_t> needCategory;     ///< per CommonGroundDesc::needs entry: index into categories, -1 none
   std::vector<std::uint32_t> attractionPoints;///< points with a category some population is interested in
   std::vector<float> clipDuration;            ///< per animation clip (animationClips) [s]
   std::map<std::string, std::uint16_t, std::less<>> clipIndex;  ///< animation clip name → index

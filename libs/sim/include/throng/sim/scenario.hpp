@@ -182,7 +182,7 @@ struct AttractionDesc {
 
 /// The Common Ground model (Park, Peng, Quek, Cao; docs/social-model.md). io loads the databases
 /// and clip lengths; the simulation only reads them.
-struct SocialDesc {
+struct CommonGroundDesc {
   bool enabled = false;          ///< the section is present: goals are generated
   bool commonGround = true;      ///< groups coordinate before they divide; off: the agent just goes
   social::SensoryParams senses;
@@ -245,7 +245,7 @@ struct ScenarioDesc {
   std::vector<PopulationDesc> populations;
   SteeringDesc steering;
   float navCellSize = 0.0f;  ///< navmesh voxel size [m]; 0 = chosen from the geometry
-  SocialDesc social;
+  CommonGroundDesc social;  ///< the Common Ground model: the scenario key "social" (not the sociological model, PopulationDesc::sociological)
   /// Crowds inserted and removed at given times, ascending (stable for equal times). The World
   /// applies them at the start of the tick at or after each time (io loads the crowd files).
   std::vector<TimelineEntry> timeline;
