@@ -206,9 +206,9 @@ void World::Impl::removeCrowdNow(CrowdState& c) {
   c.info.removed = true;
   const std::uint32_t first = c.info.firstPopulation, last = first + c.info.populations;
   for (std::uint32_t p = first; p < last; ++p) {
-    if (populationSpawned[p]) continue;
-    populationSpawned[p] = 1;  // spawns nobody any more
-    for (const std::uint32_t s : groupSizes[p]) stats.scheduled -= s;
+    if (spawner.spawned[p]) continue;
+    spawner.spawned[p] = 1;  // spawns nobody any more
+    for (const std::uint32_t s : spawner.groupSizes[p]) stats.scheduled -= s;
   }
   std::vector<std::uint8_t> keep(agents.size(), 1);
   bool any = false;
@@ -277,8 +277,8 @@ void World::Impl::addCrowdPopulations(const CrowdDesc& cd, std::uint32_t firstPo
     // Times in a crowd count from its insertion: spawn, guide script and release.
     for (GuideWaypoint& w : pop.guide.script) w.time += static_cast<float>(now);
     if (pop.guide.release >= 0.0f) pop.guide.release += static_cast<float>(now);
-    populationStartTick.push_back(tick + ticksOf(pop.start, desc.dt));
-    populationSpawned.push_back(0);
+    spawner.startTick.push_back(tick + ticksOf(pop.start, desc.dt));
+    spawner.spawned.push_back(0);
     anySociological = anySociological || pop.sociological.enabled;
     desc.populations.push_back(std::move(pop));
   }

@@ -32,7 +32,7 @@ void World::Impl::planPopulations() {
 std::uint32_t World::Impl::registerGroups(std::uint32_t firstPopulation) {
   // Group sizes are drawn per stable group id, so a group is the same whether its population came
   // with the scenario or with a crowd.
-  THRONG_ASSERT(groupSizes.size() == firstPopulation && firstGroupId.size() == firstPopulation);
+  THRONG_ASSERT(spawner.groupSizes.size() == firstPopulation && spawner.firstGroupId.size() == firstPopulation);
   const std::uint32_t firstGroup = groups.size();
   std::uint32_t gid = firstGroup, scheduled = 0;
   std::size_t extras = 0;  // cold parts: at most one per busy group (a follower and the group it follows: two)
@@ -47,15 +47,15 @@ std::uint32_t World::Impl::registerGroups(std::uint32_t firstPopulation) {
       else extras += (pop.follow.mode != FollowMode::None ? 2 : 0) +
                      ((pop.flocking && size >= 2) || !pop.guide.script.empty() || pop.sociological.enabled ? 1 : 0);
     }
-    groupSizes.push_back(std::move(sizes));
+    spawner.groupSizes.push_back(std::move(sizes));
   }
   groups.reserve(gid, std::min<std::size_t>(extras, gid));
   // One goal list per population (automatic goals add one per group when it spawns), then its groups.
   for (std::size_t p = firstPopulation; p < desc.populations.size(); ++p) {
     const auto goalList = static_cast<std::uint32_t>(goalLists.size());
     goalLists.push_back(desc.populations[p].goals);
-    firstGroupId.push_back(groups.size());
-    for (const std::uint32_t size : groupSizes[p]) {
+    spawner.firstGroupId.push_back(groups.size());
+    for (const std::uint32_t size : spawner.groupSizes[p]) {
       GroupState state;
       state.population = static_cast<std::uint16_t>(p);
       state.expected = size;
@@ -68,8 +68,8 @@ std::uint32_t World::Impl::registerGroups(std::uint32_t firstPopulation) {
   for (std::uint32_t gid = firstGroup; gid < groups.size(); ++gid) {
     const PopulationDesc& pop = desc.populations[groups[gid].population];
     const FollowDesc& f = pop.follow;
-    if (f.mode != FollowMode::None && f.population < firstGroupId.size() && f.group < desc.populations[f.population].groups) {
-      const std::uint32_t followed = firstGroupId[f.population] + f.group;
+    if (f.mode != FollowMode::None && f.population < spawner.firstGroupId.size() && f.group < desc.populations[f.population].groups) {
+      const std::uint32_t followed = spawner.firstGroupId[f.population] + f.group;
       groups.markBusy(followed);
       groups.routeFor(gid).followGroup = followed;
     }
@@ -112,10 +112,10 @@ std::vector<Event> World::Impl::takeEvents() {
     next = run.at;
     // Walk the population's groups from the run's first agent (groups in id order, members in
     // spawn order; empty groups spawn nobody).
-    const std::vector<std::uint32_t>& sizes = groupSizes[run.population];
+    const std::vector<std::uint32_t>& sizes = spawner.groupSizes[run.population];
     std::uint32_t group = run.group, member = run.member;
     for (std::uint32_t i = 0; i < run.count; ++i) {
-      while (member >= sizes[group - firstGroupId[run.population]]) {
+      while (member >= sizes[group - spawner.firstGroupId[run.population]]) {
         ++group;
         member = 0;
       }
@@ -133,7 +133,7 @@ void World::Impl::applyCommands() {
   applyCrowdCommands();  // inserted crowds' populations starting now spawn below
   std::vector<std::size_t> due;
   for (std::size_t p = 0; p < desc.populations.size(); ++p) {
-    if (!populationSpawned[p] && populationStartTick[p] <= tick) due.push_back(p);
+    if (!spawner.spawned[p] && spawner.startTick[p] <= tick) due.push_back(p);
   }
   if (!due.empty()) spawnPopulations(due);
 }
@@ -142,10 +142,10 @@ void World::Impl::applyCommands() {
 void World::Impl::spawnPopulations(const std::vector<std::size_t>& due) {
   std::size_t expected = agents.size();
   std::vector<std::uint32_t> firstAgent;
-  std::uint32_t nextId = nextAgentId;
+  std::uint32_t nextId = spawner.nextAgentId;
   for (const std::size_t p : due) {
     firstAgent.push_back(nextId);
-    for (const std::uint32_t s : groupSizes[p]) nextId += s;
+    for (const std::uint32_t s : spawner.groupSizes[p]) nextId += s;
     expected += nextId - firstAgent.back();
   }
   const float cell = std::max(0.5f, 4.0f * desc.maxRadius());
@@ -172,7 +172,7 @@ void World::Impl::spawnPopulations(const std::vector<std::size_t>& due) {
     std::vector<std::uint8_t> redo(due.size(), 0);
     for (std::size_t k = 0; k < due.size(); ++k) {
       std::uint32_t total = 0;
-      for (const std::uint32_t s : groupSizes[due[k]]) total += s;
+      for (const std::uint32_t s : spawner.groupSizes[due[k]]) total += s;
       boxes.push_back(spawnArea(desc, desc.populations[due[k]], total, agents.levels).box);
       redo[k] = plans[k].placed ? 0 : 1;
     }
@@ -204,17 +204,17 @@ void World::Impl::spawnPopulations(const std::vector<std::size_t>& due) {
 void World::Impl::addSpawnedAgents(const SpawnPlan& plan) {
   const std::size_t populationIndex = plan.population;
   const PopulationDesc& pop = desc.populations[populationIndex];
-  populationSpawned[populationIndex] = 1;
+  spawner.spawned[populationIndex] = 1;
   const nav::NavQuery& query = *mainQuery;
-  const std::vector<std::uint32_t>& sizes = groupSizes[populationIndex];
+  const std::vector<std::uint32_t>& sizes = spawner.groupSizes[populationIndex];
   const float spawnHeight = pop.spawn.kind == SpawnKind::Point ? desc.points[pop.spawn.point].height : pop.spawn.height;
-  THRONG_ASSERT(nextAgentId == plan.firstAgent);
+  THRONG_ASSERT(spawner.nextAgentId == plan.firstAgent);
   std::size_t spot = 0;
   for (std::uint32_t g = 0; g < sizes.size(); ++g) {
-    const std::uint32_t groupId = firstGroupId[populationIndex] + g;
+    const std::uint32_t groupId = spawner.firstGroupId[populationIndex] + g;
     if (pop.autoGoals) reconstructGoals(groupId, plan.anchors[g]);
     for (std::uint32_t m = 0; m < sizes[g]; ++m) {
-      const std::uint32_t agentId = nextAgentId++;
+      const std::uint32_t agentId = spawner.nextAgentId++;
       const std::pair<core::Vec2, nav::PolyRef>* placed = &plan.spots[spot++];
       const std::size_t row = agents.addRow();
       agents.id[row] = agentId;

@@ -173,7 +173,7 @@ World::Impl::SpawnPlan World::Impl::planRandomSpawn(std::size_t populationIndex,
                                                     SpawnOccupancy& occupancy) {
   const PopulationDesc& pop = desc.populations[populationIndex];
   const nav::NavQuery& query = *mainQuery;
-  const std::vector<std::uint32_t>& sizes = groupSizes[populationIndex];
+  const std::vector<std::uint32_t>& sizes = spawner.groupSizes[populationIndex];
   std::uint32_t total = 0;
   for (std::uint32_t s : sizes) total += s;
   const SpawnArea area = spawnArea(desc, pop, total, agents.levels);
@@ -184,7 +184,7 @@ World::Impl::SpawnPlan World::Impl::planRandomSpawn(std::size_t populationIndex,
   plan.spots.reserve(total);
   std::uint32_t agentId = firstAgent;
   for (std::uint32_t g = 0; g < sizes.size(); ++g) {
-    const std::uint32_t groupId = firstGroupId[populationIndex] + g;
+    const std::uint32_t groupId = spawner.firstGroupId[populationIndex] + g;
     core::Rng groupRng(desc.seed, groupId, core::RngPurpose::Spawn);
     // Group anchor: a free point on the mesh inside the area.
     std::optional<core::Vec2> anchor;
@@ -359,7 +359,7 @@ Spot placeOutside(const Lattice& lattice, SpawnOccupancy& occupancy, core::Vec2 
 World::Impl::SpawnPlan World::Impl::planPackedSpawn(std::size_t populationIndex, std::uint32_t firstAgent,
                                                     SpawnOccupancy& occupancy) {
   const PopulationDesc& pop = desc.populations[populationIndex];
-  const std::vector<std::uint32_t>& sizes = groupSizes[populationIndex];
+  const std::vector<std::uint32_t>& sizes = spawner.groupSizes[populationIndex];
   std::uint32_t total = 0;
   for (std::uint32_t s : sizes) total += s;
   const SpawnArea area = spawnArea(desc, pop, total, agents.levels);

@@ -52,8 +52,8 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   // pedestrian densities, and the search stops at the k-th neighbour.
   w.grid.configure(gridBounds, std::clamp(s.neighbourDistance / 3.0f, 0.5f, 2.0f));
   for (const PopulationDesc& pop : desc.populations) {
-    w.populationStartTick.push_back(static_cast<std::uint64_t>(std::ceil(pop.start / desc.dt - 1e-6)));
-    w.populationSpawned.push_back(0);
+    w.spawner.startTick.push_back(static_cast<std::uint64_t>(std::ceil(pop.start / desc.dt - 1e-6)));
+    w.spawner.spawned.push_back(0);
   }
   w.subOffset.push_back(0);
   for (const PointDesc& p : desc.points) w.addPointGeometry(p);
@@ -172,7 +172,7 @@ FramePtr World::takeFrame() {
 bool World::finished() const {
   const Impl& w = *impl_;
   if (w.stats.scheduled > 0 || w.crowdsPending()) return false;
-  for (std::uint8_t spawned : w.populationSpawned) if (!spawned) return false;
+  for (std::uint8_t spawned : w.spawner.spawned) if (!spawned) return false;
   for (std::size_t r = 0; r < w.agents.size(); ++r) {
     if (w.agents.goalState[r] != GoalState::Done) return false;
   }
@@ -183,7 +183,7 @@ GroupId World::group(std::string_view population, std::uint32_t index) const {
   const Impl& w = *impl_;
   for (std::size_t p = 0; p < w.desc.populations.size(); ++p) {
     if (w.desc.populations[p].id == population && index < w.desc.populations[p].groups) {
-      return handleOf(w.firstGroupId[p] + index);
+      return handleOf(w.spawner.firstGroupId[p] + index);
     }
   }
   return {};

@@ -47,6 +47,17 @@ struct GroupCommand {
   float height = 0.0f;  ///< the guide's floor height [m] (multi-level worlds)
 };
 
+/// When and how many: the spawner's schedule (spawn.cpp). Per population: the tick it starts, whether
+/// it has spawned, its group sizes (drawn per stable group id by registerGroups) and its first group
+/// id; and the next stable agent id.
+struct SpawnSchedule {
+  std::vector<std::uint64_t> startTick;               ///< per population
+  std::vector<std::uint8_t> spawned;                  ///< per population
+  std::vector<std::vector<std::uint32_t>> groupSizes; ///< per population
+  std::vector<std::uint32_t> firstGroupId;            ///< per population
+  std::uint32_t nextAgentId = 0;
+};
+
 /// Per-worker scratch: navmesh queries and buffers reused across agents (never shared by threads).
 struct WorkerScratch {
   std::unique_ptr<nav::NavQuery> query;
@@ -93,13 +104,8 @@ struct World::Impl {
   WorldStats stats;
   std::uint64_t tick = 0;
 
-  // Spawning.
-  std::vector<std::uint64_t> populationStartTick;
-  std::vector<std::uint8_t> populationSpawned;
-  std::vector<std::vector<std::uint32_t>> groupSizes;  // per population, drawn at creation
-  std::vector<std::uint32_t> firstGroupId;             // per population
-  std::uint32_t nextAgentId = 0;
-  std::uint32_t nextGroupId = 0;
+  // Spawning (spawn.cpp, spawn_layout.cpp).
+  SpawnSchedule spawner;
   /// Where one population's agents appear (spawn.cpp): planned for every population due in a
   /// tick before any of them is added, so a crowded area can be laid out again as a whole.
   struct SpawnPlan {
