@@ -354,6 +354,7 @@ void BenchRunner::print(const Measurement& m) {
       line["speedup_vs_detourcrowd"] = m.speedup ? nlohmann::json(*m.speedup) : nlohmann::json(nullptr);
     }
     if (fileMode_) line["scenario_file"] = filePath_;
+    if (m.engine != kDetourCrowdEngine) line["model"] = options_.model.empty() ? (fileMode_ ? "scenario" : "orca") : options_.model;
     if (m.recordedFps) {
       line["recording"] = {{"fps", *m.recordedFps}, {"frames", m.frames}, {"close_s", m.closeSeconds}};
     }
@@ -427,7 +428,8 @@ int BenchRunner::runLayouts() {
   InterruptGuard interrupts;
   printHeader();
   for (const std::size_t n : counts) {
-    const sim::ScenarioDesc desc = bench::makeScenario(layout_, n, options_.seed);
+    sim::ScenarioDesc desc = bench::makeScenario(layout_, n, options_.seed);
+    applyModel(desc, options_.model);
     duration_ = desc.duration;
     status(fmt::format("{} N={}: building navmesh", label_, n), true);
     auto navmesh = bench::buildNavMesh(desc);
@@ -550,6 +552,13 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
   cmd->add_flag("--phase-times", options.phaseTimes,
                 "Also time every phase of the tick (decide, plan, sense, steer, integrate, ...) over the timed ticks "
                 "and print each one's ms per tick (JSON: phase_ms_per_tick); the clock reads cost a little");
+  std::vector<std::string> models;
+  for (const sim::ModelInfo& m : sim::modelCatalogue()) models.emplace_back(m.name);
+  cmd->add_option("--model", options.model,
+                  "Every population walks with this avoidance model, with its default parameters (docs/scenario-format.md, "
+                  "\"Models\"); default: in-memory scenarios ORCA, a scenario file its own")
+      ->type_name("NAME")
+      ->check(CLI::IsMember(models));
   cmd->add_flag("--no-baseline", options.noBaseline, "Skip the DetourCrowd baseline");
   cmd->add_option("--baseline-max", options.baselineMax,
                   "Largest agent count DetourCrowd is run at (it is slow)")

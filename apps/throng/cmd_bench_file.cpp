@@ -71,6 +71,7 @@ int BenchRunner::runFile() {
     return kExitFailure;
   }
   sim::ScenarioDesc& desc = loaded->desc;
+  applyModel(desc, options_.model);
   if (options_.duration) desc.duration = std::min(desc.duration, static_cast<float>(*options_.duration));
   dt_ = desc.dt;
   duration_ = desc.duration;

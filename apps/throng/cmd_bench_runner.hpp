@@ -25,6 +25,14 @@ class Recorder;
 
 namespace throng::cli::bench_detail {
 
+/// `--model NAME`: every population of `desc` walks with that model and its defaults (empty: as given).
+inline void applyModel(sim::ScenarioDesc& desc, const std::string& name) {
+  if (name.empty()) return;
+  const sim::ModelInfo* model = sim::findModel(name);
+  if (model == nullptr) return;  // CLI11 checked the name
+  for (sim::PopulationDesc& pop : desc.populations) pop.model = sim::ModelDesc(model->kind);
+}
+
 /// The engine name DetourCrowd's rows carry (bench::BaselineResult::engine).
 inline constexpr const char* kDetourCrowdEngine = "detourcrowd";
 

@@ -71,6 +71,7 @@ struct BenchOptions {
   bool noBaseline = false;              ///< skip DetourCrowd
   std::size_t baselineMax = 20000;      ///< largest agent count DetourCrowd runs at
   bool phaseTimes = false;              ///< also time every phase of the timed ticks
+  std::string model;                    ///< every population walks with this model (its defaults); empty = as given
 };
 
 struct ServeOptions {

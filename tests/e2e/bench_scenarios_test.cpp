@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <fstream>
+#include <map>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -141,6 +143,33 @@ TEST(BenchScenarioFile, RecordWorksForInMemoryScenarios) {
   EXPECT_EQ(rows[1].at("ticks").get<int>(), 3);
   EXPECT_EQ(rows[1].at("recording").at("frames").get<int>(), 4);  // frame 0 + every 0.1 s tick at 10 fps
   EXPECT_GT(rows[1].at("realtime_factor").get<double>(), 0.0);
+}
+
+// --model: every population walks with the named model; its rows say which, and the crowd moves
+// differently than with ORCA (same layout, seed and ticks).
+TEST(BenchScenarioFile, ModelChoosesTheAvoidanceModelOfEveryPopulation) {
+  ScratchDir dir("bench-model");
+  std::map<std::string, double> speed;
+  for (const char* model : {"orca", "cfsm"}) {
+    const CliResult r = runThrong({"bench", "--agents", "300", "--threads", "1", "--ticks", "20", "--warmup", "5",
+                                   "--no-baseline", "--json", "--model", model},
+                                  dir.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto rows = jsonLines(r.out);
+    ASSERT_EQ(rows.size(), 1u) << r.out;
+    EXPECT_EQ(rows[0].at("model"), model);
+    speed[model] = rows[0].at("mean_speed_mps").get<double>();
+  }
+  EXPECT_NE(speed["orca"], speed["cfsm"]);
+  const CliResult bad = runThrong({"bench", "--model", "ocra"}, dir.path());
+  EXPECT_EQ(bad.exitCode, 2) << bad.err;
+  for (const char* value : {"ocra", "orca", "cfsm"}) EXPECT_TRUE(contains(bad.err, value)) << value << "\n" << bad.err;
+  // A scenario file keeps its own models unless --model is given.
+  const fs::path file = dir.path() / "room.json";
+  std::ofstream(file) << kExitRoom;
+  const CliResult own = runThrong({"bench", "--scenario", file.string(), "--threads", "1", "--no-baseline", "--json"}, dir.path());
+  ASSERT_EQ(own.exitCode, 0) << own.err;
+  EXPECT_EQ(jsonLines(own.out).at(0).at("model"), "scenario");
 }
 
 TEST(BenchScenarioFile, PhaseTimesSplitTheTick) {
