@@ -225,7 +225,10 @@ TEST(Groups, PermanentFollowerAdoptsTheLeadersGoals) {
   while (w->stats().time < 150 && !w->finished()) {
     w->step(tasks);
     const auto li = w->groupInfo(leader), fi = w->groupInfo(follows);
-    for (const auto& e : w->takeFrame()->events) {
+    // Keep the frame alive: a range-for over takeFrame()->events would read a destroyed frame
+    // (the temporary shared_ptr dies before the loop runs; C++23 extends it, C++20 does not).
+    const sim::FramePtr frame = w->takeFrame();
+    for (const auto& e : frame->events) {
       if (e.kind != sim::EventKind::GoalReached) continue;
       auto& visits = std::count(li->members.begin(), li->members.end(), e.agent) ? leaderVisits : followerVisits;
       if (visits.empty() || visits.back() != e.a) visits.push_back(e.a);
