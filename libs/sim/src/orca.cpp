@@ -239,13 +239,6 @@ Vec2 solveOrca(std::span<const OrcaLine> lines, std::size_t numHardLines, float 
   Vec2 result;
   const std::size_t failed = solvePlane(lines, maxSpeed, prefVel, false, result);
   if (failed < lines.size()) solveInfeasible(lines, numHardLines, failed, maxSpeed, result, scratch);
-  // Two nearly opposite agent lines (an agent squeezed between two neighbours) meet far from the
-  // origin, and §5.3's projected line through that point loses a few per cent of float precision:
-  // the result may leave the speed disc (|v| = 0.517 for a limit of 0.5 was found by the property
-  // test). The speed limit is hard; results on the disc itself (within float rounding) stay as they are.
-  const float lengthSqResult = lengthSq(result);
-  const float limit = maxSpeed * 1.0001f;
-  if (lengthSqResult > limit * limit) result = result * (maxSpeed / std::sqrt(lengthSqResult));
   return result;
 }
 
