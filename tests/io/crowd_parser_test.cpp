@@ -134,7 +134,7 @@ TEST(CrowdParser, LimitsAndTheWorldsRadiusAndClipsAreEnforced) {
   EXPECT_EQ(action.what, "action \"dnace\" has no clip in the world");
   EXPECT_EQ(action.expected, "an action the world's action points play: \"look\"");
   const auto radius = at(ds, "/populations/0/radius");
-  EXPECT_EQ(radius.what, "body radius 0.3 m is larger than the world's largest, 0.25 m");
+  EXPECT_EQ(radius.what, "body radius 0.3 m is larger than the world's navmesh allows for this model, 0.25 m");
   const auto limit = at(ds, "/populations");
   EXPECT_EQ(limit.what, "the crowd may spawn 10005 agents (groups × largest group size, summed)");
   EXPECT_EQ(limit.expected, "at most 10000 agents per crowd insertion");

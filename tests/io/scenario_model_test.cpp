@@ -53,7 +53,7 @@ TEST(ScenarioModel, UnknownModelGetsDidYouMean) {
   const core::Diagnostic d = at(ds, "/populations/0/model");
   expectAt(d, text, "\"ocra\"");
   EXPECT_EQ(d.what, "unknown model \"ocra\"");
-  EXPECT_TRUE(contains(d.expected, "\"orca\" or \"cfsm\"")) << d.format();
+  EXPECT_TRUE(contains(d.expected, "\"orca\", \"cfsm\" or \"avm\"")) << d.format();
   EXPECT_EQ(d.hint, "did you mean \"orca\"?");
 }
 

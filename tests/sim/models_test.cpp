@@ -174,3 +174,107 @@ TEST(Models, CollisionFreeSpeedIsTheSameForAnyThreadCount) {
   EXPECT_EQ(simulate(d, 2, 20, 4).hash, one.hash);
   EXPECT_EQ(simulate(d, 8, 20, 4).hash, one.hash);
 }
+
+// The anticipation velocity model (models/anticipation_velocity_model.cpp).
+namespace {
+
+/// Smallest distance between two centres in a frame, over a run [m].
+float closestCentres(const sim::ScenarioDesc& d, double maxTime, std::uint32_t* exited) {
+  auto created = sim::World::create(d);
+  EXPECT_TRUE(created.ok()) << (created.ok() ? "" : core::formatAll(created.errors()));
+  if (!created.ok()) return 0.0f;
+  sim::World& w = *created.value();
+  core::TaskSystem tasks(1);
+  float closest = 1e9f;
+  while (!w.finished() && w.stats().time < maxTime) {
+    w.step(tasks);
+    const auto f = w.takeFrame();
+    for (std::size_t i = 0; i < f->size(); ++i) {
+      for (std::size_t j = i + 1; j < f->size(); ++j) closest = std::min(closest, std::hypot(f->posX[i] - f->posX[j], f->posY[i] - f->posY[j]));
+    }
+  }
+  *exited = w.stats().exited;
+  return closest;
+}
+
+/// A 6 × 6 m room whose exit is a door `width` wide and 1.1 m long (the Wuppertal set-up).
+sim::ScenarioDesc roomWithDoor(float width, std::uint32_t agents, sim::ModelKind model) {
+  sim::ScenarioDesc d = corridor(agents, model);
+  const float a = 3.0f - 0.5f * width, b = 3.0f + 0.5f * width;
+  d.walkable = {{{0, 0}, {6, 0}, {6, a}, {7.1f, a}, {7.1f, 0}, {10, 0}, {10, 6}, {7.1f, 6}, {7.1f, b}, {6, b}, {6, 6}, {0, 6}}};
+  d.points[0].polygon = {{9, 0}, {10, 0}, {10, 6}, {9, 6}};
+  d.points[0].position = {9.5f, 3};
+  d.populations[0].spawn.polygon = {{0.5f, 0.5f}, {5, 0.5f}, {5, 5.5f}, {0.5f, 5.5f}};
+  return d;
+}
+
+}  // namespace
+
+TEST(Models, AnticipationWalkersLeaveTheCorridorKeepingTheirBodiesApart) {
+  std::uint32_t exited = 0;
+  const float closest = closestCentres(corridor(40, sim::ModelKind::AnticipationVelocity), 120, &exited);
+  EXPECT_EQ(exited, 40u);
+  // Bodies are ellipses 2r across and 2·passageRatio·r deep: two may come as close as the depths.
+  const float depth = 2.0f * 0.2f * sim::ModelDesc(sim::ModelKind::AnticipationVelocity).value("passageRatio");
+  EXPECT_GT(closest, depth - 0.03f) << "bodies overlapped by more than 3 cm";
+}
+
+// The time-gap law along the walking direction: behind a slower walker in single file a fast one
+// settles at the slow one's speed, the two bodies' depth plus T·v behind.
+TEST(Models, AnticipationKeepsTheTimeGapBehindASlowerWalker) {
+  sim::ScenarioDesc d = corridor(1, sim::ModelKind::AnticipationVelocity);
+  d.walkable = {{{0, 0}, {40, 0}, {40, 0.6f}, {0, 0.6f}}};  // too narrow to pass: 0.35 m for centres
+  d.points[0].polygon = {{39, 0}, {40, 0}, {40, 0.6f}, {39, 0.6f}};
+  d.points[0].position = {39.5f, 0.3f};
+  sim::PopulationDesc& slow = d.populations[0];
+  slow.speedMean = 0.5f;
+  slow.speedSd = 0.0f;
+  slow.spawn.kind = sim::SpawnKind::Position;
+  slow.spawn.position = {6, 0.3f};
+  sim::PopulationDesc fast = slow;
+  fast.id = "fast";
+  fast.speedMean = 1.3f;
+  fast.spawn.position = {1, 0.3f};
+  d.populations.push_back(fast);
+  auto created = sim::World::create(d);
+  ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
+  sim::World& w = *created.value();
+  core::TaskSystem tasks(1);
+  float lastGap = 0.0f, lateral = 0.0f, fastSpeed = 0.0f, backward = 0.0f;
+  while (w.stats().time < 30) {
+    w.step(tasks);
+    const auto f = w.takeFrame();
+    if (f->size() != 2) break;
+    lastGap = std::abs(f->posX[0] - f->posX[1]);
+    lateral = std::abs(f->posY[0] - f->posY[1]);
+    fastSpeed = std::hypot(f->velX[1], f->velY[1]);
+    backward = std::min({backward, f->velX[0], f->velX[1]});
+  }
+  const sim::ModelDesc m(sim::ModelKind::AnticipationVelocity);
+  EXPECT_NEAR(fastSpeed, 0.5f, 0.05f) << "the fast walker settles at the slow one's speed";
+  // The follower may stand a little aside (the corridor leaves 0.35 m for centres); the ellipses
+  // touch at depth·sqrt(1 − (lateral / 2r)²) along the corridor.
+  ASSERT_LT(lateral, 0.4f) << "it cannot have passed: the bodies are 0.4 m across";
+  const float touch = 0.4f * m.value("passageRatio") * std::sqrt(1.0f - (lateral / 0.4f) * (lateral / 0.4f));
+  EXPECT_NEAR(lastGap, touch + m.value("timeGap") * 0.5f, 0.05f) << "a time gap behind (lateral offset " << lateral << " m)";
+  EXPECT_GE(backward, -0.01f) << "nobody walks backwards";
+}
+
+TEST(Models, AnticipationIsTheSameForAnyThreadCount) {
+  const sim::ScenarioDesc d = corridor(60, sim::ModelKind::AnticipationVelocity);
+  const ModelRun one = simulate(d, 1, 20, 4);
+  EXPECT_EQ(simulate(d, 2, 20, 4).hash, one.hash);
+  EXPECT_EQ(simulate(d, 8, 20, 4).hash, one.hash);
+}
+
+// Issue 17: the default body (r = 0.2 m) passes a 0.5 m door, as people do by turning their
+// shoulders: the navmesh keeps centres radius × passageRatio from the walls. ORCA's hard discs
+// cannot (its navmesh closes the door), which this test also checks so it cannot pass by accident.
+TEST(Models, TheDefaultBodyPassesAHalfMetreDoorWithTheAnticipationModel) {
+  std::uint32_t exited = 0;
+  closestCentres(roomWithDoor(0.5f, 20, sim::ModelKind::AnticipationVelocity), 120, &exited);
+  EXPECT_EQ(exited, 20u);
+  closestCentres(roomWithDoor(0.5f, 20, sim::ModelKind::Orca), 30, &exited);
+  EXPECT_EQ(exited, 0u) << "ORCA's navmesh is eroded by the whole radius: a 0.5 m door is closed to it";
+  EXPECT_LT(roomWithDoor(0.5f, 1, sim::ModelKind::AnticipationVelocity).navRadius(), 0.15f);
+}

@@ -101,7 +101,7 @@ sim::ScenarioDesc makeScenario(Layout layout, std::size_t agents, std::uint64_t 
 
 core::Result<std::shared_ptr<const nav::NavMesh>> buildNavMesh(const sim::ScenarioDesc& desc) {
   nav::NavMeshConfig config;
-  config.agentRadius = desc.maxRadius();
+  config.agentRadius = desc.navRadius();
   config.cellSize = desc.navCellSize;
   return nav::NavMesh::build(desc.walkable, desc.obstacles, config);
 }

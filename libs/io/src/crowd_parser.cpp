@@ -168,11 +168,13 @@ void ScenarioReader::readCrowdPopulationList(const Json& root, const sim::Scenar
       error(ptr + "/id", "duplicate population id " + quote(pop.id), "ids unique within /populations",
             "first used at /populations/" + std::to_string(s->second));
     }
-    if (out.populationsOk[i] && pop.radius > world.maxRadius() + 1e-6f) {
+    if (out.populationsOk[i] && pop.radius * pop.model.passageRatio() > world.navRadius() + 1e-6f) {
       const bool hasRadius = (*x)[i].is_object() && (*x)[i].contains("radius");
+      const float limit = world.navRadius() / pop.model.passageRatio();
       error(hasRadius ? ptr + "/radius" : ptr,
-            "body radius " + num(pop.radius) + " m is larger than the world's largest, " + num(world.maxRadius()) + " m",
-            "a radius <= " + num(world.maxRadius()) + " m (the world's navmesh is eroded by its largest body)");
+            "body radius " + num(pop.radius) + " m is larger than the world's navmesh allows for this model, " + num(limit) + " m",
+            "a radius <= " + num(limit) + " m (the world's navmesh keeps centres " + num(world.navRadius()) +
+                " m from walls: its largest body radius × its model's passage ratio)");
       out.populationsOk[i] = false;
     }
   }

@@ -409,7 +409,7 @@ class Validator {
   /// The navmesh for reachability: the world's (crowd files) or built from the scenario's
   /// polygons or terrain; null after diagnostics (mapped to /walkable, /terrain or /navCellSize).
   std::shared_ptr<const nav::NavMesh> navmeshFor(nav::NavMeshConfig& config) {
-    config.agentRadius = desc_.maxRadius();
+    config.agentRadius = desc_.navRadius();
     config.cellSize = desc_.navCellSize;
     config.cancel = cancel_;
     if (worldNavmesh_) {
@@ -455,6 +455,12 @@ class Validator {
   /// The height band a snap searches (nav::kLevelSearch).
   static std::string levelsText() { return " at heights within ±" + num(nav::kLevelSearch) + " m"; }
 
+  /// Why an opening must be that wide: the navmesh keeps body centres half of it from walls.
+  std::string clearanceText(float width) const {
+    return " (the navmesh keeps body centres " + num(0.5f * width) + " m from walls: body radius " + num(desc_.maxRadius()) +
+           " m × the model's passage ratio, rounded up to navmesh cells)";
+  }
+
   static std::string at3(core::Vec2 p, float h) { return "(" + num(p.x) + ", " + num(p.y) + ", " + num(h) + ")"; }
 
   /// A multi-level world (ScenarioDesc::terrain): every check snaps to the navmesh at the given
@@ -497,7 +503,7 @@ class Validator {
     }
     checkTerrainCapacity(starts, query, config.agentRadius);
     if (!diags_.empty()) return;
-    const float width = 2.0f * config.agentRadius;
+    const float width = mesh->narrowestOpening();
     for (std::size_t i = 0; i < desc_.populations.size(); ++i) {
       if (!starts[i]) continue;
       const sim::PopulationDesc& pop = desc_.populations[i];
@@ -508,7 +514,7 @@ class Validator {
           error("/populations/" + std::to_string(i) + "/goals/" + std::to_string(g),
                 "point \"" + goal.id + "\" cannot be reached from the spawn area of population \"" + pop.id + "\"",
                 "a goal connected to the spawn by floors, stairs or ramps at least " + num(width) +
-                    " m wide (2 × agent radius), steps at most " + num(config.maxClimb) + " m high, slopes at most " +
+                    " m wide" + clearanceText(width) + ", steps at most " + num(config.maxClimb) + " m high, slopes at most " +
                     num(config.maxSlopeDeg) + "°",
                 "check /terrain/walkable for a missing stair or ramp, and /terrain/obstacles for walls closing the way");
         }
@@ -651,7 +657,7 @@ class Validator {
     if (!mesh) return;
     navmesh = mesh;
     nav::NavQuery query(navmesh);
-    const float width = 2.0f * config.agentRadius;
+    const float width = mesh->narrowestOpening();
     // Every point must touch the walkable area, used as a goal or not: a point out in the void is
     // a typo in its coordinates.
     for (std::size_t i = firstOwnPoint_; i < desc_.points.size(); ++i) {
@@ -684,8 +690,7 @@ class Validator {
       }
       const auto start = query.nearest(*starts[i], static_cast<float>(searchRadius));
       if (!start) {
-        error(s.pointer, "no walkable area at least " + num(width) + " m wide (2 × agent radius " + num(config.agentRadius) +
-                             " m) near the spawn",
+        error(s.pointer, "no walkable area at least " + num(width) + " m wide" + clearanceText(width) + " near the spawn",
               "a spawn on or next to walkable area wide enough for the agents");
         continue;
       }
@@ -702,7 +707,7 @@ class Validator {
         if (!target || !query.reachable(start->first, target->first)) {
           error(gptr,
                 "point \"" + goal.id + "\" cannot be reached from the spawn area of population \"" + pop.id + "\"",
-                "a goal connected to the spawn by walkable area at least " + num(width) + " m wide (2 × agent radius)",
+                "a goal connected to the spawn by walkable area at least " + num(width) + " m wide" + clearanceText(width),
                 "check /obstacles for walls closing the way");
         }
       }

@@ -145,6 +145,11 @@ core::Result<NavMeshData*> assembleTiles(std::vector<TileOutput>& tiles, const T
 
 }  // namespace detail
 
+float NavMesh::narrowestOpening() const {
+  const auto cells = detail::erosionCells(config_.agentRadius, config_.cellSize);
+  return cells ? 2.0f * static_cast<float>(cells.value()) * config_.cellSize : 2.0f * config_.agentRadius;
+}
+
 core::Result<std::shared_ptr<const NavMesh>> NavMesh::build(std::span<const Polygon> walkable,
                                                           std::span<const Polygon> obstacles,
                                                           const NavMeshConfig& config) {

@@ -67,7 +67,7 @@ struct AgentStore {
   std::vector<std::uint16_t> groupSize;   ///< size of its group (head-on priority in steer; no group lookup there)
   // Kinematics [m], [m/s].
   std::vector<float> posX, posY, velX, velY;
-  std::vector<float> prefVelX, prefVelY;  ///< written by steer (preferred velocity)
+  std::vector<float> prefVelX, prefVelY;  ///< written by steer: the preferred (desired) velocity, not yet relaxed
   std::vector<float> newVelX, newVelY;    ///< written by steer (ORCA result), committed by integrate
   std::vector<float> oriX, oriY;          ///< unit heading
   std::vector<float> radius;              ///< body radius [m]

@@ -104,10 +104,11 @@ core::Diagnostics World::Impl::checkCrowd(const CrowdDesc& crowd) const {
         error(ptr + "/follow", "followed population or group out of range", "a group of a population of the world or of the crowd");
       }
     }
-    if (pop.radius > insertion.navRadius + 1e-6f) {
+    if (pop.radius * pop.model.passageRatio() > insertion.navRadius + 1e-6f) {
       error(ptr + "/radius",
-            "body radius " + std::to_string(pop.radius) + " m exceeds the world's navmesh erosion radius " + std::to_string(insertion.navRadius) + " m",
-            "a radius <= the largest radius of the scenario's own populations");
+            "body radius " + std::to_string(pop.radius) + " m (× passage ratio " + std::to_string(pop.model.passageRatio()) +
+                ") exceeds the world's navmesh erosion radius " + std::to_string(insertion.navRadius) + " m",
+            "a radius × passage ratio <= the scenario's navmesh erosion radius");
     }
     if (pop.groups == 0 || pop.sizeMin == 0 || pop.sizeMin > pop.sizeMax) {
       error(ptr, "empty or inverted group sizes", "groups >= 1 and 1 <= size min <= size max");

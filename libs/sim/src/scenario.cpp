@@ -1,4 +1,4 @@
-// throng::sim::ScenarioDesc — derived facts about a scenario description (largest body radius,
+// throng::sim::ScenarioDesc — derived facts about a scenario description (largest body radius, navmesh erosion radius,
 // presence of exits, a crowd's most agents). Reads the description only.
 #include "throng/sim/scenario.hpp"
 
@@ -9,6 +9,12 @@ namespace throng::sim {
 float ScenarioDesc::maxRadius() const {
   float r = 0.0f;
   for (const PopulationDesc& p : populations) r = std::max(r, p.radius);
+  return r;
+}
+
+float ScenarioDesc::navRadius() const {
+  float r = 0.0f;
+  for (const PopulationDesc& p : populations) r = std::max(r, p.radius * p.model.passageRatio());
   return r;
 }
 

@@ -6,7 +6,9 @@
 //
 // The preferred velocity: walk to the next corner of the path at the desired speed (slowing down
 // over steering.arrivalTime before a stop), plus the group's formation correction, turned aside
-// while the agent is stuck (deadlock breaking), relaxed over steering.accelerationTime.
+// while the agent is stuck (deadlock breaking). How fast an agent takes it up is the model's
+// business: ORCA relaxes towards it over steering.accelerationTime, the first-order models turn
+// over their reaction time.
 #include <algorithm>
 #include <cmath>
 
@@ -103,9 +105,7 @@ void World::Impl::advanceCorner(std::size_t row, core::Vec2 pos, WorkerScratch& 
 
 void World::Impl::preferredVelocity(std::size_t row, WorkerScratch& ws) {
   const SteeringDesc& s = desc.steering;
-  const float relax = std::min(1.0f, desc.dt / std::max(desc.dt, s.accelerationTime));
   const core::Vec2 pos{agents.posX[row], agents.posY[row]};
-  const core::Vec2 vel{agents.velX[row], agents.velY[row]};
   const float maxSpeed = agents.speed[row];
   core::Vec2 desired;
   if (agents.goalState[row] == GoalState::Seeking || (agents.goalState[row] == GoalState::Scripted && agents.scriptWalking(row))) {
@@ -128,9 +128,8 @@ void World::Impl::preferredVelocity(std::size_t row, WorkerScratch& ws) {
       if (agents.stuckTime[row] > s.stuckPatience) desired = unstick(desired, s, desc.seed, agents.id[row], agents.stuckTime[row]);
     }
   }
-  const core::Vec2 pref = vel + (desired - vel) * relax;
-  agents.prefVelX[row] = pref.x;
-  agents.prefVelY[row] = pref.y;
+  agents.prefVelX[row] = desired.x;
+  agents.prefVelY[row] = desired.y;
 }
 
 }  // namespace throng::sim

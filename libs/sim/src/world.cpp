@@ -30,7 +30,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
                                                     std::shared_ptr<const nav::NavMesh> navmesh) {
   if (!navmesh) {
     nav::NavMeshConfig config;
-    config.agentRadius = desc.maxRadius();
+    config.agentRadius = desc.navRadius();
     config.cellSize = desc.navCellSize;
     auto built = desc.terrain.empty() ? nav::NavMesh::build(desc.walkable, desc.obstacles, config)
                                       : nav::NavMesh::buildFromTerrain(desc.terrain, config);
@@ -61,7 +61,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   w.initCommonGround();
   w.planPopulations();
   for (const PopulationDesc& pop : desc.populations) w.anySociological = w.anySociological || pop.sociological.enabled;
-  w.insertion.navRadius = desc.maxRadius();
+  w.insertion.navRadius = desc.navRadius();
   w.configureModels();
   w.initTimeline();
   w.applyCommands();  // populations starting at t = 0 are present in the first frame

@@ -17,6 +17,7 @@ struct Entry {
 constexpr Entry kModels[] = {
     {orcaModelInfo, makeOrcaModel},
     {collisionFreeSpeedModelInfo, makeCollisionFreeSpeedModel},
+    {anticipationVelocityModelInfo, makeAnticipationVelocityModel},
 };
 
 }  // namespace
@@ -55,6 +56,14 @@ float ModelDesc::value(std::string_view key) const {
     if (params[i].key == key) return values[i];
   }
   return 0.0f;
+}
+
+float ModelDesc::passageRatio() const {
+  const auto params = modelInfo(kind).parameters;
+  for (std::size_t i = 0; i < params.size(); ++i) {
+    if (params[i].key == "passageRatio") return values[i];
+  }
+  return 1.0f;
 }
 
 bool ModelDesc::set(std::string_view key, float v) {

@@ -78,6 +78,8 @@ const ModelInfo& orcaModelInfo();
 std::unique_ptr<OperationalModel> makeOrcaModel();
 const ModelInfo& collisionFreeSpeedModelInfo();
 std::unique_ptr<OperationalModel> makeCollisionFreeSpeedModel();
+const ModelInfo& anticipationVelocityModelInfo();
+std::unique_ptr<OperationalModel> makeAnticipationVelocityModel();
 
 /// A new instance of the model `kind` (models.cpp).
 std::unique_ptr<OperationalModel> makeModel(ModelKind kind);

@@ -120,7 +120,11 @@ class OrcaModel final : public OperationalModel {
       lines.push_back(agentOrcaLine(relPos, relVel, vel, agents.radius[row] + agents.radius[o], p.timeHorizon, in.desc.dt,
                                     responsibility(agents, row, o, vel, otherVel, p)));
     }
-    const core::Vec2 pref{agents.prefVelX[row], agents.prefVelY[row]};
+    // ORCA's preferred velocity: the desired one reached over steering.accelerationTime.
+    const SteeringDesc& s = in.desc.steering;
+    const float relax = std::min(1.0f, in.desc.dt / std::max(in.desc.dt, s.accelerationTime));
+    const core::Vec2 desired{agents.prefVelX[row], agents.prefVelY[row]};
+    const core::Vec2 pref = vel + (desired - vel) * relax;
     return solveOrca(lines, numWallLines, maxSpeed, pref, ws.projected);
   }
 

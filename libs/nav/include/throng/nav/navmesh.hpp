@@ -69,6 +69,9 @@ class NavMesh {
 
   [[nodiscard]] const dtNavMesh* detour() const { return mesh_; }
   [[nodiscard]] const NavMeshConfig& config() const { return config_; }
+  /// About the narrowest opening between walls that stays walkable [m]: twice the erosion, which is
+  /// the agent radius rounded up to whole cells plus one cell (build_common.hpp). Narrower doors close.
+  [[nodiscard]] float narrowestOpening() const;
   [[nodiscard]] core::Aabb bounds() const { return bounds_; }
   /// True when built from a TerrainMesh: polygons have heights and may lie above each other, and
   /// queries need a height to pick the level. False: one flat level at height 0.

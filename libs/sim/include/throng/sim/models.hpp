@@ -20,8 +20,9 @@ namespace throng::sim {
 enum class ModelKind : std::uint8_t {
   Orca = 0,                ///< optimal reciprocal collision avoidance (van den Berg et al. 2011)
   CollisionFreeSpeed = 1,  ///< collision-free speed model (Tordeux, Chraibi, Seyfried 2016)
+  AnticipationVelocity = 2,  ///< anticipation velocity model (Xu, Chraibi, Seyfried 2021)
 };
-inline constexpr std::size_t kModelCount = 2;
+inline constexpr std::size_t kModelCount = 3;
 
 /// One parameter of a model, after Recast's `[Limit] [Units]` convention.
 struct ModelParameter {
@@ -71,6 +72,10 @@ struct ModelDesc {
   [[nodiscard]] float value(std::string_view key) const;
   /// Sets parameter `key`; false when this model has no such parameter.
   bool set(std::string_view key, float v);
+  /// How close to a wall a body's centre may come, as a fraction of its radius: the model's
+  /// "passageRatio" (bodies that turn their shoulders in narrow openings), 1 for models without
+  /// it. The navmesh is eroded by the largest radius × ratio (ScenarioDesc::navRadius).
+  [[nodiscard]] float passageRatio() const;
 };
 
 }  // namespace throng::sim

@@ -250,8 +250,11 @@ struct ScenarioDesc {
   /// applies them at the start of the tick at or after each time (io loads the crowd files).
   std::vector<TimelineEntry> timeline;
 
-  /// The largest body radius of any population (the navmesh is eroded by it).
+  /// The largest body radius of any population.
   [[nodiscard]] float maxRadius() const;
+  /// The radius the navmesh is eroded by: the largest of every population's radius × its model's
+  /// passage ratio (ModelDesc::passageRatio; 1 for ORCA).
+  [[nodiscard]] float navRadius() const;
   /// True when some point is an exit.
   [[nodiscard]] bool hasExit() const;
 };

@@ -1,0 +1,277 @@
+// The anticipation velocity model: throng's calibrated pedestrian model (docs/crowd-model.md,
+// "Operational models"). A first-order model after Xu, Chraibi, Seyfried, "Anticipation in a
+// velocity-based model for pedestrian dynamics" (Transportation Research C 133, 2021), which extends
+// the collision-free speed model of Tordeux, Chraibi, Seyfried (2016): the velocity is a speed
+// times a direction, each from its own rule.
+//
+// Direction. The desired direction e0 (the steer phase's preferred velocity) is turned aside by
+// every neighbour j in front, at the point of closest approach within the anticipation time t_a
+// (both walking on: j with its velocity, i with its preferred one):
+//   d_ij = min over t in [0, t_a] of |(x_j + v_j t) − (x_i + u_i t)|, as the vector c_ij from i,
+//   R_ij = a · exp((ℓ_ij − |c_ij|) / D) · w_ij · side_ij,
+// where side_ij is the unit vector perpendicular to e0 pointing away from c_ij (to the right when j
+// is dead ahead: the keep-right convention that lets lanes form in counter-flow), ℓ_ij = r_i + r_j
+// and w_ij = (1 + cos φ_ij) / 2 weighs neighbours by the angle φ between e0 and the direction to j
+// (those behind are ignored). Only when two bodies already overlap does the push act along the
+// line of centres, so a crowd never walks backwards to make room. Walls push along their normal as
+// in the collision-free speed model (strength b, range D_w). The walking direction relaxes towards
+// the result over the reaction time τ.
+//
+// Speed. Bodies are ellipses: shoulders across the walking direction (semi-axis r) and chest to
+// back along it (semi-axis passageRatio · r). The gap along the walking direction e to the first
+// body ahead — the distance i can walk before the two touch, s_ij = e·x_ij − q·ℓ_ij·sqrt(1 − (e × x_ij / ℓ_ij)²)
+// for |e × x_ij| < ℓ_ij, q the passage ratio — gives
+//   v_i = min(v0, max(0, s_i / T)),
+// the time-gap law of the collision-free speed model (Tordeux et al.'s (s − ℓ)/T, measured along
+// the walking direction, so a neighbour diagonally ahead blocks only as much as it really does).
+// Merging (two people converging less than 90° apart) the one nearer the shared space goes first,
+// the other yields (givesWay); without that both see the other ahead and both stop, which clogs
+// every door. The navmesh keeps centres q·r from walls (ScenarioDesc::navRadius): people turn
+// their shoulders to pass a narrow door, so the default body passes 0.5 m.
+//
+// Reads the steer phase's preferred velocities, positions, velocities, radii, neighbours and walls;
+// writes newVel of the rows it is given. Deterministic: one row's result depends only on the
+// neighbours sense found, in their order.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "operational_model.hpp"
+
+namespace throng::sim {
+namespace {
+
+constexpr std::string_view kCalibrated =
+    "calibrated on the Juelich corridor uo-145-180-180, its jam uo-180-180-070 and the Wuppertal 0.5 m bottleneck "
+    "(docs/validation.md, scripts/validate.py)";
+constexpr std::string_view kWalls = "Tordeux et al. 2016; JuPedSim's collision-free speed model defaults";
+constexpr ModelParameter kParameters[] = {
+    {"timeGap", "s", 0.0, true, 10.0, false, 0.5f, "time gap T kept to the person ahead", kCalibrated},
+    {"anticipationTime", "s", 0.0, false, 10.0, false, 0.5f, "how far ahead t_a neighbours' paths are anticipated", kCalibrated},
+    {"reactionTime", "s", 0.0, true, 10.0, false, 0.1f, "time τ over which the walking direction turns", kCalibrated},
+    {"neighbourStrength", "1", 0.0, false, 100.0, false, 4.0f, "strength a of the sideways push from neighbours", kCalibrated},
+    {"neighbourRange", "m", 0.0, true, 5.0, false, 0.1f, "range D of the push from neighbours", kWalls},
+    {"wallStrength", "1", 0.0, false, 100.0, false, 5.0f, "strength b of the push from walls", kWalls},
+    {"wallRange", "m", 0.0, true, 5.0, false, 0.02f, "range D_w of the push from walls", kWalls},
+    {"passageRatio", "1", 0.3, false, 1.0, false, 0.5f,
+     "body depth over shoulder breadth: bodies are ellipses this much shallower than wide, and the navmesh keeps centres radius × this from walls (shoulders turned)",
+     "calibrated (docs/validation.md); adults' chest depth is about half their shoulder breadth (DIN 33402-2)"},
+};
+enum Parameter : std::size_t {
+  kTimeGap,
+  kAnticipationTime,
+  kReactionTime,
+  kNeighbourStrength,
+  kNeighbourRange,
+  kWallStrength,
+  kWallRange,
+  kPassageRatio
+};
+
+struct AvmParams {
+  float timeGap = 0.5f;            ///< T [s]
+  float anticipationTime = 0.5f;   ///< t_a [s]
+  float reactionTime = 0.1f;       ///< τ [s]
+  float neighbourStrength = 4.0f;  ///< a [1]
+  float neighbourRange = 0.1f;     ///< D [m]
+  float wallStrength = 5.0f;       ///< b [1]
+  float wallRange = 0.02f;         ///< D_w [m]
+  float passageRatio = 0.5f;       ///< body depth / shoulder breadth [1]
+};
+
+class AvmScratch final : public ModelScratch {
+ public:
+  std::vector<std::uint32_t> wallIds;
+};
+
+/// The perpendicular of e pointing to its right.
+core::Vec2 rightOf(core::Vec2 e) { return {e.y, -e.x}; }
+
+class AnticipationVelocityModel final : public OperationalModel {
+ public:
+  [[nodiscard]] ModelKind kind() const override { return ModelKind::AnticipationVelocity; }
+
+  void configure(const ScenarioDesc& desc) override {
+    params_.clear();
+    dt_ = desc.dt;
+    for (const PopulationDesc& pop : desc.populations) {
+      AvmParams p;
+      if (pop.model.kind == ModelKind::AnticipationVelocity) {
+        const auto& v = pop.model.values;
+        p = {v[kTimeGap],        v[kAnticipationTime], v[kReactionTime], v[kNeighbourStrength],
+             v[kNeighbourRange], v[kWallStrength],     v[kWallRange],    v[kPassageRatio]};
+      }
+      params_.push_back(p);
+    }
+  }
+
+  [[nodiscard]] std::unique_ptr<ModelScratch> makeScratch() const override { return std::make_unique<AvmScratch>(); }
+
+  void computeVelocities(const ModelInput& in, RowRange rows, ModelScratch& scratch, VelocityOutput out) const override {
+    auto& ws = static_cast<AvmScratch&>(scratch);
+    for (std::size_t i = rows.begin; i < rows.end; ++i) {
+      const std::size_t row = rows.row(i);
+      const core::Vec2 v = velocity(in, row, params_[in.agents.population[row]], ws);
+      out.x[row] = v.x;
+      out.y[row] = v.y;
+    }
+  }
+
+ private:
+  /// The desired direction turned aside by the neighbours in front and pushed off the walls.
+  core::Vec2 pushes(const ModelInput& in, std::size_t row, core::Vec2 e0, float v0, const AvmParams& p,
+                    AvmScratch& ws) const {
+    const AgentStore& a = in.agents;
+    const core::Vec2 pos{a.posX[row], a.posY[row]};
+    const core::Vec2 side = rightOf(e0);
+    // Walls turn a walker aside but never back: the part of their push against e0 is dropped (the
+    // path already leads round walls; pushing back only stalls agents on the mesh's small notches).
+    core::Vec2 wall = wallPush(in, row, pos, p, ws);
+    if (const float back = core::dot(wall, e0); back < 0.0f) wall -= e0 * back;
+    core::Vec2 dir = e0 + wall;
+    // Room to step aside (to the walls on either side, up to a body width): nobody swerves into a
+    // wall to pass someone, they follow.
+    const float reach = 2.0f * a.radius[row];
+    const float roomRight = room(in, ws, pos, side, reach) / reach;
+    const float roomLeft = room(in, ws, pos, -side, reach) / reach;
+    const core::Vec2 u = e0 * v0;
+    const std::size_t k = in.desc.steering.maxNeighbours;
+    const std::uint32_t* nb = &a.neighbours[row * k];
+    for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
+      const std::uint32_t o = nb[n];
+      const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
+      const float dist = core::length(d);
+      if (dist < 1e-6f) continue;
+      const float l = a.radius[row] + a.radius[o];
+      if (dist < l) {  // overlapping: step apart along the line of centres
+        dir -= d * (p.neighbourStrength * std::exp((l - dist) / p.neighbourRange) / dist);
+        continue;
+      }
+      const float cosPhi = core::dot(e0, d) / dist;
+      if (cosPhi <= 0.0f) continue;  // behind: not seen
+      // Closest approach within the anticipation time, both walking on.
+      const core::Vec2 w = core::Vec2{a.velX[o], a.velY[o]} - u;
+      const float ww = core::lengthSq(w);
+      const float t = ww > 1e-8f ? std::clamp(-core::dot(d, w) / ww, 0.0f, p.anticipationTime) : 0.0f;
+      const core::Vec2 c = d + w * t;
+      const float lateral = core::dot(c, side);  // > 0: j passes on i's right
+      const float strength = p.neighbourStrength * std::exp((l - core::length(c)) / p.neighbourRange) * 0.5f * (1.0f + cosPhi);
+      dir += side * (lateral > 0.0f ? -strength * roomLeft : strength * roomRight);
+    }
+    return dir;
+  }
+
+  /// The walls' push, off every boundary edge near i (fills ws.wallIds with them).
+  static core::Vec2 wallPush(const ModelInput& in, std::size_t row, core::Vec2 pos, const AvmParams& p, AvmScratch& ws) {
+    const AgentStore& a = in.agents;
+    ws.wallIds.clear();
+    in.walls.query(pos.x, pos.y, 2.0f * a.radius[row] + 30.0f * p.wallRange, ws.wallIds);
+    core::Vec2 push;
+    for (std::uint32_t wid : ws.wallIds) {
+      if (a.levels && !in.walls.onLevel(wid, pos, a.posZ[row])) continue;  // another floor's edge
+      const core::Segment& seg = in.walls.segments()[wid];
+      const core::Vec2 away = pos - core::closestPointOnSegment(pos, seg.a, seg.b);
+      const float s = core::length(away);
+      if (s < 1e-6f) continue;
+      push += away * (p.wallStrength * std::exp(-s / p.wallRange) / s);
+    }
+    return push;
+  }
+
+  /// How far i can step from pos along the unit vector dir before a wall of ws.wallIds [m], at most `reach`.
+  static float room(const ModelInput& in, const AvmScratch& ws, core::Vec2 pos, core::Vec2 dir, float reach) {
+    float best = reach;
+    for (std::uint32_t wid : ws.wallIds) {
+      const core::Segment& seg = in.walls.segments()[wid];
+      const core::Vec2 e = seg.b - seg.a;
+      const float den = core::cross(dir, e);
+      if (std::abs(den) < 1e-9f) continue;  // parallel
+      const core::Vec2 q = seg.a - pos;
+      const float t = core::cross(q, e) / den;    // along dir
+      const float s = core::cross(q, dir) / den;  // along the segment
+      if (t >= 0.0f && s >= 0.0f && s <= 1.0f) best = std::min(best, t);
+    }
+    return best;
+  }
+
+  /// Merging (two people walking into the same space from the side, less than 90° apart): the one
+  /// nearer that space goes first — j does not block i when i is further ahead of j, along j's
+  /// walking direction, than j is of i along i's (ties: the lower id goes). Without this rule both
+  /// see the other ahead and both stop, which clogs every door and corridor mouth.
+  static bool givesWay(const AgentStore& a, std::size_t row, std::uint32_t o, core::Vec2 d, float ahead) {
+    const core::Vec2 vo{a.velX[o], a.velY[o]};
+    const float so = core::length(vo);
+    if (so < 0.05f) return false;  // standing: an obstacle
+    const core::Vec2 eo = vo / so;
+    const core::Vec2 vi{a.velX[row], a.velY[row]};
+    if (core::dot(vi, eo) <= 0.0f) return false;  // head on or crossing at more than 90°: both slow
+    const float aheadOfO = -core::dot(d, eo);     // how far i is ahead of o, along o's direction
+    if (aheadOfO <= 0.0f) return false;           // o does not see i ahead: o leads
+    return aheadOfO > ahead || (aheadOfO == ahead && a.id[row] < a.id[o]);
+  }
+
+  /// The gap i can walk along e before touching the first body ahead [m] (v0·T when none).
+  static float gapAhead(const ModelInput& in, std::size_t row, core::Vec2 e, float limit, float depthRatio) {
+    const AgentStore& a = in.agents;
+    const core::Vec2 pos{a.posX[row], a.posY[row]};
+    const std::size_t k = in.desc.steering.maxNeighbours;
+    const std::uint32_t* nb = &a.neighbours[row * k];
+    float gap = limit;
+    for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
+      const std::uint32_t o = nb[n];
+      const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
+      const float ahead = core::dot(d, e);
+      if (ahead <= 0.0f) continue;
+      const float l = a.radius[row] + a.radius[o];
+      const float lateral = core::cross(e, d);
+      if (std::abs(lateral) >= l) continue;
+      if (givesWay(a, row, o, d, ahead)) continue;
+      // Bodies are ellipses, shoulders across the walking direction (semi-axis r) and chest to back
+      // along it (depthRatio · r): two touch at this distance along e.
+      const float y = lateral / l;
+      gap = std::min(gap, std::max(0.0f, ahead - depthRatio * l * std::sqrt(1.0f - y * y)));
+    }
+    return gap;
+  }
+
+  core::Vec2 velocity(const ModelInput& in, std::size_t row, const AvmParams& p, AvmScratch& ws) const {
+    const AgentStore& a = in.agents;
+    const core::Vec2 pref{a.prefVelX[row], a.prefVelY[row]};
+    const float v0 = core::length(pref);
+    if (v0 < 1e-6f) return {};  // nowhere to go: stand
+    const core::Vec2 e0 = pref / v0;
+    core::Vec2 target = pushes(in, row, e0, v0, p, ws);
+    const float len = core::length(target);
+    if (len < 1e-6f) return {};
+    target = target / len;
+    // Turn over the reaction time from the direction walked so far.
+    const core::Vec2 vel{a.velX[row], a.velY[row]};
+    const float speedNow = core::length(vel);
+    core::Vec2 e = target;
+    if (speedNow > 0.05f) {
+      const core::Vec2 h = vel / speedNow;
+      const core::Vec2 mixed = h + (target - h) * std::min(1.0f, dt_ / p.reactionTime);
+      const float m = core::length(mixed);
+      e = m > 1e-6f ? mixed / m : target;
+    }
+    const float gap = gapAhead(in, row, e, v0 * p.timeGap, p.passageRatio);
+    return e * std::min(v0, gap / p.timeGap);
+  }
+
+  std::vector<AvmParams> params_;  ///< per population
+  float dt_ = 0.05f;
+};
+
+}  // namespace
+
+const ModelInfo& anticipationVelocityModelInfo() {
+  static const ModelInfo info{ModelKind::AnticipationVelocity, "avm", "anticipation velocity model",
+                              "Xu, Chraibi, Seyfried, Anticipation in a velocity-based model for pedestrian dynamics, "
+                              "Transportation Research Part C 133, 2021 (on Tordeux, Chraibi, Seyfried 2016)",
+                              kParameters};
+  return info;
+}
+
+std::unique_ptr<OperationalModel> makeAnticipationVelocityModel() { return std::make_unique<AnticipationVelocityModel>(); }
+
+}  // namespace throng::sim
