@@ -68,6 +68,7 @@ class Runner:
 
     def _one(self, task):
         label, scenario, seed, duration = task
+        progress(f"run {label} seed {seed}")
         path = self.write(f"{label}-s{seed}", scenario)
         rec = os.path.join(self.tmp, f"{label}-s{seed}.sqlite")
         cmd = [self.binary, "run", path, "--out", rec, "--force", "--seed", str(seed), "--quiet", "--json",
@@ -82,8 +83,6 @@ class Runner:
 
     def run(self, tasks):
         """Results of the tasks (label, scenario, seed, duration or None), in order."""
-        for label, _, seed, _ in tasks:
-            progress(f"run {label} seed {seed}")
         self.count += len(tasks)
         with concurrent.futures.ThreadPoolExecutor(max_workers=self.jobs) as pool:
             return list(pool.map(self._one, tasks))
@@ -144,7 +143,7 @@ def parse_args(argv):
     ap.add_argument("--radius", type=float, metavar="R",
                     help="every population gets this body radius [m] (default: the engine's default body)")
     ap.add_argument("--only", metavar="NAME[,NAME]", help=f"run only these experiments: {', '.join(E.EXPERIMENTS)}")
-    ap.add_argument("--seeds", type=int, metavar="N", help="seeds per scenario (default 3, --quick 1)")
+    ap.add_argument("--seeds", type=int, metavar="N", help="seeds per scenario (default 5, --quick 1)")
     ap.add_argument("--quick", action="store_true", help="one seed, shorter rings and rooms (well under a minute)")
     ap.add_argument("--jobs", type=int, default=2, metavar="N", help="throng runs at a time (default 2)")
     ap.add_argument("--check", action="store_true", help="exit status 1 when a selected target is outside its band")
@@ -220,7 +219,7 @@ def main(argv=None):
     args = parse_args(argv)
     started = time.time()
     tag = model_tag(args.model)
-    seeds = list(range(1, (args.seeds or (1 if args.quick else 3)) + 1))
+    seeds = list(range(1, (args.seeds or (1 if args.quick else 5)) + 1))
     with tempfile.TemporaryDirectory(prefix="throng-validate-") as tmp:
         if args.model is not None:
             ok, message = check_model(args.throng, args.model, tmp)
