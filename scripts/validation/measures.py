@@ -208,6 +208,15 @@ def max_overlap(traj, t_from=0.0):
     return {"max_depth": best, "at_s": when, "agents_over_1cm": len(deep)}
 
 
+def overlapping_pairs(traj, frame, deeper_than=0.05):
+    """Pairs of bodies overlapping by more than `deeper_than` [m] in one frame."""
+    rows = np.flatnonzero(traj.frame == frame)
+    dx = traj.x[rows][:, None] - traj.x[rows][None, :]
+    dy = traj.y[rows][:, None] - traj.y[rows][None, :]
+    depth = traj.radius[rows][:, None] + traj.radius[rows][None, :] - np.hypot(dx, dy)
+    return int(np.triu(depth > deeper_than, k=1).sum())
+
+
 def walk_back(traj, target, before=None):
     """Per agent, the largest d(t) - min_{s<=t} d(s), d = distance to the segment `target`
     ((x0, y0), (x1, y1)), over the rows where `before` (a boolean mask) holds. Returns the maximum

@@ -123,6 +123,15 @@ class Bodies(unittest.TestCase):
         rows = [(0, f, 0.0, 0.0) for f in range(5)] + [(1, f, 1.0, 0.0) for f in range(5)]
         self.assertEqual(M.max_overlap(traj(rows))["max_depth"], 0.0)
 
+    def test_overlapping_pairs_in_one_frame(self):
+        # Frame 0: a stacked pair (0.4 deep) and a touching one (0.0); frame 1: nobody overlaps.
+        rows = [(0, 0, 0.0, 0.0), (1, 0, 0.0, 0.0), (2, 0, 5.0, 0.0), (3, 0, 5.4, 0.0),
+                (0, 1, 0.0, 0.0), (1, 1, 1.0, 0.0), (2, 1, 5.0, 0.0), (3, 1, 6.0, 0.0)]
+        t = traj(rows)
+        self.assertEqual(M.overlapping_pairs(t, 0), 1)
+        self.assertEqual(M.overlapping_pairs(t, 0, deeper_than=-0.01), 2)
+        self.assertEqual(M.overlapping_pairs(t, 1), 0)
+
     def test_walk_back_from_a_door(self):
         # Door segment x = 10, y 4.5..5.5. Agent 0 at y = 5: x = 5, 6, 7, then back to 6.3, then 9:
         # walks back 0.7 m. Agent 1 approaches monotonically: 0.
