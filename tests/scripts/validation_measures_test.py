@@ -36,6 +36,15 @@ class Speed(unittest.TestCase):
         np.testing.assert_allclose(t.vy, -0.5, atol=1e-9)
         np.testing.assert_allclose(t.speed, 1.3, atol=1e-9)
 
+    def test_central_difference_over_plus_minus_0_3_s(self):
+        # 1 m/s up to frame 10, then standing at x = 1: at frame 12 (10 fps, +-3 frames) the
+        # difference spans frames 9 (x = 0.9) and 15 (x = 1.0): 0.1 m / 0.6 s.
+        rows = [(0, f, min(f, 10) / 10.0, 0.0) for f in range(30)]
+        t = traj(rows)
+        self.assertAlmostEqual(t.speed[12], 0.1 / 0.6)
+        self.assertAlmostEqual(t.speed[0], 1.0)  # one-sided at the start: frames 0..3
+        self.assertAlmostEqual(t.speed[29], 0.0)
+
     def test_persons_do_not_mix(self):
         rows = straight(0, range(10), 0, 0, 1.0, 0) + straight(1, range(10), 50, 0, -2.0, 0)
         t = traj(rows)
@@ -77,19 +86,20 @@ class DensityAndFlow(unittest.TestCase):
 
 class Ring(unittest.TestCase):
     def test_tangential_speed_density_and_backward_samples(self):
-        # 8 walkers on the circle r = 4 (ring 3..5, area 16 pi): 6 counter-clockwise at 0.25 rad/s
-        # (1 m/s), 2 clockwise at 0.125 rad/s (-0.5 m/s): density 8 / 16 pi, mean speed 0.625,
-        # backward fraction 2 / 8.
+        # 8 walkers on the circle r = 4 (ring 3..5, area 16 pi): 5 counter-clockwise at 0.25 rad/s
+        # (1 m/s), one drifting back at 0.03 m/s (not a backward sample: the threshold is -0.05),
+        # 2 clockwise at 0.125 rad/s (-0.5 m/s): density 8 / 16 pi, mean tangential speed
+        # (5 - 0.03 - 1) / 8, backward fraction 2 / 8.
         rows = []
         for pid in range(8):
-            w = 0.25 if pid < 6 else -0.125
+            w = 0.25 if pid < 5 else -0.0075 if pid == 5 else -0.125
             for f in range(200):
                 a = pid * math.pi / 4 + w * f / 10.0
                 rows.append((pid, f, 4 * math.cos(a), 4 * math.sin(a)))
         t = traj(rows)
         m = M.ring_measures(t, (0.0, 2 * math.pi), S.ring_area(3, 5), 2.0, 18.0)
         self.assertAlmostEqual(m["density"], 8 / (16 * math.pi), places=9)
-        self.assertAlmostEqual(m["speed"], (6 * 1.0 - 2 * 0.5) / 8, places=2)
+        self.assertAlmostEqual(m["speed"], (5 * 1.0 - 0.03 - 2 * 0.5) / 8, places=2)
         self.assertAlmostEqual(m["backward_fraction"], 0.25)
 
     def test_ring_scenario_goals_are_ahead_and_cycle(self):
