@@ -24,6 +24,7 @@ import argparse
 import concurrent.futures
 import json
 import os
+import sqlite3
 import subprocess
 import sys
 import tempfile
@@ -119,6 +120,20 @@ def model_tag(model):
         return model
     extra = ",".join(f"{k}={v}" for k, v in model.items() if k != "name")
     return model["name"] + (f" {extra}" if extra else "")
+
+
+def default_radius(runner):
+    """The body radius the engine gives a population that names none [m] (from a 0.1 s run)."""
+    probe = {"format": "throng/1", "walkable": [[[0, 0], [6, 0], [6, 6], [0, 6]]], "populations": [
+        {"id": "probe", "groups": 1, "spawn": {"polygon": [[1, 1], [5, 1], [5, 5], [1, 5]]}}]}
+    res = runner.run([("radius-probe", probe, 1, 0.1)])[0]
+    if res.get("error"):
+        raise RuntimeError(res["error"])
+    db = sqlite3.connect(res["recording"])
+    try:
+        return float(db.execute("SELECT radius FROM throng_populations").fetchone()[0])
+    finally:
+        db.close()
 
 
 def check_model(binary, model, tmp):
@@ -227,7 +242,7 @@ def main(argv=None):
                 print(f"validate.py: --model: throng refuses it: {message}", file=sys.stderr)
                 return 2
         runner = Runner(args.throng, tmp, args.model, args.radius, args.jobs)
-        ctx = Context(runner, seeds, args.quick, args.data_dir, args.radius)
+        ctx = Context(runner, seeds, args.quick, args.data_dir, args.radius or default_radius(runner))
         results = {}
         for name in args.only:
             progress(f"experiment {name} ({tag}, seeds {seeds[0]}..{seeds[-1]})")
@@ -239,7 +254,8 @@ def main(argv=None):
     wall = time.time() - started
     print(f"({runner.count} throng runs, {wall:.1f} s)")
     if args.json:
-        summary = {"model": args.model, "model_tag": tag, "radius": args.radius, "seeds": seeds, "quick": args.quick,
+        summary = {"model": args.model, "model_tag": tag, "body_radius": ctx.radius,
+                   "body_radius_from": "--radius" if args.radius else "engine default", "seeds": seeds, "quick": args.quick,
                    "experiments": args.only, "targets": ctx.targets.rows, "results": strip(results),
                    "runs": runner.count, "wall_time_s": wall}
         text = json.dumps(summary, indent=1, allow_nan=False, default=float)

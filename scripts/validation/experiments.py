@@ -3,7 +3,8 @@ measures the recordings (measures.py) and adds its targets (target, measured, ba
 list. docs/validation.md gives the set-ups, the measurements and the source of every band.
 
 Every experiment is a function (ctx) -> dict of results (JSON-able, private numpy series under keys
-starting with "_"); ctx carries the runner, the targets, the seeds, --quick and the experiment data.
+starting with "_"); ctx carries the runner, the targets, the seeds, --quick, the experiment data
+and the body radius the agents get (--radius or the engine's default).
 """
 import json
 import math
@@ -177,7 +178,7 @@ def _ring_windows(ctx):
 def _ring_runs(ctx, label, geo, agents_of, size_of):
     """Simulates a ring per density and seed; returns per density the runs' ring_measures."""
     warm, span = _ring_windows(ctx)
-    radius = ctx.radius or 0.2
+    radius = ctx.radius
     tasks, meta = [], []
     for rho in geo["densities"]:
         n = agents_of(rho)
