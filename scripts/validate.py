@@ -13,7 +13,8 @@ measured and prints one table: target, measured, band, PASS/FAIL. Experiments (-
   door         the bundled 1 m door (scenarios/bottleneck.json)
 
 usage: /usr/bin/python3 scripts/validate.py [--model SPEC] [--only NAME[,NAME]] [--seeds N] [--quick]
-           [--check] [--json FILE] [--out-dir DIR] [--no-plots] [--throng PATH] [--data-dir DIR] [--jobs N]
+           [--radius R] [--check] [--json FILE] [--out-dir DIR] [--no-plots] [--throng PATH]
+           [--data-dir DIR] [--jobs N]
 
 Exit status: 0; 1 with --check when a selected target is outside its band; 2 for bad flags (an
 unknown experiment, a model throng refuses, a missing binary or experiment data).
@@ -147,7 +148,7 @@ def check_model(binary, model, tmp):
 def parse_args(argv):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter,
-                                 epilog=__doc__.split("\n\n", 1)[1])
+                                 epilog="\n\n".join(p for p in __doc__.split("\n\n")[1:] if not p.startswith("usage")))
     ap.add_argument("--throng", default=os.path.join(ROOT, "build", "apps", "throng", "throng"),
                     help="path to the throng binary (default: build/apps/throng/throng)")
     ap.add_argument("--data-dir", default=DEFAULT_DATA, help=f"experiment files (default: {DEFAULT_DATA})")
