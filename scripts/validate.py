@@ -13,8 +13,8 @@ measured and prints one table: target, measured, band, PASS/FAIL. Experiments (-
   door         the bundled 1 m door (scenarios/bottleneck.json)
 
 usage: /usr/bin/python3 scripts/validate.py [--model SPEC] [--only NAME[,NAME]] [--seeds N] [--quick]
-           [--radius R] [--check] [--json FILE] [--out-dir DIR] [--no-plots] [--throng PATH]
-           [--data-dir DIR] [--jobs N]
+           [--radius R] [--check] [--json FILE] [--out-dir DIR] [--no-plots] [--keep DIR]
+           [--throng PATH] [--data-dir DIR] [--jobs N]
 
 Exit status: 0; 1 with --check when a selected target is outside its band; 2 for bad flags (an
 unknown experiment, a model throng refuses, a missing binary or experiment data).
@@ -23,6 +23,7 @@ Set-ups, measurements and the source of every band: docs/validation.md.
 """
 import argparse
 import concurrent.futures
+import contextlib
 import json
 import os
 import sqlite3
@@ -165,6 +166,9 @@ def parse_args(argv):
     ap.add_argument("--check", action="store_true", help="exit status 1 when a selected target is outside its band")
     ap.add_argument("--json", metavar="FILE", help="write every figure as JSON to FILE ('-' = stdout)")
     ap.add_argument("--no-plots", action="store_true", help="skip the PNGs")
+    ap.add_argument("--keep", metavar="DIR",
+                    help="keep every generated scenario (model applied) and recording in DIR (default: a "
+                         "temporary directory, removed)")
     args = ap.parse_args(argv)
     names = list(E.EXPERIMENTS) if not args.only else [n.strip() for n in args.only.split(",") if n.strip()]
     bad = [n for n in names if n not in E.EXPERIMENTS]
@@ -236,7 +240,9 @@ def main(argv=None):
     started = time.time()
     tag = model_tag(args.model)
     seeds = list(range(1, (args.seeds or (1 if args.quick else 5)) + 1))
-    with tempfile.TemporaryDirectory(prefix="throng-validate-") as tmp:
+    if args.keep:
+        os.makedirs(args.keep, exist_ok=True)
+    with (contextlib.nullcontext(args.keep) if args.keep else tempfile.TemporaryDirectory(prefix="throng-validate-")) as tmp:
         if args.model is not None:
             ok, message = check_model(args.throng, args.model, tmp)
             if not ok:

@@ -2,7 +2,7 @@
 """End-to-end test of scripts/validate.py (ctest: validate_script_quick): runs it as a user would,
 with --quick on the experiments that need no external data, and checks that it works and reports
 every field: a row per target with a band and a status, every experiment's figures in --json, the
-PNGs, the table on stdout, exit 2 for bad flags and --check's exit status. It does not assert the
+PNGs, the table on stdout, exit 2 for bad flags, --check's exit status and --keep. It does not assert the
 bands (the current models do not pass them yet).
 
 usage: validate_quick_test.py THRONG_BINARY"""
@@ -94,10 +94,18 @@ def main():
                 fail(f"plot {path} missing")
         # --check: exit 1 exactly when a target failed (the same quick run is deterministic).
         failed = any(r["status"] == "FAIL" for r in summary["targets"])
-        res = run(["--throng", throng, "--quick", "--only", "door", "--model", "orca", "--no-plots", "--check"])
+        keep = os.path.join(tmp, "keep")
+        res = run(["--throng", throng, "--quick", "--only", "door", "--model", "orca", "--no-plots", "--check",
+                   "--keep", keep])
         door_failed = "FAIL" in res.stdout.split("result", 1)[-1]
         if res.returncode != (1 if door_failed else 0):
             fail(f"--check exit {res.returncode} with door failed = {door_failed}")
+        # --keep: the scenario as run (model applied) and its recording stay.
+        with open(os.path.join(keep, "door-s1.json")) as f:
+            if any(p.get("model") != "orca" for p in json.load(f)["populations"]):
+                fail("--keep: the kept scenario does not carry --model")
+        if not os.path.isfile(os.path.join(keep, "door-s1.sqlite")):
+            fail("--keep: no recording kept")
         print(f"quick run: {len(summary['targets'])} targets, any failed: {failed}")
     for bad in (["--only", "nosuch"], ["--model", "{not json"], ["--model", "nosuchmodel", "--only", "door"],
                 ["--seeds", "0"]):
