@@ -2,8 +2,8 @@
 """End-to-end test of scripts/validate.py (ctest: validate_script_quick): runs it as a user would,
 with --quick on the experiments that need no external data, and checks that it works and reports
 every field: a row per target with a band and a status, every experiment's figures in --json, the
-PNGs, the table on stdout, exit 2 for bad flags, --check's exit status and --keep. It does not assert the
-bands (the current models do not pass them yet).
+PNGs, the table on stdout, exit 2 for bad flags, --check's exit status and --keep. It does not
+assert the bands (the current models do not pass them yet).
 
 usage: validate_quick_test.py THRONG_BINARY"""
 import json
