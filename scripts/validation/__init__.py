@@ -1,0 +1,1 @@
+"""Validation harness of scripts/validate.py: measures, scenario generators, experiments, plots."""
