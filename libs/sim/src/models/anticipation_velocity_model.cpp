@@ -143,7 +143,7 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float dist = core::length(d);
       if (dist < 1e-6f) continue;
       const float l = a.radius[row] + a.radius[o];
-      if (dist < l) {  // overlapping: step apart along the line of centres
+      if (dist < l) {  // overlapping discs: step apart along the line of centres
         dir -= d * (p.neighbourStrength * std::exp((l - dist) / p.neighbourRange) / dist);
         continue;
       }
@@ -198,15 +198,15 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// nearer that space goes first — j does not block i when i is further ahead of j, along j's
   /// walking direction, than j is of i along i's (ties: the lower id goes). Without this rule both
   /// see the other ahead and both stop, which clogs every door and corridor mouth.
-  static bool givesWay(const AgentStore& a, std::size_t row, std::uint32_t o, core::Vec2 d, float ahead) {
+  static bool givesWay(const AgentStore& a, std::size_t row, std::uint32_t o, core::Vec2 d, float ahead, core::Vec2 e) {
+    if (a.mode[o] != AgentMode::Walking) return false;  // waiting, acting, talking: an obstacle
+    // o's walking direction: its velocity, or where it faces while it stands in a queue.
     const core::Vec2 vo{a.velX[o], a.velY[o]};
     const float so = core::length(vo);
-    if (so < 0.05f) return false;  // standing: an obstacle
-    const core::Vec2 eo = vo / so;
-    const core::Vec2 vi{a.velX[row], a.velY[row]};
-    if (core::dot(vi, eo) <= 0.0f) return false;  // head on or crossing at more than 90°: both slow
-    const float aheadOfO = -core::dot(d, eo);     // how far i is ahead of o, along o's direction
-    if (aheadOfO <= 0.0f) return false;           // o does not see i ahead: o leads
+    const core::Vec2 eo = so > 0.05f ? vo / so : core::Vec2{a.oriX[o], a.oriY[o]};
+    if (core::dot(e, eo) <= 0.0f) return false;  // head on or crossing at more than 90°: both slow
+    const float aheadOfO = -core::dot(d, eo);    // how far i is ahead of o, along o's direction
+    if (aheadOfO <= 0.0f) return false;          // o does not see i ahead: o leads
     return aheadOfO > ahead || (aheadOfO == ahead && a.id[row] < a.id[o]);
   }
 
@@ -225,7 +225,7 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float l = a.radius[row] + a.radius[o];
       const float lateral = core::cross(e, d);
       if (std::abs(lateral) >= l) continue;
-      if (givesWay(a, row, o, d, ahead)) continue;
+      if (givesWay(a, row, o, d, ahead, e)) continue;
       // Bodies are ellipses, shoulders across the walking direction (semi-axis r) and chest to back
       // along it (depthRatio · r): two touch at this distance along e.
       const float y = lateral / l;
