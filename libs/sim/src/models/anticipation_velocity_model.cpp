@@ -53,7 +53,7 @@ constexpr ModelParameter kParameters[] = {
     {"neighbourRange", "m", 0.0, true, 5.0, false, 0.1f, "range D of the push from neighbours", kWalls},
     {"wallStrength", "1", 0.0, false, 100.0, false, 5.0f, "strength b of the push from walls", kWalls},
     {"wallRange", "m", 0.0, true, 5.0, false, 0.02f, "range D_w of the push from walls", kWalls},
-    {"passageRatio", "1", 0.3, false, 1.0, false, 0.5f,
+    {"passageRatio", "1", 0.3, false, 1.0, false, 0.65f,
      "body depth over shoulder breadth: bodies are ellipses this much shallower than wide, and the navmesh keeps centres radius × this from walls (shoulders turned)",
      "calibrated (docs/validation.md); adults' chest depth is about half their shoulder breadth (DIN 33402-2)"},
 };
@@ -76,7 +76,7 @@ struct AvmParams {
   float neighbourRange = 0.1f;     ///< D [m]
   float wallStrength = 5.0f;       ///< b [1]
   float wallRange = 0.02f;         ///< D_w [m]
-  float passageRatio = 0.5f;       ///< body depth / shoulder breadth [1]
+  float passageRatio = 0.65f;      ///< body depth / shoulder breadth [1]
 };
 
 class AvmScratch final : public ModelScratch {
@@ -143,8 +143,15 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float dist = core::length(d);
       if (dist < 1e-6f) continue;
       const float l = a.radius[row] + a.radius[o];
-      if (dist < l) {  // overlapping discs: step apart along the line of centres
-        dir -= d * (p.neighbourStrength * std::exp((l - dist) / p.neighbourRange) / dist);
+      if (dist < l) {  // overlapping discs: step apart along the line of centres, ...
+        core::Vec2 push = -d * (p.neighbourStrength * std::exp((l - dist) / p.neighbourRange) / dist);
+        // ... but backwards only when the bodies (ellipses, aligned with e0) really interpenetrate:
+        // standing close behind someone is what people do in a queue, not a reason to back off.
+        const float along = core::dot(e0, d) / dist, across = core::cross(e0, d) / dist;
+        const float q = p.passageRatio;
+        const float touch = l * q / std::sqrt(along * along + q * q * across * across);
+        if (const float back = core::dot(push, e0); back < 0.0f && dist >= touch) push -= e0 * back;
+        dir += push;
         continue;
       }
       const float cosPhi = core::dot(e0, d) / dist;
