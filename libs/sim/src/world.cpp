@@ -1,4 +1,4 @@
-// World — creation, the tick's phase order, the emit phase (removal, statistics) and frames (takeFrame).
+// World — creation, the tick's phase order, the phases' contexts (phases.hpp), the emit phase (removal, statistics) and frames (takeFrame).
 #include "throng/sim/world.hpp"
 
 #include <algorithm>
@@ -85,6 +85,14 @@ void World::step(const core::TaskSystem& tasks, PhaseObserver* observer) {
   if (w.partition.exchange != nullptr) { Scope s(observer, "exchange"); w.exchangeSteer(); }
   { Scope s(observer, "integrate"); w.integrate(tasks); }
   { Scope s(observer, "emit"); w.emit(); }
+}
+
+// The phases' contexts (phases.hpp): what each phase reads and what it may write, taken from the
+// world's state. steer builds its own (steer.cpp).
+
+void World::Impl::sense(const core::TaskSystem& tasks) {
+  sim::sense(SenseInput{agents.posX, agents.posY, agents.posZ, desc.steering},
+             SenseOutput{grid, agents.neighbours, agents.neighbourCount}, tasks);
 }
 
 void World::Impl::ensureScratch(const core::TaskSystem& tasks) {

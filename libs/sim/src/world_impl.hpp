@@ -29,6 +29,7 @@
 #include "throng/nav/navmesh.hpp"
 #include "throng/nav/path_queue.hpp"
 #include "models/operational_model.hpp"
+#include "phases.hpp"
 #include "throng/sim/world.hpp"
 
 namespace throng::sim {
@@ -56,24 +57,6 @@ struct SpawnSchedule {
   std::vector<std::vector<std::uint32_t>> groupSizes; ///< per population
   std::vector<std::uint32_t> firstGroupId;            ///< per population
   std::uint32_t nextAgentId = 0;
-};
-
-/// Per-worker scratch: navmesh queries and buffers reused across agents (never shared by threads).
-struct WorkerScratch {
-  std::unique_ptr<nav::NavQuery> query;
-  /// Per ModelKind: the model's working memory, made by the model (models/operational_model.hpp).
-  std::array<std::unique_ptr<ModelScratch>, kModelCount> modelScratch;
-  std::vector<std::pair<float, std::uint32_t>> order, line;  // formation
-};
-
-/// Per-chunk outputs merged in chunk order (deterministic for any thread count).
-struct ChunkOutput {
-  std::vector<Event> events;
-  double walkedDistance = 0.0;
-  double walkingTime = 0.0;
-  std::uint64_t socialMeetings = 0;
-  std::vector<std::uint32_t> pendingRows;  ///< rows whose goalPending was set, ascending
-  std::vector<std::uint32_t> desireRows;   ///< rows whose desirePoint was set (goal generator), ascending
 };
 
 /// The steer phase shared with other ranks (partition.hpp, partition.cpp). Unset (exchange ==
@@ -285,9 +268,7 @@ struct World::Impl {
   /// group's own stream: the same value whenever it is drawn) [m/s].
   [[nodiscard]] float groupSpeed(std::uint32_t gid) const;
   [[nodiscard]] float dt() const { return desc.dt; }
-  [[nodiscard]] static std::size_t grainFor(std::size_t n, const core::TaskSystem& tasks) {
-    return tasks.grain(n < 4096 ? 256 : 1024);
-  }
+  [[nodiscard]] static std::size_t grainFor(std::size_t n, const core::TaskSystem& tasks) { return phaseGrain(n, tasks); }
 
   // Partition (partition.hpp, partition.cpp): the steer phase shared with other ranks.
   PartitionState partition;

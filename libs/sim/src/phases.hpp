@@ -1,0 +1,96 @@
+// The phases of the tick as functions whose signatures say what they read and what they may write
+// (in the style of the operational-model seam, models/operational_model.hpp: ModelInput /
+// VelocityOutput). Each phase takes a const …Input — what it reads — and a …Output — spans of the
+// AgentStore columns and the owned parts it may write. World::Impl builds both from its state
+// (world.cpp) and World::step calls the phases in order; the phase files see this header only, not
+// World::Impl:
+//   sense      SenseInput, SenseOutput          sense.cpp
+//   decide     DecideInput, DecideOutput        decide.cpp (+ generateGoal, common_ground.cpp);
+//              then the group pass (World::Impl::decideGroups, groups.cpp)
+//   plan       PlanInput, PlanOutput            plan.cpp
+//   integrate  IntegrateInput, IntegrateOutput  integrate.cpp
+// (steer is World::Impl::steer, steer.cpp; its model part is ModelInput / VelocityOutput.)
+// Also here: what the parallel phases share — the per-worker scratch, the per-chunk outputs and
+// their grain — and the read-only view of where agents are going (GoalView, goals.cpp).
+// Optional columns (AgentStore's column groups: levels, Common Ground, …) are passed as empty spans
+// when the world does not have them.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "agent_store.hpp"
+#include "common_ground_state.hpp"
+#include "group_table.hpp"
+#include "models/operational_model.hpp"
+#include "throng/core/parallel.hpp"
+#include "throng/nav/navmesh.hpp"
+#include "throng/nav/path_queue.hpp"
+#include "throng/sim/scenario.hpp"
+#include "throng/sim/spatial_grid.hpp"
+
+namespace throng::sim {
+
+/// Per-worker scratch: navmesh queries and buffers reused across agents (never shared by threads).
+struct WorkerScratch {
+  std::unique_ptr<nav::NavQuery> query;
+  /// Per ModelKind: the model's working memory, made by the model (models/operational_model.hpp).
+  std::array<std::unique_ptr<ModelScratch>, kModelCount> modelScratch;
+  std::vector<std::pair<float, std::uint32_t>> order, line;  // formation
+};
+
+/// Per-chunk outputs merged in chunk order (deterministic for any thread count).
+struct ChunkOutput {
+  std::vector<Event> events;
+  double walkedDistance = 0.0;
+  double walkingTime = 0.0;
+  std::uint64_t socialMeetings = 0;
+  std::vector<std::uint32_t> pendingRows;  ///< rows whose goalPending was set, ascending
+  std::vector<std::uint32_t> desireRows;   ///< rows whose desirePoint was set (goal generator), ascending
+};
+
+/// The chunk size of the parallel phases over n agents: chunk c of a phase is rows
+/// [c·grain, (c+1)·grain), and writes ChunkOutput c.
+[[nodiscard]] inline std::size_t phaseGrain(std::size_t n, const core::TaskSystem& tasks) {
+  return tasks.grain(n < 4096 ? 256 : 1024);
+}
+
+/// Where agents are going, read-only (goals.cpp): what the phases ask about goals.
+struct GoalView {
+  const GroupTable& groups;
+  /// One goal list per population, then one per automatic-goals group (point indices).
+  std::span<const std::vector<std::uint32_t>> goalLists;
+  std::span<const std::uint32_t> group, goalCursor;  ///< AgentStore columns
+
+  /// The goal list a group follows now: its own, or the followed group's while following.
+  [[nodiscard]] const std::vector<std::uint32_t>& activeGoals(const GroupState& g) const;
+  /// The point the group is heading for (its cursor in its active list), kNoPoint past the last.
+  [[nodiscard]] std::uint32_t groupGoalPoint(const GroupState& g) const;
+  /// The point `row` is heading for (from its group's active goal list), kNoPoint past the last.
+  [[nodiscard]] std::uint32_t currentGoalPoint(std::size_t row) const;
+};
+
+/// Whether (x, y) lies inside a point's region (its disc, or its polygon).
+[[nodiscard]] bool insideRegion(const PointDesc& point, float x, float y);
+
+// ---- sense (sense.cpp): the spatial grid and every agent's k nearest neighbours.
+
+struct SenseInput {
+  std::span<const float> posX, posY;
+  std::span<const float> posZ;   ///< floor heights; empty on a flat world (one level)
+  const SteeringDesc& steering;  ///< maxNeighbours, neighbourDistance, denseNeighbourDistance, denseThreshold
+};
+
+struct SenseOutput {
+  SpatialGrid& grid;                           ///< rebuilt from the positions
+  std::vector<std::uint32_t>& neighbours;      ///< resized to n·maxNeighbours: rows, nearest first
+  std::vector<std::uint16_t>& neighbourCount;  ///< resized to n
+};
+
+/// Rebuilds the grid, then each agent's neighbours (parallel; each writes only its own slots).
+void sense(const SenseInput& in, const SenseOutput& out, const core::TaskSystem& tasks);
+
+}  // namespace throng::sim
