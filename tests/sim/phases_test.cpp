@@ -64,3 +64,46 @@ TEST(Phases, SenseKeepsOnlyNeighboursOnTheSameFloor) {
   EXPECT_EQ(neighboursOf(neighbours, count, 0, k), (std::vector<std::uint32_t>{1, 2}));
   EXPECT_EQ(neighboursOf(neighbours, count, 1, k), (std::vector<std::uint32_t>{0, 2}));
 }
+
+namespace {
+
+core::Polygon rect(float x0, float y0, float x1, float y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
+
+/// One group (goal list 0, empty) holding every row: enough for a GoalView.
+struct OneGroup {
+  GroupTable groups;
+  std::vector<std::vector<std::uint32_t>> goalLists{{}};
+  std::vector<std::uint32_t> group, goalCursor;
+  explicit OneGroup(std::size_t rows) : group(rows, 0), goalCursor(rows, 0) { groups.add(GroupState{}); }
+  [[nodiscard]] GoalView view() const { return {groups, goalLists, group, goalCursor}; }
+};
+
+}  // namespace
+
+TEST(Phases, PlanGivesAPathOnlyToRowsThatAskedForOne) {
+  // A 20 × 10 m room with a block in the middle of its lower half: row 0 asks for a path from one
+  // side of the block to the other, row 1 (same places) does not.
+  auto mesh = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)},
+                                  std::vector<core::Polygon>{rect(8, 0, 12, 7)}, nav::NavMeshConfig{});
+  ASSERT_TRUE(mesh.ok());
+  nav::PathQueue queue(mesh.value());
+  const std::vector<std::uint32_t> ids{0, 1};
+  const std::vector<float> xs{2, 2}, ys{2, 2}, tx{18, 18}, ty{2, 2};
+  std::vector<std::uint8_t> needPath{1, 0};
+  std::vector<nav::PathTicket> tickets(2, 0);
+  std::vector<CornerPath> corners(2);
+  std::vector<Event> events;
+  const OneGroup goals(2);
+  plan(PlanInput{7, ids, xs, ys, tx, ty, {}, {}, goals.view()},
+       PlanOutput{needPath, tickets, corners, queue, events});
+  EXPECT_EQ(needPath[0], 0u) << "the request is queued";
+  EXPECT_EQ(tickets[0], 0u) << "a short path completes within one tick's budget";
+  ASSERT_GE(corners[0].size(), 2u) << "the path rounds the block";
+  const core::Vec2 last = corners[0].data()[corners[0].size() - 1];
+  EXPECT_NEAR(last.x, 18.0f, 0.05f);
+  EXPECT_NEAR(last.y, 2.0f, 0.05f);
+  for (std::uint32_t i = 0; i + 1 < corners[0].size(); ++i) EXPECT_GE(corners[0].data()[i].y, 7.0f) << "corner " << i;
+  EXPECT_TRUE(corners[1].empty());
+  EXPECT_EQ(tickets[1], 0u);
+  EXPECT_TRUE(events.empty()) << "a complete path raises no PathPartial";
+}

@@ -93,4 +93,28 @@ struct SenseOutput {
 /// Rebuilds the grid, then each agent's neighbours (parallel; each writes only its own slots).
 void sense(const SenseInput& in, const SenseOutput& out, const core::TaskSystem& tasks);
 
+// ---- plan (plan.cpp): budgeted path planning through nav::PathQueue (serial, row order).
+
+struct PlanInput {
+  std::uint64_t tick;
+  std::span<const std::uint32_t> id;                  ///< stable ids (events)
+  std::span<const float> posX, posY, targetX, targetY;
+  std::span<const float> posZ, targetZ;               ///< floor heights; empty on a flat world
+  GoalView goals;                                     ///< the goal a PathPartial event names
+};
+
+struct PlanOutput {
+  std::span<std::uint8_t> needPath;     ///< cleared once the request is queued
+  std::span<nav::PathTicket> ticket;    ///< the request pending, 0 once its path is handed over
+  std::span<CornerPath> corners;        ///< the corners of a path that arrived
+  nav::PathQueue& pathQueue;            ///< requests in, kPathIterationsPerTick node expansions spent
+  std::vector<Event>& events;           ///< PathPartial
+};
+
+/// Detour node expansions the plan phase may spend per tick (time-slicing, as dtPathQueue).
+inline constexpr int kPathIterationsPerTick = 20000;
+
+/// Queues the rows that need a path, spends the tick's budget, hands finished paths to their rows.
+void plan(const PlanInput& in, const PlanOutput& out);
+
 }  // namespace throng::sim

@@ -95,6 +95,12 @@ void World::Impl::sense(const core::TaskSystem& tasks) {
              SenseOutput{grid, agents.neighbours, agents.neighbourCount}, tasks);
 }
 
+void World::Impl::plan() {
+  sim::plan(PlanInput{tick, agents.id, agents.posX, agents.posY, agents.targetX, agents.targetY, agents.posZ,
+                      agents.targetZ, goalView()},
+            PlanOutput{agents.needPath, agents.ticket, agents.corners, *pathQueue, pendingEvents});
+}
+
 void World::Impl::ensureScratch(const core::TaskSystem& tasks) {
   const std::size_t needed = static_cast<std::size_t>(tasks.threads());
   while (scratch.size() < needed) {

@@ -34,8 +34,6 @@
 
 namespace throng::sim {
 
-/// Detour node expansions the plan phase may spend per tick (time-slicing, as dtPathQueue).
-inline constexpr int kPathIterationsPerTick = 20000;
 /// Period of the progress check that triggers a re-plan for an agent that is stuck [s].
 inline constexpr float kProgressCheckPeriod = 4.0f;
 
@@ -236,6 +234,8 @@ struct World::Impl {
   void advanceGoal(std::size_t row, const nav::NavQuery& query);
   /// Points `row` at goal `cursor` of its group's active goal list (or wandering / Done past it).
   void setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQuery& query);
+  /// What the phases may ask about goals (phases.hpp, goals.cpp); the three below use it.
+  [[nodiscard]] GoalView goalView() const { return {groups, goalLists, agents.group, agents.goalCursor}; }
   /// The goal list a group follows now: its own, or the followed group's while following (goals.cpp).
   [[nodiscard]] const std::vector<std::uint32_t>& activeGoals(const GroupState& g) const;
   /// The point the group is heading for (its cursor in its active list), kNoPoint past the last.
