@@ -4,7 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <memory>
 #include <vector>
+
+#include "throng/sim/animation.hpp"
 
 using namespace throng;
 using namespace throng::sim;
@@ -106,4 +110,42 @@ TEST(Phases, PlanGivesAPathOnlyToRowsThatAskedForOne) {
   EXPECT_TRUE(corners[1].empty());
   EXPECT_EQ(tickets[1], 0u);
   EXPECT_TRUE(events.empty()) << "a complete path raises no PathPartial";
+}
+
+TEST(Phases, IntegrateMovesEachRowByItsNewVelocityAlongTheMesh) {
+  // Three walkers in a 20 × 10 m room, dt = 0.1 s: row 0 free (moves by newVel·dt), row 1 exited
+  // (stays), row 2 half a metre from the east wall at 10 m/s (stops at the wall, on the mesh).
+  auto mesh = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)}, {}, nav::NavMeshConfig{});
+  ASSERT_TRUE(mesh.ok());
+  std::vector<WorkerScratch> workers(1);
+  workers[0].query = std::make_unique<nav::NavQuery>(mesh.value());
+  const float dt = 0.1f;
+  std::vector<float> px{5, 8, 19.5f}, py{5, 5, 5}, vx(3, 0), vy(3, 0), stuck(3, 0), phase(3, 0), ox(3, 1), oy(3, 0);
+  std::vector<std::uint32_t> poly(3);
+  for (std::size_t r = 0; r < 3; ++r) poly[r] = static_cast<std::uint32_t>(workers[0].query->nearest({px[r], py[r]})->second);
+  std::vector<std::uint16_t> clip(3, kClipIdle);
+  const std::vector<float> nvx{1.0f, 1.0f, 10.0f}, nvy{0.5f, 0.0f, 0.0f}, speed(3, 1.3f);
+  const std::vector<GoalState> goalState{GoalState::Seeking, GoalState::Exited, GoalState::Seeking};
+  const std::vector<AgentMode> mode(3, AgentMode::Walking);
+  const std::vector<std::uint32_t> actionEnd(3, 0);
+  std::vector<ChunkOutput> chunks(1);
+  const OneGroup goals(3);
+  core::TaskSystem tasks(1);
+  integrate(IntegrateInput{dt, 0, nvx, nvy, goalState, mode, speed, actionEnd, {}, {}, goals.view(), {}, {}, {}, workers},
+            IntegrateOutput{px, py, {}, poly, vx, vy, stuck, clip, phase, ox, oy, chunks}, tasks);
+  EXPECT_NEAR(px[0], 5.1f, 1e-5f);
+  EXPECT_NEAR(py[0], 5.05f, 1e-5f);
+  EXPECT_NEAR(vx[0], 1.0f, 1e-3f);
+  EXPECT_NEAR(vy[0], 0.5f, 1e-3f);
+  EXPECT_GT(oy[0], 0.0f) << "the heading turns toward the motion";
+  EXPECT_LT(oy[0], 0.4473f) << "…over kTurnTime, not at once";
+  EXPECT_EQ(clip[0], kClipWalk);
+  EXPECT_EQ(px[1], 8.0f) << "an exited agent does not move";
+  EXPECT_EQ(vx[1], 0.0f);
+  EXPECT_LE(px[2], 20.0f - nav::NavMeshConfig{}.agentRadius + 1e-3f) << "nobody crosses a wall";
+  EXPECT_GT(px[2], 19.5f);
+  EXPECT_LT(vx[2], 10.0f) << "the velocity is the displacement actually made";
+  EXPECT_EQ(stuck[0], 0.0f) << "walking freely is not being stuck";
+  EXPECT_NEAR(chunks[0].walkingTime, 3.0 * dt, 1e-6) << "three agents in walking mode";
+  EXPECT_NEAR(chunks[0].walkedDistance, std::hypot(0.1, 0.05) + (px[2] - 19.5), 1e-5);
 }

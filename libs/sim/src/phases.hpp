@@ -117,4 +117,38 @@ inline constexpr int kPathIterationsPerTick = 20000;
 /// Queues the rows that need a path, spends the tick's budget, hands finished paths to their rows.
 void plan(const PlanInput& in, const PlanOutput& out);
 
+// ---- integrate (integrate.cpp): commits the models' velocities (parallel; each row writes its own).
+
+struct IntegrateInput {
+  float dt;                                   ///< [s]
+  std::uint64_t tick;
+  std::span<const float> newVelX, newVelY;    ///< the models' velocities from steer [m/s]
+  std::span<const GoalState> goalState;
+  std::span<const AgentMode> mode;
+  std::span<const float> speed;               ///< desired walking speed [m/s] (stuck detection)
+  std::span<const std::uint32_t> actionEndTick;
+  std::span<const std::uint8_t> scriptWalk;   ///< Common Ground scripts; empty without them
+  std::span<const std::uint16_t> scriptClip;  ///< Common Ground scripts; empty without them
+  GoalView goals;                             ///< the point an acting agent acts at
+  std::span<const PointDesc> points;          ///< actionDuration of that point
+  std::span<const std::uint16_t> pointClip;   ///< per point: its action's animation clip
+  std::span<const float> clipDuration;        ///< per animation clip [s] (script clips)
+  std::span<const WorkerScratch> workers;     ///< per-worker navmesh queries (moveAlongSurface)
+};
+
+struct IntegrateOutput {
+  std::span<float> posX, posY;        ///< moved along the navmesh surface
+  std::span<float> posZ;              ///< floor height under the agent; empty on a flat world
+  std::span<std::uint32_t> polyRef;   ///< navmesh polygon under the agent
+  std::span<float> velX, velY;        ///< the displacement actually made, over dt [m/s]
+  std::span<float> stuckTime;         ///< [s] (deadlock breaking in steer)
+  std::span<std::uint16_t> animClip;
+  std::span<float> animPhase;
+  std::span<float> oriX, oriY;        ///< heading, turned toward the motion
+  std::span<ChunkOutput> chunks;      ///< walking distance and time; TaskSystem::chunkCount(n, phaseGrain) of them
+};
+
+/// Moves every agent by its new velocity along the navmesh, then its statistics, animation, heading.
+void integrate(const IntegrateInput& in, const IntegrateOutput& out, const core::TaskSystem& tasks);
+
 }  // namespace throng::sim

@@ -101,6 +101,15 @@ void World::Impl::plan() {
             PlanOutput{agents.needPath, agents.ticket, agents.corners, *pathQueue, pendingEvents});
 }
 
+void World::Impl::integrate(const core::TaskSystem& tasks) {
+  const IntegrateInput in{desc.dt, tick, agents.newVelX, agents.newVelY, agents.goalState, agents.mode, agents.speed,
+                          agents.actionEndTick, agents.scriptWalk, agents.scriptClip, goalView(), desc.points,
+                          pointClip, commonGround.clipDuration, scratch};
+  const IntegrateOutput out{agents.posX, agents.posY, agents.posZ, agents.polyRef, agents.velX, agents.velY,
+                            agents.stuckTime, agents.animClip, agents.animPhase, agents.oriX, agents.oriY, chunks};
+  sim::integrate(in, out, tasks);
+}
+
 void World::Impl::ensureScratch(const core::TaskSystem& tasks) {
   const std::size_t needed = static_cast<std::size_t>(tasks.threads());
   while (scratch.size() < needed) {

@@ -217,11 +217,6 @@ struct World::Impl {
   void plan();
   void steer(const core::TaskSystem& tasks);
   void integrate(const core::TaskSystem& tasks);
-  // Steps of integrate (integrate.cpp), per agent; each writes only `row` and the chunk's sums.
-  core::Vec2 moveAlongMesh(std::size_t row, const nav::NavQuery& query);
-  void countWalking(std::size_t row, core::Vec2 moved, ChunkOutput& out);
-  void animate(std::size_t row, float step);
-  void turnHeading(std::size_t row, core::Vec2 moved);
   void emit();
 
   // Helpers shared by phases.
