@@ -149,3 +149,75 @@ TEST(Phases, IntegrateMovesEachRowByItsNewVelocityAlongTheMesh) {
   EXPECT_NEAR(chunks[0].walkingTime, 3.0 * dt, 1e-6) << "three agents in walking mode";
   EXPECT_NEAR(chunks[0].walkedDistance, std::hypot(0.1, 0.05) + (px[2] - 19.5), 1e-5);
 }
+
+namespace {
+
+/// The DecideOutput over every column decide may write.
+DecideOutput decideOutput(AgentStore& a, std::span<ChunkOutput> chunks) {
+  return {a.goalState, a.mode, a.targetX, a.targetY, a.targetZ, a.corners, a.needPath, a.goalPending,
+          a.progressDistance, a.actionEndTick, a.oriX, a.oriY, a.sociologicalEffect, a.sociologicalOther,
+          a.desirePoint, a.desireTrigger, chunks};
+}
+
+}  // namespace
+
+TEST(Phases, DecideExitsActsAndChecksProgressRowByRow) {
+  // One group whose goal list is [exit, action point]. Row 0 stands in the exit's disc, row 1 at the
+  // action point's stop (goal cursor 1), row 2 far from the exit on a tick of its progress check.
+  ScenarioDesc desc;
+  desc.dt = 0.05f;
+  desc.populations.emplace_back();
+  PointDesc exit;
+  exit.kind = PointKind::Exit;
+  exit.position = {18, 5};
+  exit.radius = 1.0f;
+  PointDesc stand;
+  stand.kind = PointKind::Action;
+  stand.position = {10, 8};
+  stand.radius = 0.5f;
+  stand.stop = true;
+  stand.actionDuration = 2.0f;
+  stand.orientation = {0, 1};
+  desc.points = {exit, stand};
+  GroupTable groups;
+  groups.add(GroupState{});
+  const std::vector<std::vector<std::uint32_t>> goalLists{{0, 1}};
+  AgentStore a;
+  const float xs[] = {18.2f, 10.1f, 2.0f}, ys[] = {5.0f, 8.0f, 5.0f};
+  for (std::uint32_t r = 0; r < 3; ++r) {
+    a.addRow();
+    a.id[r] = r;
+    a.posX[r] = xs[r];
+    a.posY[r] = ys[r];
+    a.targetX[r] = r == 1 ? 10.0f : 18.0f;
+    a.targetY[r] = r == 1 ? 8.0f : 5.0f;
+    a.radius[r] = 0.25f;
+    a.goalCursor[r] = r == 1 ? 1 : 0;
+  }
+  auto mesh = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)}, {}, nav::NavMeshConfig{});
+  ASSERT_TRUE(mesh.ok());
+  std::vector<WorkerScratch> workers(1);
+  workers[0].query = std::make_unique<nav::NavQuery>(mesh.value());
+  const CommonGroundState commonGround;
+  std::vector<ChunkOutput> chunks(1);
+  core::TaskSystem tasks(1);
+  const std::uint64_t tick = 78;  // (tick + id 2) is a multiple of the 80-tick check period
+  const GoalView goals{groups, goalLists, a.group, a.goalCursor};
+  decide(DecideInput{a, desc, tick, groups, goals, commonGround, workers}, decideOutput(a, chunks), tasks);
+
+  EXPECT_EQ(a.goalState[0], GoalState::Exited);
+  EXPECT_EQ(a.goalState[1], GoalState::Acting);
+  EXPECT_EQ(a.mode[1], AgentMode::Acting);
+  EXPECT_EQ(a.actionEndTick[1], tick + 40) << "2 s at 0.05 s per tick";
+  EXPECT_EQ(a.oriY[1], 1.0f) << "facing the action point's orientation";
+  EXPECT_EQ(a.goalState[2], GoalState::Seeking);
+  EXPECT_EQ(a.needPath[2], 1u) << "no closer than at the last check: re-plan";
+  EXPECT_FLOAT_EQ(a.progressDistance[2], 16.0f);
+  EXPECT_EQ(a.needPath[0] + a.needPath[1], 0);
+  ASSERT_EQ(chunks[0].events.size(), 2u);
+  EXPECT_EQ(chunks[0].events[0].kind, EventKind::Exit);
+  EXPECT_EQ(chunks[0].events[0].agent, 0u);
+  EXPECT_EQ(chunks[0].events[1].kind, EventKind::ActionStart);
+  EXPECT_EQ(chunks[0].events[1].a, 1u) << "the action point";
+  EXPECT_TRUE(chunks[0].pendingRows.empty());
+}

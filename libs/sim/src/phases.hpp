@@ -93,6 +93,51 @@ struct SenseOutput {
 /// Rebuilds the grid, then each agent's neighbours (parallel; each writes only its own slots).
 void sense(const SenseInput& in, const SenseOutput& out, const core::TaskSystem& tasks);
 
+// ---- decide (decide.cpp): the goal state machine of every agent (parallel; each row writes only
+// its own entries of DecideOutput's columns and its chunk). The group pass then applies what it
+// flagged (World::Impl::decideGroups, groups.cpp).
+
+struct DecideInput {
+  /// Every column, read-only: the row's own (position, id, group, ticket, …) and its neighbours'.
+  /// The columns decide writes are read and written through DecideOutput instead.
+  const AgentStore& agents;
+  const ScenarioDesc& desc;   ///< dt, seed, points, populations, steering.maxNeighbours, social
+  std::uint64_t tick;
+  const GroupTable& groups;   ///< each agent's group: guided, flocking, members, cursor, coordination
+  GoalView goals;             ///< the goal point each agent walks to
+  const CommonGroundState& commonGround;  ///< categories and places (the goal generator)
+  std::span<const WorkerScratch> workers; ///< per-worker navmesh queries (the goal generator's sight)
+};
+
+struct DecideOutput {
+  std::span<GoalState> goalState;
+  std::span<AgentMode> mode;
+  std::span<float> targetX, targetY;
+  std::span<float> targetZ;                   ///< empty on a flat world
+  std::span<CornerPath> corners;              ///< cleared when the agent stops to wait
+  std::span<std::uint8_t> needPath;           ///< → plan
+  std::span<GoalPending> goalPending;         ///< → the group pass (rows listed in the chunk)
+  std::span<float> progressDistance;          ///< the progress check's last distance [m]
+  std::span<std::uint32_t> actionEndTick;
+  std::span<float> oriX, oriY;                ///< turned to an action point's orientation
+  std::span<SocialEffect> sociologicalEffect; ///< → the group pass; empty without the sociological model
+  std::span<std::uint32_t> sociologicalOther; ///< the agent met; empty without the sociological model
+  std::span<std::uint32_t> desirePoint;       ///< → the group pass; empty without Common Ground
+  std::span<std::uint8_t> desireTrigger;      ///< its GoalTrigger; empty without Common Ground
+  std::span<ChunkOutput> chunks;              ///< events, meetings, flagged rows; chunkCount(n, phaseGrain) of them
+};
+
+/// Period of the progress check that triggers a re-plan for an agent that is stuck [s].
+inline constexpr float kProgressCheckPeriod = 4.0f;
+
+/// The per-agent part of decide: arrivals, actions, exits, progress checks, the Common Ground goal
+/// generator, sociological meetings.
+void decide(const DecideInput& in, const DecideOutput& out, const core::TaskSystem& tasks);
+/// The Common Ground goal generator for one agent (common_ground.cpp; decide calls it): may set
+/// the row's desirePoint and desireTrigger and list the row in the chunk.
+void generateGoal(const DecideInput& in, const DecideOutput& out, std::size_t row, ChunkOutput& chunk,
+                  const nav::NavQuery& query);
+
 // ---- plan (plan.cpp): budgeted path planning through nav::PathQueue (serial, row order).
 
 struct PlanInput {

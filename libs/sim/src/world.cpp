@@ -95,6 +95,18 @@ void World::Impl::sense(const core::TaskSystem& tasks) {
              SenseOutput{grid, agents.neighbours, agents.neighbourCount}, tasks);
 }
 
+void World::Impl::decide(const core::TaskSystem& tasks) {
+  const std::size_t n = agents.size();
+  chunks.resize(std::max(chunks.size(), core::TaskSystem::chunkCount(n, grainFor(n, tasks))));
+  const DecideInput in{agents, desc, tick, groups, goalView(), commonGround, scratch};
+  const DecideOutput out{agents.goalState, agents.mode, agents.targetX, agents.targetY, agents.targetZ,
+                         agents.corners, agents.needPath, agents.goalPending, agents.progressDistance,
+                         agents.actionEndTick, agents.oriX, agents.oriY, agents.sociologicalEffect,
+                         agents.sociologicalOther, agents.desirePoint, agents.desireTrigger, chunks};
+  sim::decide(in, out, tasks);
+  decideGroups(tasks);
+}
+
 void World::Impl::plan() {
   sim::plan(PlanInput{tick, agents.id, agents.posX, agents.posY, agents.targetX, agents.targetY, agents.posZ,
                       agents.targetZ, goalView()},
@@ -309,14 +321,6 @@ std::uint64_t World::stateHash() const {
     mix(&a.velY[r], sizeof(float));
   }
   return h;
-}
-
-bool World::Impl::insideRegion(const PointDesc& point, float x, float y) const {
-  if (point.polygon.empty()) {
-    const float dx = x - point.position.x, dy = y - point.position.y;
-    return dx * dx + dy * dy <= point.radius * point.radius;
-  }
-  return core::pointInPolygon(point.polygon, core::Vec2{x, y});
 }
 
 }  // namespace throng::sim

@@ -1,15 +1,18 @@
-// World::Impl — the world's state and its phases. Each phase lives in its own file:
+// World::Impl — the world's state and its phases. sense, decide, plan and integrate are free
+// functions of their contexts (phases.hpp), which Impl builds from its state (world.cpp); the rest
+// are Impl's methods. Each phase lives in its own file:
 //   spawn.cpp      applyCommands: populations due this tick enter the world
 //   insert.cpp     crowds inserted and removed at run time (API and scenario timeline)
 //   sense.cpp      grid rebuild and k-nearest neighbours
-//   decide.cpp     goal logic: regions reached, actions, exits, new targets
+//   decide.cpp     goal logic: regions reached, actions, exits, progress checks, meetings
+//   groups.cpp     the group pass after decide (commands, guidance, following, waiting, formation)
 //   common_ground.cpp, common_ground_play.cpp  the Common Ground model (goals, coordinations, scripts)
 //   plan.cpp       budgeted path planning through nav::PathQueue
 //   goals.cpp      one home for goals: active list, current point, set/advance, targets, Bézier
 //   steer.cpp      preferred velocity along the path, then the population's avoidance model
 //   models/        the avoidance models behind OperationalModel (ORCA, collision-free speed)
 //   integrate.cpp  commit velocities, move along the navmesh, headings, statistics
-//   world.cpp      the tick, emit (removal, frame), creation
+//   world.cpp      the tick, the phases' contexts, emit (removal, frame), creation
 #pragma once
 #include <array>
 #include <map>
@@ -34,8 +37,6 @@
 
 namespace throng::sim {
 
-/// Period of the progress check that triggers a re-plan for an agent that is stuck [s].
-inline constexpr float kProgressCheckPeriod = 4.0f;
 
 
 /// A command from the World API, applied in order at the start of the next tick.
@@ -121,8 +122,6 @@ struct World::Impl {
   CommonGroundState commonGround;
   /// The Common Ground state of the scenario's points, interests and animation clips (creation).
   void initCommonGround();
-  /// Goal generator for one agent (parallel, in decide): may set desirePoint and list the row.
-  void generateGoal(std::size_t row, ChunkOutput& out, const nav::NavQuery& query);
   void startCoordinations();    ///< group pass: desires → coordinations (planner) or lone visits
   // Steps of startCoordinations (common_ground.cpp).
   void startCoordination(std::uint32_t row);
@@ -202,17 +201,8 @@ struct World::Impl {
   [[nodiscard]] SpawnPlan planPackedSpawn(std::size_t population, std::uint32_t firstAgent, SpawnOccupancy& occupancy);
   void addSpawnedAgents(const SpawnPlan& plan);
   void sense(const core::TaskSystem& tasks);
+  /// decide (decide.cpp, phases.hpp), then the group pass.
   void decide(const core::TaskSystem& tasks);
-  // Steps of decide (decide.cpp), per agent; each writes only `row` and the chunk's output.
-  void decideRow(std::size_t row, std::uint64_t checkEvery, ChunkOutput& out, const nav::NavQuery& query);
-  /// Walking to a goal: arrived (exit, action, goal reached) or checking progress.
-  void seekGoal(std::size_t row, const GroupState& g, std::uint64_t checkEvery, ChunkOutput& out);
-  /// At its goal: wait for the group (flocking rule 4) or ask the group pass for the next goal.
-  void reachGoal(std::size_t row, const GroupState& g, ChunkOutput& out);
-  /// Every check period: re-plan when no closer to the target (and farther than minDistance) [m].
-  void checkProgress(std::size_t row, std::uint64_t checkEvery, float minDistance);
-  /// Sociological model: meetings with agents of other groups may set sociologicalEffect.
-  void meetOthers(std::size_t row, const SociologicalDesc& social, ChunkOutput& out);
   void decideGroups(const core::TaskSystem& tasks);  ///< group pass (groups.cpp), after the per-agent part of decide
   void plan();
   void steer(const core::TaskSystem& tasks);
@@ -222,7 +212,6 @@ struct World::Impl {
   // Helpers shared by phases.
   WorkerScratch& worker(const core::TaskSystem& tasks);
   void ensureScratch(const core::TaskSystem& tasks);
-  [[nodiscard]] bool insideRegion(const PointDesc& point, float x, float y) const;
   /// Chooses a target inside the point's region (on the navmesh) for agent `row`.
   core::Vec2 drawTarget(std::size_t row, const PointDesc& point, const nav::NavQuery& query);
   /// Moves `row` on to its next goal (or wandering, or Done).
