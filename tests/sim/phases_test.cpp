@@ -221,3 +221,35 @@ TEST(Phases, DecideExitsActsAndChecksProgressRowByRow) {
   EXPECT_EQ(chunks[0].events[1].a, 1u) << "the action point";
   EXPECT_TRUE(chunks[0].pendingRows.empty());
 }
+
+TEST(Phases, FormationPullsTwoWalkersOfAFlockingGroupAbreast) {
+  // A flocking pair walking east one behind the other (0.1 m apart): the group's heading is east,
+  // its centroid between them, and each gets a correction toward its own side (spacing 0.75 m).
+  std::vector<PopulationDesc> populations(1);
+  GroupTable groups;
+  GroupState pair;
+  pair.expected = 2;
+  pair.members.push_back(0);
+  pair.members.push_back(1);
+  const std::uint32_t gid = groups.add(pair);
+  groups.markBusy(gid);
+  groups.refreshBusy();
+  const std::vector<std::uint32_t> rowOfId{0, 1}, cursor(2, 0);
+  const std::vector<float> xs{5.0f, 5.1f}, ys{5.0f, 5.0f}, vx{1.0f, 1.0f}, vy{0.0f, 0.0f};
+  const std::vector<GoalState> goalState(2, GoalState::Seeking);
+  std::vector<float> fx(2, 9.0f), fy(2, 9.0f);
+  std::vector<WorkerScratch> workers(1);
+  core::TaskSystem tasks(1);
+  formGroups(FormationInput{populations, rowOfId, xs, ys, vx, vy, goalState, cursor, {}},
+             FormationOutput{groups, fx, fy, workers}, tasks);
+  const GroupExtra& shape = groups.extraOf(groups[gid]);
+  EXPECT_NEAR(shape.centroid.x, 5.05f, 1e-6f);
+  EXPECT_EQ(shape.heading.x, 1.0f);
+  // Same lateral place: ties go by row, so row 0 takes the right-hand slot (−y) and row 1 the left.
+  EXPECT_LT(fy[0], 0.0f);
+  EXPECT_GT(fy[1], 0.0f);
+  EXPECT_FLOAT_EQ(fy[0], -fy[1]);
+  EXPECT_GT(fx[0], 0.0f) << "the one behind closes up";
+  EXPECT_LT(fx[1], 0.0f) << "the one ahead waits";
+  for (std::size_t r = 0; r < 2; ++r) EXPECT_LE(std::hypot(fx[r], fy[r]), 0.5f + 1e-6f) << "capped";
+}

@@ -6,7 +6,8 @@
 // World::Impl:
 //   sense      SenseInput, SenseOutput          sense.cpp
 //   decide     DecideInput, DecideOutput        decide.cpp (+ generateGoal, common_ground.cpp);
-//              then the group pass (World::Impl::decideGroups, groups.cpp)
+//              then the group pass (World::Impl::decideGroups, groups.cpp), whose last step is
+//              formGroups(FormationInput, FormationOutput)
 //   plan       PlanInput, PlanOutput            plan.cpp
 //   integrate  IntegrateInput, IntegrateOutput  integrate.cpp
 // (steer is World::Impl::steer, steer.cpp; its model part is ModelInput / VelocityOutput.)
@@ -137,6 +138,27 @@ void decide(const DecideInput& in, const DecideOutput& out, const core::TaskSyst
 /// the row's desirePoint and desireTrigger and list the row in the chunk.
 void generateGoal(const DecideInput& in, const DecideOutput& out, std::size_t row, ChunkOutput& chunk,
                   const nav::NavQuery& query);
+
+// ---- the group pass's formation step (groups.cpp): members of flocking groups walk abreast
+// (parallel over the busy groups; a group writes its own cold part and its members' rows only).
+
+struct FormationInput {
+  std::span<const PopulationDesc> populations;  ///< flocking, groupSpacing
+  std::span<const std::uint32_t> rowOfId;       ///< stable id → row
+  std::span<const float> posX, posY, velX, velY;
+  std::span<const GoalState> goalState;
+  std::span<const std::uint32_t> goalCursor;
+  std::span<const std::uint32_t> followAgent;   ///< empty without the sociological model
+};
+
+struct FormationOutput {
+  GroupTable& groups;                   ///< the busy groups' centroid and heading (GroupExtra)
+  std::span<float> formVelX, formVelY;  ///< members' formation corrections [m/s]; empty when nobody flocks
+  std::span<WorkerScratch> workers;     ///< per-worker sort buffers (order, line)
+};
+
+/// Each busy group's centroid and heading, and its walking members' corrections toward their slots.
+void formGroups(const FormationInput& in, const FormationOutput& out, const core::TaskSystem& tasks);
 
 // ---- plan (plan.cpp): budgeted path planning through nav::PathQueue (serial, row order).
 

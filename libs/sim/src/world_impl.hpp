@@ -241,8 +241,8 @@ struct World::Impl {
   /// Automatic goals for a group spawning around `anchor` (groups.cpp).
   void reconstructGoals(std::uint32_t group, core::Vec2 anchor);
   void applyGroupCommands();
+  /// Formation (formGroups, phases.hpp): the group pass's parallel last step.
   void updateGroupShapes(const core::TaskSystem& tasks);
-  void shapeGroup(GroupState& g, WorkerScratch& ws);
   void updateWaiting();
   void updateFollowing();
   void updateGuidance();
