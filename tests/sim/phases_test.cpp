@@ -253,3 +253,31 @@ TEST(Phases, FormationPullsTwoWalkersOfAFlockingGroupAbreast) {
   EXPECT_LT(fx[1], 0.0f) << "the one ahead waits";
   for (std::size_t r = 0; r < 2; ++r) EXPECT_LE(std::hypot(fx[r], fy[r]), 0.5f + 1e-6f) << "capped";
 }
+
+TEST(Phases, LeadershipGoesToAMemberAndPassesToTheMostDominant) {
+  // Group 0: three members with no leader yet, sociological model on with leadership changing every
+  // tick; member 2 (another population) dominates. Group 1: a plain pair. Group 2: empty.
+  std::vector<PopulationDesc> populations(2);
+  populations[0].sociological.enabled = true;
+  populations[0].sociological.leaderChangeRate = 1000.0f;  // × dt ≥ 1: a change every tick
+  populations[1].sociological.domination = 0.9f;
+  GroupTable groups;
+  GroupState sociable, pair, empty;
+  for (std::uint32_t id : {0u, 1u, 2u}) sociable.members.push_back(id);
+  for (std::uint32_t id : {3u, 4u}) pair.members.push_back(id);
+  empty.leader = 7;
+  for (const GroupState& g : {sociable, pair, empty}) groups.markBusy(groups.add(g));
+  groups.refreshBusy();
+  groups[1].population = 1;  // the pair's population: no sociological model
+  const std::vector<std::uint32_t> rowOfId{0, 1, 2, 3, 4};
+  const std::vector<std::uint16_t> population{0, 0, 1, 1, 1};
+  std::vector<Event> events;
+  updateLeaders(LeaderInput{populations, 1, 0.05f, 10, rowOfId, population}, LeaderOutput{groups, events});
+  EXPECT_EQ(groups[0].leader, 2u) << "the most dominant member leads";
+  EXPECT_EQ(groups[1].leader, 3u) << "without the sociological model: the first member";
+  EXPECT_EQ(groups[2].leader, kNoAgent) << "an empty group has no leader";
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].kind, EventKind::LeaderChange);
+  EXPECT_EQ(events[0].agent, 2u);
+  EXPECT_EQ(events[0].a, 0u) << "the group";
+}

@@ -5,8 +5,9 @@
 //   formation (members walk abreast; the cohesion behind flocking rules 1–3).
 // Groups are visited in stable-id order and agents in row order, so the result never depends on
 // threads. Effects on agents go through setGoal/needPath; paths are then planned by `plan`. The
-// formation step is formGroups, a function of its context (FormationInput/FormationOutput,
-// phases.hpp); the serial steps are World::Impl's methods (they set goals through goals.cpp).
+// leader and formation steps are updateLeaders and formGroups, functions of their contexts
+// (LeaderInput/LeaderOutput, FormationInput/FormationOutput: phases.hpp); the other steps are
+// World::Impl's methods (they set goals through goals.cpp).
 #include <algorithm>
 #include <cmath>
 
@@ -287,6 +288,12 @@ void World::Impl::updateWaiting() {
 }
 
 void World::Impl::updateLeaders() {
+  sim::updateLeaders(LeaderInput{desc.populations, desc.seed, desc.dt, tick, rowOfId, agents.population},
+                     LeaderOutput{groups, pendingEvents});
+}
+
+void updateLeaders(const LeaderInput& in, const LeaderOutput& out) {
+  GroupTable& groups = out.groups;
   for (const std::uint32_t gid : groups.busy()) {
     GroupState& g = groups[gid];
     if (g.members.empty()) {
@@ -294,23 +301,23 @@ void World::Impl::updateLeaders() {
       continue;
     }
     if (g.leader == kNoAgent || !std::binary_search(g.members.begin(), g.members.end(), g.leader)) g.leader = g.members.front();
-    const SociologicalDesc& social = desc.populations[g.population].sociological;
+    const SociologicalDesc& social = in.populations[g.population].sociological;
     if (!social.enabled || g.members.size() < 2) continue;
-    core::Rng rng(desc.seed, (static_cast<std::uint64_t>(gid) << 24) ^ tick, core::RngPurpose::Behaviour);
-    if (rng.uniform() >= social.leaderChangeRate * desc.dt) continue;
+    core::Rng rng(in.seed, (static_cast<std::uint64_t>(gid) << 24) ^ in.tick, core::RngPurpose::Behaviour);
+    if (rng.uniform() >= social.leaderChangeRate * in.dt) continue;
     // Leadership passes to the most dominant member (members of other populations may have joined);
     // among equals, one drawn at random — never the current leader.
     float best = -1.0f;
     std::vector<std::uint32_t> candidates;
     for (std::uint32_t id : g.members) {
       if (id == g.leader) continue;
-      const float d = desc.populations[agents.population[rowOfId[id]]].sociological.domination;
+      const float d = in.populations[in.population[in.rowOfId[id]]].sociological.domination;
       if (d > best + 1e-6f) { best = d; candidates.clear(); }
       if (std::fabs(d - best) <= 1e-6f) candidates.push_back(id);
     }
     if (candidates.empty()) continue;
     g.leader = candidates[rng.uniformInt(0, static_cast<std::uint32_t>(candidates.size() - 1))];
-    pendingEvents.push_back({tick, g.leader, EventKind::LeaderChange, gid, 0});
+    out.events.push_back({in.tick, g.leader, EventKind::LeaderChange, gid, 0});
   }
 }
 

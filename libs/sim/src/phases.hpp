@@ -6,8 +6,8 @@
 // World::Impl:
 //   sense      SenseInput, SenseOutput          sense.cpp
 //   decide     DecideInput, DecideOutput        decide.cpp (+ generateGoal, common_ground.cpp);
-//              then the group pass (World::Impl::decideGroups, groups.cpp), whose last step is
-//              formGroups(FormationInput, FormationOutput)
+//              then the group pass (World::Impl::decideGroups, groups.cpp), whose last steps
+//              are updateLeaders(LeaderInput, LeaderOutput), formGroups(FormationInput, FormationOutput)
 //   plan       PlanInput, PlanOutput            plan.cpp
 //   integrate  IntegrateInput, IntegrateOutput  integrate.cpp
 // (steer is World::Impl::steer, steer.cpp; its model part is ModelInput / VelocityOutput.)
@@ -159,6 +159,25 @@ struct FormationOutput {
 
 /// Each busy group's centroid and heading, and its walking members' corrections toward their slots.
 void formGroups(const FormationInput& in, const FormationOutput& out, const core::TaskSystem& tasks);
+
+// ---- the group pass's leader step (groups.cpp): every busy group has a leader among its members;
+// with the sociological model, leadership may pass to the most dominant member (serial, group order).
+
+struct LeaderInput {
+  std::span<const PopulationDesc> populations;  ///< sociological: leaderChangeRate, domination
+  std::uint64_t seed;
+  float dt;                                     ///< [s]
+  std::uint64_t tick;
+  std::span<const std::uint32_t> rowOfId;       ///< stable id → row
+  std::span<const std::uint16_t> population;    ///< AgentStore column (a member's dominance)
+};
+
+struct LeaderOutput {
+  GroupTable& groups;           ///< the busy groups' leader
+  std::vector<Event>& events;   ///< LeaderChange
+};
+
+void updateLeaders(const LeaderInput& in, const LeaderOutput& out);
 
 // ---- plan (plan.cpp): budgeted path planning through nav::PathQueue (serial, row order).
 

@@ -247,7 +247,7 @@ struct World::Impl {
   void updateFollowing();
   void updateGuidance();
   void applySocialEffects();
-  void updateLeaders();
+  void updateLeaders();  ///< updateLeaders(LeaderInput, LeaderOutput), phases.hpp
   /// Flocking rule 2: one walking speed per group, drawn from its population's distribution (the
   /// group's own stream: the same value whenever it is drawn) [m/s].
   [[nodiscard]] float groupSpeed(std::uint32_t gid) const;
