@@ -1,7 +1,8 @@
 // common_ground — the Common Ground model of Park, Peng, Quek and Cao inside the World
 // (docs/social-model.md), part 1 of 2: its state at creation, goals and the start of coordinations.
-//   goal generator (decide, parallel): stochastic needs at a rate per agent, and places of an
-//     interesting category the agent sees (vision cone, range, walls), one draw per agent and place;
+//   goal generator (decide, parallel; reads DecideInput, writes DecideOutput: phases.hpp): stochastic
+//     needs at a rate per agent, and places of an interesting category the agent sees (vision cone,
+//     range, walls), one draw per agent and place;
 //   start (group pass, serial): the initiator assesses its group mates (sensing, relations), the
 //     planner runs the grounding process into an action script for A, B and the companions, or a
 //     lone visit when nobody else is there or Common Ground is off.
@@ -53,29 +54,33 @@ void World::Impl::initCommonGround() {
   }
 }
 
-void World::Impl::generateGoal(std::size_t row, ChunkOutput& out, const nav::NavQuery& query) {
-  const CommonGroundDesc& social = desc.social;
-  if (!social.enabled || agents.desirePoint[row] != kNoAgent || tick < agents.socialReady[row]) return;
-  const GroupState& g = groups[agents.group[row]];
-  if (groups.extraOf(g).coordination != kNoAgent || g.guided || g.following || agents.followedAgent(row) != kNoAgent) return;
+void generateGoal(const DecideInput& in, const DecideOutput& out, std::size_t row, ChunkOutput& chunk,
+                  const nav::NavQuery& query) {
+  const CommonGroundDesc& social = in.desc.social;
+  const AgentStore& agents = in.agents;
+  const CommonGroundState& commonGround = in.commonGround;
+  const std::uint64_t tick = in.tick;
+  if (!social.enabled || out.desirePoint[row] != kNoAgent || tick < agents.socialReady[row]) return;
+  const GroupState& g = in.groups[agents.group[row]];
+  if (in.groups.extraOf(g).coordination != kNoAgent || g.guided || g.following || agents.followedAgent(row) != kNoAgent) return;
   const std::uint32_t id = agents.id[row];
   const core::Vec2 pos{agents.posX[row], agents.posY[row]};
   auto want = [&](std::uint32_t point, GoalTrigger trigger) {
-    agents.desirePoint[row] = point;
-    agents.desireTrigger[row] = static_cast<std::uint8_t>(trigger);
-    out.desireRows.push_back(static_cast<std::uint32_t>(row));
+    out.desirePoint[row] = point;
+    out.desireTrigger[row] = static_cast<std::uint8_t>(trigger);
+    chunk.desireRows.push_back(static_cast<std::uint32_t>(row));
   };
   // Stochastic needs (a restroom visit): rate × dt per tick; the nearest place of the category.
   for (std::size_t i = 0; i < social.needs.size(); ++i) {
     const NeedDesc& need = social.needs[i];
     const std::int32_t c = commonGround.needCategory[i];
     if (c < 0 || need.rate <= 0.0f) continue;
-    core::Rng rng(desc.seed, core::mix64((static_cast<std::uint64_t>(id) << 32) ^ tick) ^ i, core::RngPurpose::Social);
-    if (rng.uniform() >= static_cast<double>(need.rate) * desc.dt) continue;
+    core::Rng rng(in.desc.seed, core::mix64((static_cast<std::uint64_t>(id) << 32) ^ tick) ^ i, core::RngPurpose::Social);
+    if (rng.uniform() >= static_cast<double>(need.rate) * in.desc.dt) continue;
     std::uint32_t best = kNoAgent;
     float bestD = 1e30f;
     for (const std::uint32_t p : commonGround.categoryPoints[static_cast<std::size_t>(c)]) {
-      const float d = core::lengthSq(desc.points[p].position - pos);
+      const float d = core::lengthSq(in.desc.points[p].position - pos);
       if (d < bestD) { bestD = d; best = p; }
     }
     if (best != kNoAgent) {
@@ -86,18 +91,18 @@ void World::Impl::generateGoal(std::size_t row, ChunkOutput& out, const nav::Nav
   // Environmentally driven goals: a place of an interesting category in view (cone, range, walls).
   const std::uint64_t mask = agents.interests[row];
   if (mask == 0 || commonGround.attractionPoints.empty()) return;
-  const auto period = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::lround(social.attraction.checkPeriod / desc.dt)));
+  const auto period = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::lround(social.attraction.checkPeriod / in.desc.dt)));
   if ((tick + id) % period != 0) return;
-  const social::Body me{pos, facingOf(agents.oriX[row], agents.oriY[row]), agents.radius[row]};
+  const social::Body me{pos, facingOf(out.oriX[row], out.oriY[row]), agents.radius[row]};
   const social::NavMeshOcclusion walls(query);
   const std::vector<std::uint32_t>& seen = agents.visited[row];
   for (const std::uint32_t p : commonGround.attractionPoints) {
     if (!((mask >> static_cast<unsigned>(commonGround.pointCategory[p])) & 1u)) continue;
     if (std::find(seen.begin(), seen.end(), p) != seen.end()) continue;
-    const social::Body place{desc.points[p].position, {0.0f, 0.0f}, 0.0f};
+    const social::Body place{in.desc.points[p].position, {0.0f, 0.0f}, 0.0f};
     if (!social::perceive(me, place, social.senses, walls).see) continue;
     // One draw per agent and place: the same place never tempts the same agent twice.
-    core::Rng rng(desc.seed, (static_cast<std::uint64_t>(id) << 32) ^ p, core::RngPurpose::Social);
+    core::Rng rng(in.desc.seed, (static_cast<std::uint64_t>(id) << 32) ^ p, core::RngPurpose::Social);
     if (rng.uniform() < social.attraction.probability) {
       want(p, GoalTrigger::Attraction);
       return;

@@ -3,7 +3,8 @@
 // the current goal point of an agent, setting and advancing goals, drawing a target inside a goal's
 // region (sub-regions, §3.1.3) and releasing it, Bézier paths to it (§3.2.2), automatic goals
 // (§3.1.2) and the pending goal changes decide hands to the group pass. Serial code (the group pass
-// and spawning) writes goals; the parallel phases only read them (currentGoalPoint, stopsAtGoal).
+// and spawning) writes goals; the parallel phases only read them (currentGoalPoint, stopsAtGoal)
+// through GoalView (phases.hpp), which World::Impl's helpers of the same names use too.
 #include <algorithm>
 #include <cmath>
 
@@ -14,20 +15,24 @@
 
 namespace throng::sim {
 
-const std::vector<std::uint32_t>& World::Impl::activeGoals(const GroupState& g) const {
+const std::vector<std::uint32_t>& GoalView::activeGoals(const GroupState& g) const {
   return goalLists[g.following && groups.routeOf(g).followGroup != kNoGroup ? groups[groups.routeOf(g).followGroup].goalList : g.goalList];
 }
 
-std::uint32_t World::Impl::groupGoalPoint(const GroupState& g) const {
+std::uint32_t GoalView::groupGoalPoint(const GroupState& g) const {
   const std::vector<std::uint32_t>& goals = activeGoals(g);
   return g.cursor < goals.size() ? goals[g.cursor] : kNoPoint;
 }
 
-std::uint32_t World::Impl::currentGoalPoint(std::size_t row) const {
-  const std::vector<std::uint32_t>& goals = activeGoals(groups[agents.group[row]]);
-  const std::uint32_t cursor = agents.goalCursor[row];
+std::uint32_t GoalView::currentGoalPoint(std::size_t row) const {
+  const std::vector<std::uint32_t>& goals = activeGoals(groups[group[row]]);
+  const std::uint32_t cursor = goalCursor[row];
   return cursor < goals.size() ? goals[cursor] : kNoPoint;
 }
+
+const std::vector<std::uint32_t>& World::Impl::activeGoals(const GroupState& g) const { return goalView().activeGoals(g); }
+std::uint32_t World::Impl::groupGoalPoint(const GroupState& g) const { return goalView().groupGoalPoint(g); }
+std::uint32_t World::Impl::currentGoalPoint(std::size_t row) const { return goalView().currentGoalPoint(row); }
 
 bool World::Impl::stopsAtGoal(std::size_t row) const {
   const std::uint32_t point = currentGoalPoint(row);

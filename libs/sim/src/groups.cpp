@@ -4,13 +4,17 @@
 //   sociological effects (§3.2.1 iii) → the wait rule (flocking rule 4, §3.2.3) → leaders →
 //   formation (members walk abreast; the cohesion behind flocking rules 1–3).
 // Groups are visited in stable-id order and agents in row order, so the result never depends on
-// threads. Effects on agents go through setGoal/needPath; paths are then planned by `plan`.
+// threads. Effects on agents go through setGoal/needPath; paths are then planned by `plan`. The
+// leader and formation steps are updateLeaders and formGroups, functions of their contexts
+// (LeaderInput/LeaderOutput, FormationInput/FormationOutput: phases.hpp); the other steps are
+// World::Impl's methods (they set goals through goals.cpp).
 #include <algorithm>
 #include <cmath>
 
 #include "throng/crowd/bezier_path.hpp"
 #include "throng/crowd/path_reconstruction.hpp"
 #include "throng/crowd/walkable.hpp"
+#include "throng/core/assert.hpp"
 #include "world_impl.hpp"
 
 namespace throng::sim {
@@ -284,6 +288,12 @@ void World::Impl::updateWaiting() {
 }
 
 void World::Impl::updateLeaders() {
+  sim::updateLeaders(LeaderInput{desc.populations, desc.seed, desc.dt, tick, rowOfId, agents.population},
+                     LeaderOutput{groups, pendingEvents});
+}
+
+void updateLeaders(const LeaderInput& in, const LeaderOutput& out) {
+  GroupTable& groups = out.groups;
   for (const std::uint32_t gid : groups.busy()) {
     GroupState& g = groups[gid];
     if (g.members.empty()) {
@@ -291,65 +301,85 @@ void World::Impl::updateLeaders() {
       continue;
     }
     if (g.leader == kNoAgent || !std::binary_search(g.members.begin(), g.members.end(), g.leader)) g.leader = g.members.front();
-    const SociologicalDesc& social = desc.populations[g.population].sociological;
+    const SociologicalDesc& social = in.populations[g.population].sociological;
     if (!social.enabled || g.members.size() < 2) continue;
-    core::Rng rng(desc.seed, (static_cast<std::uint64_t>(gid) << 24) ^ tick, core::RngPurpose::Behaviour);
-    if (rng.uniform() >= social.leaderChangeRate * desc.dt) continue;
+    core::Rng rng(in.seed, (static_cast<std::uint64_t>(gid) << 24) ^ in.tick, core::RngPurpose::Behaviour);
+    if (rng.uniform() >= social.leaderChangeRate * in.dt) continue;
     // Leadership passes to the most dominant member (members of other populations may have joined);
     // among equals, one drawn at random — never the current leader.
     float best = -1.0f;
     std::vector<std::uint32_t> candidates;
     for (std::uint32_t id : g.members) {
       if (id == g.leader) continue;
-      const float d = desc.populations[agents.population[rowOfId[id]]].sociological.domination;
+      const float d = in.populations[in.population[in.rowOfId[id]]].sociological.domination;
       if (d > best + 1e-6f) { best = d; candidates.clear(); }
       if (std::fabs(d - best) <= 1e-6f) candidates.push_back(id);
     }
     if (candidates.empty()) continue;
     g.leader = candidates[rng.uniformInt(0, static_cast<std::uint32_t>(candidates.size() - 1))];
-    pendingEvents.push_back({tick, g.leader, EventKind::LeaderChange, gid, 0});
+    out.events.push_back({in.tick, g.leader, EventKind::LeaderChange, gid, 0});
   }
 }
 
 void World::Impl::updateGroupShapes(const core::TaskSystem& tasks) {
-  // Parallel over groups: a group writes its own centroid and heading and its members' rows only.
-  tasks.parallelFor(groups.busy().size(), tasks.grain(512), [&](std::size_t begin, std::size_t end) {
-    WorkerScratch& ws = worker(tasks);
-    for (std::size_t i = begin; i < end; ++i) shapeGroup(groups[groups.busy()[i]], ws);
-  });
+  const FormationInput in{desc.populations, rowOfId, agents.posX, agents.posY, agents.velX, agents.velY,
+                          agents.goalState, agents.goalCursor, agents.followAgent};
+  formGroups(in, FormationOutput{groups, agents.formVelX, agents.formVelY, scratch}, tasks);
 }
 
-void World::Impl::shapeGroup(GroupState& g, WorkerScratch& ws) {
-  const PopulationDesc& pop = desc.populations[g.population];
+namespace {
+
+/// One busy group's formation: its centroid and heading, its members' corrections.
+struct GroupFormation {
+  const FormationInput& in;
+  const FormationOutput& out;
+  WorkerScratch& ws;
+
+  void setFormVel(std::uint32_t r, float x, float y) const {
+    if (!out.formVelX.empty()) {
+      out.formVelX[r] = x;
+      out.formVelY[r] = y;
+    }
+  }
+  [[nodiscard]] core::Vec2 pos(std::uint32_t r) const { return {in.posX[r], in.posY[r]}; }
+  void shape(GroupState& g) const;
+  void takeSlots(const GroupState& g, const GroupExtra& x, const PopulationDesc& pop) const;
+};
+
+void GroupFormation::shape(GroupState& g) const {
+  const PopulationDesc& pop = in.populations[g.population];
   if (g.members.empty()) return;
-  GroupExtra& x = groups.extraOf(g);
+  GroupExtra& x = out.groups.extraOf(g);
   const bool flocking = g.flocks(pop) && g.members.size() >= 2 && x.coordination == kNoIndex;
   if (!flocking && !g.guided) {
-    for (std::uint32_t id : g.members) agents.setFormVel(rowOfId[id], 0.0f, 0.0f);
+    for (std::uint32_t id : g.members) setFormVel(in.rowOfId[id], 0.0f, 0.0f);
     return;
   }
   // Centroid and heading of the members.
   core::Vec2 sum, vel;
   for (std::uint32_t id : g.members) {
-    const std::uint32_t r = rowOfId[id];
-    sum += core::Vec2{agents.posX[r], agents.posY[r]};
-    vel += core::Vec2{agents.velX[r], agents.velY[r]};
-    agents.setFormVel(r, 0.0f, 0.0f);
+    const std::uint32_t r = in.rowOfId[id];
+    sum += pos(r);
+    vel += core::Vec2{in.velX[r], in.velY[r]};
+    setFormVel(r, 0.0f, 0.0f);
   }
   const auto count = static_cast<float>(g.members.size());
   x.centroid = sum / count;
   if (core::lengthSq(vel) > 0.04f * count * count) x.heading = core::normalize(vel);
-  if (!flocking) return;
+  if (flocking) takeSlots(g, x, pop);
+}
+
+void GroupFormation::takeSlots(const GroupState& g, const GroupExtra& x, const PopulationDesc& pop) const {
   // Members walking toward the group's goal take slots abreast (Moussaïd et al. 2010: small groups
   // walk side by side, larger ones in rows), ordered by where they already are so nobody crosses.
   auto& order = ws.order;
   order.clear();
   for (std::uint32_t id : g.members) {
-    const std::uint32_t r = rowOfId[id];
-    if (agents.goalState[r] != GoalState::Seeking || agents.followedAgent(r) != kNoAgent) continue;
-    if (agents.goalCursor[r] != g.cursor && !g.guided) continue;
-    const core::Vec2 rel = core::Vec2{agents.posX[r], agents.posY[r]} - x.centroid;
-    order.push_back({core::dot(rel, x.heading), r});
+    const std::uint32_t r = in.rowOfId[id];
+    const bool followsAgent = !in.followAgent.empty() && in.followAgent[r] != kNoAgent;
+    if (in.goalState[r] != GoalState::Seeking || followsAgent) continue;
+    if (in.goalCursor[r] != g.cursor && !g.guided) continue;
+    order.push_back({core::dot(pos(r) - x.centroid, x.heading), r});
   }
   if (order.size() < 2) return;
   std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
@@ -359,23 +389,33 @@ void World::Impl::shapeGroup(GroupState& g, WorkerScratch& ws) {
   for (std::size_t row0 = 0; row0 < rows; ++row0) {
     const std::size_t first = row0 * kAbreast, last = std::min(order.size(), first + kAbreast);
     line.assign(order.begin() + static_cast<std::ptrdiff_t>(first), order.begin() + static_cast<std::ptrdiff_t>(last));
-    for (auto& e : line) {
-      const core::Vec2 rel = core::Vec2{agents.posX[e.second], agents.posY[e.second]} - x.centroid;
-      e.first = core::dot(rel, lateral);
-    }
+    for (auto& e : line) e.first = core::dot(pos(e.second) - x.centroid, lateral);
     std::sort(line.begin(), line.end());
     const float along = (0.5f * static_cast<float>(rows - 1) - static_cast<float>(row0)) * kRowSpacing;
     for (std::size_t i = 0; i < line.size(); ++i) {
       const std::uint32_t r = line[i].second;
       const float slot = (static_cast<float>(i) - 0.5f * static_cast<float>(line.size() - 1)) * pop.groupSpacing;
-      const core::Vec2 rel = core::Vec2{agents.posX[r], agents.posY[r]} - x.centroid;
+      const core::Vec2 rel = pos(r) - x.centroid;
       const float lat = core::dot(rel, lateral), lon = core::dot(rel, x.heading);
       core::Vec2 corr = lateral * ((slot - lat) * kFormationGain) + x.heading * ((along - lon) * kFormationGain);
       const float m = core::length(corr);
       if (m > kFormationMaxSpeed) corr *= kFormationMaxSpeed / m;
-      agents.setFormVel(r, corr.x, corr.y);
+      setFormVel(r, corr.x, corr.y);
     }
   }
+}
+
+}  // namespace
+
+void formGroups(const FormationInput& in, const FormationOutput& out, const core::TaskSystem& tasks) {
+  // Parallel over groups: a group writes its own centroid and heading and its members' rows only.
+  const std::vector<std::uint32_t>& busy = out.groups.busy();
+  tasks.parallelFor(busy.size(), tasks.grain(512), [&](std::size_t begin, std::size_t end) {
+    const auto worker = static_cast<std::size_t>(tasks.workerIndex());
+    THRONG_ASSERT(worker < out.workers.size());
+    const GroupFormation formation{in, out, out.workers[worker]};
+    for (std::size_t i = begin; i < end; ++i) formation.shape(out.groups[busy[i]]);
+  });
 }
 
 }  // namespace throng::sim

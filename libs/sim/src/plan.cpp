@@ -1,36 +1,39 @@
 // plan — budgeted path planning (serial, in row = stable id order, so deterministic): agents that
 // asked for a path submit a request to the nav::PathQueue; the queue spends at most
 // kPathIterationsPerTick node expansions; finished paths are handed to their agents. Until its path
-// arrives an agent walks straight at its target (as DetourCrowd does).
+// arrives an agent walks straight at its target (as DetourCrowd does). Reads PlanInput (positions,
+// targets, floor heights, ids, goals for events); writes PlanOutput (needPath, tickets, corners,
+// the queue, PathPartial events) — phases.hpp.
 #include <algorithm>
 
-#include "world_impl.hpp"
+#include "phases.hpp"
 
 namespace throng::sim {
 
-void World::Impl::plan() {
-  const std::size_t n = agents.size();
+void plan(const PlanInput& in, const PlanOutput& out) {
+  const std::size_t n = in.id.size();
+  const bool levels = !in.posZ.empty();
+  nav::PathQueue& queue = out.pathQueue;
   for (std::size_t row = 0; row < n; ++row) {
-    if (!agents.needPath[row]) continue;
-    agents.needPath[row] = 0;
-    const core::Vec2 from{agents.posX[row], agents.posY[row]}, to{agents.targetX[row], agents.targetY[row]};
-    agents.ticket[row] = agents.levels ? pathQueue->request(from, agents.posZ[row], to, agents.targetZ[row])
-                                       : pathQueue->request(from, to);
+    if (!out.needPath[row]) continue;
+    out.needPath[row] = 0;
+    const core::Vec2 from{in.posX[row], in.posY[row]}, to{in.targetX[row], in.targetY[row]};
+    out.ticket[row] = levels ? queue.request(from, in.posZ[row], to, in.targetZ[row]) : queue.request(from, to);
   }
-  pathQueue->update(kPathIterationsPerTick);
+  queue.update(kPathIterationsPerTick);
   for (std::size_t row = 0; row < n; ++row) {
-    const nav::PathTicket t = agents.ticket[row];
+    const nav::PathTicket t = out.ticket[row];
     if (t == 0) continue;
-    const nav::TicketState state = pathQueue->state(t);
+    const nav::TicketState state = queue.state(t);
     if (state == nav::TicketState::Pending) continue;
-    agents.ticket[row] = 0;
+    out.ticket[row] = 0;
     if (state != nav::TicketState::Done) continue;  // expired: the progress check will ask again
-    nav::PathResult result = pathQueue->take(t);
+    nav::PathResult result = queue.take(t);
     if (result.status == nav::PathStatus::Failed) continue;
     if (result.status == nav::PathStatus::Partial) {
-      pendingEvents.push_back({tick, agents.id[row], EventKind::PathPartial, currentGoalPoint(row), 0});
+      out.events.push_back({in.tick, in.id[row], EventKind::PathPartial, in.goals.currentGoalPoint(row), 0});
     }
-    agents.corners[row].assign(result.corners);
+    out.corners[row].assign(result.corners);
   }
 }
 

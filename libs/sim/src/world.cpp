@@ -1,4 +1,5 @@
-// World — creation, the tick's phase order, the emit phase (removal, statistics) and frames (takeFrame).
+// World — creation, the tick's phase order, the phases' contexts (phases.hpp), the emit phase
+// (removal, statistics) and frames (takeFrame).
 #include "throng/sim/world.hpp"
 
 #include <algorithm>
@@ -85,6 +86,41 @@ void World::step(const core::TaskSystem& tasks, PhaseObserver* observer) {
   if (w.partition.exchange != nullptr) { Scope s(observer, "exchange"); w.exchangeSteer(); }
   { Scope s(observer, "integrate"); w.integrate(tasks); }
   { Scope s(observer, "emit"); w.emit(); }
+}
+
+// The phases' contexts (phases.hpp): what each phase reads and what it may write, taken from the
+// world's state. steer builds its own (steer.cpp).
+
+void World::Impl::sense(const core::TaskSystem& tasks) {
+  sim::sense(SenseInput{agents.posX, agents.posY, agents.posZ, desc.steering},
+             SenseOutput{grid, agents.neighbours, agents.neighbourCount}, tasks);
+}
+
+void World::Impl::decide(const core::TaskSystem& tasks) {
+  const std::size_t n = agents.size();
+  chunks.resize(std::max(chunks.size(), core::TaskSystem::chunkCount(n, grainFor(n, tasks))));
+  const DecideInput in{agents, desc, tick, groups, goalView(), commonGround, scratch};
+  const DecideOutput out{agents.goalState, agents.mode, agents.targetX, agents.targetY, agents.targetZ,
+                         agents.corners, agents.needPath, agents.goalPending, agents.progressDistance,
+                         agents.actionEndTick, agents.oriX, agents.oriY, agents.sociologicalEffect,
+                         agents.sociologicalOther, agents.desirePoint, agents.desireTrigger, chunks};
+  sim::decide(in, out, tasks);
+  decideGroups(tasks);
+}
+
+void World::Impl::plan() {
+  sim::plan(PlanInput{tick, agents.id, agents.posX, agents.posY, agents.targetX, agents.targetY, agents.posZ,
+                      agents.targetZ, goalView()},
+            PlanOutput{agents.needPath, agents.ticket, agents.corners, *pathQueue, pendingEvents});
+}
+
+void World::Impl::integrate(const core::TaskSystem& tasks) {
+  const IntegrateInput in{desc.dt, tick, agents.newVelX, agents.newVelY, agents.goalState, agents.mode, agents.speed,
+                          agents.actionEndTick, agents.scriptWalk, agents.scriptClip, goalView(), desc.points,
+                          pointClip, commonGround.clipDuration, scratch};
+  const IntegrateOutput out{agents.posX, agents.posY, agents.posZ, agents.polyRef, agents.velX, agents.velY,
+                            agents.stuckTime, agents.animClip, agents.animPhase, agents.oriX, agents.oriY, chunks};
+  sim::integrate(in, out, tasks);
 }
 
 void World::Impl::ensureScratch(const core::TaskSystem& tasks) {
@@ -286,14 +322,6 @@ std::uint64_t World::stateHash() const {
     mix(&a.velY[r], sizeof(float));
   }
   return h;
-}
-
-bool World::Impl::insideRegion(const PointDesc& point, float x, float y) const {
-  if (point.polygon.empty()) {
-    const float dx = x - point.position.x, dy = y - point.position.y;
-    return dx * dx + dy * dy <= point.radius * point.radius;
-  }
-  return core::pointInPolygon(point.polygon, core::Vec2{x, y});
 }
 
 }  // namespace throng::sim

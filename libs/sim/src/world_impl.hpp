@@ -1,15 +1,18 @@
-// World::Impl — the world's state and its phases. Each phase lives in its own file:
+// World::Impl — the world's state and its phases. sense, decide, plan and integrate are free
+// functions of their contexts (phases.hpp), which Impl builds from its state (world.cpp); the rest
+// are Impl's methods. Each phase lives in its own file:
 //   spawn.cpp      applyCommands: populations due this tick enter the world
 //   insert.cpp     crowds inserted and removed at run time (API and scenario timeline)
 //   sense.cpp      grid rebuild and k-nearest neighbours
-//   decide.cpp     goal logic: regions reached, actions, exits, new targets
+//   decide.cpp     goal logic: regions reached, actions, exits, progress checks, meetings
+//   groups.cpp     the group pass after decide (commands, guidance, following, waiting, formation)
 //   common_ground.cpp, common_ground_play.cpp  the Common Ground model (goals, coordinations, scripts)
 //   plan.cpp       budgeted path planning through nav::PathQueue
 //   goals.cpp      one home for goals: active list, current point, set/advance, targets, Bézier
 //   steer.cpp      preferred velocity along the path, then the population's avoidance model
 //   models/        the avoidance models behind OperationalModel (ORCA, collision-free speed)
 //   integrate.cpp  commit velocities, move along the navmesh, headings, statistics
-//   world.cpp      the tick, emit (removal, frame), creation
+//   world.cpp      the tick, the phases' contexts, emit (removal, frame), creation
 #pragma once
 #include <array>
 #include <map>
@@ -29,14 +32,11 @@
 #include "throng/nav/navmesh.hpp"
 #include "throng/nav/path_queue.hpp"
 #include "models/operational_model.hpp"
+#include "phases.hpp"
 #include "throng/sim/world.hpp"
 
 namespace throng::sim {
 
-/// Detour node expansions the plan phase may spend per tick (time-slicing, as dtPathQueue).
-inline constexpr int kPathIterationsPerTick = 20000;
-/// Period of the progress check that triggers a re-plan for an agent that is stuck [s].
-inline constexpr float kProgressCheckPeriod = 4.0f;
 
 
 /// A command from the World API, applied in order at the start of the next tick.
@@ -56,24 +56,6 @@ struct SpawnSchedule {
   std::vector<std::vector<std::uint32_t>> groupSizes; ///< per population
   std::vector<std::uint32_t> firstGroupId;            ///< per population
   std::uint32_t nextAgentId = 0;
-};
-
-/// Per-worker scratch: navmesh queries and buffers reused across agents (never shared by threads).
-struct WorkerScratch {
-  std::unique_ptr<nav::NavQuery> query;
-  /// Per ModelKind: the model's working memory, made by the model (models/operational_model.hpp).
-  std::array<std::unique_ptr<ModelScratch>, kModelCount> modelScratch;
-  std::vector<std::pair<float, std::uint32_t>> order, line;  // formation
-};
-
-/// Per-chunk outputs merged in chunk order (deterministic for any thread count).
-struct ChunkOutput {
-  std::vector<Event> events;
-  double walkedDistance = 0.0;
-  double walkingTime = 0.0;
-  std::uint64_t socialMeetings = 0;
-  std::vector<std::uint32_t> pendingRows;  ///< rows whose goalPending was set, ascending
-  std::vector<std::uint32_t> desireRows;   ///< rows whose desirePoint was set (goal generator), ascending
 };
 
 /// The steer phase shared with other ranks (partition.hpp, partition.cpp). Unset (exchange ==
@@ -140,8 +122,6 @@ struct World::Impl {
   CommonGroundState commonGround;
   /// The Common Ground state of the scenario's points, interests and animation clips (creation).
   void initCommonGround();
-  /// Goal generator for one agent (parallel, in decide): may set desirePoint and list the row.
-  void generateGoal(std::size_t row, ChunkOutput& out, const nav::NavQuery& query);
   void startCoordinations();    ///< group pass: desires → coordinations (planner) or lone visits
   // Steps of startCoordinations (common_ground.cpp).
   void startCoordination(std::uint32_t row);
@@ -221,38 +201,25 @@ struct World::Impl {
   [[nodiscard]] SpawnPlan planPackedSpawn(std::size_t population, std::uint32_t firstAgent, SpawnOccupancy& occupancy);
   void addSpawnedAgents(const SpawnPlan& plan);
   void sense(const core::TaskSystem& tasks);
+  /// decide (decide.cpp, phases.hpp), then the group pass.
   void decide(const core::TaskSystem& tasks);
-  // Steps of decide (decide.cpp), per agent; each writes only `row` and the chunk's output.
-  void decideRow(std::size_t row, std::uint64_t checkEvery, ChunkOutput& out, const nav::NavQuery& query);
-  /// Walking to a goal: arrived (exit, action, goal reached) or checking progress.
-  void seekGoal(std::size_t row, const GroupState& g, std::uint64_t checkEvery, ChunkOutput& out);
-  /// At its goal: wait for the group (flocking rule 4) or ask the group pass for the next goal.
-  void reachGoal(std::size_t row, const GroupState& g, ChunkOutput& out);
-  /// Every check period: re-plan when no closer to the target (and farther than minDistance) [m].
-  void checkProgress(std::size_t row, std::uint64_t checkEvery, float minDistance);
-  /// Sociological model: meetings with agents of other groups may set sociologicalEffect.
-  void meetOthers(std::size_t row, const SociologicalDesc& social, ChunkOutput& out);
   void decideGroups(const core::TaskSystem& tasks);  ///< group pass (groups.cpp), after the per-agent part of decide
   void plan();
   void steer(const core::TaskSystem& tasks);
   void integrate(const core::TaskSystem& tasks);
-  // Steps of integrate (integrate.cpp), per agent; each writes only `row` and the chunk's sums.
-  core::Vec2 moveAlongMesh(std::size_t row, const nav::NavQuery& query);
-  void countWalking(std::size_t row, core::Vec2 moved, ChunkOutput& out);
-  void animate(std::size_t row, float step);
-  void turnHeading(std::size_t row, core::Vec2 moved);
   void emit();
 
   // Helpers shared by phases.
   WorkerScratch& worker(const core::TaskSystem& tasks);
   void ensureScratch(const core::TaskSystem& tasks);
-  [[nodiscard]] bool insideRegion(const PointDesc& point, float x, float y) const;
   /// Chooses a target inside the point's region (on the navmesh) for agent `row`.
   core::Vec2 drawTarget(std::size_t row, const PointDesc& point, const nav::NavQuery& query);
   /// Moves `row` on to its next goal (or wandering, or Done).
   void advanceGoal(std::size_t row, const nav::NavQuery& query);
   /// Points `row` at goal `cursor` of its group's active goal list (or wandering / Done past it).
   void setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQuery& query);
+  /// What the phases may ask about goals (phases.hpp, goals.cpp); the three below use it.
+  [[nodiscard]] GoalView goalView() const { return {groups, goalLists, agents.group, agents.goalCursor}; }
   /// The goal list a group follows now: its own, or the followed group's while following (goals.cpp).
   [[nodiscard]] const std::vector<std::uint32_t>& activeGoals(const GroupState& g) const;
   /// The point the group is heading for (its cursor in its active list), kNoPoint past the last.
@@ -274,20 +241,18 @@ struct World::Impl {
   /// Automatic goals for a group spawning around `anchor` (groups.cpp).
   void reconstructGoals(std::uint32_t group, core::Vec2 anchor);
   void applyGroupCommands();
+  /// Formation (formGroups, phases.hpp): the group pass's parallel last step.
   void updateGroupShapes(const core::TaskSystem& tasks);
-  void shapeGroup(GroupState& g, WorkerScratch& ws);
   void updateWaiting();
   void updateFollowing();
   void updateGuidance();
   void applySocialEffects();
-  void updateLeaders();
+  void updateLeaders();  ///< updateLeaders(LeaderInput, LeaderOutput), phases.hpp
   /// Flocking rule 2: one walking speed per group, drawn from its population's distribution (the
   /// group's own stream: the same value whenever it is drawn) [m/s].
   [[nodiscard]] float groupSpeed(std::uint32_t gid) const;
   [[nodiscard]] float dt() const { return desc.dt; }
-  [[nodiscard]] static std::size_t grainFor(std::size_t n, const core::TaskSystem& tasks) {
-    return tasks.grain(n < 4096 ? 256 : 1024);
-  }
+  [[nodiscard]] static std::size_t grainFor(std::size_t n, const core::TaskSystem& tasks) { return phaseGrain(n, tasks); }
 
   // Partition (partition.hpp, partition.cpp): the steer phase shared with other ranks.
   PartitionState partition;

@@ -1,0 +1,283 @@
+// Tests for libs/sim/src/phases.hpp: each phase called on its own through its context, on
+// hand-built columns (no World), as a reader of the phase's signature would expect it to behave.
+#include "phases.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "throng/sim/animation.hpp"
+
+using namespace throng;
+using namespace throng::sim;
+
+namespace {
+
+/// The rows a phase wrote for `row` in a flat neighbour buffer.
+std::vector<std::uint32_t> neighboursOf(const std::vector<std::uint32_t>& all, const std::vector<std::uint16_t>& count,
+                                        std::size_t row, std::size_t k) {
+  return {all.begin() + static_cast<std::ptrdiff_t>(row * k),
+          all.begin() + static_cast<std::ptrdiff_t>(row * k + count[row])};
+}
+
+}  // namespace
+
+TEST(Phases, SenseFillsNeighboursNearestFirstWithTiesByRow) {
+  // Six agents on a line (x = 0, 1, 2, 3, 4 and a loner at 10); chunks of one row on two threads.
+  const std::vector<float> xs{0, 1, 2, 3, 4, 10}, ys(6, 5.0f);
+  SteeringDesc steering;
+  steering.maxNeighbours = 3;
+  steering.neighbourDistance = 3.5f;
+  steering.denseNeighbourDistance = 0.0f;  // one range everywhere
+  SpatialGrid grid;
+  grid.configure(core::Aabb{{-1, 0}, {12, 10}}, 1.0f);
+  std::vector<std::uint32_t> neighbours;
+  std::vector<std::uint16_t> count;
+  core::TaskSystem tasks(2);
+  tasks.setGrainLimit(1);
+  sense(SenseInput{xs, ys, {}, steering}, SenseOutput{grid, neighbours, count}, tasks);
+  ASSERT_EQ(neighbours.size(), 6u * 3u);
+  ASSERT_EQ(count.size(), 6u);
+  EXPECT_EQ(neighboursOf(neighbours, count, 0, 3), (std::vector<std::uint32_t>{1, 2, 3}));
+  // Rows 1 and 3 are both 1 m from row 2, rows 0 and 4 both 2 m: ties go to the lower row.
+  EXPECT_EQ(neighboursOf(neighbours, count, 2, 3), (std::vector<std::uint32_t>{1, 3, 0}));
+  EXPECT_EQ(neighboursOf(neighbours, count, 4, 3), (std::vector<std::uint32_t>{3, 2, 1}));
+  EXPECT_EQ(count[5], 0u) << "the loner at x = 10 is beyond neighbourDistance of everyone";
+}
+
+TEST(Phases, SenseKeepsOnlyNeighboursOnTheSameFloor) {
+  // Three agents above each other's footprint: rows 0 and 2 on the ground floor, row 1 on the
+  // floor above (3 m up); with floor heights given, row 1 is nobody's neighbour.
+  const std::vector<float> xs{0, 0.5f, 1}, ys{0, 0, 0}, zs{0, 3, 0.2f};
+  SteeringDesc steering;
+  steering.denseNeighbourDistance = 0.0f;
+  SpatialGrid grid;
+  grid.configure(core::Aabb{{-2, -2}, {3, 2}}, 1.0f);
+  std::vector<std::uint32_t> neighbours;
+  std::vector<std::uint16_t> count;
+  core::TaskSystem tasks(1);
+  const std::size_t k = steering.maxNeighbours;
+  sense(SenseInput{xs, ys, zs, steering}, SenseOutput{grid, neighbours, count}, tasks);
+  EXPECT_EQ(neighboursOf(neighbours, count, 0, k), (std::vector<std::uint32_t>{2}));
+  EXPECT_EQ(count[1], 0u);
+  EXPECT_EQ(neighboursOf(neighbours, count, 2, k), (std::vector<std::uint32_t>{0}));
+  // Without floor heights (a flat world) all three see each other.
+  sense(SenseInput{xs, ys, {}, steering}, SenseOutput{grid, neighbours, count}, tasks);
+  EXPECT_EQ(neighboursOf(neighbours, count, 0, k), (std::vector<std::uint32_t>{1, 2}));
+  EXPECT_EQ(neighboursOf(neighbours, count, 1, k), (std::vector<std::uint32_t>{0, 2}));
+}
+
+namespace {
+
+core::Polygon rect(float x0, float y0, float x1, float y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
+
+/// One group (goal list 0, empty) holding every row: enough for a GoalView.
+struct OneGroup {
+  GroupTable groups;
+  std::vector<std::vector<std::uint32_t>> goalLists{{}};
+  std::vector<std::uint32_t> group, goalCursor;
+  explicit OneGroup(std::size_t rows) : group(rows, 0), goalCursor(rows, 0) { groups.add(GroupState{}); }
+  [[nodiscard]] GoalView view() const { return {groups, goalLists, group, goalCursor}; }
+};
+
+}  // namespace
+
+TEST(Phases, PlanGivesAPathOnlyToRowsThatAskedForOne) {
+  // A 20 × 10 m room with a block in the middle of its lower half: row 0 asks for a path from one
+  // side of the block to the other, row 1 (same places) does not.
+  auto mesh = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)},
+                                  std::vector<core::Polygon>{rect(8, 0, 12, 7)}, nav::NavMeshConfig{});
+  ASSERT_TRUE(mesh.ok());
+  nav::PathQueue queue(mesh.value());
+  const std::vector<std::uint32_t> ids{0, 1};
+  const std::vector<float> xs{2, 2}, ys{2, 2}, tx{18, 18}, ty{2, 2};
+  std::vector<std::uint8_t> needPath{1, 0};
+  std::vector<nav::PathTicket> tickets(2, 0);
+  std::vector<CornerPath> corners(2);
+  std::vector<Event> events;
+  const OneGroup goals(2);
+  plan(PlanInput{7, ids, xs, ys, tx, ty, {}, {}, goals.view()},
+       PlanOutput{needPath, tickets, corners, queue, events});
+  EXPECT_EQ(needPath[0], 0u) << "the request is queued";
+  EXPECT_EQ(tickets[0], 0u) << "a short path completes within one tick's budget";
+  ASSERT_GE(corners[0].size(), 2u) << "the path rounds the block";
+  const core::Vec2 last = corners[0].data()[corners[0].size() - 1];
+  EXPECT_NEAR(last.x, 18.0f, 0.05f);
+  EXPECT_NEAR(last.y, 2.0f, 0.05f);
+  for (std::uint32_t i = 0; i + 1 < corners[0].size(); ++i) EXPECT_GE(corners[0].data()[i].y, 7.0f) << "corner " << i;
+  EXPECT_TRUE(corners[1].empty());
+  EXPECT_EQ(tickets[1], 0u);
+  EXPECT_TRUE(events.empty()) << "a complete path raises no PathPartial";
+}
+
+TEST(Phases, IntegrateMovesEachRowByItsNewVelocityAlongTheMesh) {
+  // Three walkers in a 20 × 10 m room, dt = 0.1 s: row 0 free (moves by newVel·dt), row 1 exited
+  // (stays), row 2 half a metre from the east wall at 10 m/s (stops at the wall, on the mesh).
+  auto mesh = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)}, {}, nav::NavMeshConfig{});
+  ASSERT_TRUE(mesh.ok());
+  std::vector<WorkerScratch> workers(1);
+  workers[0].query = std::make_unique<nav::NavQuery>(mesh.value());
+  const float dt = 0.1f;
+  std::vector<float> px{5, 8, 19.5f}, py{5, 5, 5}, vx(3, 0), vy(3, 0), stuck(3, 0), phase(3, 0), ox(3, 1), oy(3, 0);
+  std::vector<std::uint32_t> poly(3);
+  for (std::size_t r = 0; r < 3; ++r) poly[r] = static_cast<std::uint32_t>(workers[0].query->nearest({px[r], py[r]})->second);
+  std::vector<std::uint16_t> clip(3, kClipIdle);
+  const std::vector<float> nvx{1.0f, 1.0f, 10.0f}, nvy{0.5f, 0.0f, 0.0f}, speed(3, 1.3f);
+  const std::vector<GoalState> goalState{GoalState::Seeking, GoalState::Exited, GoalState::Seeking};
+  const std::vector<AgentMode> mode(3, AgentMode::Walking);
+  const std::vector<std::uint32_t> actionEnd(3, 0);
+  std::vector<ChunkOutput> chunks(1);
+  const OneGroup goals(3);
+  core::TaskSystem tasks(1);
+  integrate(IntegrateInput{dt, 0, nvx, nvy, goalState, mode, speed, actionEnd, {}, {}, goals.view(), {}, {}, {}, workers},
+            IntegrateOutput{px, py, {}, poly, vx, vy, stuck, clip, phase, ox, oy, chunks}, tasks);
+  EXPECT_NEAR(px[0], 5.1f, 1e-5f);
+  EXPECT_NEAR(py[0], 5.05f, 1e-5f);
+  EXPECT_NEAR(vx[0], 1.0f, 1e-3f);
+  EXPECT_NEAR(vy[0], 0.5f, 1e-3f);
+  EXPECT_GT(oy[0], 0.0f) << "the heading turns toward the motion";
+  EXPECT_LT(oy[0], 0.4473f) << "…over kTurnTime, not at once";
+  EXPECT_EQ(clip[0], kClipWalk);
+  EXPECT_EQ(px[1], 8.0f) << "an exited agent does not move";
+  EXPECT_EQ(vx[1], 0.0f);
+  EXPECT_LE(px[2], 20.0f - nav::NavMeshConfig{}.agentRadius + 1e-3f) << "nobody crosses a wall";
+  EXPECT_GT(px[2], 19.5f);
+  EXPECT_LT(vx[2], 10.0f) << "the velocity is the displacement actually made";
+  EXPECT_EQ(stuck[0], 0.0f) << "walking freely is not being stuck";
+  EXPECT_NEAR(chunks[0].walkingTime, 3.0 * dt, 1e-6) << "three agents in walking mode";
+  EXPECT_NEAR(chunks[0].walkedDistance, std::hypot(0.1, 0.05) + (px[2] - 19.5), 1e-5);
+}
+
+namespace {
+
+/// The DecideOutput over every column decide may write.
+DecideOutput decideOutput(AgentStore& a, std::span<ChunkOutput> chunks) {
+  return {a.goalState, a.mode, a.targetX, a.targetY, a.targetZ, a.corners, a.needPath, a.goalPending,
+          a.progressDistance, a.actionEndTick, a.oriX, a.oriY, a.sociologicalEffect, a.sociologicalOther,
+          a.desirePoint, a.desireTrigger, chunks};
+}
+
+}  // namespace
+
+TEST(Phases, DecideExitsActsAndChecksProgressRowByRow) {
+  // One group whose goal list is [exit, action point]. Row 0 stands in the exit's disc, row 1 at the
+  // action point's stop (goal cursor 1), row 2 far from the exit on a tick of its progress check.
+  ScenarioDesc desc;
+  desc.dt = 0.05f;
+  desc.populations.emplace_back();
+  PointDesc exit;
+  exit.kind = PointKind::Exit;
+  exit.position = {18, 5};
+  exit.radius = 1.0f;
+  PointDesc stand;
+  stand.kind = PointKind::Action;
+  stand.position = {10, 8};
+  stand.radius = 0.5f;
+  stand.stop = true;
+  stand.actionDuration = 2.0f;
+  stand.orientation = {0, 1};
+  desc.points = {exit, stand};
+  GroupTable groups;
+  groups.add(GroupState{});
+  const std::vector<std::vector<std::uint32_t>> goalLists{{0, 1}};
+  AgentStore a;
+  const float xs[] = {18.2f, 10.1f, 2.0f}, ys[] = {5.0f, 8.0f, 5.0f};
+  for (std::uint32_t r = 0; r < 3; ++r) {
+    a.addRow();
+    a.id[r] = r;
+    a.posX[r] = xs[r];
+    a.posY[r] = ys[r];
+    a.targetX[r] = r == 1 ? 10.0f : 18.0f;
+    a.targetY[r] = r == 1 ? 8.0f : 5.0f;
+    a.radius[r] = 0.25f;
+    a.goalCursor[r] = r == 1 ? 1 : 0;
+  }
+  auto mesh = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)}, {}, nav::NavMeshConfig{});
+  ASSERT_TRUE(mesh.ok());
+  std::vector<WorkerScratch> workers(1);
+  workers[0].query = std::make_unique<nav::NavQuery>(mesh.value());
+  const CommonGroundState commonGround;
+  std::vector<ChunkOutput> chunks(1);
+  core::TaskSystem tasks(1);
+  const std::uint64_t tick = 78;  // (tick + id 2) is a multiple of the 80-tick check period
+  const GoalView goals{groups, goalLists, a.group, a.goalCursor};
+  decide(DecideInput{a, desc, tick, groups, goals, commonGround, workers}, decideOutput(a, chunks), tasks);
+
+  EXPECT_EQ(a.goalState[0], GoalState::Exited);
+  EXPECT_EQ(a.goalState[1], GoalState::Acting);
+  EXPECT_EQ(a.mode[1], AgentMode::Acting);
+  EXPECT_EQ(a.actionEndTick[1], tick + 40) << "2 s at 0.05 s per tick";
+  EXPECT_EQ(a.oriY[1], 1.0f) << "facing the action point's orientation";
+  EXPECT_EQ(a.goalState[2], GoalState::Seeking);
+  EXPECT_EQ(a.needPath[2], 1u) << "no closer than at the last check: re-plan";
+  EXPECT_FLOAT_EQ(a.progressDistance[2], 16.0f);
+  EXPECT_EQ(a.needPath[0] + a.needPath[1], 0);
+  ASSERT_EQ(chunks[0].events.size(), 2u);
+  EXPECT_EQ(chunks[0].events[0].kind, EventKind::Exit);
+  EXPECT_EQ(chunks[0].events[0].agent, 0u);
+  EXPECT_EQ(chunks[0].events[1].kind, EventKind::ActionStart);
+  EXPECT_EQ(chunks[0].events[1].a, 1u) << "the action point";
+  EXPECT_TRUE(chunks[0].pendingRows.empty());
+}
+
+TEST(Phases, FormationPullsTwoWalkersOfAFlockingGroupAbreast) {
+  // A flocking pair walking east one behind the other (0.1 m apart): the group's heading is east,
+  // its centroid between them, and each gets a correction toward its own side (spacing 0.75 m).
+  std::vector<PopulationDesc> populations(1);
+  GroupTable groups;
+  GroupState pair;
+  pair.expected = 2;
+  pair.members.push_back(0);
+  pair.members.push_back(1);
+  const std::uint32_t gid = groups.add(pair);
+  groups.markBusy(gid);
+  groups.refreshBusy();
+  const std::vector<std::uint32_t> rowOfId{0, 1}, cursor(2, 0);
+  const std::vector<float> xs{5.0f, 5.1f}, ys{5.0f, 5.0f}, vx{1.0f, 1.0f}, vy{0.0f, 0.0f};
+  const std::vector<GoalState> goalState(2, GoalState::Seeking);
+  std::vector<float> fx(2, 9.0f), fy(2, 9.0f);
+  std::vector<WorkerScratch> workers(1);
+  core::TaskSystem tasks(1);
+  formGroups(FormationInput{populations, rowOfId, xs, ys, vx, vy, goalState, cursor, {}},
+             FormationOutput{groups, fx, fy, workers}, tasks);
+  const GroupExtra& shape = groups.extraOf(groups[gid]);
+  EXPECT_NEAR(shape.centroid.x, 5.05f, 1e-6f);
+  EXPECT_EQ(shape.heading.x, 1.0f);
+  // Same lateral place: ties go by row, so row 0 takes the right-hand slot (−y) and row 1 the left.
+  EXPECT_LT(fy[0], 0.0f);
+  EXPECT_GT(fy[1], 0.0f);
+  EXPECT_FLOAT_EQ(fy[0], -fy[1]);
+  EXPECT_GT(fx[0], 0.0f) << "the one behind closes up";
+  EXPECT_LT(fx[1], 0.0f) << "the one ahead waits";
+  for (std::size_t r = 0; r < 2; ++r) EXPECT_LE(std::hypot(fx[r], fy[r]), 0.5f + 1e-6f) << "capped";
+}
+
+TEST(Phases, LeadershipGoesToAMemberAndPassesToTheMostDominant) {
+  // Group 0: three members with no leader yet, sociological model on with leadership changing every
+  // tick; member 2 (another population) dominates. Group 1: a plain pair. Group 2: empty.
+  std::vector<PopulationDesc> populations(2);
+  populations[0].sociological.enabled = true;
+  populations[0].sociological.leaderChangeRate = 1000.0f;  // × dt ≥ 1: a change every tick
+  populations[1].sociological.domination = 0.9f;
+  GroupTable groups;
+  GroupState sociable, pair, empty;
+  for (std::uint32_t id : {0u, 1u, 2u}) sociable.members.push_back(id);
+  for (std::uint32_t id : {3u, 4u}) pair.members.push_back(id);
+  empty.leader = 7;
+  for (const GroupState& g : {sociable, pair, empty}) groups.markBusy(groups.add(g));
+  groups.refreshBusy();
+  groups[1].population = 1;  // the pair's population: no sociological model
+  const std::vector<std::uint32_t> rowOfId{0, 1, 2, 3, 4};
+  const std::vector<std::uint16_t> population{0, 0, 1, 1, 1};
+  std::vector<Event> events;
+  updateLeaders(LeaderInput{populations, 1, 0.05f, 10, rowOfId, population}, LeaderOutput{groups, events});
+  EXPECT_EQ(groups[0].leader, 2u) << "the most dominant member leads";
+  EXPECT_EQ(groups[1].leader, 3u) << "without the sociological model: the first member";
+  EXPECT_EQ(groups[2].leader, kNoAgent) << "an empty group has no leader";
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].kind, EventKind::LeaderChange);
+  EXPECT_EQ(events[0].agent, 2u);
+  EXPECT_EQ(events[0].a, 0u) << "the group";
+}
