@@ -55,7 +55,7 @@ constexpr ModelParameter kParameters[] = {
     {"wallRange", "m", 0.0, true, 5.0, false, 0.02f, "range D_w of the push from walls", kWalls},
     {"passageRatio", "1", 0.3, false, 1.0, false, 0.65f,
      "body depth over shoulder breadth: bodies are ellipses this much shallower than wide, and the navmesh keeps centres radius × this from walls (shoulders turned)",
-     "calibrated (docs/validation.md); adults' chest depth is about half their shoulder breadth (DIN 33402-2)"},
+     "calibrated (docs/validation.md); adults' chest depth is about 0.55-0.65 of their shoulder breadth (DIN 33402-2)"},
 };
 enum Parameter : std::size_t {
   kTimeGap,
