@@ -54,6 +54,10 @@ int runInfo(const InfoOptions& options) {
                        {"coordinations", s.coordinations},
                        {"format_version", s.formatVersion},
                        {"throng_version", s.throngVersion}};
+    // The avoidance model of each population (throng_models); null when the recording predates it
+    // or the text is not JSON (a hand-edited file).
+    out["models"] = s.models.empty() ? nlohmann::json(nullptr) : nlohmann::json::parse(s.models, nullptr, false);
+    if (out["models"].is_discarded()) out["models"] = nullptr;
     out["heights_m"] = s.heights ? nlohmann::json{s.heights->first, s.heights->second} : nlohmann::json(nullptr);
     printLine(stdout, dumpJson(out));
     return kExitOk;
@@ -76,6 +80,7 @@ int runInfo(const InfoOptions& options) {
     printLine(stdout, fmt::format("heights      {:.2f} to {:.2f} m (a multi-level world: throng_heights)", s.heights->first,
                                   s.heights->second));
   }
+  if (!s.models.empty()) printLine(stdout, fmt::format("models       {}", displayText(s.models, 400)));
   if (!s.commonGround.empty()) {
     printLine(stdout, fmt::format("common ground {}: {} coordinations (throng script / throng metrics read them)", s.commonGround,
                                   s.coordinations));

@@ -191,6 +191,25 @@ TEST(Recorder, SchemaMatchesJuPedSimVersion2) {
   EXPECT_FALSE(fs::exists(path + "-shm"));
 }
 
+// Issue 17: the recording says which avoidance model (and values) produced it, also for a
+// population that named none; ids are JSON-escaped.
+TEST(Recorder, MetadataNamesEachPopulationsModelWithItsValues) {
+  TempDir dir;
+  const std::string path = dir.file("models.sqlite");
+  sim::ScenarioDesc s = bottleneck();
+  s.populations[1].id = "late \"quoted\"";
+  s.populations[1].model = sim::ModelDesc(sim::ModelKind::AnticipationVelocity);
+  ASSERT_TRUE(s.populations[1].model.set("timeGap", 0.65f));
+  auto rec = openOk(s, optionsFor(path));
+  ASSERT_NE(rec, nullptr);
+  ASSERT_TRUE(rec->close(true).ok());
+  Db db(path);
+  EXPECT_EQ(db.one("SELECT value FROM metadata WHERE key = 'throng_models'"),
+            "{\"left\": {\"name\": \"orca\", \"yieldResponsibility\": 0.8, \"lodNeighbours\": 4, \"wallMargin\": 0.01}, "
+            "\"late \\\"quoted\\\"\": {\"name\": \"avm\", \"timeGap\": 0.65, \"anticipationTime\": 0.5, \"reactionTime\": 0.1, "
+            "\"neighbourStrength\": 4, \"neighbourRange\": 0.1, \"wallStrength\": 5, \"wallRange\": 0.02, \"passageRatio\": 0.65}}");
+}
+
 namespace bg = boost::geometry;
 using BPoint = bg::model::d2::point_xy<double>;
 using BMulti = bg::model::multi_polygon<bg::model::polygon<BPoint, false>>;

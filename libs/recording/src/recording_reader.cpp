@@ -135,6 +135,7 @@ class SummaryReader {
   void readProvenance() {
     sum_.throngVersion = meta(recording::kKeyThrongVersion).text;
     sum_.commonGround = meta(recording::kKeyCommonGround).text;
+    sum_.models = meta(recording::kKeyModels).text;
     sum_.scenarioName = meta(recording::kKeyScenarioName).text;
     if (const auto seed = recording::parseInt(meta(recording::kKeySeed).text)) {
       sum_.seed = static_cast<std::uint64_t>(*seed);

@@ -39,6 +39,10 @@ inline constexpr const char* kKeyAgents = "throng_agents";
 /// "on" / "off": whether the scenario's social section had Common Ground enabled; absent when the
 /// scenario has no social section (no goals were generated).
 inline constexpr const char* kKeyCommonGround = "throng_common_ground";
+/// JSON object: each population's id → its avoidance model, {"name": …, every parameter: value}
+/// (the scenario's choice with the model's defaults filled in, so a recording says which model
+/// and values produced it even when the scenario named none).
+inline constexpr const char* kKeyModels = "throng_models";
 
 inline constexpr const char* kSchemaNote =
     "JuPedSim trajectory format version 2 (trajectory_data, metadata, geometry, frame_data) "
