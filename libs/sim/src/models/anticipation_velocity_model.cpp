@@ -84,6 +84,10 @@ class AvmScratch final : public ModelScratch {
   std::vector<std::uint32_t> wallIds;
 };
 
+/// Two walkers whose directions are less than this far apart (cos 120°) settle who goes first
+/// (givesWay); nearer head on, both slow down and step aside.
+constexpr float kGiveWayCos = -0.5f;
+
 /// The perpendicular of e pointing to its right.
 core::Vec2 rightOf(core::Vec2 e) { return {e.y, -e.x}; }
 
@@ -150,7 +154,8 @@ class AnticipationVelocityModel final : public OperationalModel {
         const float along = core::dot(e0, d) / dist, across = core::cross(e0, d) / dist;
         const float q = p.passageRatio;
         const float touch = l * q / std::sqrt(along * along + q * q * across * across);
-        if (const float back = core::dot(push, e0); back < 0.0f && dist >= touch) push -= e0 * back;
+        const bool stuck = a.stuckTime[row] > 0.5f * in.desc.steering.stuckPatience;  // wedged: may back off
+        if (const float back = core::dot(push, e0); back < 0.0f && dist >= touch && !stuck) push -= e0 * back;
         dir += push;
         continue;
       }
@@ -211,7 +216,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     const core::Vec2 vo{a.velX[o], a.velY[o]};
     const float so = core::length(vo);
     const core::Vec2 eo = so > 0.05f ? vo / so : core::Vec2{a.oriX[o], a.oriY[o]};
-    if (core::dot(e, eo) <= 0.0f) return false;  // head on or crossing at more than 90°: both slow
+    if (core::dot(e, eo) <= kGiveWayCos) return false;  // head on: both slow (and step aside)
     const float aheadOfO = -core::dot(d, eo);    // how far i is ahead of o, along o's direction
     if (aheadOfO <= 0.0f) return false;          // o does not see i ahead: o leads
     return aheadOfO > ahead || (aheadOfO == ahead && a.id[row] < a.id[o]);
