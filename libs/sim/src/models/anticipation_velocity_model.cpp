@@ -10,7 +10,8 @@
 //   d_ij = min over t in [0, t_a] of |(x_j + v_j t) − (x_i + u_i t)|, as the vector c_ij from i,
 //   R_ij = a · exp((ℓ_ij − |c_ij|) / D) · w_ij · side_ij,
 // where side_ij is the unit vector perpendicular to e0 pointing away from c_ij (to the right when j
-// is dead ahead: the keep-right convention that lets lanes form in counter-flow), ℓ_ij = r_i + r_j
+// is dead ahead; and to the right of anyone coming the other way unless they pass more than ℓ_ij
+// to i's right: the keep-right convention that makes counter-flows form lanes), ℓ_ij = r_i + r_j
 // and w_ij = (1 + cos φ_ij) / 2 weighs neighbours by the angle φ between e0 and the direction to j
 // (those behind are ignored). Only when two bodies already overlap does the push act along the
 // line of centres, so a crowd never walks backwards to make room. Walls push along their normal as
@@ -168,7 +169,11 @@ class AnticipationVelocityModel final : public OperationalModel {
       const core::Vec2 c = d + w * t;
       const float lateral = core::dot(c, side);  // > 0: j passes on i's right
       const float strength = p.neighbourStrength * std::exp((l - core::length(c)) / p.neighbourRange) * 0.5f * (1.0f + cosPhi);
-      dir += side * (lateral > 0.0f ? -strength * roomLeft : strength * roomRight);
+      // Keep right: someone coming the other way is passed on one's right side (one steps right)
+      // unless they are already well to the right; that is how counter-flows form lanes.
+      const bool oncoming = core::dot(core::Vec2{a.velX[o], a.velY[o]}, e0) < 0.0f;
+      const float threshold = oncoming ? l : 0.0f;
+      dir += side * (lateral > threshold ? -strength * roomLeft : strength * roomRight);
     }
     return dir;
   }
