@@ -13,10 +13,12 @@
 // is dead ahead; and to the right of anyone coming the other way unless they pass more than ℓ_ij
 // to i's right: the keep-right convention that makes counter-flows form lanes), ℓ_ij = r_i + r_j
 // and w_ij = (1 + cos φ_ij) / 2 weighs neighbours by the angle φ between e0 and the direction to j
-// (those behind are ignored). Only when two bodies already overlap does the push act along the
-// line of centres, so a crowd never walks backwards to make room. Walls push along their normal as
-// in the collision-free speed model (strength b, range D_w). The walking direction relaxes towards
-// the result over the reaction time τ.
+// (those behind are ignored); the sum of these sideways pushes is scaled by the room to a wall on
+// that side. Only when two discs already overlap does a push act along the line of centres, and
+// backwards only when the ellipses (below) really interpenetrate or i has been wedged for half the
+// deadlock patience, so a queue does not walk backwards to make room. Walls push along their
+// normal as in the collision-free speed model (strength b, range D_w), never backwards. The walking
+// direction relaxes towards the result over the reaction time τ.
 //
 // Speed. Bodies are ellipses: shoulders across the walking direction (semi-axis r) and chest to
 // back along it (semi-axis passageRatio · r). The gap along the walking direction e to the first
@@ -30,8 +32,8 @@
 // every door. The navmesh keeps centres q·r from walls (ScenarioDesc::navRadius): people turn
 // their shoulders to pass a narrow door, so the default body passes 0.5 m.
 //
-// Reads the steer phase's preferred velocities, positions, velocities, radii, neighbours and walls;
-// writes newVel of the rows it is given. Deterministic: one row's result depends only on the
+// Reads the steer phase's preferred velocities, positions, velocities, headings, modes, stuck times,
+// radii, neighbours and walls; writes newVel of the rows it is given. Deterministic: one row's result depends only on the
 // neighbours sense found, in their order.
 #include <algorithm>
 #include <cmath>
