@@ -91,6 +91,11 @@ class AvmScratch final : public ModelScratch {
 /// (givesWay); nearer head on, both slow down and step aside.
 constexpr float kGiveWayCos = -0.5f;
 
+/// A standing agent pressed by others steps away at most this fast [m/s], kMakeRoomGain [m/s] per
+/// unit of push (a push of 1 is a neighbour's disc overlapping by about 0.14 m at the defaults).
+constexpr float kMakeRoomSpeed = 0.3f;
+constexpr float kMakeRoomGain = 0.05f;
+
 /// The perpendicular of e pointing to its right.
 core::Vec2 rightOf(core::Vec2 e) { return {e.y, -e.x}; }
 
@@ -144,6 +149,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     const core::Vec2 u = e0 * v0;
     const std::size_t k = in.desc.steering.maxNeighbours;
     const std::uint32_t* nb = &a.neighbours[row * k];
+    float sideways = 0.0f;  // the neighbours' push along side
     for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
       const std::uint32_t o = nb[n];
       const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
@@ -175,9 +181,9 @@ class AnticipationVelocityModel final : public OperationalModel {
       // unless they are already well to the right; that is how counter-flows form lanes.
       const bool oncoming = core::dot(core::Vec2{a.velX[o], a.velY[o]}, e0) < 0.0f;
       const float threshold = oncoming ? l : 0.0f;
-      dir += side * (lateral > threshold ? -strength * roomLeft : strength * roomRight);
+      sideways += lateral > threshold ? -strength * roomLeft : strength * roomRight;
     }
-    return dir;
+    return dir + side * sideways;
   }
 
   /// The walls' push, off every boundary edge near i (fills ws.wallIds with them).
@@ -229,6 +235,28 @@ class AnticipationVelocityModel final : public OperationalModel {
     return aheadOfO > ahead || (aheadOfO == ahead && a.id[row] < a.id[o]);
   }
 
+  /// A standing agent (waiting, acting, arrived) is no wall: pressed by someone whose disc overlaps
+  /// its own it steps away, at most kMakeRoomSpeed, so people waiting for their group at a busy
+  /// spot do not block everyone else's way.
+  static core::Vec2 makeRoom(const ModelInput& in, std::size_t row, const AvmParams& p) {
+    const AgentStore& a = in.agents;
+    const core::Vec2 pos{a.posX[row], a.posY[row]};
+    const std::size_t k = in.desc.steering.maxNeighbours;
+    const std::uint32_t* nb = &a.neighbours[row * k];
+    core::Vec2 push;
+    for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
+      const std::uint32_t o = nb[n];
+      const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
+      const float dist = core::length(d);
+      const float l = a.radius[row] + a.radius[o];
+      if (dist < 1e-6f || dist >= l) continue;
+      push -= d * (p.neighbourStrength * std::exp((l - dist) / p.neighbourRange) / dist);
+    }
+    const float len = core::length(push);
+    if (len < 1e-6f) return {};
+    return push * (std::min(kMakeRoomSpeed, kMakeRoomGain * len) / len);
+  }
+
   /// The gap i can walk along e before touching the first body ahead [m] (v0·T when none).
   static float gapAhead(const ModelInput& in, std::size_t row, core::Vec2 e, float limit, float depthRatio) {
     const AgentStore& a = in.agents;
@@ -257,7 +285,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     const AgentStore& a = in.agents;
     const core::Vec2 pref{a.prefVelX[row], a.prefVelY[row]};
     const float v0 = core::length(pref);
-    if (v0 < 1e-6f) return {};  // nowhere to go: stand
+    if (v0 < 1e-6f) return makeRoom(in, row, p);  // nowhere to go: stand, but let others by
     const core::Vec2 e0 = pref / v0;
     core::Vec2 target = pushes(in, row, e0, v0, p, ws);
     const float len = core::length(target);
