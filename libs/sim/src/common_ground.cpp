@@ -130,7 +130,7 @@ void World::Impl::startCoordination(std::uint32_t row) {
   const std::vector<std::uint32_t> mates = availableMates(g, aId);
   social::Goal goal = coordinationGoal(point, trigger, mates);
   // x_s: a spot in the place's region (sub-regions spread visitors), on the navmesh.
-  goal.position = drawTarget(row, desc.points[point], *mainQuery);
+  goal.position = goalWriter().drawTarget(row, desc.points[point]);
   const core::Vec2 destination{agents.targetX[row], agents.targetY[row]};
 
   ActiveCoordination c;

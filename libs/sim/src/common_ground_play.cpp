@@ -150,7 +150,7 @@ void World::Impl::leaveScript(ActiveCoordination& c, std::size_t actor) {
     agents.visited[row].push_back(c.record.goalPoint);
   }
   // Back to the group's navigation, where the group is now.
-  setGoal(row, groups[agents.group[row]].cursor, *mainQuery);
+  goalWriter().setGoal(row, groups[agents.group[row]].cursor);
 }
 
 namespace {

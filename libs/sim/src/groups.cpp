@@ -57,7 +57,7 @@ void World::Impl::decideGroups(const core::TaskSystem& tasks) {
     for (std::size_t r = 0; r < agents.size(); ++r) rowOfId[agents.id[r]] = static_cast<std::uint32_t>(r);
     rowsChanged = false;
   }
-  applyPendingGoals();
+  goalWriter().applyPendingGoals(chunks);
   applyGroupCommands();
   if (desc.social.enabled) {
     startCoordinations();
@@ -89,6 +89,7 @@ void World::Impl::applyGroupCommands() {
 
 void World::Impl::updateGuidance() {
   const nav::NavQuery& query = *mainQuery;
+  GoalWriter goals = goalWriter();
   const float now = static_cast<float>(static_cast<double>(tick) * desc.dt);
   for (const std::uint32_t gid : groups.busy()) {
     GroupState& g = groups[gid];
@@ -113,7 +114,7 @@ void World::Impl::updateGuidance() {
         // Guidance over: back to the group's own goals, where it left them.
         for (std::uint32_t id : g.members) {
           const std::uint32_t r = rowOfId[id];
-          if (agents.goalState[r] != GoalState::Exited && !holdsOwnTarget(agents.goalState[r])) setGoal(r, g.cursor, query);
+          if (agents.goalState[r] != GoalState::Exited && !holdsOwnTarget(agents.goalState[r])) goals.setGoal(r, g.cursor);
         }
       }
     }
@@ -150,7 +151,7 @@ void World::Impl::updateGuidance() {
 }
 
 void World::Impl::updateFollowing() {
-  const nav::NavQuery& query = *mainQuery;
+  GoalWriter goals = goalWriter();
   for (const std::uint32_t gid : groups.busy()) {
     GroupState& g = groups[gid];
     if (!groups.hasRoute(g)) continue;  // follows nobody
@@ -179,7 +180,7 @@ void World::Impl::updateFollowing() {
         groups.extraOf(g).waiting = false;
         for (std::uint32_t id : g.members) {
           const std::uint32_t r = rowOfId[id];
-          if (agents.goalState[r] != GoalState::Exited && !holdsOwnTarget(agents.goalState[r])) setGoal(r, g.cursor, query);
+          if (agents.goalState[r] != GoalState::Exited && !holdsOwnTarget(agents.goalState[r])) goals.setGoal(r, g.cursor);
         }
       } else {
         g.following = false;
@@ -187,7 +188,7 @@ void World::Impl::updateFollowing() {
         groups.extraOf(g).waiting = false;
         for (std::uint32_t id : g.members) {
           const std::uint32_t r = rowOfId[id];
-          if (agents.goalState[r] != GoalState::Exited && !holdsOwnTarget(agents.goalState[r])) setGoal(r, g.cursor, query);
+          if (agents.goalState[r] != GoalState::Exited && !holdsOwnTarget(agents.goalState[r])) goals.setGoal(r, g.cursor);
         }
       }
     }
@@ -195,7 +196,7 @@ void World::Impl::updateFollowing() {
 }
 
 void World::Impl::applySocialEffects() {
-  const nav::NavQuery& query = *mainQuery;
+  GoalWriter goals = goalWriter();
   for (std::size_t r = 0; r < agents.size(); ++r) {
     if (agents.followAgent[r] == kNoAgent && agents.sociologicalEffect[r] == SocialEffect::None) continue;
     // Ongoing following of another agent: chase it, end it when time is up or it left.
@@ -204,7 +205,7 @@ void World::Impl::applySocialEffects() {
       if (other == kNoRow || tick >= agents.followUntil[r] || agents.goalState[r] == GoalState::Exited) {
         pendingEvents.push_back({tick, agents.id[r], EventKind::FollowAgentEnd, agents.followAgent[r], 0});
         agents.followAgent[r] = kNoAgent;
-        if (agents.goalState[r] != GoalState::Exited) setGoal(r, agents.goalCursor[r], query);
+        if (agents.goalState[r] != GoalState::Exited) goals.setGoal(r, agents.goalCursor[r]);
       } else {
         const core::Vec2 them{agents.posX[other], agents.posY[other]};
         const core::Vec2 me{agents.posX[r], agents.posY[r]};
@@ -237,7 +238,7 @@ void World::Impl::applySocialEffects() {
       groups.markBusy(to);
       if (groups[to].flocks(desc.populations[groups[to].population])) agents.speed[r] = groupSpeed(to);
       pendingEvents.push_back({tick, agents.id[r], EventKind::JoinGroup, from, to});
-      if (agents.goalState[r] != GoalState::Acting) setGoal(r, groups[to].cursor, query);
+      if (agents.goalState[r] != GoalState::Acting) goals.setGoal(r, groups[to].cursor);
     } else if (effect == SocialEffect::FollowAgent) {
       agents.followAgent[r] = agents.id[other];
       agents.followUntil[r] = static_cast<std::uint32_t>(tick + static_cast<std::uint64_t>(std::lround(social.followDuration / desc.dt)));
@@ -249,7 +250,7 @@ void World::Impl::applySocialEffects() {
 }
 
 void World::Impl::updateWaiting() {
-  const nav::NavQuery& query = *mainQuery;
+  GoalWriter goals = goalWriter();
   for (const std::uint32_t gid : groups.busy()) {
     GroupState& g = groups[gid];
     GroupExtra& x = groups.extraOf(g);
@@ -282,7 +283,7 @@ void World::Impl::updateWaiting() {
     ++g.cursor;
     for (std::uint32_t id : g.members) {
       const std::uint32_t r = rowOfId[id];
-      if (agents.goalState[r] == GoalState::WaitingForGroup) setGoal(r, g.cursor, query);
+      if (agents.goalState[r] == GoalState::WaitingForGroup) goals.setGoal(r, g.cursor);
     }
   }
 }

@@ -206,13 +206,14 @@ void World::Impl::addSpawnedAgents(const SpawnPlan& plan) {
   const PopulationDesc& pop = desc.populations[populationIndex];
   spawner.spawned[populationIndex] = 1;
   const nav::NavQuery& query = *mainQuery;
+  GoalWriter goals = goalWriter();
   const std::vector<std::uint32_t>& sizes = spawner.groupSizes[populationIndex];
   const float spawnHeight = pop.spawn.kind == SpawnKind::Point ? desc.points[pop.spawn.point].height : pop.spawn.height;
   THRONG_ASSERT(spawner.nextAgentId == plan.firstAgent);
   std::size_t spot = 0;
   for (std::uint32_t g = 0; g < sizes.size(); ++g) {
     const std::uint32_t groupId = spawner.firstGroupId[populationIndex] + g;
-    if (pop.autoGoals) reconstructGoals(groupId, plan.anchors[g]);
+    if (pop.autoGoals) goals.reconstructGoals(groupId, plan.anchors[g]);
     for (std::uint32_t m = 0; m < sizes[g]; ++m) {
       const std::uint32_t agentId = spawner.nextAgentId++;
       const std::pair<core::Vec2, nav::PolyRef>* placed = &plan.spots[spot++];
@@ -261,7 +262,7 @@ void World::Impl::addSpawnedAgents(const SpawnPlan& plan) {
       group.members.push_back(agentId);
       if (group.leader == kNoAgent) group.leader = agentId;
       if (group.flocks(pop)) agents.speed[row] = groupSpeed(groupId);
-      setGoal(row, group.cursor, query);
+      goals.setGoal(row, group.cursor);
       // Face the first target.
       const core::Vec2 dir = core::normalize(core::Vec2{agents.targetX[row] - agents.posX[row], agents.targetY[row] - agents.posY[row]});
       if (core::lengthSq(dir) > 0.0f) { agents.oriX[row] = dir.x; agents.oriY[row] = dir.y; }

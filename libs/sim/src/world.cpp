@@ -56,8 +56,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
     w.spawner.startTick.push_back(static_cast<std::uint64_t>(std::ceil(pop.start / desc.dt - 1e-6)));
     w.spawner.spawned.push_back(0);
   }
-  w.subOffset.push_back(0);
-  for (const PointDesc& p : desc.points) w.addPointGeometry(p);
+  for (const PointDesc& p : desc.points) w.pointRegions.add(p);
   w.pointClip = pointClips(desc);
   w.initCommonGround();
   w.planPopulations();
@@ -162,10 +161,11 @@ void World::Impl::emit() {
   for (GoalState g : agents.goalState) anyExit |= g == GoalState::Exited;
   if (anyExit) {
     std::vector<std::uint8_t> keep(agents.size());
+    GoalWriter goals = goalWriter();
     for (std::size_t r = 0; r < agents.size(); ++r) {
       keep[r] = agents.goalState[r] != GoalState::Exited;
       if (keep[r]) continue;
-      releaseTarget(r);
+      goals.releaseTarget(r);
       GroupState& g = groups[agents.group[r]];
       g.members.erase(agents.id[r]);
       if (g.leader == agents.id[r]) g.leader = g.members.empty() ? kNoAgent : g.members.front();

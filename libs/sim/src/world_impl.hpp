@@ -8,7 +8,8 @@
 //   groups.cpp     the group pass after decide (commands, guidance, following, waiting, formation)
 //   common_ground.cpp, common_ground_play.cpp  the Common Ground model (goals, coordinations, scripts)
 //   plan.cpp       budgeted path planning through nav::PathQueue
-//   goals.cpp      one home for goals: active list, current point, set/advance, targets, Bézier
+//   goals.cpp      one home for goals: active list, current point; GoalWriter (goals.hpp): set/advance,
+//                  targets and sub-regions, Bézier paths, automatic goals, pending goal changes
 //   steer.cpp      preferred velocity along the path, then the population's avoidance model
 //   models/        the avoidance models behind OperationalModel (ORCA, collision-free speed)
 //   integrate.cpp  commit velocities, move along the navmesh, headings, statistics
@@ -23,6 +24,7 @@
 #include "agent_store.hpp"
 #include "common_ground_state.hpp"
 #include "crowd_insertion.hpp"
+#include "goals.hpp"
 #include "group_table.hpp"
 #include "throng/core/assert.hpp"
 #include "throng/sim/spatial_grid.hpp"
@@ -109,14 +111,9 @@ struct World::Impl {
   bool anySociological = false;                   ///< some population has the sociological model on
   std::vector<std::uint32_t> followingRows; ///< rows following another agent (sociological), ascending
 
-  // Per-point cached geometry and action clips.
-  std::vector<core::Aabb> pointBounds;
+  // Per-point action clips, and regions cut into sub-regions with their occupancy (goals.hpp).
   std::vector<std::uint16_t> pointClip;
-  // Sub-regions of every point's region (Musse et al. §3.1.3), flattened: point p owns
-  // [subOffset[p], subOffset[p + 1]); occupancy = agents whose current target lies in it.
-  std::vector<crowd::Subregion> subregions;
-  std::vector<std::uint32_t> subOffset;
-  std::vector<std::uint32_t> subOccupancy;
+  PointRegions pointRegions;
 
   // Common Ground (common_ground.cpp, common_ground_play.cpp; its state in common_ground_state.hpp).
   CommonGroundState commonGround;
@@ -212,12 +209,10 @@ struct World::Impl {
   // Helpers shared by phases.
   WorkerScratch& worker(const core::TaskSystem& tasks);
   void ensureScratch(const core::TaskSystem& tasks);
-  /// Chooses a target inside the point's region (on the navmesh) for agent `row`.
-  core::Vec2 drawTarget(std::size_t row, const PointDesc& point, const nav::NavQuery& query);
-  /// Moves `row` on to its next goal (or wandering, or Done).
-  void advanceGoal(std::size_t row, const nav::NavQuery& query);
-  /// Points `row` at goal `cursor` of its group's active goal list (or wandering / Done past it).
-  void setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQuery& query);
+  /// What writing goals needs (goals.hpp): setGoal, drawTarget, releaseTarget, … (serial code).
+  [[nodiscard]] GoalWriter goalWriter() {
+    return {desc, groups, goalLists, pointRegions, agents, *mainQuery, tick, pendingEvents};
+  }
   /// What the phases may ask about goals (phases.hpp, goals.cpp); the three below use it.
   [[nodiscard]] GoalView goalView() const { return {groups, goalLists, agents.group, agents.goalCursor}; }
   /// The goal list a group follows now: its own, or the followed group's while following (goals.cpp).
@@ -229,17 +224,7 @@ struct World::Impl {
   /// Whether `row` stops at the end of its current path (an action point's stop, or its last goal
   /// when it does not wander), so it slows down on the last leg.
   [[nodiscard]] bool stopsAtGoal(std::size_t row) const;
-  /// Applies the goal changes decide asked for (AgentStore::goalPending), in row order (goals.cpp).
-  void applyPendingGoals();
   // Group pass steps (groups.cpp).
-  /// A point's bounds and sub-regions (creation and insertion; goals.cpp).
-  void addPointGeometry(const PointDesc& p);
-  /// Releases the sub-region `row` was targeting (its occupancy drops).
-  void releaseTarget(std::size_t row);
-  /// Replaces the navmesh request of `row` by a Bézier path when its population asks for one.
-  void bezierPath(std::size_t row, const nav::NavQuery& query);
-  /// Automatic goals for a group spawning around `anchor` (groups.cpp).
-  void reconstructGoals(std::uint32_t group, core::Vec2 anchor);
   void applyGroupCommands();
   /// Formation (formGroups, phases.hpp): the group pass's parallel last step.
   void updateGroupShapes(const core::TaskSystem& tasks);
