@@ -6,61 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <numeric>
 #include <vector>
 
-#include "throng/nav/navmesh.hpp"
+#include "goal_world.hpp"
 
 using namespace throng;
 using namespace throng::sim;
 
-namespace {
-
-core::Polygon rect(float x0, float y0, float x1, float y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
-
-/// A 20 × 10 m room with two interest points (discs of 3 m at x = 5 and x = 15), one population
-/// visiting them in order, one group of `rows` agents standing at (10, 5).
-struct GoalWorld {
-  ScenarioDesc desc;
-  GroupTable groups;
-  std::vector<std::vector<std::uint32_t>> goalLists{{0, 1}};
-  PointRegions regions;
-  AgentStore agents;
-  std::shared_ptr<const nav::NavMesh> mesh;
-  std::unique_ptr<nav::NavQuery> query;
-  std::vector<Event> events;
-
-  explicit GoalWorld(std::size_t rows) {
-    for (const float x : {5.0f, 15.0f}) {
-      PointDesc p;
-      p.position = {x, 5.0f};
-      p.radius = 3.0f;
-      desc.points.push_back(p);
-      regions.add(p);
-    }
-    desc.populations.emplace_back();
-    desc.populations[0].goals = {0, 1};
-    groups.add(GroupState{});
-    for (std::size_t i = 0; i < rows; ++i) {
-      const std::size_t r = agents.addRow();
-      agents.id[r] = static_cast<std::uint32_t>(r);
-      agents.posX[r] = 10.0f;
-      agents.posY[r] = 5.0f;
-      agents.targetSub[r] = -1;
-    }
-    auto built = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)}, {}, nav::NavMeshConfig{});
-    EXPECT_TRUE(built.ok());
-    mesh = std::move(built.value());
-    query = std::make_unique<nav::NavQuery>(mesh);
-  }
-  [[nodiscard]] GoalWriter writer() { return {desc, groups, goalLists, regions, agents, *query, 3, events}; }
-  [[nodiscard]] std::uint32_t occupied(std::uint32_t point) const {
-    return std::accumulate(regions.occupancy.begin() + regions.subOffset[point],
-                           regions.occupancy.begin() + regions.subOffset[point + 1], 0u);
-  }
-};
-
-}  // namespace
+using test::GoalWorld;
 
 TEST(Goals, PointRegionsCutEveryPointIntoSubregions) {
   const GoalWorld w(0);

@@ -6,8 +6,9 @@
 // World::Impl:
 //   sense      SenseInput, SenseOutput          sense.cpp
 //   decide     DecideInput, DecideOutput        decide.cpp (+ generateGoal, common_ground.cpp);
-//              then the group pass (World::Impl::decideGroups, groups.cpp), whose last steps
-//              are updateLeaders(LeaderInput, LeaderOutput), formGroups(FormationInput, FormationOutput)
+//              then the group pass (World::Impl::decideGroups, groups.cpp): its serial steps'
+//              contexts are in group_pass.hpp, its last steps here: updateLeaders(LeaderInput,
+//              LeaderOutput), formGroups(FormationInput, FormationOutput)
 //   plan       PlanInput, PlanOutput            plan.cpp
 //   integrate  IntegrateInput, IntegrateOutput  integrate.cpp
 // (steer is World::Impl::steer, steer.cpp; its model part is ModelInput / VelocityOutput.)

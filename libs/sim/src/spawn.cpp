@@ -81,7 +81,7 @@ std::uint32_t World::Impl::registerGroups(std::uint32_t firstPopulation) {
   return scheduled;
 }
 
-float World::Impl::groupSpeed(std::uint32_t gid) const {
+float groupSpeed(const ScenarioDesc& desc, const GroupTable& groups, std::uint32_t gid) {
   const PopulationDesc& pop = desc.populations[groups[gid].population];
   core::Rng speedRng(desc.seed, gid, core::RngPurpose::Speed);
   const double v = pop.speedSd > 0 ? speedRng.normal(pop.speedMean, pop.speedSd) : pop.speedMean;
@@ -261,7 +261,7 @@ void World::Impl::addSpawnedAgents(const SpawnPlan& plan) {
       GroupState& group = groups[groupId];
       group.members.push_back(agentId);
       if (group.leader == kNoAgent) group.leader = agentId;
-      if (group.flocks(pop)) agents.speed[row] = groupSpeed(groupId);
+      if (group.flocks(pop)) agents.speed[row] = groupSpeed(desc, groups, groupId);
       goals.setGoal(row, group.cursor);
       // Face the first target.
       const core::Vec2 dir = core::normalize(core::Vec2{agents.targetX[row] - agents.posX[row], agents.targetY[row] - agents.posY[row]});

@@ -1,6 +1,8 @@
 // World::Impl — the world's state and its phases. sense, decide, plan and integrate are free
-// functions of their contexts (phases.hpp), which Impl builds from its state (world.cpp); the rest
-// are Impl's methods. Each phase lives in its own file:
+// functions of their contexts (phases.hpp), which Impl builds from its state (world.cpp), and so
+// are the group pass's steps but Common Ground's (group_pass.hpp, phases.hpp; built in
+// decideGroups); goals are written through a GoalWriter (goals.hpp, goalWriter()). The rest are
+// Impl's methods. Each phase lives in its own file:
 //   spawn.cpp      applyCommands: populations due this tick enter the world
 //   insert.cpp     crowds inserted and removed at run time (API and scenario timeline)
 //   sense.cpp      grid rebuild and k-nearest neighbours
@@ -25,6 +27,7 @@
 #include "common_ground_state.hpp"
 #include "crowd_insertion.hpp"
 #include "goals.hpp"
+#include "group_pass.hpp"
 #include "group_table.hpp"
 #include "throng/core/assert.hpp"
 #include "throng/sim/spatial_grid.hpp"
@@ -40,14 +43,6 @@
 namespace throng::sim {
 
 
-
-/// A command from the World API, applied in order at the start of the next tick.
-struct GroupCommand {
-  std::uint32_t group = 0;
-  bool guide = false;  ///< false = release
-  core::Vec2 position;
-  float height = 0.0f;  ///< the guide's floor height [m] (multi-level worlds)
-};
 
 /// When and how many: the spawner's schedule (spawn.cpp). Per population: the tick it starts, whether
 /// it has spawned, its group sizes (drawn per stable group id by registerGroups) and its first group
@@ -224,18 +219,9 @@ struct World::Impl {
   /// Whether `row` stops at the end of its current path (an action point's stop, or its last goal
   /// when it does not wander), so it slows down on the last leg.
   [[nodiscard]] bool stopsAtGoal(std::size_t row) const;
-  // Group pass steps (groups.cpp).
-  void applyGroupCommands();
   /// Formation (formGroups, phases.hpp): the group pass's parallel last step.
   void updateGroupShapes(const core::TaskSystem& tasks);
-  void updateWaiting();
-  void updateFollowing();
-  void updateGuidance();
-  void applySocialEffects();
   void updateLeaders();  ///< updateLeaders(LeaderInput, LeaderOutput), phases.hpp
-  /// Flocking rule 2: one walking speed per group, drawn from its population's distribution (the
-  /// group's own stream: the same value whenever it is drawn) [m/s].
-  [[nodiscard]] float groupSpeed(std::uint32_t gid) const;
   [[nodiscard]] float dt() const { return desc.dt; }
   [[nodiscard]] static std::size_t grainFor(std::size_t n, const core::TaskSystem& tasks) { return phaseGrain(n, tasks); }
 
