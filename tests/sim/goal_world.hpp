@@ -27,7 +27,9 @@ struct GoalWorld {
   std::unique_ptr<nav::NavQuery> query;
   std::vector<Event> events;
 
-  explicit GoalWorld(std::size_t rows) {
+  /// `commonGround`: the agents have the Common Ground columns.
+  explicit GoalWorld(std::size_t rows, bool commonGround = false) {
+    agents.commonGround = commonGround;
     for (const float x : {5.0f, 15.0f}) {
       PointDesc p;
       p.position = {x, 5.0f};
@@ -46,6 +48,11 @@ struct GoalWorld {
       agents.posX[r] = 10.0f;
       agents.posY[r] = 5.0f;
       agents.targetSub[r] = -1;
+      if (commonGround) {
+        agents.coordination[r] = kNoIndex;
+        agents.desirePoint[r] = kNoPoint;
+        agents.scriptClip[r] = kNoClip;
+      }
       groups[0].members.push_back(agents.id[r]);
       rowOfId.push_back(static_cast<std::uint32_t>(r));
     }

@@ -137,3 +137,62 @@ TEST(GroupPass, AFollowingGroupAdoptsTheFollowedGroupsGoalsAndCursor) {
   EXPECT_EQ(goals.view().currentGoalPoint(r), 1u) << "goal 1 of the followed group's list";
   EXPECT_TRUE(insideRegion(w.desc.points[1], w.agents.targetX[r], w.agents.targetY[r]));
 }
+
+TEST(GroupPass, ALoneDesireBecomesAVisitScriptThatStartsWalking) {
+  // Common Ground on but coordination off: row 0's desire for point 1 becomes a lone visit (walk
+  // there, stay, walk on); the first tick of play starts the walk.
+  GoalWorld w(1, true);
+  w.desc.social.enabled = true;
+  w.desc.social.commonGround = false;
+  w.groups.giveExtra(0);
+  GoalWriter goals = w.writer();
+  goals.setGoal(0, 0);
+  CommonGroundState state;
+  w.agents.desirePoint[0] = 1;
+  w.agents.desireTrigger[0] = static_cast<std::uint8_t>(GoalTrigger::Attraction);
+  w.agents.speed[0] = 1.0f;
+  std::vector<ChunkOutput> chunks(1);
+  chunks[0].desireRows = {0};
+  const CommonGroundInput in{w.desc, 3, w.rowOfId};
+  const CommonGroundOutput out{w.agents, w.groups, state, goals, w.events};
+  startCoordinations(in, out, chunks);
+  EXPECT_TRUE(chunks[0].desireRows.empty());
+  EXPECT_EQ(w.agents.desirePoint[0], kNoPoint);
+  ASSERT_EQ(state.coordinations.size(), 1u);
+  const ActiveCoordination& c = state.coordinations.begin()->second;
+  EXPECT_EQ(c.record.outcome, CoordinationOutcome::Alone);
+  EXPECT_EQ(c.actors, (std::vector<std::uint32_t>{0}));
+  EXPECT_EQ(w.agents.goalState[0], GoalState::Scripted);
+  EXPECT_EQ(w.agents.coordination[0], c.record.id);
+  EXPECT_EQ(w.occupied(1), 1u) << "the visit's spot is drawn in point 1's sub-regions";
+  EXPECT_EQ(w.occupied(0), 0u);
+  ASSERT_EQ(w.events.size(), 2u);
+  EXPECT_EQ(w.events[0].kind, EventKind::GoalGenerated);
+  EXPECT_EQ(w.events[1].kind, EventKind::CoordinationStart);
+  runCoordinations(in, out);
+  EXPECT_EQ(w.agents.scriptWalk[0], 1u) << "the first entry is the walk to the place";
+  EXPECT_EQ(w.agents.needPath[0], 1u);
+  EXPECT_EQ(w.agents.mode[0], AgentMode::Walking);
+  EXPECT_TRUE(insideRegion(w.desc.points[1], w.agents.targetX[0], w.agents.targetY[0]));
+}
+
+TEST(GroupPass, ADividedGroupReunitesOnceItsMembersAreTogether) {
+  GoalWorld w(2, true);
+  w.groups.markBusy(0);
+  w.groups.refreshBusy();
+  w.groups.extraOf(w.groups[0]).reunite = 5;
+  w.agents.posX[1] = 18.0f;  // 8 m away: not together
+  CommonGroundState state;
+  GoalWriter goals = w.writer();
+  const CommonGroundInput in{w.desc, 3, w.rowOfId};
+  const CommonGroundOutput out{w.agents, w.groups, state, goals, w.events};
+  checkReunions(in, out);
+  EXPECT_TRUE(w.events.empty());
+  EXPECT_EQ(w.groups.extraOf(w.groups[0]).reunite, 5u);
+  w.agents.posX[1] = 10.5f;
+  checkReunions(in, out);
+  ASSERT_EQ(w.events.size(), 1u);
+  EXPECT_EQ(w.events[0].kind, EventKind::Reunited);
+  EXPECT_EQ(w.events[0].b, 5u) << "names the coordination that divided it";
+  EXPECT_EQ(w.groups.extraOf(w.groups[0]).reunite, kNoAgent);
+}

@@ -7,15 +7,17 @@
 //   updateFollowing     FollowingInput, FollowingOutput    following another group (§3.2.5)
 //   applySocialEffects  SocialEffectsInput, SocialEffectsOutput  sociological meetings (§3.2.1 iii)
 //   updateWaiting       WaitingInput, WaitingOutput        the wait rule (flocking rule 4, §3.2.3)
-// (updateLeaders and formGroups, the last steps, are in phases.hpp; the Common Ground steps are
-// still World::Impl's methods, common_ground*.cpp.) Groups are visited in stable-id order (the
-// busy set) and agents in row order.
+//   startCoordinations, runCoordinations, checkReunions   CommonGroundInput, CommonGroundOutput
+//                       the Common Ground model (common_ground.cpp, common_ground_play.cpp)
+// (updateLeaders and formGroups, the last steps, are in phases.hpp.) Groups are visited in
+// stable-id order (the busy set), agents in row order and coordinations in start order.
 #pragma once
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "agent_store.hpp"
+#include "common_ground_state.hpp"
 #include "goals.hpp"
 #include "group_table.hpp"
 #include "throng/sim/scenario.hpp"
@@ -128,6 +130,36 @@ struct WaitingOutput {
 };
 
 void updateWaiting(const WaitingInput& in, const WaitingOutput& out);
+
+// ---- Common Ground (Park et al.; docs/social-model.md): desires become coordinations — action
+// scripts for a group's members, or lone visits — which are played entry by entry; divided
+// groups reunite. Runs only when the scenario's social model is on.
+
+struct CommonGroundInput {
+  const ScenarioDesc& desc;                ///< social, points, populations (preferences, groupSpacing), seed, dt
+  std::uint64_t tick;
+  std::span<const std::uint32_t> rowOfId;  ///< stable id → row
+};
+
+struct CommonGroundOutput {
+  /// Reads the actors' and mates' position, heading, radius, speed, id, group, population,
+  /// interests, goal state and desire; writes the actors' rows: desirePoint, coordination,
+  /// goalState, mode, scriptWalk, scriptClip, target, corners, needPath, ticket, dynamicTarget,
+  /// progressDistance, stuckTime, heading (turns), socialReady, visited.
+  AgentStore& agents;
+  GroupTable& groups;             ///< the group's coordination and reunite; busy set
+  CommonGroundState& state;       ///< coordinations, their ids, clips; finished script entries and records
+  GoalWriter& goals;              ///< the goal's spot (drawTarget), back to the group's goal (setGoal); its query
+  std::vector<Event>& events;     ///< GoalGenerated, Coordination*, Visit*, Reunited
+};
+
+/// Desires flagged by decide (the chunks' desireRows, cleared) become coordinations: the grounding
+/// planner's script for the initiator and its mates, or a lone visit (common_ground.cpp).
+void startCoordinations(const CommonGroundInput& in, const CommonGroundOutput& out, std::span<ChunkOutput> chunks);
+/// Plays every active script one tick; finished ones are published (common_ground_play.cpp).
+void runCoordinations(const CommonGroundInput& in, const CommonGroundOutput& out);
+/// Groups divided by a coordination that are whole again (Reunited) (common_ground_play.cpp).
+void checkReunions(const CommonGroundInput& in, const CommonGroundOutput& out);
 
 /// Flocking rule 2: one walking speed per group, drawn from its population's distribution (the
 /// group's own stream: the same value whenever it is drawn) [m/s] (spawn.cpp).

@@ -7,9 +7,10 @@
 // threads. Effects on agents go through GoalWriter::setGoal (goals.hpp) or their own columns
 // (dynamic targets, needPath); paths are then planned by `plan`. Every step but Common Ground's is a
 // function of its contexts: applyGroupCommands, updateGuidance, updateFollowing, applySocialEffects
-// and updateWaiting (…Input/…Output: group_pass.hpp), updateLeaders and formGroups (phases.hpp).
-// World::Impl::decideGroups builds the contexts; the Common Ground steps (startCoordinations,
-// runCoordinations, checkReunions: common_ground*.cpp) are still World::Impl's methods.
+// and updateWaiting (…Input/…Output: group_pass.hpp), updateLeaders and formGroups (phases.hpp),
+// and Common Ground's startCoordinations, runCoordinations and checkReunions (CommonGroundInput,
+// CommonGroundOutput: group_pass.hpp; common_ground*.cpp). World::Impl::decideGroups builds the
+// contexts.
 #include <algorithm>
 #include <cmath>
 
@@ -63,9 +64,11 @@ void World::Impl::decideGroups(const core::TaskSystem& tasks) {
   goals.applyPendingGoals(chunks);
   applyGroupCommands(commands, groups);
   commands.clear();
+  const CommonGroundInput commonGroundIn{desc, tick, rowOfId};
+  const CommonGroundOutput commonGroundOut{agents, groups, commonGround, goals, pendingEvents};
   if (desc.social.enabled) {
-    startCoordinations();
-    runCoordinations();
+    startCoordinations(commonGroundIn, commonGroundOut, chunks);
+    runCoordinations(commonGroundIn, commonGroundOut);
   }
   groups.refreshBusy();
   const auto dt = desc.dt;
@@ -84,7 +87,7 @@ void World::Impl::decideGroups(const core::TaskSystem& tasks) {
   }
   updateWaiting(WaitingInput{desc.populations, dt, tick, rowOfId, agents.goalCursor, agents.goalState},
                 WaitingOutput{groups, goals, pendingEvents});
-  if (desc.social.enabled) checkReunions();
+  if (desc.social.enabled) checkReunions(commonGroundIn, commonGroundOut);
   updateLeaders();
   updateGroupShapes(tasks);
 }

@@ -1,7 +1,6 @@
 // World::Impl — the world's state and its phases. sense, decide, plan and integrate are free
 // functions of their contexts (phases.hpp), which Impl builds from its state (world.cpp), and so
-// are the group pass's steps but Common Ground's (group_pass.hpp, phases.hpp; built in
-// decideGroups); goals are written through a GoalWriter (goals.hpp, goalWriter()). The rest are
+// are the group pass's steps (group_pass.hpp, phases.hpp; built in decideGroups); goals are written through a GoalWriter (goals.hpp, goalWriter()). The rest are
 // Impl's methods. Each phase lives in its own file:
 //   spawn.cpp      applyCommands: populations due this tick enter the world
 //   insert.cpp     crowds inserted and removed at run time (API and scenario timeline)
@@ -110,35 +109,11 @@ struct World::Impl {
   std::vector<std::uint16_t> pointClip;
   PointRegions pointRegions;
 
-  // Common Ground (common_ground.cpp, common_ground_play.cpp; its state in common_ground_state.hpp).
+  // Common Ground (common_ground.cpp, common_ground_play.cpp; its state in common_ground_state.hpp,
+  // its group-pass steps' contexts in group_pass.hpp).
   CommonGroundState commonGround;
   /// The Common Ground state of the scenario's points, interests and animation clips (creation).
   void initCommonGround();
-  void startCoordinations();    ///< group pass: desires → coordinations (planner) or lone visits
-  // Steps of startCoordinations (common_ground.cpp).
-  void startCoordination(std::uint32_t row);
-  [[nodiscard]] std::vector<std::uint32_t> availableMates(const GroupState& g, std::uint32_t initiator) const;
-  [[nodiscard]] social::Goal coordinationGoal(std::uint32_t point, GoalTrigger trigger, const std::vector<std::uint32_t>& mates) const;
-  /// The grounding planner's script for A, B and the companions; false when it has none.
-  bool planGrounding(ActiveCoordination& c, std::uint32_t row, const std::vector<std::uint32_t>& mates,
-                     const social::Goal& goal, core::Vec2 destination, double now);
-  void planLoneVisit(ActiveCoordination& c, std::uint32_t row, const social::Goal& goal, core::Vec2 destination,
-                     double now) const;
-  void beginCoordination(ActiveCoordination c, bool alone, double now);
-  void runCoordinations();      ///< group pass: plays every active script one tick
-  // Steps of runCoordinations (common_ground_play.cpp).
-  void playCoordination(ActiveCoordination& c, double now);
-  void playActor(ActiveCoordination& c, std::size_t actor, std::uint32_t row, double now);
-  /// Whether the actor's current entry is over (walks: arrived, stuck near, or given up; others:
-  /// their time is up); turns it toward the entry's target meanwhile.
-  bool entryComplete(ActiveCoordination& c, std::size_t actor, std::uint32_t row, const social::ScriptEntry& e, double now);
-  void turnToward(const ActiveCoordination& c, std::uint32_t row, const social::ScriptEntry& e);
-  void publishEntry(const ActiveCoordination& c, std::size_t actor, const social::ScriptEntry& e, double start, double duration);
-  /// The actor leaves the script and goes back to its group's navigation.
-  void leaveScript(ActiveCoordination& c, std::size_t actor);
-  void beginEntry(ActiveCoordination& c, std::size_t actor, std::size_t row, double now);
-  void finishCoordination(ActiveCoordination& c, double now);
-  void checkReunions();
 
   // Threads.
   mutable std::vector<WorkerScratch> scratch;
