@@ -36,10 +36,10 @@ const std::vector<std::uint32_t>& World::Impl::activeGoals(const GroupState& g) 
 std::uint32_t World::Impl::groupGoalPoint(const GroupState& g) const { return goalView().groupGoalPoint(g); }
 std::uint32_t World::Impl::currentGoalPoint(std::size_t row) const { return goalView().currentGoalPoint(row); }
 
-bool World::Impl::stopsAtGoal(std::size_t row) const {
-  const std::uint32_t point = currentGoalPoint(row);
-  if (point == kNoPoint) return !desc.populations[agents.population[row]].wander;  // done: stands there
-  const PointDesc& p = desc.points[point];
+bool stopsAtGoal(const GoalView& goals, std::span<const PointDesc> points, const PopulationDesc& pop, std::size_t row) {
+  const std::uint32_t point = goals.currentGoalPoint(row);
+  if (point == kNoPoint) return !pop.wander;  // done: stands there
+  const PointDesc& p = points[point];
   return p.kind == PointKind::Action && p.stop;
 }
 

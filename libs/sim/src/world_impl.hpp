@@ -1,4 +1,4 @@
-// World::Impl — the world's state and its phases. sense, decide, plan and integrate are free
+// World::Impl — the world's state and its phases. sense, decide, plan, steer and integrate are free
 // functions of their contexts (phases.hpp), which Impl builds from its state (world.cpp), and so
 // are the group pass's steps (group_pass.hpp, phases.hpp; built in decideGroups); goals are written through a GoalWriter (goals.hpp, goalWriter()). The rest are
 // Impl's methods. Each phase lives in its own file:
@@ -177,7 +177,6 @@ struct World::Impl {
   void emit();
 
   // Helpers shared by phases.
-  WorkerScratch& worker(const core::TaskSystem& tasks);
   void ensureScratch(const core::TaskSystem& tasks);
   /// What writing goals needs (goals.hpp): setGoal, drawTarget, releaseTarget, … (serial code).
   [[nodiscard]] GoalWriter goalWriter() {
@@ -191,9 +190,6 @@ struct World::Impl {
   [[nodiscard]] std::uint32_t groupGoalPoint(const GroupState& g) const;
   /// The point `row` is heading for (from its group's active goal list), kNoPoint past the last.
   [[nodiscard]] std::uint32_t currentGoalPoint(std::size_t row) const;
-  /// Whether `row` stops at the end of its current path (an action point's stop, or its last goal
-  /// when it does not wander), so it slows down on the last leg.
-  [[nodiscard]] bool stopsAtGoal(std::size_t row) const;
   /// Formation (formGroups, phases.hpp): the group pass's parallel last step.
   void updateGroupShapes(const core::TaskSystem& tasks);
   void updateLeaders();  ///< updateLeaders(LeaderInput, LeaderOutput), phases.hpp
@@ -207,18 +203,13 @@ struct World::Impl {
   /// Sends what steer wrote for the owned rows, applies every other rank's values.
   void exchangeSteer();
 
-  // Steering (steer.cpp) and the avoidance models (models/).
+  // The avoidance models (models/), steer's second part (steer(SteerInput, SteerOutput): steer.cpp).
   /// One instance per model some population walks with, by ModelKind (null: unused).
   std::array<std::unique_ptr<OperationalModel>, kModelCount> models;
-  /// Creates the models the populations need and (re)reads their parameters (creation, insertion).
+  /// Creates the models the populations need and (re)reads their parameters (creation, insertion; world.cpp).
   void configureModels();
-  /// Gives a worker the scratch of every model in use.
+  /// Gives a worker the scratch of every model in use (world.cpp).
   void addModelScratch(WorkerScratch& ws) const;
-  [[nodiscard]] ModelKind modelOf(std::size_t row) const { return desc.populations[agents.population[row]].model.kind; }
-  /// The preferred velocity of `row` (writes prefVel and the corner index of `row` only).
-  void preferredVelocity(std::size_t row, WorkerScratch& ws);
-  /// Moves on along the path's corners once near the current one and the next is in sight.
-  void advanceCorner(std::size_t row, core::Vec2 pos, WorkerScratch& ws);
 };
 
 }  // namespace throng::sim
