@@ -32,7 +32,6 @@ std::uint32_t GoalView::currentGoalPoint(std::size_t row) const {
   return cursor < goals.size() ? goals[cursor] : kNoPoint;
 }
 
-const std::vector<std::uint32_t>& World::Impl::activeGoals(const GroupState& g) const { return goalView().activeGoals(g); }
 std::uint32_t World::Impl::groupGoalPoint(const GroupState& g) const { return goalView().groupGoalPoint(g); }
 std::uint32_t World::Impl::currentGoalPoint(std::size_t row) const { return goalView().currentGoalPoint(row); }
 

@@ -1,5 +1,5 @@
-// World — creation, the tick's phase order, the phases' contexts (phases.hpp), the emit phase
-// (removal, statistics) and frames (takeFrame).
+// World — creation, the tick's phase order, the phases' contexts (phases.hpp), the avoidance
+// models in use (configureModels), the emit phase (removal, statistics) and frames (takeFrame).
 #include "throng/sim/world.hpp"
 
 #include <algorithm>

@@ -14,7 +14,7 @@
 //   steer.cpp      preferred velocity along the path, then the population's avoidance model
 //   models/        the avoidance models behind OperationalModel (ORCA, collision-free speed)
 //   integrate.cpp  commit velocities, move along the navmesh, headings, statistics
-//   world.cpp      the tick, the phases' contexts, emit (removal, frame), creation
+//   world.cpp      the tick, the phases' contexts, emit (removal, frame), creation, the models in use
 #pragma once
 #include <array>
 #include <map>
@@ -182,10 +182,8 @@ struct World::Impl {
   [[nodiscard]] GoalWriter goalWriter() {
     return {desc, groups, goalLists, pointRegions, agents, *mainQuery, tick, pendingEvents};
   }
-  /// What the phases may ask about goals (phases.hpp, goals.cpp); the three below use it.
+  /// What the phases may ask about goals (phases.hpp, goals.cpp); the two below (the API's) use it.
   [[nodiscard]] GoalView goalView() const { return {groups, goalLists, agents.group, agents.goalCursor}; }
-  /// The goal list a group follows now: its own, or the followed group's while following (goals.cpp).
-  [[nodiscard]] const std::vector<std::uint32_t>& activeGoals(const GroupState& g) const;
   /// The point the group is heading for (its cursor in its active list), kNoPoint past the last.
   [[nodiscard]] std::uint32_t groupGoalPoint(const GroupState& g) const;
   /// The point `row` is heading for (from its group's active goal list), kNoPoint past the last.
