@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "throng/sim/animation.hpp"
+#include "walls.hpp"
 
 using namespace throng;
 using namespace throng::sim;
@@ -280,4 +281,64 @@ TEST(Phases, LeadershipGoesToAMemberAndPassesToTheMostDominant) {
   EXPECT_EQ(events[0].kind, EventKind::LeaderChange);
   EXPECT_EQ(events[0].agent, 2u);
   EXPECT_EQ(events[0].a, 0u) << "the group";
+}
+
+TEST(Phases, SteerWalksToTheTargetSlowsBeforeAStopAndLeavesOtherRowsAlone) {
+  // A 20 × 10 m room, no paths (each aims straight at its target), no neighbours, ORCA for all:
+  // row 0 walks 5 m to a target it does not stop at (its population wanders), row 1 is 0.2 m from
+  // its target with no goal left (it stops there), row 2 is done (no preferred velocity).
+  auto mesh = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)}, {}, nav::NavMeshConfig{});
+  ASSERT_TRUE(mesh.ok());
+  ScenarioDesc desc;
+  desc.populations.resize(2);
+  desc.populations[0].wander = true;
+  AgentStore a;
+  const std::vector<float> xs{5, 5, 5}, ys{2, 5, 8}, tx{10, 5.2f, 5}, ty{2, 5, 8};
+  for (std::size_t r = 0; r < 3; ++r) {
+    a.addRow();
+    a.id[r] = static_cast<std::uint32_t>(r);
+    a.population[r] = r == 0 ? 0 : 1;
+    a.posX[r] = xs[r];
+    a.posY[r] = ys[r];
+    a.targetX[r] = tx[r];
+    a.targetY[r] = ty[r];
+    a.speed[r] = 1.2f;
+    a.radius[r] = 0.25f;
+    a.goalState[r] = r == 2 ? GoalState::Done : GoalState::Seeking;
+  }
+  a.neighbours.assign(3 * desc.steering.maxNeighbours, 0);
+  a.neighbourCount.assign(3, 0);
+  const OneGroup goals(3);  // an empty goal list: every row is past its last goal
+  Walls walls;
+  walls.build(*mesh.value(), 4.0f);
+  auto orca = makeModel(ModelKind::Orca);
+  orca->configure(desc);
+  std::array<const OperationalModel*, kModelCount> models{};
+  models[static_cast<std::size_t>(ModelKind::Orca)] = orca.get();
+  std::vector<WorkerScratch> workers(1);
+  workers[0].query = std::make_unique<nav::NavQuery>(mesh.value());
+  workers[0].modelScratch[static_cast<std::size_t>(ModelKind::Orca)] = orca->makeScratch();
+  const ModelInput model{a, walls, desc, {}};
+  core::TaskSystem tasks(1);
+  const auto steerRows = [&](RowRange rows) {
+    const SteerInput in{desc.steering, desc.seed, desc.populations, desc.points, a.id, a.population, a.posX, a.posY, {},
+                        a.speed, a.targetX, a.targetY, a.goalState, {}, a.dynamicTarget, {}, {}, a.stuckTime,
+                        goals.view(), rows, models, model};
+    steer(in, SteerOutput{a.prefVelX, a.prefVelY, a.corners, {a.newVelX, a.newVelY}, workers}, tasks);
+  };
+  // Partitioned: only row 1 is steered; the others keep what they had.
+  a.prefVelX[0] = a.newVelX[0] = 9.0f;
+  const std::vector<std::uint32_t> owned{1};
+  steerRows(RowRange{owned.data(), 0, owned.size()});
+  EXPECT_NEAR(a.prefVelX[1], 0.2f / desc.steering.arrivalTime, 1e-5f) << "slows down over arrivalTime before its stop";
+  EXPECT_FLOAT_EQ(a.prefVelX[0], 9.0f);
+  EXPECT_FLOAT_EQ(a.newVelX[0], 9.0f);
+  // Every row.
+  steerRows(RowRange{nullptr, 0, 3});
+  EXPECT_FLOAT_EQ(a.prefVelX[0], 1.2f) << "full speed toward a target it walks on from";
+  EXPECT_FLOAT_EQ(a.prefVelY[0], 0.0f);
+  EXPECT_GT(a.newVelX[0], 0.0f) << "ORCA takes the preferred velocity up (nobody in the way)";
+  EXPECT_NEAR(a.newVelY[0], 0.0f, 1e-5f);
+  EXPECT_FLOAT_EQ(a.prefVelX[2], 0.0f);
+  EXPECT_FLOAT_EQ(a.prefVelY[2], 0.0f);
 }

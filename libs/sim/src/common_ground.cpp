@@ -9,13 +9,15 @@
 // Playing the scripts (run: entries, finishing, reunions) is in common_ground_play.cpp; the state
 // both read and write is CommonGroundState (common_ground_state.hpp).
 // Reads the scenario's social description and the agents; writes the agents' desires, the Scripted
-// agents' rows, the group table and the new coordinations. Serial parts visit rows in a fixed
+// agents' rows, the group table and the new coordinations (startCoordinations: CommonGroundInput,
+// CommonGroundOutput, group_pass.hpp). Serial parts visit rows in a fixed
 // order, so the result never depends on threads.
 #include <algorithm>
 #include <cmath>
 
 #include "throng/sim/animation.hpp"
 #include "throng/social/relations.hpp"
+#include "group_pass.hpp"
 #include "world_impl.hpp"
 
 namespace throng::sim {
@@ -41,6 +43,32 @@ core::Vec2 facingOf(float x, float y) {
   const core::Vec2 f{x, y};
   return core::lengthSq(f) > 0.0f ? core::normalize(f) : core::Vec2{1.0f, 0.0f};
 }
+
+/// startCoordinations' steps over its contexts (CommonGroundInput, CommonGroundOutput: group_pass.hpp).
+struct CoordinationStart {
+  const ScenarioDesc& desc;
+  std::uint64_t tick;
+  std::span<const std::uint32_t> rowOfId;
+  AgentStore& agents;
+  GroupTable& groups;
+  CommonGroundState& commonGround;
+  GoalWriter& goals;
+  std::vector<Event>& pendingEvents;
+
+  CoordinationStart(const CommonGroundInput& in, const CommonGroundOutput& out)
+      : desc(in.desc), tick(in.tick), rowOfId(in.rowOfId), agents(out.agents), groups(out.groups),
+        commonGround(out.state), goals(out.goals), pendingEvents(out.events) {}
+
+  void startCoordination(std::uint32_t row);
+  [[nodiscard]] std::vector<std::uint32_t> availableMates(const GroupState& g, std::uint32_t initiator) const;
+  [[nodiscard]] social::Goal coordinationGoal(std::uint32_t point, GoalTrigger trigger, const std::vector<std::uint32_t>& mates) const;
+  /// The grounding planner's script for A, B and the companions; false when it has none.
+  bool planGrounding(ActiveCoordination& c, std::uint32_t row, const std::vector<std::uint32_t>& mates,
+                     const social::Goal& goal, core::Vec2 destination, double now);
+  void planLoneVisit(ActiveCoordination& c, std::uint32_t row, const social::Goal& goal, core::Vec2 destination,
+                     double now) const;
+  void beginCoordination(ActiveCoordination c, bool alone, double now);
+};
 
 }  // namespace
 
@@ -110,14 +138,15 @@ void generateGoal(const DecideInput& in, const DecideOutput& out, std::size_t ro
   }
 }
 
-void World::Impl::startCoordinations() {
+void startCoordinations(const CommonGroundInput& in, const CommonGroundOutput& out, std::span<ChunkOutput> chunks) {
+  CoordinationStart start(in, out);
   for (ChunkOutput& chunk : chunks) {
-    for (const std::uint32_t row : chunk.desireRows) startCoordination(row);
+    for (const std::uint32_t row : chunk.desireRows) start.startCoordination(row);
     chunk.desireRows.clear();
   }
 }
 
-void World::Impl::startCoordination(std::uint32_t row) {
+void CoordinationStart::startCoordination(std::uint32_t row) {
   const std::uint32_t point = agents.desirePoint[row];
   const auto trigger = static_cast<GoalTrigger>(agents.desireTrigger[row]);
   agents.desirePoint[row] = kNoPoint;
@@ -130,7 +159,7 @@ void World::Impl::startCoordination(std::uint32_t row) {
   const std::vector<std::uint32_t> mates = availableMates(g, aId);
   social::Goal goal = coordinationGoal(point, trigger, mates);
   // x_s: a spot in the place's region (sub-regions spread visitors), on the navmesh.
-  goal.position = drawTarget(row, desc.points[point], *mainQuery);
+  goal.position = goals.drawTarget(row, desc.points[point]);
   const core::Vec2 destination{agents.targetX[row], agents.targetY[row]};
 
   ActiveCoordination c;
@@ -148,7 +177,7 @@ void World::Impl::startCoordination(std::uint32_t row) {
   beginCoordination(std::move(c), alone, now);
 }
 
-std::vector<std::uint32_t> World::Impl::availableMates(const GroupState& g, std::uint32_t initiator) const {
+std::vector<std::uint32_t> CoordinationStart::availableMates(const GroupState& g, std::uint32_t initiator) const {
   // Group mates that can take part: present, not busy at an action point or in another script.
   std::vector<std::uint32_t> mates;
   for (const std::uint32_t m : g.members) {
@@ -161,7 +190,7 @@ std::vector<std::uint32_t> World::Impl::availableMates(const GroupState& g, std:
   return mates;
 }
 
-social::Goal World::Impl::coordinationGoal(std::uint32_t point, GoalTrigger trigger, const std::vector<std::uint32_t>& mates) const {
+social::Goal CoordinationStart::coordinationGoal(std::uint32_t point, GoalTrigger trigger, const std::vector<std::uint32_t>& mates) const {
   // The goal: what the macro-plan rules read.
   const CommonGroundDesc& social = desc.social;
   const PointDesc& place = desc.points[point];
@@ -201,10 +230,10 @@ social::Body sensedBody(const AgentStore& agents, std::uint32_t r) {
 
 }  // namespace
 
-bool World::Impl::planGrounding(ActiveCoordination& c, std::uint32_t row, const std::vector<std::uint32_t>& mates,
+bool CoordinationStart::planGrounding(ActiveCoordination& c, std::uint32_t row, const std::vector<std::uint32_t>& mates,
                                 const social::Goal& goal, core::Vec2 destination, double now) {
   const CommonGroundDesc& social = desc.social;
-  const nav::NavQuery& query = *mainQuery;
+  const nav::NavQuery& query = goals.query;
   const core::Vec2 aPos{agents.posX[row], agents.posY[row]};
   const social::NavMeshOcclusion walls(query);
   const social::Body aBody = sensedBody(agents, row);
@@ -258,7 +287,7 @@ bool World::Impl::planGrounding(ActiveCoordination& c, std::uint32_t row, const 
   return true;
 }
 
-void World::Impl::planLoneVisit(ActiveCoordination& c, std::uint32_t row, const social::Goal& goal, core::Vec2 destination,
+void CoordinationStart::planLoneVisit(ActiveCoordination& c, std::uint32_t row, const social::Goal& goal, core::Vec2 destination,
                                 double now) const {
   // A lone visit: walk to the goal, stay the plan's visit duration, walk on (no grounding).
   const CommonGroundDesc& social = desc.social;
@@ -293,7 +322,7 @@ void World::Impl::planLoneVisit(ActiveCoordination& c, std::uint32_t row, const 
   c.record.outcome = CoordinationOutcome::Alone;
 }
 
-void World::Impl::beginCoordination(ActiveCoordination c, bool alone, double now) {
+void CoordinationStart::beginCoordination(ActiveCoordination c, bool alone, double now) {
   // Its record, its deadline, and every actor's row handed to the script.
   const std::uint32_t gid = c.record.group;
   GroupState& g = groups[gid];

@@ -5,12 +5,13 @@
 //     entry is published with its planned and actual times; divided groups reunite.
 // Goals and the start of coordinations (goal generator, grounding) are in common_ground.cpp.
 // Reads the active coordinations and the agents; writes the Scripted agents' rows, the group table
-// and the frame's script and coordination records. Serial parts visit rows and coordinations in a
+// and the frame's script and coordination records (runCoordinations, checkReunions:
+// CommonGroundInput, CommonGroundOutput, group_pass.hpp). Serial parts visit rows and coordinations in a
 // fixed order, so the result never depends on threads.
 #include <algorithm>
 #include <cmath>
 
-#include "world_impl.hpp"
+#include "group_pass.hpp"
 
 namespace throng::sim {
 namespace {
@@ -33,9 +34,37 @@ bool leavesScript(const social::ScriptEntry& e) {
          (e.behaviour == "resume" || e.behaviour == "walk_to_destination" || e.behaviour == "walk_to_next");
 }
 
+/// runCoordinations' steps over its contexts (CommonGroundInput, CommonGroundOutput: group_pass.hpp).
+struct CoordinationPlay {
+  const ScenarioDesc& desc;
+  std::uint64_t tick;
+  std::span<const std::uint32_t> rowOfId;
+  AgentStore& agents;
+  GroupTable& groups;
+  CommonGroundState& commonGround;
+  GoalWriter& goals;
+  std::vector<Event>& pendingEvents;
+
+  CoordinationPlay(const CommonGroundInput& in, const CommonGroundOutput& out)
+      : desc(in.desc), tick(in.tick), rowOfId(in.rowOfId), agents(out.agents), groups(out.groups),
+        commonGround(out.state), goals(out.goals), pendingEvents(out.events) {}
+
+  void playCoordination(ActiveCoordination& c, double now);
+  void playActor(ActiveCoordination& c, std::size_t actor, std::uint32_t row, double now);
+  /// Whether the actor's current entry is over (walks: arrived, stuck near, or given up; others:
+  /// their time is up); turns it toward the entry's target meanwhile.
+  bool entryComplete(ActiveCoordination& c, std::size_t actor, std::uint32_t row, const social::ScriptEntry& e, double now);
+  void turnToward(const ActiveCoordination& c, std::uint32_t row, const social::ScriptEntry& e);
+  void publishEntry(const ActiveCoordination& c, std::size_t actor, const social::ScriptEntry& e, double start, double duration);
+  /// The actor leaves the script and goes back to its group's navigation.
+  void leaveScript(ActiveCoordination& c, std::size_t actor);
+  void beginEntry(ActiveCoordination& c, std::size_t actor, std::size_t row, double now);
+  void finishCoordination(ActiveCoordination& c, double now);
+};
+
 }  // namespace
 
-void World::Impl::beginEntry(ActiveCoordination& c, std::size_t actor, std::size_t row, double now) {
+void CoordinationPlay::beginEntry(ActiveCoordination& c, std::size_t actor, std::size_t row, double now) {
   const social::ScriptEntry& e = c.script.actor(actor)[c.cursor[actor]];
   if (e.step == social::GroundingStep::Execute && c.record.executeTime <= 0.0 && actor == 0) c.record.executeTime = now;
   const core::Vec2 pos{agents.posX[row], agents.posY[row]};
@@ -60,7 +89,7 @@ void World::Impl::beginEntry(ActiveCoordination& c, std::size_t actor, std::size
         target = partner + away * static_cast<float>(desc.social.coordination.touchDistance);
       }
     }
-    if (auto hit = mainQuery->nearest(target, 3.0f)) target = hit->first;
+    if (auto hit = goals.query.nearest(target, 3.0f)) target = hit->first;
     agents.targetX[row] = target.x;
     agents.setTargetHeight(row, agents.height(row));
     agents.targetY[row] = target.y;
@@ -82,14 +111,15 @@ void World::Impl::beginEntry(ActiveCoordination& c, std::size_t actor, std::size
   }
 }
 
-void World::Impl::runCoordinations() {
-  const double now = static_cast<double>(tick) * desc.dt;
-  auto& active = commonGround.coordinations;
+void runCoordinations(const CommonGroundInput& in, const CommonGroundOutput& out) {
+  CoordinationPlay play(in, out);
+  const double now = static_cast<double>(in.tick) * in.desc.dt;
+  auto& active = out.state.coordinations;
   for (auto it = active.begin(); it != active.end();) {
     ActiveCoordination& c = it->second;
-    playCoordination(c, now);
+    play.playCoordination(c, now);
     if (std::all_of(c.left.begin(), c.left.end(), [](std::uint8_t l) { return l != 0; })) {
-      finishCoordination(c, now);
+      play.finishCoordination(c, now);
       it = active.erase(it);
     } else {
       ++it;
@@ -97,7 +127,7 @@ void World::Impl::runCoordinations() {
   }
 }
 
-void World::Impl::playCoordination(ActiveCoordination& c, double now) {
+void CoordinationPlay::playCoordination(ActiveCoordination& c, double now) {
   const bool overdue = now >= c.deadline;
   for (std::size_t i = 0; i < c.actors.size(); ++i) {
     if (c.left[i]) continue;
@@ -114,7 +144,7 @@ void World::Impl::playCoordination(ActiveCoordination& c, double now) {
   }
 }
 
-void World::Impl::publishEntry(const ActiveCoordination& c, std::size_t actor, const social::ScriptEntry& e, double start,
+void CoordinationPlay::publishEntry(const ActiveCoordination& c, std::size_t actor, const social::ScriptEntry& e, double start,
                                double duration) {
   ScriptRecord r;
   r.coordination = c.record.id;
@@ -138,7 +168,7 @@ void World::Impl::publishEntry(const ActiveCoordination& c, std::size_t actor, c
   commonGround.pendingScript.push_back(std::move(r));
 }
 
-void World::Impl::leaveScript(ActiveCoordination& c, std::size_t actor) {
+void CoordinationPlay::leaveScript(ActiveCoordination& c, std::size_t actor) {
   c.left[actor] = 1;
   const std::uint32_t row = c.actors[actor] < rowOfId.size() ? rowOfId[c.actors[actor]] : kNoRow;
   if (row == kNoRow) return;
@@ -150,7 +180,7 @@ void World::Impl::leaveScript(ActiveCoordination& c, std::size_t actor) {
     agents.visited[row].push_back(c.record.goalPoint);
   }
   // Back to the group's navigation, where the group is now.
-  setGoal(row, groups[agents.group[row]].cursor, *mainQuery);
+  goals.setGoal(row, groups[agents.group[row]].cursor);
 }
 
 namespace {
@@ -170,7 +200,7 @@ bool waitsForWalk(const ActiveCoordination& c, std::size_t actor, double until) 
 
 }  // namespace
 
-void World::Impl::playActor(ActiveCoordination& c, std::size_t i, std::uint32_t row, double now) {
+void CoordinationPlay::playActor(ActiveCoordination& c, std::size_t i, std::uint32_t row, double now) {
   const auto& entries = c.script.actor(i);
   while (!c.left[i]) {
     if (c.cursor[i] >= entries.size()) {
@@ -208,7 +238,7 @@ void World::Impl::playActor(ActiveCoordination& c, std::size_t i, std::uint32_t 
   }
 }
 
-bool World::Impl::entryComplete(ActiveCoordination& c, std::size_t i, std::uint32_t row, const social::ScriptEntry& e,
+bool CoordinationPlay::entryComplete(ActiveCoordination& c, std::size_t i, std::uint32_t row, const social::ScriptEntry& e,
                                 double now) {
   if (e.motion == social::kWalkMotion) {
     const float dx = agents.targetX[row] - agents.posX[row], dy = agents.targetY[row] - agents.posY[row];
@@ -225,7 +255,7 @@ bool World::Impl::entryComplete(ActiveCoordination& c, std::size_t i, std::uint3
   return complete;
 }
 
-void World::Impl::turnToward(const ActiveCoordination& c, std::uint32_t row, const social::ScriptEntry& e) {
+void CoordinationPlay::turnToward(const ActiveCoordination& c, std::uint32_t row, const social::ScriptEntry& e) {
   // Turn toward the target at the turning rate (turns, and clips aimed at something).
   const float turnStep = static_cast<float>(desc.social.coordination.turnRate * desc.dt);
   core::Vec2 aim = e.targetPoint;
@@ -244,7 +274,7 @@ void World::Impl::turnToward(const ActiveCoordination& c, std::uint32_t row, con
   agents.oriY[row] = std::sin(have + step);
 }
 
-void World::Impl::finishCoordination(ActiveCoordination& c, double now) {
+void CoordinationPlay::finishCoordination(ActiveCoordination& c, double now) {
   c.record.end = now;
   if (c.record.executeTime <= 0.0) c.record.executeTime = now;
   GroupExtra& x = groups.extraOf(groups[c.record.group]);
@@ -258,7 +288,10 @@ void World::Impl::finishCoordination(ActiveCoordination& c, double now) {
   commonGround.pendingCoordinations.push_back(std::move(c.record));
 }
 
-void World::Impl::checkReunions() {
+void checkReunions(const CommonGroundInput& in, const CommonGroundOutput& out) {
+  const std::span<const std::uint32_t> rowOfId = in.rowOfId;
+  const AgentStore& agents = out.agents;
+  GroupTable& groups = out.groups;
   for (const std::uint32_t gid : groups.busy()) {
     GroupState& g = groups[gid];
     GroupExtra& x = groups.extraOf(g);
@@ -277,13 +310,13 @@ void World::Impl::checkReunions() {
     }
     if (busy) continue;
     const core::Vec2 centroid = sum / static_cast<float>(g.members.size());
-    const float reach = 1.5f + desc.populations[g.population].groupSpacing * static_cast<float>(g.members.size()) * 0.5f;
+    const float reach = 1.5f + in.desc.populations[g.population].groupSpacing * static_cast<float>(g.members.size()) * 0.5f;
     const bool together = std::all_of(g.members.begin(), g.members.end(), [&](std::uint32_t id) {
       const std::uint32_t r = rowOfId[id];
       return core::lengthSq(core::Vec2{agents.posX[r], agents.posY[r]} - centroid) <= reach * reach;
     });
     if (!together) continue;
-    pendingEvents.push_back({tick, g.leader == kNoAgent ? g.members.front() : g.leader, EventKind::Reunited, gid, x.reunite});
+    out.events.push_back({in.tick, g.leader == kNoAgent ? g.members.front() : g.leader, EventKind::Reunited, gid, x.reunite});
     x.reunite = kNoAgent;
   }
 }

@@ -3,14 +3,16 @@
 // the current goal point of an agent, setting and advancing goals, drawing a target inside a goal's
 // region (sub-regions, §3.1.3) and releasing it, Bézier paths to it (§3.2.2), automatic goals
 // (§3.1.2) and the pending goal changes decide hands to the group pass. Serial code (the group pass
-// and spawning) writes goals; the parallel phases only read them (currentGoalPoint, stopsAtGoal)
-// through GoalView (phases.hpp), which World::Impl's helpers of the same names use too.
+// and spawning) writes goals through GoalWriter (goals.hpp), the points' sub-regions being
+// PointRegions; the parallel phases only read them (currentGoalPoint, stopsAtGoal) through GoalView
+// (phases.hpp), which World::Impl's helpers of the same names use too.
 #include <algorithm>
 #include <cmath>
 
 #include "throng/crowd/bezier_path.hpp"
 #include "throng/crowd/path_reconstruction.hpp"
 #include "throng/crowd/walkable.hpp"
+#include "goals.hpp"
 #include "world_impl.hpp"
 
 namespace throng::sim {
@@ -30,37 +32,36 @@ std::uint32_t GoalView::currentGoalPoint(std::size_t row) const {
   return cursor < goals.size() ? goals[cursor] : kNoPoint;
 }
 
-const std::vector<std::uint32_t>& World::Impl::activeGoals(const GroupState& g) const { return goalView().activeGoals(g); }
 std::uint32_t World::Impl::groupGoalPoint(const GroupState& g) const { return goalView().groupGoalPoint(g); }
 std::uint32_t World::Impl::currentGoalPoint(std::size_t row) const { return goalView().currentGoalPoint(row); }
 
-bool World::Impl::stopsAtGoal(std::size_t row) const {
-  const std::uint32_t point = currentGoalPoint(row);
-  if (point == kNoPoint) return !desc.populations[agents.population[row]].wander;  // done: stands there
-  const PointDesc& p = desc.points[point];
+bool stopsAtGoal(const GoalView& goals, std::span<const PointDesc> points, const PopulationDesc& pop, std::size_t row) {
+  const std::uint32_t point = goals.currentGoalPoint(row);
+  if (point == kNoPoint) return !pop.wander;  // done: stands there
+  const PointDesc& p = points[point];
   return p.kind == PointKind::Action && p.stop;
 }
 
-void World::Impl::addPointGeometry(const PointDesc& p) {
+void PointRegions::add(const PointDesc& p) {
   // Its bounds and its region's sub-regions (Musse et al. §3.1.3), with no one targeting them yet.
-  pointBounds.push_back(p.polygon.empty() ? core::Aabb{{p.position.x - p.radius, p.position.y - p.radius},
+  bounds.push_back(p.polygon.empty() ? core::Aabb{{p.position.x - p.radius, p.position.y - p.radius},
                                                        {p.position.x + p.radius, p.position.y + p.radius}}
                                           : core::bounds(p.polygon));
   const crowd::Region region = p.polygon.empty() ? crowd::Region::disc(p.position, p.radius) : crowd::Region::poly(p.polygon);
   std::vector<crowd::Subregion> subs = crowd::divideRegion(region);
   subregions.insert(subregions.end(), std::make_move_iterator(subs.begin()), std::make_move_iterator(subs.end()));
   subOffset.push_back(static_cast<std::uint32_t>(subregions.size()));
-  subOccupancy.resize(subregions.size(), 0);
+  occupancy.resize(subregions.size(), 0);
 }
 
-void World::Impl::releaseTarget(std::size_t row) {
+void GoalWriter::releaseTarget(std::size_t row) {
   if (agents.targetSub[row] >= 0) {
-    --subOccupancy[static_cast<std::size_t>(agents.targetSub[row])];
+    --regions.occupancy[static_cast<std::size_t>(agents.targetSub[row])];
     agents.targetSub[row] = -1;
   }
 }
 
-core::Vec2 World::Impl::drawTarget(std::size_t row, const PointDesc& point, const nav::NavQuery& query) {
+core::Vec2 GoalWriter::drawTarget(std::size_t row, const PointDesc& point) {
   // Sub-regions (Musse et al. §3.1.3): the target lies in a sub-region of the goal's region picked
   // by proximity and by how many agents already target it, so group members take similar but never
   // identical paths and spread over the region. Serial (group pass / spawning): occupancy is shared.
@@ -68,15 +69,15 @@ core::Vec2 World::Impl::drawTarget(std::size_t row, const PointDesc& point, cons
                 core::RngPurpose::Target);
   releaseTarget(row);
   const auto p = static_cast<std::size_t>(&point - desc.points.data());
-  const std::uint32_t first = subOffset[p], last = subOffset[p + 1];
+  const std::uint32_t first = regions.subOffset[p], last = regions.subOffset[p + 1];
   core::Vec2 target = point.position;
   if (last > first) {
-    const std::span<const crowd::Subregion> subs(subregions.data() + first, last - first);
-    const std::span<const std::uint32_t> occupancy(subOccupancy.data() + first, last - first);
+    const std::span<const crowd::Subregion> subs(regions.subregions.data() + first, last - first);
+    const std::span<const std::uint32_t> occupancy(regions.occupancy.data() + first, last - first);
     const std::size_t k = crowd::pickSubregion(subs, core::Vec2{agents.posX[row], agents.posY[row]}, occupancy, rng);
     target = crowd::samplePoint(subs[k], rng);
     agents.targetSub[row] = static_cast<std::int32_t>(first + k);
-    ++subOccupancy[first + k];
+    ++regions.occupancy[first + k];
   }
   if (agents.levels) {
     // Multi-level world: the point's height picks the floor the target is snapped onto.
@@ -90,27 +91,23 @@ core::Vec2 World::Impl::drawTarget(std::size_t row, const PointDesc& point, cons
   return target;
 }
 
-void World::Impl::advanceGoal(std::size_t row, const nav::NavQuery& query) {
-  setGoal(row, agents.goalCursor[row] + 1, query);
-}
-
-void World::Impl::setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQuery& query) {
+void GoalWriter::setGoal(std::size_t row, std::uint32_t cursor) {
   const GroupState& g = groups[agents.group[row]];
   const PopulationDesc& pop = desc.populations[g.population];
-  const std::vector<std::uint32_t>& goals = activeGoals(g);
+  const std::vector<std::uint32_t>& goals = view().activeGoals(g);
   agents.goalCursor[row] = cursor;
   agents.ticket[row] = 0;  // a path still queued for the old goal expires unread
   agents.dynamicTarget[row] = 0;
   agents.corners[row].clear();
   agents.progressDistance[row] = 1e30f;
   if (cursor < goals.size()) {
-    const core::Vec2 t = drawTarget(row, desc.points[goals[cursor]], query);
+    const core::Vec2 t = drawTarget(row, desc.points[goals[cursor]]);
     agents.targetX[row] = t.x;
     agents.targetY[row] = t.y;
     agents.needPath[row] = 1;
     agents.goalState[row] = GoalState::Seeking;
     agents.mode[row] = AgentMode::Walking;
-    if (pop.bezierPaths) bezierPath(row, query);
+    if (pop.bezierPaths) bezierPath(row);
   } else if (pop.wander) {
     // Random points of the walkable area; a flocking group shares one per release (its cursor).
     const bool together = g.flocks(pop) && g.expected >= 2;
@@ -146,24 +143,23 @@ void World::Impl::setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQ
   }
 }
 
-void World::Impl::applyPendingGoals() {
+void GoalWriter::applyPendingGoals(std::span<ChunkOutput> chunks) {
   // Rows flagged by decide, chunk by chunk: ascending row order, whatever the threads.
-  const nav::NavQuery& query = *mainQuery;
   for (ChunkOutput& c : chunks) {
     for (const std::uint32_t r : c.pendingRows) {
       const GoalPending pending = agents.goalPending[r];
       agents.goalPending[r] = GoalPending::None;
       if (pending == GoalPending::NextGoal) {
-        advanceGoal(r, query);
+        advanceGoal(r);
       } else if (pending == GoalPending::NextWanderTarget) {
-        setGoal(r, static_cast<std::uint32_t>(activeGoals(groups[agents.group[r]]).size()), query);
+        setGoal(r, static_cast<std::uint32_t>(view().activeGoals(groups[agents.group[r]]).size()));
       }
     }
     c.pendingRows.clear();
   }
 }
 
-void World::Impl::bezierPath(std::size_t row, const nav::NavQuery& query) {
+void GoalWriter::bezierPath(std::size_t row) {
   // Seek goal with a Bézier curve (Musse et al. §3.2.2), verified inside the walkable surface by
   // the control boxes' convex-hull property; where no curve fits, the navmesh path is used and the
   // fallback is recorded.
@@ -173,10 +169,10 @@ void World::Impl::bezierPath(std::size_t row, const nav::NavQuery& query) {
   core::Rng rng(desc.seed, (static_cast<std::uint64_t>(agents.id[row]) << 20) ^ agents.targetDraws[row],
                 core::RngPurpose::Behaviour);
   const auto curve = crowd::buildPath(from, to, walkable, crowd::BezierPathParams{}, rng);
-  const std::vector<std::uint32_t>& goals = activeGoals(groups[agents.group[row]]);
+  const std::vector<std::uint32_t>& goals = view().activeGoals(groups[agents.group[row]]);
   const std::uint32_t cursor = agents.goalCursor[row];
   if (!curve) {
-    pendingEvents.push_back({tick, agents.id[row], EventKind::PathFallback, cursor < goals.size() ? goals[cursor] : kNoPoint, 0});
+    events.push_back({tick, agents.id[row], EventKind::PathFallback, cursor < goals.size() ? goals[cursor] : kNoPoint, 0});
     return;  // needPath stays set: plan asks the navmesh
   }
   std::vector<core::Vec2> points;
@@ -186,7 +182,7 @@ void World::Impl::bezierPath(std::size_t row, const nav::NavQuery& query) {
   agents.needPath[row] = 0;
 }
 
-void World::Impl::reconstructGoals(std::uint32_t gid, core::Vec2 anchor) {
+void GoalWriter::reconstructGoals(std::uint32_t gid, core::Vec2 anchor) {
   // Paths automatic reconstruction (Musse et al. §3.1.2): a random final action point, a Bézier
   // curve from the group's initial position to it, and every interest point near the curve
   // becomes a goal on the way, in the order the curve passes them.
@@ -205,7 +201,7 @@ void World::Impl::reconstructGoals(std::uint32_t gid, core::Vec2 anchor) {
   if (actions.empty()) return;  // validation requires one; keep the explicit list otherwise
   core::Rng rng(desc.seed, gid, core::RngPurpose::Goal);
   const std::uint32_t final = actions[rng.uniformInt(0, static_cast<std::uint32_t>(actions.size() - 1))];
-  const crowd::NavMeshWalkable walkable(*mainQuery);
+  const crowd::NavMeshWalkable walkable(query);
   const auto path = crowd::reconstructPath(anchor, desc.points[final].position, regions, pop.autoNearDistance,
                                            crowd::ReconstructParams{}, rng, &walkable);
   std::vector<std::uint32_t> goals;
@@ -215,7 +211,7 @@ void World::Impl::reconstructGoals(std::uint32_t gid, core::Vec2 anchor) {
       if (goals.empty() || goals.back() != point) goals.push_back(point);
     }
   } else {
-    pendingEvents.push_back({tick, kNoAgent, EventKind::PathFallback, final, gid});
+    events.push_back({tick, kNoAgent, EventKind::PathFallback, final, gid});
   }
   goals.push_back(final);
   g.goalList = static_cast<std::uint32_t>(goalLists.size());

@@ -45,7 +45,7 @@ struct GroupExtra {
 /// One social group (Musse et al. §3.1.2: a crowd is a set of groups), indexed by the stable group
 /// id; written only by the serial group pass (groups.cpp) and by spawning. 40 bytes: what every
 /// group, even a lone agent's, needs; the rest is in its GroupExtra, if it has one. The shared
-/// walking speed of a flocking group is drawn again when needed (World::Impl::groupSpeed).
+/// walking speed of a flocking group is drawn again when needed (groupSpeed, group_pass.hpp).
 struct GroupState {
   MemberList members;                  ///< stable ids present in the world, ascending
   std::uint32_t expected = 0;          ///< members that will be spawned

@@ -4,10 +4,13 @@
 //   sociological effects (§3.2.1 iii) → the wait rule (flocking rule 4, §3.2.3) → leaders →
 //   formation (members walk abreast; the cohesion behind flocking rules 1–3).
 // Groups are visited in stable-id order and agents in row order, so the result never depends on
-// threads. Effects on agents go through setGoal/needPath; paths are then planned by `plan`. The
-// leader and formation steps are updateLeaders and formGroups, functions of their contexts
-// (LeaderInput/LeaderOutput, FormationInput/FormationOutput: phases.hpp); the other steps are
-// World::Impl's methods (they set goals through goals.cpp).
+// threads. Effects on agents go through GoalWriter::setGoal (goals.hpp) or their own columns
+// (dynamic targets, needPath); paths are then planned by `plan`. Every step but Common Ground's is a
+// function of its contexts: applyGroupCommands, updateGuidance, updateFollowing, applySocialEffects
+// and updateWaiting (…Input/…Output: group_pass.hpp), updateLeaders and formGroups (phases.hpp),
+// and Common Ground's startCoordinations, runCoordinations and checkReunions (CommonGroundInput,
+// CommonGroundOutput: group_pass.hpp; common_ground*.cpp). World::Impl::decideGroups builds the
+// contexts.
 #include <algorithm>
 #include <cmath>
 
@@ -57,23 +60,39 @@ void World::Impl::decideGroups(const core::TaskSystem& tasks) {
     for (std::size_t r = 0; r < agents.size(); ++r) rowOfId[agents.id[r]] = static_cast<std::uint32_t>(r);
     rowsChanged = false;
   }
-  applyPendingGoals();
-  applyGroupCommands();
+  GoalWriter goals = goalWriter();
+  goals.applyPendingGoals(chunks);
+  applyGroupCommands(commands, groups);
+  commands.clear();
+  const CommonGroundInput commonGroundIn{desc, tick, rowOfId};
+  const CommonGroundOutput commonGroundOut{agents, groups, commonGround, goals, pendingEvents};
   if (desc.social.enabled) {
-    startCoordinations();
-    runCoordinations();
+    startCoordinations(commonGroundIn, commonGroundOut, chunks);
+    runCoordinations(commonGroundIn, commonGroundOut);
   }
   groups.refreshBusy();
-  updateGuidance();
-  updateFollowing();
-  if (anySociological) applySocialEffects();
-  updateWaiting();
-  if (desc.social.enabled) checkReunions();
+  const auto dt = desc.dt;
+  updateGuidance(GuidanceInput{desc.populations, dt, tick, rowOfId},
+                 GuidanceOutput{groups, agents.goalState, agents.mode, agents.targetX, agents.targetY, agents.targetZ,
+                                agents.dynamicTarget, agents.needPath, agents.corners, goals, pendingEvents});
+  updateFollowing(FollowingInput{desc.populations, desc.seed, dt, tick, rowOfId, agents.goalState},
+                  FollowingOutput{groups, goals, pendingEvents});
+  if (anySociological) {
+    const SocialEffectsInput in{desc, tick, rowOfId, agents.id, agents.population, agents.posX, agents.posY,
+                                agents.posZ, agents.sociologicalOther, agents.goalCursor};
+    applySocialEffects(in, SocialEffectsOutput{groups, agents.followAgent, agents.followUntil, agents.sociologicalEffect,
+                                               agents.group, agents.groupSize, agents.speed, agents.targetX, agents.targetY,
+                                               agents.targetZ, agents.dynamicTarget, agents.needPath, agents.goalState,
+                                               agents.mode, goals, pendingEvents});
+  }
+  updateWaiting(WaitingInput{desc.populations, dt, tick, rowOfId, agents.goalCursor, agents.goalState},
+                WaitingOutput{groups, goals, pendingEvents});
+  if (desc.social.enabled) checkReunions(commonGroundIn, commonGroundOut);
   updateLeaders();
   updateGroupShapes(tasks);
 }
 
-void World::Impl::applyGroupCommands() {
+void applyGroupCommands(std::span<const GroupCommand> commands, GroupTable& groups) {
   for (const GroupCommand& c : commands) {
     GroupRoute& x = groups.routeFor(c.group);
     if (c.guide) {
@@ -84,205 +103,227 @@ void World::Impl::applyGroupCommands() {
       x.guidedByApi = false;
     }
   }
-  commands.clear();
 }
 
-void World::Impl::updateGuidance() {
-  const nav::NavQuery& query = *mainQuery;
-  const float now = static_cast<float>(static_cast<double>(tick) * desc.dt);
-  for (const std::uint32_t gid : groups.busy()) {
-    GroupState& g = groups[gid];
-    if (!groups.hasRoute(g)) continue;  // never guided
-    GroupRoute& x = groups.routeFor(gid);
-    const GroupExtra& shape = groups.extraOf(g);
-    const PopulationDesc& pop = desc.populations[g.population];
-    const GuideDesc& script = pop.guide;
-    bool guided = x.guidedByApi;
-    if (!guided && !script.script.empty() && now >= script.script.front().time && (script.release < 0.0f || now < script.release)) {
-      guided = true;
-      const GuideWaypoint at = interpolateGuide(script.script, now);
-      x.guide = at.position;
-      x.guideHeight = at.height;
-    }
-    if (guided != g.guided) {
-      g.guided = guided;
-      const std::uint32_t leader = g.leader == kNoAgent ? 0 : g.leader;
-      pendingEvents.push_back({tick, leader, guided ? EventKind::GuideStart : EventKind::GuideEnd, gid, 0});
-      x.guidePlanned = {1e30f, 1e30f};
-      if (!guided) {
-        // Guidance over: back to the group's own goals, where it left them.
-        for (std::uint32_t id : g.members) {
-          const std::uint32_t r = rowOfId[id];
-          if (agents.goalState[r] != GoalState::Exited && !holdsOwnTarget(agents.goalState[r])) setGoal(r, g.cursor, query);
-        }
-      }
-    }
+namespace {
+
+/// Whether a member's goal may be set by its group (not gone, not holding a target of its own).
+bool groupSetsGoal(GoalState s) { return s != GoalState::Exited && !holdsOwnTarget(s); }
+
+/// A member's dynamic target: `target` snapped onto the navmesh (onto the guide's floor on a
+/// multi-level world), approached slowing down.
+void setDynamicTarget(const GuidanceOutput& out, std::uint32_t r, core::Vec2 target, float guideHeight) {
+  const nav::NavQuery& query = out.goals.query;
+  if (!out.targetZ.empty()) {
+    const auto hit = query.snap(target, guideHeight, 3.0f);
+    if (hit) target = hit->p;
+    out.targetZ[r] = hit ? hit->height : guideHeight;
+  } else if (auto hit = query.nearest(target, 3.0f)) {
+    target = hit->first;
+  }
+  out.targetX[r] = target.x;
+  out.targetY[r] = target.y;
+  out.dynamicTarget[r] = 1;
+  out.goalState[r] = GoalState::Seeking;
+  out.mode[r] = AgentMode::Walking;
+  out.needPath[r] = 1;
+  out.corners[r].clear();
+}
+
+/// Whether group `gid` is guided now (by the API, or by its population's script — which then
+/// moves the guide); on a change, the event, and when guidance ends its members go back to the
+/// group's own goals where they left them.
+void updateGuided(const GuidanceInput& in, const GuidanceOutput& out, std::uint32_t gid, float now) {
+  GroupState& g = out.groups[gid];
+  GroupRoute& x = out.groups.routeFor(gid);
+  const GuideDesc& script = in.populations[g.population].guide;
+  bool guided = x.guidedByApi;
+  if (!guided && !script.script.empty() && now >= script.script.front().time && (script.release < 0.0f || now < script.release)) {
+    guided = true;
+    const GuideWaypoint at = interpolateGuide(script.script, now);
+    x.guide = at.position;
+    x.guideHeight = at.height;
+  }
+  if (guided == g.guided) return;
+  g.guided = guided;
+  const std::uint32_t leader = g.leader == kNoAgent ? 0 : g.leader;
+  out.events.push_back({in.tick, leader, guided ? EventKind::GuideStart : EventKind::GuideEnd, gid, 0});
+  x.guidePlanned = {1e30f, 1e30f};
+  if (guided) return;
+  for (std::uint32_t id : g.members) {
+    const std::uint32_t r = in.rowOfId[id];
+    if (groupSetsGoal(out.goalState[r])) out.goals.setGoal(r, g.cursor);
+  }
+}
+
+}  // namespace
+
+void updateGuidance(const GuidanceInput& in, const GuidanceOutput& out) {
+  const float now = static_cast<float>(static_cast<double>(in.tick) * in.dt);
+  for (const std::uint32_t gid : out.groups.busy()) {
+    const GroupState& g = out.groups[gid];
+    if (!out.groups.hasRoute(g)) continue;  // never guided
+    updateGuided(in, out, gid, now);
     if (!g.guided || g.members.empty()) continue;
+    GroupRoute& x = out.groups.routeFor(gid);
     if (core::lengthSq(x.guide - x.guidePlanned) < kGuideReplan * kGuideReplan) continue;
     // Dynamic goal: a spot `distance` behind the guide (on the side the group comes from), one
     // lateral slot per member so they stand beside each other.
     x.guidePlanned = x.guide;
+    const GroupExtra& shape = out.groups.extraOf(g);
+    const PopulationDesc& pop = in.populations[g.population];
     core::Vec2 back = core::normalize(shape.centroid - x.guide);
     if (core::lengthSq(back) == 0.0f) back = -shape.heading;
     const core::Vec2 lateral = core::perp(back);
     const float n = static_cast<float>(g.members.size());
     for (std::size_t i = 0; i < g.members.size(); ++i) {
-      const std::uint32_t r = rowOfId[g.members[i]];
-      if (agents.goalState[r] == GoalState::Exited || holdsOwnTarget(agents.goalState[r])) continue;
+      const std::uint32_t r = in.rowOfId[g.members[i]];
+      if (!groupSetsGoal(out.goalState[r])) continue;
       const float slot = (static_cast<float>(i) - 0.5f * (n - 1.0f)) * pop.groupSpacing;
-      core::Vec2 target = x.guide + back * script.distance + lateral * slot;
-      if (agents.levels) {
-        const auto hit = query.snap(target, x.guideHeight, 3.0f);
-        if (hit) target = hit->p;
-        agents.targetZ[r] = hit ? hit->height : x.guideHeight;
-      } else if (auto hit = query.nearest(target, 3.0f)) {
-        target = hit->first;
-      }
-      agents.targetX[r] = target.x;
-      agents.targetY[r] = target.y;
-      agents.dynamicTarget[r] = 1;
-      agents.goalState[r] = GoalState::Seeking;
-      agents.mode[r] = AgentMode::Walking;
-      agents.needPath[r] = 1;
-      agents.corners[r].clear();
+      setDynamicTarget(out, r, x.guide + back * pop.guide.distance + lateral * slot, x.guideHeight);
     }
   }
 }
 
-void World::Impl::updateFollowing() {
-  const nav::NavQuery& query = *mainQuery;
+void updateFollowing(const FollowingInput& in, const FollowingOutput& out) {
+  GroupTable& groups = out.groups;
   for (const std::uint32_t gid : groups.busy()) {
     GroupState& g = groups[gid];
     if (!groups.hasRoute(g)) continue;  // follows nobody
     GroupRoute& x = groups.routeFor(gid);
     if (x.followGroup == kNoGroup || g.guided) continue;
-    const FollowDesc& f = desc.populations[g.population].follow;
+    const FollowDesc& f = in.populations[g.population].follow;
     const GroupState& leader = groups[x.followGroup];
     bool following = g.following;
     if (f.mode == FollowMode::Permanent) {
       following = !leader.members.empty() || leader.cursor > 0;
-    } else if (tick >= x.followToggle) {
+    } else if (in.tick >= x.followToggle) {
       // Temporary following: alternate periods on and off, lengths drawn per group and period.
-      core::Rng rng(desc.seed, (static_cast<std::uint64_t>(gid) << 24) ^ tick, core::RngPurpose::Behaviour);
+      core::Rng rng(in.seed, (static_cast<std::uint64_t>(gid) << 24) ^ in.tick, core::RngPurpose::Behaviour);
       following = !g.following && (!leader.members.empty() || leader.cursor > 0);
       const float lo = following ? f.onMin : f.offMin, hi = following ? f.onMax : f.offMax;
-      x.followToggle = static_cast<std::uint32_t>(tick + static_cast<std::uint64_t>(std::lround(rng.uniform(lo, hi) / desc.dt)));
+      x.followToggle = static_cast<std::uint32_t>(in.tick + static_cast<std::uint64_t>(std::lround(rng.uniform(lo, hi) / in.dt)));
     }
-    if (following != g.following) {
-      const std::uint32_t who = g.leader == kNoAgent ? 0 : g.leader;
-      pendingEvents.push_back({tick, who, following ? EventKind::FollowStart : EventKind::FollowEnd, gid, x.followGroup});
-      if (following) {
-        // Adopt the followed group's goal list from where that group is now.
-        x.ownCursor = g.cursor;
-        g.following = true;
-        g.cursor = leader.cursor;
-        groups.extraOf(g).waiting = false;
-        for (std::uint32_t id : g.members) {
-          const std::uint32_t r = rowOfId[id];
-          if (agents.goalState[r] != GoalState::Exited && !holdsOwnTarget(agents.goalState[r])) setGoal(r, g.cursor, query);
-        }
-      } else {
-        g.following = false;
-        g.cursor = x.ownCursor;
-        groups.extraOf(g).waiting = false;
-        for (std::uint32_t id : g.members) {
-          const std::uint32_t r = rowOfId[id];
-          if (agents.goalState[r] != GoalState::Exited && !holdsOwnTarget(agents.goalState[r])) setGoal(r, g.cursor, query);
-        }
-      }
+    if (following == g.following) continue;
+    const std::uint32_t who = g.leader == kNoAgent ? 0 : g.leader;
+    out.events.push_back({in.tick, who, following ? EventKind::FollowStart : EventKind::FollowEnd, gid, x.followGroup});
+    if (following) {
+      // Adopt the followed group's goal list from where that group is now.
+      x.ownCursor = g.cursor;
+      g.following = true;
+      g.cursor = leader.cursor;
+    } else {
+      g.following = false;
+      g.cursor = x.ownCursor;
+    }
+    groups.extraOf(g).waiting = false;
+    for (std::uint32_t id : g.members) {
+      const std::uint32_t r = in.rowOfId[id];
+      if (groupSetsGoal(in.goalState[r])) out.goals.setGoal(r, g.cursor);
     }
   }
 }
 
-void World::Impl::applySocialEffects() {
-  const nav::NavQuery& query = *mainQuery;
-  for (std::size_t r = 0; r < agents.size(); ++r) {
-    if (agents.followAgent[r] == kNoAgent && agents.sociologicalEffect[r] == SocialEffect::None) continue;
-    // Ongoing following of another agent: chase it, end it when time is up or it left.
-    if (agents.followAgent[r] != kNoAgent) {
-      const std::uint32_t other = agents.followAgent[r] < rowOfId.size() ? rowOfId[agents.followAgent[r]] : kNoRow;
-      if (other == kNoRow || tick >= agents.followUntil[r] || agents.goalState[r] == GoalState::Exited) {
-        pendingEvents.push_back({tick, agents.id[r], EventKind::FollowAgentEnd, agents.followAgent[r], 0});
-        agents.followAgent[r] = kNoAgent;
-        if (agents.goalState[r] != GoalState::Exited) setGoal(r, agents.goalCursor[r], query);
-      } else {
-        const core::Vec2 them{agents.posX[other], agents.posY[other]};
-        const core::Vec2 me{agents.posX[r], agents.posY[r]};
-        const core::Vec2 target = them + core::normalize(me - them) * kFollowAgentGap;
-        if (core::lengthSq(target - core::Vec2{agents.targetX[r], agents.targetY[r]}) > 1.0f) {
-          agents.targetX[r] = target.x;
-          agents.targetY[r] = target.y;
-          agents.setTargetHeight(r, agents.height(other));
-          agents.dynamicTarget[r] = 1;
-          agents.needPath[r] = 1;
-        }
-      }
-    }
-    const SocialEffect effect = agents.sociologicalEffect[r];
+namespace {
+
+/// Row r's ongoing following of another agent: chase it; end it when time is up or it left.
+void chaseFollowed(const SocialEffectsInput& in, const SocialEffectsOutput& out, std::uint32_t r) {
+  const std::uint32_t other = out.followAgent[r] < in.rowOfId.size() ? in.rowOfId[out.followAgent[r]] : kNoRow;
+  if (other == kNoRow || in.tick >= out.followUntil[r] || out.goalState[r] == GoalState::Exited) {
+    out.events.push_back({in.tick, in.id[r], EventKind::FollowAgentEnd, out.followAgent[r], 0});
+    out.followAgent[r] = kNoAgent;
+    if (out.goalState[r] != GoalState::Exited) out.goals.setGoal(r, in.goalCursor[r]);
+    return;
+  }
+  const core::Vec2 them{in.posX[other], in.posY[other]};
+  const core::Vec2 me{in.posX[r], in.posY[r]};
+  const core::Vec2 target = them + core::normalize(me - them) * kFollowAgentGap;
+  if (core::lengthSq(target - core::Vec2{out.targetX[r], out.targetY[r]}) <= 1.0f) return;
+  out.targetX[r] = target.x;
+  out.targetY[r] = target.y;
+  if (!out.targetZ.empty()) out.targetZ[r] = in.posZ[other];
+  out.dynamicTarget[r] = 1;
+  out.needPath[r] = 1;
+}
+
+/// Row r joins the group of row `other`: adopts its goals and speed.
+void joinGroup(const SocialEffectsInput& in, const SocialEffectsOutput& out, std::uint32_t r, std::uint32_t other) {
+  GroupTable& groups = out.groups;
+  const std::uint32_t from = out.group[r], to = out.group[other];
+  if (from == to || groups[to].guided) return;
+  const std::uint32_t id = in.id[r];
+  groups[from].members.erase(id);
+  if (groups[from].leader == id) groups[from].leader = groups[from].members.empty() ? kNoAgent : groups[from].members.front();
+  auto& members = groups[to].members;
+  members.insert(std::upper_bound(members.begin(), members.end(), id), id);
+  out.group[r] = to;
+  out.groupSize[r] = static_cast<std::uint16_t>(std::min<std::size_t>(members.size(), 0xffff));
+  groups.markBusy(to);
+  if (groups[to].flocks(in.desc.populations[groups[to].population])) out.speed[r] = groupSpeed(in.desc, groups, to);
+  out.events.push_back({in.tick, id, EventKind::JoinGroup, from, to});
+  if (out.goalState[r] != GoalState::Acting) out.goals.setGoal(r, groups[to].cursor);
+}
+
+}  // namespace
+
+void applySocialEffects(const SocialEffectsInput& in, const SocialEffectsOutput& out) {
+  const std::size_t n = in.id.size();
+  for (std::uint32_t r = 0; r < n; ++r) {
+    if (out.followAgent[r] == kNoAgent && out.sociologicalEffect[r] == SocialEffect::None) continue;
+    if (out.followAgent[r] != kNoAgent) chaseFollowed(in, out, r);
+    const SocialEffect effect = out.sociologicalEffect[r];
     if (effect == SocialEffect::None) continue;
-    agents.sociologicalEffect[r] = SocialEffect::None;
-    const std::uint32_t other = agents.sociologicalOther[r] < rowOfId.size() ? rowOfId[agents.sociologicalOther[r]] : kNoAgent;
+    out.sociologicalEffect[r] = SocialEffect::None;
+    const std::uint32_t other = in.sociologicalOther[r] < in.rowOfId.size() ? in.rowOfId[in.sociologicalOther[r]] : kNoAgent;
     if (other == kNoRow) continue;
-    const SociologicalDesc& social = desc.populations[agents.population[r]].sociological;
     if (effect == SocialEffect::JoinGroup) {
-      // Join the other agent's group: adopt its goals and speed.
-      const std::uint32_t from = agents.group[r], to = agents.group[other];
-      if (from == to || groups[to].guided) continue;
-      groups[from].members.erase(agents.id[r]);
-      if (groups[from].leader == agents.id[r]) groups[from].leader = groups[from].members.empty() ? kNoAgent : groups[from].members.front();
-      auto& members = groups[to].members;
-      members.insert(std::upper_bound(members.begin(), members.end(), agents.id[r]), agents.id[r]);
-      agents.group[r] = to;
-      agents.groupSize[r] = static_cast<std::uint16_t>(std::min<std::size_t>(members.size(), 0xffff));
-      groups.markBusy(to);
-      if (groups[to].flocks(desc.populations[groups[to].population])) agents.speed[r] = groupSpeed(to);
-      pendingEvents.push_back({tick, agents.id[r], EventKind::JoinGroup, from, to});
-      if (agents.goalState[r] != GoalState::Acting) setGoal(r, groups[to].cursor, query);
+      joinGroup(in, out, r, other);
     } else if (effect == SocialEffect::FollowAgent) {
-      agents.followAgent[r] = agents.id[other];
-      agents.followUntil[r] = static_cast<std::uint32_t>(tick + static_cast<std::uint64_t>(std::lround(social.followDuration / desc.dt)));
-      agents.goalState[r] = GoalState::Seeking;
-      agents.mode[r] = AgentMode::Walking;
-      pendingEvents.push_back({tick, agents.id[r], EventKind::FollowAgent, agents.id[other], 0});
+      const SociologicalDesc& social = in.desc.populations[in.population[r]].sociological;
+      out.followAgent[r] = in.id[other];
+      out.followUntil[r] = static_cast<std::uint32_t>(in.tick + static_cast<std::uint64_t>(std::lround(social.followDuration / in.desc.dt)));
+      out.goalState[r] = GoalState::Seeking;
+      out.mode[r] = AgentMode::Walking;
+      out.events.push_back({in.tick, in.id[r], EventKind::FollowAgent, in.id[other], 0});
     }
   }
 }
 
-void World::Impl::updateWaiting() {
-  const nav::NavQuery& query = *mainQuery;
+void updateWaiting(const WaitingInput& in, const WaitingOutput& out) {
+  GroupTable& groups = out.groups;
   for (const std::uint32_t gid : groups.busy()) {
     GroupState& g = groups[gid];
     GroupExtra& x = groups.extraOf(g);
-    const PopulationDesc& pop = desc.populations[g.population];
+    const PopulationDesc& pop = in.populations[g.population];
     if (x.coordination != kNoIndex) continue;  // members are playing a script: nobody waits or leaves
     if (!g.flocks(pop) || g.guided) {
       // Without flocking the group's position in its goal list is its leader's.
-      if (g.leader != kNoAgent && rowOfId[g.leader] != kNoRow) g.cursor = agents.goalCursor[rowOfId[g.leader]];
+      if (g.leader != kNoAgent && in.rowOfId[g.leader] != kNoRow) g.cursor = in.goalCursor[in.rowOfId[g.leader]];
       continue;
     }
     std::uint32_t waiting = 0;
-    for (std::uint32_t id : g.members) waiting += agents.goalState[rowOfId[id]] == GoalState::WaitingForGroup;
+    for (std::uint32_t id : g.members) waiting += in.goalState[in.rowOfId[id]] == GoalState::WaitingForGroup;
     if (waiting == 0) continue;
-    const std::uint32_t point = groupGoalPoint(g);
+    const std::uint32_t point = out.goals.view().groupGoalPoint(g);
     if (!x.waiting) {
       x.waiting = true;
-      x.waitStart = static_cast<std::uint32_t>(tick);
-      pendingEvents.push_back({tick, g.members.front(), EventKind::GroupWaitStart, point, gid});
+      x.waitStart = static_cast<std::uint32_t>(in.tick);
+      out.events.push_back({in.tick, g.members.front(), EventKind::GroupWaitStart, point, gid});
     }
     const bool everyone = waiting == g.members.size();
-    const bool timedOut = static_cast<double>(tick - x.waitStart) * desc.dt >= pop.waitTimeout;
+    const bool timedOut = static_cast<double>(in.tick - x.waitStart) * in.dt >= pop.waitTimeout;
     if (!everyone && !timedOut) continue;
     // A following group never overtakes: it leaves a goal only once the followed group has left it.
     const std::uint32_t followed = groups.routeOf(g).followGroup;
     if (g.following && !groups[followed].members.empty() && groups[followed].cursor <= g.cursor) continue;
     const std::uint32_t missing = static_cast<std::uint32_t>(g.expected > waiting ? g.expected - waiting : 0);
-    pendingEvents.push_back({tick, g.members.front(), everyone ? EventKind::GroupRelease : EventKind::GroupTimeout, point,
-                             everyone ? gid : missing});
+    out.events.push_back({in.tick, g.members.front(), everyone ? EventKind::GroupRelease : EventKind::GroupTimeout, point,
+                          everyone ? gid : missing});
     x.waiting = false;
     ++g.cursor;
     for (std::uint32_t id : g.members) {
-      const std::uint32_t r = rowOfId[id];
-      if (agents.goalState[r] == GoalState::WaitingForGroup) setGoal(r, g.cursor, query);
+      const std::uint32_t r = in.rowOfId[id];
+      if (in.goalState[r] == GoalState::WaitingForGroup) out.goals.setGoal(r, g.cursor);
     }
   }
 }

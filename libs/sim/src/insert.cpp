@@ -178,7 +178,7 @@ void World::Impl::insertCrowdNow(CrowdState& c) {
   // Points: geometry, sub-regions, clips, categories.
   for (const PointDesc& p : cd.points) {
     desc.points.push_back(p);
-    addPointGeometry(p);
+    pointRegions.add(p);
   }
   pointClip = pointClips(desc);  // the crowd's actions are the world's (checkCrowd): old indices stay
   commonGround.addPoints(desc.points, firstPoint);
@@ -213,13 +213,14 @@ void World::Impl::removeCrowdNow(CrowdState& c) {
   }
   std::vector<std::uint8_t> keep(agents.size(), 1);
   bool any = false;
+  GoalWriter goals = goalWriter();
   for (std::size_t r = 0; r < agents.size(); ++r) {
     if (agents.population[r] < first || agents.population[r] >= last) continue;
     keep[r] = 0;
     any = true;
     pendingEvents.push_back({tick, agents.id[r], EventKind::Exit, kNoPoint, c.info.index});
     ++stats.removed;
-    releaseTarget(r);
+    goals.releaseTarget(r);
     GroupState& g = groups[agents.group[r]];
     g.members.erase(agents.id[r]);
     if (g.leader == agents.id[r]) g.leader = g.members.empty() ? kNoAgent : g.members.front();

@@ -6,11 +6,12 @@
 // World::Impl:
 //   sense      SenseInput, SenseOutput          sense.cpp
 //   decide     DecideInput, DecideOutput        decide.cpp (+ generateGoal, common_ground.cpp);
-//              then the group pass (World::Impl::decideGroups, groups.cpp), whose last steps
-//              are updateLeaders(LeaderInput, LeaderOutput), formGroups(FormationInput, FormationOutput)
+//              then the group pass (World::Impl::decideGroups, groups.cpp): its serial steps'
+//              contexts are in group_pass.hpp, its last steps here: updateLeaders(LeaderInput,
+//              LeaderOutput), formGroups(FormationInput, FormationOutput)
 //   plan       PlanInput, PlanOutput            plan.cpp
+//   steer      SteerInput, SteerOutput          steer.cpp (the models: ModelInput / VelocityOutput)
 //   integrate  IntegrateInput, IntegrateOutput  integrate.cpp
-// (steer is World::Impl::steer, steer.cpp; its model part is ModelInput / VelocityOutput.)
 // Also here: what the parallel phases share — the per-worker scratch, the per-chunk outputs and
 // their grain — and the read-only view of where agents are going (GoalView, goals.cpp).
 // Optional columns (AgentStore's column groups: levels, Common Ground, …) are passed as empty spans
@@ -73,6 +74,11 @@ struct GoalView {
   /// The point `row` is heading for (from its group's active goal list), kNoPoint past the last.
   [[nodiscard]] std::uint32_t currentGoalPoint(std::size_t row) const;
 };
+
+/// Whether `row` (of population `pop`) stops at the end of its current path — an action point's
+/// stop, or its last goal when it does not wander —, so it slows down on the last leg (goals.cpp).
+[[nodiscard]] bool stopsAtGoal(const GoalView& goals, std::span<const PointDesc> points, const PopulationDesc& pop,
+                               std::size_t row);
 
 /// Whether (x, y) lies inside a point's region (its disc, or its polygon).
 [[nodiscard]] bool insideRegion(const PointDesc& point, float x, float y);
@@ -202,6 +208,46 @@ inline constexpr int kPathIterationsPerTick = 20000;
 
 /// Queues the rows that need a path, spends the tick's budget, hands finished paths to their rows.
 void plan(const PlanInput& in, const PlanOutput& out);
+
+// ---- steer (steer.cpp): every agent's preferred velocity, then its population's avoidance model
+// (parallel; each row writes only its own entries). With a partition (partition.hpp) only the rows
+// this rank owns.
+
+struct SteerInput {
+  const SteeringDesc& steering;  ///< cornerReach, levelLookAhead, arrivalTime, formationSpeedUp, stuckPatience, stuckAttempt
+  std::uint64_t seed;            ///< deadlock breaking's draws
+  std::span<const PopulationDesc> populations;  ///< wander (stopping at the last goal), model.kind
+  std::span<const PointDesc> points;            ///< an action point's stop
+  std::span<const std::uint32_t> id;
+  std::span<const std::uint16_t> population;
+  std::span<const float> posX, posY;
+  std::span<const float> posZ;                  ///< floor heights; empty on a flat world
+  std::span<const float> speed;                 ///< desired walking speed [m/s]
+  std::span<const float> targetX, targetY;
+  std::span<const GoalState> goalState;
+  std::span<const std::uint8_t> scriptWalk;     ///< Common Ground scripts; empty without them
+  std::span<const std::uint8_t> dynamicTarget;  ///< approached slowing down
+  std::span<const float> formVelX, formVelY;    ///< the group pass's formation corrections; empty when nobody flocks
+  std::span<const float> stuckTime;             ///< [s] (deadlock breaking)
+  GoalView goals;                               ///< the goal point (does the path end in a stop?)
+  RowRange rows;                                ///< the rows to steer: every row, or the partition's owned rows
+  /// Per ModelKind: the model (null: no population walks with it).
+  std::span<const OperationalModel* const> models;
+  /// What the models read: every column — prefVel included, written by the first part of steer —,
+  /// the walls, the scenario, the viewers.
+  const ModelInput& model;
+};
+
+struct SteerOutput {
+  std::span<float> prefVelX, prefVelY;  ///< the preferred velocity [m/s]
+  std::span<CornerPath> corners;        ///< the corner walked to (CornerPath::index) moves on
+  VelocityOutput newVel;                ///< the models' velocities [m/s], committed by integrate
+  std::span<WorkerScratch> workers;     ///< per-worker navmesh queries (sight lines) and model scratch
+};
+
+/// Every row's preferred velocity (path corners, arrival, formation, deadlock breaking), then, for
+/// runs of consecutive rows walking with the same model, that model's computeVelocities.
+void steer(const SteerInput& in, const SteerOutput& out, const core::TaskSystem& tasks);
 
 // ---- integrate (integrate.cpp): commits the models' velocities (parallel; each row writes its own).
 

@@ -81,7 +81,7 @@ std::uint32_t World::Impl::registerGroups(std::uint32_t firstPopulation) {
   return scheduled;
 }
 
-float World::Impl::groupSpeed(std::uint32_t gid) const {
+float groupSpeed(const ScenarioDesc& desc, const GroupTable& groups, std::uint32_t gid) {
   const PopulationDesc& pop = desc.populations[groups[gid].population];
   core::Rng speedRng(desc.seed, gid, core::RngPurpose::Speed);
   const double v = pop.speedSd > 0 ? speedRng.normal(pop.speedMean, pop.speedSd) : pop.speedMean;
@@ -206,13 +206,14 @@ void World::Impl::addSpawnedAgents(const SpawnPlan& plan) {
   const PopulationDesc& pop = desc.populations[populationIndex];
   spawner.spawned[populationIndex] = 1;
   const nav::NavQuery& query = *mainQuery;
+  GoalWriter goals = goalWriter();
   const std::vector<std::uint32_t>& sizes = spawner.groupSizes[populationIndex];
   const float spawnHeight = pop.spawn.kind == SpawnKind::Point ? desc.points[pop.spawn.point].height : pop.spawn.height;
   THRONG_ASSERT(spawner.nextAgentId == plan.firstAgent);
   std::size_t spot = 0;
   for (std::uint32_t g = 0; g < sizes.size(); ++g) {
     const std::uint32_t groupId = spawner.firstGroupId[populationIndex] + g;
-    if (pop.autoGoals) reconstructGoals(groupId, plan.anchors[g]);
+    if (pop.autoGoals) goals.reconstructGoals(groupId, plan.anchors[g]);
     for (std::uint32_t m = 0; m < sizes[g]; ++m) {
       const std::uint32_t agentId = spawner.nextAgentId++;
       const std::pair<core::Vec2, nav::PolyRef>* placed = &plan.spots[spot++];
@@ -260,8 +261,8 @@ void World::Impl::addSpawnedAgents(const SpawnPlan& plan) {
       GroupState& group = groups[groupId];
       group.members.push_back(agentId);
       if (group.leader == kNoAgent) group.leader = agentId;
-      if (group.flocks(pop)) agents.speed[row] = groupSpeed(groupId);
-      setGoal(row, group.cursor, query);
+      if (group.flocks(pop)) agents.speed[row] = groupSpeed(desc, groups, groupId);
+      goals.setGoal(row, group.cursor);
       // Face the first target.
       const core::Vec2 dir = core::normalize(core::Vec2{agents.targetX[row] - agents.posX[row], agents.targetY[row] - agents.posY[row]});
       if (core::lengthSq(dir) > 0.0f) { agents.oriX[row] = dir.x; agents.oriY[row] = dir.y; }

@@ -1,8 +1,9 @@
 // steer — the preferred velocity of every agent, then its avoidance model (parallel; each agent
 // writes only its own row). Reads positions, velocities, paths (corners), targets, goal state,
 // formation corrections, stuck times, the neighbours from `sense` and the walls; writes prefVel,
-// the corner index, and newVel (through the population's OperationalModel, models/). With a
-// partition set (partition.hpp) this rank steers only the rows it owns.
+// the corner index, and newVel (through the population's OperationalModel, models/): steer(SteerInput,
+// SteerOutput), phases.hpp, whose contexts World::Impl builds (world.cpp). With a partition set
+// (partition.hpp) this rank steers only the rows it owns.
 //
 // The preferred velocity: walk to the next corner of the path at the desired speed (slowing down
 // over steering.arrivalTime before a stop), plus the group's formation correction, turned aside
@@ -12,7 +13,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "world_impl.hpp"
+#include "phases.hpp"
+#include "throng/core/assert.hpp"
 
 namespace throng::sim {
 namespace {
@@ -30,57 +32,25 @@ core::Vec2 unstick(core::Vec2 desired, const SteeringDesc& s, std::uint64_t seed
   return core::Vec2{desired.x * kCos[k] - desired.y * kSin[k], desired.x * kSin[k] + desired.y * kCos[k]} * 0.5f;
 }
 
-}  // namespace
+/// One row's preferred velocity (writes its prefVel and corner index only).
+struct PreferredVelocity {
+  const SteerInput& in;
+  const SteerOutput& out;
+  WorkerScratch& ws;
 
-void World::Impl::steer(const core::TaskSystem& tasks) {
-  // Partitioned (partition.cpp): only the rows this rank owns; exchangeSteer brings the rest.
-  const bool partitioned = partition.exchange != nullptr;
-  if (partitioned) assignOwners();
-  const std::uint32_t* list = partitioned ? partition.ownedRows.data() : nullptr;
-  const std::size_t n = partitioned ? partition.ownedRows.size() : agents.size();
-  const ModelInput input{agents, walls, desc, viewers};
-  const VelocityOutput out{agents.newVelX, agents.newVelY};
-  tasks.parallelFor(n, grainFor(n, tasks), [&](std::size_t begin, std::size_t end) {
-    WorkerScratch& ws = worker(tasks);
-    const RowRange rows{list, begin, end};
-    for (std::size_t i = begin; i < end; ++i) preferredVelocity(rows.row(i), ws);
-    // Runs of consecutive rows whose populations walk with the same model: one call each.
-    for (std::size_t i = begin; i < end;) {
-      const ModelKind kind = modelOf(rows.row(i));
-      std::size_t j = i + 1;
-      while (j < end && modelOf(rows.row(j)) == kind) ++j;
-      const auto m = static_cast<std::size_t>(kind);
-      models[m]->computeVelocities(input, RowRange{list, i, j}, *ws.modelScratch[m], out);
-      i = j;
-    }
-  });
-}
+  void compute(std::size_t row) const;
+  /// Moves on along the path's corners once near the current one and the next is in sight.
+  void advanceCorner(std::size_t row, core::Vec2 pos) const;
+};
 
-void World::Impl::configureModels() {
-  for (const PopulationDesc& pop : desc.populations) {
-    const auto m = static_cast<std::size_t>(pop.model.kind);
-    if (!models[m]) models[m] = makeModel(pop.model.kind);
-  }
-  for (auto& model : models) {
-    if (model) model->configure(desc);
-  }
-  for (WorkerScratch& ws : scratch) addModelScratch(ws);
-}
-
-void World::Impl::addModelScratch(WorkerScratch& ws) const {
-  for (std::size_t m = 0; m < models.size(); ++m) {
-    if (models[m] && !ws.modelScratch[m]) ws.modelScratch[m] = models[m]->makeScratch();
-  }
-}
-
-void World::Impl::advanceCorner(std::size_t row, core::Vec2 pos, WorkerScratch& ws) {
-  const SteeringDesc& s = desc.steering;
-  CornerPath& corners = agents.corners[row];
+void PreferredVelocity::advanceCorner(std::size_t row, core::Vec2 pos) const {
+  const SteeringDesc& s = in.steering;
+  CornerPath& corners = out.corners[row];
   std::uint32_t& ci = corners.index;
   const float reach2 = s.cornerReach * s.cornerReach;
   // Move on to the next corner once near this one — but only if the next is in line of sight:
   // skipping a corner of a wall before rounding it walks straight into the wall.
-  if (!agents.levels) {
+  if (in.posZ.empty()) {
     while (ci + 1 < corners.size() && core::lengthSq(corners[ci] - pos) < reach2 && ws.query->visible(pos, corners[ci + 1])) {
       ++ci;
     }
@@ -89,7 +59,7 @@ void World::Impl::advanceCorner(std::size_t row, core::Vec2 pos, WorkerScratch& 
   // Multi-level worlds: where a ramp or stair meets a floor the path turns through a chain of
   // corners a few centimetres apart, and an agent that cuts across the junction is past the next
   // one, which it then cannot see from its floor: look up to steering.levelLookAhead corners ahead.
-  const float z = agents.posZ[row];
+  const float z = in.posZ[row];
   while (ci + 1 < corners.size() && core::lengthSq(corners[ci] - pos) < reach2) {
     std::uint32_t next = ci;
     for (std::uint32_t k = ci + 1; k < corners.size() && k <= ci + s.levelLookAhead; ++k) {
@@ -103,33 +73,61 @@ void World::Impl::advanceCorner(std::size_t row, core::Vec2 pos, WorkerScratch& 
   }
 }
 
-void World::Impl::preferredVelocity(std::size_t row, WorkerScratch& ws) {
-  const SteeringDesc& s = desc.steering;
-  const core::Vec2 pos{agents.posX[row], agents.posY[row]};
-  const float maxSpeed = agents.speed[row];
+void PreferredVelocity::compute(std::size_t row) const {
+  const SteeringDesc& s = in.steering;
+  const core::Vec2 pos{in.posX[row], in.posY[row]};
+  const float maxSpeed = in.speed[row];
+  const bool scriptWalking = !in.scriptWalk.empty() && in.scriptWalk[row] != 0;
   core::Vec2 desired;
-  if (agents.goalState[row] == GoalState::Seeking || (agents.goalState[row] == GoalState::Scripted && agents.scriptWalking(row))) {
-    advanceCorner(row, pos, ws);
-    const CornerPath& corners = agents.corners[row];
+  if (in.goalState[row] == GoalState::Seeking || (in.goalState[row] == GoalState::Scripted && scriptWalking)) {
+    advanceCorner(row, pos);
+    const CornerPath& corners = out.corners[row];
     const std::uint32_t ci = corners.index;
-    const core::Vec2 target{agents.targetX[row], agents.targetY[row]};
+    const core::Vec2 target{in.targetX[row], in.targetY[row]};
     const core::Vec2 aim = ci < corners.size() ? corners[ci] : target;
     const core::Vec2 toAim = aim - pos;
     const float dist = core::length(toAim);
     if (dist > 1e-4f) {
       float v = maxSpeed;
       const bool lastLeg = ci + 1 >= corners.size();
-      if (lastLeg && (stopsAtGoal(row) || agents.dynamicTarget[row])) v = std::min(v, dist / s.arrivalTime);
+      const bool stops = lastLeg && (stopsAtGoal(in.goals, in.points, in.populations[in.population[row]], row) ||
+                                     in.dynamicTarget[row]);
+      if (stops) v = std::min(v, dist / s.arrivalTime);
       desired = toAim * (v / dist);
       // Flocking: the group pass's correction toward the member's slot beside the others.
-      desired += agents.formVel(row);
+      if (!in.formVelX.empty()) desired += core::Vec2{in.formVelX[row], in.formVelY[row]};
       const float cap = maxSpeed * s.formationSpeedUp;
       if (core::lengthSq(desired) > cap * cap) desired = core::normalize(desired) * cap;
-      if (agents.stuckTime[row] > s.stuckPatience) desired = unstick(desired, s, desc.seed, agents.id[row], agents.stuckTime[row]);
+      if (in.stuckTime[row] > s.stuckPatience) desired = unstick(desired, s, in.seed, in.id[row], in.stuckTime[row]);
     }
   }
-  agents.prefVelX[row] = desired.x;
-  agents.prefVelY[row] = desired.y;
+  out.prefVelX[row] = desired.x;
+  out.prefVelY[row] = desired.y;
+}
+
+}  // namespace
+
+void steer(const SteerInput& in, const SteerOutput& out, const core::TaskSystem& tasks) {
+  const RowRange all = in.rows;
+  const std::size_t n = all.end;
+  const auto modelOf = [&](std::size_t row) { return in.populations[in.population[row]].model.kind; };
+  tasks.parallelFor(n, phaseGrain(n, tasks), [&](std::size_t begin, std::size_t end) {
+    const auto worker = static_cast<std::size_t>(tasks.workerIndex());
+    THRONG_ASSERT(worker < out.workers.size());
+    WorkerScratch& ws = out.workers[worker];
+    const RowRange rows{all.list, begin, end};
+    const PreferredVelocity preferred{in, out, ws};
+    for (std::size_t i = begin; i < end; ++i) preferred.compute(rows.row(i));
+    // Runs of consecutive rows whose populations walk with the same model: one call each.
+    for (std::size_t i = begin; i < end;) {
+      const ModelKind kind = modelOf(rows.row(i));
+      std::size_t j = i + 1;
+      while (j < end && modelOf(rows.row(j)) == kind) ++j;
+      const auto m = static_cast<std::size_t>(kind);
+      in.models[m]->computeVelocities(in.model, RowRange{all.list, i, j}, *ws.modelScratch[m], out.newVel);
+      i = j;
+    }
+  });
 }
 
 }  // namespace throng::sim

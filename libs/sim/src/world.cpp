@@ -1,5 +1,5 @@
-// World — creation, the tick's phase order, the phases' contexts (phases.hpp), the emit phase
-// (removal, statistics) and frames (takeFrame).
+// World — creation, the tick's phase order, the phases' contexts (phases.hpp), the avoidance
+// models in use (configureModels), the emit phase (removal, statistics) and frames (takeFrame).
 #include "throng/sim/world.hpp"
 
 #include <algorithm>
@@ -56,8 +56,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
     w.spawner.startTick.push_back(static_cast<std::uint64_t>(std::ceil(pop.start / desc.dt - 1e-6)));
     w.spawner.spawned.push_back(0);
   }
-  w.subOffset.push_back(0);
-  for (const PointDesc& p : desc.points) w.addPointGeometry(p);
+  for (const PointDesc& p : desc.points) w.pointRegions.add(p);
   w.pointClip = pointClips(desc);
   w.initCommonGround();
   w.planPopulations();
@@ -89,7 +88,7 @@ void World::step(const core::TaskSystem& tasks, PhaseObserver* observer) {
 }
 
 // The phases' contexts (phases.hpp): what each phase reads and what it may write, taken from the
-// world's state. steer builds its own (steer.cpp).
+// world's state.
 
 void World::Impl::sense(const core::TaskSystem& tasks) {
   sim::sense(SenseInput{agents.posX, agents.posY, agents.posZ, desc.steering},
@@ -114,6 +113,40 @@ void World::Impl::plan() {
             PlanOutput{agents.needPath, agents.ticket, agents.corners, *pathQueue, pendingEvents});
 }
 
+void World::Impl::steer(const core::TaskSystem& tasks) {
+  // Partitioned (partition.cpp): only the rows this rank owns; exchangeSteer brings the rest.
+  const bool partitioned = partition.exchange != nullptr;
+  if (partitioned) assignOwners();
+  const std::uint32_t* list = partitioned ? partition.ownedRows.data() : nullptr;
+  const std::size_t n = partitioned ? partition.ownedRows.size() : agents.size();
+  std::array<const OperationalModel*, kModelCount> inUse{};
+  for (std::size_t m = 0; m < kModelCount; ++m) inUse[m] = models[m].get();
+  const ModelInput model{agents, walls, desc, viewers};
+  const SteerInput in{desc.steering, desc.seed, desc.populations, desc.points, agents.id, agents.population,
+                      agents.posX, agents.posY, agents.posZ, agents.speed, agents.targetX, agents.targetY,
+                      agents.goalState, agents.scriptWalk, agents.dynamicTarget, agents.formVelX, agents.formVelY,
+                      agents.stuckTime, goalView(), RowRange{list, 0, n}, inUse, model};
+  const SteerOutput out{agents.prefVelX, agents.prefVelY, agents.corners, {agents.newVelX, agents.newVelY}, scratch};
+  sim::steer(in, out, tasks);
+}
+
+void World::Impl::configureModels() {
+  for (const PopulationDesc& pop : desc.populations) {
+    const auto m = static_cast<std::size_t>(pop.model.kind);
+    if (!models[m]) models[m] = makeModel(pop.model.kind);
+  }
+  for (auto& model : models) {
+    if (model) model->configure(desc);
+  }
+  for (WorkerScratch& ws : scratch) addModelScratch(ws);
+}
+
+void World::Impl::addModelScratch(WorkerScratch& ws) const {
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    if (models[m] && !ws.modelScratch[m]) ws.modelScratch[m] = models[m]->makeScratch();
+  }
+}
+
 void World::Impl::integrate(const core::TaskSystem& tasks) {
   const IntegrateInput in{desc.dt, tick, agents.newVelX, agents.newVelY, agents.goalState, agents.mode, agents.speed,
                           agents.actionEndTick, agents.scriptWalk, agents.scriptClip, goalView(), desc.points,
@@ -131,12 +164,6 @@ void World::Impl::ensureScratch(const core::TaskSystem& tasks) {
     addModelScratch(ws);
     scratch.push_back(std::move(ws));
   }
-}
-
-WorkerScratch& World::Impl::worker(const core::TaskSystem& tasks) {
-  const auto index = static_cast<std::size_t>(tasks.workerIndex());
-  THRONG_ASSERT(index < scratch.size());
-  return scratch[index];
 }
 
 void World::Impl::emit() {
@@ -162,10 +189,11 @@ void World::Impl::emit() {
   for (GoalState g : agents.goalState) anyExit |= g == GoalState::Exited;
   if (anyExit) {
     std::vector<std::uint8_t> keep(agents.size());
+    GoalWriter goals = goalWriter();
     for (std::size_t r = 0; r < agents.size(); ++r) {
       keep[r] = agents.goalState[r] != GoalState::Exited;
       if (keep[r]) continue;
-      releaseTarget(r);
+      goals.releaseTarget(r);
       GroupState& g = groups[agents.group[r]];
       g.members.erase(agents.id[r]);
       if (g.leader == agents.id[r]) g.leader = g.members.empty() ? kNoAgent : g.members.front();

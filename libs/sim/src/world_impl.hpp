@@ -1,6 +1,7 @@
-// World::Impl — the world's state and its phases. sense, decide, plan and integrate are free
-// functions of their contexts (phases.hpp), which Impl builds from its state (world.cpp); the rest
-// are Impl's methods. Each phase lives in its own file:
+// World::Impl — the world's state and its phases. sense, decide, plan, steer and integrate are free
+// functions of their contexts (phases.hpp), which Impl builds from its state (world.cpp), and so
+// are the group pass's steps (group_pass.hpp, phases.hpp; built in decideGroups); goals are written through a GoalWriter (goals.hpp, goalWriter()). The rest are
+// Impl's methods. Each phase lives in its own file:
 //   spawn.cpp      applyCommands: populations due this tick enter the world
 //   insert.cpp     crowds inserted and removed at run time (API and scenario timeline)
 //   sense.cpp      grid rebuild and k-nearest neighbours
@@ -8,11 +9,12 @@
 //   groups.cpp     the group pass after decide (commands, guidance, following, waiting, formation)
 //   common_ground.cpp, common_ground_play.cpp  the Common Ground model (goals, coordinations, scripts)
 //   plan.cpp       budgeted path planning through nav::PathQueue
-//   goals.cpp      one home for goals: active list, current point, set/advance, targets, Bézier
+//   goals.cpp      one home for goals: active list, current point; GoalWriter (goals.hpp): set/advance,
+//                  targets and sub-regions, Bézier paths, automatic goals, pending goal changes
 //   steer.cpp      preferred velocity along the path, then the population's avoidance model
 //   models/        the avoidance models behind OperationalModel (ORCA, collision-free speed)
 //   integrate.cpp  commit velocities, move along the navmesh, headings, statistics
-//   world.cpp      the tick, the phases' contexts, emit (removal, frame), creation
+//   world.cpp      the tick, the phases' contexts, emit (removal, frame), creation, the models in use
 #pragma once
 #include <array>
 #include <map>
@@ -23,6 +25,8 @@
 #include "agent_store.hpp"
 #include "common_ground_state.hpp"
 #include "crowd_insertion.hpp"
+#include "goals.hpp"
+#include "group_pass.hpp"
 #include "group_table.hpp"
 #include "throng/core/assert.hpp"
 #include "throng/sim/spatial_grid.hpp"
@@ -38,14 +42,6 @@
 namespace throng::sim {
 
 
-
-/// A command from the World API, applied in order at the start of the next tick.
-struct GroupCommand {
-  std::uint32_t group = 0;
-  bool guide = false;  ///< false = release
-  core::Vec2 position;
-  float height = 0.0f;  ///< the guide's floor height [m] (multi-level worlds)
-};
 
 /// When and how many: the spawner's schedule (spawn.cpp). Per population: the tick it starts, whether
 /// it has spawned, its group sizes (drawn per stable group id by registerGroups) and its first group
@@ -109,44 +105,15 @@ struct World::Impl {
   bool anySociological = false;                   ///< some population has the sociological model on
   std::vector<std::uint32_t> followingRows; ///< rows following another agent (sociological), ascending
 
-  // Per-point cached geometry and action clips.
-  std::vector<core::Aabb> pointBounds;
+  // Per-point action clips, and regions cut into sub-regions with their occupancy (goals.hpp).
   std::vector<std::uint16_t> pointClip;
-  // Sub-regions of every point's region (Musse et al. §3.1.3), flattened: point p owns
-  // [subOffset[p], subOffset[p + 1]); occupancy = agents whose current target lies in it.
-  std::vector<crowd::Subregion> subregions;
-  std::vector<std::uint32_t> subOffset;
-  std::vector<std::uint32_t> subOccupancy;
+  PointRegions pointRegions;
 
-  // Common Ground (common_ground.cpp, common_ground_play.cpp; its state in common_ground_state.hpp).
+  // Common Ground (common_ground.cpp, common_ground_play.cpp; its state in common_ground_state.hpp,
+  // its group-pass steps' contexts in group_pass.hpp).
   CommonGroundState commonGround;
   /// The Common Ground state of the scenario's points, interests and animation clips (creation).
   void initCommonGround();
-  void startCoordinations();    ///< group pass: desires → coordinations (planner) or lone visits
-  // Steps of startCoordinations (common_ground.cpp).
-  void startCoordination(std::uint32_t row);
-  [[nodiscard]] std::vector<std::uint32_t> availableMates(const GroupState& g, std::uint32_t initiator) const;
-  [[nodiscard]] social::Goal coordinationGoal(std::uint32_t point, GoalTrigger trigger, const std::vector<std::uint32_t>& mates) const;
-  /// The grounding planner's script for A, B and the companions; false when it has none.
-  bool planGrounding(ActiveCoordination& c, std::uint32_t row, const std::vector<std::uint32_t>& mates,
-                     const social::Goal& goal, core::Vec2 destination, double now);
-  void planLoneVisit(ActiveCoordination& c, std::uint32_t row, const social::Goal& goal, core::Vec2 destination,
-                     double now) const;
-  void beginCoordination(ActiveCoordination c, bool alone, double now);
-  void runCoordinations();      ///< group pass: plays every active script one tick
-  // Steps of runCoordinations (common_ground_play.cpp).
-  void playCoordination(ActiveCoordination& c, double now);
-  void playActor(ActiveCoordination& c, std::size_t actor, std::uint32_t row, double now);
-  /// Whether the actor's current entry is over (walks: arrived, stuck near, or given up; others:
-  /// their time is up); turns it toward the entry's target meanwhile.
-  bool entryComplete(ActiveCoordination& c, std::size_t actor, std::uint32_t row, const social::ScriptEntry& e, double now);
-  void turnToward(const ActiveCoordination& c, std::uint32_t row, const social::ScriptEntry& e);
-  void publishEntry(const ActiveCoordination& c, std::size_t actor, const social::ScriptEntry& e, double start, double duration);
-  /// The actor leaves the script and goes back to its group's navigation.
-  void leaveScript(ActiveCoordination& c, std::size_t actor);
-  void beginEntry(ActiveCoordination& c, std::size_t actor, std::size_t row, double now);
-  void finishCoordination(ActiveCoordination& c, double now);
-  void checkReunions();
 
   // Threads.
   mutable std::vector<WorkerScratch> scratch;
@@ -210,47 +177,20 @@ struct World::Impl {
   void emit();
 
   // Helpers shared by phases.
-  WorkerScratch& worker(const core::TaskSystem& tasks);
   void ensureScratch(const core::TaskSystem& tasks);
-  /// Chooses a target inside the point's region (on the navmesh) for agent `row`.
-  core::Vec2 drawTarget(std::size_t row, const PointDesc& point, const nav::NavQuery& query);
-  /// Moves `row` on to its next goal (or wandering, or Done).
-  void advanceGoal(std::size_t row, const nav::NavQuery& query);
-  /// Points `row` at goal `cursor` of its group's active goal list (or wandering / Done past it).
-  void setGoal(std::size_t row, std::uint32_t cursor, const nav::NavQuery& query);
-  /// What the phases may ask about goals (phases.hpp, goals.cpp); the three below use it.
+  /// What writing goals needs (goals.hpp): setGoal, drawTarget, releaseTarget, … (serial code).
+  [[nodiscard]] GoalWriter goalWriter() {
+    return {desc, groups, goalLists, pointRegions, agents, *mainQuery, tick, pendingEvents};
+  }
+  /// What the phases may ask about goals (phases.hpp, goals.cpp); the two below (the API's) use it.
   [[nodiscard]] GoalView goalView() const { return {groups, goalLists, agents.group, agents.goalCursor}; }
-  /// The goal list a group follows now: its own, or the followed group's while following (goals.cpp).
-  [[nodiscard]] const std::vector<std::uint32_t>& activeGoals(const GroupState& g) const;
   /// The point the group is heading for (its cursor in its active list), kNoPoint past the last.
   [[nodiscard]] std::uint32_t groupGoalPoint(const GroupState& g) const;
   /// The point `row` is heading for (from its group's active goal list), kNoPoint past the last.
   [[nodiscard]] std::uint32_t currentGoalPoint(std::size_t row) const;
-  /// Whether `row` stops at the end of its current path (an action point's stop, or its last goal
-  /// when it does not wander), so it slows down on the last leg.
-  [[nodiscard]] bool stopsAtGoal(std::size_t row) const;
-  /// Applies the goal changes decide asked for (AgentStore::goalPending), in row order (goals.cpp).
-  void applyPendingGoals();
-  // Group pass steps (groups.cpp).
-  /// A point's bounds and sub-regions (creation and insertion; goals.cpp).
-  void addPointGeometry(const PointDesc& p);
-  /// Releases the sub-region `row` was targeting (its occupancy drops).
-  void releaseTarget(std::size_t row);
-  /// Replaces the navmesh request of `row` by a Bézier path when its population asks for one.
-  void bezierPath(std::size_t row, const nav::NavQuery& query);
-  /// Automatic goals for a group spawning around `anchor` (groups.cpp).
-  void reconstructGoals(std::uint32_t group, core::Vec2 anchor);
-  void applyGroupCommands();
   /// Formation (formGroups, phases.hpp): the group pass's parallel last step.
   void updateGroupShapes(const core::TaskSystem& tasks);
-  void updateWaiting();
-  void updateFollowing();
-  void updateGuidance();
-  void applySocialEffects();
   void updateLeaders();  ///< updateLeaders(LeaderInput, LeaderOutput), phases.hpp
-  /// Flocking rule 2: one walking speed per group, drawn from its population's distribution (the
-  /// group's own stream: the same value whenever it is drawn) [m/s].
-  [[nodiscard]] float groupSpeed(std::uint32_t gid) const;
   [[nodiscard]] float dt() const { return desc.dt; }
   [[nodiscard]] static std::size_t grainFor(std::size_t n, const core::TaskSystem& tasks) { return phaseGrain(n, tasks); }
 
@@ -261,18 +201,13 @@ struct World::Impl {
   /// Sends what steer wrote for the owned rows, applies every other rank's values.
   void exchangeSteer();
 
-  // Steering (steer.cpp) and the avoidance models (models/).
+  // The avoidance models (models/), steer's second part (steer(SteerInput, SteerOutput): steer.cpp).
   /// One instance per model some population walks with, by ModelKind (null: unused).
   std::array<std::unique_ptr<OperationalModel>, kModelCount> models;
-  /// Creates the models the populations need and (re)reads their parameters (creation, insertion).
+  /// Creates the models the populations need and (re)reads their parameters (creation, insertion; world.cpp).
   void configureModels();
-  /// Gives a worker the scratch of every model in use.
+  /// Gives a worker the scratch of every model in use (world.cpp).
   void addModelScratch(WorkerScratch& ws) const;
-  [[nodiscard]] ModelKind modelOf(std::size_t row) const { return desc.populations[agents.population[row]].model.kind; }
-  /// The preferred velocity of `row` (writes prefVel and the corner index of `row` only).
-  void preferredVelocity(std::size_t row, WorkerScratch& ws);
-  /// Moves on along the path's corners once near the current one and the next is in sight.
-  void advanceCorner(std::size_t row, core::Vec2 pos, WorkerScratch& ws);
 };
 
 }  // namespace throng::sim

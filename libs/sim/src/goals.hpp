@@ -1,0 +1,67 @@
+// goals — writing where agents are going (goals.cpp). What writing goals needs is named here:
+// PointRegions (the points' regions cut into sub-regions, and how many agents target each) is
+// owned by World::Impl; GoalWriter references it with the goal lists, the group table, the agent
+// columns it writes and the main navmesh query, and holds the operations that change an agent's
+// goal: setGoal / advanceGoal, drawTarget / releaseTarget, bezierPath, reconstructGoals and
+// applyPendingGoals. Serial code only (the group pass, spawning, run-time insertion): occupancy
+// and goal lists are shared. Reading goals is GoalView (phases.hpp), which the parallel phases use.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "agent_store.hpp"
+#include "group_table.hpp"
+#include "phases.hpp"
+#include "throng/core/geometry.hpp"
+#include "throng/crowd/subregions.hpp"
+#include "throng/nav/navmesh.hpp"
+#include "throng/sim/scenario.hpp"
+
+namespace throng::sim {
+
+/// Every point's bounds and sub-regions (Musse et al. §3.1.3), flattened: point p owns
+/// [subOffset[p], subOffset[p + 1]); occupancy = agents whose current target lies in it.
+struct PointRegions {
+  std::vector<core::Aabb> bounds;
+  std::vector<crowd::Subregion> subregions;
+  std::vector<std::uint32_t> subOffset{0};
+  std::vector<std::uint32_t> occupancy;
+
+  /// A point's bounds and sub-regions, with no one targeting them yet (creation and insertion).
+  void add(const PointDesc& p);
+};
+
+/// Writes goals (serial). Built by World::Impl::goalWriter() where goals change; references only.
+struct GoalWriter {
+  const ScenarioDesc& desc;   ///< seed, points, populations (wander, bezierPaths, autoNearDistance)
+  GroupTable& groups;         ///< a group's goal list, cursor and flocking; reconstructGoals sets goalList
+  std::vector<std::vector<std::uint32_t>>& goalLists;  ///< reconstructGoals appends a group's own list
+  PointRegions& regions;      ///< sub-region occupancy (drawTarget, releaseTarget)
+  /// Reads id, group, posX/Y/Z; writes goalCursor, goalState, mode, targetX/Y/Z, targetSub,
+  /// targetDraws, needPath, ticket, corners, dynamicTarget, progressDistance, goalPending.
+  AgentStore& agents;
+  const nav::NavQuery& query; ///< the main (serial) navmesh query
+  std::uint64_t tick;
+  std::vector<Event>& events; ///< PathFallback
+
+  [[nodiscard]] GoalView view() const { return {groups, goalLists, agents.group, agents.goalCursor}; }
+  /// Chooses a target inside the point's region (on the navmesh) for agent `row`: in a sub-region
+  /// picked by proximity and occupancy, which it then occupies (the old one is released).
+  core::Vec2 drawTarget(std::size_t row, const PointDesc& point);
+  /// Releases the sub-region `row` was targeting (its occupancy drops).
+  void releaseTarget(std::size_t row);
+  /// Points `row` at goal `cursor` of its group's active goal list (or wandering / Done past it).
+  void setGoal(std::size_t row, std::uint32_t cursor);
+  /// Moves `row` on to its next goal (or wandering, or Done).
+  void advanceGoal(std::size_t row) { setGoal(row, agents.goalCursor[row] + 1); }
+  /// Replaces the navmesh request of `row` by a Bézier path when one fits (PathFallback otherwise).
+  void bezierPath(std::size_t row);
+  /// Automatic goals for group `gid` spawning around `anchor` (a new goal list of its own).
+  void reconstructGoals(std::uint32_t gid, core::Vec2 anchor);
+  /// Applies the goal changes decide asked for (AgentStore::goalPending), in row order: the rows
+  /// the chunks list, whose lists it clears.
+  void applyPendingGoals(std::span<ChunkOutput> chunks);
+};
+
+}  // namespace throng::sim

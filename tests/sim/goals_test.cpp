@@ -1,0 +1,92 @@
+// Tests for libs/sim/src/goals.hpp: GoalWriter on hand-built state (no World) — a goal's target is
+// drawn inside the point's region and occupies one of its sub-regions, which is released when the
+// agent moves on; pending goal changes are applied in row order.
+#include "goals.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "goal_world.hpp"
+
+using namespace throng;
+using namespace throng::sim;
+
+using test::GoalWorld;
+
+TEST(Goals, PointRegionsCutEveryPointIntoSubregions) {
+  const GoalWorld w(0);
+  ASSERT_EQ(w.regions.subOffset.size(), 3u);
+  EXPECT_GT(w.regions.subOffset[1], w.regions.subOffset[0]) << "a 3 m disc has sub-regions";
+  EXPECT_GT(w.regions.subOffset[2], w.regions.subOffset[1]);
+  EXPECT_EQ(w.regions.occupancy.size(), w.regions.subregions.size());
+  EXPECT_EQ(w.occupied(0) + w.occupied(1), 0u) << "nobody targets them yet";
+  ASSERT_EQ(w.regions.bounds.size(), 2u);
+  EXPECT_FLOAT_EQ(w.regions.bounds[1].min.x, 12.0f);
+}
+
+TEST(Goals, SetGoalDrawsATargetInsideThePointAndReleasesTheOldSubregion) {
+  GoalWorld w(1);
+  GoalWriter goals = w.writer();
+  goals.setGoal(0, 0);
+  EXPECT_EQ(w.agents.goalCursor[0], 0u);
+  EXPECT_EQ(w.agents.goalState[0], GoalState::Seeking);
+  EXPECT_EQ(w.agents.needPath[0], 1u);
+  EXPECT_TRUE(insideRegion(w.desc.points[0], w.agents.targetX[0], w.agents.targetY[0]))
+      << w.agents.targetX[0] << ", " << w.agents.targetY[0];
+  const std::int32_t first = w.agents.targetSub[0];
+  ASSERT_GE(first, static_cast<std::int32_t>(w.regions.subOffset[0]));
+  ASSERT_LT(first, static_cast<std::int32_t>(w.regions.subOffset[1]));
+  EXPECT_EQ(w.regions.occupancy[static_cast<std::size_t>(first)], 1u);
+  EXPECT_EQ(w.agents.targetDraws[0], 1u) << "one draw from the target stream";
+
+  goals.advanceGoal(0);
+  EXPECT_EQ(w.agents.goalCursor[0], 1u);
+  EXPECT_TRUE(insideRegion(w.desc.points[1], w.agents.targetX[0], w.agents.targetY[0]));
+  EXPECT_EQ(w.regions.occupancy[static_cast<std::size_t>(first)], 0u) << "the old sub-region is released";
+  EXPECT_EQ(w.occupied(0), 0u);
+  EXPECT_EQ(w.occupied(1), 1u);
+
+  goals.advanceGoal(0);  // past the last goal, no wandering: done, standing where it is
+  EXPECT_EQ(w.agents.goalState[0], GoalState::Done);
+  EXPECT_EQ(w.agents.mode[0], AgentMode::Waiting);
+  EXPECT_EQ(w.agents.targetSub[0], -1);
+  EXPECT_EQ(w.occupied(1), 0u);
+  EXPECT_FLOAT_EQ(w.agents.targetX[0], 10.0f);
+  EXPECT_TRUE(w.events.empty());
+}
+
+TEST(Goals, AgentsAimingAtOnePointSpreadOverItsSubregions) {
+  GoalWorld w(4);
+  GoalWriter goals = w.writer();
+  for (std::size_t r = 0; r < 4; ++r) goals.setGoal(r, 0);
+  EXPECT_EQ(w.occupied(0), 4u);
+  EXPECT_LT(*std::max_element(w.regions.occupancy.begin(), w.regions.occupancy.end()), 4u)
+      << "an occupied sub-region is less likely to be picked: not all four in one";
+  for (std::size_t r = 0; r < 4; ++r) goals.releaseTarget(r);
+  EXPECT_EQ(w.occupied(0), 0u);
+  for (std::size_t r = 0; r < 4; ++r) EXPECT_EQ(w.agents.targetSub[r], -1);
+  goals.releaseTarget(0);  // twice: nothing more to release
+  EXPECT_EQ(w.occupied(0), 0u);
+}
+
+TEST(Goals, ApplyPendingGoalsAdvancesTheListedRowsAndClearsTheirFlags) {
+  GoalWorld w(3);
+  GoalWriter goals = w.writer();
+  for (std::size_t r = 0; r < 3; ++r) goals.setGoal(r, 0);
+  std::vector<ChunkOutput> chunks(2);
+  w.agents.goalPending[0] = GoalPending::NextGoal;
+  w.agents.goalPending[2] = GoalPending::NextWanderTarget;
+  chunks[0].pendingRows = {0};
+  chunks[1].pendingRows = {2};
+  goals.applyPendingGoals(chunks);
+  EXPECT_EQ(w.agents.goalCursor[0], 1u);
+  EXPECT_EQ(w.agents.goalCursor[1], 0u) << "not listed: unchanged";
+  EXPECT_EQ(w.agents.goalCursor[2], 2u) << "past the list; the population does not wander: done";
+  EXPECT_EQ(w.agents.goalState[2], GoalState::Done);
+  for (std::size_t r = 0; r < 3; ++r) EXPECT_EQ(w.agents.goalPending[r], GoalPending::None);
+  EXPECT_TRUE(chunks[0].pendingRows.empty() && chunks[1].pendingRows.empty());
+  EXPECT_EQ(w.occupied(0), 1u);
+  EXPECT_EQ(w.occupied(1), 1u);
+}
