@@ -18,8 +18,8 @@ void check(bool condition) {
   if (!condition) std::abort();
 }
 
-const throng::social::MicroBehaviourDb& fixedMicro() {
-  static const throng::social::MicroBehaviourDb db = [] {
+const throng::common_ground::MicroBehaviourDb& fixedMicro() {
+  static const throng::common_ground::MicroBehaviourDb db = [] {
     auto r = throng::io::parseMicroBehaviours(R"({"version": 1, "behaviours": [
       {"name": "point_toward", "intents": ["propose"], "allowedIn": ["A2"], "clip": "point", "target": "goal"},
       {"name": "nod", "intents": ["acknowledge", "confirm"], "allowedIn": ["A2"], "clip": "nod"}]})",

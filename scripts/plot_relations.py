@@ -1,10 +1,10 @@
 #!/usr/bin/python3
 """Draws docs/img/social-relations.png: the sensory model of a group mate B (touch, hearing, vision;
 Park, Peng, Quek, Cao "Common Ground", §3.2, Figure 2) and example positions of an initiator A for
-the six relations A1..A6 of libs/social/include/throng/social/relation.hpp.
+the six relations A1..A6 of libs/common_ground/include/throng/common_ground/relation.hpp.
 
-Parameters are the SensoryParams defaults in libs/social/include/throng/social/sensing.hpp; keep them
-in sync. The example positions and the approach points x_i / x_j follow tests/social/relations_test.cpp
+Parameters are the SensoryParams defaults in libs/common_ground/include/throng/common_ground/sensing.hpp; keep them
+in sync. The example positions and the approach points x_i / x_j follow tests/common_ground/relations_test.cpp
 and the formulas in relations.hpp. Usage: /usr/bin/python3 scripts/plot_relations.py [out.png]
 """
 import math

@@ -45,7 +45,7 @@ TEST(ScenarioSocial, ValidSectionFillsTheDescription) {
   EXPECT_NEAR(s.senses.fieldOfView, 3.14159265 / 2, 1e-5);
   ASSERT_EQ(s.needs.size(), 1u);
   EXPECT_EQ(s.needs[0].category, "restroom");
-  EXPECT_EQ(s.needs[0].kind, social::GoalKind::Shared);
+  EXPECT_EQ(s.needs[0].kind, common_ground::GoalKind::Shared);
   EXPECT_FLOAT_EQ(s.attraction.probability, 0.2f);
   EXPECT_EQ(s.coordination.maxAttempts, 4);
   // The built-in databases and the clip lengths from scenarios/motions.

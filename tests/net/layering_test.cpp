@@ -57,7 +57,7 @@ TEST(NetLayering, TheClientsDoNotIncludeTheTransport) {
 TEST(NetLayering, NoSimulationLibraryIncludesTheNetwork) {
   const std::set<std::string> network{"net", "transport", "client", "protocol", "hub", "link", "boost"};
   const auto refused = [&](const std::string& name) { return network.contains(name); };
-  for (const char* lib : {"core", "nav", "crowd", "social", "sim"}) {
+  for (const char* lib : {"core", "nav", "crowd", "common_ground", "sim"}) {
     int files = 0;
     for (const auto& hit : foreignIncludes(lib, refused, files)) {
       ADD_FAILURE() << lib << " may not include: " << hit;

@@ -1,7 +1,7 @@
 // The simulation core does no I/O: no source of libs/{core,nav,sim} may include files, clocks,
 // sockets, or the io/net layers (GUIDE §2). The file-format libraries link only downward:
-// motion → core; io (scenario loading) → core, nav, sim, social, motion; recording → core, nav,
-// sim, social (never io, motion, hub or the network libraries), and it is the one SQLite layer:
+// motion → core; io (scenario loading) → core, nav, sim, common_ground, motion; recording → core, nav,
+// sim, common_ground (never io, motion, hub or the network libraries), and it is the one SQLite layer:
 // no other library or app includes sqlite3.h.
 #include <gtest/gtest.h>
 
@@ -22,7 +22,7 @@ TEST(Layering, SimulationLibrariesDoNoIo) {
   // <cstdio> is allowed for snprintf formatting; printing or opening files is not.
   const std::regex io(R"(\b(fopen|printf|puts|fputs)\s*\(|std::(cout|cerr|clog)\b)");
   int checked = 0;
-  for (const char* lib : {"core", "nav", "crowd", "social", "sim"}) {
+  for (const char* lib : {"core", "nav", "crowd", "common_ground", "sim"}) {
     for (const auto& entry : fs::recursive_directory_iterator(fs::path(THRONG_SOURCE_DIR) / "libs" / lib)) {
       if (!entry.is_regular_file()) continue;
       const auto ext = entry.path().extension();
@@ -169,8 +169,8 @@ TEST(Layering, TheArchitecturePageShowsEveryLibrary) {
 TEST(Layering, FileFormatLibrariesLinkOnlyDownward) {
   const std::vector<std::pair<const char*, std::set<std::string>>> allowed{
       {"motion", {"core", "motion"}},
-      {"io", {"core", "nav", "sim", "social", "motion", "io"}},
-      {"recording", {"core", "nav", "sim", "social", "recording"}},
+      {"io", {"core", "nav", "sim", "common_ground", "motion", "io"}},
+      {"recording", {"core", "nav", "sim", "common_ground", "recording"}},
   };
   for (const auto& [lib, may] : allowed) {
     const auto found = throngIncludes(lib);

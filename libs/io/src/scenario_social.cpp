@@ -10,7 +10,7 @@
 #include "social_defaults.hpp"
 #include "throng/motion/bvh.hpp"
 #include "throng/io/social_db.hpp"
-#include "throng/social/behaviour_db.hpp"
+#include "throng/common_ground/behaviour_db.hpp"
 
 namespace throng::io {
 namespace {
@@ -39,7 +39,7 @@ class SocialLoader {
 
   /// The micro-behaviour database: the scenario's file, else the built-in one.
   bool loadMicroBehaviourDb() {
-    core::Result<social::MicroBehaviourDb> micro = core::Diagnostic{};
+    core::Result<common_ground::MicroBehaviourDb> micro = core::Diagnostic{};
     if (social_.microPath.empty()) {
       micro = parseMicroBehaviours(builtinMicroBehaviours(), "data/social/micro_behaviours.json (built in)");
     } else if (const auto path = confined("/social/microBehaviours", social_.microPath, "a micro-behaviour database (JSON)"); !path) {
@@ -61,7 +61,7 @@ class SocialLoader {
 
   /// The macro-plan database (checked against the micro-behaviours): the scenario's, else built in.
   bool loadMacroPlanDb() {
-    core::Result<social::MacroPlanDb> macro = core::Diagnostic{};
+    core::Result<common_ground::MacroPlanDb> macro = core::Diagnostic{};
     if (social_.macroPath.empty()) {
       macro = parseMacroPlans(builtinMacroPlans(), "data/social/macro_plans.json (built in)", social_.micro);
     } else if (const auto path = confined("/social/macroPlans", social_.macroPath, "a macro-plan database (JSON)"); !path) {
@@ -100,7 +100,7 @@ class SocialLoader {
   void loadClipLengths() {
     std::set<std::string> clips;
     for (const auto& b : social_.micro.behaviours) {
-      if (b.clip != social::kWalkMotion && b.clip != social::kTurnMotion && b.clip != social::kIdleMotion) clips.insert(b.clip);
+      if (b.clip != common_ground::kWalkMotion && b.clip != common_ground::kTurnMotion && b.clip != common_ground::kIdleMotion) clips.insert(b.clip);
     }
     const std::string ptr =
         doc_.root().contains("social") && doc_.root()["social"].contains("motions") ? "/social/motions" : "/social";

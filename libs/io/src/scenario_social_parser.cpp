@@ -116,7 +116,7 @@ void ScenarioReader::readSocial(const Json& v, const std::string& ptr, sim::Comm
         if (auto* k = optional(n, "kind")) {
           std::size_t kind = 0;
           if (readChoice(*k, ip + "/kind", {"personal", "shared"}, "goal kind", kind)) {
-            need.kind = kind == 0 ? social::GoalKind::Personal : social::GoalKind::Shared;
+            need.kind = kind == 0 ? common_ground::GoalKind::Personal : common_ground::GoalKind::Shared;
           }
         }
         s.needs.push_back(std::move(need));

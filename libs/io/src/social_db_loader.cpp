@@ -1,5 +1,5 @@
 // throng::io social databases loader — JSON (read with JsonDocument, so every diagnostic has
-// line:column) into social::MicroBehaviourDb and social::MacroPlanDb. Parse, then validate names
+// line:column) into common_ground::MicroBehaviourDb and common_ground::MacroPlanDb. Parse, then validate names
 // and cross references; every problem is reported, not the first. Never throws.
 #include "throng/io/social_db.hpp"
 
@@ -18,7 +18,7 @@
 namespace throng::io {
 namespace {
 
-using social::Relation;
+using common_ground::Relation;
 
 std::string quoteName(std::string_view s) {
   std::string q = "\"";
@@ -194,14 +194,14 @@ std::vector<std::string> tableNames(auto const& table) {
   return out;
 }
 
-const std::function<std::optional<social::Intent>(std::string_view)> kParseIntent = social::intentFromName;
-const std::function<std::optional<Relation>(std::string_view)> kParseRelation = social::relationFromName;
-const std::function<std::optional<social::TargetKind>(std::string_view)> kParseTarget = social::targetKindFromName;
-const std::function<std::optional<social::PlanKind>(std::string_view)> kParsePlan = social::planKindFromName;
-const std::function<std::optional<social::GoalKind>(std::string_view)> kParseGoal = social::goalKindFromName;
+const std::function<std::optional<common_ground::Intent>(std::string_view)> kParseIntent = common_ground::intentFromName;
+const std::function<std::optional<Relation>(std::string_view)> kParseRelation = common_ground::relationFromName;
+const std::function<std::optional<common_ground::TargetKind>(std::string_view)> kParseTarget = common_ground::targetKindFromName;
+const std::function<std::optional<common_ground::PlanKind>(std::string_view)> kParsePlan = common_ground::planKindFromName;
+const std::function<std::optional<common_ground::GoalKind>(std::string_view)> kParseGoal = common_ground::goalKindFromName;
 
-social::MicroBehaviour readBehaviour(Reader& r, const Json& v, const std::string& ptr) {
-  social::MicroBehaviour b;
+common_ground::MicroBehaviour readBehaviour(Reader& r, const Json& v, const std::string& ptr) {
+  common_ground::MicroBehaviour b;
   if (!r.object(v, ptr, "a micro-behaviour object")) return b;
   r.checkKeys(v, ptr, {"name", "intents", "allowedIn", "clip", "target", "turnFirst", "resultRelation", "responses",
                        "weight", "description"},
@@ -210,18 +210,18 @@ social::MicroBehaviour readBehaviour(Reader& r, const Json& v, const std::string
     (void)r.string(*x, ptr + "/name", "a behaviour name (a non-empty string)", b.name);
   }
   if (const Json* x = r.require(v, ptr, "intents", "a non-empty array of intents")) {
-    (void)r.choices<social::Intent>(*x, ptr + "/intents", tableNames(social::detail::kIntentNames), kParseIntent,
+    (void)r.choices<common_ground::Intent>(*x, ptr + "/intents", tableNames(common_ground::detail::kIntentNames), kParseIntent,
                                     "intent", b.intents);
   }
   if (const Json* x = r.require(v, ptr, "allowedIn", "a non-empty array of relations A1..A6")) {
-    (void)r.choices<Relation>(*x, ptr + "/allowedIn", tableNames(social::detail::kRelationNames), kParseRelation,
+    (void)r.choices<Relation>(*x, ptr + "/allowedIn", tableNames(common_ground::detail::kRelationNames), kParseRelation,
                               "relation", b.allowedIn);
   }
   if (const Json* x = r.require(v, ptr, "clip", "a clip name, or \"walk\" / \"turn\"")) {
     (void)r.string(*x, ptr + "/clip", "a clip name, or \"walk\" / \"turn\"", b.clip);
   }
   if (const Json* x = Reader::optional(v, "target")) {
-    (void)r.choice<social::TargetKind>(*x, ptr + "/target", tableNames(social::detail::kTargetNames), kParseTarget,
+    (void)r.choice<common_ground::TargetKind>(*x, ptr + "/target", tableNames(common_ground::detail::kTargetNames), kParseTarget,
                                        "target", b.target);
   }
   if (const Json* x = Reader::optional(v, "turnFirst")) {
@@ -230,7 +230,7 @@ social::MicroBehaviour readBehaviour(Reader& r, const Json& v, const std::string
   }
   if (const Json* x = Reader::optional(v, "resultRelation")) {
     Relation rel{};
-    if (r.choice<Relation>(*x, ptr + "/resultRelation", tableNames(social::detail::kRelationNames), kParseRelation,
+    if (r.choice<Relation>(*x, ptr + "/resultRelation", tableNames(common_ground::detail::kRelationNames), kParseRelation,
                            "relation", rel)) {
       b.resultRelation = rel;
     }
@@ -244,21 +244,21 @@ social::MicroBehaviour readBehaviour(Reader& r, const Json& v, const std::string
   if (const Json* x = Reader::optional(v, "description")) {
     (void)r.string(*x, ptr + "/description", "a string", b.description, false);
   }
-  if ((b.clip == social::kWalkMotion || b.clip == social::kTurnMotion) && b.target == social::TargetKind::None) {
+  if ((b.clip == common_ground::kWalkMotion || b.clip == common_ground::kTurnMotion) && b.target == common_ground::TargetKind::None) {
     r.error(ptr + "/clip", "procedural motion " + quoteName(b.clip) + " needs a target", "a \"target\" other than \"none\"");
   }
   return b;
 }
 
-social::MacroPlan readPlan(Reader& r, const Json& v, const std::string& ptr, const social::MicroBehaviourDb& micro) {
-  social::MacroPlan p;
+common_ground::MacroPlan readPlan(Reader& r, const Json& v, const std::string& ptr, const common_ground::MicroBehaviourDb& micro) {
+  common_ground::MacroPlan p;
   if (!r.object(v, ptr, "a macro-plan object")) return p;
   r.checkKeys(v, ptr, {"name", "kind", "paperId", "proposal", "visitDuration", "when", "description"}, "a macro-plan");
   if (const Json* x = r.require(v, ptr, "name", "a plan name (a non-empty string)")) {
     (void)r.string(*x, ptr + "/name", "a plan name (a non-empty string)", p.name);
   }
   if (const Json* x = r.require(v, ptr, "kind", "a plan kind")) {
-    (void)r.choice<social::PlanKind>(*x, ptr + "/kind", tableNames(social::detail::kPlanNames), kParsePlan,
+    (void)r.choice<common_ground::PlanKind>(*x, ptr + "/kind", tableNames(common_ground::detail::kPlanNames), kParsePlan,
                                      "plan kind", p.kind);
   }
   if (const Json* x = Reader::optional(v, "paperId")) {
@@ -277,7 +277,7 @@ social::MacroPlan readPlan(Reader& r, const Json& v, const std::string& ptr, con
                   match.empty() ? "" : "did you mean " + quoteName(match) + "?");
         } else {
           const auto& in = micro.behaviours[*idx].intents;
-          if (std::find(in.begin(), in.end(), social::Intent::Propose) == in.end()) {
+          if (std::find(in.begin(), in.end(), common_ground::Intent::Propose) == in.end()) {
             r.error(pp, "micro-behaviour " + quoteName(p.proposal[i]) + " cannot propose", "a behaviour with the \"propose\" intent");
           }
         }
@@ -292,7 +292,7 @@ social::MacroPlan readPlan(Reader& r, const Json& v, const std::string& ptr, con
     if (r.object(*w, wp, "the selection rules (an object)")) {
       r.checkKeys(*w, wp, {"goalKinds", "maxGoalDistance", "maxExpectedVisit"}, "selection rules");
       if (const Json* x = r.require(*w, wp, "goalKinds", "a non-empty array of goal kinds")) {
-        (void)r.choices<social::GoalKind>(*x, wp + "/goalKinds", tableNames(social::detail::kGoalNames), kParseGoal,
+        (void)r.choices<common_ground::GoalKind>(*x, wp + "/goalKinds", tableNames(common_ground::detail::kGoalNames), kParseGoal,
                                           "goal kind", p.goalKinds);
       }
       if (const Json* x = Reader::optional(*w, "maxGoalDistance")) {
@@ -320,13 +320,13 @@ core::Result<std::string> readText(const std::string& path, const std::string& w
 
 }  // namespace
 
-core::Result<social::MicroBehaviourDb> parseMicroBehaviours(std::string_view text, const std::string& source) {
+core::Result<common_ground::MicroBehaviourDb> parseMicroBehaviours(std::string_view text, const std::string& source) {
   try {
     auto doc = JsonDocument::parse(text, source);
     if (!doc.ok()) return std::move(doc).takeErrors();
     core::Diagnostics diags;
     Reader r(doc.value(), diags);
-    social::MicroBehaviourDb db;
+    common_ground::MicroBehaviourDb db;
     const Json* list = r.top({"version", "behaviours"}, "behaviours", "a micro-behaviour database");
     if (list) {
       std::set<std::string> seen;
@@ -357,18 +357,18 @@ core::Result<social::MicroBehaviourDb> parseMicroBehaviours(std::string_view tex
   }
 }
 
-core::Result<social::MacroPlanDb> parseMacroPlans(std::string_view text, const std::string& source,
-                                                  const social::MicroBehaviourDb& micro) {
+core::Result<common_ground::MacroPlanDb> parseMacroPlans(std::string_view text, const std::string& source,
+                                                  const common_ground::MicroBehaviourDb& micro) {
   try {
     auto doc = JsonDocument::parse(text, source);
     if (!doc.ok()) return std::move(doc).takeErrors();
     core::Diagnostics diags;
     Reader r(doc.value(), diags);
-    social::MacroPlanDb db;
+    common_ground::MacroPlanDb db;
     const Json* list = r.top({"version", "failurePlan", "plans"}, "plans", "a macro-plan database");
     if (const Json* root = &doc.value().root(); root->is_object()) {
       if (const Json* f = Reader::optional(*root, "failurePlan")) {
-        (void)r.choice<social::PlanKind>(*f, "/failurePlan", tableNames(social::detail::kPlanNames), kParsePlan,
+        (void)r.choice<common_ground::PlanKind>(*f, "/failurePlan", tableNames(common_ground::detail::kPlanNames), kParsePlan,
                                          "plan kind", db.failurePlan);
       }
     }
@@ -391,13 +391,13 @@ core::Result<social::MacroPlanDb> parseMacroPlans(std::string_view text, const s
   }
 }
 
-core::Result<social::MicroBehaviourDb> loadMicroBehaviours(const std::string& path) {
+core::Result<common_ground::MicroBehaviourDb> loadMicroBehaviours(const std::string& path) {
   auto text = readText(path, "a readable micro-behaviour database");
   if (!text.ok()) return std::move(text).takeErrors();
   return parseMicroBehaviours(text.value(), path);
 }
 
-core::Result<social::MacroPlanDb> loadMacroPlans(const std::string& path, const social::MicroBehaviourDb& micro) {
+core::Result<common_ground::MacroPlanDb> loadMacroPlans(const std::string& path, const common_ground::MicroBehaviourDb& micro) {
   auto text = readText(path, "a readable macro-plan database");
   if (!text.ok()) return std::move(text).takeErrors();
   return parseMacroPlans(text.value(), path, micro);

@@ -1,14 +1,14 @@
 // throng::recording::Recorder, Common Ground tables — writes a frame's finished coordinations
 // (throng_coordinations) and played script entries (throng_script) with the statements that
 // Recorder::Impl::prepareAll() prepared (recorder.cpp), on the recorder's worker thread inside the
-// frame's transaction. Record fields become text with throng::social's names
+// frame's transaction. Record fields become text with throng::common_ground's names
 // (docs/recording-format.md); a time that is not finite is stored as NULL.
 #include <cmath>
 #include <cstdint>
 #include <string>
 
-#include "throng/social/behaviour_db.hpp"
-#include "throng/social/relation.hpp"
+#include "throng/common_ground/behaviour_db.hpp"
+#include "throng/common_ground/relation.hpp"
 
 #include "recorder_impl.hpp"
 #include "recording_schema.hpp"
@@ -19,7 +19,7 @@ namespace {
 using recording::bindInt;
 using recording::bindText;
 
-// Common Ground record fields as text (throng::social's names; docs/recording-format.md).
+// Common Ground record fields as text (throng::common_ground's names; docs/recording-format.md).
 const char* triggerText(sim::GoalTrigger t) {
   switch (t) {
     case sim::GoalTrigger::Need: return "need";
@@ -56,7 +56,7 @@ const char* targetTypeText(std::uint8_t type) {
 }
 
 std::string planText(std::uint8_t plan) {
-  return std::string(social::planKindName(static_cast<social::PlanKind>(plan)));
+  return std::string(common_ground::planKindName(static_cast<common_ground::PlanKind>(plan)));
 }
 
 /// A REAL column that holds NULL when the value is not finite (never a write error).
@@ -79,10 +79,10 @@ bool Recorder::Impl::writeSocial(const sim::Frame& f) {
     bindInt(s, 3, c.initiator);
     bindText(s, 4, respondents);
     bindInt(s, 5, c.goalPoint);
-    bindText(s, 6, social::goalKindName(static_cast<social::GoalKind>(c.goalKind)));
+    bindText(s, 6, common_ground::goalKindName(static_cast<common_ground::GoalKind>(c.goalKind)));
     bindText(s, 7, triggerText(c.trigger));
     if (c.relation >= 1 && c.relation <= 6) {
-      bindText(s, 8, social::relationName(static_cast<social::Relation>(c.relation)));
+      bindText(s, 8, common_ground::relationName(static_cast<common_ground::Relation>(c.relation)));
     } else {
       sqlite3_bind_null(s, 8);
     }

@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "recording_social_read.hpp"
-#include "throng/social/behaviour_db.hpp"
+#include "throng/common_ground/behaviour_db.hpp"
 
 namespace throng::recording {
 namespace {
@@ -84,7 +84,7 @@ core::Result<std::vector<ScriptEntryInfo>> readScriptRows(const std::string& pat
                       "step 1..7, part 0..26, attempt 0..1000");
     }
     e.plan = columnText(q, 7);
-    if (!social::planKindFromName(e.plan)) {
+    if (!common_ground::planKindFromName(e.plan)) {
       return readDiag(path, row + ": plan '" + e.plan.substr(0, 40) + "'",
                       "divide_and_proceed, divide_and_wait, detour_together or resume");
     }
@@ -176,7 +176,7 @@ core::Result<std::vector<CoordinationInfo>> readCoordinations(const std::string&
         c.goalCategory = points[c.goalPoint].second;
       }
       c.goalKind = columnText(q, 5);
-      if (!social::goalKindFromName(c.goalKind)) {
+      if (!common_ground::goalKindFromName(c.goalKind)) {
         return readDiag(path, row + ": goal_kind '" + c.goalKind.substr(0, 40) + "'", "personal or shared");
       }
       c.trigger = columnText(q, 6);
@@ -184,11 +184,11 @@ core::Result<std::vector<CoordinationInfo>> readCoordinations(const std::string&
         return readDiag(path, row + ": trigger '" + c.trigger.substr(0, 40) + "'", "need or attraction");
       }
       c.relation = columnText(q, 7);
-      if (!c.relation.empty() && !social::relationFromName(c.relation)) {
+      if (!c.relation.empty() && !common_ground::relationFromName(c.relation)) {
         return readDiag(path, row + ": relation '" + c.relation.substr(0, 40) + "'", "A1..A6 or NULL");
       }
       c.plan = columnText(q, 8);
-      if (!social::planKindFromName(c.plan)) {
+      if (!common_ground::planKindFromName(c.plan)) {
         return readDiag(path, row + ": plan '" + c.plan.substr(0, 40) + "'",
                         "divide_and_proceed, divide_and_wait, detour_together or resume");
       }

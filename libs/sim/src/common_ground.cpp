@@ -16,7 +16,7 @@
 #include <cmath>
 
 #include "throng/sim/animation.hpp"
-#include "throng/social/relations.hpp"
+#include "throng/common_ground/relations.hpp"
 #include "group_pass.hpp"
 #include "world_impl.hpp"
 
@@ -27,14 +27,14 @@ namespace {
 constexpr double kDeadlineSlack = 120.0;
 
 /// Effort for A to be perceived by a member in relation r: the respondent B is the hardest one.
-int effort(social::Relation r) {
+int effort(common_ground::Relation r) {
   switch (r) {
-    case social::Relation::A1: return 0;
-    case social::Relation::A2: return 1;
-    case social::Relation::A4: return 2;
-    case social::Relation::A5: return 3;
-    case social::Relation::A3: return 4;
-    case social::Relation::A6: return 5;
+    case common_ground::Relation::A1: return 0;
+    case common_ground::Relation::A2: return 1;
+    case common_ground::Relation::A4: return 2;
+    case common_ground::Relation::A5: return 3;
+    case common_ground::Relation::A3: return 4;
+    case common_ground::Relation::A6: return 5;
   }
   return 5;
 }
@@ -61,11 +61,11 @@ struct CoordinationStart {
 
   void startCoordination(std::uint32_t row);
   [[nodiscard]] std::vector<std::uint32_t> availableMates(const GroupState& g, std::uint32_t initiator) const;
-  [[nodiscard]] social::Goal coordinationGoal(std::uint32_t point, GoalTrigger trigger, const std::vector<std::uint32_t>& mates) const;
+  [[nodiscard]] common_ground::Goal coordinationGoal(std::uint32_t point, GoalTrigger trigger, const std::vector<std::uint32_t>& mates) const;
   /// The grounding planner's script for A, B and the companions; false when it has none.
   bool planGrounding(ActiveCoordination& c, std::uint32_t row, const std::vector<std::uint32_t>& mates,
-                     const social::Goal& goal, core::Vec2 destination, double now);
-  void planLoneVisit(ActiveCoordination& c, std::uint32_t row, const social::Goal& goal, core::Vec2 destination,
+                     const common_ground::Goal& goal, core::Vec2 destination, double now);
+  void planLoneVisit(ActiveCoordination& c, std::uint32_t row, const common_ground::Goal& goal, core::Vec2 destination,
                      double now) const;
   void beginCoordination(ActiveCoordination c, bool alone, double now);
 };
@@ -121,14 +121,14 @@ void generateGoal(const DecideInput& in, const DecideOutput& out, std::size_t ro
   if (mask == 0 || commonGround.attractionPoints.empty()) return;
   const auto period = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::lround(social.attraction.checkPeriod / in.desc.dt)));
   if ((tick + id) % period != 0) return;
-  const social::Body me{pos, facingOf(out.oriX[row], out.oriY[row]), agents.radius[row]};
-  const social::NavMeshOcclusion walls(query);
+  const common_ground::Body me{pos, facingOf(out.oriX[row], out.oriY[row]), agents.radius[row]};
+  const common_ground::NavMeshOcclusion walls(query);
   const std::vector<std::uint32_t>& seen = agents.visited[row];
   for (const std::uint32_t p : commonGround.attractionPoints) {
     if (!((mask >> static_cast<unsigned>(commonGround.pointCategory[p])) & 1u)) continue;
     if (std::find(seen.begin(), seen.end(), p) != seen.end()) continue;
-    const social::Body place{in.desc.points[p].position, {0.0f, 0.0f}, 0.0f};
-    if (!social::perceive(me, place, social.senses, walls).see) continue;
+    const common_ground::Body place{in.desc.points[p].position, {0.0f, 0.0f}, 0.0f};
+    if (!common_ground::perceive(me, place, social.senses, walls).see) continue;
     // One draw per agent and place: the same place never tempts the same agent twice.
     core::Rng rng(in.desc.seed, (static_cast<std::uint64_t>(id) << 32) ^ p, core::RngPurpose::Social);
     if (rng.uniform() < social.attraction.probability) {
@@ -157,7 +157,7 @@ void CoordinationStart::startCoordination(std::uint32_t row) {
   const std::uint32_t aId = agents.id[row];
   const double now = static_cast<double>(tick) * desc.dt;
   const std::vector<std::uint32_t> mates = availableMates(g, aId);
-  social::Goal goal = coordinationGoal(point, trigger, mates);
+  common_ground::Goal goal = coordinationGoal(point, trigger, mates);
   // x_s: a spot in the place's region (sub-regions spread visitors), on the navmesh.
   goal.position = goals.drawTarget(row, desc.points[point]);
   const core::Vec2 destination{agents.targetX[row], agents.targetY[row]};
@@ -190,12 +190,12 @@ std::vector<std::uint32_t> CoordinationStart::availableMates(const GroupState& g
   return mates;
 }
 
-social::Goal CoordinationStart::coordinationGoal(std::uint32_t point, GoalTrigger trigger, const std::vector<std::uint32_t>& mates) const {
+common_ground::Goal CoordinationStart::coordinationGoal(std::uint32_t point, GoalTrigger trigger, const std::vector<std::uint32_t>& mates) const {
   // The goal: what the macro-plan rules read.
   const CommonGroundDesc& social = desc.social;
   const PointDesc& place = desc.points[point];
-  social::Goal goal;
-  goal.kind = social::GoalKind::Personal;
+  common_ground::Goal goal;
+  goal.kind = common_ground::GoalKind::Personal;
   goal.expectedVisit = social.attraction.expectedVisit;
   if (trigger == GoalTrigger::Need) {
     for (const NeedDesc& need : social.needs) {
@@ -208,15 +208,15 @@ social::Goal CoordinationStart::coordinationGoal(std::uint32_t point, GoalTrigge
     const bool all = std::all_of(mates.begin(), mates.end(), [&](std::uint32_t m) {
       return ((agents.interests[rowOfId[m]] >> static_cast<unsigned>(cat)) & 1u) != 0;
     });
-    if (all) goal.kind = social::GoalKind::Shared;
+    if (all) goal.kind = common_ground::GoalKind::Shared;
   }
   return goal;
 }
 
 namespace {
 
-social::ActorBody actorBody(const AgentStore& agents, std::uint32_t r) {
-  social::ActorBody b;
+common_ground::ActorBody actorBody(const AgentStore& agents, std::uint32_t r) {
+  common_ground::ActorBody b;
   b.position = {agents.posX[r], agents.posY[r]};
   b.heading = std::atan2(agents.oriY[r], agents.oriX[r]);
   b.walkSpeed = std::clamp(agents.speed[r], 0.1f, 10.0f);
@@ -224,21 +224,21 @@ social::ActorBody actorBody(const AgentStore& agents, std::uint32_t r) {
   return b;
 }
 
-social::Body sensedBody(const AgentStore& agents, std::uint32_t r) {
-  return social::Body{{agents.posX[r], agents.posY[r]}, facingOf(agents.oriX[r], agents.oriY[r]), agents.radius[r]};
+common_ground::Body sensedBody(const AgentStore& agents, std::uint32_t r) {
+  return common_ground::Body{{agents.posX[r], agents.posY[r]}, facingOf(agents.oriX[r], agents.oriY[r]), agents.radius[r]};
 }
 
 }  // namespace
 
 bool CoordinationStart::planGrounding(ActiveCoordination& c, std::uint32_t row, const std::vector<std::uint32_t>& mates,
-                                const social::Goal& goal, core::Vec2 destination, double now) {
+                                const common_ground::Goal& goal, core::Vec2 destination, double now) {
   const CommonGroundDesc& social = desc.social;
   const nav::NavQuery& query = goals.query;
   const core::Vec2 aPos{agents.posX[row], agents.posY[row]};
-  const social::NavMeshOcclusion walls(query);
-  const social::Body aBody = sensedBody(agents, row);
-  std::vector<std::pair<social::Relation, std::uint32_t>> rel;
-  for (const std::uint32_t m : mates) rel.emplace_back(social::assess(aBody, sensedBody(agents, rowOfId[m]), social.senses, walls), m);
+  const common_ground::NavMeshOcclusion walls(query);
+  const common_ground::Body aBody = sensedBody(agents, row);
+  std::vector<std::pair<common_ground::Relation, std::uint32_t>> rel;
+  for (const std::uint32_t m : mates) rel.emplace_back(common_ground::assess(aBody, sensedBody(agents, rowOfId[m]), social.senses, walls), m);
   // B: the mate hardest to reach (ties: nearest, then lowest id); the others are companions.
   std::size_t bi = 0;
   for (std::size_t i = 1; i < rel.size(); ++i) {
@@ -249,21 +249,21 @@ bool CoordinationStart::planGrounding(ActiveCoordination& c, std::uint32_t row, 
     if (ei > eb || (ei == eb && (di < db || (di == db && rel[i].second < rel[bi].second)))) bi = i;
   }
   const std::uint32_t bRow = rowOfId[rel[bi].second];
-  social::CoordinationInput in;
+  common_ground::CoordinationInput in;
   in.initiator = actorBody(agents, row);
   in.respondent = actorBody(agents, bRow);
   in.relation = rel[bi].first;
   for (std::size_t i = 0; i < rel.size(); ++i) {
     if (i != bi) in.companions.push_back({actorBody(agents, rowOfId[rel[i].second]), rel[i].first});
   }
-  const social::Body bBody = sensedBody(agents, bRow);
-  const auto snap = [&](social::Approach a) -> std::optional<core::Vec2> {
+  const common_ground::Body bBody = sensedBody(agents, bRow);
+  const auto snap = [&](common_ground::Approach a) -> std::optional<core::Vec2> {
     if (!a.reachable) return std::nullopt;
     if (auto hit = query.nearest(a.point, 2.0f)) return hit->first;
     return std::nullopt;
   };
-  in.viewPoint = snap(social::pointInView(aBody, bBody, social.senses, walls));
-  in.hearingPoint = snap(social::pointInHearing(aBody, bBody, social.senses));
+  in.viewPoint = snap(common_ground::pointInView(aBody, bBody, social.senses, walls));
+  in.hearingPoint = snap(common_ground::pointInHearing(aBody, bBody, social.senses));
   in.goal = goal;
   in.destination = destination;
   in.startTime = now;
@@ -274,7 +274,7 @@ bool CoordinationStart::planGrounding(ActiveCoordination& c, std::uint32_t row, 
   // Responses B misses (it did not notice): drawn per coordination, consumed in order.
   core::Rng miss(desc.seed, c.record.id, core::RngPurpose::Social);
   for (int k = 0; k < 32; ++k) in.lostResponses.push_back(miss.uniform() < social.missProbability);
-  auto planned = social::planCoordination(in, {&social.micro, &social.macro}, social.clipLengths, social.coordination);
+  auto planned = common_ground::planCoordination(in, {&social.micro, &social.macro}, social.clipLengths, social.coordination);
   if (!planned.ok()) return false;
   c.script = std::move(planned).value();
   c.actors.push_back(rel[bi].second);
@@ -283,32 +283,32 @@ bool CoordinationStart::planGrounding(ActiveCoordination& c, std::uint32_t row, 
   }
   c.record.relation = static_cast<std::uint8_t>(rel[bi].first);
   c.record.plan = static_cast<std::uint8_t>(c.script.plan);
-  c.record.outcome = c.script.outcome == social::Outcome::Grounded ? CoordinationOutcome::Grounded : CoordinationOutcome::Failed;
+  c.record.outcome = c.script.outcome == common_ground::Outcome::Grounded ? CoordinationOutcome::Grounded : CoordinationOutcome::Failed;
   return true;
 }
 
-void CoordinationStart::planLoneVisit(ActiveCoordination& c, std::uint32_t row, const social::Goal& goal, core::Vec2 destination,
+void CoordinationStart::planLoneVisit(ActiveCoordination& c, std::uint32_t row, const common_ground::Goal& goal, core::Vec2 destination,
                                 double now) const {
   // A lone visit: walk to the goal, stay the plan's visit duration, walk on (no grounding).
   const CommonGroundDesc& social = desc.social;
   const core::Vec2 aPos{agents.posX[row], agents.posY[row]};
-  const auto chosen = social::selectPlan(social.macro, goal, core::distance(goal.position, aPos));
-  const social::PlanKind kind = chosen ? social.macro.plans[*chosen].kind : social::PlanKind::DivideAndProceed;
+  const auto chosen = common_ground::selectPlan(social.macro, goal, core::distance(goal.position, aPos));
+  const common_ground::PlanKind kind = chosen ? social.macro.plans[*chosen].kind : common_ground::PlanKind::DivideAndProceed;
   const double visit = chosen ? social.macro.plans[*chosen].visitDuration : 30.0;
   const double speed = std::max(0.1f, agents.speed[row]);
-  social::ActionScript s;
+  common_ground::ActionScript s;
   s.actors.resize(1);
   s.plan = kind;
   s.startTime = s.executeTime = now;
   auto add = [&](const char* motion, const char* behaviour, double start, double duration, core::Vec2 target) {
-    social::ScriptEntry e;
+    common_ground::ScriptEntry e;
     e.start = start;
     e.duration = duration;
     e.motion = motion;
     e.behaviour = behaviour;
-    e.targetType = social::ScriptEntry::Target::Point;
+    e.targetType = common_ground::ScriptEntry::Target::Point;
     e.targetPoint = target;
-    e.step = social::GroundingStep::Execute;
+    e.step = common_ground::GroundingStep::Execute;
     e.plan = kind;
     s.actors[0].push_back(e);
     return start + duration;
@@ -328,15 +328,15 @@ void CoordinationStart::beginCoordination(ActiveCoordination c, bool alone, doub
   GroupState& g = groups[gid];
   for (std::size_t i = 1; i < c.actors.size(); ++i) c.record.respondents.push_back(c.actors[i]);
   for (const auto& list : c.script.actors) {
-    for (const auto& e : list) c.record.retries += e.attempt > 0 && e.step != social::GroundingStep::Execute ? 1u : 0u;
+    for (const auto& e : list) c.record.retries += e.attempt > 0 && e.step != common_ground::GroundingStep::Execute ? 1u : 0u;
   }
   const std::size_t n = c.actors.size();
   c.cursor.assign(n, 0);
   c.started.assign(n, -1.0);
   c.left.assign(n, 0);
   c.deadline = now + 3.0 * std::max(0.0, c.script.endTime - now) + kDeadlineSlack;
-  c.divides = g.members.size() >= 2 && (c.script.plan == social::PlanKind::DivideAndProceed ||
-                                        c.script.plan == social::PlanKind::DivideAndWait);
+  c.divides = g.members.size() >= 2 && (c.script.plan == common_ground::PlanKind::DivideAndProceed ||
+                                        c.script.plan == common_ground::PlanKind::DivideAndWait);
   for (const std::uint32_t actor : c.actors) {
     const std::uint32_t r = rowOfId[actor];
     agents.coordination[r] = c.record.id;

@@ -29,8 +29,8 @@ constexpr double kWalkGiveUpFactor = 3.0;
 /// Times within this of each other count as equal [s].
 constexpr double kTimeEpsilon = 1e-9;
 
-bool leavesScript(const social::ScriptEntry& e) {
-  return e.step == social::GroundingStep::Execute &&
+bool leavesScript(const common_ground::ScriptEntry& e) {
+  return e.step == common_ground::GroundingStep::Execute &&
          (e.behaviour == "resume" || e.behaviour == "walk_to_destination" || e.behaviour == "walk_to_next");
 }
 
@@ -53,9 +53,9 @@ struct CoordinationPlay {
   void playActor(ActiveCoordination& c, std::size_t actor, std::uint32_t row, double now);
   /// Whether the actor's current entry is over (walks: arrived, stuck near, or given up; others:
   /// their time is up); turns it toward the entry's target meanwhile.
-  bool entryComplete(ActiveCoordination& c, std::size_t actor, std::uint32_t row, const social::ScriptEntry& e, double now);
-  void turnToward(const ActiveCoordination& c, std::uint32_t row, const social::ScriptEntry& e);
-  void publishEntry(const ActiveCoordination& c, std::size_t actor, const social::ScriptEntry& e, double start, double duration);
+  bool entryComplete(ActiveCoordination& c, std::size_t actor, std::uint32_t row, const common_ground::ScriptEntry& e, double now);
+  void turnToward(const ActiveCoordination& c, std::uint32_t row, const common_ground::ScriptEntry& e);
+  void publishEntry(const ActiveCoordination& c, std::size_t actor, const common_ground::ScriptEntry& e, double start, double duration);
   /// The actor leaves the script and goes back to its group's navigation.
   void leaveScript(ActiveCoordination& c, std::size_t actor);
   void beginEntry(ActiveCoordination& c, std::size_t actor, std::size_t row, double now);
@@ -65,8 +65,8 @@ struct CoordinationPlay {
 }  // namespace
 
 void CoordinationPlay::beginEntry(ActiveCoordination& c, std::size_t actor, std::size_t row, double now) {
-  const social::ScriptEntry& e = c.script.actor(actor)[c.cursor[actor]];
-  if (e.step == social::GroundingStep::Execute && c.record.executeTime <= 0.0 && actor == 0) c.record.executeTime = now;
+  const common_ground::ScriptEntry& e = c.script.actor(actor)[c.cursor[actor]];
+  if (e.step == common_ground::GroundingStep::Execute && c.record.executeTime <= 0.0 && actor == 0) c.record.executeTime = now;
   const core::Vec2 pos{agents.posX[row], agents.posY[row]};
   agents.scriptWalk[row] = 0;
   agents.scriptClip[row] = kNoClip;
@@ -77,9 +77,9 @@ void CoordinationPlay::beginEntry(ActiveCoordination& c, std::size_t actor, std:
   agents.needPath[row] = 0;
   agents.ticket[row] = 0;
   agents.mode[row] = AgentMode::Waiting;
-  if (e.motion == social::kWalkMotion) {
+  if (e.motion == common_ground::kWalkMotion) {
     core::Vec2 target = e.targetPoint;
-    if (e.behaviour == "walk_to_partner" && e.targetType == social::ScriptEntry::Target::Agent &&
+    if (e.behaviour == "walk_to_partner" && e.targetType == common_ground::ScriptEntry::Target::Agent &&
         e.targetActor < c.actors.size()) {
       // Back to where the partner stands now (it may have been nudged), touch distance short of it.
       const std::uint32_t pr = rowOfId[c.actors[e.targetActor]];
@@ -99,12 +99,12 @@ void CoordinationPlay::beginEntry(ActiveCoordination& c, std::size_t actor, std:
     agents.progressDistance[row] = 1e30f;
     agents.stuckTime[row] = 0.0f;
     agents.mode[row] = AgentMode::Walking;
-  } else if (e.motion == social::kIdleMotion) {
+  } else if (e.motion == common_ground::kIdleMotion) {
     if (e.behaviour == "stay") {
       agents.mode[row] = AgentMode::Acting;
       if (actor == 0) pendingEvents.push_back({tick, c.actors[0], EventKind::VisitStart, c.record.goalPoint, c.record.id});
     }
-  } else if (e.motion != social::kTurnMotion) {
+  } else if (e.motion != common_ground::kTurnMotion) {
     const auto clip = commonGround.clipIndex.find(e.motion);
     if (clip != commonGround.clipIndex.end()) agents.scriptClip[row] = clip->second;
     agents.mode[row] = AgentMode::Acting;
@@ -144,7 +144,7 @@ void CoordinationPlay::playCoordination(ActiveCoordination& c, double now) {
   }
 }
 
-void CoordinationPlay::publishEntry(const ActiveCoordination& c, std::size_t actor, const social::ScriptEntry& e, double start,
+void CoordinationPlay::publishEntry(const ActiveCoordination& c, std::size_t actor, const common_ground::ScriptEntry& e, double start,
                                double duration) {
   ScriptRecord r;
   r.coordination = c.record.id;
@@ -156,7 +156,7 @@ void CoordinationPlay::publishEntry(const ActiveCoordination& c, std::size_t act
   r.attempt = static_cast<std::uint8_t>(std::min(e.attempt, 255));
   r.plan = static_cast<std::uint8_t>(e.plan);
   r.targetType = static_cast<std::uint8_t>(e.targetType);
-  if (e.targetType == social::ScriptEntry::Target::Agent && e.targetActor < c.actors.size()) r.targetAgent = c.actors[e.targetActor];
+  if (e.targetType == common_ground::ScriptEntry::Target::Agent && e.targetActor < c.actors.size()) r.targetAgent = c.actors[e.targetActor];
   r.targetX = e.targetPoint.x;
   r.targetY = e.targetPoint.y;
   r.plannedStart = e.start;
@@ -192,8 +192,8 @@ bool waitsForWalk(const ActiveCoordination& c, std::size_t actor, double until) 
     if (j == actor || c.left[j]) continue;
     const auto& other = c.script.actor(j);
     if (c.cursor[j] >= other.size()) continue;
-    const social::ScriptEntry& w = other[c.cursor[j]];
-    if (w.motion == social::kWalkMotion && w.duration > 0.0 && w.end() <= until + kTimeEpsilon) return true;
+    const common_ground::ScriptEntry& w = other[c.cursor[j]];
+    if (w.motion == common_ground::kWalkMotion && w.duration > 0.0 && w.end() <= until + kTimeEpsilon) return true;
   }
   return false;
 }
@@ -207,7 +207,7 @@ void CoordinationPlay::playActor(ActiveCoordination& c, std::size_t i, std::uint
       leaveScript(c, i);
       break;
     }
-    const social::ScriptEntry& e = entries[c.cursor[i]];
+    const common_ground::ScriptEntry& e = entries[c.cursor[i]];
     if (c.started[i] < 0.0) {
       if (now + kTimeEpsilon < e.start + c.slip) break;  // waits for its activation time
       if (waitsForWalk(c, i, e.start)) break;
@@ -238,9 +238,9 @@ void CoordinationPlay::playActor(ActiveCoordination& c, std::size_t i, std::uint
   }
 }
 
-bool CoordinationPlay::entryComplete(ActiveCoordination& c, std::size_t i, std::uint32_t row, const social::ScriptEntry& e,
+bool CoordinationPlay::entryComplete(ActiveCoordination& c, std::size_t i, std::uint32_t row, const common_ground::ScriptEntry& e,
                                 double now) {
-  if (e.motion == social::kWalkMotion) {
+  if (e.motion == common_ground::kWalkMotion) {
     const float dx = agents.targetX[row] - agents.posX[row], dy = agents.targetY[row] - agents.posY[row];
     const float d2 = dx * dx + dy * dy;
     const float reach = e.behaviour == "follow" ? kFollowArrive : kScriptArrive;
@@ -251,15 +251,15 @@ bool CoordinationPlay::entryComplete(ActiveCoordination& c, std::size_t i, std::
     return complete;
   }
   const bool complete = now + kTimeEpsilon >= e.end() + c.slip && !waitsForWalk(c, i, e.end());
-  if (!complete && e.targetType != social::ScriptEntry::Target::None) turnToward(c, row, e);
+  if (!complete && e.targetType != common_ground::ScriptEntry::Target::None) turnToward(c, row, e);
   return complete;
 }
 
-void CoordinationPlay::turnToward(const ActiveCoordination& c, std::uint32_t row, const social::ScriptEntry& e) {
+void CoordinationPlay::turnToward(const ActiveCoordination& c, std::uint32_t row, const common_ground::ScriptEntry& e) {
   // Turn toward the target at the turning rate (turns, and clips aimed at something).
   const float turnStep = static_cast<float>(desc.social.coordination.turnRate * desc.dt);
   core::Vec2 aim = e.targetPoint;
-  if (e.targetType == social::ScriptEntry::Target::Agent && e.targetActor < c.actors.size()) {
+  if (e.targetType == common_ground::ScriptEntry::Target::Agent && e.targetActor < c.actors.size()) {
     const std::uint32_t tr = rowOfId[c.actors[e.targetActor]];
     if (tr != kNoRow) aim = {agents.posX[tr], agents.posY[tr]};
   }

@@ -12,7 +12,7 @@
 
 #include "throng/sim/frame.hpp"
 #include "throng/sim/scenario.hpp"
-#include "throng/social/coordination.hpp"
+#include "throng/common_ground/coordination.hpp"
 
 namespace throng::sim {
 
@@ -23,7 +23,7 @@ namespace throng::sim {
 struct ActiveCoordination {
   CoordinationRecord record;            ///< filled as it goes; published when it ends
   std::vector<std::uint32_t> actors;    ///< stable ids: [0] A, [1] B, then companions
-  social::ActionScript script;
+  common_ground::ActionScript script;
   std::vector<std::uint32_t> cursor;    ///< per actor: entry being played (== size: done)
   std::vector<double> started;          ///< per actor: actual start of the current entry, < 0 not started
   std::vector<std::uint8_t> left;       ///< per actor: has left the script (resumed or gone)

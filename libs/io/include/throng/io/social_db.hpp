@@ -1,6 +1,6 @@
 // throng::io social databases — the micro-behaviour database (data/social/micro_behaviours.json)
 // and the macro-plan database (data/social/macro_plans.json) of the Common Ground coordination
-// planner, parsed from JSON into throng::social's plain structs. Reads text (or one file); writes
+// planner, parsed from JSON into throng::common_ground's plain structs. Reads text (or one file); writes
 // nothing. Every problem is one diagnostic: file:line:column, JSON pointer, what is wrong and what
 // was expected. Format: docs/social-coordination.md.
 #pragma once
@@ -8,7 +8,7 @@
 #include <string_view>
 
 #include "throng/core/result.hpp"
-#include "throng/social/behaviour_db.hpp"
+#include "throng/common_ground/behaviour_db.hpp"
 
 namespace throng::io {
 
@@ -18,16 +18,16 @@ inline constexpr double kMaxVisitDuration = 86400.0;      ///< [s] visitDuration
 
 /// Parses a micro-behaviour database; checks types, names (unique, known intents, relations,
 /// targets) and that every response names a behaviour of the file.
-[[nodiscard]] core::Result<social::MicroBehaviourDb> parseMicroBehaviours(std::string_view text,
+[[nodiscard]] core::Result<common_ground::MicroBehaviourDb> parseMicroBehaviours(std::string_view text,
                                                                           const std::string& source);
 
 /// Parses a macro-plan database; `micro` is the micro-behaviour database its proposals name
 /// (each must exist and have the "propose" intent).
-[[nodiscard]] core::Result<social::MacroPlanDb> parseMacroPlans(std::string_view text, const std::string& source,
-                                                                const social::MicroBehaviourDb& micro);
+[[nodiscard]] core::Result<common_ground::MacroPlanDb> parseMacroPlans(std::string_view text, const std::string& source,
+                                                                const common_ground::MicroBehaviourDb& micro);
 
-[[nodiscard]] core::Result<social::MicroBehaviourDb> loadMicroBehaviours(const std::string& path);
-[[nodiscard]] core::Result<social::MacroPlanDb> loadMacroPlans(const std::string& path,
-                                                               const social::MicroBehaviourDb& micro);
+[[nodiscard]] core::Result<common_ground::MicroBehaviourDb> loadMicroBehaviours(const std::string& path);
+[[nodiscard]] core::Result<common_ground::MacroPlanDb> loadMacroPlans(const std::string& path,
+                                                               const common_ground::MicroBehaviourDb& micro);
 
 }  // namespace throng::io

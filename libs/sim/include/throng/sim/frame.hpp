@@ -67,16 +67,16 @@ struct Event {
 
 /// One entry of a character's action script (Common Ground; Park et al. Tables 3 and 5) as the
 /// simulation carried it out, published when the entry ends. Enum fields hold the values of
-/// throng::social's enums (the frame stays free of that library's headers).
+/// throng::common_ground's enums (the frame stays free of that library's headers).
 struct ScriptRecord {
   std::uint32_t coordination = 0;  ///< CoordinationRecord::id
   std::uint32_t agent = 0;         ///< stable id of the character
   std::uint32_t seq = 0;           ///< position in this character's script for this coordination (0, 1, ...)
   std::uint8_t role = 0;           ///< 0 initiator A, 1 respondent B, 2 companion (another group mate)
-  std::uint8_t step = 7;           ///< social::GroundingStep, 1..7 (Table 1)
+  std::uint8_t step = 7;           ///< common_ground::GroundingStep, 1..7 (Table 1)
   std::uint8_t part = 0;           ///< proposal part of steps 4 and 5: 1 = "a", 2 = "b"; 0 otherwise
   std::uint8_t attempt = 0;        ///< 0 first try, then retries
-  std::uint8_t plan = 0;           ///< social::PlanKind proposed or executed
+  std::uint8_t plan = 0;           ///< common_ground::PlanKind proposed or executed
   std::uint8_t targetType = 0;     ///< 0 none, 1 point, 2 agent
   std::uint32_t targetAgent = 0xffffffffu;  ///< stable id when targetType == 2
   float targetX = 0.0f, targetY = 0.0f;     ///< target point [m] (the agent's position for agents)
@@ -95,10 +95,10 @@ struct CoordinationRecord {
   std::uint32_t initiator = 0;     ///< stable id of A
   std::vector<std::uint32_t> respondents;  ///< stable ids: B first, then the companions; empty when Alone
   std::uint32_t goalPoint = 0;     ///< index into ScenarioDesc::points
-  std::uint8_t goalKind = 0;       ///< social::GoalKind (0 personal, 1 shared)
+  std::uint8_t goalKind = 0;       ///< common_ground::GoalKind (0 personal, 1 shared)
   GoalTrigger trigger = GoalTrigger::Need;
-  std::uint8_t relation = 0;       ///< social::Relation of A to B at initiation (1..6); 0 when Alone
-  std::uint8_t plan = 0;           ///< social::PlanKind carried out
+  std::uint8_t relation = 0;       ///< common_ground::Relation of A to B at initiation (1..6); 0 when Alone
+  std::uint8_t plan = 0;           ///< common_ground::PlanKind carried out
   CoordinationOutcome outcome = CoordinationOutcome::Alone;
   std::uint32_t retries = 0;       ///< grounding attempts beyond the first, over all steps
   double start = 0.0;              ///< t_0 [s]

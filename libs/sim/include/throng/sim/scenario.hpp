@@ -10,9 +10,9 @@
 
 #include "throng/core/geometry.hpp"
 #include "throng/nav/navmesh.hpp"
-#include "throng/social/behaviour_db.hpp"
-#include "throng/social/coordination.hpp"
-#include "throng/social/sensing.hpp"
+#include "throng/common_ground/behaviour_db.hpp"
+#include "throng/common_ground/coordination.hpp"
+#include "throng/common_ground/sensing.hpp"
 #include "throng/sim/models.hpp"
 
 namespace throng::sim {
@@ -169,7 +169,7 @@ struct NeedDesc {
   std::string category;
   float rate = 0.0005f;       ///< [1/s per agent] [Limit: >= 0]
   float expectedVisit = 120.0f;  ///< what the macro-plan rules compare [s] [Limit: >= 0]
-  social::GoalKind kind = social::GoalKind::Personal;
+  common_ground::GoalKind kind = common_ground::GoalKind::Personal;
 };
 
 /// Environmentally driven goals: an agent that sees a place of a category among its interests
@@ -185,10 +185,10 @@ struct AttractionDesc {
 struct CommonGroundDesc {
   bool enabled = false;          ///< the section is present: goals are generated
   bool commonGround = true;      ///< groups coordinate before they divide; off: the agent just goes
-  social::SensoryParams senses;
+  common_ground::SensoryParams senses;
   std::vector<NeedDesc> needs;
   AttractionDesc attraction;
-  social::CoordinationParams coordination;
+  common_ground::CoordinationParams coordination;
   /// Each response B owes is missed with this probability (distraction, noise): A times out and
   /// tries again, another way or closer; drawn per coordination (seeded). [0, 1]
   float missProbability = 0.1f;
@@ -196,9 +196,9 @@ struct CommonGroundDesc {
   std::string microPath;         ///< micro-behaviour database as written (relative to the scenario); empty = built in
   std::string macroPath;         ///< macro-plan database as written; empty = built in
   std::string motions = "motions";  ///< directory of the clips (<clip>.bvh), relative to the scenario
-  social::MicroBehaviourDb micro;
-  social::MacroPlanDb macro;
-  social::ClipLengths clipLengths;  ///< every clip the micro-behaviour database plays, from BVH files
+  common_ground::MicroBehaviourDb micro;
+  common_ground::MacroPlanDb macro;
+  common_ground::ClipLengths clipLengths;  ///< every clip the micro-behaviour database plays, from BVH files
 };
 
 /// A crowd added to a running world (World::insertCrowd, a scenario's timeline): new points and

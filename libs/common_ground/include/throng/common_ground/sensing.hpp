@@ -1,4 +1,4 @@
-// throng::social sensing — the sensory model of a character (Park, Peng, Quek, Cao, "Common Ground",
+// throng::common_ground sensing — the sensory model of a character (Park, Peng, Quek, Cao, "Common Ground",
 // §3.2, Figure 2(a)): touch within the body radius, omnidirectional hearing up to d_h, and vision
 // along the body direction (gaze = body orientation) up to d_v within a field of view α, occluded by
 // walls. Read in the `sense` phase: it reads positions, headings and radii of an agent and of the
@@ -14,13 +14,13 @@
 #include "throng/core/diagnostic.hpp"
 #include "throng/core/geometry.hpp"
 #include "throng/core/vec2.hpp"
-#include "throng/social/relation.hpp"
+#include "throng/common_ground/relation.hpp"
 
 namespace throng::nav {
 class NavQuery;
 }
 
-namespace throng::social {
+namespace throng::common_ground {
 
 using core::Vec2;
 
@@ -111,4 +111,4 @@ void perceivedBy(const Body& observer, std::span<const Body> candidates, std::sp
                  const SensoryParams& params, const Occlusion& occlusion,
                  std::vector<std::pair<std::uint32_t, Perception>>& out);
 
-}  // namespace throng::social
+}  // namespace throng::common_ground

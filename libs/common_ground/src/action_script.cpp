@@ -1,13 +1,13 @@
-// throng::social action script — labels, a text rendering in the shape of Park, Peng, Quek, Cao
+// throng::common_ground action script — labels, a text rendering in the shape of Park, Peng, Quek, Cao
 // Tables 3 and 5, and the script invariants (ordered, non-overlapping entries per actor). Reads an
 // ActionScript (A, B and any companions); writes text.
-#include "throng/social/action_script.hpp"
+#include "throng/common_ground/action_script.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-namespace throng::social {
+namespace throng::common_ground {
 
 std::string_view outcomeName(Outcome outcome) {
   return outcome == Outcome::Grounded ? "grounded" : "failed";
@@ -101,4 +101,4 @@ std::string checkScript(const ActionScript& script) {
   return {};
 }
 
-}  // namespace throng::social
+}  // namespace throng::common_ground

@@ -20,10 +20,10 @@ const char* kMicro = R"({
   ]
 })";
 
-social::MicroBehaviourDb micro() {
+common_ground::MicroBehaviourDb micro() {
   auto r = io::parseMicroBehaviours(kMicro, "micro.json");
   EXPECT_TRUE(r.ok()) << (r.ok() ? "" : core::formatAll(r.errors()));
-  return r.ok() ? r.value() : social::MicroBehaviourDb{};
+  return r.ok() ? r.value() : common_ground::MicroBehaviourDb{};
 }
 
 TEST(SocialDb, BundledDatabasesLoad) {
@@ -34,14 +34,14 @@ TEST(SocialDb, BundledDatabasesLoad) {
   }
   const auto& wave = m.value().behaviours[*m.value().find("wave")];
   EXPECT_EQ(wave.clip, "wave");
-  EXPECT_EQ(wave.allowedIn, (std::vector<social::Relation>{social::Relation::A2, social::Relation::A5}));
+  EXPECT_EQ(wave.allowedIn, (std::vector<common_ground::Relation>{common_ground::Relation::A2, common_ground::Relation::A5}));
   auto p = io::loadMacroPlans(THRONG_SOURCE_DIR "/data/social/macro_plans.json", m.value());
   ASSERT_TRUE(p.ok()) << core::formatAll(p.errors());
   ASSERT_EQ(p.value().plans.size(), 3u);
-  EXPECT_EQ(p.value().failurePlan, social::PlanKind::Resume);
+  EXPECT_EQ(p.value().failurePlan, common_ground::PlanKind::Resume);
   bool wait = false;
   for (const auto& plan : p.value().plans) {
-    if (plan.kind != social::PlanKind::DivideAndWait) continue;
+    if (plan.kind != common_ground::PlanKind::DivideAndWait) continue;
     wait = true;
     EXPECT_EQ(plan.proposal, (std::vector<std::string>{"point_toward", "point_down"}));
     EXPECT_GT(plan.visitDuration, 0.0);

@@ -1,6 +1,6 @@
-// Tests of libs/social/src/sensing.cpp: touch, hearing and vision (field of view, range, walls),
+// Tests of libs/common_ground/src/sensing.cpp: touch, hearing and vision (field of view, range, walls),
 // the grid query perceivedBy, navmesh occlusion and parameter validation.
-#include "throng/social/sensing.hpp"
+#include "throng/common_ground/sensing.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -10,7 +10,7 @@
 
 #include "throng/nav/navmesh.hpp"
 
-namespace throng::social {
+namespace throng::common_ground {
 namespace {
 
 constexpr float kHalfFov = 2.0944f * 0.5f;
@@ -162,4 +162,4 @@ RC_GTEST_PROP(SensingProperty, PerceivedByEqualsPerPairPerceive, ()) {
 }
 
 }  // namespace
-}  // namespace throng::social
+}  // namespace throng::common_ground

@@ -1,7 +1,7 @@
-// throng::social sensing — the sensory model (Park et al., §3.2, Figure 2(a)): touch, hearing and
+// throng::common_ground sensing — the sensory model (Park et al., §3.2, Figure 2(a)): touch, hearing and
 // vision of one observer toward candidates the spatial grid supplies; wall occlusion over a segment
 // list or the navigation mesh. Reads bodies, writes Perceptions; no state.
-#include "throng/social/sensing.hpp"
+#include "throng/common_ground/sensing.hpp"
 
 #include <cmath>
 #include <string>
@@ -9,7 +9,7 @@
 #include "throng/core/assert.hpp"
 #include "throng/nav/navmesh.hpp"
 
-namespace throng::social {
+namespace throng::common_ground {
 
 namespace {
 
@@ -107,4 +107,4 @@ void perceivedBy(const Body& observer, std::span<const Body> candidates, const S
   perceivedBy(observer, candidates, {}, params, occlusion, out);
 }
 
-}  // namespace throng::social
+}  // namespace throng::common_ground

@@ -1,13 +1,13 @@
-// throng::social situation assessment (Park et al., §3.2, Figure 2(b)): the relation A1..A6 of an
+// throng::common_ground situation assessment (Park et al., §3.2, Figure 2(b)): the relation A1..A6 of an
 // initiator to a group mate, the approach points x_i / x_j for A3 and A6, and the attention
 // micro-behaviours each relation allows (Table 2). Reads two bodies and the walls; writes nothing.
-#include "throng/social/relations.hpp"
+#include "throng/common_ground/relations.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 
-namespace throng::social {
+namespace throng::common_ground {
 
 namespace {
 
@@ -119,4 +119,4 @@ std::span<const std::string_view> allowedAttentionBehaviours(Relation r) {
   return {};
 }
 
-}  // namespace throng::social
+}  // namespace throng::common_ground

@@ -1,4 +1,4 @@
-// throng::social spatial relations — how an initiator A stands with respect to a group mate B, in
+// throng::common_ground spatial relations — how an initiator A stands with respect to a group mate B, in
 // terms of what B can perceive of A (Park, Peng, Quek, Cao, §3.2 and Figure 2: touch within the body
 // radius, hearing all around up to d_h, vision along the body direction up to d_v within a field of
 // view α, occluded by walls). Figure 2(b)'s drawing of the six relations is missing from our copy
@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <string_view>
 
-namespace throng::social {
+namespace throng::common_ground {
 
 /// What B perceives of A right now.
 struct Perception {
@@ -39,4 +39,4 @@ enum class Relation : std::uint8_t {
   return "?";
 }
 
-}  // namespace throng::social
+}  // namespace throng::common_ground

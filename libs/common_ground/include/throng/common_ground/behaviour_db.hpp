@@ -1,4 +1,4 @@
-// throng::social behaviour databases — the micro-behaviour database (communication intents →
+// throng::common_ground behaviour databases — the micro-behaviour database (communication intents →
 // bodily behaviours, Park, Peng, Quek, Cao Table 2) and the macro-plan database (Table 4:
 // divide-and-proceed, divide-and-wait, detour-together), as plain data. Both are read from JSON by
 // throng::io (data/social/micro_behaviours.json, data/social/macro_plans.json; format in
@@ -13,9 +13,9 @@
 #include <string_view>
 #include <vector>
 
-#include "throng/social/relation.hpp"
+#include "throng/common_ground/relation.hpp"
 
-namespace throng::social {
+namespace throng::common_ground {
 
 /// Communication intents (Table 2), one per grounding step of Table 1 that has an actor.
 enum class Intent : std::uint8_t {
@@ -156,4 +156,4 @@ inline constexpr NameTable<Relation, 6> kRelationNames{
 [[nodiscard]] constexpr std::optional<GoalKind> goalKindFromName(std::string_view s) { return detail::kGoalNames.parse(s); }
 [[nodiscard]] constexpr std::optional<Relation> relationFromName(std::string_view s) { return detail::kRelationNames.parse(s); }
 
-}  // namespace throng::social
+}  // namespace throng::common_ground

@@ -1,4 +1,4 @@
-// throng::social situation assessment — which of the six spatial relations A1..A6 (relation.hpp;
+// throng::common_ground situation assessment — which of the six spatial relations A1..A6 (relation.hpp;
 // Park et al., §3.2, Figure 2(b)) an initiator A stands in with respect to a group mate B, the
 // approach points x_i (into B's view and hearing) and x_j (into B's hearing) that the planner uses
 // for A3/A6, and which attention micro-behaviours (Table 2) each relation allows. Read in `decide`:
@@ -7,10 +7,10 @@
 #include <span>
 #include <string_view>
 
-#include "throng/social/relation.hpp"
-#include "throng/social/sensing.hpp"
+#include "throng/common_ground/relation.hpp"
+#include "throng/common_ground/sensing.hpp"
 
-namespace throng::social {
+namespace throng::common_ground {
 
 /// The relation of initiator A to member B, from what B perceives of A (pB = perceive(B, A)) and,
 /// for A3/A6, what A perceives of B (pA = perceive(A, B)); checked in this order:
@@ -75,4 +75,4 @@ inline constexpr std::string_view kMoveToward = "move_toward";
 ///   A6 move_toward                 (nobody perceives anybody: approach first, then reassess)
 [[nodiscard]] std::span<const std::string_view> allowedAttentionBehaviours(Relation r);
 
-}  // namespace throng::social
+}  // namespace throng::common_ground

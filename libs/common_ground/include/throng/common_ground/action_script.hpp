@@ -1,4 +1,4 @@
-// throng::social action script — the timed output of the coordination planner (Park, Peng, Quek,
+// throng::common_ground action script — the timed output of the coordination planner (Park, Peng, Quek,
 // Cao §3.1–3.2, Tables 3 and 5): per actor of the group (A, B, then the companions) a list of
 // motions with activation times, targets, the grounding step (Table 1) and the macro-plan. A
 // rendering engine or the simulation's decide phase reads it; nothing writes it but planCoordination.
@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "throng/core/vec2.hpp"
-#include "throng/social/behaviour_db.hpp"
+#include "throng/common_ground/behaviour_db.hpp"
 
-namespace throng::social {
+namespace throng::common_ground {
 
 /// The seven grounding steps of Table 1 (7 = executing the agreed macro-plan, or the fallback).
 enum class GroundingStep : std::uint8_t {
@@ -85,4 +85,4 @@ struct ActionScript {
 /// Returns an empty string when they hold, else what is wrong.
 [[nodiscard]] std::string checkScript(const ActionScript& script);
 
-}  // namespace throng::social
+}  // namespace throng::common_ground

@@ -1,13 +1,13 @@
-// throng::social behaviour and plan selection — the rules that pick from the databases (Park,
+// throng::common_ground behaviour and plan selection — the rules that pick from the databases (Park,
 // Peng, Quek, Cao Tables 2 and 4): the first macro-plan whose rules hold for a goal, the
 // micro-behaviours an intent may use in a relation, and the seeded choice among them by weight ×
 // the actor's preference. Reads the databases; writes nothing. Declared in coordination.hpp.
 #include <algorithm>
 #include <cmath>
 
-#include "throng/social/coordination.hpp"
+#include "throng/common_ground/coordination.hpp"
 
-namespace throng::social {
+namespace throng::common_ground {
 
 std::optional<std::size_t> selectPlan(const MacroPlanDb& db, const Goal& goal, double goalDistance) {
   for (std::size_t i = 0; i < db.plans.size(); ++i) {
@@ -65,4 +65,4 @@ std::optional<std::size_t> chooseBehaviour(const MicroBehaviourDb& db, const std
   return std::nullopt;
 }
 
-}  // namespace throng::social
+}  // namespace throng::common_ground

@@ -1,12 +1,12 @@
-// Helpers shared by the coordination planner tests in tests/social: the bundled behaviour
+// Helpers shared by the coordination planner tests in tests/common_ground: the bundled behaviour
 // databases (data/social/, loaded once) and the bundled motion library's clip lengths.
 #pragma once
 #include <stdexcept>
 
 #include "throng/io/social_db.hpp"
-#include "throng/social/coordination.hpp"
+#include "throng/common_ground/coordination.hpp"
 
-namespace throng::social::test {
+namespace throng::common_ground::test {
 
 struct Dbs {
   MicroBehaviourDb micro;
@@ -32,4 +32,4 @@ inline ClipLengths clipLengths() {
           {"look_at", 1.2}, {"talk", 2.0}};
 }
 
-}  // namespace throng::social::test
+}  // namespace throng::common_ground::test

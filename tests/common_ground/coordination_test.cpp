@@ -1,4 +1,4 @@
-// Tests of the Common Ground coordination planner (libs/social/src/coordination.cpp) on the
+// Tests of the Common Ground coordination planner (libs/common_ground/src/coordination.cpp) on the
 // bundled databases (data/social/*.json): the paper's worked example (Park, Peng, Quek, Cao,
 // Tables 3 and 5, relation A3, divide-and-wait) with every time chained from the inputs as the
 // paper writes it; properties over random relations, positions, clip lengths and lost responses
@@ -10,12 +10,12 @@
 #include <numbers>
 
 #include "social_test_util.hpp"
-#include "throng/social/coordination.hpp"
+#include "throng/common_ground/coordination.hpp"
 
 namespace {
 
 using namespace throng;
-using namespace throng::social;
+using namespace throng::common_ground;
 using core::Vec2;
 
 using test::bundled;

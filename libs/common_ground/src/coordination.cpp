@@ -1,4 +1,4 @@
-// throng::social coordination planner — Park, Peng, Quek, Cao, Table 1 (the seven grounding
+// throng::common_ground coordination planner — Park, Peng, Quek, Cao, Table 1 (the seven grounding
 // steps), Table 3 (micro-behaviour script, A3) and Table 5 (macro-behaviour script, M2). Reads a
 // CoordinationInput, the micro-behaviour and macro-plan databases and the clip lengths; writes an
 // ActionScript with one list per actor (A, B, companions). The state machine is run forward in
@@ -7,13 +7,13 @@
 // ends. A lost response (B's only) costs the initiator one timeout, then a retry: another allowed
 // micro-behaviour, else moving closer to B; a step that runs out of attempts fails the
 // coordination and the fallback plan runs. In step 7 the companions take B's part.
-#include "throng/social/coordination.hpp"
+#include "throng/common_ground/coordination.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-namespace throng::social {
+namespace throng::common_ground {
 namespace {
 
 using core::Vec2;
@@ -570,4 +570,4 @@ core::Result<ActionScript> planCoordination(const CoordinationInput& in, const D
   return planner.run();
 }
 
-}  // namespace throng::social
+}  // namespace throng::common_ground

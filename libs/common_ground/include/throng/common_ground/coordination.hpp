@@ -1,4 +1,4 @@
-// throng::social coordination planner — the Common Ground grounding process of Park, Peng, Quek,
+// throng::common_ground coordination planner — the Common Ground grounding process of Park, Peng, Quek,
 // Cao (Table 1) as a state machine per interaction: initiate → request attention → give attention
 // → propose a macro-plan → acknowledge → confirm → execute (or fail and fall back). Pure: reads
 // the group's bodies (initiator A, respondent B, companions), their Relations, target points, clip
@@ -19,11 +19,11 @@
 #include "throng/core/result.hpp"
 #include "throng/core/rng.hpp"
 #include "throng/core/vec2.hpp"
-#include "throng/social/action_script.hpp"
-#include "throng/social/behaviour_db.hpp"
-#include "throng/social/relation.hpp"
+#include "throng/common_ground/action_script.hpp"
+#include "throng/common_ground/behaviour_db.hpp"
+#include "throng/common_ground/relation.hpp"
 
-namespace throng::social {
+namespace throng::common_ground {
 
 /// Clip name → clip length [s] (> 0, finite). Must hold every clip a chosen behaviour plays.
 using ClipLengths = std::map<std::string, double, std::less<>>;
@@ -121,4 +121,4 @@ struct Databases {
                                                           const ClipLengths& clips,
                                                           const CoordinationParams& params = {});
 
-}  // namespace throng::social
+}  // namespace throng::common_ground

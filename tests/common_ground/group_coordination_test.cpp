@@ -1,5 +1,5 @@
 // Tests of the whole-group extension of the Common Ground coordination planner
-// (libs/social/src/coordination.cpp, docs/social-coordination.md "Whole group") on the bundled
+// (libs/common_ground/src/coordination.cpp, docs/social-coordination.md "Whole group") on the bundled
 // databases (data/social/*.json): B and every companion answer each of A's signals in parallel from
 // the signal's end, A goes on when the last answer ends, a companion that cannot perceive a signal
 // turns toward A, companions take B's part in the macro-plan; and, over 200 seeded random layouts
@@ -15,12 +15,12 @@
 
 #include "social_test_util.hpp"
 #include "throng/core/rng.hpp"
-#include "throng/social/coordination.hpp"
+#include "throng/common_ground/coordination.hpp"
 
 namespace {
 
 using namespace throng;
-using namespace throng::social;
+using namespace throng::common_ground;
 using core::Vec2;
 using G = GroundingStep;
 

@@ -1,7 +1,7 @@
-// Tests of libs/social/src/relations.cpp: every relation A1..A6 from a constructed configuration,
+// Tests of libs/common_ground/src/relations.cpp: every relation A1..A6 from a constructed configuration,
 // approach points x_i (pointInView) and x_j (pointInHearing), and the relation → attention
 // micro-behaviour table's consistency with what B perceives.
-#include "throng/social/relations.hpp"
+#include "throng/common_ground/relations.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -10,7 +10,7 @@
 #include <cmath>
 #include <vector>
 
-namespace throng::social {
+namespace throng::common_ground {
 namespace {
 
 Body at(float x, float y, Vec2 facing = {0.0f, 1.0f}, float radius = 0.2f) { return {{x, y}, facing, radius}; }
@@ -165,4 +165,4 @@ RC_GTEST_PROP(RelationsProperty, PointInHearingIsHeardAndNearest, ()) {
 }
 
 }  // namespace
-}  // namespace throng::social
+}  // namespace throng::common_ground
