@@ -69,6 +69,28 @@ ModelRun simulate(const sim::ScenarioDesc& d, int threads, double maxTime, std::
   return run;
 }
 
+/// A 40 m corridor `width` wide: a walker at 0.5 m/s starts 5 m ahead of one at 1.3 m/s, both
+/// with `model`.
+sim::ScenarioDesc slowAheadOfFast(sim::ModelKind model, float width) {
+  sim::ScenarioDesc d = corridor(1, model);
+  const float mid = 0.5f * width;
+  d.walkable = {{{0, 0}, {40, 0}, {40, width}, {0, width}}};
+  d.points[0].polygon = {{39, 0}, {40, 0}, {40, width}, {39, width}};
+  d.points[0].position = {39.5f, mid};
+  sim::PopulationDesc& slow = d.populations[0];
+  slow.id = "slow";
+  slow.speedMean = 0.5f;
+  slow.speedSd = 0.0f;
+  slow.spawn.kind = sim::SpawnKind::Position;
+  slow.spawn.position = {6, mid};
+  sim::PopulationDesc fast = slow;
+  fast.id = "fast";
+  fast.speedMean = 1.3f;
+  fast.spawn.position = {1, mid};
+  d.populations.push_back(fast);
+  return d;
+}
+
 }  // namespace
 
 TEST(Models, TheCatalogueDeclaresEveryModelWithLimitsAndDefaults) {
@@ -133,21 +155,7 @@ TEST(Models, TwoPopulationsWithDifferentModelsShareAWorld) {
 // Tordeux et al. 2016: the speed is (s − ℓ)/T behind someone slower, so a fast walker settles at
 // the slow one's speed a time gap behind (ℓ + T·v), never closer than ℓ.
 TEST(Models, CollisionFreeSpeedKeepsTheTimeGapBehindASlowerWalker) {
-  sim::ScenarioDesc d = corridor(1, sim::ModelKind::CollisionFreeSpeed);
-  d.walkable = {{{0, 0}, {40, 0}, {40, 0.8f}, {0, 0.8f}}};  // single file
-  d.points[0].polygon = {{39, 0}, {40, 0}, {40, 0.8f}, {39, 0.8f}};
-  d.points[0].position = {39.5f, 0.4f};
-  sim::PopulationDesc& slow = d.populations[0];
-  slow.id = "slow";
-  slow.speedMean = 0.5f;
-  slow.speedSd = 0.0f;
-  slow.spawn.kind = sim::SpawnKind::Position;
-  slow.spawn.position = {6, 0.4f};
-  sim::PopulationDesc fast = slow;
-  fast.id = "fast";
-  fast.speedMean = 1.3f;
-  fast.spawn.position = {1, 0.4f};
-  d.populations.push_back(fast);
+  const sim::ScenarioDesc d = slowAheadOfFast(sim::ModelKind::CollisionFreeSpeed, 0.8f);  // single file
   auto created = sim::World::create(d);
   ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
   sim::World& w = *created.value();
@@ -222,20 +230,8 @@ TEST(Models, AnticipationWalkersLeaveTheCorridorKeepingTheirBodiesApart) {
 // The time-gap law along the walking direction: behind a slower walker in single file a fast one
 // settles at the slow one's speed, the two bodies' depth plus T·v behind.
 TEST(Models, AnticipationKeepsTheTimeGapBehindASlowerWalker) {
-  sim::ScenarioDesc d = corridor(1, sim::ModelKind::AnticipationVelocity);
-  d.walkable = {{{0, 0}, {40, 0}, {40, 0.6f}, {0, 0.6f}}};  // too narrow to pass: 0.35 m for centres
-  d.points[0].polygon = {{39, 0}, {40, 0}, {40, 0.6f}, {39, 0.6f}};
-  d.points[0].position = {39.5f, 0.3f};
-  sim::PopulationDesc& slow = d.populations[0];
-  slow.speedMean = 0.5f;
-  slow.speedSd = 0.0f;
-  slow.spawn.kind = sim::SpawnKind::Position;
-  slow.spawn.position = {6, 0.3f};
-  sim::PopulationDesc fast = slow;
-  fast.id = "fast";
-  fast.speedMean = 1.3f;
-  fast.spawn.position = {1, 0.3f};
-  d.populations.push_back(fast);
+  // 0.6 m is too narrow to pass: it leaves 0.35 m for centres.
+  const sim::ScenarioDesc d = slowAheadOfFast(sim::ModelKind::AnticipationVelocity, 0.6f);
   auto created = sim::World::create(d);
   ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
   sim::World& w = *created.value();

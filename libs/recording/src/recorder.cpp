@@ -73,40 +73,6 @@ using recording::writeScenarioTables;
 using recorder_detail::diag;
 using recorder_detail::kRowBlock;
 
-/// `s` as a JSON string literal.
-std::string jsonQuoted(std::string_view s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      static constexpr char kHex[] = "0123456789abcdef";
-      out += "\\u00";
-      out += kHex[(c >> 4) & 0xf];
-      out += kHex[c & 0xf];
-    } else {
-      out += c;
-    }
-  }
-  return out + '"';
-}
-
-/// The throng_models value: {"<population id>": {"name": "<model>", "<parameter>": value, …}, …}.
-std::string modelsJson(const sim::ScenarioDesc& scenario) {
-  std::string out = "{";
-  for (std::size_t i = 0; i < scenario.populations.size(); ++i) {
-    const sim::ModelDesc& m = scenario.populations[i].model;
-    const sim::ModelInfo& info = sim::modelInfo(m.kind);
-    out += (i ? ", " : "") + jsonQuoted(scenario.populations[i].id) + ": {\"name\": " + jsonQuoted(info.name);
-    for (std::size_t k = 0; k < info.parameters.size(); ++k) {
-      out += ", " + jsonQuoted(info.parameters[k].key) + ": " + shortestText(floatAsDecimal(m.values[k]));
-    }
-    out += "}";
-  }
-  return out + "}";
-}
-
 /// Removes `path` and SQLite's companion files; ignores what is not there.
 void removeWithCompanions(const std::string& path) {
   std::error_code ec;

@@ -21,7 +21,7 @@ const char* pointKindText(sim::PointKind kind) {
   return "unknown";
 }
 
-std::string jsonString(const std::string& s) {
+std::string jsonString(std::string_view s) {
   std::string out = "\"";
   for (const char c : s) {
     if (c == '"' || c == '\\') {
@@ -138,6 +138,20 @@ std::string writeScenarioTables(sqlite3* db, const sim::ScenarioDesc& scenario) 
     }
   }
   return {};
+}
+
+std::string modelsJson(const sim::ScenarioDesc& scenario) {
+  std::string out = "{";
+  for (std::size_t i = 0; i < scenario.populations.size(); ++i) {
+    const sim::ModelDesc& m = scenario.populations[i].model;
+    const sim::ModelInfo& info = sim::modelInfo(m.kind);
+    out += (i ? ", " : "") + jsonString(scenario.populations[i].id) + ": {\"name\": " + jsonString(info.name);
+    for (std::size_t k = 0; k < info.parameters.size(); ++k) {
+      out += ", " + jsonString(info.parameters[k].key) + ": " + shortestText(floatAsDecimal(m.values[k]));
+    }
+    out += "}";
+  }
+  return out + "}";
 }
 
 }  // namespace throng::recording

@@ -138,7 +138,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     const core::Vec2 side = rightOf(e0);
     // Walls turn a walker aside but never back: the part of their push against e0 is dropped (the
     // path already leads round walls; pushing back only stalls agents on the mesh's small notches).
-    core::Vec2 wall = wallPush(in, row, pos, p, ws);
+    core::Vec2 wall = exponentialWallPush(in, row, 2.0f * a.radius[row] + 30.0f * p.wallRange, p.wallStrength, p.wallRange, ws.wallIds);
     if (const float back = core::dot(wall, e0); back < 0.0f) wall -= e0 * back;
     core::Vec2 dir = e0 + wall;
     // Room to step aside (to the walls on either side, up to a body width): nobody swerves into a
@@ -184,23 +184,6 @@ class AnticipationVelocityModel final : public OperationalModel {
       sideways += lateral > threshold ? -strength * roomLeft : strength * roomRight;
     }
     return dir + side * sideways;
-  }
-
-  /// The walls' push, off every boundary edge near i (fills ws.wallIds with them).
-  static core::Vec2 wallPush(const ModelInput& in, std::size_t row, core::Vec2 pos, const AvmParams& p, AvmScratch& ws) {
-    const AgentStore& a = in.agents;
-    ws.wallIds.clear();
-    in.walls.query(pos.x, pos.y, 2.0f * a.radius[row] + 30.0f * p.wallRange, ws.wallIds);
-    core::Vec2 push;
-    for (std::uint32_t wid : ws.wallIds) {
-      if (a.levels && !in.walls.onLevel(wid, pos, a.posZ[row])) continue;  // another floor's edge
-      const core::Segment& seg = in.walls.segments()[wid];
-      const core::Vec2 away = pos - core::closestPointOnSegment(pos, seg.a, seg.b);
-      const float s = core::length(away);
-      if (s < 1e-6f) continue;
-      push += away * (p.wallStrength * std::exp(-s / p.wallRange) / s);
-    }
-    return push;
   }
 
   /// How far i can step from pos along the unit vector dir before a wall of ws.wallIds [m], at most `reach`.

@@ -88,16 +88,7 @@ class CollisionFreeSpeedModel final : public OperationalModel {
       if (s < 1e-6f) continue;
       dir += away * (p.neighbourStrength * std::exp((a.radius[row] + a.radius[o] - s) / p.neighbourRange) / s);
     }
-    ws.wallIds.clear();
-    in.walls.query(pos.x, pos.y, a.radius[row] + 30.0f * p.wallRange, ws.wallIds);
-    for (std::uint32_t w : ws.wallIds) {
-      if (a.levels && !in.walls.onLevel(w, pos, a.posZ[row])) continue;  // another floor's edge
-      const core::Segment& seg = in.walls.segments()[w];
-      const core::Vec2 away = pos - core::closestPointOnSegment(pos, seg.a, seg.b);
-      const float s = core::length(away);
-      if (s < 1e-6f) continue;
-      dir += away * (p.wallStrength * std::exp(-s / p.wallRange) / s);
-    }
+    dir += exponentialWallPush(in, row, a.radius[row] + 30.0f * p.wallRange, p.wallStrength, p.wallRange, ws.wallIds);
     const float len = core::length(dir);
     if (len < 1e-6f) return {};
     dir = dir / len;

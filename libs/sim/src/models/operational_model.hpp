@@ -10,9 +10,11 @@
 // parameter table and its `…ModelInfo()`/`make…Model()` pair, declared at the end of this header;
 // one ModelKind value (throng/sim/models.hpp); one line in models.cpp's catalogue.
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "../agent_store.hpp"
 #include "../walls.hpp"
@@ -72,6 +74,28 @@ class OperationalModel {
   virtual void computeVelocities(const ModelInput& in, RowRange rows, ModelScratch& scratch,
                                  VelocityOutput out) const = 0;
 };
+
+/// The walls' push of the collision-free speed model (Tordeux et al. 2016), shared by the first-order
+/// models: Σ strength · exp(−s / range) · n over the boundary edges within `reach` of the row's
+/// centre on its own floor (s its distance to the edge, n the unit vector away from it). Leaves the
+/// edges found in `wallIds`.
+inline core::Vec2 exponentialWallPush(const ModelInput& in, std::size_t row, float reach, float strength, float range,
+                                      std::vector<std::uint32_t>& wallIds) {
+  const AgentStore& a = in.agents;
+  const core::Vec2 pos{a.posX[row], a.posY[row]};
+  wallIds.clear();
+  in.walls.query(pos.x, pos.y, reach, wallIds);
+  core::Vec2 push;
+  for (std::uint32_t w : wallIds) {
+    if (a.levels && !in.walls.onLevel(w, pos, a.posZ[row])) continue;  // another floor's edge
+    const core::Segment& seg = in.walls.segments()[w];
+    const core::Vec2 away = pos - core::closestPointOnSegment(pos, seg.a, seg.b);
+    const float s = core::length(away);
+    if (s < 1e-6f) continue;
+    push += away * (strength * std::exp(-s / range) / s);
+  }
+  return push;
+}
 
 // The models (one file each in this folder).
 const ModelInfo& orcaModelInfo();
