@@ -8,7 +8,8 @@ THRONG_DEB_PACKAGES=(
   librecast-dev nlohmann-json3-dev libcli11-dev libfmt-dev libtbb-dev libsqlite3-dev sqlite3
   libboost-dev libzstd-dev librapidcheck-dev libgtest-dev libgmock-dev libbenchmark-dev libtinygltf-dev
   libopenmpi-dev openmpi-bin
-  python3 python3-numpy python3-matplotlib universal-ctags
+  python3 python3-dev python3-numpy python3-matplotlib python3-pandas python3-pytest python3-hypothesis pybind11-dev
+  universal-ctags
   chromium nodejs
 )
 

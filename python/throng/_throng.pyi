@@ -1,0 +1,128 @@
+"""Type stubs of throng's native module (python/src/module.cpp). Units: m, s, m/s."""
+from typing import Any, Optional
+
+import numpy as np
+import numpy.typing as npt
+
+class ScenarioError(ValueError):
+    """A scenario, crowd or recording path was refused. `diagnostics`: every problem as a dict with
+    source, line, column, pointer (JSON pointer), what, expected, hint and text (formatted)."""
+    diagnostics: list[dict[str, Any]]
+
+class Scenario:
+    @staticmethod
+    def load(path: str) -> Scenario:
+        """Reads and validates a scenario file; ScenarioError lists every problem."""
+    @staticmethod
+    def from_json(text: str, source: str = "<string>") -> Scenario:
+        """Validates scenario JSON text; `source` names it in diagnostics."""
+    @staticmethod
+    def from_dict(d: dict[str, Any], source: str = "<dict>") -> Scenario:
+        """Validates a scenario document given as a dict."""
+    @property
+    def name(self) -> str: ...
+    @property
+    def seed(self) -> int: ...
+    @property
+    def duration(self) -> float:
+        """simulated time [s]"""
+    @property
+    def dt(self) -> float:
+        """tick length [s]"""
+    @property
+    def json(self) -> str: ...
+    @property
+    def populations(self) -> list[str]: ...
+    @property
+    def points(self) -> list[str]: ...
+    @property
+    def models(self) -> list[str]:
+        """the operational model of each population ("orca", "avm", "cfsm")"""
+
+class AgentState:
+    """The agents present at one tick: read-only numpy arrays sharing the frame's memory."""
+    @property
+    def tick(self) -> int: ...
+    @property
+    def time(self) -> float:
+        """[s]"""
+    def __len__(self) -> int: ...
+    @property
+    def id(self) -> npt.NDArray[np.uint32]:
+        """stable agent ids (spawn order), ascending"""
+    @property
+    def x(self) -> npt.NDArray[np.float32]:
+        """[m]"""
+    @property
+    def y(self) -> npt.NDArray[np.float32]:
+        """[m]"""
+    @property
+    def z(self) -> npt.NDArray[np.float32]:
+        """height [m] (zeros on a flat world)"""
+    @property
+    def vx(self) -> npt.NDArray[np.float32]:
+        """[m/s]"""
+    @property
+    def vy(self) -> npt.NDArray[np.float32]:
+        """[m/s]"""
+    @property
+    def ori_x(self) -> npt.NDArray[np.float32]: ...
+    @property
+    def ori_y(self) -> npt.NDArray[np.float32]: ...
+    @property
+    def mode(self) -> npt.NDArray[np.uint8]:
+        """0 walking, 1 waiting, 2 acting"""
+    @property
+    def clip(self) -> npt.NDArray[np.uint16]: ...
+    @property
+    def phase(self) -> npt.NDArray[np.float32]:
+        """position in the clip, [0, 1)"""
+
+class Simulation:
+    def __init__(self, scenario: Scenario, *, seed: Optional[int] = None, threads: int = 1,
+                 record: Optional[str] = None, fps: float = 10.0, force: bool = False,
+                 duration: Optional[float] = None) -> None:
+        """seed, duration [s] override the scenario's; record: a SQLite file written as `throng run --out`
+        writes it, fps frames per second; threads 0 = every hardware thread (results do not depend on it)."""
+    def step(self, n: int = 1) -> None:
+        """Advances n ticks; ValueError once finished."""
+    def run(self, until: Optional[float] = None) -> float:
+        """Steps until `until` [s] (default: the duration) or until everyone has left; returns the time [s]."""
+    def close(self) -> None:
+        """Flushes and closes the recording."""
+    def __enter__(self) -> Simulation: ...
+    def __exit__(self, *exc: Any) -> None: ...
+    def agents(self) -> AgentState: ...
+    def events(self) -> list[dict[str, Any]]:
+        """Events since the last call: tick, time [s], agent, kind, a, b."""
+    def agent(self, id: int) -> dict[str, Any]: ...
+    def group(self, population: str, index: int) -> int: ...
+    def group_info(self, id: int) -> dict[str, Any]: ...
+    def guide(self, group: int, x: float, y: float, height: Optional[float] = None) -> None:
+        """The group follows (x, y) [m] until release(group)."""
+    def release(self, group: int) -> None: ...
+    def insert_crowd(self, text: str, source: str = "<crowd>") -> int:
+        """Queues a throng-crowd/1 document for the next tick; returns its index."""
+    def remove_crowd(self, id: str) -> None: ...
+    def add_agents(self, positions: list[tuple[float, float]], goals: list[str] | str, speed: float = 1.34,
+                   radius: Optional[float] = None, id: Optional[str] = None) -> str:
+        """Agents at these positions [m] from the next tick, walking to `goals`; returns the crowd id."""
+    @property
+    def stats(self) -> dict[str, Any]: ...
+    @property
+    def time(self) -> float:
+        """[s]"""
+    @property
+    def tick(self) -> int: ...
+    @property
+    def finished(self) -> bool: ...
+    @property
+    def state_hash(self) -> int: ...
+    @property
+    def seed(self) -> int: ...
+    @property
+    def dt(self) -> float: ...
+    @property
+    def duration(self) -> float: ...
+    @property
+    def frame_stride(self) -> int: ...

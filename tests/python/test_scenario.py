@@ -1,0 +1,83 @@
+"""Scenarios from files, dicts, JSON text and the builder; every problem raised as ScenarioError."""
+import json
+import math
+import os
+
+import pytest
+
+import throng
+from conftest import corridor
+
+
+def test_load_a_bundled_scenario(root):
+    s = throng.Scenario.load(os.path.join(root, "scenarios", "bottleneck.json"))
+    assert s.name == "bottleneck"
+    assert s.populations == ["crowd"]
+    assert s.points == ["gap", "exit"]
+    assert s.models == ["orca"]
+    assert s.dt == pytest.approx(0.05)
+    assert json.loads(s.json)["name"] == "bottleneck"
+
+
+def test_from_dict_and_from_json_agree():
+    d = corridor()
+    a = throng.Scenario.from_dict(d)
+    b = throng.Scenario.from_json(json.dumps(d))
+    assert a.name == b.name == "py-corridor"
+    assert throng.scenario(d).populations == ["walkers"]
+
+
+def test_every_problem_is_reported_with_its_pointer():
+    d = corridor()
+    d["populations"][0]["goals"] = ["nowhere"]
+    d["walkable"] = [[[0, 0], [1, 0]]]
+    with pytest.raises(throng.ScenarioError) as err:
+        throng.Scenario.from_dict(d, source="study.json")
+    pointers = {x["pointer"] for x in err.value.diagnostics}
+    assert "/walkable/0" in pointers
+    assert any(p.startswith("/populations/0/goals") for p in pointers)
+    assert all(x["source"] == "study.json" for x in err.value.diagnostics)
+    assert isinstance(err.value, ValueError)
+    assert "expected" in str(err.value)
+
+
+def test_a_missing_file_names_it(tmp_path):
+    path = str(tmp_path / "absent.json")
+    with pytest.raises(throng.ScenarioError) as err:
+        throng.Scenario.load(path)
+    assert "absent.json" in str(err.value)
+
+
+def test_nan_is_refused_before_parsing():
+    d = corridor()
+    d["duration"] = math.nan
+    with pytest.raises(throng.ScenarioError):
+        throng.Scenario.from_dict(d)
+
+
+def test_wrong_types_raise_type_error():
+    with pytest.raises(TypeError):
+        throng.Scenario.from_dict([1, 2])
+    with pytest.raises(TypeError):
+        throng.scenario(42)
+
+
+def test_builder_builds_a_valid_scenario():
+    b = (throng.ScenarioBuilder("built", seed=5, duration=20)
+         .walkable([(0, 0), (10, 0), (10, 5), (0, 5)])
+         .obstacle([(4, 0), (5, 0), (5, 2), (4, 2)])
+         .exit("out", polygon=[(9, 0), (10, 0), (10, 5), (9, 5)])
+         .action("look", position=(7, 4), radius=0.5, duration=2, orientation=(0, 1))
+         .population("p", goals=["look", "out"], spawn=[(0.5, 0.5), (3, 0.5), (3, 4.5), (0.5, 4.5)], groups=3,
+                     speed=1.2, model="avm"))
+    s = throng.scenario(b)
+    assert s.name == "built" and s.seed == 5
+    assert s.points == ["out", "look"]
+    assert s.models == ["avm"]
+
+
+def test_builder_refuses_bad_coordinates():
+    with pytest.raises(ValueError):
+        throng.ScenarioBuilder().walkable([(0, 0), (1, math.inf), (1, 1)])
+    with pytest.raises(TypeError):
+        throng.ScenarioBuilder().walkable("square")
