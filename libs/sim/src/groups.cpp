@@ -274,7 +274,7 @@ void applySocialEffects(const SocialEffectsInput& in, const SocialEffectsOutput&
     const SocialEffect effect = out.sociologicalEffect[r];
     if (effect == SocialEffect::None) continue;
     out.sociologicalEffect[r] = SocialEffect::None;
-    const std::uint32_t other = in.sociologicalOther[r] < in.rowOfId.size() ? in.rowOfId[in.sociologicalOther[r]] : kNoAgent;
+    const std::uint32_t other = in.sociologicalOther[r] < in.rowOfId.size() ? in.rowOfId[in.sociologicalOther[r]] : kNoRow;
     if (other == kNoRow) continue;
     if (effect == SocialEffect::JoinGroup) {
       joinGroup(in, out, r, other);

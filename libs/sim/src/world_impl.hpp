@@ -5,7 +5,8 @@
 // the Spawner (spawner.hpp), the GroupTable (group_table.hpp), the Common Ground state
 // (common_ground_state.hpp), the crowd insertion (crowd_insertion.hpp), the partition (below). What
 // is left as Impl's methods: building the contexts, creation, run-time crowd insertion (it edits
-// the scenario itself), the group pass's order and the partition's exchange. Where things live:
+// the scenario itself), the group pass's order, the models in use and the partition's exchange.
+// Where things live:
 //   spawner.cpp    the Spawner: schedule, registerGroups (creation and insertion), ids, spawn events
 //   spawn.cpp      spawnDue: populations due this tick enter the world (spawn_layout.cpp: where)
 //   insert.cpp     crowds inserted and removed at run time (API and scenario timeline)
