@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <algorithm>
 #include <set>
 #include <vector>
@@ -351,4 +352,44 @@ TEST(Spawner, SpawnDueHoldsACrowdedAreaWithoutOverlap) {
           << "agents " << r << " and " << o;
     }
   }
+}
+
+TEST(Spawner, PreMovementTimesFollowTheirDistributionPerStableId) {
+  // 2000 agents: uniform 10-100 s stays inside and averages 55 s; a normal around 5 s with sd 10 s
+  // is clamped at 0; a log-normal has median e^mu. Each draw depends on (seed, id) only.
+  PreMovementDesc uniform;
+  uniform.distribution = PreMovementDistribution::Uniform;
+  uniform.min = 10.0f;
+  uniform.max = 100.0f;
+  PreMovementDesc normal;
+  normal.distribution = PreMovementDistribution::Normal;
+  normal.mean = 5.0f;
+  normal.sd = 10.0f;
+  PreMovementDesc lognormal;
+  lognormal.distribution = PreMovementDistribution::LogNormal;
+  lognormal.mu = static_cast<float>(std::log(30.0));
+  lognormal.sigma = 0.5f;
+  constexpr std::uint32_t kAgents = 2000;
+  double sum = 0.0;
+  std::uint32_t zeros = 0;
+  std::vector<double> logs;
+  for (std::uint32_t id = 0; id < kAgents; ++id) {
+    const double u = preMovementTime(uniform, 7, id);
+    EXPECT_GE(u, 10.0);
+    EXPECT_LE(u, 100.0);
+    EXPECT_EQ(u, preMovementTime(uniform, 7, id)) << "the same draw every time";
+    sum += u;
+    const double n = preMovementTime(normal, 7, id);
+    EXPECT_GE(n, 0.0) << "normal draws are clamped at 0";
+    zeros += n == 0.0 ? 1 : 0;
+    logs.push_back(preMovementTime(lognormal, 7, id));
+    EXPECT_GT(logs.back(), 0.0);
+  }
+  EXPECT_NEAR(sum / kAgents, 55.0, 2.0);
+  EXPECT_GT(zeros, kAgents / 5) << "about 31 % of N(5, 10) is negative";
+  std::sort(logs.begin(), logs.end());
+  EXPECT_NEAR(logs[kAgents / 2], 30.0, 2.0) << "median e^mu";
+  EXPECT_NE(preMovementTime(uniform, 7, 0), preMovementTime(uniform, 8, 0)) << "the seed matters";
+  EXPECT_NE(preMovementTime(uniform, 7, 0), preMovementTime(uniform, 7, 1)) << "each agent draws its own";
+  EXPECT_EQ(preMovementTime(PreMovementDesc{}, 7, 0), 0.0) << "no distribution, no wait";
 }

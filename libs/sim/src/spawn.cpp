@@ -2,8 +2,8 @@
 // the populations due this tick enter the world, in population order. Each is laid out first
 // (spawn_layout.hpp: random free spots around group anchors; when they run out in a crowded area,
 // the populations sharing it are laid out again on a packed lattice), then its agents get their
-// stable ids, rows, speeds, interests, group and first goal. Every draw comes from a stream keyed
-// by (seed, stable group or agent id, purpose).
+// stable ids, rows, speeds, interests, group, first goal and pre-movement wait. Every draw comes
+// from a stream keyed by (seed, stable group or agent id, purpose).
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -201,6 +201,19 @@ class PopulationEntry {
     const core::Vec2 dir = core::normalize(core::Vec2{agents.targetX[row] - agents.posX[row], agents.targetY[row] - agents.posY[row]});
     if (core::lengthSq(dir) > 0.0f) { agents.oriX[row] = dir.x; agents.oriY[row] = dir.y; }
     agents.progressDistance[row] = 1e30f;
+    if (pop_.preMovement.enabled() && agents.goalState[row] == GoalState::Seeking) waitBeforeLeaving(row);
+  }
+
+  /// Pre-movement: the agent stands where it appeared until its drawn time is over (decide then
+  /// lets it walk); it is an obstacle to the others meanwhile, as anyone standing.
+  void waitBeforeLeaving(std::size_t row) {
+    AgentStore& agents = out_.agents;
+    const double t = preMovementTime(pop_.preMovement, in_.desc.seed, agents.id[row]);
+    const double ticks = std::ceil(t / static_cast<double>(in_.desc.dt) - 1e-6);
+    const double end = std::min(static_cast<double>(in_.tick) + std::max(ticks, 0.0), 4294967295.0);
+    agents.goalState[row] = GoalState::PreMovement;
+    agents.mode[row] = AgentMode::Waiting;
+    agents.actionEndTick[row] = static_cast<std::uint32_t>(end);
   }
 
   const SpawnInput& in_;
@@ -211,6 +224,18 @@ class PopulationEntry {
 };
 
 }  // namespace
+
+double preMovementTime(const PreMovementDesc& d, std::uint64_t seed, std::uint32_t agentId) {
+  core::Rng rng(seed, agentId, core::RngPurpose::PreMovement);
+  double t = 0.0;
+  switch (d.distribution) {
+    case PreMovementDistribution::None: return 0.0;
+    case PreMovementDistribution::Uniform: t = rng.uniform(d.min, d.max); break;
+    case PreMovementDistribution::Normal: t = rng.normal(d.mean, d.sd); break;
+    case PreMovementDistribution::LogNormal: t = std::exp(rng.normal(d.mu, d.sigma)); break;
+  }
+  return std::clamp(t, 0.0, static_cast<double>(kMaxPreMovement));
+}
 
 float groupSpeed(const ScenarioDesc& desc, const GroupTable& groups, std::uint32_t gid) {
   return drawSpeed(desc, desc.populations[groups[gid].population], gid);

@@ -4,7 +4,8 @@
 // the spawn events since the last frame taken, kept compactly. Its registerGroups, shared by
 // creation (World::create) and run-time insertion (insert.cpp), registers a population's groups.
 // The spawn phase (spawnDue: SpawnInput, SpawnOutput; spawn.cpp) places the populations due this
-// tick (spawn_layout.hpp) and gives their agents rows, speeds, interests, groups and first goals.
+// tick (spawn_layout.hpp) and gives their agents rows, speeds, interests, groups, first goals and
+// pre-movement times (preMovementTime).
 // Serial code only: spawning runs at the start of a tick (World::Impl::applyCommands).
 #pragma once
 #include <cstdint>
@@ -127,7 +128,14 @@ struct SpawnOutput {
 /// are laid out again on a packed lattice inside their areas (deterministic, never off the area
 /// while it has room). Each agent then gets the next stable id, a row, a desired speed (drawn
 /// per stable id; a flocking group's shared speed), Common Ground interests, its group and the
-/// group's current goal.
+/// group's current goal. With a pre-movement time (PopulationDesc::preMovement) an agent heading
+/// for a goal stands (GoalState::PreMovement, mode Waiting) until the tick its time ends
+/// (actionEndTick); its path is planned meanwhile.
 void spawnDue(const SpawnInput& in, const SpawnOutput& out, std::span<const std::size_t> due);
+
+/// Agent `agentId`'s pre-movement time [s], drawn from (seed, stable id, RngPurpose::PreMovement)
+/// — the same for any thread or rank count —; normal and log-normal draws are clamped to
+/// [0, kMaxPreMovement]. 0 without a distribution.
+[[nodiscard]] double preMovementTime(const PreMovementDesc& d, std::uint64_t seed, std::uint32_t agentId);
 
 }  // namespace throng::sim

@@ -291,6 +291,7 @@ std::optional<AgentInfo> World::agentInfo(std::uint32_t id) const {
     case GoalState::Exited: info.state = "left"; break;
     case GoalState::WaitingForGroup: info.state = "waiting for its group"; break;
     case GoalState::Scripted: info.state = "playing a Common Ground script"; break;
+    case GoalState::PreMovement: info.state = "waiting to leave (pre-movement time)"; break;
   }
   return info;
 }
