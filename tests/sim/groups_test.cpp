@@ -244,7 +244,7 @@ TEST(Groups, PermanentFollowerAdoptsTheLeadersGoals) {
   EXPECT_EQ(w->stats().exited, 4u);
 }
 
-// Followers walk to their leader's goals (World::Impl::currentGoalPoint, goals.cpp): they must also
+// Followers walk to their leader's goals (GoalView::currentGoalPoint, goals.cpp): they must also
 // slow down for the leader's action point, not for whatever their own list has at that index (the
 // steer phase once read the population's own goals and walked full speed into the stop).
 TEST(Groups, FollowersSlowDownForTheLeadersActionPoint) {

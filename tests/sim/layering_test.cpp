@@ -2,7 +2,9 @@
 // sockets, or the io/net layers (GUIDE §2). The file-format libraries link only downward:
 // motion → core; io (scenario loading) → core, nav, sim, common_ground, motion; recording → core, nav,
 // sim, common_ground (never io, motion, hub or the network libraries), and it is the one SQLite layer:
-// no other library or app includes sqlite3.h.
+// no other library or app includes sqlite3.h. Every library links only what docs/architecture.md's
+// dependency diagram allows it (a new library must be added to that table here), includes only
+// what it links, and only the network libraries include Boost.Asio.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -177,6 +179,62 @@ TEST(Layering, FileFormatLibrariesLinkOnlyDownward) {
     EXPECT_FALSE(found.empty()) << lib;
     for (const auto& [name, where] : found) EXPECT_TRUE(may.count(name)) << where;
   }
+}
+
+// docs/architecture.md's dependency diagram ("In words"), one row per library: what it uses. A
+// library may link what it uses and what those use in turn, nothing else.
+TEST(Layering, EveryLibraryLinksOnlyWhatTheDiagramAllows) {
+  const std::map<std::string, std::set<std::string>> uses{
+      {"core", {}},
+      {"nav", {"core"}},
+      {"crowd", {"core", "nav"}},
+      {"common_ground", {"core", "nav"}},
+      {"sim", {"core", "nav", "crowd", "common_ground"}},
+      {"motion", {"core"}},
+      {"io", {"sim", "common_ground", "motion"}},
+      {"recording", {"sim", "common_ground"}},
+      {"protocol", {"core"}},
+      {"net", {}},
+      {"transport", {"core", "protocol", "net"}},
+      {"client", {"core", "protocol", "net"}},
+      {"hub", {"io", "motion", "recording", "sim", "protocol"}},
+      {"link", {"core"}},
+      {"dist", {"sim"}},
+      {"bench", {"sim"}},
+  };
+  const auto deps = linkedLibraries();
+  for (const auto& [lib, direct] : deps) {
+    ASSERT_TRUE(uses.count(lib)) << "libs/" << lib << " is missing from the diagram's table in this test (and maybe from docs/architecture.md)";
+    const std::set<std::string> allowed = closure(uses, lib);
+    for (const std::string& d : direct) {
+      EXPECT_TRUE(allowed.count(d)) << "libs/" << lib << " links throng::" << d << ", which the diagram does not let it use";
+    }
+  }
+  for (const auto& [lib, used] : uses) EXPECT_TRUE(deps.count(lib)) << "the table names libs/" << lib << ", which does not exist";
+}
+
+TEST(Layering, OnlyTheNetworkLibrariesIncludeAsio) {
+  const std::regex asio(R"(#\s*include\s*[<"](boost/asio|boost/beast|throng/net/))");
+  int checked = 0;
+  for (const char* top : {"libs", "apps"}) {
+    for (const auto& entry : fs::recursive_directory_iterator(fs::path(THRONG_SOURCE_DIR) / top)) {
+      if (!entry.is_regular_file()) continue;
+      const auto ext = entry.path().extension();
+      if (ext != ".cpp" && ext != ".hpp" && ext != ".h") continue;
+      const std::string path = entry.path().generic_string();
+      if (path.find("/libs/transport/") != std::string::npos || path.find("/libs/client/") != std::string::npos ||
+          path.find("/libs/net/") != std::string::npos) {
+        continue;
+      }
+      std::ifstream in(entry.path());
+      std::string line;
+      for (int lineNo = 1; std::getline(in, line); ++lineNo) {
+        EXPECT_FALSE(std::regex_search(line, asio)) << entry.path() << ":" << lineNo << ": " << line;
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 100);
 }
 
 TEST(Layering, OnlyTheRecordingLibraryOpensSqlite) {

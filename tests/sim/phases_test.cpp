@@ -1,5 +1,5 @@
 // Tests for libs/sim/src/phases.hpp: each phase called on its own through its context, on
-// hand-built columns (no World), as a reader of the phase's signature would expect it to behave.
+// hand-built columns (no World; emit on tests/sim/goal_world.hpp), as a reader of the phase's signature would expect it to behave.
 #include "phases.hpp"
 
 #include <gtest/gtest.h>
@@ -8,6 +8,8 @@
 #include <memory>
 #include <vector>
 
+#include "goal_world.hpp"
+#include "spawner.hpp"
 #include "throng/sim/animation.hpp"
 #include "walls.hpp"
 
@@ -341,4 +343,89 @@ TEST(Phases, SteerWalksToTheTargetSlowsBeforeAStopAndLeavesOtherRowsAlone) {
   EXPECT_NEAR(a.newVelY[0], 0.0f, 1e-5f);
   EXPECT_FLOAT_EQ(a.prefVelX[2], 0.0f);
   EXPECT_FLOAT_EQ(a.prefVelY[2], 0.0f);
+}
+
+TEST(Phases, EmitMergesChunksInOrderRemovesWhoExitedAndMovesTheClockOn) {
+  // Three members of group 0 (leader 0) target point 0; agent 0 exited this tick (chunk 0's
+  // event), agent 1 reached its goal (chunk 1's).
+  test::GoalWorld w(3);
+  GoalWriter goals = w.writer();
+  for (std::size_t r = 0; r < 3; ++r) goals.setGoal(r, 0);
+  ASSERT_EQ(w.occupied(0), 3u);
+  w.events.clear();
+  w.agents.goalState[0] = GoalState::Exited;
+  std::vector<ChunkOutput> chunks(2);
+  chunks[0].events.push_back({9, 0, EventKind::Exit, 0, 0});
+  chunks[0].walkedDistance = 1.5;
+  chunks[0].walkingTime = 1.0;
+  chunks[0].socialMeetings = 2;
+  chunks[1].events.push_back({9, 1, EventKind::GoalReached, 0, 0});
+  chunks[1].walkedDistance = 0.5;
+  chunks[1].walkingTime = 0.5;
+  WorldStats stats;
+  const EmitOutput out{chunks, w.events, stats, w.agents, w.groups, goals};
+  EXPECT_TRUE(emit(EmitInput{9, 0.1f}, out)) << "a row was removed";
+  ASSERT_EQ(w.events.size(), 2u);
+  EXPECT_EQ(w.events[0].kind, EventKind::Exit) << "chunk order";
+  EXPECT_EQ(w.events[1].kind, EventKind::GoalReached);
+  EXPECT_EQ(stats.exited, 1u);
+  EXPECT_DOUBLE_EQ(stats.lastExitTime, 10 * static_cast<double>(0.1f)) << "the exit counts at the end of tick 9";
+  EXPECT_DOUBLE_EQ(stats.walkedDistance, 2.0);
+  EXPECT_DOUBLE_EQ(stats.walkingTime, 1.5);
+  EXPECT_EQ(stats.socialMeetings, 2u);
+  EXPECT_EQ(stats.agentSteps, 3u) << "agents present during the tick";
+  EXPECT_EQ(stats.tick, 10u);
+  EXPECT_EQ(stats.active, 2u);
+  for (const ChunkOutput& c : chunks) {
+    EXPECT_TRUE(c.events.empty());
+    EXPECT_EQ(c.walkedDistance, 0.0);
+    EXPECT_EQ(c.socialMeetings, 0u);
+  }
+  ASSERT_EQ(w.agents.size(), 2u);
+  EXPECT_EQ(w.agents.id[0], 1u);
+  EXPECT_EQ(w.agents.id[1], 2u);
+  EXPECT_EQ(w.groups[0].members.size(), 2u);
+  EXPECT_EQ(w.groups[0].leader, 1u) << "leadership passes to the first member left";
+  EXPECT_EQ(w.occupied(0), 2u) << "the exited agent's sub-region is released";
+  // A tick nobody leaves: nothing removed.
+  EXPECT_FALSE(emit(EmitInput{10, 0.1f}, out));
+  EXPECT_EQ(stats.agentSteps, 5u);
+  EXPECT_EQ(stats.tick, 11u);
+}
+
+TEST(Phases, TakeFrameHandsOverAgentsEventsSpawnsAndCommonGround) {
+  test::GoalWorld w(2);
+  w.agents.posX[1] = 12.0f;
+  ScenarioDesc desc;
+  desc.populations.resize(1);
+  desc.populations[0].groups = 1;
+  desc.populations[0].sizeMin = desc.populations[0].sizeMax = 2;
+  Spawner spawner;
+  GroupTable groups;
+  std::vector<std::vector<std::uint32_t>> lists;
+  spawner.addPopulation(0);
+  spawner.registerGroups(desc, 0, groups, lists);
+  std::vector<Event> pending{{4, 7, EventKind::GoalReached, 1, 0}};
+  spawner.recordSpawn(1, 4, 0, spawner.takeAgentId(), 0, 0);
+  spawner.recordSpawn(1, 4, 0, spawner.takeAgentId(), 0, 1);
+  CommonGroundState commonGround;
+  commonGround.pendingScript.push_back(ScriptRecord{});
+  commonGround.pendingCoordinations.push_back(CoordinationRecord{});
+  const FrameOutput out{spawner, pending, commonGround};
+  const FramePtr frame = takeFrame(FrameInput{w.agents, 5, 0.5f}, out);
+  EXPECT_EQ(frame->tick, 5u);
+  EXPECT_DOUBLE_EQ(frame->time, 2.5);
+  EXPECT_EQ(frame->ids, (std::vector<std::uint32_t>{0, 1}));
+  EXPECT_EQ(frame->posX, (std::vector<float>{10.0f, 12.0f}));
+  EXPECT_TRUE(frame->posZ.empty()) << "a flat world";
+  ASSERT_EQ(frame->events.size(), 3u);
+  EXPECT_EQ(frame->events[0].kind, EventKind::GoalReached);
+  EXPECT_EQ(frame->events[1].kind, EventKind::Spawn) << "spawn events in place, after the event before them";
+  EXPECT_EQ(frame->events[2].agent, 1u);
+  EXPECT_EQ(frame->script.size(), 1u);
+  EXPECT_EQ(frame->coordinations.size(), 1u);
+  EXPECT_TRUE(pending.empty());
+  EXPECT_TRUE(commonGround.pendingScript.empty());
+  EXPECT_TRUE(commonGround.pendingCoordinations.empty());
+  EXPECT_TRUE(takeFrame(FrameInput{w.agents, 6, 0.5f}, out)->events.empty()) << "handed over once";
 }

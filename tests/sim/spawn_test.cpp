@@ -1,12 +1,16 @@
-// Spawning in crowded areas (spawn.cpp): when random free spots run out, every agent still lands
+// Spawning (spawn.cpp). In crowded areas: when random free spots run out, every agent still lands
 // inside its spawn area, on the navmesh, with no two bodies overlapping and nobody at the world
 // origin (the old fallback); populations spawning together in one area are laid out together;
 // run-time crowd insertion shares the code; the layout is the same for any thread count.
+// Pre-movement time (RiMEA test 5): agents are present and standing from the start, each leaves
+// after its own drawn time (the same for any thread count), and stand as obstacles meanwhile.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "throng/core/geometry.hpp"
 #include "throng/sim/world.hpp"
@@ -183,6 +187,131 @@ TEST(Spawn, CrowdedFloorsOfAMultiLevelWorldEachKeepTheirOwn) {
           << "agents " << f->ids[i] << " and " << f->ids[j];
     }
   }
+}
+
+/// RiMEA test 5: ten persons in a room, each with a pre-movement time drawn uniformly from
+/// 10-100 s, walking to the exit on the far side of a 20 m x 10 m room (dt 0.05 s).
+ScenarioDesc rimeaFive() {
+  ScenarioDesc d;
+  d.seed = 7;
+  d.dt = 0.05f;
+  d.duration = 150.0f;
+  d.walkable = {{{0, 0}, {20, 0}, {20, 10}, {0, 10}}};
+  PointDesc exit;
+  exit.id = "exit";
+  exit.kind = PointKind::Exit;
+  exit.position = {19, 5};
+  exit.radius = 1.0f;
+  d.points = {exit};
+  PopulationDesc pop;
+  pop.id = "persons";
+  pop.groups = 10;
+  pop.spawn.kind = SpawnKind::Polygon;
+  pop.spawn.polygon = {{2, 2}, {8, 2}, {8, 8}, {2, 8}};
+  pop.goals = {0};
+  pop.preMovement.distribution = PreMovementDistribution::Uniform;
+  pop.preMovement.min = 10.0f;
+  pop.preMovement.max = 100.0f;
+  d.populations = {pop};
+  return d;
+}
+
+/// When each agent (by stable id) left: the time of the first frame in which it is no longer
+/// waiting out its pre-movement time (-1: not within `until`). Fails the test when an agent is
+/// missing from a frame before it left, or walks off (more than 0.5 m from where it appeared:
+/// others passing by may nudge it) before it left.
+std::vector<double> departures(const ScenarioDesc& d, int threads, double until) {
+  auto created = World::create(d);
+  EXPECT_TRUE(created.ok()) << core::formatAll(created.errors());
+  if (!created.ok()) return {};
+  World& w = *created.value();
+  core::TaskSystem tasks(threads);
+  tasks.setGrainLimit(1);  // every phase cut into chunks of one agent
+  const FramePtr first = w.takeFrame();
+  const std::size_t n = first->size();
+  std::vector<double> leave(n, -1.0);
+  std::vector<core::Vec2> start(n);
+  for (std::size_t i = 0; i < n; ++i) start[first->ids[i]] = {first->posX[i], first->posY[i]};
+  const std::string waiting = "waiting to leave (pre-movement time)";
+  while (w.stats().time < until) {
+    w.step(tasks);
+    const FramePtr f = w.takeFrame();
+    std::size_t stillWaiting = 0, present = 0;
+    for (const double t : leave) stillWaiting += t < 0.0 ? 1 : 0;
+    for (std::size_t i = 0; i < f->size(); ++i) {
+      const std::uint32_t id = f->ids[i];
+      if (leave[id] >= 0.0) continue;
+      ++present;
+      const auto info = w.agentInfo(id);
+      if (!info || info->state != waiting) {
+        leave[id] = f->time;
+        continue;
+      }
+      EXPECT_LT(core::length(core::Vec2{f->posX[i], f->posY[i]} - start[id]), 0.5f) << "agent " << id << " walked off at " << f->time << " s";
+    }
+    EXPECT_EQ(present, stillWaiting) << "every agent that has not left is present at " << f->time << " s";
+  }
+  return leave;
+}
+
+TEST(Spawn, PreMovementUniform10To100sEveryAgentLeavesInsideTheIntervalAndNotBefore) {
+  const ScenarioDesc d = rimeaFive();
+  auto w = World::create(d);
+  ASSERT_TRUE(w.ok());
+  const FramePtr first = w.value()->takeFrame();
+  ASSERT_EQ(first->size(), 10u) << "all ten are present from the start";
+  const std::vector<double> leave = departures(d, 1, 110.0);
+  ASSERT_EQ(leave.size(), 10u);
+  double earliest = 1e9, latest = -1.0;
+  for (std::size_t id = 0; id < leave.size(); ++id) {
+    // The frame after the tick it moves off: within two ticks after its drawn time.
+    EXPECT_GE(leave[id], 10.0) << "agent " << id << " left before its pre-movement time";
+    EXPECT_LE(leave[id], 100.0 + 2 * d.dt) << "agent " << id;
+    earliest = std::min(earliest, leave[id]);
+    latest = std::max(latest, leave[id]);
+  }
+  EXPECT_GT(latest - earliest, 30.0) << "times are drawn per agent, not shared";
+}
+
+TEST(Spawn, PreMovementDrawsAreTheSameForOneAndEightThreads) {
+  const ScenarioDesc d = rimeaFive();
+  const std::vector<double> one = departures(d, 1, 105.0);
+  const std::vector<double> eight = departures(d, 8, 105.0);
+  ASSERT_EQ(one.size(), 10u);
+  EXPECT_GE(*std::min_element(one.begin(), one.end()), 10.0) << "everyone waited";
+  EXPECT_EQ(one, eight);
+}
+
+TEST(Spawn, AnAgentWaitingToLeaveIsAnObstacleOthersWalkAround) {
+  // A walker heads east along y = 5 through where a person stands waiting (pre-movement 1000 s).
+  ScenarioDesc d = rimeaFive();
+  d.populations[0].groups = 1;
+  d.populations[0].spawn.kind = SpawnKind::Position;
+  d.populations[0].spawn.position = {10, 5};
+  d.populations[0].preMovement.min = d.populations[0].preMovement.max = 1000.0f;
+  PopulationDesc walker = d.populations[0];
+  walker.id = "walker";
+  walker.spawn.position = {3, 5};
+  walker.preMovement = {};
+  d.populations.push_back(walker);
+  auto w = World::create(d);
+  ASSERT_TRUE(w.ok()) << core::formatAll(w.errors());
+  core::TaskSystem tasks(1);
+  float closest = 1e9f, walkerX = 0.0f, drift = 0.0f;
+  while (w.value()->stats().time < 20.0 && walkerX < 14.0f) {
+    w.value()->step(tasks);
+    const FramePtr f = w.value()->takeFrame();
+    ASSERT_EQ(f->size(), 2u);
+    const core::Vec2 waiting{f->posX[0], f->posY[0]}, walking{f->posX[1], f->posY[1]};
+    closest = std::min(closest, core::length(waiting - walking));
+    walkerX = walking.x;
+    drift = std::max(drift, core::length(waiting - core::Vec2{10, 5}));
+  }
+  EXPECT_GE(walkerX, 14.0f) << "the walker got past";
+  EXPECT_GE(closest, 0.38f) << "the bodies (r = 0.2 m) never overlapped";
+  // ORCA shares avoidance between the two: the person standing steps aside, and stays standing.
+  EXPECT_LT(drift, 1.5f) << "the waiting person was not carried along";
+  EXPECT_EQ(w.value()->agentInfo(0)->state, "waiting to leave (pre-movement time)");
 }
 
 }  // namespace

@@ -2,8 +2,8 @@
 // sim::ScenarioDesc. Every object's keys are checked against its schema (unknown keys get a
 // "did you mean"), every value's type and range (with units), every polygon's shape, every id
 // reference. Reads a JsonDocument; writes ParsedScenario and diagnostics; never stops early.
-// The crowd-model keys of a population are read by scenario_crowd_parser.cpp, the shared
-// readers live in scenario_reader.hpp.
+// A population's own keys are read here (its speed and pre-movement distributions too), its
+// crowd-model keys by scenario_crowd_parser.cpp; the shared readers live in scenario_reader.hpp.
 #include "scenario_parser.hpp"
 
 #include <algorithm>
@@ -305,12 +305,51 @@ bool ScenarioReader::readSpeed(const Json& v, const std::string& ptr, sim::Popul
   return ok;
 }
 
+bool ScenarioReader::readPreMovement(const Json& v, const std::string& ptr, sim::PreMovementDesc& d) {
+  const std::vector<std::string> names{"uniform", "normal", "lognormal"};
+  if (!isObject(v, ptr, "{\"distribution\": \"uniform\", \"min\", \"max\"}, {\"distribution\": \"normal\", \"mean\", \"sd\"} "
+                        "or {\"distribution\": \"lognormal\", \"mu\", \"sigma\"}")) {
+    return false;
+  }
+  checkKeys(v, ptr, {"distribution", "min", "max", "mean", "sd", "mu", "sigma"}, "a pre-movement distribution");
+  std::size_t kind = 0;
+  const Json* name = require(v, ptr, "distribution", "\"uniform\", \"normal\" or \"lognormal\"");
+  if (name == nullptr || !readChoice(*name, ptr + "/distribution", names, "pre-movement distribution", kind)) return false;
+  const Range time{0, sim::kMaxPreMovement, false, "s"};
+  const std::vector<FloatKey> keys[] = {{{"min", time, &d.min}, {"max", time, &d.max}},
+                                        {{"mean", time, &d.mean}, {"sd", time, &d.sd}},
+                                        {{"mu", {-10, 14, false, "(ln s)"}, &d.mu}, {"sigma", {0, 3, false, "(ln s)"}, &d.sigma}}};
+  const std::vector<FloatKey>& mine = keys[kind];
+  std::string list;
+  for (const FloatKey& k : mine) list += (list.empty() ? "\"" : ", \"") + std::string(k.key) + "\"";
+  bool ok = true;
+  for (const auto& item : v.items()) {
+    const std::string key = item.key();
+    const bool known = key == "distribution" || std::any_of(mine.begin(), mine.end(), [&](const FloatKey& k) { return key == k.key; });
+    const bool other = key == "min" || key == "max" || key == "mean" || key == "sd" || key == "mu" || key == "sigma";
+    if (known || !other) continue;  // an unknown key was reported by checkKeys
+    error(ptr + "/" + key, quote(key) + " does not belong to a " + names[kind] + " distribution",
+          "the keys of a " + names[kind] + " distribution: " + list, "", true);
+    ok = false;
+  }
+  for (const FloatKey& k : mine) {
+    if (auto* x = require(v, ptr, k.key, k.range.describe("a number"))) ok = readFloat(*x, ptr + "/" + k.key, k.range, *k.out) && ok;
+    else ok = false;
+  }
+  if (ok && kind == 0 && d.min > d.max) {
+    error(ptr + "/min", "min pre-movement time " + num(d.min) + " s exceeds max " + num(d.max) + " s", "min <= max");
+    ok = false;
+  }
+  if (ok) d.distribution = static_cast<sim::PreMovementDistribution>(kind + 1);
+  return ok;
+}
+
 bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::size_t index, sim::PopulationDesc& p) {
   if (!isObject(v, ptr, "a population object {\"id\", \"groups\", \"size\", \"spawn\", \"goals\", ...}")) return false;
   checkKeys(v, ptr,
             {"id", "groups", "size", "spawn", "start", "goals", "speed", "radius", "wander", "paths", "autoNearDistance",
              "flocking", "waitTimeout", "groupSpacing", "follow", "guide", "sociological", "interests", "interestsPerAgent", "preferences",
-             "model"},
+             "model", "preMovement"},
             "a population");
   bool ok = true;
   p.id = "population" + std::to_string(index);
@@ -361,6 +400,7 @@ bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::
   if (auto* x = optional(v, "goals")) ok = readGoals(*x, ptr + "/goals", p) && ok;
   if (auto* x = optional(v, "speed")) ok = readSpeed(*x, ptr + "/speed", p) && ok;
   if (auto* x = optional(v, "radius")) ok = readFloat(*x, ptr + "/radius", {0.05, 1.0, false, "m"}, p.radius) && ok;
+  if (auto* x = optional(v, "preMovement")) ok = readPreMovement(*x, ptr + "/preMovement", p.preMovement) && ok;
   if (auto* x = optional(v, "wander")) ok = readBool(*x, ptr + "/wander", p.wander) && ok;
   if (auto* x = optional(v, "model")) ok = readModel(*x, ptr + "/model", p.model) && ok;
   ok = readInterests(v, ptr, p) && ok;

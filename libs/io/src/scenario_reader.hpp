@@ -321,6 +321,8 @@ class ScenarioReader {
   bool readPopulation(const Json& v, const std::string& ptr, std::size_t index, sim::PopulationDesc& p);
   bool readSpawn(const Json& v, const std::string& ptr, sim::SpawnDesc& s);
   bool readSpeed(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
+  /// "preMovement": {"distribution": "uniform" | "normal" | "lognormal", and that distribution's keys}.
+  bool readPreMovement(const Json& v, const std::string& ptr, sim::PreMovementDesc& d);
   bool readGoals(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   bool readCrowdKeys(const Json& v, const std::string& ptr, std::size_t index, sim::PopulationDesc& p);
   /// "model" (scenario_model_parser.cpp): a model name, or {"name", parameters of that model}.

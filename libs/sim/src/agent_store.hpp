@@ -22,13 +22,17 @@ enum class GoalState : std::uint8_t {
   Exited = 3,   ///< reached an exit: removed in this tick's emit phase
   WaitingForGroup = 4,  ///< at its group's goal, waiting until the others arrive (flocking rule 4)
   Scripted = 5,  ///< playing its action script of a Common Ground coordination (common_ground_play.cpp)
+  PreMovement = 6,  ///< present and standing until its pre-movement time ends at actionEndTick (spawn.cpp)
 };
 
 inline constexpr std::uint16_t kNoClip = 0xffff;
 
-/// Busy with a target of its own (an action point's stop, a Common Ground script): group-level
-/// retargeting (guidance, following) leaves the agent alone; it rejoins its group when done.
-[[nodiscard]] inline bool holdsOwnTarget(GoalState s) { return s == GoalState::Acting || s == GoalState::Scripted; }
+/// Busy with a target of its own (an action point's stop, a Common Ground script) or not started
+/// yet (pre-movement): group-level retargeting (guidance, following) leaves the agent alone; it
+/// rejoins its group when done.
+[[nodiscard]] inline bool holdsOwnTarget(GoalState s) {
+  return s == GoalState::Acting || s == GoalState::Scripted || s == GoalState::PreMovement;
+}
 
 /// "None" for a stable agent id.
 inline constexpr std::uint32_t kNoAgent = 0xffffffffu;
@@ -84,7 +88,8 @@ struct AgentStore {
   /// DT_POLYREF64); integrate checks that every reference it gets back fits.
   std::vector<std::uint32_t> polyRef;
   std::vector<CornerPath> corners;        ///< string-pulled path and the corner walked to (2 inline)
-  /// Tick the action ends. 32 bits: a world runs at most 2^32 ticks (6.8 years at dt = 0.05 s).
+  /// Tick the action (Acting) or the pre-movement wait (PreMovement) ends. 32 bits: a world runs at
+  /// most 2^32 ticks (6.8 years at dt = 0.05 s).
   std::vector<std::uint32_t> actionEndTick;
   std::vector<float> progressDistance;    ///< distance to target at the last progress check [m]
   std::vector<float> stuckTime;           ///< how long the agent has wanted to walk but barely moved [s]

@@ -88,9 +88,9 @@ void generateGoal(const DecideInput& in, const DecideOutput& out, std::size_t ro
   const AgentStore& agents = in.agents;
   const CommonGroundState& commonGround = in.commonGround;
   const std::uint64_t tick = in.tick;
-  if (!social.enabled || out.desirePoint[row] != kNoAgent || tick < agents.socialReady[row]) return;
+  if (!social.enabled || out.desirePoint[row] != kNoPoint || tick < agents.socialReady[row]) return;
   const GroupState& g = in.groups[agents.group[row]];
-  if (in.groups.extraOf(g).coordination != kNoAgent || g.guided || g.following || agents.followedAgent(row) != kNoAgent) return;
+  if (in.groups.extraOf(g).coordination != kNoIndex || g.guided || g.following || agents.followedAgent(row) != kNoAgent) return;
   const std::uint32_t id = agents.id[row];
   const core::Vec2 pos{agents.posX[row], agents.posY[row]};
   auto want = [&](std::uint32_t point, GoalTrigger trigger) {
@@ -105,13 +105,13 @@ void generateGoal(const DecideInput& in, const DecideOutput& out, std::size_t ro
     if (c < 0 || need.rate <= 0.0f) continue;
     core::Rng rng(in.desc.seed, core::mix64((static_cast<std::uint64_t>(id) << 32) ^ tick) ^ i, core::RngPurpose::Social);
     if (rng.uniform() >= static_cast<double>(need.rate) * in.desc.dt) continue;
-    std::uint32_t best = kNoAgent;
+    std::uint32_t best = kNoPoint;
     float bestD = 1e30f;
     for (const std::uint32_t p : commonGround.categoryPoints[static_cast<std::size_t>(c)]) {
       const float d = core::lengthSq(in.desc.points[p].position - pos);
       if (d < bestD) { bestD = d; best = p; }
     }
-    if (best != kNoAgent) {
+    if (best != kNoPoint) {
       want(best, GoalTrigger::Need);
       return;
     }

@@ -83,7 +83,7 @@ void CoordinationPlay::beginEntry(ActiveCoordination& c, std::size_t actor, std:
         e.targetActor < c.actors.size()) {
       // Back to where the partner stands now (it may have been nudged), touch distance short of it.
       const std::uint32_t pr = rowOfId[c.actors[e.targetActor]];
-      if (pr != kNoAgent) {
+      if (pr != kNoRow) {
         const core::Vec2 partner{agents.posX[pr], agents.posY[pr]};
         const core::Vec2 away = core::normalize(pos - partner);
         target = partner + away * static_cast<float>(desc.social.coordination.touchDistance);
@@ -278,7 +278,7 @@ void CoordinationPlay::finishCoordination(ActiveCoordination& c, double now) {
   c.record.end = now;
   if (c.record.executeTime <= 0.0) c.record.executeTime = now;
   GroupExtra& x = groups.extraOf(groups[c.record.group]);
-  if (x.coordination == c.record.id) x.coordination = kNoAgent;
+  if (x.coordination == c.record.id) x.coordination = kNoIndex;
   if (c.divides && !c.reunitedOnReturn) {
     x.reunite = c.record.id;
     groups.markBusy(c.record.group);
@@ -295,9 +295,9 @@ void checkReunions(const CommonGroundInput& in, const CommonGroundOutput& out) {
   for (const std::uint32_t gid : groups.busy()) {
     GroupState& g = groups[gid];
     GroupExtra& x = groups.extraOf(g);
-    if (x.reunite == kNoAgent || x.coordination != kNoAgent) continue;
+    if (x.reunite == kNoIndex || x.coordination != kNoIndex) continue;
     if (g.members.size() < 2) {
-      x.reunite = kNoAgent;
+      x.reunite = kNoIndex;
       continue;
     }
     // Whole again: nobody in a script, everybody within the group's width of the centroid.
@@ -305,7 +305,7 @@ void checkReunions(const CommonGroundInput& in, const CommonGroundOutput& out) {
     bool busy = false;
     for (const std::uint32_t id : g.members) {
       const std::uint32_t r = rowOfId[id];
-      busy = busy || agents.coordination[r] != kNoAgent;
+      busy = busy || agents.coordination[r] != kNoIndex;
       sum += core::Vec2{agents.posX[r], agents.posY[r]};
     }
     if (busy) continue;
@@ -317,7 +317,7 @@ void checkReunions(const CommonGroundInput& in, const CommonGroundOutput& out) {
     });
     if (!together) continue;
     out.events.push_back({in.tick, g.leader == kNoAgent ? g.members.front() : g.leader, EventKind::Reunited, gid, x.reunite});
-    x.reunite = kNoAgent;
+    x.reunite = kNoIndex;
   }
 }
 

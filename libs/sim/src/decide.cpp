@@ -1,8 +1,8 @@
 // decide — the goal state machine of every agent (parallel, each agent writes only its own row and
 // its chunk's output): reaching a goal's region, stopping at action points, leaving through
 // exits, asking the group pass for the next goal (goalPending) and `plan` for a path (needPath),
-// noticing agents that are stuck, the Common Ground goal generator and the sociological model's
-// meetings. Reads DecideInput (positions, targets, groups, goals, neighbours, …); writes
+// noticing agents that are stuck, the end of an agent's pre-movement time, the Common Ground goal
+// generator and the sociological model's meetings. Reads DecideInput (positions, targets, groups, goals, neighbours, …); writes
 // DecideOutput (phases.hpp): goal state, mode, target, the flags for plan and the group pass, and
 // chunk events. The serial group pass (groups.cpp, goals.cpp) then applies what decide asked for.
 // Also here: insideRegion, the test of a point's region.
@@ -69,6 +69,13 @@ void RowDecision::decideRow() {
         const std::uint32_t goal = in.goals.currentGoalPoint(row);
         event(EventKind::ActionEnd, goal == kNoPoint ? 0 : goal);
         reachGoal(g);
+      }
+      break;
+    case GoalState::PreMovement:
+      // Its pre-movement time is over: it walks off (its target and path were set when it appeared).
+      if (in.tick >= out.actionEndTick[row]) {
+        out.goalState[row] = GoalState::Seeking;
+        out.mode[row] = AgentMode::Walking;
       }
       break;
     case GoalState::Seeking:

@@ -56,7 +56,7 @@ GuideWaypoint interpolateGuide(const std::vector<GuideWaypoint>& script, float t
 
 void World::Impl::decideGroups(const core::TaskSystem& tasks) {
   if (rowsChanged) {
-    rowOfId.assign(spawner.nextAgentId, kNoRow);
+    rowOfId.assign(spawner.nextAgentId(), kNoRow);
     for (std::size_t r = 0; r < agents.size(); ++r) rowOfId[agents.id[r]] = static_cast<std::uint32_t>(r);
     rowsChanged = false;
   }
@@ -274,7 +274,7 @@ void applySocialEffects(const SocialEffectsInput& in, const SocialEffectsOutput&
     const SocialEffect effect = out.sociologicalEffect[r];
     if (effect == SocialEffect::None) continue;
     out.sociologicalEffect[r] = SocialEffect::None;
-    const std::uint32_t other = in.sociologicalOther[r] < in.rowOfId.size() ? in.rowOfId[in.sociologicalOther[r]] : kNoAgent;
+    const std::uint32_t other = in.sociologicalOther[r] < in.rowOfId.size() ? in.rowOfId[in.sociologicalOther[r]] : kNoRow;
     if (other == kNoRow) continue;
     if (effect == SocialEffect::JoinGroup) {
       joinGroup(in, out, r, other);

@@ -1,11 +1,13 @@
 // Crowds inserted at run time — World::insertCrowd / removeCrowd and the scenario timeline.
 // A crowd (CrowdDesc: new points and populations) is checked against the world when it is queued
-// and applied at the start of the next tick (applyCommands), before any population spawns that
-// tick: its points and populations are appended to the description, its groups get the next
-// stable group ids, its agents the next agent ids as they spawn, and the optional agent columns it
-// needs (formation, sociological model) are created. A removal takes the crowd's agents out at the
-// start of the tick (an Exit event each, a = kNoPoint). Everything is serial and in command order,
-// so trajectories never depend on the thread count. Reads and writes World::Impl only.
+// (CrowdCheck) and applied at the start of the next tick (applyCommands), before any population
+// spawns that tick: its points and populations are appended to the description, the spawner
+// schedules them and registers their groups as it did the scenario's own (Spawner::registerGroups:
+// the next stable group ids), its agents get the next agent ids as they spawn, and the optional
+// agent columns it needs (formation, sociological model) are created. A removal takes the crowd's
+// agents out at the start of the tick (an Exit event each, a = kNoPoint; leaveWorld, phases.hpp).
+// Everything is serial and in command order, so trajectories never depend on the thread count.
+// Reads and writes World::Impl (insertion edits the scenario itself).
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -27,67 +29,91 @@ std::uint64_t ticksOf(float time, float dt) {
 
 }  // namespace
 
-core::Diagnostics World::Impl::checkCrowd(const CrowdDesc& crowd) const {
-  core::Diagnostics out;
-  const std::string source = "crowd " + (crowd.id.empty() ? std::string("(no id)") : "\"" + crowd.id + "\"");
-  auto error = [&](std::string pointer, std::string what, std::string expected) {
-    out.push_back({source, 0, 0, std::move(pointer), std::move(what), std::move(expected), ""});
-  };
-  if (crowd.id.empty()) error("/id", "empty crowd id", "a non-empty id");
-  for (const CrowdState& c : insertion.crowds) {
-    if (c.info.id == crowd.id) error("/id", "crowd id \"" + crowd.id + "\" is already taken", "an id no crowd of this world has");
+namespace {
+
+/// Checks a crowd against the world's scenario, the crowds queued before it and the Common Ground
+/// categories; diagnostics in the order a reader meets the crowd: ids, points, populations, size.
+class CrowdCheck {
+ public:
+  CrowdCheck(const CrowdDesc& crowd, const ScenarioDesc& desc, const CrowdInsertion& insertion,
+             const CommonGroundState& commonGround)
+      : crowd_(crowd), desc_(desc), insertion_(insertion), commonGround_(commonGround),
+        source_("crowd " + (crowd.id.empty() ? std::string("(no id)") : "\"" + crowd.id + "\"")) {}
+
+  core::Diagnostics run() {
+    checkIds();
+    if (crowd_.basePoints > desc_.points.size() || crowd_.basePopulations > desc_.populations.size()) {
+      error("", "the crowd was resolved against a world with more points or populations than this one",
+            "a crowd parsed against this world (io::parseCrowd with World::desc())");
+      return std::move(out_);
+    }
+    checkActions();
+    for (std::size_t i = 0; i < crowd_.populations.size(); ++i) checkPopulation(i);
+    checkBudget();
+    return std::move(out_);
   }
-  // Ids taken by the world and by every crowd queued so far.
-  std::set<std::string, std::less<>> pointIds, populationIds;
-  for (const PointDesc& p : desc.points) pointIds.insert(p.id);
-  for (const PopulationDesc& p : desc.populations) populationIds.insert(p.id);
-  for (const CrowdState& c : insertion.crowds) {
-    if (c.info.applied) continue;
-    pointIds.insert(c.pointIds.begin(), c.pointIds.end());
-    populationIds.insert(c.populationIds.begin(), c.populationIds.end());
+
+ private:
+  void error(std::string pointer, std::string what, std::string expected) {
+    out_.push_back({source_, 0, 0, std::move(pointer), std::move(what), std::move(expected), ""});
   }
-  for (std::size_t i = 0; i < crowd.points.size(); ++i) {
-    if (!pointIds.insert(crowd.points[i].id).second) {
-      error("/points/" + std::to_string(i) + "/id", "point id \"" + crowd.points[i].id + "\" is already taken",
-            "an id no point of the world or of this crowd has");
+
+  /// The crowd's id, its points' ids and the world's population count; fills the ids taken.
+  void checkIds() {
+    if (crowd_.id.empty()) error("/id", "empty crowd id", "a non-empty id");
+    for (const CrowdState& c : insertion_.crowds) {
+      if (c.info.id == crowd_.id) error("/id", "crowd id \"" + crowd_.id + "\" is already taken", "an id no crowd of this world has");
+    }
+    // Ids taken by the world and by every crowd queued so far.
+    for (const PointDesc& p : desc_.points) pointIds_.insert(p.id);
+    for (const PopulationDesc& p : desc_.populations) populationIds_.insert(p.id);
+    for (const CrowdState& c : insertion_.crowds) {
+      if (c.info.applied) continue;
+      pointIds_.insert(c.pointIds.begin(), c.pointIds.end());
+      populationIds_.insert(c.populationIds.begin(), c.populationIds.end());
+    }
+    for (std::size_t i = 0; i < crowd_.points.size(); ++i) {
+      if (!pointIds_.insert(crowd_.points[i].id).second) {
+        error("/points/" + std::to_string(i) + "/id", "point id \"" + crowd_.points[i].id + "\" is already taken",
+              "an id no point of the world or of this crowd has");
+      }
+    }
+    std::size_t populationsAfter = desc_.populations.size() + crowd_.populations.size();
+    for (const CrowdState& c : insertion_.crowds) {
+      if (!c.info.applied) populationsAfter += c.populationIds.size();
+    }
+    if (populationsAfter > kMaxPopulations) {
+      error("/populations", "the world would have " + std::to_string(populationsAfter) + " populations",
+            "at most " + std::to_string(kMaxPopulations) + " populations in a world");
     }
   }
-  std::size_t populationsAfter = desc.populations.size() + crowd.populations.size();
-  for (const CrowdState& c : insertion.crowds) {
-    if (!c.info.applied) populationsAfter += c.populationIds.size();
-  }
-  if (populationsAfter > kMaxPopulations) {
-    error("/populations", "the world would have " + std::to_string(populationsAfter) + " populations",
-          "at most " + std::to_string(kMaxPopulations) + " populations in a world");
-  }
-  if (crowd.basePoints > desc.points.size() || crowd.basePopulations > desc.populations.size()) {
-    error("", "the crowd was resolved against a world with more points or populations than this one",
-          "a crowd parsed against this world (io::parseCrowd with World::desc())");
-    return out;
-  }
-  const std::uint64_t pointCount = crowd.basePoints + crowd.points.size();
-  const std::uint64_t populationCount = crowd.basePopulations + crowd.populations.size();
-  const std::vector<ClipInfo> clips = animationClips(desc);
-  for (std::size_t i = 0; i < crowd.points.size(); ++i) {
-    const PointDesc& p = crowd.points[i];
-    if (p.kind != PointKind::Action || !p.stop) continue;
-    const std::string name = p.action.empty() ? "stand" : p.action;
-    if (std::none_of(clips.begin(), clips.end(), [&](const ClipInfo& c) { return c.name == name; })) {
-      error("/points/" + std::to_string(i) + "/action", "action \"" + name + "\" has no clip in this world",
-            "an action some action point of the world already plays (the clip table is fixed when the world starts)");
+
+  /// Action points play clips the world has; Common Ground's categories still fit the interest mask.
+  void checkActions() {
+    const std::vector<ClipInfo> clips = animationClips(desc_);
+    for (std::size_t i = 0; i < crowd_.points.size(); ++i) {
+      const PointDesc& p = crowd_.points[i];
+      if (p.kind != PointKind::Action || !p.stop) continue;
+      const std::string name = p.action.empty() ? "stand" : p.action;
+      if (std::none_of(clips.begin(), clips.end(), [&](const ClipInfo& c) { return c.name == name; })) {
+        error("/points/" + std::to_string(i) + "/action", "action \"" + name + "\" has no clip in this world",
+              "an action some action point of the world already plays (the clip table is fixed when the world starts)");
+      }
     }
-  }
-  if (desc.social.enabled) {
-    std::set<std::string, std::less<>> categories(commonGround.categories.begin(), commonGround.categories.end());
-    for (const PointDesc& p : crowd.points) if (!p.category.empty()) categories.insert(p.category);
+    if (!desc_.social.enabled) return;
+    std::set<std::string, std::less<>> categories(commonGround_.categories.begin(), commonGround_.categories.end());
+    for (const PointDesc& p : crowd_.points) if (!p.category.empty()) categories.insert(p.category);
     if (categories.size() > kMaxCategories) {
       error("/points", std::to_string(categories.size()) + " point categories", "at most " + std::to_string(kMaxCategories));
     }
   }
-  for (std::size_t i = 0; i < crowd.populations.size(); ++i) {
-    const PopulationDesc& pop = crowd.populations[i];
+
+  void checkPopulation(std::size_t i) {
+    const PopulationDesc& pop = crowd_.populations[i];
     const std::string ptr = "/populations/" + std::to_string(i);
-    if (!populationIds.insert(pop.id).second) {
+    const std::uint64_t pointCount = crowd_.basePoints + crowd_.points.size();
+    const std::uint64_t populationCount = crowd_.basePopulations + crowd_.populations.size();
+    if (!populationIds_.insert(pop.id).second) {
       error(ptr + "/id", "population id \"" + pop.id + "\" is already taken", "an id no population of the world or of this crowd has");
     }
     for (std::size_t g = 0; g < pop.goals.size(); ++g) {
@@ -98,33 +124,49 @@ core::Diagnostics World::Impl::checkCrowd(const CrowdDesc& crowd) const {
     }
     if (pop.follow.mode != FollowMode::None) {
       const std::uint32_t f = pop.follow.population;
-      const std::uint32_t groupsThere = f < crowd.basePopulations ? (f < desc.populations.size() ? desc.populations[f].groups : 0)
-                                        : f < populationCount ? crowd.populations[f - crowd.basePopulations].groups : 0;
+      const std::uint32_t groupsThere = f < crowd_.basePopulations ? (f < desc_.populations.size() ? desc_.populations[f].groups : 0)
+                                        : f < populationCount ? crowd_.populations[f - crowd_.basePopulations].groups : 0;
       if (f >= populationCount || pop.follow.group >= groupsThere) {
         error(ptr + "/follow", "followed population or group out of range", "a group of a population of the world or of the crowd");
       }
     }
-    if (pop.radius * pop.model.passageRatio() > insertion.navRadius + 1e-6f) {
+    if (pop.radius * pop.model.passageRatio() > insertion_.navRadius + 1e-6f) {
       error(ptr + "/radius",
             "body radius " + std::to_string(pop.radius) + " m (× passage ratio " + std::to_string(pop.model.passageRatio()) +
-                ") exceeds the world's navmesh erosion radius " + std::to_string(insertion.navRadius) + " m",
+                ") exceeds the world's navmesh erosion radius " + std::to_string(insertion_.navRadius) + " m",
             "a radius × passage ratio <= the scenario's navmesh erosion radius");
     }
     if (pop.groups == 0 || pop.sizeMin == 0 || pop.sizeMin > pop.sizeMax) {
       error(ptr, "empty or inverted group sizes", "groups >= 1 and 1 <= size min <= size max");
     }
   }
-  const std::uint64_t agents = crowd.maxAgents();
-  if (agents > kMaxInsertAgents) {
-    error("/populations", "the crowd may spawn " + std::to_string(agents) + " agents",
-          "at most " + std::to_string(kMaxInsertAgents) + " agents per insertion");
-  } else if (insertion.insertedAgents + agents > kMaxInsertedAgents) {
-    error("/populations",
-          "the crowd may spawn " + std::to_string(agents) + " agents; " + std::to_string(insertion.insertedAgents) +
-              " were inserted into this world already",
-          "at most " + std::to_string(kMaxInsertedAgents) + " inserted agents per world in all");
+
+  void checkBudget() {
+    const std::uint64_t agents = crowd_.maxAgents();
+    if (agents > kMaxInsertAgents) {
+      error("/populations", "the crowd may spawn " + std::to_string(agents) + " agents",
+            "at most " + std::to_string(kMaxInsertAgents) + " agents per insertion");
+    } else if (insertion_.insertedAgents + agents > kMaxInsertedAgents) {
+      error("/populations",
+            "the crowd may spawn " + std::to_string(agents) + " agents; " + std::to_string(insertion_.insertedAgents) +
+                " were inserted into this world already",
+            "at most " + std::to_string(kMaxInsertedAgents) + " inserted agents per world in all");
+    }
   }
-  return out;
+
+  const CrowdDesc& crowd_;
+  const ScenarioDesc& desc_;
+  const CrowdInsertion& insertion_;
+  const CommonGroundState& commonGround_;
+  std::string source_;
+  core::Diagnostics out_;
+  std::set<std::string, std::less<>> pointIds_, populationIds_;
+};
+
+}  // namespace
+
+core::Diagnostics World::Impl::checkCrowd(const CrowdDesc& crowd) const {
+  return CrowdCheck(crowd, desc, insertion, commonGround).run();
 }
 
 std::uint32_t World::Impl::queueCrowd(const CrowdDesc& crowd) {
@@ -187,7 +229,7 @@ void World::Impl::insertCrowdNow(CrowdState& c) {
   configureModels();  // a crowd may walk with a model the world had no use for
   if (desc.social.enabled) commonGround.refreshInterests(desc);
 
-  registerGroups(firstPopulation);  // as the scenario's own groups
+  stats.scheduled += spawner.registerGroups(desc, firstPopulation, groups, goalLists);  // as the scenario's own groups
 
   addColumnsFor(firstPopulation);
 
@@ -207,9 +249,7 @@ void World::Impl::removeCrowdNow(CrowdState& c) {
   c.info.removed = true;
   const std::uint32_t first = c.info.firstPopulation, last = first + c.info.populations;
   for (std::uint32_t p = first; p < last; ++p) {
-    if (spawner.spawned[p]) continue;
-    spawner.spawned[p] = 1;  // spawns nobody any more
-    for (const std::uint32_t s : spawner.groupSizes[p]) stats.scheduled -= s;
+    stats.scheduled -= spawner.cancel(p);  // spawns nobody any more
   }
   std::vector<std::uint8_t> keep(agents.size(), 1);
   bool any = false;
@@ -220,10 +260,7 @@ void World::Impl::removeCrowdNow(CrowdState& c) {
     any = true;
     pendingEvents.push_back({tick, agents.id[r], EventKind::Exit, kNoPoint, c.info.index});
     ++stats.removed;
-    goals.releaseTarget(r);
-    GroupState& g = groups[agents.group[r]];
-    g.members.erase(agents.id[r]);
-    if (g.leader == agents.id[r]) g.leader = g.members.empty() ? kNoAgent : g.members.front();
+    leaveWorld(r, goals, groups);
   }
   if (!any) return;
   agents.compact(keep);
@@ -279,8 +316,7 @@ void World::Impl::addCrowdPopulations(const CrowdDesc& cd, std::uint32_t firstPo
     // Times in a crowd count from its insertion: spawn, guide script and release.
     for (GuideWaypoint& w : pop.guide.script) w.time += static_cast<float>(now);
     if (pop.guide.release >= 0.0f) pop.guide.release += static_cast<float>(now);
-    spawner.startTick.push_back(tick + ticksOf(pop.start, desc.dt));
-    spawner.spawned.push_back(0);
+    spawner.addPopulation(tick + ticksOf(pop.start, desc.dt));
     anySociological = anySociological || pop.sociological.enabled;
     desc.populations.push_back(std::move(pop));
   }

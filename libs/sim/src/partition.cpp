@@ -50,7 +50,7 @@ void World::Impl::assignOwners() {
       }
     }
   }
-  if (partition.ownerOfId.size() < spawner.nextAgentId) partition.ownerOfId.resize(spawner.nextAgentId, kNoOwner);
+  if (partition.ownerOfId.size() < spawner.nextAgentId()) partition.ownerOfId.resize(spawner.nextAgentId(), kNoOwner);
   partition.rowOwner.resize(n);
   partition.ownedRows.clear();
   for (std::size_t row = 0; row < n; ++row) {

@@ -12,6 +12,9 @@
 //   plan       PlanInput, PlanOutput            plan.cpp
 //   steer      SteerInput, SteerOutput          steer.cpp (the models: ModelInput / VelocityOutput)
 //   integrate  IntegrateInput, IntegrateOutput  integrate.cpp
+//   emit       EmitInput, EmitOutput            emit.cpp; and the frame a caller takes between
+//              ticks: takeFrame(FrameInput, FrameOutput), emit.cpp
+// (The tick's first phase, spawning, is spawnDue(SpawnInput, SpawnOutput): spawner.hpp.)
 // Also here: what the parallel phases share — the per-worker scratch, the per-chunk outputs and
 // their grain — and the read-only view of where agents are going (GoalView, goals.cpp).
 // Optional columns (AgentStore's column groups: levels, Common Ground, …) are passed as empty spans
@@ -33,8 +36,12 @@
 #include "throng/nav/path_queue.hpp"
 #include "throng/sim/scenario.hpp"
 #include "throng/sim/spatial_grid.hpp"
+#include "throng/sim/world.hpp"
 
 namespace throng::sim {
+
+struct GoalWriter;  // goals.hpp
+class Spawner;      // spawner.hpp
 
 /// Per-worker scratch: navmesh queries and buffers reused across agents (never shared by threads).
 struct WorkerScratch {
@@ -282,5 +289,51 @@ struct IntegrateOutput {
 
 /// Moves every agent by its new velocity along the navmesh, then its statistics, animation, heading.
 void integrate(const IntegrateInput& in, const IntegrateOutput& out, const core::TaskSystem& tasks);
+
+// ---- emit (emit.cpp): the tick's outputs merged, the agents that left removed, the clock moved
+// on (serial).
+
+struct EmitInput {
+  std::uint64_t tick;  ///< the tick ending
+  float dt;            ///< [s]
+};
+
+struct EmitOutput {
+  std::span<ChunkOutput> chunks;  ///< decide's and integrate's events and sums, merged in chunk order, then emptied
+  std::vector<Event>& events;     ///< the world's pending events: the chunks' events appended
+  /// exited, lastExitTime, walkedDistance, walkingTime, socialMeetings, agentSteps; tick, time and
+  /// active as of the next tick
+  WorldStats& stats;
+  AgentStore& agents;             ///< rows of agents that exited (GoalState::Exited) removed, the rest in order
+  GroupTable& groups;             ///< agents that exited leave their groups
+  GoalWriter& goals;              ///< agents that exited release their targets' sub-regions
+};
+
+/// Merges the chunks into the events and statistics, then removes the agents that exited (stable
+/// compaction: rows stay in id order). Returns whether rows were removed (stable id → row changes).
+bool emit(const EmitInput& in, const EmitOutput& out);
+
+/// Agent `row` leaves the world (it exited, or its crowd was removed): it releases its target's
+/// sub-region and leaves its group (the leader passes to the first member left). Its row stays
+/// until the store is compacted.
+void leaveWorld(std::size_t row, GoalWriter& goals, GroupTable& groups);
+
+// ---- the frame (emit.cpp): a snapshot of every agent and what happened since the last one.
+
+struct FrameInput {
+  const AgentStore& agents;  ///< ids, positions (floor heights on multi-level worlds), velocities, headings, modes, animation
+  std::uint64_t tick;
+  float dt;                  ///< [s]
+};
+
+struct FrameOutput {
+  Spawner& spawner;                  ///< the spawn events it kept compactly, written out and emptied
+  std::vector<Event>& events;        ///< the world's pending events, taken (emptied)
+  CommonGroundState& commonGround;   ///< pendingScript, pendingCoordinations taken (emptied)
+};
+
+/// The frame of tick `in.tick`: the agents' columns, and the events, script entries and
+/// coordinations since the last frame taken (which this hands over).
+[[nodiscard]] FramePtr takeFrame(const FrameInput& in, const FrameOutput& out);
 
 }  // namespace throng::sim

@@ -1,274 +1,251 @@
-// applyCommands — spawning. Holds: the groups of the scenario's populations and of inserted crowds
-// (planPopulations, registerGroups: sizes drawn per stable group id), the group walking speed, the
-// compact spawn events, and the spawning of the populations due this tick, in population order:
-// each is laid out (spawn_layout.cpp: random free spots around group anchors; when they run out
-// in a crowded area, the populations sharing it are laid out again on a packed lattice), then its
-// agents get their rows, interests, group and first goal. Every draw comes from a stream keyed by
-// (seed, stable group or agent id, purpose).
+// The spawn phase (spawner.hpp: spawnDue of SpawnInput, SpawnOutput) and the group walking speed:
+// the populations due this tick enter the world, in population order. Each is laid out first
+// (spawn_layout.hpp: random free spots around group anchors; when they run out in a crowded area,
+// the populations sharing it are laid out again on a packed lattice), then its agents get their
+// stable ids, rows, speeds, interests, group, first goal and pre-movement wait. Every draw comes
+// from a stream keyed by (seed, stable group or agent id, purpose).
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <limits>
-#include <unordered_map>
+#include <string>
+#include <vector>
 
+#include "group_pass.hpp"
+#include "spawn_layout.hpp"
+#include "spawner.hpp"
 #include "throng/core/assert.hpp"
 #include "throng/core/rng.hpp"
-#include "spawn_layout.hpp"
-#include "world_impl.hpp"
 
 namespace throng::sim {
-void World::Impl::planPopulations() {
-  const std::uint32_t scheduled = registerGroups(0);
-  // Optional agent columns: only the features some population (or the scenario) uses.
-  for (const PopulationDesc& pop : desc.populations) {
-    agents.formation = agents.formation || (pop.flocking && pop.sizeMax >= 2);
-    agents.sociological = agents.sociological || pop.sociological.enabled;
-  }
-  agents.commonGround = desc.social.enabled;
-  // Every agent that will ever exist is known: exact capacity, no doubling slack on the columns.
-  agents.forEachColumn([&](auto& column) { column.reserve(scheduled); });
-}
+namespace {
 
-std::uint32_t World::Impl::registerGroups(std::uint32_t firstPopulation) {
-  // Group sizes are drawn per stable group id, so a group is the same whether its population came
-  // with the scenario or with a crowd.
-  THRONG_ASSERT(spawner.groupSizes.size() == firstPopulation && spawner.firstGroupId.size() == firstPopulation);
-  const std::uint32_t firstGroup = groups.size();
-  std::uint32_t gid = firstGroup, scheduled = 0;
-  std::size_t extras = 0;  // cold parts: at most one per busy group (a follower and the group it follows: two)
-  for (std::size_t p = firstPopulation; p < desc.populations.size(); ++p) {
-    const PopulationDesc& pop = desc.populations[p];
-    std::vector<std::uint32_t> sizes(pop.groups);
-    for (std::uint32_t& size : sizes) {
-      core::Rng rng(desc.seed, gid++, core::RngPurpose::GroupSize);
-      size = pop.sizeMin == pop.sizeMax ? pop.sizeMin : rng.uniformInt(pop.sizeMin, pop.sizeMax);
-      scheduled += size;
-      if (desc.social.enabled) ++extras;
-      else extras += (pop.follow.mode != FollowMode::None ? 2 : 0) +
-                     ((pop.flocking && size >= 2) || !pop.guide.script.empty() || pop.sociological.enabled ? 1 : 0);
-    }
-    spawner.groupSizes.push_back(std::move(sizes));
-  }
-  groups.reserve(gid, std::min<std::size_t>(extras, gid));
-  // One goal list per population (automatic goals add one per group when it spawns), then its groups.
-  for (std::size_t p = firstPopulation; p < desc.populations.size(); ++p) {
-    const auto goalList = static_cast<std::uint32_t>(goalLists.size());
-    goalLists.push_back(desc.populations[p].goals);
-    spawner.firstGroupId.push_back(groups.size());
-    for (const std::uint32_t size : spawner.groupSizes[p]) {
-      GroupState state;
-      state.population = static_cast<std::uint16_t>(p);
-      state.expected = size;
-      state.goalList = goalList;
-      groups.add(std::move(state));
-    }
-  }
-  stats.scheduled += scheduled;
-  // Busy groups, routes and cold parts.
-  for (std::uint32_t gid = firstGroup; gid < groups.size(); ++gid) {
-    const PopulationDesc& pop = desc.populations[groups[gid].population];
-    const FollowDesc& f = pop.follow;
-    if (f.mode != FollowMode::None && f.population < spawner.firstGroupId.size() && f.group < desc.populations[f.population].groups) {
-      const std::uint32_t followed = spawner.firstGroupId[f.population] + f.group;
-      groups.markBusy(followed);
-      groups.routeFor(gid).followGroup = followed;
-    }
-    if (!pop.guide.script.empty()) groups.routeFor(gid);
-    if ((pop.flocking && groups[gid].expected >= 2) || pop.sociological.enabled) groups.markBusy(gid);
-    // Common Ground may start a coordination in any group (a lone visit too).
-    if (desc.social.enabled) groups.giveExtra(gid);
-  }
-  return scheduled;
-}
-
-float groupSpeed(const ScenarioDesc& desc, const GroupTable& groups, std::uint32_t gid) {
-  const PopulationDesc& pop = desc.populations[groups[gid].population];
-  core::Rng speedRng(desc.seed, gid, core::RngPurpose::Speed);
+/// The desired speed of agent (or group) `id` of `pop`: normal (mean, sd), clamped to the
+/// population's bounds [m/s].
+float drawSpeed(const ScenarioDesc& desc, const PopulationDesc& pop, std::uint32_t id) {
+  core::Rng speedRng(desc.seed, id, core::RngPurpose::Speed);
   const double v = pop.speedSd > 0 ? speedRng.normal(pop.speedMean, pop.speedSd) : pop.speedMean;
   return static_cast<float>(std::clamp(v, static_cast<double>(pop.speedMin), static_cast<double>(pop.speedMax)));
 }
 
-void World::Impl::recordSpawn(std::uint32_t population, std::uint32_t agent, std::uint32_t group, std::uint32_t member) {
-  if (!spawnRuns.empty()) {
-    SpawnRun& run = spawnRuns.back();
-    // The same run goes on while nothing else happened in between.
-    if (run.at == pendingEvents.size() && run.tick == tick && run.population == population && run.firstAgent + run.count == agent) {
-      ++run.count;
-      return;
-    }
+/// The discs of every agent present (new bodies keep clear of them).
+SpawnOccupancy occupancyOf(const AgentStore& agents, float cell, std::size_t expected) {
+  SpawnOccupancy occupancy(cell, expected);
+  for (std::size_t r = 0; r < agents.size(); ++r) {
+    occupancy.add({agents.posX[r], agents.posY[r]}, agents.radius[r], agents.levels ? agents.posZ[r] : 0.0f);
   }
-  spawnRuns.push_back({pendingEvents.size(), tick, population, agent, 1, group, member});
+  return occupancy;
 }
 
-std::vector<Event> World::Impl::takeEvents() {
-  if (spawnRuns.empty()) return std::move(pendingEvents);
-  std::size_t total = pendingEvents.size();
-  for (const SpawnRun& run : spawnRuns) total += run.count;
-  std::vector<Event> out;
-  out.reserve(total);
-  std::size_t next = 0;
-  for (const SpawnRun& run : spawnRuns) {
-    out.insert(out.end(), pendingEvents.begin() + static_cast<std::ptrdiff_t>(next), pendingEvents.begin() + static_cast<std::ptrdiff_t>(run.at));
-    next = run.at;
-    // Walk the population's groups from the run's first agent (groups in id order, members in
-    // spawn order; empty groups spawn nobody).
-    const std::vector<std::uint32_t>& sizes = spawner.groupSizes[run.population];
-    std::uint32_t group = run.group, member = run.member;
-    for (std::uint32_t i = 0; i < run.count; ++i) {
-      while (member >= sizes[group - spawner.firstGroupId[run.population]]) {
-        ++group;
-        member = 0;
-      }
-      out.push_back({run.tick, run.firstAgent + i, EventKind::Spawn, run.population, group});
-      ++member;
+/// Lays out every population due: randomly, then — when random spots ran out in some area — every
+/// population whose area overlaps such an area (and so on, transitively) again on the lattice, in
+/// population order; the others keep their spots.
+class DueLayout {
+ public:
+  DueLayout(const SpawnInput& in, const SpawnOutput& out, std::span<const std::size_t> due)
+      : in_(in), layout_{in.desc, in.query, out.agents.levels}, agents_(out.agents), spawner_(out.spawner), due_(due) {
+    std::size_t expected = agents_.size();
+    std::uint32_t nextId = spawner_.nextAgentId();
+    for (const std::size_t p : due) {
+      jobs_.push_back({p, spawner_.groupSizes(p), spawner_.firstGroupId(p), nextId});
+      nextId += spawner_.agentsOf(p);
+      expected += spawner_.agentsOf(p);
+    }
+    expected_ = expected;
+    cell_ = std::max(0.5f, 4.0f * in.desc.maxRadius());
+  }
+
+  std::vector<SpawnPlan> plan() {
+    SpawnOccupancy occupancy = occupancyOf(agents_, cell_, expected_);
+    std::vector<SpawnPlan> plans;
+    plans.reserve(due_.size());
+    bool allPlaced = true;
+    for (const LayoutJob& job : jobs_) {
+      plans.push_back(planRandomSpawn(layout_, job, occupancy));
+      allPlaced = allPlaced && plans.back().placed;
+    }
+    if (!allPlaced) packCrowdedAreas(plans);
+    return plans;
+  }
+
+ private:
+  void packCrowdedAreas(std::vector<SpawnPlan>& plans) const {
+    const std::vector<std::uint8_t> redo = crowded(plans);
+    SpawnOccupancy occupancy = occupancyOf(agents_, cell_, expected_);
+    for (std::size_t k = 0; k < due_.size(); ++k) {
+      if (redo[k]) continue;
+      const PopulationDesc& pop = in_.desc.populations[due_[k]];
+      const float height = spawnArea(in_.desc, pop, 0, agents_.levels).height;
+      for (const auto& spot : plans[k].spots) occupancy.add(spot.first, pop.radius, height);
+    }
+    for (std::size_t k = 0; k < due_.size(); ++k) {
+      if (redo[k]) plans[k] = planPackedSpawn(layout_, jobs_[k], occupancy);
     }
   }
-  out.insert(out.end(), pendingEvents.begin() + static_cast<std::ptrdiff_t>(next), pendingEvents.end());
-  spawnRuns.clear();
-  std::vector<Event>().swap(pendingEvents);  // as if moved out
-  return out;
-}
 
-void World::Impl::applyCommands() {
-  applyCrowdCommands();  // inserted crowds' populations starting now spawn below
-  std::vector<std::size_t> due;
-  for (std::size_t p = 0; p < desc.populations.size(); ++p) {
-    if (!spawner.spawned[p] && spawner.startTick[p] <= tick) due.push_back(p);
-  }
-  if (!due.empty()) spawnPopulations(due);
-}
-
-
-void World::Impl::spawnPopulations(const std::vector<std::size_t>& due) {
-  std::size_t expected = agents.size();
-  std::vector<std::uint32_t> firstAgent;
-  std::uint32_t nextId = spawner.nextAgentId;
-  for (const std::size_t p : due) {
-    firstAgent.push_back(nextId);
-    for (const std::uint32_t s : spawner.groupSizes[p]) nextId += s;
-    expected += nextId - firstAgent.back();
-  }
-  const float cell = std::max(0.5f, 4.0f * desc.maxRadius());
-  auto occupied = [&] {
-    SpawnOccupancy occupancy(cell, expected);
-    for (std::size_t r = 0; r < agents.size(); ++r) {
-      occupancy.add({agents.posX[r], agents.posY[r]}, agents.radius[r], agents.levels ? agents.posZ[r] : 0.0f);
-    }
-    return occupancy;
-  };
-  SpawnOccupancy occupancy = occupied();
-  std::vector<SpawnPlan> plans;
-  plans.reserve(due.size());
-  bool allPlaced = true;
-  for (std::size_t k = 0; k < due.size(); ++k) {
-    plans.push_back(planRandomSpawn(due[k], firstAgent[k], occupancy));
-    allPlaced = allPlaced && plans.back().placed;
-  }
-  if (!allPlaced) {
-    // Random spots ran out in some area. Every population whose area overlaps such an area (and
-    // so on, transitively) is laid out again on the lattice, in population order; the others keep
-    // their spots.
+  /// Per population due: whether its area is crowded or overlaps a crowded one (transitively).
+  [[nodiscard]] std::vector<std::uint8_t> crowded(const std::vector<SpawnPlan>& plans) const {
     std::vector<core::Aabb> boxes;
-    std::vector<std::uint8_t> redo(due.size(), 0);
-    for (std::size_t k = 0; k < due.size(); ++k) {
-      std::uint32_t total = 0;
-      for (const std::uint32_t s : spawner.groupSizes[due[k]]) total += s;
-      boxes.push_back(spawnArea(desc, desc.populations[due[k]], total, agents.levels).box);
+    std::vector<std::uint8_t> redo(due_.size(), 0);
+    for (std::size_t k = 0; k < due_.size(); ++k) {
+      const PopulationDesc& pop = in_.desc.populations[due_[k]];
+      boxes.push_back(spawnArea(in_.desc, pop, spawner_.agentsOf(due_[k]), agents_.levels).box);
       redo[k] = plans[k].placed ? 0 : 1;
     }
     for (bool grew = true; grew;) {
       grew = false;
-      for (std::size_t k = 0; k < due.size(); ++k) {
+      for (std::size_t k = 0; k < due_.size(); ++k) {
         if (redo[k]) continue;
-        for (std::size_t o = 0; o < due.size() && !redo[k]; ++o) {
+        for (std::size_t o = 0; o < due_.size() && !redo[k]; ++o) {
           if (redo[o] && boxesOverlap(boxes[k], boxes[o])) redo[k] = grew = true;
         }
       }
     }
-    occupancy = occupied();
-    for (std::size_t k = 0; k < due.size(); ++k) {
-      if (redo[k]) continue;
-      const PopulationDesc& pop = desc.populations[due[k]];
-      const float height = spawnArea(desc, pop, 0, agents.levels).height;
-      for (const auto& spot : plans[k].spots) occupancy.add(spot.first, pop.radius, height);
-    }
-    for (std::size_t k = 0; k < due.size(); ++k) {
-      if (redo[k]) plans[k] = planPackedSpawn(due[k], firstAgent[k], occupancy);
+    return redo;
+  }
+
+  const SpawnInput& in_;
+  const LayoutInput layout_;
+  const AgentStore& agents_;
+  const Spawner& spawner_;
+  std::span<const std::size_t> due_;
+  std::vector<LayoutJob> jobs_;
+  std::size_t expected_ = 0;
+  float cell_ = 0.5f;
+};
+
+/// Adds the agents of one laid-out population, group by group, in spawn order.
+class PopulationEntry {
+ public:
+  PopulationEntry(const SpawnInput& in, const SpawnOutput& out, const SpawnPlan& plan)
+      : in_(in), out_(out), plan_(plan), pop_(in.desc.populations[plan.population]),
+        population_(static_cast<std::uint32_t>(plan.population)) {}
+
+  void run() {
+    out_.spawner.markSpawned(plan_.population);
+    THRONG_ASSERT(out_.spawner.nextAgentId() == plan_.firstAgent);
+    const std::span<const std::uint32_t> sizes = out_.spawner.groupSizes(plan_.population);
+    std::size_t spot = 0;
+    for (std::uint32_t g = 0; g < sizes.size(); ++g) {
+      const std::uint32_t groupId = out_.spawner.firstGroupId(plan_.population) + g;
+      if (pop_.autoGoals) out_.goals.reconstructGoals(groupId, plan_.anchors[g]);
+      for (std::uint32_t m = 0; m < sizes[g]; ++m) {
+        const std::size_t row = addRow(groupId, m, sizes[g], plan_.spots[spot++]);
+        drawInterests(row);
+        joinGroup(row, groupId);
+      }
     }
   }
-  for (const SpawnPlan& plan : plans) addSpawnedAgents(plan);
-  stats.active = static_cast<std::uint32_t>(agents.size());
-  rowsChanged = true;
+
+ private:
+  /// The agent's row: id, group, body, position, desired speed, standing still facing +x.
+  std::size_t addRow(std::uint32_t groupId, std::uint32_t member, std::uint32_t groupSize,
+                     const std::pair<core::Vec2, nav::PolyRef>& placed) {
+    AgentStore& agents = out_.agents;
+    const std::uint32_t agentId = out_.spawner.takeAgentId();
+    const std::size_t row = agents.addRow();
+    agents.id[row] = agentId;
+    agents.group[row] = groupId;
+    agents.population[row] = static_cast<std::uint16_t>(population_);
+    agents.groupSize[row] = static_cast<std::uint16_t>(std::min<std::uint32_t>(groupSize, 0xffff));
+    agents.posX[row] = placed.first.x;
+    agents.posY[row] = placed.first.y;
+    agents.polyRef[row] = static_cast<std::uint32_t>(placed.second);  // 32-bit Detour references
+    if (agents.levels) agents.posZ[row] = placed.second != 0 ? in_.query.heightAt(placed.second, placed.first) : spawnHeight();
+    agents.radius[row] = pop_.radius;
+    agents.speed[row] = drawSpeed(in_.desc, pop_, agentId);
+    agents.oriX[row] = 1.0f;
+    agents.oriY[row] = 0.0f;
+    agents.mode[row] = AgentMode::Waiting;
+    agents.goalState[row] = GoalState::Seeking;
+    agents.goalCursor[row] = 0;
+    out_.spawner.recordSpawn(out_.goals.events.size(), in_.tick, population_, agentId, groupId, member);
+    ++out_.stats.spawned;
+    --out_.stats.scheduled;
+    agents.targetSub[row] = -1;
+    if (agents.sociological) agents.followAgent[row] = kNoAgent;
+    if (agents.commonGround) {
+      agents.coordination[row] = kNoIndex;
+      agents.desirePoint[row] = kNoPoint;
+      agents.scriptClip[row] = kNoClip;
+    }
+    return row;
+  }
+
+  [[nodiscard]] float spawnHeight() const {
+    return pop_.spawn.kind == SpawnKind::Point ? in_.desc.points[pop_.spawn.point].height : pop_.spawn.height;
+  }
+
+  /// Common Ground: the agent's interests, drawn from its population's without repetition (they
+  /// matter only to the goal generator).
+  void drawInterests(std::size_t row) {
+    AgentStore& agents = out_.agents;
+    if (!agents.commonGround || pop_.interests.empty() || pop_.interestsPerAgent == 0) return;
+    core::Rng interestRng(in_.desc.seed, agents.id[row], core::RngPurpose::Social);
+    std::vector<std::string> pool = pop_.interests;
+    for (std::uint32_t k = 0; k < pop_.interestsPerAgent && !pool.empty(); ++k) {
+      const std::uint32_t pick = interestRng.uniformInt(0, static_cast<std::uint32_t>(pool.size() - 1));
+      const std::int32_t c = in_.commonGround.categoryIndex(pool[pick]);
+      if (c >= 0 && c < 64) agents.interests[row] |= std::uint64_t{1} << c;
+      pool.erase(pool.begin() + pick);
+    }
+  }
+
+  /// Joins the group (flocking: everyone walks at the group's speed), heads for its current goal
+  /// and faces the first target.
+  void joinGroup(std::size_t row, std::uint32_t groupId) {
+    AgentStore& agents = out_.agents;
+    GroupState& group = out_.groups[groupId];
+    group.members.push_back(agents.id[row]);
+    if (group.leader == kNoAgent) group.leader = agents.id[row];
+    if (group.flocks(pop_)) agents.speed[row] = groupSpeed(in_.desc, out_.groups, groupId);
+    out_.goals.setGoal(row, group.cursor);
+    const core::Vec2 dir = core::normalize(core::Vec2{agents.targetX[row] - agents.posX[row], agents.targetY[row] - agents.posY[row]});
+    if (core::lengthSq(dir) > 0.0f) { agents.oriX[row] = dir.x; agents.oriY[row] = dir.y; }
+    agents.progressDistance[row] = 1e30f;
+    if (pop_.preMovement.enabled() && agents.goalState[row] == GoalState::Seeking) waitBeforeLeaving(row);
+  }
+
+  /// Pre-movement: the agent stands where it appeared until its drawn time is over (decide then
+  /// lets it walk); it is an obstacle to the others meanwhile, as anyone standing.
+  void waitBeforeLeaving(std::size_t row) {
+    AgentStore& agents = out_.agents;
+    const double t = preMovementTime(pop_.preMovement, in_.desc.seed, agents.id[row]);
+    const double ticks = std::ceil(t / static_cast<double>(in_.desc.dt) - 1e-6);
+    const double end = std::min(static_cast<double>(in_.tick) + std::max(ticks, 0.0), 4294967295.0);
+    agents.goalState[row] = GoalState::PreMovement;
+    agents.mode[row] = AgentMode::Waiting;
+    agents.actionEndTick[row] = static_cast<std::uint32_t>(end);
+  }
+
+  const SpawnInput& in_;
+  const SpawnOutput& out_;
+  const SpawnPlan& plan_;
+  const PopulationDesc& pop_;
+  std::uint32_t population_;
+};
+
+}  // namespace
+
+double preMovementTime(const PreMovementDesc& d, std::uint64_t seed, std::uint32_t agentId) {
+  core::Rng rng(seed, agentId, core::RngPurpose::PreMovement);
+  double t = 0.0;
+  switch (d.distribution) {
+    case PreMovementDistribution::None: return 0.0;
+    case PreMovementDistribution::Uniform: t = rng.uniform(d.min, d.max); break;
+    case PreMovementDistribution::Normal: t = rng.normal(d.mean, d.sd); break;
+    case PreMovementDistribution::LogNormal: t = std::exp(rng.normal(d.mu, d.sigma)); break;
+  }
+  return std::clamp(t, 0.0, static_cast<double>(kMaxPreMovement));
 }
 
-void World::Impl::addSpawnedAgents(const SpawnPlan& plan) {
-  const std::size_t populationIndex = plan.population;
-  const PopulationDesc& pop = desc.populations[populationIndex];
-  spawner.spawned[populationIndex] = 1;
-  const nav::NavQuery& query = *mainQuery;
-  GoalWriter goals = goalWriter();
-  const std::vector<std::uint32_t>& sizes = spawner.groupSizes[populationIndex];
-  const float spawnHeight = pop.spawn.kind == SpawnKind::Point ? desc.points[pop.spawn.point].height : pop.spawn.height;
-  THRONG_ASSERT(spawner.nextAgentId == plan.firstAgent);
-  std::size_t spot = 0;
-  for (std::uint32_t g = 0; g < sizes.size(); ++g) {
-    const std::uint32_t groupId = spawner.firstGroupId[populationIndex] + g;
-    if (pop.autoGoals) goals.reconstructGoals(groupId, plan.anchors[g]);
-    for (std::uint32_t m = 0; m < sizes[g]; ++m) {
-      const std::uint32_t agentId = spawner.nextAgentId++;
-      const std::pair<core::Vec2, nav::PolyRef>* placed = &plan.spots[spot++];
-      const std::size_t row = agents.addRow();
-      agents.id[row] = agentId;
-      agents.group[row] = groupId;
-      agents.population[row] = static_cast<std::uint16_t>(populationIndex);
-      agents.groupSize[row] = static_cast<std::uint16_t>(std::min<std::uint32_t>(sizes[g], 0xffff));
-      agents.posX[row] = placed->first.x;
-      agents.posY[row] = placed->first.y;
-      agents.polyRef[row] = static_cast<std::uint32_t>(placed->second);  // 32-bit Detour references
-      if (agents.levels) agents.posZ[row] = placed->second != 0 ? query.heightAt(placed->second, placed->first) : spawnHeight;
-      agents.radius[row] = pop.radius;
-      core::Rng speedRng(desc.seed, agentId, core::RngPurpose::Speed);
-      const double v = pop.speedSd > 0 ? speedRng.normal(pop.speedMean, pop.speedSd) : pop.speedMean;
-      agents.speed[row] = static_cast<float>(std::clamp(v, static_cast<double>(pop.speedMin), static_cast<double>(pop.speedMax)));
-      agents.oriX[row] = 1.0f;
-      agents.oriY[row] = 0.0f;
-      agents.mode[row] = AgentMode::Waiting;
-      agents.goalState[row] = GoalState::Seeking;
-      agents.goalCursor[row] = 0;
-      recordSpawn(static_cast<std::uint32_t>(populationIndex), agentId, groupId, m);
-      ++stats.spawned;
-      --stats.scheduled;
-      agents.targetSub[row] = -1;
-      if (agents.sociological) agents.followAgent[row] = kNoAgent;
-      if (agents.commonGround) {
-        agents.coordination[row] = kNoIndex;
-        agents.desirePoint[row] = kNoPoint;
-        agents.scriptClip[row] = kNoClip;
-      }
-      // Interests matter only to the goal generator (Common Ground on).
-      if (agents.commonGround && !pop.interests.empty() && pop.interestsPerAgent > 0) {
-        // Common Ground: this agent's interests, drawn from its population's without repetition.
-        core::Rng interestRng(desc.seed, agentId, core::RngPurpose::Social);
-        std::vector<std::string> pool = pop.interests;
-        for (std::uint32_t k = 0; k < pop.interestsPerAgent && !pool.empty(); ++k) {
-          const std::uint32_t pick = interestRng.uniformInt(0, static_cast<std::uint32_t>(pool.size() - 1));
-          const std::int32_t c = commonGround.categoryIndex(pool[pick]);
-          if (c >= 0 && c < 64) agents.interests[row] |= std::uint64_t{1} << c;
-          pool.erase(pool.begin() + pick);
-        }
-      }
-      // Join the group (flocking: everyone walks at the group's speed) and head for its current goal.
-      GroupState& group = groups[groupId];
-      group.members.push_back(agentId);
-      if (group.leader == kNoAgent) group.leader = agentId;
-      if (group.flocks(pop)) agents.speed[row] = groupSpeed(desc, groups, groupId);
-      goals.setGoal(row, group.cursor);
-      // Face the first target.
-      const core::Vec2 dir = core::normalize(core::Vec2{agents.targetX[row] - agents.posX[row], agents.targetY[row] - agents.posY[row]});
-      if (core::lengthSq(dir) > 0.0f) { agents.oriX[row] = dir.x; agents.oriY[row] = dir.y; }
-      agents.progressDistance[row] = 1e30f;
-    }
-  }
+float groupSpeed(const ScenarioDesc& desc, const GroupTable& groups, std::uint32_t gid) {
+  return drawSpeed(desc, desc.populations[groups[gid].population], gid);
+}
+
+void spawnDue(const SpawnInput& in, const SpawnOutput& out, std::span<const std::size_t> due) {
+  if (due.empty()) return;
+  const std::vector<SpawnPlan> plans = DueLayout(in, out, due).plan();
+  for (const SpawnPlan& plan : plans) PopulationEntry(in, out, plan).run();
+  out.stats.active = static_cast<std::uint32_t>(out.agents.size());
 }
 
 }  // namespace throng::sim

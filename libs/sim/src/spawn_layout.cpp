@@ -1,7 +1,8 @@
 // Spawn layout (spawn_layout.hpp): the random layout of a population (groups around anchors, random
 // free spots) and the packed lattice laid out instead when random spots run out in a crowded area.
-// Reads the scenario, the navmesh and the occupied discs; writes a SpawnPlan. Deterministic: every
-// draw comes from a stream keyed by (seed, stable group or agent id, purpose).
+// Reads the scenario, the navmesh and the occupied discs (LayoutInput, LayoutJob); writes a
+// SpawnPlan. Deterministic: every draw comes from a stream keyed by (seed, stable group or agent
+// id, purpose).
 #include "spawn_layout.hpp"
 
 #include <algorithm>
@@ -11,7 +12,6 @@
 #include <unordered_map>
 
 #include "throng/core/assert.hpp"
-#include "world_impl.hpp"
 
 namespace throng::sim {
 
@@ -169,22 +169,22 @@ class NearestSpots {
 
 }  // namespace
 
-World::Impl::SpawnPlan World::Impl::planRandomSpawn(std::size_t populationIndex, std::uint32_t firstAgent,
-                                                    SpawnOccupancy& occupancy) {
-  const PopulationDesc& pop = desc.populations[populationIndex];
-  const nav::NavQuery& query = *mainQuery;
-  const std::vector<std::uint32_t>& sizes = spawner.groupSizes[populationIndex];
+SpawnPlan planRandomSpawn(const LayoutInput& in, const LayoutJob& job, SpawnOccupancy& occupancy) {
+  const ScenarioDesc& desc = in.desc;
+  const PopulationDesc& pop = desc.populations[job.population];
+  const nav::NavQuery& query = in.query;
+  const std::span<const std::uint32_t> sizes = job.groupSizes;
   std::uint32_t total = 0;
   for (std::uint32_t s : sizes) total += s;
-  const SpawnArea area = spawnArea(desc, pop, total, agents.levels);
-  const bool levels = agents.levels;
+  const bool levels = in.levels;
+  const SpawnArea area = spawnArea(desc, pop, total, levels);
   SpawnPlan plan;
-  plan.population = populationIndex;
-  plan.firstAgent = firstAgent;
+  plan.population = job.population;
+  plan.firstAgent = job.firstAgent;
   plan.spots.reserve(total);
-  std::uint32_t agentId = firstAgent;
+  std::uint32_t agentId = job.firstAgent;
   for (std::uint32_t g = 0; g < sizes.size(); ++g) {
-    const std::uint32_t groupId = spawner.firstGroupId[populationIndex] + g;
+    const std::uint32_t groupId = job.firstGroup + g;
     core::Rng groupRng(desc.seed, groupId, core::RngPurpose::Spawn);
     // Group anchor: a free point on the mesh inside the area.
     std::optional<core::Vec2> anchor;
@@ -356,21 +356,20 @@ Spot placeOutside(const Lattice& lattice, SpawnOccupancy& occupancy, core::Vec2 
 
 }  // namespace
 
-World::Impl::SpawnPlan World::Impl::planPackedSpawn(std::size_t populationIndex, std::uint32_t firstAgent,
-                                                    SpawnOccupancy& occupancy) {
-  const PopulationDesc& pop = desc.populations[populationIndex];
-  const std::vector<std::uint32_t>& sizes = spawner.groupSizes[populationIndex];
+SpawnPlan planPackedSpawn(const LayoutInput& in, const LayoutJob& job, SpawnOccupancy& occupancy) {
+  const PopulationDesc& pop = in.desc.populations[job.population];
+  const std::span<const std::uint32_t> sizes = job.groupSizes;
   std::uint32_t total = 0;
   for (std::uint32_t s : sizes) total += s;
-  const SpawnArea area = spawnArea(desc, pop, total, agents.levels);
+  const SpawnArea area = spawnArea(in.desc, pop, total, in.levels);
   SpawnPlan plan;
-  plan.population = populationIndex;
-  plan.firstAgent = firstAgent;
+  plan.population = job.population;
+  plan.firstAgent = job.firstAgent;
   if (total == 0) {
     plan.anchors.assign(sizes.size(), area.centre);
     return plan;
   }
-  const Lattice lattice{area, *mainQuery, agents.levels, pop.radius};
+  const Lattice lattice{area, in.query, in.levels, pop.radius};
   float spacing = 0.0f;
   std::vector<Spot> spots = packedSpots(lattice, occupancy, total, spacing);
   plan.placed = spots.size() >= total;
@@ -387,7 +386,7 @@ World::Impl::SpawnPlan World::Impl::planPackedSpawn(std::size_t populationIndex,
   for (const auto& c : chosen) {
     if (c) occupancy.add(spots[*c].first, pop.radius, area.height);
   }
-  std::uint32_t agentId = firstAgent;
+  std::uint32_t agentId = job.firstAgent;
   std::size_t k = 0;
   for (std::uint32_t g = 0; g < sizes.size(); ++g) {
     plan.anchors.push_back(sizes[g] > 0 && chosen[k] ? spots[*chosen[k]].first : area.centre);
@@ -397,7 +396,7 @@ World::Impl::SpawnPlan World::Impl::planPackedSpawn(std::size_t populationIndex,
         continue;
       }
       plan.placed = false;
-      plan.spots.push_back(placeOutside(lattice, occupancy, plan.anchors.back(), sizes[g], agentId, desc.seed));
+      plan.spots.push_back(placeOutside(lattice, occupancy, plan.anchors.back(), sizes[g], agentId, in.desc.seed));
     }
   }
   return plan;

@@ -1,14 +1,19 @@
-// Spawn layout — where agents appear (spawn.cpp places them): the occupied discs while placing
-// (SpawnOccupancy), a population's spawn area (SpawnArea) and the samplers. The random layout and
-// the packed lattice over an area live in spawn_layout.cpp. Private to throng_sim.
+// Spawn layout — where agents appear (the spawn phase, spawn.cpp, places them): the occupied discs
+// while placing (SpawnOccupancy), a population's spawn area (SpawnArea), the samplers, and the two
+// layouts of one population (LayoutInput, LayoutJob → SpawnPlan): random free spots around group
+// anchors (planRandomSpawn) and the packed lattice over the area (planPackedSpawn), both in
+// spawn_layout.cpp. Private to throng_sim.
 #pragma once
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "throng/core/geometry.hpp"
 #include "throng/core/rng.hpp"
+#include "throng/nav/navmesh.hpp"
 #include "throng/sim/scenario.hpp"
 
 namespace throng::sim {
@@ -124,5 +129,42 @@ struct SpawnArea {
 SpawnArea spawnArea(const ScenarioDesc& desc, const PopulationDesc& pop, std::uint32_t total, bool levels);
 /// Whether two boxes overlap (touching counts).
 bool boxesOverlap(const core::Aabb& a, const core::Aabb& b);
+
+/// What laying out a population reads.
+struct LayoutInput {
+  const ScenarioDesc& desc;    ///< seed, populations (spawn area, radius), points (spawn points)
+  const nav::NavQuery& query;  ///< spots must lie on the navmesh
+  bool levels = false;         ///< a multi-level world: spots on the spawn area's floor
+};
+
+/// One population to lay out: its groups (stable ids from firstGroup, in order) and agents (stable
+/// ids from firstAgent, group by group). Every draw comes from a stream keyed by (seed, stable
+/// group or agent id, purpose).
+struct LayoutJob {
+  std::size_t population = 0;
+  std::span<const std::uint32_t> groupSizes;
+  std::uint32_t firstGroup = 0;
+  std::uint32_t firstAgent = 0;
+};
+
+/// Where one population's agents appear: planned for every population due in a tick before any of
+/// them is added, so a crowded area can be laid out again as a whole.
+struct SpawnPlan {
+  std::size_t population = 0;
+  std::uint32_t firstAgent = 0;                            ///< stable id of its first agent
+  std::vector<core::Vec2> anchors;                         ///< per group: where it gathers
+  std::vector<std::pair<core::Vec2, nav::PolyRef>> spots;  ///< per agent, in spawn order
+  bool placed = true;  ///< every agent found a free spot on the navmesh inside the spawn area
+};
+
+/// Random layout: per group an anchor (a free spot on the navmesh inside the area), its members
+/// on free spots near it, then anywhere in the area. Occupies the spots it takes. Stops early with
+/// placed = false when the area is crowded (a polygon without a free anchor, or a member without
+/// a spot).
+[[nodiscard]] SpawnPlan planRandomSpawn(const LayoutInput& in, const LayoutJob& job, SpawnOccupancy& occupancy);
+/// Packed layout: free spots of the densest lattice over the area that holds everyone (sorted
+/// along a Hilbert curve, each group on neighbouring spots); agents the area cannot hold go around
+/// it (placed = false). Occupies the spots it takes.
+[[nodiscard]] SpawnPlan planPackedSpawn(const LayoutInput& in, const LayoutJob& job, SpawnOccupancy& occupancy);
 
 }  // namespace throng::sim

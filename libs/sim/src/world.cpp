@@ -1,5 +1,6 @@
-// World — creation, the tick's phase order, the phases' contexts (phases.hpp), the avoidance
-// models in use (configureModels), the emit phase (removal, statistics) and frames (takeFrame).
+// World — creation (planPopulations), the tick's phase order, the phases' contexts (spawner.hpp,
+// phases.hpp: spawning, sense, decide, plan, steer, integrate, emit, the frame), the avoidance
+// models in use (configureModels) and the World API's queries and commands.
 #include "throng/sim/world.hpp"
 
 #include <algorithm>
@@ -53,8 +54,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   // pedestrian densities, and the search stops at the k-th neighbour.
   w.grid.configure(gridBounds, std::clamp(s.neighbourDistance / 3.0f, 0.5f, 2.0f));
   for (const PopulationDesc& pop : desc.populations) {
-    w.spawner.startTick.push_back(static_cast<std::uint64_t>(std::ceil(pop.start / desc.dt - 1e-6)));
-    w.spawner.spawned.push_back(0);
+    w.spawner.addPopulation(static_cast<std::uint64_t>(std::ceil(pop.start / desc.dt - 1e-6)));
   }
   for (const PointDesc& p : desc.points) w.pointRegions.add(p);
   w.pointClip = pointClips(desc);
@@ -87,8 +87,30 @@ void World::step(const core::TaskSystem& tasks, PhaseObserver* observer) {
   { Scope s(observer, "emit"); w.emit(); }
 }
 
-// The phases' contexts (phases.hpp): what each phase reads and what it may write, taken from the
-// world's state.
+void World::Impl::planPopulations() {
+  const std::uint32_t scheduled = spawner.registerGroups(desc, 0, groups, goalLists);
+  stats.scheduled += scheduled;
+  // Optional agent columns: only the features some population (or the scenario) uses.
+  for (const PopulationDesc& pop : desc.populations) {
+    agents.formation = agents.formation || (pop.flocking && pop.sizeMax >= 2);
+    agents.sociological = agents.sociological || pop.sociological.enabled;
+  }
+  agents.commonGround = desc.social.enabled;
+  // Every agent that will ever exist is known: exact capacity, no doubling slack on the columns.
+  agents.forEachColumn([&](auto& column) { column.reserve(scheduled); });
+}
+
+// The phases' contexts (spawner.hpp, phases.hpp): what each phase reads and what it may write,
+// taken from the world's state.
+
+void World::Impl::applyCommands() {
+  applyCrowdCommands();  // inserted crowds' populations starting now spawn below
+  const std::vector<std::size_t> due = spawner.due(tick);
+  if (due.empty()) return;
+  GoalWriter goals = goalWriter();
+  spawnDue(SpawnInput{desc, *mainQuery, tick, commonGround}, SpawnOutput{spawner, agents, groups, goals, stats}, due);
+  rowsChanged = true;
+}
 
 void World::Impl::sense(const core::TaskSystem& tasks) {
   sim::sense(SenseInput{agents.posX, agents.posY, agents.posZ, desc.steering},
@@ -167,76 +189,20 @@ void World::Impl::ensureScratch(const core::TaskSystem& tasks) {
 }
 
 void World::Impl::emit() {
-  // Merge per-chunk outputs in chunk order.
-  for (ChunkOutput& c : chunks) {
-    for (const Event& e : c.events) {
-      if (e.kind == EventKind::Exit) {
-        ++stats.exited;
-        stats.lastExitTime = static_cast<double>(tick + 1) * desc.dt;
-      }
-    }
-    pendingEvents.insert(pendingEvents.end(), c.events.begin(), c.events.end());
-    stats.walkedDistance += c.walkedDistance;
-    stats.walkingTime += c.walkingTime;
-    stats.socialMeetings += c.socialMeetings;
-    c.events.clear();
-    c.walkedDistance = c.walkingTime = 0.0;
-    c.socialMeetings = 0;
-  }
-  stats.agentSteps += agents.size();
-  // Remove agents that exited (stable compaction keeps rows in id order).
-  bool anyExit = false;
-  for (GoalState g : agents.goalState) anyExit |= g == GoalState::Exited;
-  if (anyExit) {
-    std::vector<std::uint8_t> keep(agents.size());
-    GoalWriter goals = goalWriter();
-    for (std::size_t r = 0; r < agents.size(); ++r) {
-      keep[r] = agents.goalState[r] != GoalState::Exited;
-      if (keep[r]) continue;
-      goals.releaseTarget(r);
-      GroupState& g = groups[agents.group[r]];
-      g.members.erase(agents.id[r]);
-      if (g.leader == agents.id[r]) g.leader = g.members.empty() ? kNoAgent : g.members.front();
-    }
-    agents.compact(keep);
-    rowsChanged = true;
-  }
+  GoalWriter goals = goalWriter();
+  if (sim::emit(EmitInput{tick, desc.dt}, EmitOutput{chunks, pendingEvents, stats, agents, groups, goals})) rowsChanged = true;
   ++tick;
-  stats.tick = tick;
-  stats.time = static_cast<double>(tick) * desc.dt;
-  stats.active = static_cast<std::uint32_t>(agents.size());
 }
 
 FramePtr World::takeFrame() {
   Impl& w = *impl_;
-  auto frame = std::make_shared<Frame>();
-  const AgentStore& a = w.agents;
-  frame->tick = w.tick;
-  frame->time = static_cast<double>(w.tick) * w.desc.dt;
-  frame->ids = a.id;
-  frame->posX = a.posX;
-  frame->posY = a.posY;
-  if (a.levels) frame->posZ = a.posZ;
-  frame->velX = a.velX;
-  frame->velY = a.velY;
-  frame->oriX = a.oriX;
-  frame->oriY = a.oriY;
-  frame->mode = a.mode;
-  frame->clip = a.animClip;
-  frame->phase = a.animPhase;
-  frame->events = w.takeEvents();
-  w.pendingEvents.clear();
-  frame->script = std::move(w.commonGround.pendingScript);
-  w.commonGround.pendingScript.clear();
-  frame->coordinations = std::move(w.commonGround.pendingCoordinations);
-  w.commonGround.pendingCoordinations.clear();
-  return frame;
+  return sim::takeFrame(FrameInput{w.agents, w.tick, w.desc.dt}, FrameOutput{w.spawner, w.pendingEvents, w.commonGround});
 }
 
 bool World::finished() const {
   const Impl& w = *impl_;
   if (w.stats.scheduled > 0 || w.crowdsPending()) return false;
-  for (std::uint8_t spawned : w.spawner.spawned) if (!spawned) return false;
+  if (!w.spawner.allSpawned()) return false;
   for (std::size_t r = 0; r < w.agents.size(); ++r) {
     if (w.agents.goalState[r] != GoalState::Done) return false;
   }
@@ -247,7 +213,7 @@ GroupId World::group(std::string_view population, std::uint32_t index) const {
   const Impl& w = *impl_;
   for (std::size_t p = 0; p < w.desc.populations.size(); ++p) {
     if (w.desc.populations[p].id == population && index < w.desc.populations[p].groups) {
-      return handleOf(w.spawner.firstGroupId[p] + index);
+      return handleOf(w.spawner.firstGroupId(p) + index);
     }
   }
   return {};
@@ -325,6 +291,7 @@ std::optional<AgentInfo> World::agentInfo(std::uint32_t id) const {
     case GoalState::Exited: info.state = "left"; break;
     case GoalState::WaitingForGroup: info.state = "waiting for its group"; break;
     case GoalState::Scripted: info.state = "playing a Common Ground script"; break;
+    case GoalState::PreMovement: info.state = "waiting to leave (pre-movement time)"; break;
   }
   return info;
 }

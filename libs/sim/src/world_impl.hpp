@@ -1,8 +1,14 @@
-// World::Impl — the world's state and its phases. sense, decide, plan, steer and integrate are free
-// functions of their contexts (phases.hpp), which Impl builds from its state (world.cpp), and so
-// are the group pass's steps (group_pass.hpp, phases.hpp; built in decideGroups); goals are written through a GoalWriter (goals.hpp, goalWriter()). The rest are
-// Impl's methods. Each phase lives in its own file:
-//   spawn.cpp      applyCommands: populations due this tick enter the world
+// World::Impl — the world's state and its phases. Spawning, sense, decide, plan, steer, integrate
+// and emit are free functions of their contexts (spawner.hpp, phases.hpp), which Impl builds from
+// its state (world.cpp), and so are the group pass's steps (group_pass.hpp, phases.hpp; built in
+// decideGroups); goals are written through a GoalWriter (goals.hpp, goalWriter()). The owned parts:
+// the Spawner (spawner.hpp), the GroupTable (group_table.hpp), the Common Ground state
+// (common_ground_state.hpp), the crowd insertion (crowd_insertion.hpp), the partition (below). What
+// is left as Impl's methods: building the contexts, creation, run-time crowd insertion (it edits
+// the scenario itself), the group pass's order, the models in use and the partition's exchange.
+// Where things live:
+//   spawner.cpp    the Spawner: schedule, registerGroups (creation and insertion), ids, spawn events
+//   spawn.cpp      spawnDue: populations due this tick enter the world (spawn_layout.cpp: where)
 //   insert.cpp     crowds inserted and removed at run time (API and scenario timeline)
 //   sense.cpp      grid rebuild and k-nearest neighbours
 //   decide.cpp     goal logic: regions reached, actions, exits, progress checks, meetings
@@ -12,9 +18,10 @@
 //   goals.cpp      one home for goals: active list, current point; GoalWriter (goals.hpp): set/advance,
 //                  targets and sub-regions, Bézier paths, automatic goals, pending goal changes
 //   steer.cpp      preferred velocity along the path, then the population's avoidance model
-//   models/        the avoidance models behind OperationalModel (ORCA, collision-free speed)
+//   models/        the avoidance models behind OperationalModel (ORCA, collision-free speed, …)
 //   integrate.cpp  commit velocities, move along the navmesh, headings, statistics
-//   world.cpp      the tick, the phases' contexts, emit (removal, frame), creation, the models in use
+//   emit.cpp       emit (chunks merged, agents that exited removed, the clock) and takeFrame
+//   world.cpp      creation, the tick, the phases' contexts, the models in use, the World API
 #pragma once
 #include <array>
 #include <map>
@@ -28,6 +35,7 @@
 #include "goals.hpp"
 #include "group_pass.hpp"
 #include "group_table.hpp"
+#include "spawner.hpp"
 #include "throng/core/assert.hpp"
 #include "throng/sim/spatial_grid.hpp"
 #include "walls.hpp"
@@ -40,19 +48,6 @@
 #include "throng/sim/world.hpp"
 
 namespace throng::sim {
-
-
-
-/// When and how many: the spawner's schedule (spawn.cpp). Per population: the tick it starts, whether
-/// it has spawned, its group sizes (drawn per stable group id by registerGroups) and its first group
-/// id; and the next stable agent id.
-struct SpawnSchedule {
-  std::vector<std::uint64_t> startTick;               ///< per population
-  std::vector<std::uint8_t> spawned;                  ///< per population
-  std::vector<std::vector<std::uint32_t>> groupSizes; ///< per population
-  std::vector<std::uint32_t> firstGroupId;            ///< per population
-  std::uint32_t nextAgentId = 0;
-};
 
 /// The steer phase shared with other ranks (partition.hpp, partition.cpp). Unset (exchange ==
 /// nullptr), none of this is touched and steer visits every row as always.
@@ -68,9 +63,6 @@ struct PartitionState {
   std::vector<std::size_t> steerSizes;
 };
 
-/// Occupied discs while agents are placed (spawn.cpp).
-class SpawnOccupancy;
-
 struct World::Impl {
   ScenarioDesc desc;
   std::shared_ptr<const nav::NavMesh> navmesh;
@@ -82,17 +74,8 @@ struct World::Impl {
   WorldStats stats;
   std::uint64_t tick = 0;
 
-  // Spawning (spawn.cpp, spawn_layout.cpp).
-  SpawnSchedule spawner;
-  /// Where one population's agents appear (spawn.cpp): planned for every population due in a
-  /// tick before any of them is added, so a crowded area can be laid out again as a whole.
-  struct SpawnPlan {
-    std::size_t population = 0;
-    std::uint32_t firstAgent = 0;                               ///< stable id of its first agent
-    std::vector<core::Vec2> anchors;                            ///< per group: where it gathers
-    std::vector<std::pair<core::Vec2, nav::PolyRef>> spots;     ///< per agent, in spawn order
-    bool placed = true;  ///< every agent found a free spot on the navmesh inside the spawn area
-  };
+  // Spawning (spawner.hpp: the schedule, group sizes, id counters, compact spawn events).
+  Spawner spawner;
 
   // Groups (group_table.hpp): groups, their cold parts and routes, the busy set.
   GroupTable groups;
@@ -118,20 +101,8 @@ struct World::Impl {
   // Threads.
   mutable std::vector<WorkerScratch> scratch;
   std::vector<ChunkOutput> chunks;
-  std::vector<Event> pendingEvents;  // since the last frame taken
-  /// Spawn events since the last frame taken, kept compactly: `count` agents with consecutive ids from
-  /// `firstAgent` (the first one member `member` of group `group`, then in group order) entered at
-  /// `tick`; their events belong before pendingEvents[at]. takeFrame() writes them out in place, so
-  /// a frame's events are the same as if each had been stored (24 bytes per agent otherwise).
-  struct SpawnRun {
-    std::size_t at = 0;
-    std::uint64_t tick = 0;
-    std::uint32_t population = 0, firstAgent = 0, count = 0, group = 0, member = 0;
-  };
-  std::vector<SpawnRun> spawnRuns;
-  void recordSpawn(std::uint32_t population, std::uint32_t agent, std::uint32_t group, std::uint32_t member);
-  /// pendingEvents with the spawn runs written out in place (empties both).
-  std::vector<Event> takeEvents();
+  /// Events since the last frame taken (spawn events are kept compactly by the spawner until then).
+  std::vector<Event> pendingEvents;
 
   // Inserted crowds (insert.cpp, crowd_insertion.hpp).
   CrowdInsertion insertion;
@@ -154,19 +125,9 @@ struct World::Impl {
   // Phases.
   /// Groups of the scenario's populations, their sizes and the agent columns they need (creation).
   void planPopulations();
-  /// Registers the groups of populations [firstPopulation, end) (spawn.cpp): goal lists, first
-  /// group ids, sizes drawn per stable group id, busy groups, routes and cold parts. Shared by
-  /// creation and run-time insertion. Returns the agents scheduled.
-  std::uint32_t registerGroups(std::uint32_t firstPopulation);
+  /// The timeline's and the API's crowd commands due this tick (insert.cpp), then the
+  /// populations due (spawnDue, spawner.hpp).
   void applyCommands();
-  /// Spawns the populations due this tick, in order (spawn.cpp): random free spots in each
-  /// spawn area; when that fails for some population, the populations whose areas overlap it are
-  /// laid out again on a packed lattice inside their areas (deterministic, never off the area
-  /// while it has room).
-  void spawnPopulations(const std::vector<std::size_t>& due);
-  [[nodiscard]] SpawnPlan planRandomSpawn(std::size_t population, std::uint32_t firstAgent, SpawnOccupancy& occupancy);
-  [[nodiscard]] SpawnPlan planPackedSpawn(std::size_t population, std::uint32_t firstAgent, SpawnOccupancy& occupancy);
-  void addSpawnedAgents(const SpawnPlan& plan);
   void sense(const core::TaskSystem& tasks);
   /// decide (decide.cpp, phases.hpp), then the group pass.
   void decide(const core::TaskSystem& tasks);

@@ -17,6 +17,7 @@ enum class RngPurpose : std::uint32_t {
   Behaviour = 6,
   Bench = 7,
   Social = 8,  ///< Common Ground: goal generator (needs, attraction, interests)
+  PreMovement = 9,  ///< an agent's pre-movement time (PopulationDesc::preMovement)
 };
 
 /// SplitMix64 finaliser: a well-mixed 64-bit hash of x.

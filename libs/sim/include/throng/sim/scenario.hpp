@@ -96,6 +96,26 @@ struct SociologicalDesc {
   float domination = 0.5f;          ///< leadership weight of its members [0, 1]
 };
 
+/// The distribution of pre-movement times (PreMovementDesc).
+enum class PreMovementDistribution : std::uint8_t { None, Uniform, Normal, LogNormal };
+
+/// Pre-movement time (RiMEA test 5, NIST TN 1822 test 1.1): each agent is present and standing from
+/// the moment it appears and starts walking to its first goal after a time drawn per agent — from
+/// (seed, stable agent id), so the same for any thread or rank count. Scenario key "preMovement";
+/// None: agents walk at once (the default). Normal and log-normal draws are clamped to
+/// [0, kMaxPreMovement].
+struct PreMovementDesc {
+  PreMovementDistribution distribution = PreMovementDistribution::None;
+  float min = 0.0f, max = 0.0f;   ///< uniform in [min, max] [s]
+  float mean = 0.0f, sd = 0.0f;   ///< normal [s]
+  float mu = 0.0f, sigma = 0.0f;  ///< log-normal: the mean and standard deviation of ln(t / 1 s)
+
+  [[nodiscard]] bool enabled() const { return distribution != PreMovementDistribution::None; }
+};
+
+/// The longest pre-movement time an agent is given [s] (the longest scenario duration).
+inline constexpr float kMaxPreMovement = 1e6f;
+
 struct PopulationDesc {
   std::string id;
   std::uint32_t groups = 1;       ///< number of social groups
@@ -111,6 +131,7 @@ struct PopulationDesc {
   float speedMin = 0.3f;
   float speedMax = 2.5f;
   float radius = 0.2f;            ///< body radius [m]
+  PreMovementDesc preMovement;    ///< waiting before walking off (none by default)
   // The Musse crowd model.
   /// Paths between goals: navmesh corners (straight segments), or Bézier curves (Musse et al.
   /// §3.2.2) checked inside the walkable surface, falling back to the navmesh where none fits.
