@@ -109,8 +109,10 @@ def default_model(binary, tmp):
     path, rec = os.path.join(tmp, "model-probe.json"), os.path.join(tmp, "model-probe.sqlite")
     with open(path, "w") as f:
         json.dump(probe, f)
-    subprocess.run([args_binary(binary), "run", path, "--out", rec, "--force", "--quiet", "--duration", "0.1"],
-                   capture_output=True, check=True)
+    res = subprocess.run([args_binary(binary), "run", path, "--out", rec, "--force", "--quiet", "--duration", "0.1"],
+                         capture_output=True)
+    if res.returncode != 0 or not os.path.exists(rec):
+        return "default"  # the tests' own runs will fail and say why
     return M.recording_models(rec).get("probe", "default")
 
 
