@@ -32,9 +32,10 @@ def measure_groups(results, ctx):
     traj = M.load_recording(res["recording"])
     agents = M.load_agents(res["recording"])
     spread = M.group_spread(traj, {a: i["group"] for a, i in agents.items()}, t_from=5.0)
-    return [band("members stay together: median largest distance from the group's centre ≤ 1.0 m", spread["median"],
-                 0.0, 1.0, "m"),
-            band("… and its 95th percentile ≤ 2.0 m", spread["p95"], 0.0, 2.0, "m"),
+    # Four abreast with 1 m between neighbours (the widest dyad gap of issue 17) are 1.5 m from their centre.
+    return [band("members stay together: median largest distance from the group's centre ≤ 1.5 m", spread["median"],
+                 0.0, 1.5, "m"),
+            band("… and its 95th percentile ≤ 3.0 m", spread["p95"], 0.0, 3.0, "m"),
             Check(f"all {res['summary']['agents_spawned']} arrive", f"{res['summary']['agents_exited']} arrived",
                   res["summary"]["agents_exited"] == res["summary"]["agents_spawned"])], {}
 
@@ -91,7 +92,7 @@ def tests():
         n("2.8", "Horizontal counter-flow", "travel time grows with the counter-flow", "2.8-counterflow", counter_runs,
           R.measure_counter, xfail={"avm": R.AVM_COUNTER_XFAIL}, plot=P.counter),
         n("2.9", "Group behaviour", "group members walk together", "2.9-groups", [Run("run", "nist/2.9-groups.json")],
-          measure_groups),
+          measure_groups, xfail={"cfsm": "cfsm (not calibrated) lets groups string out: 95th percentile 3.9 m"}),
         n("2.10", "People with movement disabilities", "slower, larger persons keep their speed", "2.10-impaired",
           [Run("run", "nist/2.10-impaired.json")], measure_impaired),
         n("3.1", "Exit route allocation", "everybody uses the allocated exit", "3.1-allocation",
