@@ -185,7 +185,7 @@ def print_table(rows, out=sys.stdout):
 
 def write_report(rows, directory, command, wall):
     os.makedirs(directory, exist_ok=True)
-    lines = [f"# throng verification results", "",
+    lines = ["# throng verification results", "",
              f"`{command}` on {datetime.date.today().isoformat()}, {wall:.0f} s.", "",
              "| test | model | result | criterion | measured |", "|---|---|---|---|---|"]
     for r in rows:
@@ -193,7 +193,8 @@ def write_report(rows, directory, command, wall):
         for i, c in enumerate(checks):
             mark = "" if c["ok"] is None else ("✓ " if c["ok"] else "✗ ")
             first = i == 0
-            lines.append(f"| {f'[{r[chr(105)+chr(100)]}](../../{r[chr(100)+chr(111)+chr(99)]})' if first else ''} | "
+            link = f"[{r['id']}](../../{r['doc']})" if first else ""
+            lines.append(f"| {link} | "
                          f"{r['model_tag'] if first else ''} | {r['status'] if first else ''} | {c['criterion']} | "
                          f"{mark}{c['measured']} |")
         if r["reason"]:
@@ -221,6 +222,17 @@ def list_tests(tests, models):
             print(f"{t.id:<10} {(m or ''):<5} {t.title} — {t.criterion} [{t.source}; {t.doc}] {exp}")
 
 
+def display_command(args):
+    """The run as a `throng verify` command line (defaults and paths to the binary left out)."""
+    words = ["throng verify", f"--suite {args.suite}"]
+    words += [f"--test {','.join(t.id for t in args.tests)}"] if args.test else []
+    words += [f"--model {','.join(args.models)}"] if args.models != [None] else []
+    words += [f"--threads {args.threads}"] if args.threads != 2 else []
+    words += [f"--report {args.report}"] if args.report else []
+    words += [f"--json {args.json}"] if args.json else []
+    return " ".join(words)
+
+
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
     try:
@@ -239,11 +251,11 @@ def main(argv=None):
         wall = time.time() - started
         counts = print_table(rows)
         print(f"({len(rows)} tests, {runs} throng runs, {wall:.1f} s)")
-        command = "throng verify " + " ".join(argv)
+        command = display_command(args)
         if args.report:
-            write_report(rows, args.report, command.strip(), wall)
+            write_report(rows, args.report, command, wall)
     if args.json:
-        summary = {"command": command.strip(), "date": datetime.date.today().isoformat(), "engine_default_model":
+        summary = {"command": command, "date": datetime.date.today().isoformat(), "engine_default_model":
                    engine_default, "threads": args.threads, "wall_time_s": wall, "runs": runs, "counts": counts,
                    "tests": [{k: v for k, v in r.items() if not k.startswith("_")} for r in rows]}
         text = json.dumps(summary, indent=1, allow_nan=False, default=float)
