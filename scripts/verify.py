@@ -68,7 +68,7 @@ def parse_args(argv):
     ap.add_argument("--threads", type=int, default=2, metavar="N",
                     help="throng runs at a time, one thread each (default 2; results do not depend on it)")
     ap.add_argument("--json", metavar="FILE", help="write the results as JSON to FILE ('-' = stdout)")
-    ap.add_argument("--report", metavar="DIR", help="write DIR/verification.md and its PNG plots")
+    ap.add_argument("--report", metavar="DIR", help="write DIR/verification.md, its PNG plots and DIR/verification.json")
     ap.add_argument("--keep", metavar="DIR", help="keep the scenarios (model applied) and recordings in DIR")
     ap.add_argument("--list", action="store_true", help="list the selected tests and their expectations; run nothing")
     ap.add_argument("--throng", default=os.path.join(ROOT, "build", "apps", "throng", "throng"), metavar="PATH",
@@ -252,18 +252,19 @@ def main(argv=None):
         counts = print_table(rows)
         print(f"({len(rows)} tests, {runs} throng runs, {wall:.1f} s)")
         command = display_command(args)
-        if args.report:
-            write_report(rows, args.report, command, wall)
-    if args.json:
-        summary = {"command": command, "date": datetime.date.today().isoformat(), "engine_default_model":
-                   engine_default, "threads": args.threads, "wall_time_s": wall, "runs": runs, "counts": counts,
-                   "tests": [{k: v for k, v in r.items() if not k.startswith("_")} for r in rows]}
-        text = json.dumps(summary, indent=1, allow_nan=False, default=float)
-        if args.json == "-":
-            print(text)
-        else:
-            with open(args.json, "w") as f:
-                f.write(text + "\n")
+    summary = {"command": command, "date": datetime.date.today().isoformat(), "engine_default_model": engine_default,
+               "threads": args.threads, "wall_time_s": wall, "runs": runs, "counts": counts,
+               "tests": [{k: v for k, v in r.items() if not k.startswith("_")} for r in rows]}
+    text = json.dumps(summary, indent=1, allow_nan=False, default=float)
+    if args.report:
+        write_report(rows, args.report, command, wall)
+        with open(os.path.join(args.report, "verification.json"), "w") as f:
+            f.write(text + "\n")
+    if args.json == "-":
+        print(text)
+    elif args.json:
+        with open(args.json, "w") as f:
+            f.write(text + "\n")
     return 1 if counts[C.FAIL] or counts[C.XPASS] else 0
 
 

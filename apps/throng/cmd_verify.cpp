@@ -115,7 +115,7 @@ CLI::App* addVerifyCommand(CLI::App& app, VerifyOptions& options) {
       ->check(CLI::Range(1, 1024))
       ->default_str("2");
   cmd->add_option("--json", options.json, "Write the results as JSON to FILE ('-' = stdout)")->type_name("FILE");
-  cmd->add_option("--report", options.report, "Write DIR/verification.md and its PNG plots")->type_name("DIR");
+  cmd->add_option("--report", options.report, "Write DIR/verification.md, its PNG plots and DIR/verification.json")->type_name("DIR");
   cmd->add_option("--keep", options.keep, "Keep the scenarios and recordings in DIR")->type_name("DIR");
   cmd->add_flag("--list", options.list, "List the tests and their expectations; run nothing");
   cmd->add_option("--throng", options.throng, "The throng binary the tests run (default: this one)")->type_name("PATH");

@@ -58,6 +58,7 @@ def scenarios():
         "rimea/11-exit-choice": G.exit_choice("RiMEA 11: two exits, which one is used"),
         "rimea/12-bottlenecks": G.bottlenecks("RiMEA 12: 150 persons, two bottlenecks in a row"),
         "rimea/13-stair-jam": G.stair_jam("RiMEA 13: 200 persons up a 10 m wide flight"),
+        "rimea/14-route-choice": G.route_choice("RiMEA 14: a short route over stairs or a longer flat one"),
         "rimea/15-large-corner": G.corner("RiMEA 15: 500 persons round a left corner", G.CORNER_LARGE, 34.0),
         "nist/2.9-groups": G.groups("NIST 2.9: groups of 2 to 4 walking together"),
         "nist/2.10-impaired": impaired("NIST 2.10: persons with reduced mobility among others"),

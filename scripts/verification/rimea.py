@@ -253,6 +253,17 @@ def measure_stair_jam(results, ctx):
             Check("peak density at the foot (reported)", f"{rho.max():.2f} /m²", None)], {}
 
 
+# --- 14 --------------------------------------------------------------------------------------------
+def measure_route(results, ctx):
+    res = results["run"]
+    traj = M.load_recording(res["recording"])
+    detour = {int(a) for a in traj.id[traj.y > G.ROUTES["detour_y"][0] - 1.0]}
+    n = G.ROUTES["agents"]
+    return [band("most take the quicker flat detour (≈ 31 s) over the shorter stairs route (≈ 35 s): share > 0.5",
+                 len(detour) / n, 0.5, 1.0, "", "{:.2f}"),
+            Check("persons who arrive (reported)", f"{res['summary']['agents_exited']} of {n}", None)], {}
+
+
 # --- 16 --------------------------------------------------------------------------------------------
 def measure_counter(results, ctx):
     rows = []
@@ -331,10 +342,10 @@ def tests():
         Test("rimea-13", "rimea", "Jam in front of a staircase", "a jam forms at the foot of the stairs",
              "RiMEA 4.1.1 test 13", _doc("13-stair-jam"), one("rimea/13-stair-jam.json"), measure_stair_jam,
              xfail=STAIRS_XFAIL),
-        Test("rimea-14", "rimea", "Route choice with stairs", "the choice between a short route over stairs and a "
-             "long flat one follows the model's stair cost", "RiMEA 4.1.1 test 14", _doc("14-route-choice"),
-             xfail="not measured: stairs neither slow agents nor cost anything in route choice yet (issue 18 "
-                   "tactical layer)"),
+        Test("rimea-14", "rimea", "Route choice with stairs", "most take the quicker flat detour, not the shorter "
+             "route over stairs", "RiMEA 4.1.1 test 14", _doc("14-route-choice"), one("rimea/14-route-choice.json"),
+             measure_route, xfail="stairs neither slow agents nor cost anything in route choice yet, so everybody "
+                                  "takes the shorter route over the stairs (issue 18 tactical layer)"),
         Test("rimea-15", "rimea", "Large crowd round a corner", "500 persons, nobody through a wall, all arrive",
              "RiMEA 4.1.1 test 15", _doc("15-large-corner"), one("rimea/15-large-corner.json"),
              measure_corner(G.CORNER_LARGE), plot=P.corner),
