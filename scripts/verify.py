@@ -63,11 +63,12 @@ def parse_args(argv):
     ap.add_argument("--test", action="append", default=[], metavar="ID[,ID]",
                     help="run only these tests (repeatable; e.g. rimea-1,nist-2.1); --list shows the ids")
     ap.add_argument("--model", metavar="NAME[,NAME]",
-                    help=f"run every test with each of these operational models, side by side ({', '.join(MODELS)}; "
+                    help=f"run every test with each of these operational models, side by side ({', '.join(MODELS)}, or all; "
                          "default: the scenarios' own, i.e. the engine default)")
     ap.add_argument("--threads", type=int, default=2, metavar="N",
                     help="throng runs at a time, one thread each (default 2; results do not depend on it)")
-    ap.add_argument("--json", metavar="FILE", help="write the results as JSON to FILE ('-' = stdout)")
+    ap.add_argument("--json", metavar="FILE", help="write the results as JSON to FILE ('-' = stdout, the table then "
+                                                   "goes to stderr)")
     ap.add_argument("--report", metavar="DIR", help="write DIR/verification.md, its PNG plots and DIR/verification.json")
     ap.add_argument("--keep", metavar="DIR", help="keep the scenarios (model applied) and recordings in DIR")
     ap.add_argument("--list", action="store_true", help="list the selected tests and their expectations; run nothing")
@@ -93,6 +94,7 @@ def parse_args(argv):
     args.models = [None]
     if args.model is not None:
         names = [m.strip() for m in args.model.split(",") if m.strip()]
+        names = [n for m in names for n in (MODELS if m == "all" else (m,))]
         bad = [m for m in names if m not in MODELS]
         if bad or not names:
             ap.error(f"--model: unknown model {', '.join(bad) or '(none)'}; expected some of {', '.join(MODELS)}")
@@ -249,8 +251,9 @@ def main(argv=None):
     with (contextlib.nullcontext(args.keep) if args.keep else tempfile.TemporaryDirectory(prefix="throng-verify-")) as tmp:
         rows, runs, engine_default = run_all(args, tmp)
         wall = time.time() - started
-        counts = print_table(rows)
-        print(f"({len(rows)} tests, {runs} throng runs, {wall:.1f} s)")
+        table_out = sys.stderr if args.json == "-" else sys.stdout  # stdout is the JSON's then
+        counts = print_table(rows, table_out)
+        print(f"({len(rows)} tests, {runs} throng runs, {wall:.1f} s)", file=table_out)
         command = display_command(args)
     summary = {"command": command, "date": datetime.date.today().isoformat(), "engine_default_model": engine_default,
                "threads": args.threads, "wall_time_s": wall, "runs": runs, "counts": counts,

@@ -109,12 +109,12 @@ CLI::App* addVerifyCommand(CLI::App& app, VerifyOptions& options) {
   cmd->add_option("--test", options.tests, "Only these tests (repeatable, or a comma list: rimea-1,nist-2.1)")
       ->type_name("ID[,ID]");
   cmd->add_option("--model", options.model, "Run every test with each of these operational models side by side "
-                                             "(orca, avm, cfsm); default: the engine default")
+                                             "(orca, avm, cfsm, or all); default: the engine default")
       ->type_name("NAME[,NAME]");
   cmd->add_option("--threads", options.threads, "Simulations at a time, one thread each (results do not depend on it)")
       ->check(CLI::Range(1, 1024))
       ->default_str("2");
-  cmd->add_option("--json", options.json, "Write the results as JSON to FILE ('-' = stdout)")->type_name("FILE");
+  cmd->add_option("--json", options.json, "Write the results as JSON to FILE ('-' = stdout; the table then goes to stderr)")->type_name("FILE");
   cmd->add_option("--report", options.report, "Write DIR/verification.md, its PNG plots and DIR/verification.json")->type_name("DIR");
   cmd->add_option("--keep", options.keep, "Keep the scenarios and recordings in DIR")->type_name("DIR");
   cmd->add_flag("--list", options.list, "List the tests and their expectations; run nothing");

@@ -2,7 +2,8 @@
 """End-to-end test of `throng verify` (ctest: verify_quick): runs a fast subset of the verification
 suite as CI does and fails when a measured criterion fails (a test FAILs or an expected failure
 passes: throng verify exits 1). Also checks that `throng verify --help` lists the flags, that bad
-flags, suites, tests and models exit 2, that --json and --report write what they promise, and that
+flags, suites, tests and models exit 2, that --json and --report write what they promise, that
+--model all runs the three models side by side, and that
 a run that breaks (a throng binary that fails) is a FAIL with exit 1, not a pass.
 
 usage: verify_quick_test.py THRONG_BINARY"""
@@ -73,6 +74,17 @@ def check_subset(binary, tmp):
         fail("no progress lines on stderr")
 
 
+def check_models_json_stdout(binary):
+    """--model all runs each model side by side; --json - leaves stdout to the JSON."""
+    res = run(binary, "--test", "rimea-1", "--model", "all", "--json", "-")
+    if res.returncode != 0:
+        fail(f"--test rimea-1 --model all exited {res.returncode}: {res.stderr[-1000:]}")
+    data = json.loads(res.stdout)
+    models = [t["model"] for t in data["tests"]]
+    if models != ["orca", "avm", "cfsm"] or "rimea-1" not in res.stderr:
+        fail(f"--model all gave {models}; the table belongs on stderr with --json -")
+
+
 def check_broken_run(binary, tmp):
     """A throng that fails every run: the tests that simulate must FAIL and the exit status be 1."""
     fake = os.path.join(tmp, "broken-throng")
@@ -89,6 +101,7 @@ def main():
     check_flags(binary)
     with tempfile.TemporaryDirectory(prefix="throng-verify-test-") as tmp:
         check_subset(binary, tmp)
+        check_models_json_stdout(binary)
         check_broken_run(binary, tmp)
     print("verify_quick_test: ok")
 
