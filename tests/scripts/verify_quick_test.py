@@ -3,7 +3,8 @@
 suite as CI does and fails when a measured criterion fails (a test FAILs or an expected failure
 passes: throng verify exits 1). Also checks that `throng verify --help` lists the flags, that bad
 flags, suites, tests and models exit 2, that --json and --report write what they promise, that
---model all runs the three models side by side, and that
+--model all runs the three models side by side, that every scenario under verification/ passes
+`throng check`, and that
 a run that breaks (a throng binary that fails) is a FAIL with exit 1, not a pass.
 
 usage: verify_quick_test.py THRONG_BINARY"""
@@ -74,6 +75,18 @@ def check_subset(binary, tmp):
         fail("no progress lines on stderr")
 
 
+def check_scenarios_accepted(binary):
+    """Every bundled verification scenario passes `throng check` (also those the subset does not run)."""
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "verification")
+    files = sorted(os.path.join(d, f) for d, _, fs in os.walk(root) for f in fs if f.endswith(".json"))
+    if len(files) < 28:
+        fail(f"only {len(files)} scenario files under verification/")
+    for path in files:
+        res = subprocess.run([binary, "check", path], capture_output=True, text=True, timeout=60)
+        if res.returncode != 0:
+            fail(f"throng check {path}: {res.stdout}{res.stderr}")
+
+
 def check_models_json_stdout(binary):
     """--model all runs each model side by side; --json - leaves stdout to the JSON."""
     res = run(binary, "--test", "rimea-1", "--model", "all", "--json", "-")
@@ -99,6 +112,7 @@ def check_broken_run(binary, tmp):
 def main():
     binary = os.path.abspath(sys.argv[1])
     check_flags(binary)
+    check_scenarios_accepted(binary)
     with tempfile.TemporaryDirectory(prefix="throng-verify-test-") as tmp:
         check_subset(binary, tmp)
         check_models_json_stdout(binary)
