@@ -13,7 +13,7 @@ usage: /usr/bin/python3 scripts/verify.py [--suite rimea|nist|iso|all] [--test I
            [--threads N] [--json FILE] [--report DIR] [--keep DIR] [--list] [--throng PATH]
 
 Exit status: 0 when every test is PASS or XFAIL; 1 when one FAILs or XPASSes (or a run fails);
-2 for bad flags (an unknown suite, test or model, a missing binary).
+2 for bad flags (an unknown suite, test or model, a missing binary); 130 when interrupted.
 `throng verify ...` runs this script with the same flags. Needs numpy and matplotlib from Debian
 (python3-numpy, python3-matplotlib), hence /usr/bin/python3. docs/verification.md has the results.
 """
@@ -22,6 +22,7 @@ import contextlib
 import datetime
 import json
 import os
+import signal
 import subprocess
 import sys
 import tempfile
@@ -142,6 +143,14 @@ def evaluate(test, futures, model, model_name):
 
 def run_all(args, tmp):
     runner = C.Runner(args_binary(args.throng), tmp, args.threads)
+    try:
+        return _run_all(args, tmp, runner)
+    except KeyboardInterrupt:
+        runner.stop()
+        raise
+
+
+def _run_all(args, tmp, runner):
     engine_default = default_model(args.throng, tmp)
     jobs = []
     for test in args.tests:
@@ -271,5 +280,14 @@ def main(argv=None):
     return 1 if counts[C.FAIL] or counts[C.XPASS] else 0
 
 
+def _terminate(signum, frame):
+    raise KeyboardInterrupt
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    signal.signal(signal.SIGTERM, _terminate)
+    try:
+        sys.exit(main())
+    except KeyboardInterrupt:  # Ctrl-C: the throng runs stop too (same process group)
+        print("verify.py: interrupted", file=sys.stderr)
+        sys.exit(130)

@@ -63,6 +63,13 @@ std::vector<std::string> scriptArguments(const VerifyOptions& o, const fs::path&
   return args;
 }
 
+volatile sig_atomic_t gChild = 0;
+
+/// SIGINT/SIGTERM while the script runs: passed on to it (a terminal's Ctrl-C reaches it anyway).
+void forwardSignal(int sig) {
+  if (gChild > 0) ::kill(static_cast<pid_t>(gChild), sig);
+}
+
 /// Runs argv[0] with argv and waits; its exit status (128 + signal when a signal ended it).
 int runAndWait(const std::vector<std::string>& argv) {
   std::vector<char*> raw;
@@ -78,17 +85,19 @@ int runAndWait(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "throng verify: error: cannot run %s: %s\n", raw[0], std::strerror(errno));
     ::_exit(127);
   }
-  // Ctrl-C reaches the script too (same process group): wait for it to finish its cleanup.
-  struct sigaction ignore {};
-  ignore.sa_handler = SIG_IGN;
+  // Wait for the script to finish its cleanup; signals sent to this process go on to it.
+  gChild = pid;
+  struct sigaction forward {};
+  forward.sa_handler = forwardSignal;
   struct sigaction oldInt {}, oldTerm {};
-  ::sigaction(SIGINT, &ignore, &oldInt);
-  ::sigaction(SIGTERM, &ignore, &oldTerm);
+  ::sigaction(SIGINT, &forward, &oldInt);
+  ::sigaction(SIGTERM, &forward, &oldTerm);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   ::sigaction(SIGINT, &oldInt, nullptr);
   ::sigaction(SIGTERM, &oldTerm, nullptr);
+  gChild = 0;
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : kExitFailure;
 }

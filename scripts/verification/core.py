@@ -91,9 +91,19 @@ class Runner:
         self.lock = threading.Lock()
         self.cache = {}
         self.count = 0
+        self.live = set()      # running `throng run` processes
+        self.stopped = False
 
     def close(self):
         self.pool.shutdown(wait=True)
+
+    def stop(self):
+        """Interrupted: no new runs, the running ones terminated."""
+        with self.lock:
+            self.stopped = True
+            for proc in list(self.live):
+                proc.terminate()
+        self.pool.shutdown(wait=True, cancel_futures=True)
 
     def _simulate(self, run, model, label):
         with open(os.path.join(SCENARIOS, run.file)) as f:
@@ -109,7 +119,15 @@ class Runner:
                "--threads", "1"]
         if run.duration is not None:
             cmd += ["--duration", str(run.duration)]
-        res = subprocess.run(cmd, capture_output=True, text=True)
+        with self.lock:
+            if self.stopped:
+                return {"error": "interrupted"}
+            proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+            self.live.add(proc)
+        out, err = proc.communicate()
+        with self.lock:
+            self.live.discard(proc)
+        res = subprocess.CompletedProcess(cmd, proc.returncode, out, err)
         if res.returncode != 0:
             lines = (res.stderr.strip() or res.stdout.strip()).splitlines()
             return {"error": f"throng run {run.file} exit {res.returncode}: " + (lines[0] if lines else "")}
