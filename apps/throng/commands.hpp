@@ -1,6 +1,6 @@
 // throng CLI subcommands — each subcommand registers its flags on a CLI::App and runs from a plain
 // options struct (one file per subcommand: cmd_run.cpp, cmd_check.cpp, cmd_info.cpp,
-// cmd_bench.cpp, cmd_script.cpp, cmd_metrics.cpp, cmd_serve.cpp, cmd_loadgen.cpp, cmd_link.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
+// cmd_bench.cpp, cmd_script.cpp, cmd_metrics.cpp, cmd_serve.cpp, cmd_loadgen.cpp, cmd_link.cpp, cmd_verify.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
 // interrupted by SIGINT/SIGTERM.
 #pragma once
 #include <cstdint>
@@ -123,6 +123,18 @@ struct LinkOptions {
   bool quiet = false;
 };
 
+struct VerifyOptions {
+  std::string suite = "all";            ///< rimea, nist, iso or all
+  std::vector<std::string> tests;       ///< test ids (each may be a comma list); empty = the whole suite
+  std::string model;                    ///< NAME[,NAME]: run every test with each; empty = engine default
+  int threads = 2;                      ///< simulations at a time
+  std::string json;                     ///< results as JSON to this file ("-" = stdout)
+  std::string report;                   ///< Markdown and PNG report directory
+  std::string keep;                     ///< keep scenarios and recordings here
+  bool list = false;                    ///< list the tests, run nothing
+  std::string throng;                   ///< the binary the tests run; empty = this one
+};
+
 /// Each registers its subcommand (flags bound to `options`, which must outlive parsing) and returns it.
 CLI::App* addRunCommand(CLI::App& app, RunOptions& options);
 CLI::App* addCheckCommand(CLI::App& app, CheckOptions& options);
@@ -133,6 +145,7 @@ CLI::App* addMetricsCommand(CLI::App& app, MetricsCmdOptions& options);
 CLI::App* addServeCommand(CLI::App& app, ServeOptions& options);
 CLI::App* addLoadgenCommand(CLI::App& app, LoadgenOptions& options);
 CLI::App* addLinkCommand(CLI::App& app, LinkOptions& options);
+CLI::App* addVerifyCommand(CLI::App& app, VerifyOptions& options);
 
 int runRun(const RunOptions& options);
 int runCheck(const CheckOptions& options);
@@ -143,5 +156,6 @@ int runMetrics(const MetricsCmdOptions& options);
 int runServe(const ServeOptions& options);
 int runLoadgen(const LoadgenOptions& options);
 int runLink(const LinkOptions& options);
+int runVerify(const VerifyOptions& options);
 
 }  // namespace throng::cli

@@ -1,4 +1,4 @@
-// throng — command-line front end: run, check, info, bench, script, metrics, serve, loadgen and link subcommands (CLI11).
+// throng — command-line front end: run, check, info, bench, script, metrics, serve, loadgen, link and verify subcommands (CLI11).
 // Parses flags, dispatches to the subcommand and turns every failure into a message and an exit
 // code: 0 success, 1 bad input or failure, 2 bad flags or unknown subcommand, 130 interrupted.
 #include <cstdio>
@@ -33,6 +33,7 @@ int dispatch(int argc, char** argv) {
   ServeOptions serveOptions;
   LoadgenOptions loadgenOptions;
   LinkOptions linkOptions;
+  VerifyOptions verifyOptions;
   CLI::App* run = addRunCommand(app, runOptions);
   CLI::App* check = addCheckCommand(app, checkOptions);
   CLI::App* info = addInfoCommand(app, infoOptions);
@@ -42,17 +43,18 @@ int dispatch(int argc, char** argv) {
   CLI::App* serve = addServeCommand(app, serveOptions);
   CLI::App* loadgen = addLoadgenCommand(app, loadgenOptions);
   CLI::App* link = addLinkCommand(app, linkOptions);
+  CLI::App* verify = addVerifyCommand(app, verifyOptions);
 
   // CLI11 reports an unknown command as "A subcommand is required"; name it instead.
   const auto isCommand = [&](const char* word) {
-    for (const CLI::App* sub : {run, check, info, bench, script, metrics, serve, loadgen, link}) {
+    for (const CLI::App* sub : {run, check, info, bench, script, metrics, serve, loadgen, link, verify}) {
       if (sub->check_name(word)) return true;
     }
     return false;
   };
   if (argc > 1 && argv[1][0] != '-' && !isCommand(argv[1])) {
-    const std::string hint = throng::core::closestMatch(argv[1], {"run", "check", "info", "bench", "script", "metrics", "serve", "loadgen", "link"});
-    std::fputs(fmt::format("throng: unknown command '{}'; expected run, check, info, bench, script, metrics, serve, loadgen or link{}\n"
+    const std::string hint = throng::core::closestMatch(argv[1], {"run", "check", "info", "bench", "script", "metrics", "serve", "loadgen", "link", "verify"});
+    std::fputs(fmt::format("throng: unknown command '{}'; expected run, check, info, bench, script, metrics, serve, loadgen, link or verify{}\n"
                            "Run 'throng --help' for more information.\n",
                            argv[1], hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint))
                    .c_str(),
@@ -76,6 +78,7 @@ int dispatch(int argc, char** argv) {
   if (serve->parsed()) return runServe(serveOptions);
   if (loadgen->parsed()) return runLoadgen(loadgenOptions);
   if (link->parsed()) return runLink(linkOptions);
+  if (verify->parsed()) return runVerify(verifyOptions);
   std::fputs("throng: no command given; run 'throng --help'\n", stderr);
   return kExitUsage;
 }

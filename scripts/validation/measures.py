@@ -1,4 +1,4 @@
-"""Measurements shared by scripts/validate.py and its unit test (tests/scripts/validation_measures_test.py).
+"""Measurements shared by scripts/validate.py, scripts/verify.py and the unit test (tests/scripts/validation_measures_test.py).
 
 Pure functions of trajectories (numpy arrays); nothing here runs throng. Definitions (after PedPy's
 documentation and the papers named in docs/validation.md):
@@ -10,6 +10,10 @@ documentation and the papers named in docs/validation.md):
 - walk-back: how much farther from a target an agent is than the closest it has been so far;
 - lane order (Rex & Loewen 2007): per agent, ((n_same - n_opp) / (n_same + n_opp))^2 over the agents
   in its lateral slice, averaged over agents and frames.
+scripts/verify.py (the RiMEA / NIST verification tests) adds: each agent's spawn and exit time and
+exit point (load_agents), the model each population walked with (recording_models), positions
+inside a polygon, distance to walls and steps that cross a wall, the time each agent first moves,
+per-agent speeds in a stretch of x, and how far group members stray from their group's centre.
 """
 import sqlite3
 
@@ -278,3 +282,128 @@ def lane_order_series(traj, labels, region, t_from, shuffles=5, seed=1, **kw):
             tot_s, cnt_s = tot_s + s, cnt_s + c
     return {"lane_order": tot / cnt if cnt else None, "lane_order_shuffled": tot_s / cnt_s if cnt_s else None,
             "frames": frames}
+
+
+# --- Verification (scripts/verify.py) -------------------------------------------------------------
+def load_agents(path):
+    """Per agent of a throng recording: population id, group id, spawn and exit time [s] (None if it
+    did not exit) and the id of the exit point it left by (throng_agents, throng_events, throng_points)."""
+    db = sqlite3.connect(path)
+    try:
+        fps = float(dict(db.execute("SELECT key, value FROM metadata").fetchall()).get("fps", 10.0))
+        points = dict(db.execute("SELECT idx, id FROM throng_points").fetchall())
+        exits = dict(db.execute("SELECT agent, a FROM throng_events WHERE kind = 'exit'").fetchall())
+        rows = db.execute("SELECT id, population_id, group_id, spawn_frame, exit_frame FROM throng_agents").fetchall()
+    finally:
+        db.close()
+    return {a: {"population": pop, "group": g, "spawn_s": None if s is None else s / fps,
+                "exit_s": None if e is None else e / fps, "exit_point": points.get(exits.get(a))}
+            for a, pop, g, s, e in rows}
+
+
+def recording_models(path):
+    """Population id -> the name of the avoidance model it walked with (metadata throng_models;
+    empty when the recording predates it)."""
+    import json
+    db = sqlite3.connect(path)
+    try:
+        row = db.execute("SELECT value FROM metadata WHERE key = 'throng_models'").fetchone()
+    finally:
+        db.close()
+    if not row:
+        return {}
+    models = json.loads(row[0])
+    return {pop: (m["name"] if isinstance(m, dict) else str(m)) for pop, m in models.items()}
+
+
+def inside_polygon(x, y, polygon):
+    """Per point (x, y arrays), whether it lies inside the polygon (even-odd rule; points on an edge
+    count as inside within 1 mm)."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    inside = np.zeros(x.shape, bool)
+    on_edge = np.zeros(x.shape, bool)
+    n = len(polygon)
+    for k in range(n):
+        (ax, ay), (bx, by) = polygon[k], polygon[(k + 1) % n]
+        crosses = (ay > y) != (by > y)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            xc = ax + (y - ay) * (bx - ax) / (by - ay)
+        inside ^= crosses & (x < xc)
+        ex, ey = bx - ax, by - ay
+        u = np.clip(((x - ax) * ex + (y - ay) * ey) / (ex * ex + ey * ey), 0.0, 1.0)
+        on_edge |= np.hypot(x - (ax + u * ex), y - (ay + u * ey)) < 1e-3
+    return inside | on_edge
+
+
+def distance_to_edges(x, y, polygons):
+    """Per point, the distance [m] to the nearest edge of any of the polygons."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    best = np.full(x.shape, np.inf)
+    for poly in polygons:
+        n = len(poly)
+        for k in range(n):
+            (ax, ay), (bx, by) = poly[k], poly[(k + 1) % n]
+            ex, ey = bx - ax, by - ay
+            u = np.clip(((x - ax) * ex + (y - ay) * ey) / (ex * ex + ey * ey), 0.0, 1.0)
+            best = np.minimum(best, np.hypot(x - (ax + u * ex), y - (ay + u * ey)))
+    return best
+
+
+def steps_crossing_edges(traj, polygons):
+    """How many steps (an agent's move from one recorded frame to the next) cross an edge of the
+    polygons: a body centre that went through a wall between two frames."""
+    same = traj.id[1:] == traj.id[:-1]
+    px, py, qx, qy = traj.x[:-1][same], traj.y[:-1][same], traj.x[1:][same], traj.y[1:][same]
+    count = 0
+    for poly in polygons:
+        n = len(poly)
+        for k in range(n):
+            (ax, ay), (bx, by) = poly[k], poly[(k + 1) % n]
+            d1 = (bx - ax) * (py - ay) - (by - ay) * (px - ax)
+            d2 = (bx - ax) * (qy - ay) - (by - ay) * (qx - ax)
+            d3 = (qx - px) * (ay - py) - (qy - py) * (ax - px)
+            d4 = (qx - px) * (by - py) - (qy - py) * (bx - px)
+            count += int(np.sum((d1 * d2 < 0) & (d3 * d4 < 0)))
+    return count
+
+
+def first_moves(traj, distance=0.1):
+    """Per agent, the time [s] it is first more than `distance` [m] from where it was first recorded."""
+    out = {}
+    starts = np.r_[0, np.flatnonzero(np.diff(traj.id)) + 1]
+    for rows in np.split(np.arange(len(traj.id)), starts[1:]):
+        if len(rows) == 0:
+            continue
+        d = np.hypot(traj.x[rows] - traj.x[rows[0]], traj.y[rows] - traj.y[rows[0]])
+        moved = np.flatnonzero(d > distance)
+        out[int(traj.id[rows[0]])] = float(traj.frame[rows[moved[0]]] / traj.fps) if len(moved) else None
+    return out
+
+
+def region_speeds(traj, x_range, statistic=np.median):
+    """Per agent, the statistic (default median) of its speed [m/s] over the rows with x inside x_range."""
+    sel = (traj.x >= x_range[0]) & (traj.x <= x_range[1]) & np.isfinite(traj.speed)
+    out = {}
+    for a in np.unique(traj.id[sel]):
+        out[int(a)] = float(statistic(traj.speed[sel & (traj.id == a)]))
+    return out
+
+
+def group_spread(traj, group_of, t_from=0.0):
+    """Per frame from t_from on, for every group with at least two members present, the largest
+    distance of a member from the group's centroid [m]; returns the median and the 95th percentile
+    over all (group, frame) samples."""
+    start = int(np.ceil(t_from * traj.fps))
+    groups = np.array([group_of[int(a)] for a in traj.id])
+    spreads = []
+    for _, rows in traj.by_frame(traj.frame >= start):
+        g = groups[rows]
+        for gid in np.unique(g):
+            r = rows[g == gid]
+            if len(r) < 2:
+                continue
+            cx, cy = traj.x[r].mean(), traj.y[r].mean()
+            spreads.append(float(np.hypot(traj.x[r] - cx, traj.y[r] - cy).max()))
+    if not spreads:
+        return {"median": None, "p95": None, "samples": 0}
+    return {"median": float(np.median(spreads)), "p95": float(np.percentile(spreads, 95)), "samples": len(spreads)}

@@ -1,0 +1,154 @@
+// `throng verify` — runs the verification suites (RiMEA, NIST TN 1822, ISO 20414; docs/verification.md)
+// by handing its flags to scripts/verify.py, which runs this same binary on verification/*.json,
+// measures the recordings and prints the table. Finds the script in the source tree the binary was
+// built from (THRONG_SOURCE_DIR), else in <prefix>/share/throng/scripts next to an installed
+// binary; finds /usr/bin/python3 (numpy and matplotlib come from Debian), else python3 on PATH.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "bench_files.hpp"
+#include "commands.hpp"
+#include "output.hpp"
+
+namespace throng::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// The first existing scripts/verify.py: the source tree's, then an installed copy.
+fs::path findVerifyScript(const fs::path& exe) {
+  std::vector<fs::path> candidates{fs::path(THRONG_SOURCE_DIR) / "scripts" / "verify.py"};
+  if (!exe.empty()) candidates.push_back((exe.parent_path() / "../share/throng/scripts/verify.py").lexically_normal());
+  for (const auto& c : candidates) {
+    std::error_code ec;
+    if (fs::is_regular_file(c, ec)) return c;
+  }
+  return {};
+}
+
+/// /usr/bin/python3 if it exists, else the first python3 on PATH; empty if none.
+std::string findPython() {
+  if (::access("/usr/bin/python3", X_OK) == 0) return "/usr/bin/python3";
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "";
+  std::size_t start = 0;
+  while (start <= dirs.size()) {
+    const std::size_t end = std::min(dirs.find(':', start), dirs.size());
+    const fs::path candidate = fs::path(dirs.substr(start, end - start)) / "python3";
+    if (end > start && ::access(candidate.c_str(), X_OK) == 0) return candidate.string();
+    start = end + 1;
+  }
+  return {};
+}
+
+std::vector<std::string> scriptArguments(const VerifyOptions& o, const fs::path& exe) {
+  std::vector<std::string> args{"--suite", o.suite, "--threads", std::to_string(o.threads)};
+  for (const auto& t : o.tests) args.insert(args.end(), {"--test", t});
+  if (!o.model.empty()) args.insert(args.end(), {"--model", o.model});
+  if (!o.json.empty()) args.insert(args.end(), {"--json", o.json});
+  if (!o.report.empty()) args.insert(args.end(), {"--report", o.report});
+  if (!o.keep.empty()) args.insert(args.end(), {"--keep", o.keep});
+  if (o.list) args.emplace_back("--list");
+  args.insert(args.end(), {"--throng", o.throng.empty() ? exe.string() : o.throng});
+  return args;
+}
+
+volatile sig_atomic_t gChild = 0;
+
+/// SIGINT/SIGTERM while the script runs: passed on to it (a terminal's Ctrl-C reaches it anyway).
+void forwardSignal(int sig) {
+  if (gChild > 0) ::kill(static_cast<pid_t>(gChild), sig);
+}
+
+/// Runs argv[0] with argv and waits; its exit status (128 + signal when a signal ended it).
+int runAndWait(const std::vector<std::string>& argv) {
+  std::vector<char*> raw;
+  for (const auto& a : argv) raw.push_back(const_cast<char*>(a.c_str()));
+  raw.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    printLine(stderr, fmt::format("throng verify: error: cannot start {}: {}", argv[0], std::strerror(errno)));
+    return kExitFailure;
+  }
+  if (pid == 0) {
+    ::execv(raw[0], raw.data());
+    std::fprintf(stderr, "throng verify: error: cannot run %s: %s\n", raw[0], std::strerror(errno));
+    ::_exit(127);
+  }
+  // Wait for the script to finish its cleanup; signals sent to this process go on to it.
+  gChild = pid;
+  struct sigaction forward {};
+  forward.sa_handler = forwardSignal;
+  struct sigaction oldInt {}, oldTerm {};
+  ::sigaction(SIGINT, &forward, &oldInt);
+  ::sigaction(SIGTERM, &forward, &oldTerm);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  ::sigaction(SIGINT, &oldInt, nullptr);
+  ::sigaction(SIGTERM, &oldTerm, nullptr);
+  gChild = 0;
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : kExitFailure;
+}
+
+}  // namespace
+
+CLI::App* addVerifyCommand(CLI::App& app, VerifyOptions& options) {
+  CLI::App* cmd = app.add_subcommand("verify", "Run the verification tests (RiMEA, NIST TN 1822, ISO 20414)");
+  cmd->footer(
+      "Run the bundled verification scenarios (verification/), measure the recordings and print one row per\n"
+      "test: criterion, measured, PASS / FAIL / XFAIL (expected to fail, with the reason) / XPASS (expected to\n"
+      "fail but passed: update the expectation). Exit 0 when every test is PASS or XFAIL, 1 otherwise, 2 for\n"
+      "bad flags. Runs scripts/verify.py with python3 (numpy and matplotlib from Debian); docs/verification.md\n"
+      "has the tests, the criteria and the results. The whole suite: throng verify --suite all");
+  cmd->add_option("--suite", options.suite, "Which tests: rimea, nist, iso or all")
+      ->check(CLI::IsMember({"rimea", "nist", "iso", "all"}))
+      ->default_str("all");
+  cmd->add_option("--test", options.tests, "Only these tests (repeatable, or a comma list: rimea-1,nist-2.1)")
+      ->type_name("ID[,ID]");
+  cmd->add_option("--model", options.model, "Run every test with each of these operational models side by side "
+                                             "(orca, avm, cfsm, or all); default: the engine default")
+      ->type_name("NAME[,NAME]");
+  cmd->add_option("--threads", options.threads, "Simulations at a time, one thread each (results do not depend on it)")
+      ->check(CLI::Range(1, 1024))
+      ->default_str("2");
+  cmd->add_option("--json", options.json, "Write the results as JSON to FILE ('-' = stdout; the table then goes to stderr)")->type_name("FILE");
+  cmd->add_option("--report", options.report, "Write DIR/verification.md, its PNG plots and DIR/verification.json")->type_name("DIR");
+  cmd->add_option("--keep", options.keep, "Keep the scenarios and recordings in DIR")->type_name("DIR");
+  cmd->add_flag("--list", options.list, "List the tests and their expectations; run nothing");
+  cmd->add_option("--throng", options.throng, "The throng binary the tests run (default: this one)")->type_name("PATH");
+  return cmd;
+}
+
+int runVerify(const VerifyOptions& options) {
+  const fs::path exe = currentExecutable();
+  const fs::path script = findVerifyScript(exe);
+  if (script.empty()) {
+    printLine(stderr, fmt::format("throng verify: error: scripts/verify.py not found (looked in {}/scripts and "
+                                  "<prefix>/share/throng/scripts); run it from a source checkout",
+                                  THRONG_SOURCE_DIR));
+    return kExitFailure;
+  }
+  const std::string python = findPython();
+  if (python.empty()) {
+    printLine(stderr, "throng verify: error: python3 not found (install python3, python3-numpy and python3-matplotlib)");
+    return kExitFailure;
+  }
+  std::vector<std::string> argv{python, script.string()};
+  const auto rest = scriptArguments(options, exe);
+  argv.insert(argv.end(), rest.begin(), rest.end());
+  return runAndWait(argv);
+}
+
+}  // namespace throng::cli

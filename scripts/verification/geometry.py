@@ -1,0 +1,349 @@
+"""Geometry of the verification tests (scripts/verify.py): the scenarios' shared numbers (corridor
+lengths, door positions, measurement lines and areas) and the builders that write
+verification/<suite>/*.json (scripts/verification/make_scenarios.py). The measurement code reads
+the same constants, so a scenario and the check of it cannot drift apart.
+
+Everything is throng's scenario format (docs/scenario-format.md); no body radius or model is set,
+so every test runs with the engine's defaults unless `--model` overrides them.
+"""
+import math
+
+FLAT_SPEED = 1.33            # RiMEA 1's walking speed [m/s]
+SPEED = {"mean": 1.34, "sd": 0.26}  # Weidmann (1993), where a test sets no speed
+
+# --- RiMEA 1 / NIST 2.1: a straight corridor --------------------------------------------------------
+CORRIDOR = {"length": 43.0, "width": 2.0, "start_x": 2.0, "end_x": 42.0}   # measured between x 2 and 42
+
+
+def rect(x0, y0, x1, y1):
+    return [[x0, y0], [x1, y0], [x1, y1], [x0, y1]]
+
+
+def scenario(name, walkable, points, populations, duration, obstacles=None, **extra):
+    s = {"format": "throng/1", "name": name, "seed": 1, "duration": duration, "walkable": walkable}
+    if obstacles:
+        s["obstacles"] = obstacles
+    s["points"] = points
+    s["populations"] = populations
+    s.update(extra)
+    return s
+
+
+def exit_point(pid, polygon, **kw):
+    return dict({"id": pid, "kind": "exit", "polygon": polygon}, **kw)
+
+
+def population(pid, groups, spawn, goals, speed=None, **kw):
+    p = {"id": pid, "groups": groups, "size": 1, "spawn": spawn, "goals": goals}
+    if speed is not None:
+        p["speed"] = speed
+    p.update(kw)
+    return p
+
+
+def corridor(name, speed):
+    c = CORRIDOR
+    return scenario(name, [rect(0, 0, c["length"], c["width"])],
+                    [exit_point("end", rect(c["length"] - 0.5, 0, c["length"], c["width"]))],
+                    [population("walker", 1, {"position": [0.6, c["width"] / 2]}, ["end"], speed)], 80)
+
+
+# --- RiMEA 2, 3, 13 / NIST 2.2, 2.3: stairs ----------------------------------------------------------
+# A flight of STEPS steps (tread x riser) between two landings, as one walkable quad per step top.
+STAIR = {"steps": 30, "tread": 0.29, "riser": 0.17, "foot_x": 5.0, "landing": 5.0}
+STAIR_WEIDMANN = {"up": 0.610, "down": 0.694}   # horizontal speed on stairs, Weidmann (1993) [m/s]
+
+
+def stair_top_x():
+    return STAIR["foot_x"] + STAIR["steps"] * STAIR["tread"]
+
+
+def stair_height():
+    return STAIR["steps"] * STAIR["riser"]
+
+
+def stair_length():
+    """Length along the slope of the flight [m]."""
+    return math.hypot(stair_top_x() - STAIR["foot_x"], stair_height())
+
+
+def _quad(verts, tris, corners):
+    base = len(verts)
+    verts.extend(corners)
+    tris.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]])
+
+
+def stair_terrain(width, lower_from=0.0):
+    """Lower landing x lower_from..foot, the flight, the upper landing; y 0..width."""
+    verts, tris = [], []
+    s, foot, top, h = STAIR, STAIR["foot_x"], stair_top_x(), stair_height()
+    _quad(verts, tris, [[lower_from, 0, 0], [foot, 0, 0], [foot, width, 0], [lower_from, width, 0]])
+    for k in range(s["steps"]):
+        x0, x1, z = foot + k * s["tread"], foot + (k + 1) * s["tread"], round((k + 1) * s["riser"], 6)
+        x0, x1 = round(x0, 6), round(x1, 6)
+        _quad(verts, tris, [[x0, 0, z], [x1, 0, z], [x1, width, z], [x0, width, z]])
+    top_end = round(top + s["landing"], 6)
+    _quad(verts, tris, [[round(top, 6), 0, h], [top_end, 0, h], [top_end, width, h], [round(top, 6), width, h]])
+    return {"vertices": verts, "walkable": tris, "obstacles": []}, top_end
+
+
+def stairs(name, up):
+    terrain, top_end = stair_terrain(2.0)
+    h = round(stair_height(), 6)
+    low = ([0.5, 1.0, 0.0], rect(0, 0, 0.6, 2.0), 0.0)
+    high = ([top_end - 0.5, 1.0, h], rect(top_end - 0.6, 0, top_end, 2.0), h)
+    start, goal = (low, high) if up else (high, low)
+    return scenario(name, [], [exit_point("end", goal[1], height=goal[2])],
+                    [population("walker", 1, {"position": start[0]}, ["end"], FLAT_SPEED)], 80, terrain=terrain)
+
+
+STAIR_JAM = {"width": 10.0, "room": 10.0, "agents": 200}
+
+
+def stair_jam(name):
+    """RiMEA 13: a 10 x 10 m room whose whole east side is the foot of a 10 m wide flight up."""
+    w = STAIR_JAM["width"]
+    terrain, top_end = stair_terrain(w, lower_from=STAIR["foot_x"] - STAIR_JAM["room"])
+    h = round(stair_height(), 6)
+    x0 = STAIR["foot_x"] - STAIR_JAM["room"]
+    return scenario(name, [], [exit_point("up", rect(top_end - 0.6, 0, top_end, w), height=h)],
+                    [population("crowd", STAIR_JAM["agents"], {"polygon": rect(x0 + 0.3, 0.3, x0 + 6.0, w - 0.3)},
+                                ["up"], SPEED)], 200, terrain=terrain)
+
+
+# --- RiMEA 5 / NIST 1.1: pre-movement times ---------------------------------------------------------
+PREMOVEMENT = {"room": (8.0, 5.0), "times": [10.0 + 10.0 * k for k in range(10)]}
+
+
+def premovement(name):
+    """Ten persons at fixed places in an 8 x 5 m room with a 1 m door; person k leaves at 10 + 10k s
+    (uniform over 10..100 s), written as ten populations with that start time."""
+    w, h = PREMOVEMENT["room"]
+    walk = [[0, 0], [w, 0], [w, 2.0], [w + 2, 2.0], [w + 2, 3.0], [w, 3.0], [w, h], [0, h]]
+    pops = []
+    for k, t in enumerate(PREMOVEMENT["times"]):
+        x, y = 1.0 + 1.5 * (k % 5), 1.5 if k < 5 else 3.5
+        pops.append(population(f"person{k}", 1, {"position": [x, y]}, ["door"], FLAT_SPEED, start=t))
+    return scenario(name, [walk], [exit_point("door", rect(w + 1.5, 2.0, w + 2, 3.0))], pops, 160)
+
+
+# --- RiMEA 6 and 15: round a left corner -------------------------------------------------------------
+def corner_walls(width, leg):
+    """L-shaped corridor: east along y 0..width up to x = leg, then north along x leg-width..leg up to
+    y = leg. The inner corner is (leg - width, width)."""
+    return [[0, 0], [leg, 0], [leg, leg], [leg - width, leg], [leg - width, width], [0, width]]
+
+
+CORNER_SMALL = {"width": 2.0, "leg": 12.0, "agents": 20}
+CORNER_LARGE = {"width": 5.0, "leg": 40.0, "agents": 500}
+
+
+def corner(name, geo, spawn_len):
+    w, leg = geo["width"], geo["leg"]
+    return scenario(name, [corner_walls(w, leg)], [exit_point("end", rect(leg - w, leg - 0.5, leg, leg))],
+                    [population("crowd", geo["agents"], {"polygon": rect(0.3, 0.3, spawn_len, w - 0.3)}, ["end"],
+                                SPEED)], 900)
+
+
+# --- RiMEA 7 / NIST 2.10: speed groups ---------------------------------------------------------------
+# Walking speed ranges on the flat per group (Weidmann 1993, as tabulated for RiMEA 7) [m/s].
+SPEED_GROUPS = [("under-30", 0.58, 1.61, 15), ("30-to-50", 1.41, 1.54, 15), ("over-50", 0.68, 1.41, 15),
+                ("impaired", 0.46, 0.76, 5)]
+DEMOGRAPHICS = {"length": 60.0, "width": 10.0, "spawn_to": 12.0, "measure": (20.0, 50.0)}
+
+
+def demographics(name):
+    d = DEMOGRAPHICS
+    pops = [population(gid, n, {"polygon": rect(0.3, 0.3, d["spawn_to"], d["width"] - 0.3)}, ["end"],
+                       {"mean": round((lo + hi) / 2, 3), "sd": round((hi - lo) / 4, 3), "min": lo, "max": hi})
+            for gid, lo, hi, n in SPEED_GROUPS]
+    return scenario(name, [rect(0, 0, d["length"], d["width"])],
+                    [exit_point("end", rect(d["length"] - 0.5, 0, d["length"], d["width"]))], pops, 150)
+
+
+# --- RiMEA 8: parameter analysis (desired speed) ------------------------------------------------------
+SENSITIVITY_SPEEDS = [0.8, 1.0, 1.2, 1.4, 1.6]
+
+
+def office_floor(name):
+    """An office floor: six 5 x 5 m rooms (10 persons each) off a 2 m corridor, one 1 m door each,
+    a 1.2 m exit at the corridor's east end."""
+    walk = [rect(0, 5.2, 31.2, 7.2)]
+    for k in range(3):
+        x0 = 0.2 + 5.2 * k
+        walk.append(rect(x0, 0, x0 + 5, 5))            # south rooms
+        walk.append(rect(x0 + 2, 5, x0 + 3, 5.2))      # their doors
+        walk.append(rect(x0, 7.4, x0 + 5, 12.4))       # north rooms
+        walk.append(rect(x0 + 2, 7.2, x0 + 3, 7.4))
+    walk.append(rect(31.2, 5.6, 33.2, 6.8))
+    pops = []
+    for k in range(3):
+        x0 = 0.2 + 5.2 * k
+        pops.append(population(f"south{k}", 10, {"polygon": rect(x0 + 0.3, 0.3, x0 + 4.7, 4.7)}, ["exit"], SPEED))
+        pops.append(population(f"north{k}", 10, {"polygon": rect(x0 + 0.3, 7.7, x0 + 4.7, 12.1)}, ["exit"], SPEED))
+    return scenario(name, walk, [exit_point("exit", rect(32.6, 5.6, 33.2, 6.8))], pops, 300)
+
+
+# --- RiMEA 9: a large room, four doors ---------------------------------------------------------------
+HALL = {"w": 30.0, "h": 20.0, "doors": {"west-south": ("w", 4.0), "west-north": ("w", 16.0),
+                                           "east-south": ("e", 4.0), "east-north": ("e", 16.0)}, "agents": 1000}
+
+
+def hall(name, closed):
+    """30 x 20 m hall, four 1 m doors (two in each short wall, centred 4 m from the corners), an exit
+    area 1 m beyond each open door. throng has no exit choice yet, so each quarter of the hall (250
+    persons) heads for its nearest open door."""
+    w, h = HALL["w"], HALL["h"]
+    walk, points = [rect(0, 0, w, h)], []
+    for did, (side, y) in HALL["doors"].items():
+        if did in closed:
+            continue
+        x0, x1 = (-1.2, 0) if side == "w" else (w, w + 1.2)
+        walk.append(rect(x0, y - 0.5, x1, y + 0.5))
+        ex0, ex1 = (-1.2, -0.7) if side == "w" else (w + 0.7, w + 1.2)
+        points.append(exit_point(did, rect(ex0, y - 0.5, ex1, y + 0.5)))
+    open_doors = [d for d in HALL["doors"] if d not in closed]
+    pops = []
+    for qid, (qx, qy) in {"sw": (0, 0), "nw": (0, 1), "se": (1, 0), "ne": (1, 1)}.items():
+        cx, cy = (qx + 0.5) * w / 2, (qy + 0.5) * h / 2
+
+        def dist(d):
+            side, y = HALL["doors"][d]
+            return math.hypot(cx - (0 if side == "w" else w), cy - y)
+        goal = min(open_doors, key=dist)
+        x0, y0 = qx * w / 2, qy * h / 2
+        pops.append(population(qid, HALL["agents"] // 4, {"polygon": rect(x0 + 0.5, y0 + 0.5, x0 + w / 2 - 0.5,
+                                                                          y0 + h / 2 - 0.5)}, [goal], SPEED))
+    return scenario(name, walk, points, pops, 1800)
+
+
+# --- RiMEA 10 / NIST 3.1: assigned exits -------------------------------------------------------------
+ROOMS = {"count": 12, "size": 4.0, "corridor": (3.0, 2.0)}  # corridor: y from, width
+# Persons per room and the exit each room is assigned (west, east); rooms 0-5 south, 6-11 north.
+ROOM_ASSIGNMENT = [(8, "west"), (5, "east"), (6, "west"), (8, "east"), (5, "west"), (7, "east"),
+                   (6, "east"), (8, "west"), (5, "east"), (7, "west"), (6, "east"), (5, "west")]
+
+
+def assigned_exits(name):
+    n, s = ROOMS["count"] // 2, ROOMS["size"]
+    cy, cw = ROOMS["corridor"]
+    length = n * (s + 0.2) + 0.2
+    walk = [rect(-2.0, cy, length + 2.0, cy + cw)]
+    pops = []
+    for k in range(ROOMS["count"]):
+        col, north = k % n, k >= n
+        x0 = 0.2 + col * (s + 0.2)
+        y0 = cy + cw + 0.2 if north else cy - 0.2 - s
+        walk.append(rect(x0, y0, x0 + s, y0 + s))
+        walk.append(rect(x0 + 1.5, cy + cw, x0 + 2.5, cy + cw + 0.2) if north else rect(x0 + 1.5, cy - 0.2, x0 + 2.5, cy))
+        count, goal = ROOM_ASSIGNMENT[k]
+        pops.append(population(f"room{k}", count, {"polygon": rect(x0 + 0.3, y0 + 0.3, x0 + s - 0.3, y0 + s - 0.3)},
+                               [goal], SPEED))
+    points = [exit_point("west", rect(-2.0, cy, -1.5, cy + cw)),
+              exit_point("east", rect(length + 1.5, cy, length + 2.0, cy + cw))]
+    return scenario(name, walk, points, pops, 300)
+
+
+# --- RiMEA 11: two exits, which one is used -----------------------------------------------------------
+CHOICE = {"w": 20.0, "h": 10.0, "doors": {"near": 2.0, "far": 8.0}, "agents": 300, "spawn": (5.0, 0.3, 19.7, 6.0)}
+
+
+def exit_choice(name):
+    """A 20 x 10 m room with two 1 m doors in its east wall (centred at y 2 and 8 m), both into one
+    2 m deep exit hall; 300 persons start in the south-east half, nearer the south door."""
+    w, h = CHOICE["w"], CHOICE["h"]
+    walk = [rect(0, 0, w, h), rect(w + 0.2, 0, w + 2.2, h)]
+    for y in CHOICE["doors"].values():
+        walk.append(rect(w, y - 0.5, w + 0.2, y + 0.5))
+    x0, y0, x1, y1 = CHOICE["spawn"]
+    return scenario(name, walk, [exit_point("hall", rect(w + 1.2, 0, w + 2.2, h))],
+                    [population("crowd", CHOICE["agents"], {"polygon": rect(x0, y0, x1, y1)}, ["hall"], SPEED)], 300)
+
+
+# --- RiMEA 12 / NIST 5.1: two bottlenecks in a row ----------------------------------------------------
+BOTTLENECKS = {"agents": 150, "first": (10.0, 20.0), "second": 30.0, "door_y": (4.5, 5.5),
+               "area_first": (8.0, 10.0, 4.0, 6.0), "area_second": (28.0, 30.0, 4.0, 6.0)}
+
+
+def bottlenecks(name):
+    """Room A (10 x 10 m, 150 persons) -> a 1 m wide, 10 m long corridor -> room B (10 x 10 m) -> a
+    1 m wide, 2 m long door -> the exit."""
+    b = BOTTLENECKS
+    y0, y1 = b["door_y"]
+    f0, f1 = b["first"]
+    walk = [[0, 0], [f0, 0], [f0, y0], [f1, y0], [f1, 0], [f1 + 10, 0], [f1 + 10, y0], [f1 + 12, y0], [f1 + 12, y1],
+            [f1 + 10, y1], [f1 + 10, 10], [f1, 10], [f1, y1], [f0, y1], [f0, 10], [0, 10]]
+    return scenario(name, [walk], [exit_point("exit", rect(f1 + 11.5, y0, f1 + 12, y1))],
+                    [population("crowd", b["agents"], {"polygon": rect(0.3, 0.3, 9.7, 9.7)}, ["exit"], SPEED)], 400)
+
+
+# --- RiMEA 16 / NIST 2.8: counter-flow through a corridor ---------------------------------------------
+COUNTER = {"forward": 50, "against": [0, 10, 25, 50], "corridor": (10.0, 20.0), "door_y": (4.0, 6.0)}
+
+
+def counter_flow(name, against):
+    """Two 10 x 10 m rooms joined by a 10 m long, 2 m wide corridor; 50 persons walk from the west
+    room to an exit at the far side of the east room, `against` persons the other way."""
+    c0, c1 = COUNTER["corridor"]
+    y0, y1 = COUNTER["door_y"]
+    walk = [[0, 0], [c0, 0], [c0, y0], [c1, y0], [c1, 0], [c1 + 10, 0], [c1 + 10, 10], [c1, 10], [c1, y1], [c0, y1],
+            [c0, 10], [0, 10]]
+    pops = [population("forward", COUNTER["forward"], {"polygon": rect(0.5, 0.5, 6.0, 9.5)}, ["east"], SPEED)]
+    if against:
+        pops.append(population("against", against, {"polygon": rect(c1 + 4.0, 0.5, c1 + 9.5, 9.5)}, ["west"], SPEED))
+    points = [exit_point("east", rect(c1 + 9.5, 0, c1 + 10, 10)), exit_point("west", rect(0, 0, 0.5, 10))]
+    return scenario(name, [walk], points, pops, 400)
+
+
+# --- NIST 2.9: groups --------------------------------------------------------------------------------
+def groups(name):
+    """40 groups of 2 to 4 people cross a 6 m wide, 40 m long hall."""
+    return scenario(name, [rect(0, 0, 40, 6)], [exit_point("end", rect(39.5, 0, 40, 6))],
+                    [{"id": "groups", "groups": 40, "size": [2, 4], "spawn": {"polygon": rect(0.3, 0.3, 12, 5.7)},
+                      "goals": ["end"], "speed": SPEED}], 200)
+
+
+# --- NIST 5.2: maximum flow through a door ----------------------------------------------------------
+DOOR_ROOM = {"agents": 200, "door": (10.0, 4.5, 5.5), "line_x": 10.1}
+
+
+def door_room(name):
+    """200 persons leave a 10 x 10 m room through a 1 m door (0.2 m thick wall)."""
+    walk = [[0, 0], [10, 0], [10, 4.5], [10.2, 4.5], [10.2, 3], [14, 3], [14, 7], [10.2, 7], [10.2, 5.5],
+            [10, 5.5], [10, 10], [0, 10]]
+    return scenario(name, [walk], [exit_point("exit", rect(13.5, 3, 14, 7))],
+                    [population("room", DOOR_ROOM["agents"], {"polygon": rect(0.3, 0.3, 9.7, 9.7)}, ["exit"],
+                                SPEED)], 300)
+
+
+# --- RiMEA 14: a short route over stairs or a longer flat one ----------------------------------------
+ROUTES = {"steps": 18, "agents": 20, "detour_y": (4.0, 6.0)}
+
+
+def route_choice(name):
+    """A start floor (x 0..10) and a goal floor (x 30..40), both 2 m wide at height 0, joined by a
+    short route that goes down 18 steps (3 m) to a lower corridor and up 18 steps again, and by a
+    flat detour 2 m to the north (y 4..6, 6 m longer). At Weidmann's speeds (1.34 m/s flat, 0.694 /
+    0.61 m/s horizontal down / up a flight) the detour is the quicker: about 31 s against 35 s."""
+    verts, tris = [], []
+    s, n = STAIR, ROUTES["steps"]
+    run = n * s["tread"]
+    low = -round(n * s["riser"], 6)
+    _quad(verts, tris, [[0, 0, 0], [10, 0, 0], [10, 2, 0], [0, 2, 0]])
+    for k in range(n):
+        x0, x1 = round(10 + k * s["tread"], 6), round(10 + (k + 1) * s["tread"], 6)
+        z = -round((k + 1) * s["riser"], 6)
+        _quad(verts, tris, [[x0, 0, z], [x1, 0, z], [x1, 2, z], [x0, 2, z]])
+    a, b = round(10 + run, 6), round(30 - run, 6)
+    _quad(verts, tris, [[a, 0, low], [b, 0, low], [b, 2, low], [a, 2, low]])
+    for k in range(n):
+        x0, x1 = round(b + k * s["tread"], 6), round(b + (k + 1) * s["tread"], 6)
+        z = round(low + (k + 1) * s["riser"], 6)
+        _quad(verts, tris, [[x0, 0, z], [x1, 0, z], [x1, 2, z], [x0, 2, z]])
+    _quad(verts, tris, [[30, 0, 0], [40, 0, 0], [40, 2, 0], [30, 2, 0]])
+    y0, y1 = ROUTES["detour_y"]
+    for x0, x1, ya, yb in ((8, 10, 2, y0), (8, 32, y0, y1), (30, 32, 2, y0)):
+        _quad(verts, tris, [[x0, ya, 0], [x1, ya, 0], [x1, yb, 0], [x0, yb, 0]])
+    return scenario(name, [], [exit_point("goal", rect(39.4, 0, 40, 2), height=0)],
+                    [population("walkers", ROUTES["agents"], {"polygon": rect(0.5, 0.3, 6.0, 1.7), "height": 0},
+                                ["goal"], SPEED)], 200, terrain={"vertices": verts, "walkable": tris, "obstacles": []})

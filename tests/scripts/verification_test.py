@@ -1,0 +1,90 @@
+#!/usr/bin/python3
+"""Unit test of the verification harness (ctest: verification_unit): the status rule (PASS, FAIL,
+XFAIL, XPASS; reported-only checks ignored), per-model expectations, the measurements verify.py
+adds to scripts/validation/measures.py on hand-made trajectories with known answers, and that the
+committed scenario files under verification/ are what scripts/verification/make_scenarios.py
+writes."""
+import os
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCRIPTS = os.path.join(HERE, "..", "..", "scripts")
+sys.path.insert(0, SCRIPTS)
+
+import numpy as np  # noqa: E402
+
+from validation import measures as M  # noqa: E402
+from verification import core as C  # noqa: E402
+
+FAILURES = []
+
+
+def expect(cond, what):
+    if not cond:
+        FAILURES.append(what)
+
+
+def test_status():
+    ok, bad, info = C.Check("a", "1", True), C.Check("b", "2", False), C.Check("c", "3", None)
+    expect(C.status_of([ok, info], None) == C.PASS, "all ok -> PASS")
+    expect(C.status_of([ok, bad], None) == C.FAIL, "one failing check -> FAIL")
+    expect(C.status_of([ok, bad], "why") == C.XFAIL, "expected failure -> XFAIL")
+    expect(C.status_of([ok, info], "why") == C.XPASS, "expected failure that passes -> XPASS")
+    expect(C.status_of([], None) == C.FAIL, "no checks -> FAIL")
+    expect(C.band("x", 1.5, 1.0, 2.0).ok and not C.band("x", 2.5, 1.0, 2.0).ok, "band inside / outside")
+    expect(C.band("x", None, 1.0, 2.0).ok is False, "nothing measured -> not ok")
+    t = C.Test("t", "s", "title", "crit", "src", "doc", xfail={"orca": "slow", "*": "other"})
+    expect(t.expectation("orca") == "slow" and t.expectation("avm") == "other", "per-model expectation")
+    expect(C.Test("t", "s", "", "", "", "", xfail="always").expectation("avm") == "always", "one reason for all")
+    expect(C.Test("t", "s", "", "", "", "").expectation("avm") is None, "no expectation")
+
+
+def test_geometry_measures():
+    square = [[0, 0], [2, 0], [2, 2], [0, 2]]
+    inside = M.inside_polygon(np.array([1.0, 3.0, 2.0, -0.5]), np.array([1.0, 1.0, 1.0, 1.0]), square)
+    expect(inside.tolist() == [True, False, True, False], f"inside_polygon {inside}")
+    ell = [[0, 0], [4, 0], [4, 4], [3, 4], [3, 1], [0, 1]]  # L: the inner corner is (3, 1)
+    expect(not M.inside_polygon(np.array([1.0]), np.array([3.0]), ell)[0], "inside the L's notch is outside")
+    d = M.distance_to_edges(np.array([1.0]), np.array([0.5]), [ell])
+    expect(abs(d[0] - 0.5) < 1e-9, f"distance_to_edges {d}")
+    # Agent 1 cuts the inner corner of the L between two frames; agent 2 stays in the first leg.
+    traj = M.Trajectories([(1, 0, 2.5, 0.8), (1, 1, 3.5, 1.5), (2, 0, 0.5, 0.5), (2, 1, 1.0, 0.5)], 10.0)
+    expect(M.steps_crossing_edges(traj, [ell]) == 2, "a step through the corner crosses two edges")
+
+
+def test_motion_measures():
+    # Agent 1 stands 2 s then walks +x at 1 m/s (more than 0.1 m away at 2.2 s); agent 2 walks at 0.5 m/s.
+    rows = [(1, f, (0.0 if f < 20 else (f - 20) / 10.0), 0.0) for f in range(60)]
+    rows += [(2, f, f * 0.05, 1.0) for f in range(60)]
+    traj = M.Trajectories(rows, 10.0)
+    moves = M.first_moves(traj, 0.1)
+    expect(abs(moves[1] - 2.2) < 1e-9 and abs(moves[2] - 0.3) < 1e-9, f"first_moves {moves}")
+    speeds = M.region_speeds(traj, (1.0, 2.0))
+    expect(abs(speeds[1] - 1.0) < 1e-6 and abs(speeds[2] - 0.5) < 1e-6, f"region_speeds {speeds}")
+    # Two members 0.8 m apart walk side by side: each is 0.4 m from their centre.
+    pair = [(a, f, f * 0.1, 0.8 * (a - 1)) for a in (1, 2) for f in range(20)]
+    spread = M.group_spread(M.Trajectories(pair, 10.0), {1: 7, 2: 7})
+    expect(abs(spread["median"] - 0.4) < 1e-9 and spread["samples"] == 20, f"group_spread {spread}")
+
+
+def test_committed_scenarios():
+    res = subprocess.run([sys.executable, os.path.join(SCRIPTS, "verification", "make_scenarios.py"), "--check"],
+                         capture_output=True, text=True)
+    expect(res.returncode == 0, f"verification/ scenarios out of date: {res.stdout}{res.stderr}")
+
+
+def main():
+    test_status()
+    test_geometry_measures()
+    test_motion_measures()
+    test_committed_scenarios()
+    for f in FAILURES:
+        print("verification_test: FAIL:", f)
+    if FAILURES:
+        sys.exit(1)
+    print("verification_test: ok")
+
+
+if __name__ == "__main__":
+    main()
