@@ -14,7 +14,7 @@ anything = st.one_of(numbers, st.text(max_size=8), st.none(), st.lists(st.intege
 EXPECTED = (ValueError, TypeError, KeyError, OverflowError, throng.ScenarioError)
 
 
-@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=150, deadline=None, database=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.lists(st.tuples(st.sampled_from(["step", "guide", "release", "agent", "group", "run", "insert", "remove"]),
                           anything, anything, anything), max_size=8))
 def test_random_calls_never_crash(calls):
@@ -44,7 +44,7 @@ def test_random_calls_never_crash(calls):
     assert all(math.isfinite(v) for v in state.x)
 
 
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=100, deadline=None, database=None)
 @given(st.dictionaries(st.sampled_from(["format", "walkable", "populations", "duration", "dt", "seed", "points"]),
                        anything, max_size=6))
 def test_random_scenarios_are_refused_cleanly(doc):
