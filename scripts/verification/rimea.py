@@ -12,8 +12,6 @@ from . import geometry as G
 from .core import Check, Run, Test, band
 
 STAIRS_XFAIL = "stairs do not slow agents yet: on a flight they keep their flat horizontal speed (issue 18 tactical layer)"
-AVM_COUNTER_XFAIL = ("avm deadlocks head-on in the 2 m corridor: with 10 and 25 persons against the 50, five "
-                     "stand still from 12 s to the end (issue 17: nobody deadlocks)")
 RING_AREA = math.pi * (5.0 ** 2 - 3.0 ** 2)
 RING_DENSITIES = [0.5, 1.0, 2.0, 3.0, 4.0, 5.0]
 RING_WINDOW = (10.0, 20.0)   # warm-up, end of the measurement [s] (make_scenarios.RING)
@@ -354,6 +352,6 @@ def tests():
         Test("rimea-16", "rimea", "Counter-flow", "travel time grows with the counter-flow, no deadlock",
              "RiMEA 4.1.1 test 16", _doc("16-counterflow"),
              [Run(f"k{k}", f"rimea/16-counterflow-{k}.json") for k in G.COUNTER["against"]], measure_counter,
-             plot=P.counter, xfail={"avm": AVM_COUNTER_XFAIL}),
+             plot=P.counter),
     ]
     return t

@@ -5,6 +5,7 @@
 #include "throng/sim/partition.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <barrier>
 #include <filesystem>
@@ -55,8 +56,15 @@ class LocalExchange final : public sim::StepExchange {
   std::uint32_t rank_;
 };
 
-std::unique_ptr<sim::World> load(const std::string& scenario) {
-  auto loaded = io::loadScenarioFile((fs::path(THRONG_SOURCE_DIR) / "scenarios" / (scenario + ".json")).string());
+/// A bundled scenario; with `model` set, every population walks with that model.
+std::unique_ptr<sim::World> load(const std::string& scenario, const std::string& model = "") {
+  const std::string path = (fs::path(THRONG_SOURCE_DIR) / "scenarios" / (scenario + ".json")).string();
+  auto loaded = io::loadScenarioFile(path);
+  if (loaded.ok() && !model.empty()) {
+    auto doc = nlohmann::json::parse(loaded->text);
+    for (auto& pop : doc["populations"]) pop["model"] = model;
+    loaded = io::parseScenario(doc.dump(), path);
+  }
   EXPECT_TRUE(loaded.ok()) << (loaded.ok() ? "" : core::formatAll(loaded.errors()));
   if (!loaded.ok()) return nullptr;
   auto created = sim::World::create(loaded->desc, loaded->navmesh);
@@ -71,9 +79,9 @@ struct Trace {
   sim::PartitionStats partition;
 };
 
-Trace runAlone(const std::string& scenario, int ticks) {
+Trace runAlone(const std::string& scenario, int ticks, const std::string& model = "") {
   Trace t;
-  auto w = load(scenario);
+  auto w = load(scenario, model);
   if (!w) return t;
   core::TaskSystem tasks(1);
   for (int i = 0; i < ticks; ++i) {
@@ -85,12 +93,12 @@ Trace runAlone(const std::string& scenario, int ticks) {
 }
 
 std::vector<Trace> runRanks(const std::string& scenario, int ticks, std::uint32_t ranks, int threadsPerRank,
-                            std::uint32_t rebalanceTicks) {
+                            std::uint32_t rebalanceTicks, const std::string& model = "") {
   LocalGroup group(ranks);
   std::vector<std::unique_ptr<sim::World>> worlds;
   std::vector<std::unique_ptr<LocalExchange>> exchanges;
   for (std::uint32_t r = 0; r < ranks; ++r) {
-    worlds.push_back(load(scenario));
+    worlds.push_back(load(scenario, model));
     if (!worlds.back()) return {};
     exchanges.push_back(std::make_unique<LocalExchange>(group, r));
     worlds.back()->setPartition(exchanges.back().get(), {rebalanceTicks});
@@ -113,9 +121,9 @@ std::vector<Trace> runRanks(const std::string& scenario, int ticks, std::uint32_
 }
 
 void expectSame(const std::string& scenario, int ticks, std::uint32_t ranks, int threadsPerRank,
-                std::uint32_t rebalanceTicks = 20) {
-  const Trace alone = runAlone(scenario, ticks);
-  const std::vector<Trace> split = runRanks(scenario, ticks, ranks, threadsPerRank, rebalanceTicks);
+                std::uint32_t rebalanceTicks = 20, const std::string& model = "") {
+  const Trace alone = runAlone(scenario, ticks, model);
+  const std::vector<Trace> split = runRanks(scenario, ticks, ranks, threadsPerRank, rebalanceTicks, model);
   ASSERT_EQ(split.size(), ranks);
   std::uint64_t owned = 0;
   for (std::uint32_t r = 0; r < ranks; ++r) {
@@ -159,6 +167,12 @@ TEST(Partition, MuseumGroupsThreeRanksTwoThreadsMatchesOneProcess) {
 
 TEST(Partition, CrossingRebalancedEveryTickMatchesOneProcess) {
   expectSame("crossing", 300, 2, 2, 1);
+}
+
+TEST(Partition, CrossingWithTheAnticipationModelMatchesOneProcess) {
+  // The anticipation model reads what its neighbours wanted a tick ago (beginStep): the same on
+  // every rank, whichever rank steers them.
+  expectSame("crossing", 300, 3, 2, 1, "avm");
 }
 
 TEST(Partition, MallCommonGroundTwoRanksMatchesOneProcess) {

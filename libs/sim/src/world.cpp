@@ -144,6 +144,9 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
   std::array<const OperationalModel*, kModelCount> inUse{};
   for (std::size_t m = 0; m < kModelCount; ++m) inUse[m] = models[m].get();
   const ModelInput model{agents, walls, desc, viewers};
+  for (auto& m : models) {
+    if (m) m->beginStep(model);
+  }
   const SteerInput in{desc.steering, desc.seed, desc.populations, desc.points, agents.id, agents.population,
                       agents.posX, agents.posY, agents.posZ, agents.speed, agents.targetX, agents.targetY,
                       agents.goalState, agents.scriptWalk, agents.dynamicTarget, agents.formVelX, agents.formVelY,

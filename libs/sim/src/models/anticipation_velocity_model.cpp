@@ -27,6 +27,14 @@
 //   v_i = min(v0, max(0, s_i / T)),
 // the time-gap law of the collision-free speed model (Tordeux et al.'s (s − ℓ)/T, measured along
 // the walking direction, so a neighbour diagonally ahead blocks only as much as it really does).
+// Cross and oncoming traffic (after Yamamoto et al. 2019 and Moussaïd et al. 2011; see the constants
+// below): two people whose desired directions are more than 90° apart turn their shoulders, so one
+// blocks the other only within passageRatio · ℓ of its walking line; a walker held below
+// kSlipSpeed · v0 by someone whose desired direction is more than 60° off (or who stands at a spot)
+// takes, of the directions within ±75° of e0, the one that makes the most progress; and a walker
+// within kSqueezeIn of its own target squeezes in beside people standing there. Neighbours' desired
+// directions are those of the previous tick (beginStep), so the result does not depend on the
+// thread or rank that steers them.
 // Merging (two people converging less than 90° apart) the one nearer the shared space goes first,
 // the other yields (givesWay); without that both see the other ahead and both stop, which clogs
 // every door. The navmesh keeps centres q·r from walls (ScenarioDesc::navRadius): people turn
@@ -96,6 +104,28 @@ constexpr float kGiveWayCos = -0.5f;
 constexpr float kMakeRoomSpeed = 0.3f;
 constexpr float kMakeRoomGain = 0.05f;
 
+/// Shoulder rotation (Yamamoto, Yanagisawa, Feliciani, Nishinari 2019, "Body-rotation behavior of
+/// pedestrians for collision avoidance in passing and cross flow", Transp. Res. B 122): two people
+/// whose desired directions are more than 90° apart (cos < kRotateCos) turn their shoulders to pass,
+/// so one blocks the other only within passageRatio · (r_i + r_j) of its walking line.
+constexpr float kRotateCos = 0.0f;
+
+/// Slipping through cross traffic (the heuristic direction choice of Moussaïd, Helbing, Theraulaz
+/// 2011, "How simple rules determine pedestrian behavior and crowd disasters", PNAS 108): a walker
+/// held below kSlipSpeed · v0 by someone whose desired direction is more than 60° off its own
+/// (cos < kSlipCos) takes, of the directions within ±75° of its desired one, the one that makes the
+/// most progress (speed from the time-gap law times the cosine to the desired direction).
+constexpr float kSlipCos = 0.5f;
+/// Within this distance of its own target [m] a walker is not held up by people standing there (the
+/// group waiting at its spot, others acting): it squeezes in beside them.
+constexpr float kSqueezeIn = 0.6f;
+/// Held below this share of the desired speed, a walker facing cross traffic slips through (0.4:
+/// chosen on the harness and the verification suite, docs/validation.md; 0.5-0.6 raise the 0.5 m
+/// door's and the dense room's flows past their bands).
+constexpr float kSlipSpeed = 0.4f;
+constexpr int kSlipSteps = 5;                   ///< candidates each side of e0
+constexpr float kSlipStep = 0.2617994f;         ///< 15° between candidates [rad]
+
 /// The perpendicular of e pointing to its right.
 core::Vec2 rightOf(core::Vec2 e) { return {e.y, -e.x}; }
 
@@ -118,6 +148,11 @@ class AnticipationVelocityModel final : public OperationalModel {
   }
 
   [[nodiscard]] std::unique_ptr<ModelScratch> makeScratch() const override { return std::make_unique<AvmScratch>(); }
+
+  void beginStep(const ModelInput& in) override {
+    lastDesiredX_.assign(in.agents.prefVelX.begin(), in.agents.prefVelX.end());
+    lastDesiredY_.assign(in.agents.prefVelY.begin(), in.agents.prefVelY.end());
+  }
 
   void computeVelocities(const ModelInput& in, RowRange rows, ModelScratch& scratch, VelocityOutput out) const override {
     auto& ws = static_cast<AvmScratch&>(scratch);
@@ -218,6 +253,37 @@ class AnticipationVelocityModel final : public OperationalModel {
     return aheadOfO > ahead || (aheadOfO == ahead && a.id[row] < a.id[o]);
   }
 
+  /// Whether i's desired direction (its preferred velocity) and o's (as it was a tick ago, from
+  /// beginStep: the same for any thread or rank count) are further apart than acos(cosLimit); false
+  /// when either stands.
+  bool opposed(const AgentStore& a, std::size_t row, std::uint32_t o, float cosLimit) const {
+    const core::Vec2 pi{a.prefVelX[row], a.prefVelY[row]}, po{lastDesiredX_[o], lastDesiredY_[o]};
+    const float n = core::length(pi) * core::length(po);
+    return n > 1e-9f && core::dot(pi, po) < cosLimit * n;
+  }
+
+  /// Held up by cross traffic: of e (making `progress` along e0) and the directions within
+  /// ±kSlipSteps · kSlipStep of e0, the velocity that makes the most progress along e0.
+  core::Vec2 slip(const ModelInput& in, std::size_t row, core::Vec2 e0, float v0, const AvmParams& p,
+                  const AvmScratch& ws, core::Vec2 e, float speed) const {
+    const core::Vec2 pos{in.agents.posX[row], in.agents.posY[row]};
+    core::Vec2 best = e * speed;
+    float progress = speed * core::dot(e, e0);
+    const float limit = v0 * p.timeGap;
+    for (int k = -kSlipSteps; k <= kSlipSteps; ++k) {
+      if (k == 0) continue;
+      const float c = std::cos(static_cast<float>(k) * kSlipStep), s = std::sin(static_cast<float>(k) * kSlipStep);
+      const core::Vec2 ec{e0.x * c - e0.y * s, e0.x * s + e0.y * c};
+      const float g = std::min(gapAhead(in, row, ec, limit, p.passageRatio), room(in, ws, pos, ec, limit));
+      const float v = std::min(v0, g / p.timeGap);
+      if (v * c > progress + 1e-4f) {
+        progress = v * c;
+        best = ec * v;
+      }
+    }
+    return best;
+  }
+
   /// A standing agent (waiting, acting, arrived) is no wall: pressed by someone whose disc overlaps
   /// its own it steps away, at most kMakeRoomSpeed, so people waiting for their group at a busy
   /// spot do not block everyone else's way.
@@ -241,12 +307,15 @@ class AnticipationVelocityModel final : public OperationalModel {
   }
 
   /// The gap i can walk along e before touching the first body ahead [m] (v0·T when none).
-  static float gapAhead(const ModelInput& in, std::size_t row, core::Vec2 e, float limit, float depthRatio) {
+  float gapAhead(const ModelInput& in, std::size_t row, core::Vec2 e, float limit, float depthRatio,
+                        std::int64_t* blocker = nullptr) const {
     const AgentStore& a = in.agents;
     const core::Vec2 pos{a.posX[row], a.posY[row]};
     const std::size_t k = in.desc.steering.maxNeighbours;
     const std::uint32_t* nb = &a.neighbours[row * k];
     float gap = limit;
+    const float tx = a.targetX[row] - pos.x, ty = a.targetY[row] - pos.y;
+    const bool nearTarget = tx * tx + ty * ty < kSqueezeIn * kSqueezeIn;
     for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
       const std::uint32_t o = nb[n];
       const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
@@ -255,11 +324,17 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float l = a.radius[row] + a.radius[o];
       const float lateral = core::cross(e, d);
       if (std::abs(lateral) >= l) continue;
+      if (std::abs(lateral) >= depthRatio * l && opposed(a, row, o, kRotateCos)) continue;  // shoulders turned
       if (givesWay(a, row, o, d, ahead, e)) continue;
+      if (a.mode[o] != AgentMode::Walking && nearTarget) continue;  // squeezing in beside someone standing at one's spot
       // Bodies are ellipses, shoulders across the walking direction (semi-axis r) and chest to back
       // along it (depthRatio · r): two touch at this distance along e.
       const float y = lateral / l;
-      gap = std::min(gap, std::max(0.0f, ahead - depthRatio * l * std::sqrt(1.0f - y * y)));
+      const float g = std::max(0.0f, ahead - depthRatio * l * std::sqrt(1.0f - y * y));
+      if (g < gap) {
+        gap = g;
+        if (blocker != nullptr) *blocker = o;
+      }
     }
     return gap;
   }
@@ -284,11 +359,17 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float m = core::length(mixed);
       e = m > 1e-6f ? mixed / m : target;
     }
-    const float gap = gapAhead(in, row, e, v0 * p.timeGap, p.passageRatio);
-    return e * std::min(v0, gap / p.timeGap);
+    std::int64_t blocker = -1;
+    const float gap = gapAhead(in, row, e, v0 * p.timeGap, p.passageRatio, &blocker);
+    const float speed = std::min(v0, gap / p.timeGap);
+    const auto bo = static_cast<std::uint32_t>(blocker);
+    if (blocker >= 0 && speed < kSlipSpeed * v0 && (opposed(a, row, bo, kSlipCos) || a.mode[bo] != AgentMode::Walking))
+      return slip(in, row, e0, v0, p, ws, e, speed);
+    return e * speed;
   }
 
   std::vector<AvmParams> params_;  ///< per population
+  std::vector<float> lastDesiredX_, lastDesiredY_;  ///< every row's preferred velocity a tick ago [m/s]
   float dt_ = 0.05f;
 };
 

@@ -69,6 +69,10 @@ class OperationalModel {
   /// populations at run time).
   virtual void configure(const ScenarioDesc& desc) = 0;
   [[nodiscard]] virtual std::unique_ptr<ModelScratch> makeScratch() const = 0;
+  /// Called once per tick before steer (serially): a model that reads what its neighbours wanted
+  /// keeps it here, since steer rewrites the preferred velocities row by row in parallel. Then it
+  /// holds the previous tick's preferred velocities of every row, the same on every rank.
+  virtual void beginStep(const ModelInput& in) {}
   /// New velocities of the given rows from their preferred velocities (prefVelX/Y), positions,
   /// velocities, bodies, neighbours and the walls. Writes out.x/out.y of those rows only.
   virtual void computeVelocities(const ModelInput& in, RowRange rows, ModelScratch& scratch,
