@@ -305,12 +305,19 @@ bool ScenarioReader::readSpeed(const Json& v, const std::string& ptr, sim::Popul
   return ok;
 }
 
+bool ScenarioReader::readStairs(const Json& v, const std::string& ptr, sim::PopulationDesc& p) {
+  if (!isObject(v, ptr, "{\"up\", \"down\"}: factors of the desired speed on stairs, each > 0 and <= 1")) return false;
+  checkKeys(v, ptr, {"up", "down"}, "the stair speed factors");
+  const Range factor{0, 1, true, ""};
+  return readFloatKeys(v, ptr, {{"up", factor, &p.stairUp}, {"down", factor, &p.stairDown}});
+}
+
 bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::size_t index, sim::PopulationDesc& p) {
   if (!isObject(v, ptr, "a population object {\"id\", \"groups\", \"size\", \"spawn\", \"goals\", ...}")) return false;
   checkKeys(v, ptr,
             {"id", "groups", "size", "spawn", "start", "goals", "speed", "radius", "wander", "paths", "autoNearDistance",
              "flocking", "waitTimeout", "groupSpacing", "follow", "guide", "sociological", "interests", "interestsPerAgent", "preferences",
-             "model"},
+             "model", "stairs"},
             "a population");
   bool ok = true;
   p.id = "population" + std::to_string(index);
@@ -360,6 +367,7 @@ bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::
   if (auto* x = optional(v, "start")) ok = readFloat(*x, ptr + "/start", {0, 1e6, false, "s"}, p.start) && ok;
   if (auto* x = optional(v, "goals")) ok = readGoals(*x, ptr + "/goals", p) && ok;
   if (auto* x = optional(v, "speed")) ok = readSpeed(*x, ptr + "/speed", p) && ok;
+  if (auto* x = optional(v, "stairs")) ok = readStairs(*x, ptr + "/stairs", p) && ok;
   if (auto* x = optional(v, "radius")) ok = readFloat(*x, ptr + "/radius", {0.05, 1.0, false, "m"}, p.radius) && ok;
   if (auto* x = optional(v, "wander")) ok = readBool(*x, ptr + "/wander", p.wander) && ok;
   if (auto* x = optional(v, "model")) ok = readModel(*x, ptr + "/model", p.model) && ok;

@@ -111,6 +111,14 @@ struct PopulationDesc {
   float speedMin = 0.3f;
   float speedMax = 2.5f;
   float radius = 0.2f;            ///< body radius [m]
+  /// Walking on stairs and steep ramps (navmesh area nav::kStairArea: ground steeper than
+  /// nav::NavMeshConfig::stairSlopeDeg, 15°): the speed along the slope is this factor times the
+  /// desired speed, up and down (docs/crowd-model.md, "Tactical level: stairs"). Defaults: Weidmann
+  /// 1993's horizontal stair speeds (0.610 m/s up, 0.694 m/s down) along a 30° stair (/ cos 30°) over
+  /// his level mean 1.34 m/s; within Fruin 1971's ranges (0.49–0.67 m/s up, 0.60–1.01 m/s down).
+  /// Route choice prices stairs at the mean of 1/up and 1/down per metre. [Limit: (0, 1]]
+  float stairUp = 0.53f;
+  float stairDown = 0.60f;
   // The Musse crowd model.
   /// Paths between goals: navmesh corners (straight segments), or Bézier curves (Musse et al.
   /// §3.2.2) checked inside the walkable surface, falling back to the navmesh where none fits.
