@@ -282,11 +282,17 @@ bool ScenarioReader::readSpeed(const Json& v, const std::string& ptr, sim::Popul
     return true;
   }
   if (!v.is_object()) {
-    error(ptr, "wrong type: " + describeType(v), "a speed in m/s, or {\"mean\", \"sd\", \"min\", \"max\"} in m/s");
+    error(ptr, "wrong type: " + describeType(v), "a speed in m/s, {\"mean\", \"sd\", \"min\", \"max\"} in m/s, or {\"demographics\": \"weidmann-age\", ...}");
     return false;
   }
-  checkKeys(v, ptr, {"mean", "sd", "min", "max"}, "a speed distribution");
+  checkKeys(v, ptr, {"mean", "sd", "min", "max", "demographics", "age", "impaired", "impairedRadius"}, "a speed distribution");
+  if (optional(v, "demographics") != nullptr) return readDemographics(v, ptr, p);
   bool ok = true;
+  for (const char* key : {"age", "impaired", "impairedRadius"}) {
+    if (optional(v, key) == nullptr) continue;
+    error(ptr + "/" + key, quote(key) + " needs a demographic table", "\"demographics\": \"weidmann-age\" next to it", "", true);
+    ok = false;
+  }
   if (auto* x = require(v, ptr, "mean", speedRange.describe("a number"))) ok = readFloat(*x, ptr + "/mean", speedRange, p.speedMean) && ok;
   if (auto* x = optional(v, "sd")) ok = readFloat(*x, ptr + "/sd", {0, 5, false, "m/s"}, p.speedSd) && ok;
   if (auto* x = optional(v, "min")) ok = readFloat(*x, ptr + "/min", speedRange, p.speedMin) && ok;
@@ -302,6 +308,27 @@ bool ScenarioReader::readSpeed(const Json& v, const std::string& ptr, sim::Popul
           "min <= mean <= max");
     ok = false;
   }
+  return ok;
+}
+
+bool ScenarioReader::readDemographics(const Json& v, const std::string& ptr, sim::PopulationDesc& p) {
+  bool ok = true;
+  for (const char* key : {"mean", "sd", "min", "max"}) {
+    if (optional(v, key) == nullptr) continue;
+    error(ptr + "/" + key, quote(key) + " next to \"demographics\": the table gives the speeds",
+          "either {\"mean\", \"sd\", \"min\", \"max\"} or {\"demographics\", \"age\", \"impaired\", \"impairedRadius\"}", "",
+          true);
+    ok = false;
+  }
+  sim::DemographicsDesc& d = p.demographics;
+  std::size_t table = 0;
+  if (!readChoice(*optional(v, "demographics"), ptr + "/demographics", {"weidmann-age"}, "speed table", table)) return false;
+  d.table = sim::SpeedTable::WeidmannAge;
+  if (auto* x = optional(v, "age")) {
+    ok = readInterval(*x, ptr + "/age", {sim::kMinAge, sim::kMaxAge, false, "years"}, d.ageMin, d.ageMax) && ok;
+  }
+  ok = readFloatKeys(v, ptr, {{"impaired", {0, 1, false, ""}, &d.impaired},
+                              {"impairedRadius", {0.05, 1, false, "m"}, &d.impairedRadius}}) && ok;
   return ok;
 }
 

@@ -321,6 +321,8 @@ class ScenarioReader {
   bool readPopulation(const Json& v, const std::string& ptr, std::size_t index, sim::PopulationDesc& p);
   bool readSpawn(const Json& v, const std::string& ptr, sim::SpawnDesc& s);
   bool readSpeed(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
+  /// The demographic form of "speed": {"demographics": "weidmann-age", "age", "impaired", "impairedRadius"}.
+  bool readDemographics(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   /// "stairs": {"up", "down"}, factors of the desired speed along a stair's slope.
   bool readStairs(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   bool readGoals(const Json& v, const std::string& ptr, sim::PopulationDesc& p);

@@ -3,7 +3,8 @@
 // compact spawn events, and the spawning of the populations due this tick, in population order:
 // each is laid out (spawn_layout.cpp: random free spots around group anchors; when they run out
 // in a crowded area, the populations sharing it are laid out again on a packed lattice), then its
-// agents get their rows, interests, group and first goal. Every draw comes from a stream keyed by
+// agents get their rows, interests, group and first goal; speeds (and the bodies of the
+// movement-impaired) come from demographics.cpp. Every draw comes from a stream keyed by
 // (seed, stable group or agent id, purpose).
 #include <algorithm>
 #include <cmath>
@@ -13,6 +14,7 @@
 
 #include "throng/core/assert.hpp"
 #include "throng/core/rng.hpp"
+#include "demographics.hpp"
 #include "spawn_layout.hpp"
 #include "world_impl.hpp"
 
@@ -82,10 +84,7 @@ std::uint32_t World::Impl::registerGroups(std::uint32_t firstPopulation) {
 }
 
 float groupSpeed(const ScenarioDesc& desc, const GroupTable& groups, std::uint32_t gid) {
-  const PopulationDesc& pop = desc.populations[groups[gid].population];
-  core::Rng speedRng(desc.seed, gid, core::RngPurpose::Speed);
-  const double v = pop.speedSd > 0 ? speedRng.normal(pop.speedMean, pop.speedSd) : pop.speedMean;
-  return static_cast<float>(std::clamp(v, static_cast<double>(pop.speedMin), static_cast<double>(pop.speedMax)));
+  return drawWalker(desc.populations[groups[gid].population], desc.seed, gid).speed;
 }
 
 void World::Impl::recordSpawn(std::uint32_t population, std::uint32_t agent, std::uint32_t group, std::uint32_t member) {
@@ -226,10 +225,9 @@ void World::Impl::addSpawnedAgents(const SpawnPlan& plan) {
       agents.posY[row] = placed->first.y;
       agents.polyRef[row] = static_cast<std::uint32_t>(placed->second);  // 32-bit Detour references
       if (agents.levels) agents.posZ[row] = placed->second != 0 ? query.heightAt(placed->second, placed->first) : spawnHeight;
-      agents.radius[row] = pop.radius;
-      core::Rng speedRng(desc.seed, agentId, core::RngPurpose::Speed);
-      const double v = pop.speedSd > 0 ? speedRng.normal(pop.speedMean, pop.speedSd) : pop.speedMean;
-      agents.speed[row] = static_cast<float>(std::clamp(v, static_cast<double>(pop.speedMin), static_cast<double>(pop.speedMax)));
+      const Walker walker = drawWalker(pop, desc.seed, agentId);  // demographics.hpp
+      agents.radius[row] = walker.impaired ? pop.demographics.impairedRadius : pop.radius;
+      agents.speed[row] = walker.speed;
       agents.oriX[row] = 1.0f;
       agents.oriY[row] = 0.0f;
       agents.mode[row] = AgentMode::Waiting;

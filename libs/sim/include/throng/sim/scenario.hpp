@@ -96,6 +96,29 @@ struct SociologicalDesc {
   float domination = 0.5f;          ///< leadership weight of its members [0, 1]
 };
 
+/// Tables spawning may draw desired speeds from instead of a normal distribution (demographics.hpp).
+enum class SpeedTable : std::uint8_t {
+  None,         ///< the population's speedMean, speedSd, speedMin, speedMax
+  WeidmannAge,  ///< scenario "weidmann-age": Weidmann 1993's speed by age, as tabulated for RiMEA test 7
+};
+
+/// Ages a speed-by-age table covers [years].
+inline constexpr float kMinAge = 5.0f;
+inline constexpr float kMaxAge = 80.0f;
+
+/// Who a population is (scenario: the "demographics" form of "speed"): each agent draws an age,
+/// whether it is movement-impaired, and a speed from the table's band for it.
+struct DemographicsDesc {
+  SpeedTable table = SpeedTable::None;
+  float ageMin = kMinAge;  ///< ages drawn uniformly in [ageMin, ageMax] [years] [Limit: kMinAge..kMaxAge]
+  float ageMax = kMaxAge;
+  /// Share of movement-impaired people [Limit: 0..1]: speeds in RiMEA 7's reduced-mobility band,
+  /// 0.46–0.76 m/s (Boyce, Shields & Silcock 1999: walking frame 0.57, manual wheelchair 0.69 m/s).
+  float impaired = 0.0f;
+  /// Their body radius [m] [Limit: 0.05..1]: half a wheelchair's 0.70 m width (ISO 7193).
+  float impairedRadius = 0.35f;
+};
+
 struct PopulationDesc {
   std::string id;
   std::uint32_t groups = 1;       ///< number of social groups
@@ -111,6 +134,14 @@ struct PopulationDesc {
   float speedMin = 0.3f;
   float speedMax = 2.5f;
   float radius = 0.2f;            ///< body radius [m]
+  /// Speeds by age and impairment instead of speedMean… (table None: not used).
+  DemographicsDesc demographics;
+  /// The largest body among its members [m]: radius, or impairedRadius when some are impaired.
+  [[nodiscard]] float largestRadius() const {
+    return demographics.table != SpeedTable::None && demographics.impaired > 0.0f && demographics.impairedRadius > radius
+               ? demographics.impairedRadius
+               : radius;
+  }
   /// Walking on stairs and steep ramps (navmesh area nav::kStairArea: ground steeper than
   /// nav::NavMeshConfig::stairSlopeDeg, 15°): the speed along the slope is this factor times the
   /// desired speed, up and down (docs/crowd-model.md, "Tactical level: stairs"). Defaults: Weidmann
