@@ -255,3 +255,39 @@ TEST(ScenarioErrors, ReachableScenarioBuildsNavmesh) {
   ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
   EXPECT_NE(r->navmesh, nullptr);
 }
+
+TEST(ScenarioErrors, DemographicSpeeds) {
+  const std::string ok = edit(kBottleneck, R"("speed": {"mean": 1.34, "sd": 0.26})",
+                              R"("speed": {"demographics": "weidmann-age", "age": [20, 60], "impaired": 0.1, "impairedRadius": 0.4})");
+  auto r = load(ok);
+  ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
+  const sim::PopulationDesc& p = r.value().desc.populations[0];
+  EXPECT_EQ(p.demographics.table, sim::SpeedTable::WeidmannAge);
+  EXPECT_FLOAT_EQ(p.demographics.ageMin, 20.0f);
+  EXPECT_FLOAT_EQ(p.demographics.ageMax, 60.0f);
+  EXPECT_FLOAT_EQ(p.demographics.impaired, 0.1f);
+  EXPECT_FLOAT_EQ(p.demographics.impairedRadius, 0.4f);
+  EXPECT_FLOAT_EQ(r.value().desc.maxRadius(), 0.4f);  // the navmesh is eroded for the largest body
+  // Without the key: no table.
+  EXPECT_EQ(load(kBottleneck).value().desc.populations[0].demographics.table, sim::SpeedTable::None);
+
+  const std::string typo = edit(kBottleneck, R"("sd": 0.26})", R"("sd": 0.26, "demographics": "weidman-age"})");
+  const auto ds = errorsOf(typo);
+  const auto table = at(ds, "/populations/0/speed/demographics");
+  EXPECT_EQ(table.what, "unknown speed table \"weidman-age\"");
+  EXPECT_EQ(table.hint, "did you mean \"weidmann-age\"?");
+  expectAt(table, typo, "\"weidman-age\"");
+  EXPECT_EQ(table.format(), "t.json:14:84 /populations/0/speed/demographics: unknown speed table \"weidman-age\"; "
+                            "expected \"weidmann-age\" (did you mean \"weidmann-age\"?)");
+  EXPECT_TRUE(contains(at(ds, "/populations/0/speed/mean").what, "next to \"demographics\"")) << core::formatAll(ds);
+  EXPECT_TRUE(contains(at(ds, "/populations/0/speed/sd").what, "next to \"demographics\""));
+
+  const auto ages = errorsOf(edit(kBottleneck, R"("speed": {"mean": 1.34, "sd": 0.26})",
+                                  R"("speed": {"demographics": "weidmann-age", "age": [2, 90], "impaired": 1.5})"));
+  EXPECT_EQ(at(ages, "/populations/0/speed/age/0").what, "value 2 years is out of range");
+  EXPECT_EQ(at(ages, "/populations/0/speed/age/0").expected, "a number from 5 to 80 years");
+  EXPECT_EQ(at(ages, "/populations/0/speed/impaired").what, "value 1.5 is out of range");
+
+  const auto orphan = errorsOf(edit(kBottleneck, R"("sd": 0.26})", R"("sd": 0.26, "impaired": 0.2})"));
+  EXPECT_EQ(at(orphan, "/populations/0/speed/impaired").what, "\"impaired\" needs a demographic table");
+}

@@ -3,7 +3,8 @@
 // positions with heights ([x, y, z], a polygon spawn's "height", a spawn at a point), the refusal
 // of heights in flat worlds and of 2D-only features on multi-level ones, and the validator's
 // checks on the 3D navmesh (points and spawns at their floor's height, goals reachable across
-// floors). Diagnostics are checked word for word with their line:column.
+// floors), and each population's speed factors on stairs ("stairs"). Diagnostics are checked word
+// for word with their line:column.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -77,6 +78,34 @@ TEST(ScenarioTerrain, ObstacleTrianglesAreRead) {
   ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
   ASSERT_EQ(r.value().desc.terrain.obstacles.size(), 3u);
   EXPECT_EQ(r.value().desc.terrain.obstacles[2], 3u);
+}
+
+TEST(ScenarioTerrain, StairFactorsPerPopulation) {
+  const std::string text = change(kLevels, R"("goals": ["hall"]},)", R"("goals": ["hall"], "stairs": {"up": 0.4, "down": 0.9}},)");
+  auto r = load(text);
+  ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
+  const sim::PopulationDesc& down = r.value().desc.populations[1];
+  EXPECT_FLOAT_EQ(down.stairUp, 0.4f);
+  EXPECT_FLOAT_EQ(down.stairDown, 0.9f);
+  // Without the key: the defaults (Weidmann 1993 along a 30° stair).
+  const sim::PopulationDesc& up = r.value().desc.populations[0];
+  EXPECT_FLOAT_EQ(up.stairUp, 0.53f);
+  EXPECT_FLOAT_EQ(up.stairDown, 0.60f);
+}
+
+TEST(ScenarioTerrain, BadStairFactorsAreLocated) {
+  std::string text = change(kLevels, R"("goals": ["top", "hall"]},)", R"("goals": ["top", "hall"], "stairs": {"up": 0, "down": 1.5, "sideways": 1}},)");
+  text = change(text, R"("goals": ["hall"]},)", R"("goals": ["hall"], "stairs": 0.5},)");
+  const auto ds = errorsOf(text);
+  const auto up = at(ds, "/populations/0/stairs/up");
+  EXPECT_EQ(up.what, "value 0 is out of range");
+  EXPECT_EQ(up.expected, "a number > 0 and <= 1");
+  expectAt(up, text, "0, \"down\"");
+  EXPECT_EQ(at(ds, "/populations/0/stairs/down").what, "value 1.5 is out of range");
+  EXPECT_TRUE(contains(at(ds, "/populations/0/stairs/sideways").what, "unknown key \"sideways\""));
+  const auto shape = at(ds, "/populations/1/stairs");
+  EXPECT_EQ(shape.expected, "{\"up\", \"down\"}: factors of the desired speed on stairs, each > 0 and <= 1");
+  EXPECT_EQ(ds.size(), 4u) << core::formatAll(ds);
 }
 
 TEST(ScenarioTerrain, IndexOutOfRange) {

@@ -1,7 +1,8 @@
 // Tests for throng::nav::NavMesh::buildFromTerrain (libs/nav/src/terrain_builder.cpp,
 // terrain_tile.cpp) and the height-taking NavQuery / PathQueue overloads (nav_query.cpp,
 // path_queue.cpp): two floors above each other joined by a ramp or stairs, obstacles, diagnostics,
-// and that the overloads on a flat mesh answer exactly as the plain queries.
+// and that the overloads on a flat mesh answer exactly as the plain queries; stairs: their area and
+// gradient (NavMesh::surface) and their route cost (PathQueue cost classes).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -212,6 +213,92 @@ TEST(Terrain, StairsConnectFloors) {
   ASSERT_TRUE(steep);
   NavQuery steepQuery(steep);
   EXPECT_FALSE(steepQuery.reachable({2, 2}, 0.0f, {20, 2}, 3.0f));
+}
+
+/// A point's ground (snapped at about `height`), or flat floor with a test failure off the mesh.
+Surface groundAt(const NavMesh& mesh, Vec2 p, float height) {
+  NavQuery query(std::shared_ptr<const NavMesh>(&mesh, [](const NavMesh*) {}));
+  const auto at = query.snap(p, height);
+  if (!at) {
+    ADD_FAILURE() << "(" << p.x << ", " << p.y << ") at " << height << " m is off the mesh";
+    return {};
+  }
+  return mesh.surface(at->ref);
+}
+
+TEST(Terrain, StairsAreStairAreaWithTheirPitch) {
+  TerrainWriter w;
+  w.floor(0, 0, 10, 4, 0);
+  // 12 steps of 0.25 m on 0.35 m treads (35.5°, rise 0.714 m per metre) from x = 10 to 14.2.
+  w.stairsX(10, 0, 4, 0, 12, 0.35f, 0.25f);
+  w.floor(14.2f, 0, 24, 4, 3);
+  auto mesh = buildTerrainOrFail(w.mesh);
+  ASSERT_TRUE(mesh);
+  for (const float x : {11.5f, 12.1f, 12.8f}) {
+    const Surface stair = groundAt(*mesh, {x, 2.0f}, (x - 10.0f) / 0.35f * 0.25f);
+    EXPECT_TRUE(stair.stair) << "x = " << x;
+    EXPECT_NEAR(stair.gradient.x, 0.25f / 0.35f, 0.15f) << "x = " << x;
+    EXPECT_NEAR(stair.gradient.y, 0.0f, 0.1f) << "x = " << x;
+  }
+  for (const auto& [p, z] : {std::pair{Vec2{4, 2}, 0.0f}, std::pair{Vec2{20, 2}, 3.0f}}) {
+    const Surface floor = groundAt(*mesh, p, z);
+    EXPECT_FALSE(floor.stair) << "x = " << p.x;
+    EXPECT_NEAR(floor.gradient.x, 0.0f, 0.02f);
+  }
+}
+
+TEST(Terrain, RampsAreStairsOnlyAboveTheStairSlope) {
+  // The ramp of twoFloors: 3 m over 10 m, 16.7°.
+  auto steep = buildTerrainOrFail(twoFloors(true));
+  ASSERT_TRUE(steep);
+  const Surface ramp = groundAt(*steep, {10, 11}, 1.5f);
+  EXPECT_TRUE(ramp.stair);
+  EXPECT_NEAR(ramp.gradient.x, 0.3f, 0.05f);
+  NavMeshConfig gentle;
+  gentle.stairSlopeDeg = 20.0f;  // the same ramp is walked as level ground
+  auto flat = buildTerrainOrFail(twoFloors(true), gentle);
+  ASSERT_TRUE(flat);
+  const Surface walkway = groundAt(*flat, {10, 11}, 1.5f);
+  EXPECT_FALSE(walkway.stair);
+  EXPECT_NEAR(walkway.gradient.x, 0.3f, 0.05f);
+  gentle.stairSlopeDeg = 90.0f;
+  auto bad = NavMesh::buildFromTerrain(twoFloors(true), gentle);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_TRUE(hasPointer(bad.errors(), "/stairSlopeDeg"));
+}
+
+/// A lower floor (z 0) and an upper one (z 2) joined two ways: a staircase (y 0..2: 8 steps of
+/// 0.25 m on 0.3 m treads, 40°) and, 4 m further along y (y 4..6), a 12 m ramp (9.5°, level ground).
+TerrainMesh stairOrRamp() {
+  TerrainWriter w;
+  w.floor(0, 0, 10, 6, 0);
+  w.stairsX(10, 0, 2, 0, 8, 0.3f, 0.25f);
+  w.floor(12.4f, 0, 22, 2, 2);
+  w.rampX(10, 22, 4, 6, 0, 2);
+  w.floor(22, 0, 30, 6, 2);
+  return w.mesh;
+}
+
+TEST(Terrain, DearStairsMakeRoutesTakeTheRamp) {
+  auto mesh = buildTerrainOrFail(stairOrRamp());
+  ASSERT_TRUE(mesh);
+  PathQueue queue(mesh);
+  EXPECT_EQ(queue.costClasses(), 0u);
+  const std::vector<float> costs{1.0f, 1.5f, 8.0f};  // stairs at 1, 1.5 and 8 times a level metre
+  queue.setStairCosts(costs);
+  EXPECT_EQ(queue.costClasses(), 3u);
+  std::vector<PathTicket> tickets;
+  for (std::uint32_t c = 0; c < 4; ++c) tickets.push_back(queue.request({5, 1}, 0.0f, {26, 1}, 2.0f, c));
+  while (queue.pending() > 0) queue.update(1000);
+  const auto usesRamp = [&](PathTicket t) {
+    const PathResult r = queue.take(t);
+    EXPECT_EQ(r.status, PathStatus::Complete);
+    return std::any_of(r.corners.begin(), r.corners.end(), [](Vec2 c) { return c.y > 3.0f; });
+  };
+  EXPECT_FALSE(usesRamp(tickets[0]));  // the stairs: 8 m shorter
+  EXPECT_FALSE(usesRamp(tickets[1]));  // still: 0.5 × 3.9 m of stairs < 8 m
+  EXPECT_TRUE(usesRamp(tickets[2]));   // 7 × 3.9 m > 8 m: the ramp
+  EXPECT_FALSE(usesRamp(tickets[3]));  // no such class: the first one's costs
 }
 
 TEST(Terrain, UpperFloorWithoutRampIsUnreachable) {

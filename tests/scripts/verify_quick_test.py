@@ -62,9 +62,11 @@ def check_subset(binary, tmp):
             fail(f"{tid}: no measured checks")
         if r["status"] == "XFAIL" and not r["reason"]:
             fail(f"{tid}: XFAIL without a reason")
-    for tid in ("rimea-2", "rimea-5"):
+    for tid in ("rimea-5",):
         if rows[tid]["status"] != "XFAIL" or rows[tid]["reason"] not in res.stdout:
             fail(f"{tid}: expected an XFAIL with its reason in the table")
+    if rows["rimea-2"]["status"] != "PASS":  # stairs slow walkers (issue 18): Weidmann's 0.61 m/s up a flight
+        fail(f"rimea-2: {rows['rimea-2']['status']}, expected PASS")
     if rows["rimea-1"]["checks"][0]["value"] is None or not 26 <= rows["rimea-1"]["checks"][0]["value"] <= 34:
         fail(f"rimea-1: travel time {rows['rimea-1']['checks'][0]}")
     md = open(os.path.join(report, "verification.md")).read()

@@ -101,7 +101,7 @@ TEST(Phases, PlanGivesAPathOnlyToRowsThatAskedForOne) {
   std::vector<CornerPath> corners(2);
   std::vector<Event> events;
   const OneGroup goals(2);
-  plan(PlanInput{7, ids, xs, ys, tx, ty, {}, {}, goals.view()},
+  plan(PlanInput{7, ids, {}, xs, ys, tx, ty, {}, {}, goals.view()},
        PlanOutput{needPath, tickets, corners, queue, events});
   EXPECT_EQ(needPath[0], 0u) << "the request is queued";
   EXPECT_EQ(tickets[0], 0u) << "a short path completes within one tick's budget";
@@ -324,7 +324,7 @@ TEST(Phases, SteerWalksToTheTargetSlowsBeforeAStopAndLeavesOtherRowsAlone) {
   core::TaskSystem tasks(1);
   const auto steerRows = [&](RowRange rows) {
     const SteerInput in{desc.steering, desc.seed, desc.populations, desc.points, a.id, a.population, a.posX, a.posY, {},
-                        a.speed, a.targetX, a.targetY, a.goalState, {}, a.dynamicTarget, {}, {}, a.stuckTime,
+                        {}, a.speed, a.targetX, a.targetY, a.goalState, {}, a.dynamicTarget, {}, {}, a.stuckTime,
                         goals.view(), rows, models, model};
     steer(in, SteerOutput{a.prefVelX, a.prefVelY, a.corners, {a.newVelX, a.newVelY}, workers}, tasks);
   };

@@ -168,7 +168,7 @@ void ScenarioReader::readCrowdPopulationList(const Json& root, const sim::Scenar
       error(ptr + "/id", "duplicate population id " + quote(pop.id), "ids unique within /populations",
             "first used at /populations/" + std::to_string(s->second));
     }
-    if (out.populationsOk[i] && pop.radius * pop.model.passageRatio() > world.navRadius() + 1e-6f) {
+    if (out.populationsOk[i] && pop.largestRadius() * pop.model.passageRatio() > world.navRadius() + 1e-6f) {
       const bool hasRadius = (*x)[i].is_object() && (*x)[i].contains("radius");
       const float limit = world.navRadius() / pop.model.passageRatio();
       error(hasRadius ? ptr + "/radius" : ptr,

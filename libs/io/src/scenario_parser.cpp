@@ -282,11 +282,17 @@ bool ScenarioReader::readSpeed(const Json& v, const std::string& ptr, sim::Popul
     return true;
   }
   if (!v.is_object()) {
-    error(ptr, "wrong type: " + describeType(v), "a speed in m/s, or {\"mean\", \"sd\", \"min\", \"max\"} in m/s");
+    error(ptr, "wrong type: " + describeType(v), "a speed in m/s, {\"mean\", \"sd\", \"min\", \"max\"} in m/s, or {\"demographics\": \"weidmann-age\", ...}");
     return false;
   }
-  checkKeys(v, ptr, {"mean", "sd", "min", "max"}, "a speed distribution");
+  checkKeys(v, ptr, {"mean", "sd", "min", "max", "demographics", "age", "impaired", "impairedRadius"}, "a speed distribution");
+  if (optional(v, "demographics") != nullptr) return readDemographics(v, ptr, p);
   bool ok = true;
+  for (const char* key : {"age", "impaired", "impairedRadius"}) {
+    if (optional(v, key) == nullptr) continue;
+    error(ptr + "/" + key, quote(key) + " needs a demographic table", "\"demographics\": \"weidmann-age\" next to it", "", true);
+    ok = false;
+  }
   if (auto* x = require(v, ptr, "mean", speedRange.describe("a number"))) ok = readFloat(*x, ptr + "/mean", speedRange, p.speedMean) && ok;
   if (auto* x = optional(v, "sd")) ok = readFloat(*x, ptr + "/sd", {0, 5, false, "m/s"}, p.speedSd) && ok;
   if (auto* x = optional(v, "min")) ok = readFloat(*x, ptr + "/min", speedRange, p.speedMin) && ok;
@@ -344,12 +350,40 @@ bool ScenarioReader::readPreMovement(const Json& v, const std::string& ptr, sim:
   return ok;
 }
 
+bool ScenarioReader::readDemographics(const Json& v, const std::string& ptr, sim::PopulationDesc& p) {
+  bool ok = true;
+  for (const char* key : {"mean", "sd", "min", "max"}) {
+    if (optional(v, key) == nullptr) continue;
+    error(ptr + "/" + key, quote(key) + " next to \"demographics\": the table gives the speeds",
+          "either {\"mean\", \"sd\", \"min\", \"max\"} or {\"demographics\", \"age\", \"impaired\", \"impairedRadius\"}", "",
+          true);
+    ok = false;
+  }
+  sim::DemographicsDesc& d = p.demographics;
+  std::size_t table = 0;
+  if (!readChoice(*optional(v, "demographics"), ptr + "/demographics", {"weidmann-age"}, "speed table", table)) return false;
+  d.table = sim::SpeedTable::WeidmannAge;
+  if (auto* x = optional(v, "age")) {
+    ok = readInterval(*x, ptr + "/age", {sim::kMinAge, sim::kMaxAge, false, "years"}, d.ageMin, d.ageMax) && ok;
+  }
+  ok = readFloatKeys(v, ptr, {{"impaired", {0, 1, false, ""}, &d.impaired},
+                              {"impairedRadius", {0.05, 1, false, "m"}, &d.impairedRadius}}) && ok;
+  return ok;
+}
+
+bool ScenarioReader::readStairs(const Json& v, const std::string& ptr, sim::PopulationDesc& p) {
+  if (!isObject(v, ptr, "{\"up\", \"down\"}: factors of the desired speed on stairs, each > 0 and <= 1")) return false;
+  checkKeys(v, ptr, {"up", "down"}, "the stair speed factors");
+  const Range factor{0, 1, true, ""};
+  return readFloatKeys(v, ptr, {{"up", factor, &p.stairUp}, {"down", factor, &p.stairDown}});
+}
+
 bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::size_t index, sim::PopulationDesc& p) {
   if (!isObject(v, ptr, "a population object {\"id\", \"groups\", \"size\", \"spawn\", \"goals\", ...}")) return false;
   checkKeys(v, ptr,
             {"id", "groups", "size", "spawn", "start", "goals", "speed", "radius", "wander", "paths", "autoNearDistance",
              "flocking", "waitTimeout", "groupSpacing", "follow", "guide", "sociological", "interests", "interestsPerAgent", "preferences",
-             "model", "preMovement"},
+             "model", "preMovement", "stairs"},
             "a population");
   bool ok = true;
   p.id = "population" + std::to_string(index);
@@ -399,6 +433,7 @@ bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::
   if (auto* x = optional(v, "start")) ok = readFloat(*x, ptr + "/start", {0, 1e6, false, "s"}, p.start) && ok;
   if (auto* x = optional(v, "goals")) ok = readGoals(*x, ptr + "/goals", p) && ok;
   if (auto* x = optional(v, "speed")) ok = readSpeed(*x, ptr + "/speed", p) && ok;
+  if (auto* x = optional(v, "stairs")) ok = readStairs(*x, ptr + "/stairs", p) && ok;
   if (auto* x = optional(v, "radius")) ok = readFloat(*x, ptr + "/radius", {0.05, 1.0, false, "m"}, p.radius) && ok;
   if (auto* x = optional(v, "preMovement")) ok = readPreMovement(*x, ptr + "/preMovement", p.preMovement) && ok;
   if (auto* x = optional(v, "wander")) ok = readBool(*x, ptr + "/wander", p.wander) && ok;

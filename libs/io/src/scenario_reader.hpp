@@ -323,6 +323,10 @@ class ScenarioReader {
   bool readSpeed(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   /// "preMovement": {"distribution": "uniform" | "normal" | "lognormal", and that distribution's keys}.
   bool readPreMovement(const Json& v, const std::string& ptr, sim::PreMovementDesc& d);
+  /// The demographic form of "speed": {"demographics": "weidmann-age", "age", "impaired", "impairedRadius"}.
+  bool readDemographics(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
+  /// "stairs": {"up", "down"}, factors of the desired speed along a stair's slope.
+  bool readStairs(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   bool readGoals(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   bool readCrowdKeys(const Json& v, const std::string& ptr, std::size_t index, sim::PopulationDesc& p);
   /// "model" (scenario_model_parser.cpp): a model name, or {"name", parameters of that model}.

@@ -2,7 +2,8 @@
 // polygons minus obstacles, eroded by the agent radius) on the plane y = 0, and assembles built
 // tiles (of this build or of NavMesh::buildFromTerrain, terrain_builder.cpp) into the dtNavMesh.
 // Reads the polygons and config once; the result is immutable. Tiles build in parallel (oneTBB) and are added to the
-// dtNavMesh in tile order, so polygon references are identical for any thread count.
+// dtNavMesh in tile order, so polygon references are identical for any thread count. Also answers
+// what the ground of one polygon is like (NavMesh::surface: stair or floor, mean gradient).
 #include "throng/nav/navmesh.hpp"
 
 #include <DetourAlloc.h>
@@ -299,6 +300,39 @@ std::vector<core::Segment> NavMesh::boundary(std::vector<float>* heights) const 
       }
     }
   }
+  return out;
+}
+
+Surface NavMesh::surface(PolyRef ref) const {
+  const dtMeshTile* tile = nullptr;
+  const dtPoly* poly = nullptr;
+  if (ref == 0 || dtStatusFailed(mesh_->getTileAndPolyByRef(static_cast<dtPolyRef>(ref), &tile, &poly))) return {};
+  Surface out;
+  out.stair = poly->getArea() == kStairArea;
+  if (!layered_) return out;
+  // The sum of the detail triangles' normals, each as long as twice its triangle's area and turned
+  // up, is the surface's vector area: its horizontal part over its vertical part is minus the mean
+  // gradient over the polygon's ground area (Recast order: y up).
+  const auto ip = static_cast<std::size_t>(poly - tile->polys);
+  const dtPolyDetail& pd = tile->detailMeshes[ip];
+  const auto vertex = [&](unsigned char k) {
+    return k < poly->vertCount ? &tile->verts[poly->verts[k] * 3] : &tile->detailVerts[(pd.vertBase + k - poly->vertCount) * 3];
+  };
+  double nx = 0.0, ny = 0.0, nz = 0.0;
+  for (unsigned t = 0; t < pd.triCount; ++t) {
+    const unsigned char* tri = &tile->detailTris[(pd.triBase + t) * 4];
+    const float* a = vertex(tri[0]);
+    const float* b = vertex(tri[1]);
+    const float* c = vertex(tri[2]);
+    const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    if (n[1] < 0.0) n[0] = -n[0], n[1] = -n[1], n[2] = -n[2];
+    nx += n[0];
+    ny += n[1];
+    nz += n[2];
+  }
+  if (ny > 1e-12) out.gradient = Vec2{static_cast<float>(-nx / ny), static_cast<float>(-nz / ny)};
   return out;
 }
 

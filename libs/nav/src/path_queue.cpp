@@ -3,6 +3,8 @@
 // spending at most the iteration budget across as many requests as it covers, then string-pulls the
 // corridor exactly as NavQuery::findPath does, so a queued result equals a direct query (also with
 // heights: a request's ends are searched as NavQuery::findPath's height-taking overload does).
+// Route costs: one Detour query filter per cost class (setStairCosts), each pricing the stair area;
+// a layered request names its class.
 //
 // Result lifetime: a finished result stays until take() or until kResultLifetimeUpdates (64)
 // further update() calls have passed without it being taken; then its ticket becomes Unknown.
@@ -11,9 +13,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 
 #include "navmesh_data.hpp"
+#include "throng/core/assert.hpp"
 
 namespace throng::nav {
 namespace {
@@ -39,9 +43,16 @@ struct Finished {
 struct PathQueue::Impl {
   std::shared_ptr<const NavMesh> mesh;
   dtNavMeshQuery* query = nullptr;
-  dtQueryFilter filter;
+  std::deque<dtQueryFilter> filters = std::deque<dtQueryFilter>(1);  ///< per cost class (a deque: growing keeps `filter` valid)
+  std::size_t costClasses = 0;  ///< classes set by setStairCosts
+  const dtQueryFilter* filter = &filters[0];  ///< the current request's
   std::deque<Request> waiting;
-  std::deque<std::array<float, 2>> waitingHeights;  ///< layered meshes only: from and to height, as `waiting`
+  /// Layered meshes only, as `waiting`: from and to height, and the cost class.
+  struct Layered {
+    float fromHeight = 0.0f, toHeight = 0.0f;
+    std::uint32_t costClass = 0;
+  };
+  std::deque<Layered> waitingHeights;
   // The search in progress (sliced), if any.
   bool active = false;
   Request current;
@@ -65,23 +76,26 @@ struct PathQueue::Impl {
     current = waiting.front();
     waiting.pop_front();
     fromSearch = toSearch = detail::EndSearch{};
+    filter = &filters[0];
     if (!waitingHeights.empty()) {
-      fromSearch = detail::endSearch(*mesh, waitingHeights.front()[0]);
-      toSearch = detail::endSearch(*mesh, waitingHeights.front()[1]);
+      const Layered& l = waitingHeights.front();
+      fromSearch = detail::endSearch(*mesh, l.fromHeight);
+      toSearch = detail::endSearch(*mesh, l.toHeight);
+      filter = &filters[l.costClass < filters.size() ? l.costClass : 0];
       waitingHeights.pop_front();
     }
     const dtPolyRef startRef =
-        detail::snapEnd(*query, filter, current.from, fromSearch, start);
+        detail::snapEnd(*query, *filter, current.from, fromSearch, start);
     if (startRef == 0) {
       finish(current.ticket, PathResult{PathStatus::Failed, {}});
       return false;
     }
-    endRef = detail::snapEnd(*query, filter, current.to, toSearch, end);
+    endRef = detail::snapEnd(*query, *filter, current.to, toSearch, end);
     if (endRef == 0) {
       finish(current.ticket, PathResult{PathStatus::Partial, {detail::fromRecast(start)}});
       return false;
     }
-    if (dtStatusFailed(query->initSlicedFindPath(startRef, endRef, start, end, &filter, 0))) {
+    if (dtStatusFailed(query->initSlicedFindPath(startRef, endRef, start, end, filter, 0))) {
       finish(current.ticket, PathResult{PathStatus::Failed, {}});
       return false;
     }
@@ -115,16 +129,28 @@ PathQueue::~PathQueue() = default;
 PathTicket PathQueue::request(Vec2 from, Vec2 to) {
   const PathTicket ticket = impl_->nextTicket++;
   impl_->waiting.push_back(Request{ticket, from, to});
-  if (impl_->mesh->layered()) impl_->waitingHeights.push_back({0.0f, 0.0f});
+  if (impl_->mesh->layered()) impl_->waitingHeights.push_back({});
   return ticket;
 }
 
-PathTicket PathQueue::request(Vec2 from, float fromHeight, Vec2 to, float toHeight) {
+PathTicket PathQueue::request(Vec2 from, float fromHeight, Vec2 to, float toHeight, std::uint32_t costClass) {
   const PathTicket ticket = impl_->nextTicket++;
   impl_->waiting.push_back(Request{ticket, from, to});
-  if (impl_->mesh->layered()) impl_->waitingHeights.push_back({fromHeight, toHeight});
+  if (impl_->mesh->layered()) impl_->waitingHeights.push_back({fromHeight, toHeight, costClass});
   return ticket;
 }
+
+void PathQueue::setStairCosts(std::span<const float> stairCost) {
+  Impl& q = *impl_;
+  if (q.filters.size() < stairCost.size()) q.filters.resize(stairCost.size());
+  for (std::size_t i = 0; i < stairCost.size(); ++i) {
+    THRONG_ASSERT(std::isfinite(stairCost[i]) && stairCost[i] >= 1.0f);
+    q.filters[i].setAreaCost(kStairArea, stairCost[i]);
+  }
+  q.costClasses = std::max(q.costClasses, stairCost.size());
+}
+
+std::size_t PathQueue::costClasses() const { return impl_->costClasses; }
 
 int PathQueue::update(int iterationBudget) {
   Impl& q = *impl_;

@@ -55,6 +55,9 @@ core::Diagnostics validateInput(const NavMeshConfig& cfg, const TerrainMesh& ter
   if (!std::isfinite(cfg.maxSlopeDeg) || cfg.maxSlopeDeg <= 0.0f || cfg.maxSlopeDeg >= 90.0f)
     errors.push_back(diag("/maxSlopeDeg", "maximum slope is " + std::to_string(cfg.maxSlopeDeg) + " deg",
                           "a slope in (0, 90) degrees"));
+  if (!std::isfinite(cfg.stairSlopeDeg) || cfg.stairSlopeDeg <= 0.0f || cfg.stairSlopeDeg >= 90.0f)
+    errors.push_back(diag("/stairSlopeDeg", "stair slope is " + std::to_string(cfg.stairSlopeDeg) + " deg",
+                          "a slope in (0, 90) degrees"));
   if (!std::isfinite(cfg.maxClimb) || cfg.maxClimb < 0.0f || cfg.maxClimb > 5.0f)
     errors.push_back(diag("/maxClimb", "maximum climb is " + metres(cfg.maxClimb), "a climb in [0, 5] m"));
   if (!std::isfinite(cfg.clearance) || cfg.clearance < kCellHeight || cfg.clearance > 25.0f)
@@ -145,6 +148,7 @@ core::Result<detail::TerrainSettings> terrainSettings(NavMeshConfig& cfg, const 
   settings.minY = minY;
   settings.maxY = maxY;
   settings.maxSlopeDeg = cfg.maxSlopeDeg;
+  settings.stairSlopeDeg = cfg.stairSlopeDeg;
   settings.walkableHeightCells = static_cast<int>(std::ceil(cfg.clearance / kCellHeight - 1e-4f));
   settings.walkableClimbCells = static_cast<int>(std::floor(cfg.maxClimb / kCellHeight + 1e-4f));
   return settings;

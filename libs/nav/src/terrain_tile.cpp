@@ -5,10 +5,14 @@
 #include <DetourNavMeshBuilder.h>
 #include <Recast.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <numbers>
+#include <utility>
 
 #include "recast_context.hpp"
+#include "throng/nav/navmesh.hpp"
 
 namespace throng::nav::detail {
 namespace {
@@ -17,6 +21,54 @@ namespace {
 // Debian's 2021 Recast snapshot; see tile_builder.cpp.)
 constexpr float kDetailSampleCells = 6.0f;
 constexpr float kDetailMaxErrorCells = 1.0f;
+
+// Compact-heightfield area of stair spans (walkable, not RC_WALKABLE_AREA); polygons of it become
+// kStairArea in the Detour tile.
+constexpr unsigned char kStairSpanArea = 1;
+
+/// The span reached from span `i` at cell (x, y) after up to `steps` connected moves in direction
+/// `dir` (rcGetDirOffsetX/Y), and how many moves it made (fewer at the edge of the walkable area).
+std::pair<int, int> walkSpans(const rcCompactHeightfield& chf, int x, int y, int i, int dir, int steps) {
+  int moved = 0;
+  for (; moved < steps; ++moved) {
+    const rcCompactSpan& s = chf.spans[i];
+    const int con = rcGetCon(s, dir);
+    if (con == RC_NOT_CONNECTED) break;
+    x += rcGetDirOffsetX(dir);
+    y += rcGetDirOffsetY(dir);
+    i = static_cast<int>(chf.cells[x + y * chf.width].index) + con;
+  }
+  return {i, moved};
+}
+
+/// Marks as stair area every walkable span whose ground, measured over kStairBaseline centred on
+/// it (central differences along x and along y, over connected spans: the same floor), rises
+/// steeper than `slopeDeg`; then a median filter removes single-span specks, so stairs and floors
+/// become whole regions (Recast never merges regions of different areas) and so whole polygons.
+bool markStairs(rcContext& ctx, rcCompactHeightfield& chf, float slopeDeg) {
+  const int half = std::max(1, static_cast<int>(std::lround(0.5f * kStairBaseline / chf.cs)));
+  const float limit = std::tan(slopeDeg * std::numbers::pi_v<float> / 180.0f);
+  const float limit2 = limit * limit;
+  for (int y = 0; y < chf.height; ++y) {
+    for (int x = 0; x < chf.width; ++x) {
+      const rcCompactCell& c = chf.cells[x + y * chf.width];
+      for (int i = static_cast<int>(c.index), end = static_cast<int>(c.index + c.count); i < end; ++i) {
+        if (chf.areas[i] == RC_NULL_AREA) continue;
+        float g2 = 0.0f;
+        for (int axis = 0; axis < 2; ++axis) {  // directions 2/0: +x/−x; 1/3: +y/−y (Recast z)
+          const auto [ahead, na] = walkSpans(chf, x, y, i, axis == 0 ? 2 : 1, half);
+          const auto [behind, nb] = walkSpans(chf, x, y, i, axis == 0 ? 0 : 3, half);
+          if (na + nb == 0) continue;
+          const float rise = static_cast<float>(static_cast<int>(chf.spans[ahead].y) - static_cast<int>(chf.spans[behind].y)) * chf.ch;
+          const float g = rise / (static_cast<float>(na + nb) * chf.cs);
+          g2 += g * g;
+        }
+        if (g2 > limit2) chf.areas[i] = kStairSpanArea;
+      }
+    }
+  }
+  return rcMedianFilterWalkableArea(&ctx, chf);
+}
 
 // Gathers the listed triangles (3 indices each) of `all` into one index array.
 std::vector<int> gather(const std::vector<int>& all, std::span<const int> which) {
@@ -77,13 +129,15 @@ class TerrainTileBuilder {
     return nullptr;
   }
 
-  /// The compact heightfield, eroded by the agent radius and partitioned into regions.
+  /// The compact heightfield, its stairs marked, eroded by the agent radius and partitioned into
+  /// regions.
   const char* buildRegions() {
     const float cs = s_.cellSize;
     chf_.reset(rcAllocCompactHeightfield());
     if (!chf_ || !rcBuildCompactHeightfield(&ctx_, settings_.walkableHeightCells, settings_.walkableClimbCells, *hf_, *chf_))
       return "could not build the compact heightfield";
     hf_.reset();
+    if (!markStairs(ctx_, *chf_, settings_.stairSlopeDeg)) return "could not mark the stairs";
     if (s_.radiusCells > 0 && !rcErodeWalkableArea(&ctx_, s_.radiusCells, *chf_)) return "could not erode the walkable area";
     // Monotone partitioning as in the flat build (see tile_builder.cpp); it handles spans above
     // each other through the compact heightfield's neighbour links.
@@ -129,7 +183,7 @@ class TerrainTileBuilder {
 
     for (int i = 0; i < pmesh_->npolys; ++i) {
       pmesh_->flags[i] = 1;  // walkable: passes the default query filter
-      pmesh_->areas[i] = 0;
+      pmesh_->areas[i] = pmesh_->areas[i] == kStairSpanArea ? kStairArea : kFloorArea;
     }
     dtNavMeshCreateParams params{};
     params.verts = pmesh_->verts;

@@ -1,6 +1,7 @@
 // throng::nav (private) — builds one Detour tile of a 3D terrain (NavMesh::buildFromTerrain) with
 // the full Recast voxel pipeline: rasterise the walkable triangles (slope-limited) and the obstacle
-// triangles (solid, never walkable), filter ledges and low headroom, erode by the agent radius,
+// triangles (solid, never walkable), filter ledges and low headroom, mark stairs (ground steeper than
+// stairSlopeDeg: area kStairArea), erode by the agent radius,
 // partition into regions, trace contours, build the polygon and detail meshes, pack them with
 // dtCreateNavMeshData. Reads the prepared triangles; writes the tile's Detour data. Tiles are
 // independent, so they build in parallel.
@@ -24,6 +25,7 @@ struct TerrainSettings {
   float cellHeight = 0.1f;     ///< [m]
   float minY = 0, maxY = 0;    ///< heightfield range (Recast y) [m]
   float maxSlopeDeg = 45.0f;   ///< steepest walkable triangle [deg]
+  float stairSlopeDeg = 15.0f; ///< ground steeper than this (over kStairBaseline) is stair area [deg]
   int walkableHeightCells = 0; ///< headroom [cells of cellHeight]
   int walkableClimbCells = 0;  ///< step height [cells of cellHeight]
 };

@@ -130,7 +130,7 @@ class CrowdCheck {
         error(ptr + "/follow", "followed population or group out of range", "a group of a population of the world or of the crowd");
       }
     }
-    if (pop.radius * pop.model.passageRatio() > insertion_.navRadius + 1e-6f) {
+    if (pop.largestRadius() * pop.model.passageRatio() > insertion_.navRadius + 1e-6f) {
       error(ptr + "/radius",
             "body radius " + std::to_string(pop.radius) + " m (× passage ratio " + std::to_string(pop.model.passageRatio()) +
                 ") exceeds the world's navmesh erosion radius " + std::to_string(insertion_.navRadius) + " m",

@@ -197,6 +197,7 @@ void updateLeaders(const LeaderInput& in, const LeaderOutput& out);
 struct PlanInput {
   std::uint64_t tick;
   std::span<const std::uint32_t> id;                  ///< stable ids (events)
+  std::span<const std::uint16_t> population;          ///< the route cost class (stairs) of a layered request
   std::span<const float> posX, posY, targetX, targetY;
   std::span<const float> posZ, targetZ;               ///< floor heights; empty on a flat world
   GoalView goals;                                     ///< the goal a PathPartial event names
@@ -223,12 +224,13 @@ void plan(const PlanInput& in, const PlanOutput& out);
 struct SteerInput {
   const SteeringDesc& steering;  ///< cornerReach, levelLookAhead, arrivalTime, formationSpeedUp, stuckPatience, stuckAttempt
   std::uint64_t seed;            ///< deadlock breaking's draws
-  std::span<const PopulationDesc> populations;  ///< wander (stopping at the last goal), model.kind
+  std::span<const PopulationDesc> populations;  ///< wander (stopping at the last goal), model.kind, stairUp/Down
   std::span<const PointDesc> points;            ///< an action point's stop
   std::span<const std::uint32_t> id;
   std::span<const std::uint16_t> population;
   std::span<const float> posX, posY;
   std::span<const float> posZ;                  ///< floor heights; empty on a flat world
+  std::span<const std::uint32_t> polyRef;       ///< navmesh polygon under the agent (stairs; multi-level worlds)
   std::span<const float> speed;                 ///< desired walking speed [m/s]
   std::span<const float> targetX, targetY;
   std::span<const GoalState> goalState;

@@ -1,8 +1,9 @@
 // plan — budgeted path planning (serial, in row = stable id order, so deterministic): agents that
 // asked for a path submit a request to the nav::PathQueue; the queue spends at most
 // kPathIterationsPerTick node expansions; finished paths are handed to their agents. Until its path
-// arrives an agent walks straight at its target (as DetourCrowd does). Reads PlanInput (positions,
-// targets, floor heights, ids, goals for events); writes PlanOutput (needPath, tickets, corners,
+// arrives an agent walks straight at its target (as DetourCrowd does); on a multi-level world it
+// searches with its population's stair cost (the queue's cost class). Reads PlanInput (positions,
+// targets, floor heights, ids, populations, goals for events); writes PlanOutput (needPath, tickets, corners,
 // the queue, PathPartial events) — phases.hpp.
 #include <algorithm>
 
@@ -18,7 +19,8 @@ void plan(const PlanInput& in, const PlanOutput& out) {
     if (!out.needPath[row]) continue;
     out.needPath[row] = 0;
     const core::Vec2 from{in.posX[row], in.posY[row]}, to{in.targetX[row], in.targetY[row]};
-    out.ticket[row] = levels ? queue.request(from, in.posZ[row], to, in.targetZ[row]) : queue.request(from, to);
+    out.ticket[row] = levels ? queue.request(from, in.posZ[row], to, in.targetZ[row], in.population[row])
+                             : queue.request(from, to);
   }
   queue.update(kPathIterationsPerTick);
   for (std::size_t row = 0; row < n; ++row) {

@@ -8,13 +8,13 @@ namespace throng::sim {
 
 float ScenarioDesc::maxRadius() const {
   float r = 0.0f;
-  for (const PopulationDesc& p : populations) r = std::max(r, p.radius);
+  for (const PopulationDesc& p : populations) r = std::max(r, p.largestRadius());
   return r;
 }
 
 float ScenarioDesc::navRadius() const {
   float r = 0.0f;
-  for (const PopulationDesc& p : populations) r = std::max(r, p.radius * p.model.passageRatio());
+  for (const PopulationDesc& p : populations) r = std::max(r, p.largestRadius() * p.model.passageRatio());
   return r;
 }
 

@@ -2,13 +2,15 @@
 // the populations due this tick enter the world, in population order. Each is laid out first
 // (spawn_layout.hpp: random free spots around group anchors; when they run out in a crowded area,
 // the populations sharing it are laid out again on a packed lattice), then its agents get their
-// stable ids, rows, speeds, interests, group, first goal and pre-movement wait. Every draw comes
-// from a stream keyed by (seed, stable group or agent id, purpose).
+// stable ids, rows, speeds, interests, group, first goal and pre-movement wait; speeds (and the
+// bodies of the movement-impaired) come from demographics.cpp. Every draw comes from a stream keyed
+// by (seed, stable group or agent id, purpose).
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "demographics.hpp"
 #include "group_pass.hpp"
 #include "spawn_layout.hpp"
 #include "spawner.hpp"
@@ -17,14 +19,6 @@
 
 namespace throng::sim {
 namespace {
-
-/// The desired speed of agent (or group) `id` of `pop`: normal (mean, sd), clamped to the
-/// population's bounds [m/s].
-float drawSpeed(const ScenarioDesc& desc, const PopulationDesc& pop, std::uint32_t id) {
-  core::Rng speedRng(desc.seed, id, core::RngPurpose::Speed);
-  const double v = pop.speedSd > 0 ? speedRng.normal(pop.speedMean, pop.speedSd) : pop.speedMean;
-  return static_cast<float>(std::clamp(v, static_cast<double>(pop.speedMin), static_cast<double>(pop.speedMax)));
-}
 
 /// The discs of every agent present (new bodies keep clear of them).
 SpawnOccupancy occupancyOf(const AgentStore& agents, float cell, std::size_t expected) {
@@ -150,8 +144,9 @@ class PopulationEntry {
     agents.posY[row] = placed.first.y;
     agents.polyRef[row] = static_cast<std::uint32_t>(placed.second);  // 32-bit Detour references
     if (agents.levels) agents.posZ[row] = placed.second != 0 ? in_.query.heightAt(placed.second, placed.first) : spawnHeight();
-    agents.radius[row] = pop_.radius;
-    agents.speed[row] = drawSpeed(in_.desc, pop_, agentId);
+    const Walker walker = drawWalker(pop_, in_.desc.seed, agentId);  // demographics.hpp
+    agents.radius[row] = walker.impaired ? pop_.demographics.impairedRadius : pop_.radius;
+    agents.speed[row] = walker.speed;
     agents.oriX[row] = 1.0f;
     agents.oriY[row] = 0.0f;
     agents.mode[row] = AgentMode::Waiting;
@@ -238,7 +233,7 @@ double preMovementTime(const PreMovementDesc& d, std::uint64_t seed, std::uint32
 }
 
 float groupSpeed(const ScenarioDesc& desc, const GroupTable& groups, std::uint32_t gid) {
-  return drawSpeed(desc, desc.populations[groups[gid].population], gid);
+  return drawWalker(desc.populations[groups[gid].population], desc.seed, gid).speed;
 }
 
 void spawnDue(const SpawnInput& in, const SpawnOutput& out, std::span<const std::size_t> due) {

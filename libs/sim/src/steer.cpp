@@ -7,7 +7,9 @@
 //
 // The preferred velocity: walk to the next corner of the path at the desired speed (slowing down
 // over steering.arrivalTime before a stop), plus the group's formation correction, turned aside
-// while the agent is stuck (deadlock breaking). How fast an agent takes it up is the model's
+// while the agent is stuck (deadlock breaking). On stairs (multi-level worlds: the navmesh's stair
+// area, nav::kStairArea) the desired speed is the population's stair factor, up or down, of the
+// flat one along the slope: horizontally, times cos of the slope walked. How fast an agent takes it up is the model's
 // business: ORCA relaxes towards it over steering.accelerationTime, the first-order models turn
 // over their reaction time.
 #include <algorithm>
@@ -39,6 +41,9 @@ struct PreferredVelocity {
   WorkerScratch& ws;
 
   void compute(std::size_t row) const;
+  /// The factor of the desired horizontal speed for walking in direction `dir` (unit) from where
+  /// the agent stands: 1 on level ground, the stair factor × cos(slope walked) on stairs.
+  [[nodiscard]] float groundFactor(std::size_t row, core::Vec2 dir) const;
   /// Moves on along the path's corners once near the current one and the next is in sight.
   void advanceCorner(std::size_t row, core::Vec2 pos) const;
 };
@@ -73,6 +78,16 @@ void PreferredVelocity::advanceCorner(std::size_t row, core::Vec2 pos) const {
   }
 }
 
+float PreferredVelocity::groundFactor(std::size_t row, core::Vec2 dir) const {
+  if (in.posZ.empty()) return 1.0f;  // a flat world has no stairs
+  const nav::Surface ground = ws.query->mesh().surface(in.polyRef[row]);
+  if (!ground.stair) return 1.0f;
+  // RiMEA and the stair data measure speed along the slope; agents move in the plane.
+  const float rise = core::dot(ground.gradient, dir);  // per horizontal metre, > 0 uphill
+  const PopulationDesc& pop = in.populations[in.population[row]];
+  return (rise > 0.0f ? pop.stairUp : pop.stairDown) / std::sqrt(1.0f + rise * rise);
+}
+
 void PreferredVelocity::compute(std::size_t row) const {
   const SteeringDesc& s = in.steering;
   const core::Vec2 pos{in.posX[row], in.posY[row]};
@@ -88,7 +103,8 @@ void PreferredVelocity::compute(std::size_t row) const {
     const core::Vec2 toAim = aim - pos;
     const float dist = core::length(toAim);
     if (dist > 1e-4f) {
-      float v = maxSpeed;
+      const float walk = maxSpeed * groundFactor(row, toAim / dist);
+      float v = walk;
       const bool lastLeg = ci + 1 >= corners.size();
       const bool stops = lastLeg && (stopsAtGoal(in.goals, in.points, in.populations[in.population[row]], row) ||
                                      in.dynamicTarget[row]);
@@ -96,7 +112,7 @@ void PreferredVelocity::compute(std::size_t row) const {
       desired = toAim * (v / dist);
       // Flocking: the group pass's correction toward the member's slot beside the others.
       if (!in.formVelX.empty()) desired += core::Vec2{in.formVelX[row], in.formVelY[row]};
-      const float cap = maxSpeed * s.formationSpeedUp;
+      const float cap = walk * s.formationSpeedUp;
       if (core::lengthSq(desired) > cap * cap) desired = core::normalize(desired) * cap;
       if (in.stuckTime[row] > s.stuckPatience) desired = unstick(desired, s, in.seed, in.id[row], in.stuckTime[row]);
     }

@@ -23,6 +23,14 @@ std::optional<std::uint32_t> groupOf(const GroupTable& groups, GroupId handle) {
   return handle.index - 1;
 }
 
+/// Per population, the route cost of a metre of stairs (nav::kStairArea) against one of level
+/// ground: the mean time a metre of stairs takes, up and down, over a level one's (its speed factors).
+std::vector<float> stairCosts(std::span<const PopulationDesc> populations) {
+  std::vector<float> costs;
+  for (const PopulationDesc& p : populations) costs.push_back(0.5f * (1.0f / p.stairUp + 1.0f / p.stairDown));
+  return costs;
+}
+
 }  // namespace
 
 World::World() : impl_(std::make_unique<Impl>()) {}
@@ -130,7 +138,11 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
 }
 
 void World::Impl::plan() {
-  sim::plan(PlanInput{tick, agents.id, agents.posX, agents.posY, agents.targetX, agents.targetY, agents.posZ,
+  // Route costs per population (stairs: multi-level worlds), populations inserted at run time too.
+  if (navmesh->layered() && pathQueue->costClasses() < desc.populations.size()) {
+    pathQueue->setStairCosts(stairCosts(desc.populations));
+  }
+  sim::plan(PlanInput{tick, agents.id, agents.population, agents.posX, agents.posY, agents.targetX, agents.targetY, agents.posZ,
                       agents.targetZ, goalView()},
             PlanOutput{agents.needPath, agents.ticket, agents.corners, *pathQueue, pendingEvents});
 }
@@ -148,7 +160,7 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
     if (m) m->beginStep(model);
   }
   const SteerInput in{desc.steering, desc.seed, desc.populations, desc.points, agents.id, agents.population,
-                      agents.posX, agents.posY, agents.posZ, agents.speed, agents.targetX, agents.targetY,
+                      agents.posX, agents.posY, agents.posZ, agents.polyRef, agents.speed, agents.targetX, agents.targetY,
                       agents.goalState, agents.scriptWalk, agents.dynamicTarget, agents.formVelX, agents.formVelY,
                       agents.stuckTime, goalView(), RowRange{list, 0, n}, inUse, model};
   const SteerOutput out{agents.prefVelX, agents.prefVelY, agents.corners, {agents.newVelX, agents.newVelY}, scratch};

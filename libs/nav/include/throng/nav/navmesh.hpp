@@ -31,6 +31,11 @@ struct NavMeshConfig {
   float maxSlopeDeg = 45.0f;  ///< steepest walkable triangle [deg] (ramps; stairs are climbed step by step)
   float maxClimb = 0.35f;     ///< highest step walked up or down [m]
   float clearance = 2.0f;     ///< headroom needed above a walkable surface [m]
+  /// Ground steeper than this — its mean slope over kStairBaseline — is a stair: its polygons get
+  /// the area kStairArea (slower walking, dearer routes). One rule for stairs and steep ramps: 15°
+  /// lies above the steepest ramps building codes allow (1:12 ≈ 4.8°, 1:8 ≈ 7.1°) and below the
+  /// shallowest stairs (riser 0.10 m on a 0.35 m tread ≈ 16°; common stairs 27°–37°) [deg] [Limit: (0, 90)]
+  float stairSlopeDeg = 15.0f;
   float cellSize = 0.0f;     ///< voxel size [m]; 0 = max(agentRadius/4, sqrt(bounding area / 4e7)) clamped to [0.03, 0.3]
   float tileSize = 24.0f;    ///< tile edge [m] [Limit: > 4 * cellSize]. Smaller tiles mean smaller polygons and
                              ///< closer-to-shortest A* paths (300 m pillar field: mean path/straight ratio
@@ -38,6 +43,22 @@ struct NavMeshConfig {
   /// When set, a build stops between tiles soon after `*cancel` becomes non-zero (a signal handler
   /// sets it: Ctrl-C during `throng check`) and fails with an "interrupted" diagnostic. Not owned.
   const std::atomic<int>* cancel = nullptr;
+};
+
+/// Detour polygon areas (dtPoly::getArea) of a terrain mesh: level ground and gentle ramps, and
+/// stairs and steep ramps (NavMeshConfig::stairSlopeDeg). A flat mesh has floor only.
+inline constexpr unsigned char kFloorArea = 0;
+inline constexpr unsigned char kStairArea = 1;
+/// Horizontal length over which a stair's slope is measured [m]: long enough to span two treads
+/// (0.25–0.35 m each), so a stair's flat treads and steep risers average to its pitch.
+inline constexpr float kStairBaseline = 1.0f;
+
+/// The ground of one navmesh polygon.
+struct Surface {
+  bool stair = false;  ///< area kStairArea
+  /// The polygon's mean gradient: rise per horizontal metre along x and along y (dz/dx, dz/dy);
+  /// its dot product with a walking direction is the slope walked (> 0 uphill). Zero on a flat mesh.
+  Vec2 gradient;
 };
 
 /// A world's 3D walking geometry (multi-level worlds: floors joined by stairs or ramps). Scenario
@@ -87,6 +108,9 @@ class NavMesh {
   /// (two values per edge, in order). The mesh is eroded by the body radius, so these bound agent
   /// centres.
   [[nodiscard]] std::vector<core::Segment> boundary(std::vector<float>* heights = nullptr) const;
+  /// The ground of polygon `ref`: its area and its mean gradient (from its detail triangles).
+  /// A stale or null reference gives flat floor.
+  [[nodiscard]] Surface surface(PolyRef ref) const;
 
  private:
   NavMesh() = default;

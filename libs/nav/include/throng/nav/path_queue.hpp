@@ -4,8 +4,10 @@
 // Requests are served strictly in submission order, so the outcome is deterministic.
 #pragma once
 #include <cstdint>
+#include <cstddef>
 #include <deque>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "throng/nav/navmesh.hpp"
@@ -28,8 +30,16 @@ class PathQueue {
 
   /// Queues a request; returns its ticket.
   PathTicket request(Vec2 from, Vec2 to);
-  /// The same with heights (they pick the levels on a layered mesh; ignored on a flat one).
-  PathTicket request(Vec2 from, float fromHeight, Vec2 to, float toHeight);
+  /// The same with heights (they pick the levels on a layered mesh; ignored on a flat one), searched
+  /// with the stair cost of `costClass` (setStairCosts; layered meshes only, where stairs exist).
+  PathTicket request(Vec2 from, float fromHeight, Vec2 to, float toHeight, std::uint32_t costClass = 0);
+  /// Route costs: class i searches with stairs (kStairArea) costing `stairCost[i]` times their
+  /// length (level ground costs 1 per metre). Without a call: one class, stairs at cost 1. May be
+  /// called at any time (more classes for populations added later); a search under way keeps its
+  /// class. [Limit: each >= 1, finite, so Detour's A* heuristic stays admissible]
+  void setStairCosts(std::span<const float> stairCost);
+  /// How many cost classes setStairCosts has set (0 before any call).
+  [[nodiscard]] std::size_t costClasses() const;
   /// Runs queued searches until `iterationBudget` Detour node expansions are spent (at least one
   /// request progresses per call). Returns how many requests completed.
   int update(int iterationBudget);

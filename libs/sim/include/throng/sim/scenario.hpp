@@ -115,6 +115,28 @@ struct PreMovementDesc {
 
 /// The longest pre-movement time an agent is given [s] (the longest scenario duration).
 inline constexpr float kMaxPreMovement = 1e6f;
+/// Tables spawning may draw desired speeds from instead of a normal distribution (demographics.hpp).
+enum class SpeedTable : std::uint8_t {
+  None,         ///< the population's speedMean, speedSd, speedMin, speedMax
+  WeidmannAge,  ///< scenario "weidmann-age": Weidmann 1993's speed by age, as tabulated for RiMEA test 7
+};
+
+/// Ages a speed-by-age table covers [years].
+inline constexpr float kMinAge = 5.0f;
+inline constexpr float kMaxAge = 80.0f;
+
+/// Who a population is (scenario: the "demographics" form of "speed"): each agent draws an age,
+/// whether it is movement-impaired, and a speed from the table's band for it.
+struct DemographicsDesc {
+  SpeedTable table = SpeedTable::None;
+  float ageMin = kMinAge;  ///< ages drawn uniformly in [ageMin, ageMax] [years] [Limit: kMinAge..kMaxAge]
+  float ageMax = kMaxAge;
+  /// Share of movement-impaired people [Limit: 0..1]: speeds in RiMEA 7's reduced-mobility band,
+  /// 0.46–0.76 m/s (Boyce, Shields & Silcock 1999: walking frame 0.57, manual wheelchair 0.69 m/s).
+  float impaired = 0.0f;
+  /// Their body radius [m] [Limit: 0.05..1]: half a wheelchair's 0.70 m width (ISO 7193).
+  float impairedRadius = 0.35f;
+};
 
 struct PopulationDesc {
   std::string id;
@@ -132,6 +154,22 @@ struct PopulationDesc {
   float speedMax = 2.5f;
   float radius = 0.2f;            ///< body radius [m]
   PreMovementDesc preMovement;    ///< waiting before walking off (none by default)
+  /// Speeds by age and impairment instead of speedMean… (table None: not used).
+  DemographicsDesc demographics;
+  /// The largest body among its members [m]: radius, or impairedRadius when some are impaired.
+  [[nodiscard]] float largestRadius() const {
+    return demographics.table != SpeedTable::None && demographics.impaired > 0.0f && demographics.impairedRadius > radius
+               ? demographics.impairedRadius
+               : radius;
+  }
+  /// Walking on stairs and steep ramps (navmesh area nav::kStairArea: ground steeper than
+  /// nav::NavMeshConfig::stairSlopeDeg, 15°): the speed along the slope is this factor times the
+  /// desired speed, up and down (docs/crowd-model.md, "Tactical level: stairs"). Defaults: Weidmann
+  /// 1993's horizontal stair speeds (0.610 m/s up, 0.694 m/s down) along a 30° stair (/ cos 30°) over
+  /// his level mean 1.34 m/s; within Fruin 1971's ranges (0.49–0.67 m/s up, 0.60–1.01 m/s down).
+  /// Route choice prices stairs at the mean of 1/up and 1/down per metre. [Limit: (0, 1]]
+  float stairUp = 0.53f;
+  float stairDown = 0.60f;
   // The Musse crowd model.
   /// Paths between goals: navmesh corners (straight segments), or Bézier curves (Musse et al.
   /// §3.2.2) checked inside the walkable surface, falling back to the navmesh where none fits.
