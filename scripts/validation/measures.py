@@ -380,6 +380,22 @@ def first_moves(traj, distance=0.1):
     return out
 
 
+def departures(traj, target, distance=0.5):
+    """Per agent, the time [s] it is first `distance` [m] closer to the point `target` than where it
+    was first recorded: when it set off towards it (a waiting person nudged aside by a passer-by does
+    not count, unless the nudge is that far towards the target)."""
+    tx, ty = target
+    out = {}
+    starts = np.r_[0, np.flatnonzero(np.diff(traj.id)) + 1]
+    for rows in np.split(np.arange(len(traj.id)), starts[1:]):
+        if len(rows) == 0:
+            continue
+        d = np.hypot(traj.x[rows] - tx, traj.y[rows] - ty)
+        closer = np.flatnonzero(d < d[0] - distance)
+        out[int(traj.id[rows[0]])] = float(traj.frame[rows[closer[0]]] / traj.fps) if len(closer) else None
+    return out
+
+
 def region_speeds(traj, x_range, statistic=np.median):
     """Per agent, the statistic (default median) of its speed [m/s] over the rows with x inside x_range."""
     sel = (traj.x >= x_range[0]) & (traj.x <= x_range[1]) & np.isfinite(traj.speed)

@@ -116,14 +116,16 @@ PREMOVEMENT = {"room": (8.0, 5.0), "times": [10.0 + 10.0 * k for k in range(10)]
 
 
 def premovement(name):
-    """Ten persons at fixed places in an 8 x 5 m room with a 1 m door; person k leaves at 10 + 10k s
-    (uniform over 10..100 s), written as ten populations with that start time."""
+    """Ten persons at fixed places in an 8 x 5 m room with a 1 m door, all present from t = 0; person k
+    leaves at 10 + 10k s (uniform over 10..100 s): ten populations, each with a pre-movement time of
+    exactly that (a uniform distribution from t to t), so the measurement knows each one's time."""
     w, h = PREMOVEMENT["room"]
     walk = [[0, 0], [w, 0], [w, 2.0], [w + 2, 2.0], [w + 2, 3.0], [w, 3.0], [w, h], [0, h]]
     pops = []
     for k, t in enumerate(PREMOVEMENT["times"]):
         x, y = 1.0 + 1.5 * (k % 5), 1.5 if k < 5 else 3.5
-        pops.append(population(f"person{k}", 1, {"position": [x, y]}, ["door"], FLAT_SPEED, start=t))
+        pops.append(population(f"person{k}", 1, {"position": [x, y]}, ["door"], FLAT_SPEED,
+                               preMovement={"distribution": "uniform", "min": t, "max": t}))
     return scenario(name, [walk], [exit_point("door", rect(w + 1.5, 2.0, w + 2, 3.0))], pops, 160)
 
 

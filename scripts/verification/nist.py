@@ -72,9 +72,7 @@ def tests():
         f"nist-{tid}", "nist", title, crit, SOURCE.format(tid), _doc(doc), runs, measure, xfail, plot)
     return [
         n("1.1", "Pre-evacuation time", "each person leaves at its drawn pre-evacuation time", "1.1-pre-evacuation",
-          [Run("run", "rimea/05-premovement.json")], R.measure_premovement,
-          xfail="pre-movement time exists only as a population start time: persons are absent, not standing, until "
-                "they leave (issue 18)"),
+          [Run("run", "rimea/05-premovement.json")], R.measure_premovement),
         n("2.1", "Speed in a corridor", "40 m at 1 m/s in 40 ± 1 s", "2.1-corridor",
           [Run("run", "rimea/01-corridor.json", _speed(1.0), "v1")], measure_corridor_1ms),
         n("2.2", "Speed on stairs (up)", "the stair speed is kept", "2.2-stairs-up", [Run("run", "rimea/02-stairs-up.json")],
