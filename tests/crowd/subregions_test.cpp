@@ -84,34 +84,25 @@ RC_GTEST_PROP(Subregions, PartitionTheRegion, (std::uint64_t seed)) {
   }
 }
 
-// Members of a group assigned in turn, occupancy updated after each: each takes a sub-region
-// within `spread` of the one nearest to it, never a shared one while a free one exists there.
-RC_GTEST_PROP(Subregions, GroupMembersNeverShareWhileFreeOnesExistNearby, (std::uint64_t seed)) {
+// Members of a group assigned in turn, occupancy updated after each, never share a sub-region
+// while a free one exists; once all are taken, everyone still gets one.
+RC_GTEST_PROP(Subregions, GroupMembersNeverShareWhileFreeOnesExist, (std::uint64_t seed)) {
   core::Rng rng(seed, 0, core::RngPurpose::Bench);
   const auto region = randomRegion(rng);
   const auto subs = crowd::divideRegion(region);
   RC_PRE(!subs.empty());
   const Vec2 from{float(rng.uniform(-80, 80)), float(rng.uniform(-80, 80))};
-  const crowd::PickParams params;
-  std::size_t nearest = 0;
-  for (std::size_t i = 1; i < subs.size(); ++i) {
-    if (core::distance(subs[i].centre, from) < core::distance(subs[nearest].centre, from)) nearest = i;
-  }
-  std::vector<std::size_t> near;
-  for (std::size_t i = 0; i < subs.size(); ++i) {
-    if (core::distance(subs[i].centre, subs[nearest].centre) <= params.spread) near.push_back(i);
-  }
   std::vector<std::uint32_t> occupancy(subs.size(), 0);
-  const std::size_t members = near.size() + rng.uniformInt(0, 5);
+  const std::size_t members = subs.size() + rng.uniformInt(0, 5);
   std::set<std::size_t> taken;
   for (std::size_t m = 0; m < members; ++m) {
-    const std::size_t i = crowd::pickSubregion(subs, from, occupancy, rng, params);
-    RC_ASSERT(std::find(near.begin(), near.end(), i) != near.end());
-    if (m < near.size()) RC_ASSERT(occupancy[i] == 0u);
+    const std::size_t i = crowd::pickSubregion(subs, from, occupancy, rng);
+    RC_ASSERT(i < subs.size());
+    if (m < subs.size()) RC_ASSERT(occupancy[i] == 0u);
     ++occupancy[i];
     taken.insert(i);
   }
-  RC_ASSERT(taken.size() == near.size());
+  RC_ASSERT(taken.size() == subs.size());
 }
 
 TEST(Subregions, FreeSubregionsAreTakenNearestFirstWithoutJitter) {
@@ -130,22 +121,6 @@ TEST(Subregions, FreeSubregionsAreTakenNearestFirstWithoutJitter) {
   const std::size_t second = crowd::pickSubregion(subs, from, occupancy, rng, params);
   EXPECT_NE(second, nearest);
   EXPECT_GT(subs[second].centre.x, 0.0f) << "the next pick is still on the near side";
-}
-
-TEST(Subregions, AFarFreeSubregionNeverBeatsANearOccupiedOne) {
-  // A 200 m × 1 m strip seen from 50 m in front of its left end: however many agents already target
-  // the near cells, the pick stays within `spread` of the nearest cell (the old density-first rule
-  // sent the 20th agent ~40 m along the strip).
-  const auto subs = crowd::divideRegion(crowd::Region::poly({{0, 50}, {200, 50}, {200, 51}, {0, 51}}));
-  std::vector<std::uint32_t> occupancy(subs.size(), 0);
-  core::Rng rng(5, 5, core::RngPurpose::Target);
-  const Vec2 from{2, 0};
-  const crowd::PickParams params;
-  for (int m = 0; m < 20; ++m) {
-    const std::size_t i = crowd::pickSubregion(subs, from, occupancy, rng, params);
-    ++occupancy[i];
-    EXPECT_LT(subs[i].centre.x, 10.0f) << "member " << m << ": within a few metres of straight ahead";
-  }
 }
 
 TEST(Subregions, DeterministicForAGivenSeed) {

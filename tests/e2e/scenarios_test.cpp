@@ -116,26 +116,20 @@ TEST(Scenarios, EvacuationEmptiesTheRoom) {
   ASSERT_FALSE(s.is_null());
   EXPECT_EQ(s["agents_spawned"], 200);
   EXPECT_EQ(s["agents_exited"], 200);
-  // Two 1.2 m doors, 100 people each. The steady flow through them (10th to 90th person into each
-  // door's passage), averaged over the two doors, must lie in the measured range for doors of this
-  // width: specific flow 1.5..2.2 persons/(m·s) (Jülich bottleneck series, Seyfried et al. 2009,
-  // Transp. Sci. 43(3); Liddle et al. 2011: 1.6..2.0 /(m·s) at widths 0.8..1.2 m, widened by
-  // ~10 %), i.e. 1.8..2.64 /s. One door of one run varies too much for that range (1.5..2.5 /s over
-  // seeds 1..12), the mean of the two doors half as much; each door stays under the upper bound.
+  // Two 1.2 m doors, 100 people each. The steady flow through each (10th to 90th person into the
+  // door's passage) must lie in the measured range for doors of this width: specific flow
+  // 1.5..2.2 persons/(m·s) (Jülich bottleneck series, Seyfried et al. 2009, Transp. Sci. 43(3);
+  // Liddle et al. 2011: 1.6..2.0 /(m·s) at widths 0.8..1.2 m, widened by ~10 %), i.e. 1.8..2.64 /s.
   const double f = fps(db);
   ASSERT_GT(f, 0.0);
-  double flowSum = 0.0;
   for (const char* door : {"pos_x < 0.0", "pos_x > 20.0"}) {
     const auto rows = query(db, std::string("SELECT id, MIN(frame) FROM trajectory_data WHERE ") + door +
                                     " GROUP BY id ORDER BY 2");
     ASSERT_EQ(rows.size(), 100u) << door;
     const double flow = 80.0 / ((rows[90][1] - rows[10][1]) / f);
+    EXPECT_GE(flow, 1.8) << door << ": persons/s";
     EXPECT_LE(flow, 2.64) << door << ": persons/s";
-    EXPECT_GE(flow, 1.4) << door << ": persons/s (a door that clogs, whatever the other does)";
-    flowSum += flow;
   }
-  EXPECT_GE(flowSum / 2.0, 1.8) << "persons/s per door";
-  EXPECT_LE(flowSum / 2.0, 2.64) << "persons/s per door";
   // Hence the evacuation time: 100 people at 1.8..2.64 /s per door after a walk of at most ~10 m
   // to it (a few seconds at 1.34 m/s) — 38..66 s.
   EXPECT_GE(s["evacuation_time_s"].get<double>(), 38.0);

@@ -1,6 +1,5 @@
 // throng::crowd sub-regions (§3.1.3, Figure 5): division of an IP/AP region into sectors (discs)
-// or clipped grid cells (polygons), priority choice (the nearest free one near the agent), uniform
-// sampling.
+// or clipped grid cells (polygons), priority choice by proximity and density, uniform sampling.
 #include "throng/crowd/subregions.hpp"
 
 #include <algorithm>
@@ -232,21 +231,22 @@ bool subregionContains(const Subregion& sub, Vec2 p) {
 std::size_t pickSubregion(std::span<const Subregion> subregions, Vec2 from, std::span<const std::uint32_t> occupancy,
                           core::Rng& rng, const PickParams& params) {
   THRONG_ASSERT(!subregions.empty() && occupancy.size() == subregions.size());
-  THRONG_ASSERT(params.spread >= 0.0f && params.jitter >= 0.0f);
-  std::size_t nearest = 0;
-  for (std::size_t i = 1; i < subregions.size(); ++i) {
-    if (core::distance(subregions[i].centre, from) < core::distance(subregions[nearest].centre, from)) nearest = i;
+  THRONG_ASSERT(params.jitter >= 0.0f && params.densityWeight > 1.0f + params.jitter);
+  float maxDist = 0.0f;
+  float maxArea = 0.0f;
+  for (const Subregion& s : subregions) {
+    maxDist = std::max(maxDist, core::distance(s.centre, from));
+    maxArea = std::max(maxArea, s.area);
   }
-  const Vec2 near = subregions[nearest].centre;
   std::size_t best = 0;
-  std::uint32_t bestOccupancy = std::numeric_limits<std::uint32_t>::max();
   double bestCost = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < subregions.size(); ++i) {
     const double u = rng.uniform();  // one draw per sub-region, always
-    if (core::distance(subregions[i].centre, near) > params.spread) continue;
-    const double cost = core::distance(subregions[i].centre, from) + params.jitter * u;
-    if (occupancy[i] < bestOccupancy || (occupancy[i] == bestOccupancy && cost < bestCost)) {
-      bestOccupancy = occupancy[i];
+    const Subregion& s = subregions[i];
+    const double proximity = maxDist > 0.0f ? core::distance(s.centre, from) / double(maxDist) : 0.0;
+    const double density = s.area > 0.0f ? double(occupancy[i]) / s.area * maxArea : double(occupancy[i]);
+    const double cost = proximity + params.jitter * u + params.densityWeight * density;
+    if (cost < bestCost) {
       bestCost = cost;
       best = i;
     }

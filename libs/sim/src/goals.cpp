@@ -1,8 +1,8 @@
 // goals — one home for where an agent is going (Musse et al. §3.1: goals are interest and action
 // points visited in order): the active goal list of a group (its own, or the followed group's),
 // the current goal point of an agent, setting and advancing goals, drawing a target inside a goal's
-// region (sub-regions, §3.1.3: the nearest free one near the agent) and releasing it, Bézier paths
-// to it (§3.2.2), automatic goals (§3.1.2) and the pending goal changes decide hands to the group pass. Serial code (the group pass
+// region (sub-regions, §3.1.3) and releasing it, Bézier paths to it (§3.2.2), automatic goals
+// (§3.1.2) and the pending goal changes decide hands to the group pass. Serial code (the group pass
 // and spawning) writes goals through GoalWriter (goals.hpp), the points' sub-regions being
 // PointRegions; the parallel phases only read them (currentGoalPoint, stopsAtGoal) through GoalView
 // (phases.hpp), which World::Impl's helpers of the same names use too.
@@ -62,10 +62,9 @@ void GoalWriter::releaseTarget(std::size_t row) {
 }
 
 core::Vec2 GoalWriter::drawTarget(std::size_t row, const PointDesc& point) {
-  // Sub-regions (Musse et al. §3.1.3): the target lies in a sub-region of the goal's region near
-  // the agent, the least targeted of those (crowd::pickSubregion), so group members take similar but
-  // never identical paths and spread over the near side of the region, never along a wide one.
-  // Serial (group pass / spawning): occupancy is shared.
+  // Sub-regions (Musse et al. §3.1.3): the target lies in a sub-region of the goal's region picked
+  // by proximity and by how many agents already target it, so group members take similar but never
+  // identical paths and spread over the region. Serial (group pass / spawning): occupancy is shared.
   core::Rng rng(desc.seed, (static_cast<std::uint64_t>(agents.id[row]) << 20) ^ agents.targetDraws[row]++,
                 core::RngPurpose::Target);
   releaseTarget(row);

@@ -47,8 +47,7 @@ struct GoalWriter {
 
   [[nodiscard]] GoalView view() const { return {groups, goalLists, agents.group, agents.goalCursor}; }
   /// Chooses a target inside the point's region (on the navmesh) for agent `row`: in a sub-region
-  /// near the agent and least targeted (crowd::pickSubregion), which it then occupies (the old one
-  /// is released).
+  /// picked by proximity and occupancy, which it then occupies (the old one is released).
   core::Vec2 drawTarget(std::size_t row, const PointDesc& point);
   /// Releases the sub-region `row` was targeting (its occupancy drops).
   void releaseTarget(std::size_t row);

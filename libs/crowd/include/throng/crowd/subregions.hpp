@@ -1,9 +1,8 @@
 // throng::crowd sub-regions (Musse & Thalmann, §3.1.3, Figure 5, "Individual position generation"):
 // the region of an IP/AP is divided into four or more sub-regions depending on its size; each agent
 // of a group takes the sub-region of highest priority (close to the point the agent comes from, low
-// density: the nearest free one on the agent's side of the region) and a uniformly random position
-// inside it, so members of a group never aim at the same spot while free sub-regions remain near
-// them (Figure 8: a family of curves, never the same).
+// density) and a uniformly random position inside it, so members of a group never aim at the same
+// spot while free sub-regions remain (Figure 8: a family of curves, never the same).
 // divideRegion runs once per region when a world is built; pickSubregion/samplePoint when an agent
 // enters a goal (decide phase). Pure: reads the region, occupancy counts and one Rng stream.
 #pragma once
@@ -54,25 +53,19 @@ struct SubregionParams {
 [[nodiscard]] bool subregionContains(const Subregion& sub, Vec2 p);
 
 struct PickParams {
-  /// How far from the sub-region nearest the agent another may lie for the agent to take it
-  /// instead (when the nearest is taken) [m] [Limit: >= 0]: the nearest sub-region and its side
-  /// neighbours at the default cell area (side sqrt(4 m²) = 2 m, with a quarter to spare). Agents
-  /// spread over the near side of a goal, never along it: a 200 m exit strip is reached within a
-  /// few metres of straight ahead, however far away the agent starts.
-  float spread = 2.5f;
-  float jitter = 1.0f;  ///< j [m] [Limit: >= 0]: random spread of the distance term, so agents coming
-                        ///< from the same side do not all fill the same order
+  float densityWeight = 2.0f;  ///< w [-] [Limit: > 1 + jitter]: any occupied sub-region costs more than any free one
+  float jitter = 0.1f;         ///< j [-] [Limit: >= 0]: random spread of the proximity term, so groups coming
+                               ///< from the same side do not all fill the same order
 };
 
-/// Index of the sub-region an agent coming from `from` should take (§3.1.3 Priority: close to the
-/// agent, low density), the nearest free one near the agent. With n the sub-region nearest to
-/// `from` (by centre), the candidates are the sub-regions whose centre lies within `spread` of n's;
-/// among them those of least occupancy (agents already targeting it: 0 = free) and, among those,
-/// the one of least
-///     |centre_i - from| + j · u_i,
-/// u_i uniform in [0, 1) (one draw per sub-region, in index order, always). A far free sub-region
-/// never beats a near occupied one: a wide goal is not crossed sideways to find room. Ties go to
-/// the lowest index. `occupancy` has one count per sub-region. Precondition: subregions not empty.
+/// Index of the sub-region an agent coming from `from` should take (§3.1.3 Priority), the one of
+/// least cost
+///     cost_i = d_i / D  +  j · u_i  +  w · (occupancy_i / area_i) · maxArea
+/// where d_i = |centre_i - from|, D = max_i d_i (proximity in [0, 1]), u_i uniform in [0, 1) (one
+/// draw per sub-region, in index order), occupancy_i / area_i the density [1/m²] and maxArea the
+/// largest sub-region area (a lone agent in the largest sub-region scores w). With w > 1 + j a free
+/// sub-region always beats an occupied one. Ties go to the lowest index.
+/// `occupancy` has one count per sub-region. Precondition: subregions not empty.
 [[nodiscard]] std::size_t pickSubregion(std::span<const Subregion> subregions, Vec2 from,
                                         std::span<const std::uint32_t> occupancy, core::Rng& rng,
                                         const PickParams& params = {});
