@@ -18,6 +18,10 @@ class Recording:
     agents       DataFrame: id, population, population_id, group_id, spawn_frame, exit_frame (None: still there)
     populations  DataFrame of throng_populations
     events       DataFrame: frame, tick, agent, kind, a, b
+    points       DataFrame of throng_points (id, kind, position, region, action ...)
+    coordinations  Common Ground interactions: group, initiator, respondents, plan, outcome, times [s]
+    scripts      Common Ground action scripts: one row per entry of a character's script (step, plan,
+                 motion, behaviour, target, planned and actual start and duration [s])
     metadata     dict of the metadata table (fps, seed, scenario text, models, completed ...)
     scenario     the scenario document (dict) the recording was made from
     """
@@ -51,6 +55,13 @@ class Recording:
                                 if "throng_populations" in tables else pd.DataFrame())
             self.events = (pd.read_sql_query("SELECT frame, tick, agent, kind, a, b FROM throng_events ORDER BY rowid", db)
                            if "throng_events" in tables else pd.DataFrame(columns=["frame", "tick", "agent", "kind", "a", "b"]))
+            self.points = (pd.read_sql_query("SELECT * FROM throng_points ORDER BY idx", db)
+                           if "throng_points" in tables else pd.DataFrame())
+            # Common Ground (Park et al.; docs/social-model.md): interactions and each character's action script.
+            self.coordinations = (pd.read_sql_query("SELECT * FROM throng_coordinations ORDER BY id", db)
+                                  if "throng_coordinations" in tables else pd.DataFrame())
+            self.scripts = (pd.read_sql_query("SELECT * FROM throng_script ORDER BY coordination, agent, seq", db)
+                            if "throng_script" in tables else pd.DataFrame())
         finally:
             db.close()
         text = self.metadata.get("throng_scenario")

@@ -38,3 +38,21 @@ def test_not_a_recording(tmp_path):
         throng.read_recording(bad)
     with pytest.raises(FileNotFoundError):
         throng.read_recording(tmp_path / "absent.sqlite")
+
+
+def test_common_ground_tables(tmp_path, root):
+    import json, os
+    doc = json.load(open(os.path.join(root, "scenarios", "mall.json")))
+    out = tmp_path / "mall.sqlite"
+    with throng.Simulation(throng.Scenario.from_dict(doc, os.path.join(root, "scenarios", "mall.json")), threads=2,
+                           duration=60, record=str(out)) as sim:
+        sim.run()
+    rec = throng.read_recording(out)
+    starts = (rec.events["kind"] == "coordination_start").sum()
+    assert starts > 0, "the mall starts Common Ground coordinations in its first minute"
+    ended = rec.coordinations
+    assert {"initiator", "plan", "outcome", "start"} <= set(ended.columns)
+    assert len(ended) <= starts
+    assert len(rec.scripts) > 0 and {"coordination", "agent", "seq", "step", "motion", "behaviour"} <= set(rec.scripts.columns)
+    assert set(rec.scripts["agent"]) <= set(rec.agents["id"]), "every script belongs to an agent of the recording"
+    assert list(rec.points["id"]) == [p["id"] for p in doc["points"]]
