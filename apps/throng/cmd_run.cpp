@@ -215,6 +215,11 @@ std::string stallsText(const std::vector<StallSpan>& spans, std::size_t limit) {
   return text;
 }
 
+/// Agent-steps whose body overlapped a neighbour by more than 1 cm, in per cent of all.
+double overlapShare(const sim::WorldStats& s) {
+  return s.agentSteps > 0 ? 100.0 * static_cast<double>(s.overlapAgentSteps) / static_cast<double>(s.agentSteps) : 0.0;
+}
+
 double agentStepsPerSecond(const RunSummary& r) {
   return r.wallSeconds > 0 ? static_cast<double>(r.stats.agentSteps) / r.wallSeconds : 0.0;
 }
@@ -238,6 +243,8 @@ void printSummaryJson(const RunSummary& r) {
                      {"wall_time_s", r.wallSeconds},
                      {"setup_time_s", r.setupSeconds},
                      {"agent_steps", r.stats.agentSteps},
+                     {"max_overlap_m", r.stats.maxOverlap},
+                     {"overlap_share_pct", overlapShare(r.stats)},
                      {"agent_steps_per_s", agentStepsPerSecond(r)},
                      {"recording", {{"path", r.recording}, {"frames", r.frames}, {"fps", r.fps}}},
                      {"state_hash", fmt::format("{:016x}", r.stateHash)}};
@@ -292,6 +299,8 @@ void printSummaryText(const RunSummary& r) {
                                stallsText(r.stalls, 10)));
   }
   row("mean speed", fmt::format("{:.2f} m/s (walking agents)", s.meanWalkingSpeed()));
+  row("overlaps", fmt::format("discs of the body radius: deepest {:.2f} m; {:.1f} % of agent-steps overlap a neighbour by more than 1 cm",
+                              s.maxOverlap, overlapShare(s)));
   const double realTime = r.wallSeconds > 0 ? s.time / r.wallSeconds : 0.0;
   row("wall time", fmt::format("{} ({:.1f}x real time; setup {})", formatSeconds(r.wallSeconds), realTime,
                                formatSeconds(r.setupSeconds)));

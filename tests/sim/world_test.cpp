@@ -38,6 +38,7 @@ struct RunResult {
   std::uint64_t hash = 0;
   float minGap = 1e9f;  // smallest centre distance minus radii seen
   float firstX = -1.0f;  // where the first agent stood after the first tick [m]
+  sim::WorldStats stats;  // at the end
 };
 
 RunResult simulate(const sim::ScenarioDesc& d, int threads, double maxTime) {
@@ -61,6 +62,7 @@ RunResult simulate(const sim::ScenarioDesc& d, int threads, double maxTime) {
   }
   run.exitTime = w.stats().lastExitTime;
   run.meanSpeed = w.stats().meanWalkingSpeed();
+  run.stats = w.stats();
   return run;
 }
 
@@ -98,6 +100,22 @@ TEST(World, ModerateDensityHasNoDeepOverlap) {
   const RunResult r = simulate(corridor(30, 4, 40, 8.0f), 2, 90);
   EXPECT_GT(r.exitTime, 0.0);
   EXPECT_GT(r.minGap, -0.05f);
+}
+
+// Issue 17: overlaps are reported (WorldStats, `throng run`'s summary). The world's own measure, taken
+// each tick before anyone moves, agrees with this test's from the frames (the last frame's
+// positions are never measured by the world, hence the small tolerance).
+TEST(World, OverlapsAreMeasuredAndReported) {
+  const RunResult lone = simulate(corridor(20, 2, 1), 1, 30);
+  EXPECT_EQ(lone.stats.maxOverlap, 0.0);
+  EXPECT_EQ(lone.stats.overlapAgentSteps, 0u);
+  sim::ScenarioDesc jam = corridor(12, 2, 60, 5.0f);
+  jam.populations[0].model = sim::ModelDesc(sim::ModelKind::AnticipationVelocity);  // elliptical bodies: discs overlap
+  const RunResult crowd = simulate(jam, 2, 60);
+  ASSERT_LT(crowd.minGap, -0.01f) << "a jam in which the discs overlap";
+  EXPECT_NEAR(crowd.stats.maxOverlap, -crowd.minGap, 0.02);
+  EXPECT_GT(crowd.stats.overlapAgentSteps, 0u);
+  EXPECT_LT(crowd.stats.overlapAgentSteps, crowd.stats.agentSteps);
 }
 
 TEST(World, IdenticalTrajectoriesForAnyThreadCount) {

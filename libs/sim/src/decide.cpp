@@ -201,6 +201,23 @@ void RowDecision::meetOthers(const SociologicalDesc& social) {
   }
 }
 
+/// How deep the bodies (discs) of rows [begin, end) overlap their neighbours: the deepest, and how
+/// many overlap one by more than kOverlapReported (WorldStats, reported by `throng run`).
+void measureOverlaps(const AgentStore& a, std::size_t k, std::size_t begin, std::size_t end, ChunkOutput& chunk) {
+  end = std::min(end, a.neighbourCount.size());  // no neighbour lists (a phase run on its own): nothing to measure
+  for (std::size_t row = begin; row < end; ++row) {
+    float deepest = 0.0f;
+    const std::uint32_t* nb = &a.neighbours[row * k];
+    for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
+      const std::uint32_t o = nb[n];
+      const float dx = a.posX[o] - a.posX[row], dy = a.posY[o] - a.posY[row];
+      deepest = std::max(deepest, a.radius[row] + a.radius[o] - std::sqrt(dx * dx + dy * dy));
+    }
+    chunk.maxOverlap = std::max(chunk.maxOverlap, deepest);
+    if (deepest > kOverlapReported) ++chunk.overlapping;
+  }
+}
+
 }  // namespace
 
 void decide(const DecideInput& in, const DecideOutput& out, const core::TaskSystem& tasks) {
@@ -213,6 +230,7 @@ void decide(const DecideInput& in, const DecideOutput& out, const core::TaskSyst
     THRONG_ASSERT(worker < in.workers.size());
     const nav::NavQuery& query = *in.workers[worker].query;
     for (std::size_t row = begin; row < end; ++row) RowDecision{in, out, checkEvery, chunk, query, row}.decideRow();
+    measureOverlaps(in.agents, in.desc.steering.maxNeighbours, begin, end, chunk);
   });
 }
 

@@ -27,9 +27,13 @@ void mergeChunks(const EmitInput& in, const EmitOutput& out) {
     stats.walkedDistance += c.walkedDistance;
     stats.walkingTime += c.walkingTime;
     stats.socialMeetings += c.socialMeetings;
+    stats.maxOverlap = std::max(stats.maxOverlap, static_cast<double>(c.maxOverlap));
+    stats.overlapAgentSteps += c.overlapping;
     c.events.clear();
     c.walkedDistance = c.walkingTime = 0.0;
     c.socialMeetings = 0;
+    c.maxOverlap = 0.0f;
+    c.overlapping = 0;
   }
 }
 

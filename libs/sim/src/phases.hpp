@@ -57,9 +57,14 @@ struct ChunkOutput {
   double walkedDistance = 0.0;
   double walkingTime = 0.0;
   std::uint64_t socialMeetings = 0;
+  float maxOverlap = 0.0f;           ///< deepest overlap of two bodies (discs) seen by decide [m]
+  std::uint64_t overlapping = 0;     ///< agents overlapping a neighbour by more than kOverlapReported
   std::vector<std::uint32_t> pendingRows;  ///< rows whose goalPending was set, ascending
   std::vector<std::uint32_t> desireRows;   ///< rows whose desirePoint was set (goal generator), ascending
 };
+
+/// Overlaps of bodies deeper than this are counted in WorldStats::overlapAgentSteps [m].
+inline constexpr float kOverlapReported = 0.01f;
 
 /// The chunk size of the parallel phases over n agents: chunk c of a phase is rows
 /// [c·grain, (c+1)·grain), and writes ChunkOutput c.

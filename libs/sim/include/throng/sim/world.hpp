@@ -35,6 +35,11 @@ struct WorldStats {
   double walkingTime = 0.0;          ///< agent-seconds spent walking (mode Walking) [s]
   std::uint64_t agentSteps = 0;      ///< sum over ticks of active agents
   std::uint64_t socialMeetings = 0;  ///< sociological model: meeting rolls made (agent, other-group agent, tick)
+  /// Bodies overlapping (two discs closer than the sum of their radii), measured each tick before
+  /// anyone moves: the deepest overlap so far [m], and the agent-steps overlapping a neighbour by
+  /// more than 1 cm (agentSteps counts them all).
+  double maxOverlap = 0.0;
+  std::uint64_t overlapAgentSteps = 0;
 
   /// Mean walking speed over all agents and time spent walking [m/s].
   [[nodiscard]] double meanWalkingSpeed() const { return walkingTime > 0 ? walkedDistance / walkingTime : 0.0; }
