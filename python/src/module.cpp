@@ -80,36 +80,6 @@ const char* modeName(sim::AgentMode mode) {
   return "unknown";
 }
 
-const char* eventName(sim::EventKind kind) {
-  switch (kind) {
-    case sim::EventKind::Spawn: return "spawn";
-    case sim::EventKind::Exit: return "exit";
-    case sim::EventKind::GoalReached: return "goal_reached";
-    case sim::EventKind::ActionStart: return "action_start";
-    case sim::EventKind::ActionEnd: return "action_end";
-    case sim::EventKind::PathPartial: return "path_partial";
-    case sim::EventKind::GroupWaitStart: return "group_wait_start";
-    case sim::EventKind::GroupRelease: return "group_release";
-    case sim::EventKind::GroupTimeout: return "group_timeout";
-    case sim::EventKind::FollowStart: return "follow_start";
-    case sim::EventKind::FollowEnd: return "follow_end";
-    case sim::EventKind::GuideStart: return "guide_start";
-    case sim::EventKind::GuideEnd: return "guide_end";
-    case sim::EventKind::JoinGroup: return "join_group";
-    case sim::EventKind::FollowAgent: return "follow_agent";
-    case sim::EventKind::FollowAgentEnd: return "follow_agent_end";
-    case sim::EventKind::LeaderChange: return "leader_change";
-    case sim::EventKind::PathFallback: return "path_fallback";
-    case sim::EventKind::GoalGenerated: return "goal_generated";
-    case sim::EventKind::CoordinationStart: return "coordination_start";
-    case sim::EventKind::CoordinationEnd: return "coordination_end";
-    case sim::EventKind::VisitStart: return "visit_start";
-    case sim::EventKind::VisitEnd: return "visit_end";
-    case sim::EventKind::Reunited: return "reunited";
-  }
-  return "unknown";
-}
-
 /// One tick's agent state; its arrays are read-only views of the frame (kept alive by them).
 struct AgentState {
   sim::FramePtr frame;
@@ -225,7 +195,7 @@ class Simulation {
       d["tick"] = e.tick;
       d["time"] = static_cast<double>(e.tick) * dt;
       d["agent"] = e.agent;
-      d["kind"] = eventName(e.kind);
+      d["kind"] = recording::eventKindName(e.kind);  // the names recordings use
       d["a"] = e.a;
       d["b"] = e.b;
       out.append(std::move(d));

@@ -3,21 +3,9 @@ tag: the test's measured data} so that the models appear side by side, and the P
 import numpy as np
 
 from validation import measures as M
+from validation.plots import _plt, _save  # noqa: F401  (one Agg set-up for both scripts)
 
 COLOURS = ["tab:blue", "tab:red", "tab:green", "tab:purple"]
-
-
-def _plt():
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    return plt
-
-
-def _save(fig, path):
-    fig.tight_layout()
-    fig.savefig(path)
-    _plt().close(fig)
 
 
 def ring(datas, path, title):

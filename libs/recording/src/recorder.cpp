@@ -110,7 +110,14 @@ core::Status checkOutputPath(const RecordingOptions& options) {
 }
 
 
-const char* eventKindText(sim::EventKind kind) {
+
+/// Agent ids below this are tracked in a bitmap (ids are dense spawn order); a stray larger id
+/// goes to a hash set instead of growing the bitmap.
+constexpr std::uint32_t kMaxTrackedAgentId = 1u << 26;
+
+}  // namespace
+
+const char* eventKindName(sim::EventKind kind) {
   switch (kind) {
     case sim::EventKind::Spawn: return "spawn";
     case sim::EventKind::Exit: return "exit";
@@ -139,12 +146,6 @@ const char* eventKindText(sim::EventKind kind) {
   }
   return "unknown";
 }
-
-/// Agent ids below this are tracked in a bitmap (ids are dense spawn order); a stray larger id
-/// goes to a hash set instead of growing the bitmap.
-constexpr std::uint32_t kMaxTrackedAgentId = 1u << 26;
-
-}  // namespace
 
 bool Recorder::Impl::writeScenario(const sim::ScenarioDesc& scenario) {
   using namespace recording;
@@ -222,7 +223,7 @@ bool Recorder::Impl::writeEvents(const sim::Frame& f, std::int64_t frame) {
     bindInt(s, 1, frame);
     bindInt(s, 2, static_cast<std::int64_t>(e.tick));
     bindInt(s, 3, e.agent);
-    bindText(s, 4, eventKindText(e.kind));
+    bindText(s, 4, eventKindName(e.kind));
     bindInt(s, 5, e.a);
     bindInt(s, 6, e.b);
     if (!run(insertEvent)) return false;

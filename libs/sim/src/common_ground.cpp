@@ -45,19 +45,8 @@ core::Vec2 facingOf(float x, float y) {
 }
 
 /// startCoordinations' steps over its contexts (CommonGroundInput, CommonGroundOutput: group_pass.hpp).
-struct CoordinationStart {
-  const ScenarioDesc& desc;
-  std::uint64_t tick;
-  std::span<const std::uint32_t> rowOfId;
-  AgentStore& agents;
-  GroupTable& groups;
-  CommonGroundState& commonGround;
-  GoalWriter& goals;
-  std::vector<Event>& pendingEvents;
-
-  CoordinationStart(const CommonGroundInput& in, const CommonGroundOutput& out)
-      : desc(in.desc), tick(in.tick), rowOfId(in.rowOfId), agents(out.agents), groups(out.groups),
-        commonGround(out.state), goals(out.goals), pendingEvents(out.events) {}
+struct CoordinationStart : CommonGroundPass {
+  using CommonGroundPass::CommonGroundPass;
 
   void startCoordination(std::uint32_t row);
   [[nodiscard]] std::vector<std::uint32_t> availableMates(const GroupState& g, std::uint32_t initiator) const;

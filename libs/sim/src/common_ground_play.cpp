@@ -35,19 +35,8 @@ bool leavesScript(const common_ground::ScriptEntry& e) {
 }
 
 /// runCoordinations' steps over its contexts (CommonGroundInput, CommonGroundOutput: group_pass.hpp).
-struct CoordinationPlay {
-  const ScenarioDesc& desc;
-  std::uint64_t tick;
-  std::span<const std::uint32_t> rowOfId;
-  AgentStore& agents;
-  GroupTable& groups;
-  CommonGroundState& commonGround;
-  GoalWriter& goals;
-  std::vector<Event>& pendingEvents;
-
-  CoordinationPlay(const CommonGroundInput& in, const CommonGroundOutput& out)
-      : desc(in.desc), tick(in.tick), rowOfId(in.rowOfId), agents(out.agents), groups(out.groups),
-        commonGround(out.state), goals(out.goals), pendingEvents(out.events) {}
+struct CoordinationPlay : CommonGroundPass {
+  using CommonGroundPass::CommonGroundPass;
 
   void playCoordination(ActiveCoordination& c, double now);
   void playActor(ActiveCoordination& c, std::size_t actor, std::uint32_t row, double now);

@@ -211,7 +211,8 @@ void measureOverlaps(const AgentStore& a, std::size_t k, std::size_t begin, std:
     for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
       const std::uint32_t o = nb[n];
       const float dx = a.posX[o] - a.posX[row], dy = a.posY[o] - a.posY[row];
-      deepest = std::max(deepest, a.radius[row] + a.radius[o] - std::sqrt(dx * dx + dy * dy));
+      const float l = a.radius[row] + a.radius[o], d2 = dx * dx + dy * dy;
+      if (d2 < l * l) deepest = std::max(deepest, l - std::sqrt(d2));  // the square root only for overlaps
     }
     chunk.maxOverlap = std::max(chunk.maxOverlap, deepest);
     if (deepest > kOverlapReported) ++chunk.overlapping;

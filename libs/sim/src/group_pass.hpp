@@ -153,6 +153,23 @@ struct CommonGroundOutput {
   std::vector<Event>& events;     ///< GoalGenerated, Coordination*, Visit*, Reunited
 };
 
+/// What both Common Ground passes work on, bound from their contexts (common_ground.cpp,
+/// common_ground_play.cpp each derive their steps from it).
+struct CommonGroundPass {
+  const ScenarioDesc& desc;
+  std::uint64_t tick;
+  std::span<const std::uint32_t> rowOfId;
+  AgentStore& agents;
+  GroupTable& groups;
+  CommonGroundState& commonGround;
+  GoalWriter& goals;
+  std::vector<Event>& pendingEvents;
+
+  CommonGroundPass(const CommonGroundInput& in, const CommonGroundOutput& out)
+      : desc(in.desc), tick(in.tick), rowOfId(in.rowOfId), agents(out.agents), groups(out.groups),
+        commonGround(out.state), goals(out.goals), pendingEvents(out.events) {}
+};
+
 /// Desires flagged by decide (the chunks' desireRows, cleared) become coordinations: the grounding
 /// planner's script for the initiator and its mates, or a lone visit (common_ground.cpp).
 void startCoordinations(const CommonGroundInput& in, const CommonGroundOutput& out, std::span<ChunkOutput> chunks);

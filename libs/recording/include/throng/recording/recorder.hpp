@@ -79,4 +79,7 @@ struct RecordingSummary {
 /// Opens a recording read-only and summarises it; bad or foreign files give a diagnostic.
 core::Result<RecordingSummary> readRecordingSummary(const std::string& path);
 
+/// An event kind as recordings name it (throng_events.kind: "spawn", "exit", "goal_reached", …).
+[[nodiscard]] const char* eventKindName(sim::EventKind kind);
+
 }  // namespace throng::recording
