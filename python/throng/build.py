@@ -57,9 +57,11 @@ class ScenarioBuilder:
         self._doc["points"].append(point)
         return self
 
-    def exit(self, id, polygon=None, position=None, radius=None):
-        """An exit: reaching it, an agent leaves the simulation."""
-        return self._point(id, "exit", position, radius, polygon)
+    def exit(self, id, polygon=None, position=None, radius=None, width=None):
+        """An exit: reaching it, an agent leaves the simulation. `width` [m]: the opening it stands for
+        (exit choice's capacity estimate; populations choose among exits with exits=[...] and
+        exitChoice={"rule": "quickest"})."""
+        return self._point(id, "exit", position, radius, polygon, width=None if width is None else float(width))
 
     def interest(self, id, polygon=None, position=None, radius=None):
         """A place agents pass through (a waypoint)."""

@@ -247,19 +247,33 @@ def assigned_exits(name):
 
 
 # --- RiMEA 11: two exits, which one is used -----------------------------------------------------------
-CHOICE = {"w": 20.0, "h": 10.0, "doors": {"near": 2.0, "far": 8.0}, "agents": 300, "spawn": (5.0, 0.3, 19.7, 6.0)}
+CHOICE = {"w": 20.0, "h": 10.0, "doors": {"near": 2.0, "far": 8.0}, "agents": 300, "spawn": (5.0, 0.3, 19.7, 6.0),
+          "close_at": 15.0}
 
 
 def exit_choice(name):
     """A 20 x 10 m room with two 1 m doors in its east wall (centred at y 2 and 8 m), both into one
-    2 m deep exit hall; 300 persons start in the south-east half, nearer the south door."""
+    2 m deep exit hall, an exit just behind each door; 300 persons start in the south-east half,
+    nearer the south door, and choose their exit by the quickest rule (walking time and the queue
+    ahead; docs/crowd-model.md "Tactical level: exit choice")."""
     w, h = CHOICE["w"], CHOICE["h"]
     walk = [rect(0, 0, w, h), rect(w + 0.2, 0, w + 2.2, h)]
-    for y in CHOICE["doors"].values():
+    exits = []
+    for door, y in CHOICE["doors"].items():
         walk.append(rect(w, y - 0.5, w + 0.2, y + 0.5))
+        exits.append(exit_point(door, rect(w + 0.6, y - 0.5, w + 1.6, y + 0.5), width=1.0))
     x0, y0, x1, y1 = CHOICE["spawn"]
-    return scenario(name, walk, [exit_point("hall", rect(w + 1.2, 0, w + 2.2, h))],
-                    [population("crowd", CHOICE["agents"], {"polygon": rect(x0, y0, x1, y1)}, ["hall"], SPEED)], 300)
+    return scenario(name, walk, exits,
+                    [population("crowd", CHOICE["agents"], {"polygon": rect(x0, y0, x1, y1)}, [], SPEED,
+                                exits=list(CHOICE["doors"]), exitChoice={"rule": "quickest"})], 300)
+
+
+def dynamic_exits(name):
+    """NIST 4.1: RiMEA 11's room and crowd choosing by the quickest rule; the north ("far") exit
+    closes for good at CHOICE["close_at"] s (the scenario timeline's "close")."""
+    s = exit_choice(name)
+    s["timeline"] = [{"time": CHOICE["close_at"], "close": "far"}]
+    return s
 
 
 # --- RiMEA 12 / NIST 5.1: two bottlenecks in a row ----------------------------------------------------

@@ -11,6 +11,7 @@
 
 #include "nav_test_worlds.hpp"
 #include "throng/core/diagnostic.hpp"
+#include "throng/nav/distance_field.hpp"
 #include "throng/nav/navmesh.hpp"
 #include "throng/nav/path_queue.hpp"
 
@@ -487,6 +488,36 @@ TEST(Terrain, HeightOverloadsOnAFlatMeshMatchThePlainQueries) {
     EXPECT_EQ(meshPoint->height, 0.0f);
     EXPECT_NE(meshPoint->ref, 0u);
   }
+}
+
+// nav::DistanceField on layered meshes (distance_field.cpp): floors above each other keep their
+// own distances, and stairs cost their factor.
+TEST(Terrain, DistanceFieldsKeepFloorsApartAndPriceStairs) {
+  auto two = buildTerrainOrFail(twoFloors(true));
+  ASSERT_TRUE(two);
+  NavQuery q2(two);
+  // The target on the upper floor's east end: from the ground floor the way runs along the ramp.
+  const DistanceField up = DistanceField::build(*two, FieldTarget{{19, 5}, 0.5f, {}, 3.0f});
+  const auto ground = q2.snap({10, 5}, 0.0f), upper = q2.snap({10, 5}, 3.0f);
+  ASSERT_TRUE(ground && upper);
+  const float dUpper = up.at(upper->p, upper->ref), dGround = up.at(ground->p, ground->ref);
+  EXPECT_NEAR(dUpper, 8.5f, 0.3f);                // straight along the upper floor
+  EXPECT_GT(dGround, dUpper + 10.0f);             // down there: to the ramp, up it, back east
+  EXPECT_LT(dGround, 40.0f);
+
+  auto mesh = buildTerrainOrFail(stairOrRamp());
+  ASSERT_TRUE(mesh);
+  NavQuery q(mesh);
+  const auto start = q.snap({5, 1}, 0.0f);
+  ASSERT_TRUE(start);
+  const FieldTarget end{{26, 1}, 0.5f, {}, 2.0f};
+  DistanceFieldConfig cheap, dear;
+  dear.stairCost = 8.0f;
+  const float viaStairs = DistanceField::build(*mesh, end, cheap).at(start->p, start->ref);
+  const float viaRamp = DistanceField::build(*mesh, end, dear).at(start->p, start->ref);
+  EXPECT_NEAR(viaStairs, 20.5f, 1.0f);  // 21 m east, stairs counted at their plan length
+  EXPECT_GT(viaRamp, viaStairs + 2.0f);  // eight-fold stairs: the ramp's detour is cheaper
+  EXPECT_LT(viaRamp, viaStairs + 7.0f * 2.4f);
 }
 
 }  // namespace

@@ -53,6 +53,73 @@ bool ScenarioReader::readGoals(const Json& v, const std::string& ptr, sim::Popul
   return ok;
 }
 
+bool ScenarioReader::readExits(const Json& v, const std::string& ptr, sim::PopulationDesc& p) {
+  const std::string expected = "an array of at least one id of a point of kind \"exit\"";
+  if (!v.is_array() || v.empty()) {
+    error(ptr, v.is_array() ? "no exits" : "wrong type: " + describeType(v), expected);
+    return false;
+  }
+  bool ok = true;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const std::string eptr = ptr + "/" + std::to_string(k);
+    std::uint32_t index = 0;
+    if (!resolvePoint(v[k], eptr, index)) {
+      ok = false;
+    } else if (index < pointIsExit_.size() && pointIsExit_[index] == 0) {
+      error(eptr, "point " + quote(pointIds_[index]) + " is not an exit", expected, "give it \"kind\": \"exit\"");
+      ok = false;
+    } else if (std::find(p.exits.begin(), p.exits.end(), index) != p.exits.end()) {
+      error(eptr, "exit " + quote(pointIds_[index]) + " listed twice", "each exit once");
+      ok = false;
+    } else {
+      p.exits.push_back(index);
+    }
+  }
+  if (!ok) p.exits.clear();
+  return ok;
+}
+
+bool ScenarioReader::readExitChoice(const Json& v, const std::string& ptr, sim::PopulationDesc& p) {
+  if (!isObject(v, ptr, "{\"rule\": \"quickest\" | \"nearest\" | \"allocation\", \"period\", \"hysteresis\", \"shares\"}")) {
+    return false;
+  }
+  checkKeys(v, ptr, {"rule", "period", "hysteresis", "shares"}, "exit choice");
+  sim::ExitChoiceDesc& c = p.exitChoice;
+  bool ok = true;
+  if (auto* x = optional(v, "rule")) {
+    std::size_t rule = 0;
+    if (readChoice(*x, ptr + "/rule", {"nearest", "quickest", "allocation"}, "exit choice rule", rule)) {
+      c.rule = static_cast<sim::ExitRule>(rule);
+    } else {
+      ok = false;
+    }
+  }
+  ok = readFloatKeys(v, ptr, {{"period", {0, 3600, true, "s"}, &c.period}, {"hysteresis", {0, 1, false, ""}, &c.hysteresis}}) && ok;
+  if (auto* x = optional(v, "shares")) {
+    const std::string sptr = ptr + "/shares";
+    const std::string expected = "one share >= 0 per exit (" + std::to_string(p.exits.size()) + "), not all 0";
+    if (c.rule != sim::ExitRule::Allocation) {
+      error(sptr, "\"shares\" only apply to the allocation rule", "\"rule\": \"allocation\" or no \"shares\"", "", true);
+      return false;
+    }
+    if (!x->is_array() || (!p.exits.empty() && x->size() != p.exits.size())) {
+      error(sptr, x->is_array() ? std::to_string(x->size()) + " shares" : "wrong type: " + describeType(*x), expected);
+      return false;
+    }
+    float total = 0.0f;
+    for (std::size_t k = 0; k < x->size(); ++k) {
+      float share = 0.0f;
+      if (readFloat((*x)[k], sptr + "/" + std::to_string(k), {0, 1e6, false, ""}, share)) c.shares.push_back(share), total += share;
+      else ok = false;
+    }
+    if (ok && total <= 0.0f) {
+      error(sptr, "every share is 0", expected);
+      ok = false;
+    }
+  }
+  return ok;
+}
+
 /// The Musse et al. crowd-model keys of a population (group behaviour, paths, following,
 /// guidance, sociological effects); see docs/scenario-format.md "Crowd model".
 bool ScenarioReader::readCrowdKeys(const Json& v, const std::string& ptr, std::size_t index, sim::PopulationDesc& p) {

@@ -140,7 +140,7 @@ bool ScenarioReader::readPoint(const Json& v, const std::string& ptr, sim::Point
   if (!isObject(v, ptr, "a point object {\"id\", \"kind\", \"position\"+\"radius\" or \"polygon\"}")) return false;
   checkKeys(v, ptr,
             {"id", "kind", "position", "radius", "polygon", "height", "stop", "orientation", "action", "duration", "clip",
-             "category"},
+             "category", "width"},
             "a point");
   bool ok = true;
   if (auto* id = require(v, ptr, "id", "a unique non-empty string id")) {
@@ -186,6 +186,14 @@ bool ScenarioReader::readPoint(const Json& v, const std::string& ptr, sim::Point
     ok = false;
   }
   if (auto* x = optional(v, "category")) ok = readCategory(*x, ptr + "/category", p.category) && ok;
+  if (auto* x = optional(v, "width")) {
+    if (p.kind != sim::PointKind::Exit) {
+      error(ptr + "/width", "\"width\" only applies to exit points", "\"kind\": \"exit\" or no \"width\"", "", true);
+      ok = false;
+    } else {
+      ok = readFloat(*x, ptr + "/width", {0.1, 100, false, "m"}, p.width) && ok;
+    }
+  }
   // Action-only keys: stop, orientation, action, duration, clip (loaded by scenario_clips).
   const bool action = p.kind == sim::PointKind::Action;
   if (action) p.stop = true;
@@ -383,7 +391,7 @@ bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::
   checkKeys(v, ptr,
             {"id", "groups", "size", "spawn", "start", "goals", "speed", "radius", "wander", "paths", "autoNearDistance",
              "flocking", "waitTimeout", "groupSpacing", "follow", "guide", "sociological", "interests", "interestsPerAgent", "preferences",
-             "model", "preMovement", "stairs"},
+             "model", "preMovement", "stairs", "exits", "exitChoice"},
             "a population");
   bool ok = true;
   p.id = "population" + std::to_string(index);
@@ -432,6 +440,15 @@ bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::
   }
   if (auto* x = optional(v, "start")) ok = readFloat(*x, ptr + "/start", {0, 1e6, false, "s"}, p.start) && ok;
   if (auto* x = optional(v, "goals")) ok = readGoals(*x, ptr + "/goals", p) && ok;
+  if (auto* x = optional(v, "exits")) ok = readExits(*x, ptr + "/exits", p) && ok;
+  if (auto* x = optional(v, "exitChoice")) {
+    if (optional(v, "exits") == nullptr) {
+      error(ptr + "/exitChoice", "\"exitChoice\" without \"exits\"", "the exits to choose among: \"exits\": [\"exit id\", ...]", "", true);
+      ok = false;
+    } else {
+      ok = readExitChoice(*x, ptr + "/exitChoice", p) && ok;
+    }
+  }
   if (auto* x = optional(v, "speed")) ok = readSpeed(*x, ptr + "/speed", p) && ok;
   if (auto* x = optional(v, "stairs")) ok = readStairs(*x, ptr + "/stairs", p) && ok;
   if (auto* x = optional(v, "radius")) ok = readFloat(*x, ptr + "/radius", {0.05, 1.0, false, "m"}, p.radius) && ok;
@@ -570,9 +587,11 @@ void ScenarioReader::indexPoints(const sim::ScenarioDesc& desc) {
   pointIds_.clear();
   indexedIds_ = nullptr;  // resolvePoint re-hashes the new list
   pointHeights_.clear();
+  pointIsExit_.clear();
   for (const auto& p : desc.points) {
     pointIds_.push_back(p.id);
     pointHeights_.push_back(p.height);
+    pointIsExit_.push_back(p.kind == sim::PointKind::Exit ? 1 : 0);
     hasActionPoint_ = hasActionPoint_ || p.kind == sim::PointKind::Action;
   }
 }

@@ -328,6 +328,8 @@ class ScenarioReader {
   /// "stairs": {"up", "down"}, factors of the desired speed along a stair's slope.
   bool readStairs(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   bool readGoals(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
+  bool readExits(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
+  bool readExitChoice(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   bool readCrowdKeys(const Json& v, const std::string& ptr, std::size_t index, sim::PopulationDesc& p);
   /// "model" (scenario_model_parser.cpp): a model name, or {"name", parameters of that model}.
   bool readModel(const Json& v, const std::string& ptr, sim::ModelDesc& m);
@@ -360,6 +362,7 @@ class ScenarioReader {
   std::size_t suggestionWork_ = 0;
   static constexpr std::size_t kSuggestionWork = 1000000;
   std::vector<float> pointHeights_;  ///< per point id: its floor height (spawns at a point take it)
+  std::vector<std::uint8_t> pointIsExit_;  ///< per point id: kind "exit" (a population's "exits" must be)
   /// The world has a "terrain" (multi-level): positions may carry heights; 2D-only features are refused.
   bool multiLevel_ = false;
   bool hasActionPoint_ = false;  ///< "goals": "auto" draws its final goal among the action points

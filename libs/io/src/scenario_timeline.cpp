@@ -18,7 +18,7 @@ namespace throng::io {
 namespace detail {
 
 void ScenarioReader::readTimeline(const Json& v, const std::string& ptr, std::vector<sim::TimelineEntry>& out) {
-  const std::string entryExpected = "{\"time\": seconds, \"insert\": \"crowd file\"} or {\"time\": seconds, \"remove\": \"crowd id\"}";
+  const std::string entryExpected = "{\"time\": seconds, and \"insert\": \"crowd file\", \"remove\": \"crowd id\", \"close\": \"exit id\" or \"open\": \"exit id\"}";
   if (!v.is_array()) {
     error(ptr, "wrong type: " + describeType(v), "an array of timeline entries, times ascending");
     return;
@@ -29,7 +29,7 @@ void ScenarioReader::readTimeline(const Json& v, const std::string& ptr, std::ve
     const std::string eptr = ptr + "/" + std::to_string(i);
     const Json& e = v[i];
     if (!isObject(e, eptr, entryExpected)) continue;
-    checkKeys(e, eptr, {"time", "insert", "remove"}, "a timeline entry");
+    checkKeys(e, eptr, {"time", "insert", "remove", "close", "open"}, "a timeline entry");
     sim::TimelineEntry entry;
     bool ok = true;
     if (auto* t = require(e, eptr, "time", "a time in seconds >= 0")) {
@@ -46,20 +46,39 @@ void ScenarioReader::readTimeline(const Json& v, const std::string& ptr, std::ve
     }
     const Json* insert = optional(e, "insert");
     const Json* remove = optional(e, "remove");
-    if ((insert != nullptr) == (remove != nullptr)) {
-      error(eptr, insert ? "entry has both \"insert\" and \"remove\"" : "entry has neither \"insert\" nor \"remove\"", entryExpected);
+    const Json* close = optional(e, "close");
+    const Json* open = optional(e, "open");
+    std::vector<std::string> given;
+    for (const auto& [key, value] : {std::pair{"insert", insert}, {"remove", remove}, {"close", close}, {"open", open}}) {
+      if (value != nullptr) given.push_back(quote(key));
+    }
+    if (given.size() != 1) {
+      std::string what = "entry has no action";
+      if (given.size() == 2) what = "entry has both " + given[0] + " and " + given[1];
+      if (given.size() > 2) what = "entry has " + std::to_string(given.size()) + " actions";
+      error(eptr, what, entryExpected);
       ok = false;
     } else if (insert != nullptr) {
       entry.action = sim::TimelineAction::Insert;
       readRelativePath(*insert, eptr + "/insert", "a crowd file path relative to the scenario (\"crowds/tour.json\")", entry.path);
       ok = !entry.path.empty() && ok;
-    } else {
+    } else if (remove != nullptr) {
       entry.action = sim::TimelineAction::Remove;
       const std::string expected = "the id of a crowd inserted earlier in the timeline";
       if (readString(*remove, eptr + "/remove", expected, entry.crowdId) && entry.crowdId.empty()) {
         error(eptr + "/remove", "empty crowd id", expected);
       }
       ok = !entry.crowdId.empty() && ok;
+    } else {
+      entry.action = close != nullptr ? sim::TimelineAction::CloseExit : sim::TimelineAction::OpenExit;
+      const std::string key = close != nullptr ? "close" : "open";
+      const std::string kptr = eptr + "/" + key;
+      if (!resolvePoint(close != nullptr ? *close : *open, kptr, entry.point)) {
+        ok = false;
+      } else if (entry.point < pointIsExit_.size() && pointIsExit_[entry.point] == 0) {
+        error(kptr, "point " + quote(pointIds_[entry.point]) + " is not an exit", "the id of a point of kind \"exit\"");
+        ok = false;
+      }
     }
     // Entries keep their JSON index (pointers name desc.timeline[i]); bad ones are never loaded.
     if (!ok) entry.path.clear(), entry.crowdId.clear();

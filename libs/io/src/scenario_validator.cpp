@@ -507,11 +507,11 @@ class Validator {
     for (std::size_t i = 0; i < desc_.populations.size(); ++i) {
       if (!starts[i]) continue;
       const sim::PopulationDesc& pop = desc_.populations[i];
-      for (std::size_t g = 0; g < pop.goals.size(); ++g) {
-        const sim::PointDesc& goal = desc_.points[pop.goals[g]];
+      for (const auto& [point, pointer] : destinations(i)) {
+        const sim::PointDesc& goal = desc_.points[point];
         const auto target = snapAt(query, goalTarget(goal), goal.height, regionReach(goal) + 1.0f);
         if (!target || !query.reachable(starts[i]->p, starts[i]->height, target->p, target->height)) {
-          error("/populations/" + std::to_string(i) + "/goals/" + std::to_string(g),
+          error(pointer,
                 "point \"" + goal.id + "\" cannot be reached from the spawn area of population \"" + pop.id + "\"",
                 "a goal connected to the spawn by floors, stairs or ramps at least " + num(width) +
                     " m wide" + clearanceText(width) + ", steps at most " + num(config.maxClimb) + " m high, slopes at most " +
@@ -520,6 +520,16 @@ class Validator {
         }
       }
     }
+  }
+
+  /// The points population i walks to, with their JSON pointers: its goals, then its exits.
+  [[nodiscard]] std::vector<std::pair<std::uint32_t, std::string>> destinations(std::size_t i) const {
+    const sim::PopulationDesc& pop = desc_.populations[i];
+    const std::string ptr = "/populations/" + std::to_string(i);
+    std::vector<std::pair<std::uint32_t, std::string>> out;
+    for (std::size_t g = 0; g < pop.goals.size(); ++g) out.emplace_back(pop.goals[g], ptr + "/goals/" + std::to_string(g));
+    for (std::size_t e = 0; e < pop.exits.size(); ++e) out.emplace_back(pop.exits[e], ptr + "/exits/" + std::to_string(e));
+    return out;
   }
 
   /// checkPointArrival on a multi-level world, for disc regions: the ground nearest the disc's
@@ -694,9 +704,8 @@ class Validator {
               "a spawn on or next to walkable area wide enough for the agents");
         continue;
       }
-      for (std::size_t g = 0; g < pop.goals.size(); ++g) {
-        const sim::PointDesc& goal = desc_.points[pop.goals[g]];
-        const std::string gptr = ptr + "/goals/" + std::to_string(g);
+      for (const auto& [point, gptr] : destinations(i)) {
+        const sim::PointDesc& goal = desc_.points[point];
         // Search around the goal as far as its region extends, plus a margin for the erosion.
         float reach = goal.radius;
         if (!goal.polygon.empty()) {

@@ -143,6 +143,7 @@ const char* eventKindName(sim::EventKind kind) {
     case sim::EventKind::VisitStart: return "visit_start";
     case sim::EventKind::VisitEnd: return "visit_end";
     case sim::EventKind::Reunited: return "reunited";
+    case sim::EventKind::ExitChosen: return "exit_chosen";
   }
   return "unknown";
 }

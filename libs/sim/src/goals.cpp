@@ -159,6 +159,35 @@ void GoalWriter::applyPendingGoals(std::span<ChunkOutput> chunks) {
   }
 }
 
+void GoalWriter::giveExitGoals(std::uint32_t gid, std::uint32_t exit) {
+  GroupState& g = groups[gid];
+  std::vector<std::uint32_t> goals = desc.populations[g.population].goals;
+  goals.push_back(exit);
+  g.goalList = static_cast<std::uint32_t>(goalLists.size());
+  goalLists.push_back(std::move(goals));
+}
+
+void GoalWriter::changeExit(std::uint32_t gid, std::uint32_t exit, std::span<const std::uint32_t> rowOfId,
+                            std::uint32_t agentId) {
+  const GroupState& g = groups[gid];
+  std::vector<std::uint32_t>& goals = goalLists[g.goalList];
+  const std::uint32_t previous = goals.back();
+  goals.back() = exit;
+  events.push_back({tick, agentId, EventKind::ExitChosen, exit, previous});
+  const auto slot = static_cast<std::uint32_t>(goals.size() - 1);
+  for (const std::uint32_t id : g.members) {
+    const std::uint32_t row = id < rowOfId.size() ? rowOfId[id] : kNoRow;
+    if (row == kNoRow || agents.goalCursor[row] != slot) continue;
+    const GoalState state = agents.goalState[row];
+    if (state != GoalState::Seeking && state != GoalState::PreMovement) continue;
+    setGoal(row, slot);
+    if (state == GoalState::PreMovement) {
+      agents.goalState[row] = GoalState::PreMovement;
+      agents.mode[row] = AgentMode::Waiting;
+    }
+  }
+}
+
 void GoalWriter::bezierPath(std::size_t row) {
   // Seek goal with a Bézier curve (Musse et al. §3.2.2), verified inside the walkable surface by
   // the control boxes' convex-hull property; where no curve fits, the navmesh path is used and the

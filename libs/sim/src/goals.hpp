@@ -59,6 +59,13 @@ struct GoalWriter {
   void bezierPath(std::size_t row);
   /// Automatic goals for group `gid` spawning around `anchor` (a new goal list of its own).
   void reconstructGoals(std::uint32_t gid, core::Vec2 anchor);
+  /// Exit choice (exit_choice.hpp): gives group `gid` a goal list of its own, its population's
+  /// goals and then `exit`.
+  void giveExitGoals(std::uint32_t gid, std::uint32_t exit);
+  /// Changes group `gid`'s exit (the last entry of its own list) to `exit`: members walking to the
+  /// exit get a target in the new one (standing ones before their pre-movement time ends keep
+  /// standing); an ExitChosen event names `agentId` (the member who decided).
+  void changeExit(std::uint32_t gid, std::uint32_t exit, std::span<const std::uint32_t> rowOfId, std::uint32_t agentId);
   /// Applies the goal changes decide asked for (AgentStore::goalPending), in row order: the rows
   /// the chunks list, whose lists it clears.
   void applyPendingGoals(std::span<ChunkOutput> chunks);

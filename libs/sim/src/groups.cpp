@@ -55,11 +55,7 @@ GuideWaypoint interpolateGuide(const std::vector<GuideWaypoint>& script, float t
 }  // namespace
 
 void World::Impl::decideGroups(const core::TaskSystem& tasks) {
-  if (rowsChanged) {
-    rowOfId.assign(spawner.nextAgentId(), kNoRow);
-    for (std::size_t r = 0; r < agents.size(); ++r) rowOfId[agents.id[r]] = static_cast<std::uint32_t>(r);
-    rowsChanged = false;
-  }
+  refreshRowOfId();
   GoalWriter goals = goalWriter();
   goals.applyPendingGoals(chunks);
   applyGroupCommands(commands, groups);

@@ -194,6 +194,8 @@ void World::Impl::applyCrowdCommands() {
         const std::uint32_t index = queueCrowd(e.crowd);
         insertCrowdNow(insertion.crowds[index]);
       }
+    } else if (e.action == TimelineAction::CloseExit || e.action == TimelineAction::OpenExit) {
+      exitChoice.setClosed(e.point, e.action == TimelineAction::CloseExit);
     } else {
       for (CrowdState& c : insertion.crowds) {
         if (c.info.id == e.crowdId) removeCrowdNow(c);
@@ -226,6 +228,7 @@ void World::Impl::insertCrowdNow(CrowdState& c) {
   commonGround.addPoints(desc.points, firstPoint);
 
   addCrowdPopulations(cd, firstPoint, firstPopulation, now);
+  exitChoice.prepare(desc, *navmesh, firstPopulation);
   configureModels();  // a crowd may walk with a model the world had no use for
   if (desc.social.enabled) commonGround.refreshInterests(desc);
 
@@ -311,6 +314,7 @@ void World::Impl::addCrowdPopulations(const CrowdDesc& cd, std::uint32_t firstPo
   for (const PopulationDesc& source : cd.populations) {
     PopulationDesc pop = source;
     for (std::uint32_t& g : pop.goals) g = mapPoint(g);
+    for (std::uint32_t& e : pop.exits) e = mapPoint(e);
     if (pop.spawn.kind == SpawnKind::Point) pop.spawn.point = mapPoint(pop.spawn.point);
     if (pop.follow.mode != FollowMode::None) pop.follow.population = mapPopulation(pop.follow.population);
     // Times in a crowd count from its insertion: spawn, guide script and release.

@@ -121,15 +121,26 @@ class PopulationEntry {
     for (std::uint32_t g = 0; g < sizes.size(); ++g) {
       const std::uint32_t groupId = out_.spawner.firstGroupId(plan_.population) + g;
       if (pop_.autoGoals) out_.goals.reconstructGoals(groupId, plan_.anchors[g]);
+      const std::uint32_t exit = chooseExit(groupId, sizes[g], plan_.spots[spot]);
       for (std::uint32_t m = 0; m < sizes[g]; ++m) {
         const std::size_t row = addRow(groupId, m, sizes[g], plan_.spots[spot++]);
         drawInterests(row);
         joinGroup(row, groupId);
       }
+      if (exit != kNoPoint) out_.goals.events.push_back({in_.tick, out_.groups[groupId].leader, EventKind::ExitChosen, exit, kNoPoint});
     }
   }
 
  private:
+  /// Exit choice: the exit the group heads for after its goals, chosen where its first member
+  /// stands, in a goal list of its own; kNoPoint when its population names no exits.
+  std::uint32_t chooseExit(std::uint32_t groupId, std::uint32_t members, const std::pair<core::Vec2, nav::PolyRef>& first) {
+    if (pop_.exits.empty() || out_.exits == nullptr) return kNoPoint;
+    const std::uint32_t exit = out_.exits->initial(in_.desc, pop_, groupId, members, first.first, first.second, pop_.speedMean);
+    out_.goals.giveExitGoals(groupId, exit);
+    return exit;
+  }
+
   /// The agent's row: id, group, body, position, desired speed, standing still facing +x.
   std::size_t addRow(std::uint32_t groupId, std::uint32_t member, std::uint32_t groupSize,
                      const std::pair<core::Vec2, nav::PolyRef>& placed) {

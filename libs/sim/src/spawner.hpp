@@ -14,6 +14,7 @@
 
 #include "agent_store.hpp"
 #include "common_ground_state.hpp"
+#include "exit_choice.hpp"
 #include "goals.hpp"
 #include "group_table.hpp"
 #include "throng/nav/navmesh.hpp"
@@ -121,6 +122,9 @@ struct SpawnOutput {
   /// world's pending events, before whose end spawn events are recorded.
   GoalWriter& goals;
   WorldStats& stats;   ///< spawned, scheduled, active
+  /// Exit choice: a group of a population with "exits" chooses its first exit where it spawns
+  /// (and gets a goal list of its own); null: no population chooses.
+  ExitChoice* exits = nullptr;
 };
 
 /// Spawns populations `due` (ascending, as Spawner::due gives them), in order: random free spots

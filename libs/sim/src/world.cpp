@@ -65,6 +65,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
     w.spawner.addPopulation(static_cast<std::uint64_t>(std::ceil(pop.start / desc.dt - 1e-6)));
   }
   for (const PointDesc& p : desc.points) w.pointRegions.add(p);
+  w.exitChoice.prepare(desc, *navmesh, 0);
   w.pointClip = pointClips(desc);
   w.initCommonGround();
   w.planPopulations();
@@ -85,7 +86,11 @@ void World::step(const core::TaskSystem& tasks, PhaseObserver* observer) {
     Scope(PhaseObserver* obs, std::string_view n) : o(obs), name(n) { if (o) o->phaseBegin(name); }
     ~Scope() { if (o) o->phaseEnd(name); }
   };
-  { Scope s(observer, "applyCommands"); if (w.tick > 0 || w.crowdsPending()) w.applyCommands(); }
+  {
+    Scope s(observer, "applyCommands");
+    if (w.tick > 0 || w.crowdsPending()) w.applyCommands();
+    w.chooseExits();
+  }
   { Scope s(observer, "sense"); w.sense(tasks); }
   { Scope s(observer, "decide"); w.decide(tasks); }
   { Scope s(observer, "plan"); w.plan(); }
@@ -116,8 +121,16 @@ void World::Impl::applyCommands() {
   const std::vector<std::size_t> due = spawner.due(tick);
   if (due.empty()) return;
   GoalWriter goals = goalWriter();
-  spawnDue(SpawnInput{desc, *mainQuery, tick, commonGround}, SpawnOutput{spawner, agents, groups, goals, stats}, due);
+  spawnDue(SpawnInput{desc, *mainQuery, tick, commonGround}, SpawnOutput{spawner, agents, groups, goals, stats, &exitChoice},
+           due);
   rowsChanged = true;
+}
+
+void World::Impl::chooseExits() {
+  if (!exitChoice.active()) return;
+  refreshRowOfId();
+  GoalWriter goals = goalWriter();
+  exitChoice.step(tick, rowOfId, goals);
 }
 
 void World::Impl::sense(const core::TaskSystem& tasks) {

@@ -15,6 +15,7 @@
 //   groups.cpp     the group pass after decide (commands, guidance, following, waiting, formation)
 //   common_ground.cpp, common_ground_play.cpp  the Common Ground model (goals, coordinations, scripts)
 //   plan.cpp       budgeted path planning through nav::PathQueue
+//   exit_choice.cpp  exit choice: distance fields, queues, re-evaluation (the tactical layer)
 //   goals.cpp      one home for goals: active list, current point; GoalWriter (goals.hpp): set/advance,
 //                  targets and sub-regions, Bézier paths, automatic goals, pending goal changes
 //   steer.cpp      preferred velocity along the path, then the population's avoidance model
@@ -32,6 +33,7 @@
 #include "agent_store.hpp"
 #include "common_ground_state.hpp"
 #include "crowd_insertion.hpp"
+#include "exit_choice.hpp"
 #include "goals.hpp"
 #include "group_pass.hpp"
 #include "group_table.hpp"
@@ -85,8 +87,20 @@ struct World::Impl {
   std::vector<core::Vec2> viewers;
   std::vector<std::uint32_t> rowOfId;       ///< stable id → row (kNoRow if gone), rebuilt when rows change
   bool rowsChanged = true;                  ///< set by spawning and by removals
+  /// Rebuilds rowOfId when rows changed.
+  void refreshRowOfId() {
+    if (!rowsChanged) return;
+    rowOfId.assign(spawner.nextAgentId(), kNoRow);
+    for (std::size_t r = 0; r < agents.size(); ++r) rowOfId[agents.id[r]] = static_cast<std::uint32_t>(r);
+    rowsChanged = false;
+  }
   bool anySociological = false;                   ///< some population has the sociological model on
   std::vector<std::uint32_t> followingRows; ///< rows following another agent (sociological), ascending
+
+  // Exit choice (exit_choice.hpp): distance fields, queues, the groups that choose.
+  ExitChoice exitChoice;
+  /// Re-evaluates exits (after applyCommands, before sense).
+  void chooseExits();
 
   // Per-point action clips, and regions cut into sub-regions with their occupancy (goals.hpp).
   std::vector<std::uint16_t> pointClip;

@@ -42,6 +42,8 @@ enum class EventKind : std::uint8_t {
   VisitStart = 21,        ///< the agent reached a generated goal and stays; a = point, b = coordination id
   VisitEnd = 22,          ///< a = point, b = coordination id
   Reunited = 23,          ///< the group is whole again after a divide; agent = A, a = group, b = coordination id
+  // Exit choice (docs/crowd-model.md "Tactical level: exit choice").
+  ExitChosen = 24,  ///< agent = the group's leader; a = the exit it heads for now, b = the one before (kNoPoint: first choice)
 };
 
 /// Why the goal generator gave an agent a goal.

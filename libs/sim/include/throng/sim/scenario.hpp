@@ -40,6 +40,9 @@ struct PointDesc {
                            ///< to the clip's name (file stem) when a clip is given
   float actionDuration = 0.0f;  ///< Action only: how long the stop lasts [s]; defaults to the
                                 ///< clip's duration when a clip is given
+  /// Exit only: the width of the opening it stands for [m] [Limit: 0.1..100]. Exit choice estimates
+  /// its capacity as kExitSpecificFlow × width (queue time ahead = people ahead / capacity).
+  float width = 1.0f;
   std::string clip;        ///< Action only: motion clip (BVH) path as written in the scenario,
                            ///< relative to its directory; empty for none. io loads the clip.
   /// What the place is for the goal generator of the social model ("restroom", "shoes", "meeting");
@@ -138,6 +141,31 @@ struct DemographicsDesc {
   float impairedRadius = 0.35f;
 };
 
+/// How an agent (a group: its members decide together) picks one of its population's exits.
+enum class ExitRule : std::uint8_t {
+  Nearest,     ///< shortest walking distance (stairs priced as in route choice)
+  Quickest,    ///< walking time + the queue ahead at the exit / the exit's capacity
+  Allocation,  ///< drawn once by fixed shares (a probabilistic split), never re-evaluated
+};
+
+/// Specific flow through a short bottleneck [persons/(m·s)]: the capacity of an exit of width w is
+/// this × w (Kretz, Grünebohm, Schreckenberg, J. Stat. Mech. 2006 P10014; Seyfried et al.,
+/// Transportation Science 43, 395, 2009: about 1.9 for 0.8–1.2 m).
+inline constexpr float kExitSpecificFlow = 1.9f;
+
+/// Exit choice (scenario key "exitChoice"; docs/crowd-model.md "Tactical level: exit choice").
+struct ExitChoiceDesc {
+  ExitRule rule = ExitRule::Quickest;
+  /// Nearest and Quickest: each group re-evaluates its exit this often [s] [Limit: > 0], its
+  /// moment spread over the period by its id (time-sliced: 1/period of the groups a second).
+  float period = 2.0f;
+  /// Nearest and Quickest: a group changes exit only when the other saves more than this share of
+  /// its current cost [Limit: 0..1] — so nobody flips between two nearly equal exits.
+  float hysteresis = 0.2f;
+  /// Allocation: one share per exit (normalised; empty: equal shares).
+  std::vector<float> shares;
+};
+
 struct PopulationDesc {
   std::string id;
   std::uint32_t groups = 1;       ///< number of social groups
@@ -146,6 +174,10 @@ struct PopulationDesc {
   SpawnDesc spawn;
   float start = 0.0f;             ///< spawn time [s]
   std::vector<std::uint32_t> goals;  ///< indices into ScenarioDesc::points, visited in order
+  /// Exit choice: after `goals`, each group walks to one of these exits (point indices, kind
+  /// Exit), chosen by `exitChoice`. Empty: no choice (the goals are the route).
+  std::vector<std::uint32_t> exits;
+  ExitChoiceDesc exitChoice;
   bool wander = false;            ///< after the last goal (or with no goals): walk to random
                                   ///< points of the walkable area forever (benchmarks, ambient crowds)
   float speedMean = 1.34f;        ///< desired walking speed [m/s] (Weidmann 1993)
@@ -277,8 +309,10 @@ struct CrowdDesc {
   [[nodiscard]] std::uint64_t maxAgents() const;
 };
 
-/// A scenario timeline entry: at `time` a crowd is inserted or a crowd is removed (its agents leave).
-enum class TimelineAction : std::uint8_t { Insert, Remove };
+/// A scenario timeline entry: at `time` a crowd is inserted or a crowd is removed (its agents leave),
+/// or an exit closes or opens again for exit choice (groups heading for a closed exit choose another;
+/// fixed goals are not changed).
+enum class TimelineAction : std::uint8_t { Insert, Remove, CloseExit, OpenExit };
 
 struct TimelineEntry {
   float time = 0.0f;        ///< [s] from the start of the run
@@ -286,6 +320,7 @@ struct TimelineEntry {
   std::string path;         ///< Insert: the crowd file as written (relative to the scenario)
   CrowdDesc crowd;          ///< Insert: loaded and validated by io
   std::string crowdId;      ///< Remove: id of an inserted crowd
+  std::uint32_t point = 0;  ///< CloseExit, OpenExit: the exit's point index
 };
 
 struct ScenarioDesc {

@@ -1,0 +1,194 @@
+// exit_choice (exit_choice.hpp): distance fields of the chosen-among exits, the initial choice of a
+// spawning group, the per-tick queue count and re-evaluation, closing and opening exits.
+#include "exit_choice.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "throng/core/rng.hpp"
+
+namespace throng::sim {
+namespace {
+
+/// Width of a distance bin of the queue counts [m]: about one person's depth in a queue.
+constexpr float kBin = 0.5f;
+constexpr double kNever = std::numeric_limits<double>::infinity();
+
+nav::FieldTarget targetOf(const PointDesc& p) {
+  nav::FieldTarget t;
+  t.centre = p.position;
+  t.radius = p.radius;
+  t.polygon = p.polygon;
+  t.height = p.height;
+  return t;
+}
+
+}  // namespace
+
+std::size_t ExitChoice::Queue::bin(float d) const {
+  const float b = std::max(0.0f, d / kBin) + 1.0f;  // Fenwick indices start at 1
+  return std::min(static_cast<std::size_t>(b), tree_.size() - 1);
+}
+
+void ExitChoice::Queue::add(float d, std::int32_t n) {
+  if (!std::isfinite(d) || tree_.size() < 2) return;
+  for (std::size_t i = bin(d); i < tree_.size(); i += i & (~i + 1)) tree_[i] += n;
+}
+
+std::int32_t ExitChoice::Queue::nearer(float d) const {
+  if (tree_.size() < 2) return 0;
+  std::int32_t sum = 0;
+  for (std::size_t i = bin(d) - 1; i > 0; i -= i & (~i + 1)) sum += tree_[i];
+  return sum;
+}
+
+void ExitChoice::prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, std::uint32_t firstPopulation) {
+  exitOfPoint_.resize(desc.points.size(), -1);
+  for (std::size_t p = firstPopulation; p < desc.populations.size(); ++p) {
+    const PopulationDesc& pop = desc.populations[p];
+    if (pop.exits.empty()) continue;
+    const auto ticks = static_cast<std::uint32_t>(std::max(1.0f, std::round(pop.exitChoice.period / desc.dt)));
+    periodTicks_ = exits_.empty() && groups_.empty() ? ticks : std::min(periodTicks_, ticks);
+    nav::DistanceFieldConfig config;
+    // Stairs cost as in route choice: the mean of 1/up and 1/down per metre.
+    config.stairCost = std::max(1.0f, 0.5f * (1.0f / pop.stairUp + 1.0f / pop.stairDown));
+    for (const std::uint32_t point : pop.exits) {
+      if (exitOfPoint_[point] >= 0) continue;
+      Exit e;
+      e.point = point;
+      e.field = nav::DistanceField::build(mesh, targetOf(desc.points[point]), config);
+      e.capacity = kExitSpecificFlow * desc.points[point].width;
+      e.queue.reset(static_cast<std::size_t>(e.field.maxDistance() / kBin) + 2);
+      exitOfPoint_[point] = static_cast<std::int32_t>(exits_.size());
+      exits_.push_back(std::move(e));
+    }
+  }
+}
+
+float ExitChoice::distance(std::uint32_t point, core::Vec2 p, nav::PolyRef ref) const {
+  if (point >= exitOfPoint_.size() || exitOfPoint_[point] < 0) return nav::DistanceField::kUnreachable;
+  return exits_[static_cast<std::size_t>(exitOfPoint_[point])].field.at(p, ref);
+}
+
+void ExitChoice::setClosed(std::uint32_t point, bool closed) {
+  if (point >= exitOfPoint_.size() || exitOfPoint_[point] < 0) return;
+  exits_[static_cast<std::size_t>(exitOfPoint_[point])].closed = closed;
+  anyClosed_ = std::any_of(exits_.begin(), exits_.end(), [](const Exit& e) { return e.closed; });
+}
+
+bool ExitChoice::closed(std::uint32_t point) const {
+  return point < exitOfPoint_.size() && exitOfPoint_[point] >= 0 && exits_[static_cast<std::size_t>(exitOfPoint_[point])].closed;
+}
+
+double ExitChoice::cost(const Exit& e, ExitRule rule, float d, float speed) const {
+  if (e.closed || !std::isfinite(d)) return kNever;
+  if (rule == ExitRule::Nearest) return d;
+  const double walk = static_cast<double>(d) / std::max(0.1f, speed);
+  return walk + static_cast<double>(e.queue.nearer(d)) / static_cast<double>(e.capacity);
+}
+
+std::uint32_t ExitChoice::better(const PopulationDesc& pop, ExitRule rule, std::uint32_t current, core::Vec2 p,
+                                 nav::PolyRef ref, float speed) const {
+  double best = kNever, now = kNever;
+  std::uint32_t choice = current;
+  for (const std::uint32_t point : pop.exits) {
+    const Exit& e = exits_[static_cast<std::size_t>(exitOfPoint_[point])];
+    const double c = cost(e, rule, e.field.at(p, ref), speed);
+    if (point == current) now = c;
+    if (c < best) {
+      best = c;
+      choice = point;
+    }
+  }
+  if (best == kNever) return current;  // every exit closed or out of reach: keep going
+  if (now == kNever || current == kNoPoint) return choice;
+  return best < now * (1.0 - static_cast<double>(pop.exitChoice.hysteresis)) ? choice : current;
+}
+
+std::uint32_t ExitChoice::initial(const ScenarioDesc& desc, const PopulationDesc& pop, std::uint32_t gid,
+                                  std::uint32_t members, core::Vec2 p, nav::PolyRef ref, float speed) {
+  groups_.push_back({gid, static_cast<std::uint16_t>(&pop - desc.populations.data())});
+  const std::uint32_t chosen = firstChoice(desc, pop, gid, p, ref, speed);
+  exitAt(chosen).queue.add(exitAt(chosen).field.at(p, ref), static_cast<std::int32_t>(members));
+  return chosen;
+}
+
+std::uint32_t ExitChoice::firstChoice(const ScenarioDesc& desc, const PopulationDesc& pop, std::uint32_t gid, core::Vec2 p,
+                                      nav::PolyRef ref, float speed) const {
+  if (pop.exitChoice.rule != ExitRule::Allocation) {
+    const std::uint32_t chosen = better(pop, pop.exitChoice.rule, kNoPoint, p, ref, speed);
+    return chosen != kNoPoint ? chosen : pop.exits.front();
+  }
+  // A probabilistic split by fixed shares, drawn per group from (seed, group id).
+  core::Rng rng(desc.seed, gid, core::RngPurpose::ExitChoice);
+  const std::vector<float>& shares = pop.exitChoice.shares;
+  double total = 0.0;
+  for (std::size_t k = 0; k < pop.exits.size(); ++k) total += k < shares.size() ? shares[k] : 1.0;
+  double u = rng.uniform() * total;
+  for (std::size_t k = 0; k < pop.exits.size(); ++k) {
+    u -= k < shares.size() ? shares[k] : 1.0;
+    if (u < 0.0) return pop.exits[k];
+  }
+  return pop.exits.back();
+}
+
+void ExitChoice::countQueues(std::uint64_t tick, const GoalWriter& goals) {
+  // Each agent heading for an exit with a field measures its distance once a period (by id), and
+  // every exit counts who is heading there by distance: the queue ahead of any distance.
+  const AgentStore& agents = goals.agents;
+  const GoalView view = goals.view();
+  for (Exit& e : exits_) e.queue.clear();
+  for (std::size_t row = 0; row < agents.size(); ++row) {
+    const GoalState state = agents.goalState[row];
+    if (state == GoalState::Exited || state == GoalState::Done) continue;
+    const std::uint32_t point = view.currentGoalPoint(row);
+    if (point == kNoPoint || point >= exitOfPoint_.size() || exitOfPoint_[point] < 0) continue;
+    Exit& e = exits_[static_cast<std::size_t>(exitOfPoint_[point])];
+    const std::uint32_t id = agents.id[row];
+    if (id >= distanceOfId_.size()) distanceOfId_.resize(std::max<std::size_t>(id + 1, distanceOfId_.size() * 2), -1.0f);
+    if (distanceOfId_[id] < 0.0f || (tick + id) % periodTicks_ == 0) {
+      distanceOfId_[id] = e.field.at({agents.posX[row], agents.posY[row]}, agents.polyRef[row]);
+    }
+    e.queue.add(distanceOfId_[id], 1);
+  }
+}
+
+void ExitChoice::reconsider(std::uint64_t tick, std::span<const std::uint32_t> rowOfId, GoalWriter& goals) {
+  const ScenarioDesc& desc = goals.desc;
+  const AgentStore& agents = goals.agents;
+  for (const Chooser& c : groups_) {
+    const PopulationDesc& pop = desc.populations[c.population];
+    const GroupState& g = goals.groups[c.group];
+    if (pop.exitChoice.rule == ExitRule::Allocation && !anyClosed_) continue;
+    const std::uint32_t period = static_cast<std::uint32_t>(std::max(1.0f, std::round(pop.exitChoice.period / desc.dt)));
+    const std::uint32_t current = goals.goalLists[g.goalList].back();
+    const bool forced = closed(current);
+    if (!forced && (tick + c.group) % period != 0) continue;
+    // The group decides where its leader (or first member present) stands.
+    std::uint32_t row = kNoRow;
+    if (g.leader != kNoAgent && g.leader < rowOfId.size()) row = rowOfId[g.leader];
+    for (std::size_t m = 0; row == kNoRow && m < g.members.size(); ++m) {
+      if (g.members[m] < rowOfId.size()) row = rowOfId[g.members[m]];
+    }
+    if (row == kNoRow || agents.goalState[row] == GoalState::Exited) continue;
+    const core::Vec2 p{agents.posX[row], agents.posY[row]};
+    // An allocated group whose exit closed takes the nearest open one.
+    const ExitRule rule = pop.exitChoice.rule == ExitRule::Allocation ? ExitRule::Nearest : pop.exitChoice.rule;
+    const std::uint32_t next = better(pop, rule, current, p, agents.polyRef[row], agents.speed[row]);
+    if (next == current) continue;
+    // The others deciding this tick see the move at once.
+    const auto members = static_cast<std::int32_t>(g.members.size());
+    exitAt(current).queue.add(exitAt(current).field.at(p, agents.polyRef[row]), -members);
+    exitAt(next).queue.add(exitAt(next).field.at(p, agents.polyRef[row]), members);
+    goals.changeExit(c.group, next, rowOfId, agents.id[row]);
+  }
+}
+
+void ExitChoice::step(std::uint64_t tick, std::span<const std::uint32_t> rowOfId, GoalWriter& goals) {
+  if (exits_.empty()) return;
+  countQueues(tick, goals);
+  reconsider(tick, rowOfId, goals);
+}
+
+}  // namespace throng::sim

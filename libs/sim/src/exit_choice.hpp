@@ -1,0 +1,105 @@
+// exit_choice — the tactical layer's exit choice (docs/crowd-model.md "Tactical level: exit
+// choice"): a population that names several "exits" lets each of its groups walk, after its goals,
+// to one of them, chosen by a rule — the nearest by walking distance, the quickest (walking time
+// plus the queue ahead at the exit over its capacity, re-evaluated every period with hysteresis),
+// or a fixed allocation by shares — and to another one when its exit closes (the timeline's
+// "close"). World::Impl owns one ExitChoice; its parts:
+//   - a nav::DistanceField per exit some population chooses among (built at creation and when a
+//     crowd brings new ones), so every distance is a constant-time lookup;
+//   - each agent's last measured distance to the exit it heads for, refreshed time-sliced, and per
+//     exit the count of agents heading there by distance (the queue ahead of a given distance);
+//   - the groups that choose, each re-evaluated once per period at a tick spread by its id.
+// A group's choice is the last entry of a goal list of its own (GoalWriter::giveExitGoals), so
+// every reader of goals (GoalView) sees a plain goal. Serial code (spawning, applyCommands): the
+// same for any thread or rank count.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "agent_store.hpp"
+#include "goals.hpp"
+#include "group_table.hpp"
+#include "throng/nav/distance_field.hpp"
+#include "throng/sim/scenario.hpp"
+
+namespace throng::sim {
+
+class ExitChoice {
+ public:
+  /// Distance fields for the exits of populations [firstPopulation, end) not built yet (creation,
+  /// crowd insertion). Stairs are priced like route choice (the first such population's factors).
+  void prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, std::uint32_t firstPopulation);
+  /// Some population chooses exits.
+  [[nodiscard]] bool active() const { return !exits_.empty(); }
+
+  /// The exit group `gid` of population `pop` (`members` agents) heads for when it spawns with its
+  /// first member at `p` on polygon `ref` (desired speed `speed`); remembers the group for
+  /// re-evaluation and counts its members in the exit's queue at once, so the groups spawning
+  /// after it in the same tick see them.
+  std::uint32_t initial(const ScenarioDesc& desc, const PopulationDesc& pop, std::uint32_t gid, std::uint32_t members,
+                        core::Vec2 p, nav::PolyRef ref, float speed);
+
+  /// Closes or opens an exit for choosing (timeline "close" / "open"); closed exits are never
+  /// chosen, and a group heading for one chooses again at the next step.
+  void setClosed(std::uint32_t point, bool closed);
+  [[nodiscard]] bool closed(std::uint32_t point) const;
+
+  /// One tick of choosing: agents due (by id, once a period) measure their distance to the exit
+  /// they head for; the queues are counted; groups due (by id), and every group heading for a
+  /// closed exit, choose again; a change re-targets the members walking to the exit.
+  void step(std::uint64_t tick, std::span<const std::uint32_t> rowOfId, GoalWriter& goals);
+
+  /// Distance [m] from `p` on `ref` to exit point `point` (kUnreachable without a field).
+  [[nodiscard]] float distance(std::uint32_t point, core::Vec2 p, nav::PolyRef ref) const;
+
+ private:
+  /// Agents heading for one exit by distance bin, as a Fenwick tree: adding one and counting
+  /// those nearer than a distance both take O(log bins).
+  class Queue {
+   public:
+    void reset(std::size_t bins) { tree_.assign(bins + 1, 0); }
+    void clear() { std::fill(tree_.begin(), tree_.end(), 0); }
+    /// `n` more (or fewer) agents at distance `d`.
+    void add(float d, std::int32_t n);
+    /// Agents strictly nearer than the bin of `d`.
+    [[nodiscard]] std::int32_t nearer(float d) const;
+
+   private:
+    [[nodiscard]] std::size_t bin(float d) const;
+    std::vector<std::int32_t> tree_;
+  };
+  struct Exit {
+    std::uint32_t point = 0;
+    nav::DistanceField field;
+    float capacity = 1.0f;               ///< persons/s (kExitSpecificFlow × the point's width)
+    bool closed = false;
+    Queue queue;                         ///< who is heading here, by distance
+  };
+  struct Chooser {
+    std::uint32_t group = 0;
+    std::uint16_t population = 0;
+  };
+
+  /// The cost of exit `e` for a group at distance `d` walking at `speed`: distance (Nearest) or
+  /// walking time plus queue time (Quickest); infinite when closed or unreachable.
+  [[nodiscard]] double cost(const Exit& e, ExitRule rule, float d, float speed) const;
+  /// The group's new exit by `rule` among `pop`'s exits (or `current` when none is better by the
+  /// population's hysteresis; kNoPoint as `current`: the best, without hysteresis).
+  [[nodiscard]] std::uint32_t better(const PopulationDesc& pop, ExitRule rule, std::uint32_t current, core::Vec2 p,
+                                     nav::PolyRef ref, float speed) const;
+  [[nodiscard]] Exit& exitAt(std::uint32_t point) { return exits_[static_cast<std::size_t>(exitOfPoint_[point])]; }
+  [[nodiscard]] std::uint32_t firstChoice(const ScenarioDesc& desc, const PopulationDesc& pop, std::uint32_t gid, core::Vec2 p,
+                                          nav::PolyRef ref, float speed) const;
+  void countQueues(std::uint64_t tick, const GoalWriter& goals);
+  void reconsider(std::uint64_t tick, std::span<const std::uint32_t> rowOfId, GoalWriter& goals);
+
+  std::vector<Exit> exits_;
+  std::vector<std::int32_t> exitOfPoint_;   ///< point index → index into exits_, -1: none
+  std::vector<Chooser> groups_;             ///< groups that choose, in creation order
+  std::vector<float> distanceOfId_;         ///< stable id → last measured distance to its exit [m]
+  std::uint32_t periodTicks_ = 40;          ///< the shortest population period in ticks (distance refresh)
+  bool anyClosed_ = false;
+};
+
+}  // namespace throng::sim

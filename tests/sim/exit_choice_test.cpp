@@ -1,0 +1,161 @@
+// Tests for exit choice (libs/sim/src/exit_choice.cpp; docs/crowd-model.md "Tactical level: exit
+// choice"): the RiMEA 11 room — two 1 m doors in the east wall, a crowd in its southern half —
+// with each rule: "nearest" sends each person to the door nearest by walking distance, "quickest"
+// spreads the crowd over both doors by their queues and empties the room sooner, "allocation"
+// splits by shares and never re-evaluates; a high hysteresis keeps every first choice; a closed
+// exit is left for the other (and nobody leaves by it after it closed); trajectories are the same
+// for 1 and 4 threads.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "sim_test_util.hpp"
+#include "throng/sim/world.hpp"
+
+using namespace throng;
+
+namespace {
+
+/// ExitChosen's b for a first choice (no exit before).
+constexpr std::uint32_t kFirstChoice = 0xffffffffu;
+
+core::Polygon rect(float x0, float y0, float x1, float y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
+
+sim::PointDesc exitPoint(std::string id, float y) {
+  sim::PointDesc p;
+  p.id = std::move(id);
+  p.kind = sim::PointKind::Exit;
+  p.polygon = rect(20.6f, y - 0.5f, 21.6f, y + 0.5f);
+  p.position = {21.1f, y};
+  return p;
+}
+
+/// A 20 x 10 m room, doors centred at y 2 ("south", point 0) and 8 ("north", point 1) into a 2 m
+/// hall; `agents` start in x 5..19.7, y 0.3..4.5: the south door is the nearer one for all.
+sim::ScenarioDesc room(std::uint32_t agents, sim::ExitChoiceDesc choice) {
+  sim::ScenarioDesc d;
+  d.seed = 5;
+  d.duration = 400.0f;
+  d.walkable = {rect(0, 0, 20, 10), rect(20.2f, 0, 22.2f, 10), rect(20, 1.5f, 20.2f, 2.5f), rect(20, 7.5f, 20.2f, 8.5f)};
+  d.points = {exitPoint("south", 2.0f), exitPoint("north", 8.0f)};
+  sim::PopulationDesc p;
+  p.id = "crowd";
+  p.groups = agents;
+  p.spawn.kind = sim::SpawnKind::Polygon;
+  p.spawn.polygon = rect(5, 0.3f, 19.7f, 4.5f);
+  p.speedMean = 1.34f;
+  p.speedSd = 0.26f;
+  p.exits = {0, 1};
+  p.exitChoice = std::move(choice);
+  d.populations = {p};
+  return d;
+}
+
+struct Outcome {
+  std::map<std::uint32_t, int> exitsBy;  // exit point → agents who left by it
+  int firstChoices = 0, changes = 0;
+  std::map<std::uint32_t, int> firstBy;  // exit point → groups that chose it first
+  double lastExit = 0.0;
+  std::vector<sim::Event> events;
+};
+
+Outcome run(const sim::ScenarioDesc& d, int threads = 1, double seconds = 400.0) {
+  auto created = sim::World::create(d);
+  EXPECT_TRUE(created.ok()) << (created.ok() ? "" : core::formatAll(created.errors()));
+  Outcome o;
+  if (!created.ok()) return o;
+  o.events = sim::test::runEvents(*created.value(), seconds, threads);
+  for (const sim::Event& e : o.events) {
+    if (e.kind == sim::EventKind::Exit) ++o.exitsBy[e.a], o.lastExit = static_cast<double>(e.tick) * d.dt;
+    if (e.kind == sim::EventKind::ExitChosen && e.b == kFirstChoice) ++o.firstChoices, ++o.firstBy[e.a];
+    if (e.kind == sim::EventKind::ExitChosen && e.b != kFirstChoice) ++o.changes;
+  }
+  return o;
+}
+
+TEST(ExitChoice, NearestSendsEachPersonToTheDoorNearestByWalking) {
+  sim::ExitChoiceDesc c;
+  c.rule = sim::ExitRule::Nearest;
+  Outcome o = run(room(200, c));
+  EXPECT_EQ(o.firstChoices, 200);
+  EXPECT_EQ(o.firstBy[0], 200);
+  // Those the queue at the south door pushes north of y 5 find the north door nearer and change.
+  EXPECT_GT(o.exitsBy[0], 90);
+  EXPECT_EQ(o.exitsBy[0] + o.exitsBy[1], 200);
+}
+
+TEST(ExitChoice, QuickestSpreadsTheCrowdAndEmptiesTheRoomSooner) {
+  sim::ExitChoiceDesc quick, near;
+  near.rule = sim::ExitRule::Nearest;
+  Outcome q = run(room(300, quick));
+  Outcome n = run(room(300, near));
+  ASSERT_EQ(q.exitsBy[0] + q.exitsBy[1], 300);
+  ASSERT_EQ(n.exitsBy[0] + n.exitsBy[1], 300);
+  // Both doors carry a good share.
+  EXPECT_GT(q.exitsBy[0], 100);
+  EXPECT_GT(q.exitsBy[1], 100);
+  EXPECT_GT(q.changes, 10);  // the queue at the south door made people change their minds
+  EXPECT_LT(q.lastExit, n.lastExit - 3.0) << "quickest " << q.lastExit << " s (" << q.exitsBy[0] << "/" << q.exitsBy[1]
+                                          << "), nearest " << n.lastExit << " s (" << n.exitsBy[0] << "/" << n.exitsBy[1] << ")";
+}
+
+TEST(ExitChoice, AllocationSplitsBySharesAndNeverReconsiders) {
+  sim::ExitChoiceDesc c;
+  c.rule = sim::ExitRule::Allocation;
+  c.shares = {3.0f, 1.0f};
+  Outcome o = run(room(400, c));
+  EXPECT_EQ(o.firstChoices, 400);
+  EXPECT_NEAR(o.firstBy[0] / 400.0, 0.75, 0.07);
+  EXPECT_EQ(o.changes, 0);
+  EXPECT_EQ(o.exitsBy[0], o.firstBy[0]);
+}
+
+TEST(ExitChoice, FullHysteresisKeepsEveryFirstChoice) {
+  sim::ExitChoiceDesc c;
+  c.hysteresis = 1.0f;
+  Outcome o = run(room(300, c));
+  EXPECT_EQ(o.changes, 0);
+  EXPECT_EQ(o.exitsBy[0], o.firstBy[0]);
+}
+
+TEST(ExitChoice, AClosedExitIsLeftForTheOther) {
+  sim::ExitChoiceDesc c;
+  auto d = room(200, c);
+  sim::TimelineEntry close;
+  close.time = 10.0f;
+  close.action = sim::TimelineAction::CloseExit;
+  close.point = 1;  // north
+  d.timeline = {close};
+  Outcome o = run(d);
+  EXPECT_EQ(o.exitsBy[0] + o.exitsBy[1], 200);
+  int northAfter = 0;
+  for (const sim::Event& e : o.events) {
+    if (e.kind == sim::EventKind::Exit && e.a == 1 && static_cast<double>(e.tick) * d.dt > 10.5) ++northAfter;
+  }
+  EXPECT_EQ(northAfter, 0) << "people left by the north exit after it closed";
+  EXPECT_GT(o.exitsBy[0], 170);
+}
+
+TEST(ExitChoice, SameTrajectoriesFor1And4Threads) {
+  // 1200 agents: several chunks of the parallel phases.
+  sim::ExitChoiceDesc c;
+  auto d = room(1200, c);
+  d.walkable[0] = rect(0, 0, 20, 40);
+  d.walkable[1] = rect(20.2f, 0, 22.2f, 40);
+  d.populations[0].spawn.polygon = rect(1, 0.3f, 19.7f, 39.7f);
+  auto a = sim::World::create(d), b = sim::World::create(d);
+  ASSERT_TRUE(a.ok() && b.ok());
+  core::TaskSystem one(1), four(4);
+  for (int t = 0; t < 400; ++t) {
+    a.value()->step(one);
+    b.value()->step(four);
+    const auto fa = a.value()->takeFrame(), fb = b.value()->takeFrame();
+    ASSERT_EQ(fa->size(), fb->size());
+    for (std::size_t i = 0; i < fa->size(); ++i) {
+      ASSERT_EQ(fa->posX[i], fb->posX[i]) << "tick " << t;
+      ASSERT_EQ(fa->posY[i], fb->posY[i]) << "tick " << t;
+    }
+  }
+}
+
+}  // namespace
