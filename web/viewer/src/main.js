@@ -1,9 +1,10 @@
 // The viewer's entry point: reads the URL options, picks the data source (live server, ?demo, or
 // ?demo&replay), builds the scene once the world description arrives (world_view, clips, crowd
 // view, cameras) and runs the frame loop: interpolate the crowd, choose levels of detail, draw,
-// update the HUD; wires the join form, picking, guide/release, the LOD toggle and the banner.
+// update the HUD; wires the join form, picking, guide/release, the cameras (plan, orbit, walk, fit,
+// follow: buttons and keys, ui/keys.js), the LOD toggle and the banner.
 // URL options: demo, agents=N, lod=on|off, ws=URL, replay (with demo), target=FPS, shot=1 (no
-// panels: screenshots), aa=0 (no antialiasing).
+// panels: screenshots), aa=0 (no antialiasing), camera=plan|orbit|walk (the first camera).
 import * as THREE from 'three';
 import { CrowdState } from './interpolate.js';
 import { DemoSource } from './sources/demo_source.js';
@@ -22,6 +23,7 @@ import { Timeline } from './ui/timeline.js';
 import { GroupList } from './ui/group_list.js';
 import { NameLabels } from './ui/name_labels.js';
 import { GesturePlayer, RemoteJoints, gestureClip, kGestures } from './crowd/gestures.js';
+import { bindKeys } from './ui/keys.js';
 
 const params = new URLSearchParams(location.search);
 const demo = params.has('demo');
@@ -57,8 +59,11 @@ const camera = new THREE.PerspectiveCamera(55, innerWidth / innerHeight, 0.1, 20
 addEventListener('resize', () => {
   camera.aspect = innerWidth / innerHeight;
   camera.updateProjectionMatrix();
+  if (cameras) cameras.resize(innerWidth / innerHeight);
   renderer.setSize(innerWidth, innerHeight);
 });
+/** The camera drawing now: the plan view's orthographic one, or the perspective one. */
+const view = () => (cameras ? cameras.camera : camera);
 if (shot) for (const id of ['hud', 'controls']) $(id).classList.add('hidden');
 
 const source = makeSource();
@@ -101,18 +106,21 @@ source.on('world', async (w) => {
   state.interval = 1 / (w.tickRate || 10);
   crowd = new CrowdView(scene, renderer, w, clips, { adaptive: lodOn, targetFrameMs: 1000 / Number(params.get('target') || 30) });
   avatars = new NearBodies(scene, w.skeleton.joints, clips);
-  cameras = new Cameras(camera, renderer.domElement, bounds, (w.scenario || {}).terrain || null);
+  const camParam = params.get('camera');
+  cameras = new Cameras(camera, renderer.domElement, bounds, (w.scenario || {}).terrain || null,
+    ['plan', 'orbit', 'walk'].includes(camParam) ? camParam : null);
+  setMode(cameras.mode);
   $('lod-toggle').checked = lodOn;
   groupList.setGroups(w.groups || []);
   globalThis.__throng = {
-    cameras, crowd, state, camera, source, renderer, description: w, others, groupList, remoteJoints, gesture,
+    cameras, crowd, state, get camera() { return view(); }, source, renderer, description: w, others, groupList, remoteJoints, gesture,
     get joined() { return joined; },
     /** Texts of the name labels on screen. */
     labels: () => labels.visible(),
     playGesture,
     /** Renders now and reads the canvas back: grey levels (0–255) every `step` px, for tests. */
     pixels(step = 4) {
-      renderer.render(scene, camera);
+      renderer.render(scene, view());
       const gl = renderer.getContext();
       const w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
       const buf = new Uint8Array(w * h * 4);
@@ -128,7 +136,7 @@ source.on('world', async (w) => {
     },
     /** Screen position [px] of world point (x, y, z) in the current camera, or null behind it. */
     toScreen(x, y, z = 0.9) {
-      const v = new THREE.Vector3(x, z, -y).project(camera);
+      const v = new THREE.Vector3(x, z, -y).project(view());
       if (v.z > 1) return null;
       return { x: (v.x + 1) / 2 * innerWidth, y: (1 - v.y) / 2 * innerHeight };
     },
@@ -203,9 +211,47 @@ $('join-form').addEventListener('submit', (e) => {
 function setMode(m) {
   if (!cameras) return;
   cameras.setMode(m);
-  $('cam-orbit').classList.toggle('active', m === 'orbit');
-  $('cam-walk').classList.toggle('active', m === 'walk');
+  showMode();
 }
+/** Lights the current camera's button (also after a mode set by a script: cameras.lookAt). */
+let shownMode = null;
+function showMode() {
+  if (shownMode === cameras.mode) return;
+  shownMode = cameras.mode;
+  for (const k of ['plan', 'orbit', 'walk']) $(`cam-${k}`).classList.toggle('active', shownMode === k);
+}
+/** Follows the selected agent, else the highlighted group's centre (its members in view), or
+ * stops following; says which in the camera status line. */
+function toggleFollow() {
+  if (!cameras) return;
+  if (cameras.following) { cameras.follow(null); followNote('stopped following'); return; }
+  if (cameras.mode === 'walk') setMode('orbit');
+  if (selectedId >= 0) {
+    const id = selectedId;
+    cameras.follow(() => {
+      const i = state.index.get(id);
+      return i === undefined ? null : { x: state.x[i], y: state.y[i], z: state.z[i] };
+    });
+    followNote(`following agent #${id} (T stops)`);
+  } else if (crowd && crowd.selectedGroup >= 0) {
+    const g = crowd.selectedGroup;
+    cameras.follow(() => groupCentre(g));
+    followNote(`following group ${g} (T stops)`);
+  } else {
+    followNote('select an agent (click) or a group first, then T follows it');
+  }
+}
+function groupCentre(g) {
+  const group = (description.groups || []).find((x) => x.id === g);
+  let sx = 0, sy = 0, sz = 0, n = 0;
+  for (const id of (group && group.members) || []) {
+    const i = state.index.get(id);
+    if (i === undefined) continue;
+    sx += state.x[i]; sy += state.y[i]; sz += state.z[i]; n++;
+  }
+  return n ? { x: sx / n, y: sy / n, z: sz / n } : null;
+}
+function followNote(text) { $('camera-status').textContent = text; }
 // Gestures of the local avatar: buttons, or keys 1–4 (not while typing in a field).
 function playGesture(name) {
   if (!joined || !clips) return false;
@@ -213,13 +259,26 @@ function playGesture(name) {
   return true;
 }
 for (const b of document.querySelectorAll('#gesture-row button')) b.onclick = () => playGesture(b.dataset.gesture);
-addEventListener('keydown', (e) => {
-  if (e.target && /^(INPUT|SELECT|TEXTAREA)$/.test(e.target.tagName)) return;
-  const g = kGestures.find((x) => x.key === e.key);
-  if (g) playGesture(g.name);
+bindKeys({
+  gesture: (e) => { const g = kGestures.find((x) => x.key === e.key); if (g) playGesture(g.name); },
+  nextCamera: () => cameras && setMode(cameras.nextMode()),
+  plan: () => setMode('plan'),
+  orbit: () => setMode('orbit'),
+  fit: () => fitView(),
+  follow: () => toggleFollow(),
+  escape: () => { if (cameras) cameras.follow(null); select(-1); },
 });
+function fitView() {
+  if (!cameras) return;
+  if (cameras.mode === 'walk') setMode('orbit');
+  cameras.follow(null);
+  cameras.fit();
+}
+$('cam-plan').onclick = () => setMode('plan');
 $('cam-orbit').onclick = () => setMode('orbit');
 $('cam-walk').onclick = () => setMode('walk');
+$('cam-fit').onclick = () => fitView();
+$('agent-follow').onclick = () => { if (cameras) cameras.follow(null); toggleFollow(); };
 $('lod-toggle').onchange = (e) => { if (crowd) crowd.adaptive = e.target.checked; };
 // Replay: the in-memory demo recording, or a server replaying a recording (its first ReplayStatus).
 let timeline = source.kind === 'replay' ? new Timeline($('timeline'), source) : null;
@@ -254,11 +313,19 @@ renderer.domElement.addEventListener('pointerdown', (e) => { downAt = [e.clientX
 renderer.domElement.addEventListener('pointerup', (e) => {
   if (!downAt || !crowd || Math.hypot(e.clientX - downAt[0], e.clientY - downAt[1]) > 4) return;
   const ndc = new THREE.Vector2((e.clientX / innerWidth) * 2 - 1, -(e.clientY / innerHeight) * 2 + 1);
-  raycaster.setFromCamera(ndc, camera);
-  const i = crowd.pick(raycaster.ray, state);
-  selectedId = i >= 0 ? state.ids[i] : -1;
+  raycaster.setFromCamera(ndc, view());
+  // A zoomed-out plan view draws a body a few pixels wide: a click within 6 px of it still counts.
+  const radius = cameras.mode === 'plan' ? Math.max(0.4, 6 * cameras.planMetresPerPixel(innerHeight)) : 0.4;
+  const i = crowd.pick(raycaster.ray, state, radius);
+  select(i >= 0 ? state.ids[i] : -1);
+});
+/** Selects agent `id` (−1: none): its panel, its goal from the server, its group in the list. */
+function select(id) {
+  if (!crowd) return;
+  const i = id >= 0 ? state.index.get(id) : undefined;
+  selectedId = i !== undefined ? id : -1;
   crowd.selectedId = selectedId;
-  if (i >= 0) {
+  if (selectedId >= 0) {
     const g = crowd.groupOf.get(selectedId);
     panel.show(selectedId, g);
     fetchAgentInfo(selectedId);
@@ -266,7 +333,7 @@ renderer.domElement.addEventListener('pointerup', (e) => {
   } else {
     panel.hide();
   }
-});
+}
 
 let last = performance.now();
 function frame() {
@@ -274,13 +341,14 @@ function frame() {
   const nowMs = performance.now();
   const frameMs = nowMs - last;
   last = nowMs;
-  if (!crowd) { renderer.render(scene, camera); return; }
+  if (!crowd) { renderer.render(scene, view()); return; }
   const dt = Math.min(frameMs / 1000, 0.1);
   cameras.update(dt);
+  showMode();
   state.advance(nowMs / 1000);
   // Levels from the full-resolution height; the budget's render scale (dynamic resolution) is
   // applied after, for the next frame's drawing buffer (only when it moved by 5 % or more).
-  const counts = crowd.update(state, camera, innerHeight * basePixelRatio, frameMs, renderer.domElement.height);
+  const counts = crowd.update(state, view(), innerHeight * basePixelRatio, frameMs, renderer.domElement.height);
   const wantRatio = basePixelRatio * (crowd.adaptive && !shot ? crowd.params.renderScale : 1);  // screenshots: full resolution
   if (Math.abs(wantRatio - renderer.getPixelRatio()) > 0.05 * basePixelRatio || (wantRatio === basePixelRatio && renderer.getPixelRatio() !== basePixelRatio)) {
     renderer.setPixelRatio(wantRatio);
@@ -306,7 +374,7 @@ function frame() {
   }
   avatars.end();
   labels.update(tags.map((t) => ({ key: t.key, name: t.name, screen: globalThis.__throng.toScreen(t.at[0], t.at[1], (t.at[2] || 0) + 2.0) })));
-  renderer.render(scene, camera);
+  renderer.render(scene, view());
   hud.tick(source, counts, state.count, crowd.adaptive ? crowd.params : { adaptive: false });
   globalThis.__throngStats.crowdFrames = state.frames;
   globalThis.__throngStats.others = others.size;

@@ -1,14 +1,18 @@
 // The crowd on screen: each frame, from the interpolated crowd state (interpolate.js) and the
 // camera, computes every agent's projected size, asks the global LOD function (lod.js) for its
 // level within the frame-time budget, and fills the three renderers: skinned bodies (near),
-// instanced low-polygon bodies (middle), billboards (far), dots (a few pixels high). Also: colours by group,
-// picking (ray against a vertical capsule proxy per agent), and the counts for the HUD.
+// instanced low-polygon bodies (middle), billboards (far), dots (a few pixels high). Seen from an
+// orthographic plan camera, every agent is a disc with its heading instead (plan_discs.js). Also:
+// colours by group, picking (camera/pick.js: a ray against an upright capsule per agent, from any
+// angle), and the counts for the HUD.
 import * as THREE from 'three';
 import { Level, assignLevels, makeLodScratch, projectedHeight, LodBudget, defaultLodParams } from '../lod.js';
 import { NearBodies } from './near_bodies.js';
 import { MiddleBodies } from './middle_bodies.js';
 import { Billboards, renderAtlas, kWalkFrames } from './billboards.js';
 import { Dots } from './dots.js';
+import { PlanDiscs } from './plan_discs.js';
+import { pickAgent } from '../camera/pick.js';
 import { sceneYaw } from '../coords.js';
 
 const kPalette = [0x3f7fbf, 0xbf5f3f, 0x4f9f5f, 0x9f4fa0, 0xc0a040, 0x40a0a8, 0x8f6f4f, 0x707fa0, 0xb0607a, 0x6a8f30];
@@ -23,6 +27,7 @@ export class CrowdView {
     this.atlas = renderAtlas(renderer, this.joints, this.near.geometry, clips);
     this.far = new Billboards(scene, this.atlas.texture);
     this.dots = new Dots(scene);
+    this.discs = new PlanDiscs(scene);
     this.setGroups(description.groups || []);
     this.colors = kPalette.map((c) => new THREE.Color(c));
     this.highlight = new THREE.Color(0xffe040);
@@ -61,6 +66,8 @@ export class CrowdView {
    * drawing buffer's height [px] (for the dots' size), `height` when omitted. */
   update(state, camera, height, frameMs, bufferHeight = height) {
     const n = state.count;
+    if (camera.isOrthographicCamera) return this.updatePlan(state, camera, bufferHeight);
+    this.discs.begin(0, 1); this.discs.end();
     if (this.sizes.length < n) {
       this.sizes = new Float32Array(n * 2); this.levels = new Uint8Array(n * 2);
     }
@@ -115,26 +122,25 @@ export class CrowdView {
     return this.counts;
   }
 
-  /** Agent index under the ray (nearest capsule proxy: radius 0.35 m, 0–1.8 m high), or −1. */
-  pick(ray, state) {
-    let best = -1, bestT = Infinity;
-    const o = ray.origin, d = ray.direction;
-    for (let i = 0; i < state.count; ++i) {
-      // Closest approach of the ray to the agent's vertical axis, in the ground plane.
-      const ax = state.x[i], az = -state.y[i], ay0 = state.z[i];
-      const ox = o.x - ax, oz = o.z - az;
-      const a = d.x * d.x + d.z * d.z;
-      const b = ox * d.x + oz * d.z;
-      const c = ox * ox + oz * oz - 0.35 * 0.35;
-      if (a < 1e-9) continue;
-      const disc = b * b - a * c;
-      if (disc < 0) continue;
-      const t = (-b - Math.sqrt(disc)) / a;
-      if (t <= 0 || t >= bestT) continue;
-      const y = o.y + d.y * t - ay0;
-      if (y < 0 || y > 1.8) continue;
-      best = i; bestT = t;
+  /** Plan view: every agent in the orthographic camera's view as a disc; no levels of detail. */
+  updatePlan(state, camera, bufferHeight) {
+    const n = state.count;
+    this.near.begin(); this.near.end();
+    this.middle.begin(0); this.middle.end();
+    this.far.begin(0); this.far.end();
+    this.dots.begin(0, 1); this.dots.end();
+    const pxPerMetre = bufferHeight * camera.zoom / (camera.top - camera.bottom);
+    this.discs.begin(n, pxPerMetre);
+    for (let i = 0; i < n; ++i) {
+      this.discs.add(state.x[i], state.z[i], -state.y[i], state.yaw[i], this.colorOf(state.ids[i]));
     }
-    return best;
+    this.discs.end();
+    this.prevIds = new Uint32Array(0);  // the next perspective frame chooses its levels afresh
+    this.params = this.adaptive ? this.budget.params() : { ...defaultLodParams, adaptive: false };
+    this.counts = { near: 0, middle: 0, far: 0, dot: 0, plan: n, hidden: 0 };
+    return this.counts;
   }
+
+  /** Agent index under the ray (an upright capsule per agent, `radius` [m] around its axis), or −1. */
+  pick(ray, state, radius = 0.4) { return pickAgent(ray, state, radius); }
 }
