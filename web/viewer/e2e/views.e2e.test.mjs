@@ -4,7 +4,8 @@
 // the zoomed-out plan, a close plan, a low oblique and a steep oblique orbit view (each click must
 // select the agent under the pointer: the pick used to test only the side of a cylinder and missed
 // every top-down click); F fits the world again after zooming; T follows the selected agent; C
-// cycles plan → orbit → walk. Run: THRONG_EXE=build/apps/throng/throng node --test
+// cycles plan → orbit → walk. Labels of points: a fixed screen size close up (12–22 px high, however
+// near the camera), never overlapping each other or a panel, L hides and shows them. Run: THRONG_EXE=build/apps/throng/throng node --test
 // web/viewer/e2e/views.e2e.test.mjs (THRONG_E2E_SHOTS=DIR keeps screenshots). Fails, like the other
 // e2e tests, when something it needs is missing.
 import { test } from 'node:test';
@@ -75,6 +76,29 @@ function assertFits(r, what) {
   assert.ok(r.right - r.left > 0.6 * r.w || r.bottom - r.top > 0.6 * r.h, `${what}: the world fills the view ${JSON.stringify(r)}`);
 }
 
+/** The point labels on screen: their rectangles, and the panels'. */
+function labelBoxes(page) {
+  return page.evaluate(() => {
+    const box = (el) => { const r = el.getBoundingClientRect(); return { left: r.left, top: r.top, w: r.width, h: r.height, text: el.textContent }; };
+    const labels = [...document.querySelectorAll('.point-label')].filter((d) => d.style.display !== 'none').map(box);
+    const panels = ['hud', 'controls'].map((id) => box(document.getElementById(id)));
+    return { labels, panels };
+  });
+}
+
+function assertLabelsReadable({ labels, panels }, what) {
+  const hit = (a, b) => a.left < b.left + b.w && b.left < a.left + a.w && a.top < b.top + b.h && b.top < a.top + a.h;
+  for (const l of labels) {
+    assert.ok(l.h >= 10 && l.h <= 22, `${what}: label "${l.text}" is ${l.h} px high (want 10–22)`);
+    for (const p of panels) assert.ok(!hit(l, p), `${what}: label "${l.text}" lies over a panel ${JSON.stringify([l, p])}`);
+  }
+  for (let i = 0; i < labels.length; ++i) {
+    for (let j = i + 1; j < labels.length; ++j) {
+      assert.ok(!hit(labels[i], labels[j]), `${what}: labels overlap ${JSON.stringify([labels[i], labels[j]])}`);
+    }
+  }
+}
+
 function assertAllSelected(results, what, atLeast) {
   assert.ok(results.length >= atLeast, `${what}: ${results.length} agents to click (want ${atLeast})`);
   const wrong = results.filter((r) => r.got !== r.want);
@@ -94,6 +118,9 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
     assert.ok(await page.evaluate(() => document.querySelector('#cam-plan').classList.contains('active')), 'the Plan button is lit');
     assertFits(await worldOnScreen(page), 'plan view at start');
     await shot(page, 'views_plan.png');
+    const planLabels = await labelBoxes(page);
+    assert.ok(planLabels.labels.length >= 3, `point labels in the plan view: ${planLabels.labels.map((l) => l.text)}`);
+    assertLabelsReadable(planLabels, 'plan view');
 
     // Zoomed-out plan: each body a few pixels wide.
     assertAllSelected(await clickAgents(page, 5), 'zoomed-out plan', 3);
@@ -127,6 +154,24 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
       assertAllSelected(await clickAgents(page, 3), what, 1);
       await shot(page, `views_${what.replace(' ', '_')}.png`);
     }
+
+    // Close up to a point (2.5 m away): its label keeps its screen size; L hides and shows labels.
+    await page.evaluate(() => {
+      const { description, cameras } = globalThis.__throng;
+      const p = description.scenario.points.find((q) => q.position);
+      cameras.lookAt(p.position[0], p.position[1], 2.5, 3);
+    });
+    await sleep(400);
+    const close = await labelBoxes(page);
+    assert.ok(close.labels.length >= 1, 'a point label close up');
+    assertLabelsReadable(close, 'close up');
+    await shot(page, 'views_labels_close.png');
+    await page.keyboard.press('KeyL');
+    await sleep(200);
+    assert.equal((await labelBoxes(page)).labels.length, 0, 'L hides the point labels');
+    await page.keyboard.press('KeyL');
+    await sleep(200);
+    assert.ok((await labelBoxes(page)).labels.length >= 1, 'L again shows them');
 
     // T follows the selected agent: after it walks, the orbit target is still on it.
     const [t] = await clickable(page, 1);

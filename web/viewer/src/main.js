@@ -10,7 +10,7 @@ import { CrowdState } from './interpolate.js';
 import { DemoSource } from './sources/demo_source.js';
 import { ReplaySource, MemoryReplayBackend } from './sources/replay_source.js';
 import { LiveSource, reasonText } from './net/live_source.js';
-import { buildWorld, addLights, worldBounds } from './world/world_view.js';
+import { buildWorld, addLights, worldBounds, pointLabels } from './world/world_view.js';
 import { ClipLibrary } from './crowd/clip_library.js';
 import { kHanimSkeleton } from './crowd/procedural_clips.js';
 import { CrowdView } from './crowd/crowd_view.js';
@@ -21,7 +21,7 @@ import { Banner } from './ui/banner.js';
 import { AgentPanel } from './ui/agent_panel.js';
 import { Timeline } from './ui/timeline.js';
 import { GroupList } from './ui/group_list.js';
-import { NameLabels } from './ui/name_labels.js';
+import { ScreenLabels } from './ui/screen_labels.js';
 import { GesturePlayer, RemoteJoints, gestureClip, kGestures } from './crowd/gestures.js';
 import { bindKeys } from './ui/keys.js';
 
@@ -77,7 +77,8 @@ const others = new Map();  // participant id → {x, y, yaw, moving, phase}
 const localPhase = { phase: 0 };
 const gesture = new GesturePlayer();     // the local avatar's gesture (buttons, keys 1–4)
 const remoteJoints = new RemoteJoints(); // other participants' latest relayed Joints
-const labels = new NameLabels($('labels'));
+const labels = new ScreenLabels($('labels'));
+let worldLabels = [];  // the points' name labels (world_view.js pointLabels)
 globalThis.__throngStats = globalThis.__throngStats || {};
 
 source.on('status', (s) => banner.show(s));
@@ -99,6 +100,7 @@ source.on('world', async (w) => {
   description = w;
   const bounds = worldBounds(w.scenario || {});
   scene.add(buildWorld(w.scenario || {}));
+  worldLabels = pointLabels(w.scenario || {});
   addLights(scene, bounds);
   clips = new ClipLibrary(w);
   await clips.load('');
@@ -115,8 +117,9 @@ source.on('world', async (w) => {
   globalThis.__throng = {
     cameras, crowd, state, get camera() { return view(); }, source, renderer, description: w, others, groupList, remoteJoints, gesture,
     get joined() { return joined; },
-    /** Texts of the name labels on screen. */
-    labels: () => labels.visible(),
+    /** Texts of the participants' name labels on screen. */
+    labels: () => labels.visible('name-label'),
+    screenLabels: labels,
     playGesture,
     /** Renders now and reads the canvas back: grey levels (0–255) every `step` px, for tests. */
     pixels(step = 4) {
@@ -266,6 +269,7 @@ bindKeys({
   orbit: () => setMode('orbit'),
   fit: () => fitView(),
   follow: () => toggleFollow(),
+  labels: () => toggleLabels(),
   escape: () => { if (cameras) cameras.follow(null); select(-1); },
 });
 function fitView() {
@@ -335,6 +339,29 @@ function select(id) {
   }
 }
 
+/** Participants' names (`tags`) and the points' labels, at their anchors on screen. Far labels
+ * thin out: none beyond kLabelRange in 3D; a plan zoomed out under 2.5 px/m keeps the exits only. */
+const kLabelRange = 80;  // [m]
+function updateLabels(tags) {
+  const cam = view();
+  const { toScreen } = globalThis.__throng;
+  const entries = tags.map((t) => ({ key: t.key, name: t.name, kind: 'name', importance: 10, screen: toScreen(t.at[0], t.at[1], (t.at[2] || 0) + 2.0) }));
+  const plan = cam.isOrthographicCamera;
+  const minImportance = plan && 1 / cameras.planMetresPerPixel(innerHeight) < 2.5 ? 3 : 0;
+  for (const l of worldLabels) {
+    if (l.importance < minImportance) continue;
+    const distance = plan ? 0 : Math.hypot(cam.position.x - l.at[0], cam.position.y - l.at[2], cam.position.z + l.at[1]);
+    if (distance > kLabelRange) continue;
+    entries.push({ ...l, distance, screen: toScreen(l.at[0], l.at[1], l.at[2]) });
+  }
+  labels.update(entries);
+}
+function toggleLabels(on = !labels.showPoints) {
+  labels.showPoints = on;
+  $('labels-toggle').checked = on;
+}
+$('labels-toggle').onchange = (e) => toggleLabels(e.target.checked);
+
 let last = performance.now();
 function frame() {
   requestAnimationFrame(frame);
@@ -373,7 +400,7 @@ function frame() {
     tags.push({ key: id, name: o.name || source.names?.get(id) || `participant ${id}`, at: [o.x, o.y, o.z] });
   }
   avatars.end();
-  labels.update(tags.map((t) => ({ key: t.key, name: t.name, screen: globalThis.__throng.toScreen(t.at[0], t.at[1], (t.at[2] || 0) + 2.0) })));
+  updateLabels(tags);
   renderer.render(scene, view());
   hud.tick(source, counts, state.count, crowd.adaptive ? crowd.params : { adaptive: false });
   globalThis.__throngStats.crowdFrames = state.frames;

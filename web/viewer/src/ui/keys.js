@@ -10,6 +10,7 @@ export const kKeys = [
   { keys: 'O', match: ['o'], action: 'orbit', what: 'orbit camera (3D)' },
   { keys: 'F', match: ['f'], action: 'fit', what: 'fit the whole world in view' },
   { keys: 'T', match: ['t'], action: 'follow', what: 'follow the selected agent (or group) / stop' },
+  { keys: 'L', match: ['l'], action: 'labels', what: 'labels of points on / off (names of participants stay)' },
   { keys: 'Esc', match: ['escape'], action: 'escape', what: 'clear the selection, stop following' },
   { keys: '1 – 4', match: ['1', '2', '3', '4'], action: 'gesture', what: 'gesture of your avatar (wave, nod, point, call out), once joined' },
   { keys: 'W/S or ↑/↓', match: [], action: null, what: 'walk camera: forward / back (Shift runs)' },
