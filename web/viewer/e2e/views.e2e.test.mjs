@@ -5,7 +5,11 @@
 // select the agent under the pointer: the pick used to test only the side of a cylinder and missed
 // every top-down click); F fits the world again after zooming; T follows the selected agent; C
 // cycles plan → orbit → walk. Labels of points: a fixed screen size close up (12–22 px high, however
-// near the camera), never overlapping each other or a panel, L hides and shows them. Run: THRONG_EXE=build/apps/throng/throng node --test
+// near the camera), never overlapping each other or a panel, L hides and shows them. Colour by:
+// B cycles group → population → speed → density → state, the legend follows, and the disc drawn at
+// an agent has the colour its mode gives it; the legend names every mark of the world; ? opens the
+// help with every key, Esc closes it; a participant's own avatar is marked by a ring and a pin in
+// a colour no mode gives an agent. Run: THRONG_EXE=build/apps/throng/throng node --test
 // web/viewer/e2e/views.e2e.test.mjs (THRONG_E2E_SHOTS=DIR keeps screenshots). Fails, like the other
 // e2e tests, when something it needs is missing.
 import { test } from 'node:test';
@@ -155,6 +159,59 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
       await shot(page, `views_${what.replace(' ', '_')}.png`);
     }
 
+    // Colour by: B cycles the modes; the legend and the drawn discs follow.
+    await page.evaluate(() => {
+      const { state, cameras } = globalThis.__throng;
+      let cx = 0, cy = 0;
+      for (let i = 0; i < state.count; ++i) { cx += state.x[i]; cy += state.y[i]; }
+      cameras.planAt(cx / state.count, cy / state.count, 14);
+      document.querySelector('#agent-close').click();
+      globalThis.__throng.crowd.selectedGroup = -1;
+    });
+    await page.evaluate(() => { if (globalThis.__throng.legend.folded) document.querySelector('#legend .fold').click(); });
+    const modes = [];
+    const palettes = {};
+    for (let k = 0; k < 5; ++k) {
+      const m = await page.evaluate(() => globalThis.__throng.crowd.colourMode);
+      await sleep(250);
+      const seen = await page.evaluate(() => {
+        const { state, crowd, toScreen, rgbAt, legend } = globalThis.__throng;
+        const out = [];
+        for (let i = 0; i < state.count && out.length < 6; ++i) {
+          const p = toScreen(state.x[i], state.y[i], 0);
+          if (!p || document.elementFromPoint(p.x, p.y) !== document.querySelector('#app canvas')) continue;
+          const want = crowd.colourAt(i, state).getHex();
+          out.push({ want, got: rgbAt(p.x, p.y) });
+        }
+        return { out, legend: legend.labels(), select: document.querySelector('#colour-by').value };
+      });
+      modes.push(m);
+      palettes[m] = seen.out.map((o) => o.want);
+      assert.equal(seen.select, m, 'the legend\'s menu shows the mode');
+      assert.ok(seen.out.length >= 2, `${m}: agents to look at`);
+      const near = (o) => { const w = [(o.want >> 16) & 255, (o.want >> 8) & 255, o.want & 255]; return w.every((c, j) => Math.abs(c - o.got[j]) < 40); };
+      assert.ok(seen.out.filter(near).length >= seen.out.length - 1, `${m}: the discs have the mode's colours ${JSON.stringify(seen.out)}`);
+      const want = { group: /^group \d/, population: /school-class|family|couples|no population/, speed: /m\/s/, density: /persons\/m²/, state: /^walking$/ }[m];
+      assert.ok(seen.legend.some((l) => want.test(l)), `${m}: the legend lists its colours: ${seen.legend}`);
+      for (const mark of ['selected agent', 'you', 'interest point', 'action point', 'exit', 'wall', 'floor']) {
+        assert.ok(seen.legend.some((l) => l.includes(mark)), `${m}: the legend explains "${mark}": ${seen.legend}`);
+      }
+      if (k === 4) await shot(page, 'views_colour_state.png');
+      await page.keyboard.press('KeyB');
+    }
+    assert.deepEqual(modes, ['group', 'population', 'speed', 'density', 'state'], 'B cycles the colour modes');
+    const selfColour = await page.evaluate(() => globalThis.__throng.selfColour);
+    for (const [m, cs] of Object.entries(palettes)) assert.ok(!cs.includes(selfColour), `${m}: no agent has your avatar's colour`);
+
+    // ? opens the help with every key, Esc closes it.
+    await page.keyboard.press('?');
+    const helpRows = await page.evaluate(() => document.querySelector('#help').classList.contains('hidden') ? null
+      : [...document.querySelectorAll('#help th')].map((t) => t.textContent));
+    assert.ok(helpRows && ['C', 'P', 'O', 'F', 'T', 'L', 'B', 'Esc', '1 – 4', 'W/S or ↑/↓', 'click', 'wheel'].every((k) => helpRows.includes(k)),
+      `the help lists every key: ${helpRows}`);
+    await page.keyboard.press('Escape');
+    assert.ok(await page.evaluate(() => document.querySelector('#help').classList.contains('hidden')), 'Esc closes the help');
+
     // Close up to a point (2.5 m away): its label keeps its screen size; L hides and shows labels.
     await page.evaluate(() => {
       const { description, cameras } = globalThis.__throng;
@@ -190,10 +247,27 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
     await page.keyboard.press('KeyT');
     assert.equal(await page.evaluate(() => !!globalThis.__throng.cameras.following), false, 'T again stops following');
 
+    // Your own avatar: a ring and a pin no agent shares.
+    await page.fill('#join-name', 'e2e-views');
+    await page.click('#join-button');
+    await page.waitForFunction(() => globalThis.__throng.joined !== null, null, { timeout: 15000 });
+    await page.click('#cam-plan');
+    await sleep(300);
+    const me = await page.evaluate(() => {
+      const { cameras, toScreen, rgbAt, markers } = globalThis.__throng;
+      cameras.planAt(cameras.avatar.x, cameras.avatar.y, 12);
+      const p = toScreen(cameras.avatar.x, cameras.avatar.y, 0);
+      return { ring: markers.self.visible, pin: rgbAt(p.x, p.y) };
+    });
+    assert.ok(me.ring, 'your avatar is marked');
+    assert.ok(me.pin[0] > 180 && me.pin[1] < 90 && me.pin[2] < 90, `the pin over your avatar is red from above: ${me.pin}`);
+    await shot(page, 'views_self.png');
+    await page.click('#cam-orbit');
+
     // C cycles the cameras.
-    const modes = [];
-    for (let k = 0; k < 3; ++k) { await page.keyboard.press('KeyC'); modes.push(await page.evaluate(() => globalThis.__throng.cameras.mode)); }
-    assert.deepEqual(modes, ['walk', 'plan', 'orbit'], 'C: orbit → walk → plan → orbit');
+    const cams = [];
+    for (let k = 0; k < 3; ++k) { await page.keyboard.press('KeyC'); cams.push(await page.evaluate(() => globalThis.__throng.cameras.mode)); }
+    assert.deepEqual(cams, ['walk', 'plan', 'orbit'], 'C: orbit → walk → plan → orbit');
     assert.deepEqual(errors, []);
   } finally {
     await browser.close();

@@ -24,6 +24,11 @@ import { GroupList } from './ui/group_list.js';
 import { ScreenLabels } from './ui/screen_labels.js';
 import { GesturePlayer, RemoteJoints, gestureClip, kGestures } from './crowd/gestures.js';
 import { bindKeys } from './ui/keys.js';
+import { Legend } from './ui/legend.js';
+import { Help } from './ui/help.js';
+import { Markers, kSelfColour } from './crowd/markers.js';
+import { kSelectedColour, kPickedGroupColour } from './crowd/crowd_view.js';
+import { kColourModes } from './crowd/colour_by.js';
 
 const params = new URLSearchParams(location.search);
 const demo = params.has('demo');
@@ -79,6 +84,20 @@ const gesture = new GesturePlayer();     // the local avatar's gesture (buttons,
 const remoteJoints = new RemoteJoints(); // other participants' latest relayed Joints
 const labels = new ScreenLabels($('labels'));
 let worldLabels = [];  // the points' name labels (world_view.js pointLabels)
+const kOtherColour = 0xd02090;  // other participants' avatars
+let markers = null;
+const legend = new Legend($('legend'), { selected: kSelectedColour, pickedGroup: kPickedGroupColour, self: kSelfColour, other: kOtherColour },
+  (m) => setColourMode(m));
+const help = new Help($('help'));
+$('help-button').onclick = () => help.show();
+function setColourMode(m) {
+  if (!crowd || !kColourModes.includes(m)) return;
+  crowd.colourMode = m;
+  refreshLegend();
+}
+function refreshLegend() {
+  if (crowd) legend.update(crowd.colourMode, { populations: crowd.populations, groups: description.groups || [] });
+}
 globalThis.__throngStats = globalThis.__throngStats || {};
 
 source.on('status', (s) => banner.show(s));
@@ -108,6 +127,9 @@ source.on('world', async (w) => {
   state.interval = 1 / (w.tickRate || 10);
   crowd = new CrowdView(scene, renderer, w, clips, { adaptive: lodOn, targetFrameMs: 1000 / Number(params.get('target') || 30) });
   avatars = new NearBodies(scene, w.skeleton.joints, clips);
+  markers = new Markers(scene, kSelectedColour);
+  const colourParam = params.get('colour');
+  setColourMode(kColourModes.includes(colourParam) ? colourParam : 'group');
   const camParam = params.get('camera');
   cameras = new Cameras(camera, renderer.domElement, bounds, (w.scenario || {}).terrain || null,
     ['plan', 'orbit', 'walk'].includes(camParam) ? camParam : null);
@@ -115,7 +137,7 @@ source.on('world', async (w) => {
   $('lod-toggle').checked = lodOn;
   groupList.setGroups(w.groups || []);
   globalThis.__throng = {
-    cameras, crowd, state, get camera() { return view(); }, source, renderer, description: w, others, groupList, remoteJoints, gesture,
+    cameras, crowd, state, get camera() { return view(); }, source, legend, help, setColourMode, get markers() { return markers; }, selfColour: kSelfColour, renderer, description: w, others, groupList, remoteJoints, gesture,
     get joined() { return joined; },
     /** Texts of the participants' name labels on screen. */
     labels: () => labels.visible('name-label'),
@@ -137,6 +159,15 @@ source.on('world', async (w) => {
       }
       return { width: w, height: h, step, grey };
     },
+    /** Colour [r, g, b] (0–255) of the drawn pixel at screen point (x, y) [px], for tests. */
+    rgbAt(x, y) {
+      renderer.render(scene, view());
+      const gl = renderer.getContext();
+      const r = renderer.getPixelRatio();
+      const buf = new Uint8Array(4);
+      gl.readPixels(Math.round(x * r), gl.drawingBufferHeight - 1 - Math.round(y * r), 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, buf);
+      return [buf[0], buf[1], buf[2]];
+    },
     /** Screen position [px] of world point (x, y, z) in the current camera, or null behind it. */
     toScreen(x, y, z = 0.9) {
       const v = new THREE.Vector3(x, z, -y).project(view());
@@ -156,6 +187,7 @@ function pollGroups() {
     crowd.setGroups(groups);
     groupList.setGroups(groups);
     description.groups = groups;
+    refreshLegend();
     setTimeout(pollGroups, 3000);
   }).catch(() => {});
 }
@@ -270,7 +302,9 @@ bindKeys({
   fit: () => fitView(),
   follow: () => toggleFollow(),
   labels: () => toggleLabels(),
-  escape: () => { if (cameras) cameras.follow(null); select(-1); },
+  colourBy: () => crowd && setColourMode(kColourModes[(kColourModes.indexOf(crowd.colourMode) + 1) % kColourModes.length]),
+  help: () => help.show(),
+  escape: () => { help.show(false); if (cameras) cameras.follow(null); select(-1); },
 });
 function fitView() {
   if (!cameras) return;
@@ -387,7 +421,7 @@ function frame() {
     const a = cameras.avatar;
     localPhase.phase = (localPhase.phase + (a.speed * dt) / 1.5) % 1;
     const g = gesture.sample(nowMs);
-    avatars.add(a.x, a.y, a.z, a.yaw, a.moving ? walk : idle, a.moving ? localPhase.phase : (nowMs / 2000) % 1, 0xff6a00,
+    avatars.add(a.x, a.y, a.z, a.yaw, a.moving ? walk : idle, a.moving ? localPhase.phase : (nowMs / 2000) % 1, kSelfColour,
       g ? g.angles : null);
     source.sendMove(a.x, a.y, a.z, a.yaw);  // z: the floor it stands on (0 in a flat world)
     if (g && g.send && source.sendJoints) source.sendJoints(g.angles);
@@ -396,10 +430,13 @@ function frame() {
   for (const [id, o] of others) {
     if (nowMs - o.at > 15000) continue;
     o.phase = (o.phase + (o.moving ? dt / 1.12 : dt / 2)) % 1;
-    avatars.add(o.x, o.y, o.z, o.yaw, o.moving ? walk : idle, o.phase, 0xd02090, remoteJoints.get(id, nowMs));
+    avatars.add(o.x, o.y, o.z, o.yaw, o.moving ? walk : idle, o.phase, kOtherColour, remoteJoints.get(id, nowMs));
     tags.push({ key: id, name: o.name || source.names?.get(id) || `participant ${id}`, at: [o.x, o.y, o.z] });
   }
   avatars.end();
+  const sel = selectedId >= 0 ? state.index.get(selectedId) : undefined;
+  markers.update(joined ? cameras.avatar : null, sel === undefined ? null : { x: state.x[sel], y: state.y[sel], z: state.z[sel] },
+    cameras.mode === 'plan' ? cameras.planMetresPerPixel(innerHeight) : 0);
   updateLabels(tags);
   renderer.render(scene, view());
   hud.tick(source, counts, state.count, crowd.adaptive ? crowd.params : { adaptive: false });
