@@ -9,7 +9,8 @@
 // B cycles group → population → speed → density → state, the legend follows, and the disc drawn at
 // an agent has the colour its mode gives it; the legend names every mark of the world; ? opens the
 // help with every key, Esc closes it; a participant's own avatar is marked by a ring and a pin in
-// a colour no mode gives an agent. Run: THRONG_EXE=build/apps/throng/throng node --test
+// a colour no mode gives an agent. The HUD names the scenario and shows the simulated time (it
+// advances) and the agents, the engineering figures only under "debug". Run: THRONG_EXE=build/apps/throng/throng node --test
 // web/viewer/e2e/views.e2e.test.mjs (THRONG_E2E_SHOTS=DIR keeps screenshots). Fails, like the other
 // e2e tests, when something it needs is missing.
 import { test } from 'node:test';
@@ -122,6 +123,22 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
     assert.ok(await page.evaluate(() => document.querySelector('#cam-plan').classList.contains('active')), 'the Plan button is lit');
     assertFits(await worldOnScreen(page), 'plan view at start');
     await shot(page, 'views_plan.png');
+
+    // The HUD says what is shown: the scenario, the simulated time (advancing), the agents; the
+    // engineering figures only once "debug" is opened.
+    const hud0 = await page.evaluate(() => ({ text: globalThis.__throng.hud.text(), t: globalThis.__throngStats.simTime }));
+    await sleep(1500);
+    const hud1 = await page.evaluate(() => ({ text: globalThis.__throng.hud.text(), t: globalThis.__throngStats.simTime,
+      agents: globalThis.__throng.state.count }));
+    assert.match(hud1.text, /^museum\n/, `the HUD names the scenario: ${hud1.text}`);
+    assert.match(hud1.text, /time +\d+:\d\d of 5:00/, `the HUD shows the simulated time of the scenario's 5 min: ${hud1.text}`);
+    assert.ok(hud1.t > hud0.t + 0.5, `the simulated time advances (${hud0.t} → ${hud1.t} s)`);
+    assert.match(hud1.text, /agents +\d+/, hud1.text);
+    assert.doesNotMatch(hud1.text, /kbit|near|caps/, 'engineering figures folded away');
+    await page.click('.hud-debug-toggle');
+    await sleep(1100);
+    assert.match(await page.evaluate(() => globalThis.__throng.hud.text()), /kbit\/s[\s\S]*plan discs/, 'debug opens them');
+    await page.click('.hud-debug-toggle');
     const planLabels = await labelBoxes(page);
     assert.ok(planLabels.labels.length >= 3, `point labels in the plan view: ${planLabels.labels.map((l) => l.text)}`);
     assertLabelsReadable(planLabels, 'plan view');

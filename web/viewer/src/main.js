@@ -101,7 +101,7 @@ function refreshLegend() {
 globalThis.__throngStats = globalThis.__throngStats || {};
 
 source.on('status', (s) => banner.show(s));
-source.on('frame', (f) => state.applyFrame(f, performance.now() / 1000));
+source.on('frame', (f) => { state.applyFrame(f, performance.now() / 1000); hud.frame(f); });
 source.on('participant', (m) => {
   const o = others.get(m.participantId) || { phase: 0, name: source.names.get(m.participantId) };
   o.moving = o.x !== undefined && Math.hypot(m.x - o.x, m.y - o.y) > 0.02;
@@ -117,6 +117,7 @@ source.on('world', async (w) => {
     w.skeleton = { joints: kHanimSkeleton };
   }
   description = w;
+  hud.setWorld(w);
   const bounds = worldBounds(w.scenario || {});
   scene.add(buildWorld(w.scenario || {}));
   worldLabels = pointLabels(w.scenario || {});
@@ -137,7 +138,7 @@ source.on('world', async (w) => {
   $('lod-toggle').checked = lodOn;
   groupList.setGroups(w.groups || []);
   globalThis.__throng = {
-    cameras, crowd, state, get camera() { return view(); }, source, legend, help, setColourMode, get markers() { return markers; }, selfColour: kSelfColour, renderer, description: w, others, groupList, remoteJoints, gesture,
+    cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode, get markers() { return markers; }, selfColour: kSelfColour, renderer, description: w, others, groupList, remoteJoints, gesture,
     get joined() { return joined; },
     /** Texts of the participants' name labels on screen. */
     labels: () => labels.visible('name-label'),
