@@ -10,7 +10,8 @@
 // an agent has the colour its mode gives it; the legend names every mark of the world; ? opens the
 // help with every key, Esc closes it; a participant's own avatar is marked by a ring and a pin in
 // a colour no mode gives an agent. The HUD names the scenario and shows the simulated time (it
-// advances) and the agents, the engineering figures only under "debug". Run: THRONG_EXE=build/apps/throng/throng node --test
+// advances) and the agents, the engineering figures only under "debug". R shows trails that end
+// where the agents are. Run: THRONG_EXE=build/apps/throng/throng node --test
 // web/viewer/e2e/views.e2e.test.mjs (THRONG_E2E_SHOTS=DIR keeps screenshots). Fails, like the other
 // e2e tests, when something it needs is missing.
 import { test } from 'node:test';
@@ -26,22 +27,25 @@ export async function shot(page, name) {
   await page.screenshot({ path: path.join(shotsDir, name) });
 }
 
-/** Up to `n` agents drawn on the bare canvas (no panel over them), at least `gap` px from any other
- * agent on screen: [{id, x, y}] (screen px, the body's middle). */
+/** Up to `n` agents drawn on the bare canvas (no panel over them), clear of any other agent on
+ * screen (by `gap` px, or in perspective by what 0.7 m at the agent spans on screen when that is
+ * more: a body in front would hide it): [{id, x, y}] (screen px, the body's middle). */
 export function clickable(page, n, gap = 5) {
   return page.evaluate(([n, gap]) => {
     const { state, toScreen } = globalThis.__throng;
     const pts = [];
     for (let i = 0; i < state.count; ++i) {
       const p = toScreen(state.x[i], state.y[i], state.z[i] + 0.9);
-      if (p) pts.push({ id: state.ids[i], x: p.x, y: p.y });
+      const side = toScreen(state.x[i] + 0.7, state.y[i], state.z[i] + 0.9), up = toScreen(state.x[i], state.y[i], state.z[i] + 1.6);
+      const span = !globalThis.__throng.camera.isPerspectiveCamera ? 0 : Math.max(side ? Math.hypot(side.x - p.x, side.y - p.y) : 0, up ? Math.hypot(up.x - p.x, up.y - p.y) : 0);
+      if (p) pts.push({ id: state.ids[i], x: p.x, y: p.y, clear: Math.max(gap, span) });
     }
     const out = [];
     for (const p of pts) {
       if (p.x < 8 || p.y < 8 || p.x > innerWidth - 8 || p.y > innerHeight - 8) continue;
       if (document.elementFromPoint(p.x, p.y) !== document.querySelector('#app canvas')) continue;
-      if (pts.some((q) => q !== p && Math.hypot(q.x - p.x, q.y - p.y) < gap)) continue;
-      out.push(p);
+      if (pts.some((q) => q !== p && Math.hypot(q.x - p.x, q.y - p.y) < p.clear)) continue;
+      out.push({ id: p.id, x: p.x, y: p.y });
       if (out.length >= n) break;
     }
     return out;
@@ -198,7 +202,7 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
           const p = toScreen(state.x[i], state.y[i], 0);
           if (!p || document.elementFromPoint(p.x, p.y) !== document.querySelector('#app canvas')) continue;
           const want = crowd.colourAt(i, state).getHex();
-          out.push({ want, got: rgbAt(p.x, p.y) });
+          out.push({ want, got: [[0, 0], [2, 0], [-2, 0], [0, 2], [0, -2]].map(([dx, dy]) => rgbAt(p.x + dx, p.y + dy)) });
         }
         return { out, legend: legend.labels(), select: document.querySelector('#colour-by').value };
       });
@@ -206,7 +210,11 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
       palettes[m] = seen.out.map((o) => o.want);
       assert.equal(seen.select, m, 'the legend\'s menu shows the mode');
       assert.ok(seen.out.length >= 2, `${m}: agents to look at`);
-      const near = (o) => { const w = [(o.want >> 16) & 255, (o.want >> 8) & 255, o.want & 255]; return w.every((c, j) => Math.abs(c - o.got[j]) < 40); };
+      // The disc's middle (within 2 px: not its white heading wedge or dark rim) has the colour.
+      const near = (o) => {
+        const w = [(o.want >> 16) & 255, (o.want >> 8) & 255, o.want & 255];
+        return o.got.some((g) => w.every((c, j) => Math.abs(c - g[j]) < 40));
+      };
       assert.ok(seen.out.filter(near).length >= seen.out.length - 1, `${m}: the discs have the mode's colours ${JSON.stringify(seen.out)}`);
       const want = { group: /^group \d/, population: /school-class|family|couples|no population/, speed: /m\/s/, density: /persons\/m²/, state: /^walking$/ }[m];
       assert.ok(seen.legend.some((l) => want.test(l)), `${m}: the legend lists its colours: ${seen.legend}`);
@@ -220,11 +228,34 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
     const selfColour = await page.evaluate(() => globalThis.__throng.selfColour);
     for (const [m, cs] of Object.entries(palettes)) assert.ok(!cs.includes(selfColour), `${m}: no agent has your avatar's colour`);
 
+    // R: trails of the last seconds, ending where the agents are; in the legend; R again: gone.
+    await page.keyboard.press('KeyR');
+    await sleep(3000);
+    const tr = await page.evaluate(() => {
+      const { trails, state, legend } = globalThis.__throng;
+      const ends = new Map();
+      trails.buffer.forEachSegment((id, ax, ay, az, bx, by, bz, ageA, ageB) => {
+        if (!ends.has(id) || ends.get(id)[2] > ageB) ends.set(id, [bx, by, ageB]);  // each trail's newest end
+      });
+      let near = 0;
+      for (const [id, [x, y]] of ends) {
+        const i = state.index.get(id);
+        if (i !== undefined && Math.hypot(state.x[i] - x, state.y[i] - y) < 1.0) near++;
+      }
+      return { on: trails.enabled, visible: trails.lines.visible, segments: trails.segments, ends: ends.size, near,
+        legend: legend.labels().some((l) => l.startsWith('trail')), box: document.querySelector('#trails-toggle').checked };
+    });
+    assert.ok(tr.on && tr.visible && tr.box && tr.legend, `trails on, drawn, ticked and in the legend: ${JSON.stringify(tr)}`);
+    assert.ok(tr.segments >= 10 && tr.near >= Math.min(3, tr.ends) && tr.ends >= 2, `trails end at the agents: ${JSON.stringify(tr)}`);
+    await shot(page, 'views_trails.png');
+    await page.keyboard.press('KeyR');
+    assert.equal(await page.evaluate(() => globalThis.__throng.trails.lines.visible), false, 'R again hides the trails');
+
     // ? opens the help with every key, Esc closes it.
     await page.keyboard.press('?');
     const helpRows = await page.evaluate(() => document.querySelector('#help').classList.contains('hidden') ? null
       : [...document.querySelectorAll('#help th')].map((t) => t.textContent));
-    assert.ok(helpRows && ['C', 'P', 'O', 'F', 'T', 'L', 'B', 'Esc', '1 – 4', 'W/S or ↑/↓', 'click', 'wheel'].every((k) => helpRows.includes(k)),
+    assert.ok(helpRows && ['C', 'P', 'O', 'F', 'T', 'L', 'B', 'R', 'Esc', '1 – 4', 'W/S or ↑/↓', 'click', 'wheel'].every((k) => helpRows.includes(k)),
       `the help lists every key: ${helpRows}`);
     await page.keyboard.press('Escape');
     assert.ok(await page.evaluate(() => document.querySelector('#help').classList.contains('hidden')), 'Esc closes the help');
@@ -247,8 +278,14 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
     await sleep(200);
     assert.ok((await labelBoxes(page)).labels.length >= 1, 'L again shows them');
 
-    // T follows the selected agent: after it walks, the orbit target is still on it.
+    // T follows the selected agent: after it walks, the plan view is still centred on it.
+    await page.evaluate(() => {
+      const { state, cameras } = globalThis.__throng;
+      cameras.planAt(state.x[0], state.y[0], 14);
+    });
+    await sleep(300);
     const [t] = await clickable(page, 1);
+    assert.ok(t, 'an agent to click and follow');
     await page.mouse.click(t.x, t.y);
     await page.waitForFunction(() => !document.querySelector('#agent-panel').classList.contains('hidden'), null, { timeout: 2000 });
     await page.keyboard.press('KeyT');
@@ -256,7 +293,7 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
     const follow = await page.evaluate((id) => {
       const { state, cameras } = globalThis.__throng;
       const i = state.index.get(id);
-      const tg = cameras.orbit.target;
+      const tg = cameras.plan.target;
       return { following: !!cameras.following, off: i === undefined ? null : Math.hypot(tg.x - state.x[i], -tg.z - state.y[i]),
         status: document.querySelector('#camera-status').textContent };
     }, t.id);

@@ -27,6 +27,7 @@ import { bindKeys } from './ui/keys.js';
 import { Legend } from './ui/legend.js';
 import { Help } from './ui/help.js';
 import { Markers, kSelfColour } from './crowd/markers.js';
+import { Trails } from './crowd/trails.js';
 import { kSelectedColour, kPickedGroupColour } from './crowd/crowd_view.js';
 import { kColourModes } from './crowd/colour_by.js';
 
@@ -86,6 +87,7 @@ const labels = new ScreenLabels($('labels'));
 let worldLabels = [];  // the points' name labels (world_view.js pointLabels)
 const kOtherColour = 0xd02090;  // other participants' avatars
 let markers = null;
+let trails = null, trailsStale = false;  // trajectory trails (key R), rebuilt after each frame
 const legend = new Legend($('legend'), { selected: kSelectedColour, pickedGroup: kPickedGroupColour, self: kSelfColour, other: kOtherColour },
   (m) => setColourMode(m));
 const help = new Help($('help'));
@@ -101,7 +103,11 @@ function refreshLegend() {
 globalThis.__throngStats = globalThis.__throngStats || {};
 
 source.on('status', (s) => banner.show(s));
-source.on('frame', (f) => { state.applyFrame(f, performance.now() / 1000); hud.frame(f); });
+source.on('frame', (f) => {
+  state.applyFrame(f, performance.now() / 1000);
+  hud.frame(f);
+  if (trails && trails.enabled) { trails.record(f, hud.simTime); trailsStale = true; }
+});
 source.on('participant', (m) => {
   const o = others.get(m.participantId) || { phase: 0, name: source.names.get(m.participantId) };
   o.moving = o.x !== undefined && Math.hypot(m.x - o.x, m.y - o.y) > 0.02;
@@ -129,6 +135,8 @@ source.on('world', async (w) => {
   crowd = new CrowdView(scene, renderer, w, clips, { adaptive: lodOn, targetFrameMs: 1000 / Number(params.get('target') || 30) });
   avatars = new NearBodies(scene, w.skeleton.joints, clips);
   markers = new Markers(scene, kSelectedColour);
+  trails = new Trails(scene);
+  if (params.get('trails') === '1') toggleTrails(true);
   const colourParam = params.get('colour');
   setColourMode(kColourModes.includes(colourParam) ? colourParam : 'group');
   const camParam = params.get('camera');
@@ -138,7 +146,7 @@ source.on('world', async (w) => {
   $('lod-toggle').checked = lodOn;
   groupList.setGroups(w.groups || []);
   globalThis.__throng = {
-    cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode, get markers() { return markers; }, selfColour: kSelfColour, renderer, description: w, others, groupList, remoteJoints, gesture,
+    cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode, get trails() { return trails; }, get markers() { return markers; }, selfColour: kSelfColour, renderer, description: w, others, groupList, remoteJoints, gesture,
     get joined() { return joined; },
     /** Texts of the participants' name labels on screen. */
     labels: () => labels.visible('name-label'),
@@ -305,6 +313,7 @@ bindKeys({
   labels: () => toggleLabels(),
   colourBy: () => crowd && setColourMode(kColourModes[(kColourModes.indexOf(crowd.colourMode) + 1) % kColourModes.length]),
   help: () => help.show(),
+  trails: () => toggleTrails(),
   escape: () => { help.show(false); if (cameras) cameras.follow(null); select(-1); },
 });
 function fitView() {
@@ -396,6 +405,14 @@ function toggleLabels(on = !labels.showPoints) {
   $('labels-toggle').checked = on;
 }
 $('labels-toggle').onchange = (e) => toggleLabels(e.target.checked);
+function toggleTrails(on = !(trails && trails.enabled)) {
+  if (!trails) return;
+  trails.enabled = on;
+  $('trails-toggle').checked = on;
+  legend.trails = on;
+  refreshLegend();
+}
+$('trails-toggle').onchange = (e) => toggleTrails(e.target.checked);
 
 let last = performance.now();
 function frame() {
@@ -435,6 +452,10 @@ function frame() {
     tags.push({ key: id, name: o.name || source.names?.get(id) || `participant ${id}`, at: [o.x, o.y, o.z] });
   }
   avatars.end();
+  if (trailsStale) {
+    trailsStale = false;
+    trails.rebuild((id) => { const i = state.index.get(id); return i === undefined ? crowd.colour(0x9a9a9a) : crowd.colourAt(i, state); });
+  }
   const sel = selectedId >= 0 ? state.index.get(selectedId) : undefined;
   markers.update(joined ? cameras.avatar : null, sel === undefined ? null : { x: state.x[sel], y: state.y[sel], z: state.z[sel] },
     cameras.mode === 'plan' ? cameras.planMetresPerPixel(innerHeight) : 0);
