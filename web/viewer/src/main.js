@@ -231,7 +231,7 @@ source.on('joined', (j) => {
   groupList.setJoined(true);
   $('gesture-row').classList.remove('hidden');
   if (cameras && !again) {
-    const t = cameras.orbit.target;
+    const t = cameras.mode === 'plan' ? cameras.plan.target : cameras.orbit.target;  // where the view is centred
     cameras.placeAvatar(t.x, -t.z, Math.PI / 2, t.y);
     setMode('walk');
   }
