@@ -145,8 +145,14 @@ source.on('world', async (w) => {
   setMode(cameras.mode);
   $('lod-toggle').checked = lodOn;
   groupList.setGroups(w.groups || []);
-  globalThis.__throng = {
-    cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode, get trails() { return trails; }, get markers() { return markers; }, selfColour: kSelfColour, renderer, description: w, others, groupList, remoteJoints, gesture,
+  globalThis.__throng = testHooks(w);
+});
+/** What scripts and the tests reach through window.__throng: the parts, and screen helpers. */
+function testHooks(w) {
+  return {
+    cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode,
+    get trails() { return trails; }, get markers() { return markers; }, selfColour: kSelfColour,
+    renderer, description: w, others, groupList, remoteJoints, gesture,
     get joined() { return joined; },
     /** Texts of the participants' name labels on screen. */
     labels: () => labels.visible('name-label'),
@@ -184,7 +190,7 @@ source.on('world', async (w) => {
       return { x: (v.x + 1) / 2 * innerWidth, y: (1 - v.y) / 2 * innerHeight };
     },
   };
-});
+}
 // Groups formed after the start (populations that spawn later) are not in the world description:
 // a live viewer asks /api/groups ([{id, population, members}], current membership) every 3 s, and
 // stops asking when the server does not have it.
