@@ -14,10 +14,13 @@ export function clock(s) {
   return h ? `${h}:${String(m).padStart(2, '0')}:${sec}` : `${m}:${sec}`;
 }
 
-/** Agents present and gone: remembers every id seen; `ids` the latest frame's. */
+/** Agents present and gone: remembers every id seen; `ids` the latest frame's. A frame of an
+ * earlier tick (a replay seeked back) starts the count afresh. */
 export class Attendance {
-  constructor() { this.seen = new Set(); this.present = 0; }
-  frame(ids, count) {
+  constructor() { this.seen = new Set(); this.present = 0; this.tick = -Infinity; }
+  frame(ids, count, tick = 0) {
+    if (tick < this.tick) this.seen.clear();
+    this.tick = tick;
     for (let i = 0; i < count; ++i) this.seen.add(ids[i]);
     this.present = count;
   }
@@ -59,7 +62,7 @@ export class Hud {
   /** Each crowd frame received. */
   frame(f) {
     this.simTick = f.simTick || 0;
-    this.attendance.frame(f.ids, f.count);
+    this.attendance.frame(f.ids, f.count, this.simTick);
   }
 
   /** Simulated time [s] of the latest frame. */
