@@ -1,5 +1,5 @@
 // End-to-end test of the viewer's cameras and picking (issue 20) against a real `throng serve
-// scenarios/museum.json` in Debian's headless chromium: the 48 m museum opens in plan view
+// scenarios/museum.json` in Debian's headless chromium: the 51 m museum opens in plan view
 // (orthographic, top-down) with the whole walkable area on screen; clicking agents selects them in
 // the zoomed-out plan, a close plan, a low oblique and a steep oblique orbit view (each click must
 // select the agent under the pointer: the pick used to test only the side of a cylinder and missed
@@ -138,7 +138,7 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
     const page = await openViewer(browser, server.url, errors);
     await page.waitForFunction(() => globalThis.__throng && globalThis.__throng.state.count > 12, null, { timeout: 45000 });
     const first = await page.evaluate(() => ({ mode: globalThis.__throng.cameras.mode, ortho: globalThis.__throng.camera.isOrthographicCamera }));
-    assert.deepEqual(first, { mode: 'plan', ortho: true }, 'the 48 m museum opens in plan view');
+    assert.deepEqual(first, { mode: 'plan', ortho: true }, 'the 51 m museum opens in plan view');
     assert.ok(await page.evaluate(() => document.querySelector('#cam-plan').classList.contains('active')), 'the Plan button is lit');
     assertFits(await worldOnScreen(page), 'plan view at start');
     await shot(page, 'views_plan.png');
