@@ -59,7 +59,7 @@ async function open(browser, base, query) {
 }
 
 async function measure(browser, base, n, lod) {
-  const page = await open(browser, base, `demo&agents=${n}&lod=${lod}&aa=0`);
+  const page = await open(browser, base, `demo&agents=${n}&lod=${lod}&aa=0&camera=orbit`);  // the 3D view the table measures
   await sleep(3000);  // warm-up: the LOD budget settles
   const a = await page.evaluate(() => ({ f: globalThis.__throngStats.frames, t: performance.now() }));
   await sleep(seconds * 1000);

@@ -192,6 +192,8 @@ test('viewer against a real throng serve', { timeout: 150000 }, async () => {
       `the second viewer shows the avatar at (${seen.x.toFixed(2)}, ${seen.y.toFixed(2)}), it is at (${a1.x.toFixed(2)}, ${a1.y.toFixed(2)})`);
     // … with its name label (Presence), and its gestures: the first plays "wave" (key 1), the
     // second receives its Joints (3 angles per skeleton joint) and poses the avatar with them.
+    // The second looks at the avatar: labels under a panel (the HUD) are not drawn.
+    await page2.evaluate(([x, y]) => globalThis.__throng.cameras.lookAt(x, y, 8, 5), [seen.x, seen.y]);
     await page2.waitForFunction(() => [...document.querySelectorAll('.name-label')].some((d) => d.textContent === 'e2e-alice'
       && d.style.display !== 'none'), null, { timeout: 10000 });
     assert.ok((await page.evaluate(() => globalThis.__throng.labels())).includes('e2e-alice'), 'own name label');

@@ -1,15 +1,16 @@
 // The viewer's entry point: reads the URL options, picks the data source (live server, ?demo, or
 // ?demo&replay), builds the scene once the world description arrives (world_view, clips, crowd
 // view, cameras) and runs the frame loop: interpolate the crowd, choose levels of detail, draw,
-// update the HUD; wires the join form, picking, guide/release, the LOD toggle and the banner.
+// update the HUD; wires the join form, picking, guide/release, the cameras (plan, orbit, walk, fit,
+// follow: buttons and keys, ui/keys.js), the LOD toggle and the banner.
 // URL options: demo, agents=N, lod=on|off, ws=URL, replay (with demo), target=FPS, shot=1 (no
-// panels: screenshots), aa=0 (no antialiasing).
+// panels: screenshots), aa=0 (no antialiasing), camera=plan|orbit|walk (the first camera).
 import * as THREE from 'three';
 import { CrowdState } from './interpolate.js';
 import { DemoSource } from './sources/demo_source.js';
 import { ReplaySource, MemoryReplayBackend } from './sources/replay_source.js';
 import { LiveSource, reasonText } from './net/live_source.js';
-import { buildWorld, addLights, worldBounds } from './world/world_view.js';
+import { buildWorld, addLights, worldBounds, pointLabels } from './world/world_view.js';
 import { ClipLibrary } from './crowd/clip_library.js';
 import { kHanimSkeleton } from './crowd/procedural_clips.js';
 import { CrowdView } from './crowd/crowd_view.js';
@@ -20,8 +21,15 @@ import { Banner } from './ui/banner.js';
 import { AgentPanel } from './ui/agent_panel.js';
 import { Timeline } from './ui/timeline.js';
 import { GroupList } from './ui/group_list.js';
-import { NameLabels } from './ui/name_labels.js';
+import { ScreenLabels } from './ui/screen_labels.js';
 import { GesturePlayer, RemoteJoints, gestureClip, kGestures } from './crowd/gestures.js';
+import { bindKeys } from './ui/keys.js';
+import { Legend } from './ui/legend.js';
+import { Help } from './ui/help.js';
+import { Markers, kSelfColour } from './crowd/markers.js';
+import { Trails } from './crowd/trails.js';
+import { kSelectedColour, kPickedGroupColour } from './crowd/crowd_view.js';
+import { kColourModes } from './crowd/colour_by.js';
 
 const params = new URLSearchParams(location.search);
 const demo = params.has('demo');
@@ -57,8 +65,11 @@ const camera = new THREE.PerspectiveCamera(55, innerWidth / innerHeight, 0.1, 20
 addEventListener('resize', () => {
   camera.aspect = innerWidth / innerHeight;
   camera.updateProjectionMatrix();
+  if (cameras) cameras.resize(innerWidth / innerHeight);
   renderer.setSize(innerWidth, innerHeight);
 });
+/** The camera drawing now: the plan view's orthographic one, or the perspective one. */
+const view = () => (cameras ? cameras.camera : camera);
 if (shot) for (const id of ['hud', 'controls']) $(id).classList.add('hidden');
 
 const source = makeSource();
@@ -72,11 +83,31 @@ const others = new Map();  // participant id → {x, y, yaw, moving, phase}
 const localPhase = { phase: 0 };
 const gesture = new GesturePlayer();     // the local avatar's gesture (buttons, keys 1–4)
 const remoteJoints = new RemoteJoints(); // other participants' latest relayed Joints
-const labels = new NameLabels($('labels'));
+const labels = new ScreenLabels($('labels'));
+let worldLabels = [];  // the points' name labels (world_view.js pointLabels)
+const kOtherColour = 0xd02090;  // other participants' avatars
+let markers = null;
+let trails = null, trailsStale = false;  // trajectory trails (key R), rebuilt after each frame
+const legend = new Legend($('legend'), { selected: kSelectedColour, pickedGroup: kPickedGroupColour, self: kSelfColour, other: kOtherColour },
+  (m) => setColourMode(m));
+const help = new Help($('help'));
+$('help-button').onclick = () => help.show();
+function setColourMode(m) {
+  if (!crowd || !kColourModes.includes(m)) return;
+  crowd.colourMode = m;
+  refreshLegend();
+}
+function refreshLegend() {
+  if (crowd) legend.update(crowd.colourMode, { populations: crowd.populations, groups: description.groups || [] });
+}
 globalThis.__throngStats = globalThis.__throngStats || {};
 
 source.on('status', (s) => banner.show(s));
-source.on('frame', (f) => state.applyFrame(f, performance.now() / 1000));
+source.on('frame', (f) => {
+  state.applyFrame(f, performance.now() / 1000);
+  hud.frame(f);
+  if (trails && trails.enabled) { trails.record(f, hud.simTime); trailsStale = true; }
+});
 source.on('participant', (m) => {
   const o = others.get(m.participantId) || { phase: 0, name: source.names.get(m.participantId) };
   o.moving = o.x !== undefined && Math.hypot(m.x - o.x, m.y - o.y) > 0.02;
@@ -92,8 +123,10 @@ source.on('world', async (w) => {
     w.skeleton = { joints: kHanimSkeleton };
   }
   description = w;
+  hud.setWorld(w);
   const bounds = worldBounds(w.scenario || {});
   scene.add(buildWorld(w.scenario || {}));
+  worldLabels = pointLabels(w.scenario || {});
   addLights(scene, bounds);
   clips = new ClipLibrary(w);
   await clips.load('');
@@ -101,18 +134,33 @@ source.on('world', async (w) => {
   state.interval = 1 / (w.tickRate || 10);
   crowd = new CrowdView(scene, renderer, w, clips, { adaptive: lodOn, targetFrameMs: 1000 / Number(params.get('target') || 30) });
   avatars = new NearBodies(scene, w.skeleton.joints, clips);
-  cameras = new Cameras(camera, renderer.domElement, bounds, (w.scenario || {}).terrain || null);
+  markers = new Markers(scene, kSelectedColour);
+  trails = new Trails(scene);
+  if (params.get('trails') === '1') toggleTrails(true);
+  const colourParam = params.get('colour');
+  setColourMode(kColourModes.includes(colourParam) ? colourParam : 'group');
+  const camParam = params.get('camera');
+  cameras = new Cameras(camera, renderer.domElement, bounds, (w.scenario || {}).terrain || null,
+    ['plan', 'orbit', 'walk'].includes(camParam) ? camParam : null);
+  setMode(cameras.mode);
   $('lod-toggle').checked = lodOn;
   groupList.setGroups(w.groups || []);
-  globalThis.__throng = {
-    cameras, crowd, state, camera, source, renderer, description: w, others, groupList, remoteJoints, gesture,
+  globalThis.__throng = testHooks(w);
+});
+/** What scripts and the tests reach through window.__throng: the parts, and screen helpers. */
+function testHooks(w) {
+  return {
+    cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode,
+    get trails() { return trails; }, get markers() { return markers; }, selfColour: kSelfColour,
+    renderer, description: w, others, groupList, remoteJoints, gesture,
     get joined() { return joined; },
-    /** Texts of the name labels on screen. */
-    labels: () => labels.visible(),
+    /** Texts of the participants' name labels on screen. */
+    labels: () => labels.visible('name-label'),
+    screenLabels: labels,
     playGesture,
     /** Renders now and reads the canvas back: grey levels (0–255) every `step` px, for tests. */
     pixels(step = 4) {
-      renderer.render(scene, camera);
+      renderer.render(scene, view());
       const gl = renderer.getContext();
       const w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
       const buf = new Uint8Array(w * h * 4);
@@ -126,14 +174,23 @@ source.on('world', async (w) => {
       }
       return { width: w, height: h, step, grey };
     },
+    /** Colour [r, g, b] (0–255) of the drawn pixel at screen point (x, y) [px], for tests. */
+    rgbAt(x, y) {
+      renderer.render(scene, view());
+      const gl = renderer.getContext();
+      const r = renderer.getPixelRatio();
+      const buf = new Uint8Array(4);
+      gl.readPixels(Math.round(x * r), gl.drawingBufferHeight - 1 - Math.round(y * r), 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, buf);
+      return [buf[0], buf[1], buf[2]];
+    },
     /** Screen position [px] of world point (x, y, z) in the current camera, or null behind it. */
     toScreen(x, y, z = 0.9) {
-      const v = new THREE.Vector3(x, z, -y).project(camera);
+      const v = new THREE.Vector3(x, z, -y).project(view());
       if (v.z > 1) return null;
       return { x: (v.x + 1) / 2 * innerWidth, y: (1 - v.y) / 2 * innerHeight };
     },
   };
-});
+}
 // Groups formed after the start (populations that spawn later) are not in the world description:
 // a live viewer asks /api/groups ([{id, population, members}], current membership) every 3 s, and
 // stops asking when the server does not have it.
@@ -145,6 +202,7 @@ function pollGroups() {
     crowd.setGroups(groups);
     groupList.setGroups(groups);
     description.groups = groups;
+    refreshLegend();
     setTimeout(pollGroups, 3000);
   }).catch(() => {});
 }
@@ -179,7 +237,7 @@ source.on('joined', (j) => {
   groupList.setJoined(true);
   $('gesture-row').classList.remove('hidden');
   if (cameras && !again) {
-    const t = cameras.orbit.target;
+    const t = cameras.mode === 'plan' ? cameras.plan.target : cameras.orbit.target;  // where the view is centred
     cameras.placeAvatar(t.x, -t.z, Math.PI / 2, t.y);
     setMode('walk');
   }
@@ -203,9 +261,47 @@ $('join-form').addEventListener('submit', (e) => {
 function setMode(m) {
   if (!cameras) return;
   cameras.setMode(m);
-  $('cam-orbit').classList.toggle('active', m === 'orbit');
-  $('cam-walk').classList.toggle('active', m === 'walk');
+  showMode();
 }
+/** Lights the current camera's button (also after a mode set by a script: cameras.lookAt). */
+let shownMode = null;
+function showMode() {
+  if (shownMode === cameras.mode) return;
+  shownMode = cameras.mode;
+  for (const k of ['plan', 'orbit', 'walk']) $(`cam-${k}`).classList.toggle('active', shownMode === k);
+}
+/** Follows the selected agent, else the highlighted group's centre (its members in view), or
+ * stops following; says which in the camera status line. */
+function toggleFollow() {
+  if (!cameras) return;
+  if (cameras.following) { cameras.follow(null); followNote('stopped following'); return; }
+  if (cameras.mode === 'walk') setMode('orbit');
+  if (selectedId >= 0) {
+    const id = selectedId;
+    cameras.follow(() => {
+      const i = state.index.get(id);
+      return i === undefined ? null : { x: state.x[i], y: state.y[i], z: state.z[i] };
+    });
+    followNote(`following agent #${id} (T stops)`);
+  } else if (crowd && crowd.selectedGroup >= 0) {
+    const g = crowd.selectedGroup;
+    cameras.follow(() => groupCentre(g));
+    followNote(`following group ${g} (T stops)`);
+  } else {
+    followNote('select an agent (click) or a group first, then T follows it');
+  }
+}
+function groupCentre(g) {
+  const group = (description.groups || []).find((x) => x.id === g);
+  let sx = 0, sy = 0, sz = 0, n = 0;
+  for (const id of (group && group.members) || []) {
+    const i = state.index.get(id);
+    if (i === undefined) continue;
+    sx += state.x[i]; sy += state.y[i]; sz += state.z[i]; n++;
+  }
+  return n ? { x: sx / n, y: sy / n, z: sz / n } : null;
+}
+function followNote(text) { $('camera-status').textContent = text; }
 // Gestures of the local avatar: buttons, or keys 1–4 (not while typing in a field).
 function playGesture(name) {
   if (!joined || !clips) return false;
@@ -213,13 +309,30 @@ function playGesture(name) {
   return true;
 }
 for (const b of document.querySelectorAll('#gesture-row button')) b.onclick = () => playGesture(b.dataset.gesture);
-addEventListener('keydown', (e) => {
-  if (e.target && /^(INPUT|SELECT|TEXTAREA)$/.test(e.target.tagName)) return;
-  const g = kGestures.find((x) => x.key === e.key);
-  if (g) playGesture(g.name);
+bindKeys({
+  gesture: (e) => { const g = kGestures.find((x) => x.key === e.key); if (g) playGesture(g.name); },
+  nextCamera: () => cameras && setMode(cameras.nextMode()),
+  plan: () => setMode('plan'),
+  orbit: () => setMode('orbit'),
+  fit: () => fitView(),
+  follow: () => toggleFollow(),
+  labels: () => toggleLabels(),
+  colourBy: () => crowd && setColourMode(kColourModes[(kColourModes.indexOf(crowd.colourMode) + 1) % kColourModes.length]),
+  help: () => help.show(),
+  trails: () => toggleTrails(),
+  escape: () => { help.show(false); if (cameras) cameras.follow(null); select(-1); },
 });
+function fitView() {
+  if (!cameras) return;
+  if (cameras.mode === 'walk') setMode('orbit');
+  cameras.follow(null);
+  cameras.fit();
+}
+$('cam-plan').onclick = () => setMode('plan');
 $('cam-orbit').onclick = () => setMode('orbit');
 $('cam-walk').onclick = () => setMode('walk');
+$('cam-fit').onclick = () => fitView();
+$('agent-follow').onclick = () => { if (cameras) cameras.follow(null); toggleFollow(); };
 $('lod-toggle').onchange = (e) => { if (crowd) crowd.adaptive = e.target.checked; };
 // Replay: the in-memory demo recording, or a server replaying a recording (its first ReplayStatus).
 let timeline = source.kind === 'replay' ? new Timeline($('timeline'), source) : null;
@@ -254,11 +367,19 @@ renderer.domElement.addEventListener('pointerdown', (e) => { downAt = [e.clientX
 renderer.domElement.addEventListener('pointerup', (e) => {
   if (!downAt || !crowd || Math.hypot(e.clientX - downAt[0], e.clientY - downAt[1]) > 4) return;
   const ndc = new THREE.Vector2((e.clientX / innerWidth) * 2 - 1, -(e.clientY / innerHeight) * 2 + 1);
-  raycaster.setFromCamera(ndc, camera);
-  const i = crowd.pick(raycaster.ray, state);
-  selectedId = i >= 0 ? state.ids[i] : -1;
+  raycaster.setFromCamera(ndc, view());
+  // A zoomed-out plan view draws a body a few pixels wide: a click within 6 px of it still counts.
+  const radius = cameras.mode === 'plan' ? Math.max(0.4, 6 * cameras.planMetresPerPixel(innerHeight)) : 0.4;
+  const i = crowd.pick(raycaster.ray, state, radius);
+  select(i >= 0 ? state.ids[i] : -1);
+});
+/** Selects agent `id` (−1: none): its panel, its goal from the server, its group in the list. */
+function select(id) {
+  if (!crowd) return;
+  const i = id >= 0 ? state.index.get(id) : undefined;
+  selectedId = i !== undefined ? id : -1;
   crowd.selectedId = selectedId;
-  if (i >= 0) {
+  if (selectedId >= 0) {
     const g = crowd.groupOf.get(selectedId);
     panel.show(selectedId, g);
     fetchAgentInfo(selectedId);
@@ -266,7 +387,38 @@ renderer.domElement.addEventListener('pointerup', (e) => {
   } else {
     panel.hide();
   }
-});
+}
+
+/** Participants' names (`tags`) and the points' labels, at their anchors on screen. Far labels
+ * thin out: none beyond kLabelRange in 3D; a plan zoomed out under 2.5 px/m keeps the exits only. */
+const kLabelRange = 80;  // [m]
+function updateLabels(tags) {
+  const cam = view();
+  const { toScreen } = globalThis.__throng;
+  const entries = tags.map((t) => ({ key: t.key, name: t.name, kind: 'name', importance: 10, screen: toScreen(t.at[0], t.at[1], (t.at[2] || 0) + 2.0) }));
+  const plan = cam.isOrthographicCamera;
+  const minImportance = plan && 1 / cameras.planMetresPerPixel(innerHeight) < 2.5 ? 3 : 0;
+  for (const l of worldLabels) {
+    if (l.importance < minImportance) continue;
+    const distance = plan ? 0 : Math.hypot(cam.position.x - l.at[0], cam.position.y - l.at[2], cam.position.z + l.at[1]);
+    if (distance > kLabelRange) continue;
+    entries.push({ ...l, distance, screen: toScreen(l.at[0], l.at[1], l.at[2]) });
+  }
+  labels.update(entries);
+}
+function toggleLabels(on = !labels.showPoints) {
+  labels.showPoints = on;
+  $('labels-toggle').checked = on;
+}
+$('labels-toggle').onchange = (e) => toggleLabels(e.target.checked);
+function toggleTrails(on = !(trails && trails.enabled)) {
+  if (!trails) return;
+  trails.enabled = on;
+  $('trails-toggle').checked = on;
+  legend.trails = on;
+  refreshLegend();
+}
+$('trails-toggle').onchange = (e) => toggleTrails(e.target.checked);
 
 let last = performance.now();
 function frame() {
@@ -274,13 +426,14 @@ function frame() {
   const nowMs = performance.now();
   const frameMs = nowMs - last;
   last = nowMs;
-  if (!crowd) { renderer.render(scene, camera); return; }
+  if (!crowd) { renderer.render(scene, view()); return; }
   const dt = Math.min(frameMs / 1000, 0.1);
   cameras.update(dt);
+  showMode();
   state.advance(nowMs / 1000);
   // Levels from the full-resolution height; the budget's render scale (dynamic resolution) is
   // applied after, for the next frame's drawing buffer (only when it moved by 5 % or more).
-  const counts = crowd.update(state, camera, innerHeight * basePixelRatio, frameMs, renderer.domElement.height);
+  const counts = crowd.update(state, view(), innerHeight * basePixelRatio, frameMs, renderer.domElement.height);
   const wantRatio = basePixelRatio * (crowd.adaptive && !shot ? crowd.params.renderScale : 1);  // screenshots: full resolution
   if (Math.abs(wantRatio - renderer.getPixelRatio()) > 0.05 * basePixelRatio || (wantRatio === basePixelRatio && renderer.getPixelRatio() !== basePixelRatio)) {
     renderer.setPixelRatio(wantRatio);
@@ -292,7 +445,7 @@ function frame() {
     const a = cameras.avatar;
     localPhase.phase = (localPhase.phase + (a.speed * dt) / 1.5) % 1;
     const g = gesture.sample(nowMs);
-    avatars.add(a.x, a.y, a.z, a.yaw, a.moving ? walk : idle, a.moving ? localPhase.phase : (nowMs / 2000) % 1, 0xff6a00,
+    avatars.add(a.x, a.y, a.z, a.yaw, a.moving ? walk : idle, a.moving ? localPhase.phase : (nowMs / 2000) % 1, kSelfColour,
       g ? g.angles : null);
     source.sendMove(a.x, a.y, a.z, a.yaw);  // z: the floor it stands on (0 in a flat world)
     if (g && g.send && source.sendJoints) source.sendJoints(g.angles);
@@ -301,12 +454,19 @@ function frame() {
   for (const [id, o] of others) {
     if (nowMs - o.at > 15000) continue;
     o.phase = (o.phase + (o.moving ? dt / 1.12 : dt / 2)) % 1;
-    avatars.add(o.x, o.y, o.z, o.yaw, o.moving ? walk : idle, o.phase, 0xd02090, remoteJoints.get(id, nowMs));
+    avatars.add(o.x, o.y, o.z, o.yaw, o.moving ? walk : idle, o.phase, kOtherColour, remoteJoints.get(id, nowMs));
     tags.push({ key: id, name: o.name || source.names?.get(id) || `participant ${id}`, at: [o.x, o.y, o.z] });
   }
   avatars.end();
-  labels.update(tags.map((t) => ({ key: t.key, name: t.name, screen: globalThis.__throng.toScreen(t.at[0], t.at[1], (t.at[2] || 0) + 2.0) })));
-  renderer.render(scene, camera);
+  if (trailsStale) {
+    trailsStale = false;
+    trails.rebuild((id) => { const i = state.index.get(id); return i === undefined ? crowd.colour(0x9a9a9a) : crowd.colourAt(i, state); });
+  }
+  const sel = selectedId >= 0 ? state.index.get(selectedId) : undefined;
+  markers.update(joined ? cameras.avatar : null, sel === undefined ? null : { x: state.x[sel], y: state.y[sel], z: state.z[sel] },
+    cameras.mode === 'plan' ? cameras.planMetresPerPixel(innerHeight) : 0);
+  updateLabels(tags);
+  renderer.render(scene, view());
   hud.tick(source, counts, state.count, crowd.adaptive ? crowd.params : { adaptive: false });
   globalThis.__throngStats.crowdFrames = state.frames;
   globalThis.__throngStats.others = others.size;

@@ -1,5 +1,9 @@
-// Camera modes. Orbit: three's OrbitControls around the world (drag rotate, wheel zoom, right-drag
-// pan). Walk: the camera follows behind the local avatar, which W/S or ↑/↓ move forward/back,
+// Camera modes. Plan: an orthographic camera straight down, north (world +y) up (left- or right-drag
+// pans, the wheel zooms at the pointer); the default for a single-level world wider than
+// kPlanDefaultSpan, where an oblique camera leaves most bodies a few pixels high. Orbit: three's
+// OrbitControls around the world (drag rotate, wheel zoom, right-drag pan). fit() frames the whole
+// world in the plan or orbit camera; follow(fn) keeps the plan or orbit camera centred on what fn
+// returns each frame (a selected agent, a group's centre) until it returns null. Walk: the camera follows behind the local avatar, which W/S or ↑/↓ move forward/back,
 // A/D or ←/→ turn, Q/E strafe (Shift runs); dragging the mouse turns. The avatar is the viewer's
 // own walking position (world x, y [m], yaw [rad]); once joined, main.js sends it as Move.
 // In a multi-level world (`terrain`, the scenario's triangles) the avatar also has a height z [m]:
@@ -9,25 +13,46 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { terrainHeightAt, stepOnTerrain } from '../world/terrain.js';
 
+export const kPlanDefaultSpan = 40;  // [m] a flat world wider or deeper than this opens in plan view
+export const kModes = ['plan', 'orbit', 'walk'];
+
+/** The camera a world opens with: plan for a single-level world wider than kPlanDefaultSpan,
+ * orbit otherwise (small worlds read better in 3D; a plan view hides a lower floor). */
+export function defaultMode(bounds, terrain) {
+  const span = Math.max(bounds.maxX - bounds.minX, bounds.maxY - bounds.minY);
+  return !terrain && span > kPlanDefaultSpan ? 'plan' : 'orbit';
+}
+
+/** Orthographic frustum half-sizes {halfW, halfH} [m] that show the box (spanX × spanY) whole in a
+ * viewport of `aspect` (width / height), with `margin` (0.06: 6 % on each side). */
+export function planFrustum(spanX, spanY, aspect, margin = 0.06) {
+  const halfH = Math.max(spanY / 2, spanX / 2 / aspect, 2) * (1 + 2 * margin);
+  return { halfW: halfH * aspect, halfH };
+}
+
 export class Cameras {
-  /** `bounds`: worldBounds(scenario); `terrain`: scenario.terrain, or null in a flat world. */
-  constructor(camera, dom, bounds, terrain = null) {
-    this.camera = camera;
+  /** `camera`: the perspective camera (orbit, walk); `bounds`: worldBounds(scenario); `terrain`:
+   * scenario.terrain, or null in a flat world; `mode`: the first mode (defaultMode when omitted). */
+  constructor(camera, dom, bounds, terrain = null, mode = null) {
+    this.perspective = camera;
     this.dom = dom;
-    this.mode = 'orbit';
     this.orbit = new OrbitControls(camera, dom);
     this.orbit.enableDamping = true;
     this.orbit.maxPolarAngle = Math.PI * 0.49;
+    this.ortho = new THREE.OrthographicCamera(-10, 10, 10, -10, 0.1, 5000);
+    this.ortho.up.set(0, 0, -1);  // screen up = world +y (north)
+    this.plan = new OrbitControls(this.ortho, dom);
+    Object.assign(this.plan, { enableRotate: false, screenSpacePanning: true, zoomToCursor: true, minZoom: 0.2, maxZoom: 60 });
+    this.plan.mouseButtons = { LEFT: THREE.MOUSE.PAN, MIDDLE: THREE.MOUSE.DOLLY, RIGHT: THREE.MOUSE.PAN };
+    this.plan.touches = { ONE: THREE.TOUCH.PAN, TWO: THREE.TOUCH.DOLLY_PAN };
     const cx = (bounds.minX + bounds.maxX) / 2, cy = (bounds.minY + bounds.maxY) / 2;
-    const minZ = bounds.minZ ?? 0, maxZ = bounds.maxZ ?? 0;
-    const span = Math.max(bounds.maxX - bounds.minX, bounds.maxY - bounds.minY, maxZ - minZ, 10);
-    const cz = (minZ + maxZ) / 2;
     this.bounds = bounds;
     this.terrain = terrain && Array.isArray(terrain.vertices) && Array.isArray(terrain.walkable) ? terrain : null;
-    this.orbit.target.set(cx, cz, -cy);
-    camera.position.set(cx, cz + span * 0.45 + (maxZ - minZ) / 2, -cy + span * 0.6);
-    this.orbit.update();
+    this.following = null;
+    this.fit('plan');
+    this.fit('orbit');
     this.avatar = { x: cx, y: cy, z: 0, yaw: Math.PI / 2, moving: false, speed: 0, onTerrain: false };
+    this.setMode(mode || defaultMode(bounds, this.terrain));
     this.keys = new Set();
     this.dragging = false;
     addEventListener('keydown', (e) => { if (!isTyping(e)) this.keys.add(e.code); });
@@ -40,9 +65,72 @@ export class Cameras {
     });
   }
 
+  /** The camera of the current mode: orthographic in plan view, perspective otherwise. */
+  get camera() { return this.mode === 'plan' ? this.ortho : this.perspective; }
+
   setMode(mode) {
     this.mode = mode;
     this.orbit.enabled = mode === 'orbit';
+    this.plan.enabled = mode === 'plan';
+  }
+
+  /** The next mode after the current one (plan → orbit → walk → plan). */
+  nextMode() { return kModes[(kModes.indexOf(this.mode) + 1) % kModes.length]; }
+
+  /** Frames the whole world in the plan camera ('plan') or the orbit camera ('orbit'); the current
+   * mode's camera when `which` is omitted (walk: none). */
+  fit(which = this.mode) {
+    const b = this.bounds;
+    const cx = (b.minX + b.maxX) / 2, cy = (b.minY + b.maxY) / 2;
+    const minZ = b.minZ ?? 0, maxZ = b.maxZ ?? 0;
+    const aspect = this.dom.clientWidth && this.dom.clientHeight ? this.dom.clientWidth / this.dom.clientHeight : innerWidth / innerHeight;
+    if (which === 'plan') {
+      const { halfW, halfH } = planFrustum(b.maxX - b.minX, b.maxY - b.minY, aspect);
+      Object.assign(this.ortho, { left: -halfW, right: halfW, top: halfH, bottom: -halfH, zoom: 1 });
+      this.ortho.position.set(cx, maxZ + 200, -cy);
+      this.plan.target.set(cx, minZ, -cy);
+      this.ortho.updateProjectionMatrix();
+      this.plan.update();
+    } else if (which === 'orbit') {
+      // From the south, 50° above the horizon, far enough that the world's bounding sphere fits.
+      const r = Math.max(Math.hypot(b.maxX - b.minX, b.maxY - b.minY, maxZ - minZ) / 2, 5);
+      const fov = THREE.MathUtils.degToRad(this.perspective.fov);
+      const d = r / Math.sin(Math.min(fov, fov * aspect) / 2) * 0.8;
+      const el = THREE.MathUtils.degToRad(50);
+      const cz = (minZ + maxZ) / 2;
+      this.orbit.target.set(cx, cz, -cy);
+      this.perspective.position.set(cx, cz + d * Math.sin(el), -cy + d * Math.cos(el));
+      this.orbit.update();
+    }
+  }
+
+  /** Viewport resized: the plan camera keeps its height in metres and widens or narrows. */
+  resize(aspect) {
+    const halfH = this.ortho.top;
+    Object.assign(this.ortho, { left: -halfH * aspect, right: halfH * aspect });
+    this.ortho.updateProjectionMatrix();
+  }
+
+  /** Keeps the plan or orbit camera centred on `fn()` (world {x, y, z} [m]) each frame until it
+   * returns null; follow(null) stops. */
+  follow(fn) { this.following = fn; }
+
+  /** Moves the current controls' target (and the camera with it) onto the followed point. */
+  applyFollow() {
+    if (!this.following || this.mode === 'walk') return;
+    const p = this.following();
+    if (!p) { this.following = null; return; }
+    const controls = this.mode === 'plan' ? this.plan : this.orbit;
+    const cam = this.camera;
+    const dx = p.x - controls.target.x, dz = -p.y - controls.target.z;
+    const dy = this.mode === 'plan' ? 0 : (p.z || 0) + 0.9 - controls.target.y;
+    controls.target.x += dx; controls.target.y += dy; controls.target.z += dz;
+    cam.position.x += dx; cam.position.y += dy; cam.position.z += dz;
+  }
+
+  /** Metres per screen pixel at the plan camera's zoom (for pick tolerances and marker sizes). */
+  planMetresPerPixel(viewportHeight) {
+    return (this.ortho.top - this.ortho.bottom) / this.ortho.zoom / viewportHeight;
   }
 
   /** Places the avatar (e.g. where the camera looks) before walking; in a multi-level world on the
@@ -65,7 +153,9 @@ export class Cameras {
 
   /** Per frame: moves the avatar from the keys (walk mode) and the camera. */
   update(dt) {
+    this.applyFollow();
     if (this.mode === 'orbit') { this.orbit.update(); this.avatar.moving = false; return; }
+    if (this.mode === 'plan') { this.plan.update(); this.avatar.moving = false; return; }
     const k = this.keys;
     const run = k.has('ShiftLeft') || k.has('ShiftRight') ? 2.2 : 1;
     const fwd = (k.has('KeyW') || k.has('ArrowUp') ? 1 : 0) - (k.has('KeyS') || k.has('ArrowDown') ? 1 : 0);
@@ -82,17 +172,28 @@ export class Cameras {
       Math.min(Math.max(a.y + dy * v * dt, this.bounds.minY), this.bounds.maxY));
     const az = a.z || 0;
     const back = 3.6, height = 2.3;
-    const cam = this.camera;
+    const cam = this.perspective;
     const tx = a.x - Math.cos(a.yaw) * back, ty = a.y - Math.sin(a.yaw) * back;
     cam.position.lerp(new THREE.Vector3(tx, az + height, -ty), Math.min(1, dt * 8));
     cam.lookAt(a.x + Math.cos(a.yaw) * 3, az + 1.2, -(a.y + Math.sin(a.yaw) * 3));
+  }
+
+  /** Plan view centred on world (x, y), `metresHigh` [m] of the world from the top of the
+   * viewport to the bottom. */
+  planAt(x, y, metresHigh) {
+    this.setMode('plan');
+    this.ortho.zoom = (this.ortho.top - this.ortho.bottom) / metresHigh;
+    this.ortho.updateProjectionMatrix();
+    this.plan.target.set(x, this.plan.target.y, -y);
+    this.ortho.position.set(x, this.ortho.position.y, -y);
+    this.plan.update();
   }
 
   /** Looks at world (x, y) from a given distance (used by the benchmark's screenshots). */
   lookAt(x, y, distance, height) {
     this.setMode('orbit');
     this.orbit.target.set(x, 1, -y);
-    this.camera.position.set(x + distance * 0.6, height, -y + distance * 0.8);
+    this.perspective.position.set(x + distance * 0.6, height, -y + distance * 0.8);
     this.orbit.update();
   }
 }

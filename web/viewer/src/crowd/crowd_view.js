@@ -1,17 +1,24 @@
 // The crowd on screen: each frame, from the interpolated crowd state (interpolate.js) and the
 // camera, computes every agent's projected size, asks the global LOD function (lod.js) for its
 // level within the frame-time budget, and fills the three renderers: skinned bodies (near),
-// instanced low-polygon bodies (middle), billboards (far), dots (a few pixels high). Also: colours by group,
-// picking (ray against a vertical capsule proxy per agent), and the counts for the HUD.
+// instanced low-polygon bodies (middle), billboards (far), dots (a few pixels high). Seen from an
+// orthographic plan camera, every agent is a disc with its heading instead (plan_discs.js). Also:
+// each agent's colour by the chosen mode (colour_by.js: group, population, speed, local density,
+// state; the selected agent yellow, the picked group lime, over any mode), picking (camera/pick.js: a ray against an upright capsule per agent, from any
+// angle), and the counts for the HUD.
 import * as THREE from 'three';
 import { Level, assignLevels, makeLodScratch, projectedHeight, LodBudget, defaultLodParams } from '../lod.js';
 import { NearBodies } from './near_bodies.js';
 import { MiddleBodies } from './middle_bodies.js';
 import { Billboards, renderAtlas, kWalkFrames } from './billboards.js';
 import { Dots } from './dots.js';
+import { PlanDiscs } from './plan_discs.js';
+import { pickAgent } from '../camera/pick.js';
 import { sceneYaw } from '../coords.js';
+import { kGroupPalette, kNoGroup, kSpeedMax, kDensityMax, kStateColours, rampColour, stateOf, localDensity } from './colour_by.js';
 
-const kPalette = [0x3f7fbf, 0xbf5f3f, 0x4f9f5f, 0x9f4fa0, 0xc0a040, 0x40a0a8, 0x8f6f4f, 0x707fa0, 0xb0607a, 0x6a8f30];
+export const kSelectedColour = 0xffe040;  // the clicked agent (and its ring)
+export const kPickedGroupColour = 0xb4f000;  // the members of the group picked in the list
 
 export class CrowdView {
   constructor(scene, renderer, description, clips, options = {}) {
@@ -23,9 +30,14 @@ export class CrowdView {
     this.atlas = renderAtlas(renderer, this.joints, this.near.geometry, clips);
     this.far = new Billboards(scene, this.atlas.texture);
     this.dots = new Dots(scene);
+    this.discs = new PlanDiscs(scene);
+    this.populations = ((description.scenario || {}).populations || []).map((p) => p.id).filter(Boolean);
     this.setGroups(description.groups || []);
-    this.colors = kPalette.map((c) => new THREE.Color(c));
-    this.highlight = new THREE.Color(0xffe040);
+    this.colourMode = 'group';
+    this.colourCache = new Map();  // 0xRRGGBB → THREE.Color
+    this.density = new Float32Array(0);
+    this.densityFrame = -1;
+    this.highlight = this.colour(kSelectedColour);
     this.adaptive = options.adaptive !== false;
     this.budget = new LodBudget({ targetFrameMs: options.targetFrameMs || 1000 / 30 });
     this.levels = new Uint8Array(0);
@@ -36,24 +48,62 @@ export class CrowdView {
     this.counts = { near: 0, middle: 0, far: 0, dot: 0, hidden: 0 };
     this.selectedId = -1;
     this.selectedGroup = -1;  // group picked in the group list: its members are highlighted
-    this.groupHighlight = new THREE.Color(0xff9a20);
+    this.groupHighlight = this.colour(kPickedGroupColour);
     this.guidedGroups = new Set();
     this.frustum = new THREE.Frustum();
     this.m = new THREE.Matrix4();
     this.sphere = new THREE.Sphere(new THREE.Vector3(), 1.1);
   }
 
-  /** Group membership: [{id, members}] (agent ids). */
+  /** Group membership: [{id, members, population, waiting}] (agent ids; population and waiting
+   * as /api/groups gives them, when known). */
   setGroups(groups) {
     this.groupOf = new Map();
-    for (const g of groups) for (const m of g.members || []) this.groupOf.set(m, g.id);
+    this.populationOfGroup = new Map();
+    this.waitingGroups = new Set();
+    for (const g of groups) {
+      for (const m of g.members || []) this.groupOf.set(m, g.id);
+      if (g.population) {
+        this.populationOfGroup.set(g.id, g.population);
+        if (!this.populations.includes(g.population)) this.populations.push(g.population);
+      }
+      if (g.waiting) this.waitingGroups.add(g.id);
+    }
   }
 
-  colorOf(id) {
+  /** The shared THREE.Color of 0xRRGGBB. */
+  colour(hex) {
+    let c = this.colourCache.get(hex);
+    if (!c) { c = new THREE.Color(hex); this.colourCache.set(hex, c); }
+    return c;
+  }
+
+  /** Colour of agent i of `state` in the current mode (the selection and the picked group first). */
+  colourAt(i, state) {
+    const id = state.ids[i];
     if (id === this.selectedId) return this.highlight;
     const g = this.groupOf.get(id);
     if (g !== undefined && g === this.selectedGroup) return this.groupHighlight;
-    return this.colors[(g === undefined ? id : g) % this.colors.length];
+    switch (this.colourMode) {
+      case 'population': {
+        const k = g === undefined ? -1 : this.populations.indexOf(this.populationOfGroup.get(g));
+        return this.colour(k < 0 ? kNoGroup : kGroupPalette[k % kGroupPalette.length]);
+      }
+      case 'speed': return this.colour(rampColour(state.speed[i] / kSpeedMax));
+      case 'density': return this.colour(rampColour(this.density[i] / kDensityMax));
+      case 'state': {
+        const clip = state.tier[i] === 2 ? '' : this.clips.name(state.clip[i]);
+        return this.colour(kStateColours[stateOf(clip, state.speed[i], g !== undefined && this.waitingGroups.has(g))]);
+      }
+      default: return this.colour(kGroupPalette[(g === undefined ? id : g) % kGroupPalette.length]);
+    }
+  }
+
+  /** Per frame, before colourAt: local densities once per received crowd frame (density mode). */
+  prepareColours(state) {
+    if (this.colourMode !== 'density' || this.densityFrame === state.frames) return;
+    this.densityFrame = state.frames;
+    this.density = localDensity(state.toX, state.toY, state.count);
   }
 
   /** Draws `state` (CrowdState, already advanced) from `camera` in a viewport `height` px high
@@ -61,6 +111,9 @@ export class CrowdView {
    * drawing buffer's height [px] (for the dots' size), `height` when omitted. */
   update(state, camera, height, frameMs, bufferHeight = height) {
     const n = state.count;
+    this.prepareColours(state);
+    if (camera.isOrthographicCamera) return this.updatePlan(state, camera, bufferHeight);
+    this.discs.begin(0, 1); this.discs.end();
     if (this.sizes.length < n) {
       this.sizes = new Float32Array(n * 2); this.levels = new Uint8Array(n * 2);
     }
@@ -96,7 +149,7 @@ export class CrowdView {
       const id = state.ids[i];
       // Far-tier data has no clip: walk when it moves, idle when it stands (see interpolate.js).
       const c = state.tier[i] === 2 ? (state.speed[i] > 0.25 ? walkClip : idleClip) : state.clip[i];
-      const color = this.colorOf(id);
+      const color = this.colourAt(i, state);
       if (l === Level.Near) {
         this.near.add(state.x[i], state.y[i], state.z[i], state.yaw[i], c, state.phase[i], color.getHex(), state.tier[i] === 0 ? state.joints.get(id) : null);
       } else if (l === Level.Middle) {
@@ -115,26 +168,25 @@ export class CrowdView {
     return this.counts;
   }
 
-  /** Agent index under the ray (nearest capsule proxy: radius 0.35 m, 0–1.8 m high), or −1. */
-  pick(ray, state) {
-    let best = -1, bestT = Infinity;
-    const o = ray.origin, d = ray.direction;
-    for (let i = 0; i < state.count; ++i) {
-      // Closest approach of the ray to the agent's vertical axis, in the ground plane.
-      const ax = state.x[i], az = -state.y[i], ay0 = state.z[i];
-      const ox = o.x - ax, oz = o.z - az;
-      const a = d.x * d.x + d.z * d.z;
-      const b = ox * d.x + oz * d.z;
-      const c = ox * ox + oz * oz - 0.35 * 0.35;
-      if (a < 1e-9) continue;
-      const disc = b * b - a * c;
-      if (disc < 0) continue;
-      const t = (-b - Math.sqrt(disc)) / a;
-      if (t <= 0 || t >= bestT) continue;
-      const y = o.y + d.y * t - ay0;
-      if (y < 0 || y > 1.8) continue;
-      best = i; bestT = t;
+  /** Plan view: every agent in the orthographic camera's view as a disc; no levels of detail. */
+  updatePlan(state, camera, bufferHeight) {
+    const n = state.count;
+    this.near.begin(); this.near.end();
+    this.middle.begin(0); this.middle.end();
+    this.far.begin(0); this.far.end();
+    this.dots.begin(0, 1); this.dots.end();
+    const pxPerMetre = bufferHeight * camera.zoom / (camera.top - camera.bottom);
+    this.discs.begin(n, pxPerMetre);
+    for (let i = 0; i < n; ++i) {
+      this.discs.add(state.x[i], state.z[i], -state.y[i], state.yaw[i], this.colourAt(i, state));
     }
-    return best;
+    this.discs.end();
+    this.prevIds = new Uint32Array(0);  // the next perspective frame chooses its levels afresh
+    this.params = this.adaptive ? this.budget.params() : { ...defaultLodParams, adaptive: false };
+    this.counts = { near: 0, middle: 0, far: 0, dot: 0, plan: n, hidden: 0 };
+    return this.counts;
   }
+
+  /** Agent index under the ray (an upright capsule per agent, `radius` [m] around its axis), or −1. */
+  pick(ray, state, radius = 0.4) { return pickAgent(ray, state, radius); }
 }

@@ -1,16 +1,72 @@
-// Heads-up display: agents, participants, frames per second, kbit/s received, levels of detail
-// in use (and the LOD budget's caps). Also publishes the same numbers as window.__throngStats for
-// scripts (bench/fps.mjs).
+// Heads-up display (top left), for people first: the scenario's name, the simulated time (the
+// latest crowd frame's tick × the world's dt; of the scenario's duration when it has one), how
+// many agents are in the world now and how many have gone (seen in an earlier frame, not in the
+// latest one: they left the world — or, for a participant, walked out of the area the server
+// sends it), participants, and frames per second. The engineering figures — kbit/s received,
+// agents drawn at each level of detail (or as plan discs), the adaptive caps and resolution, the
+// round-trip time — are in a debug part folded away by default (click "debug" to open it). Also
+// publishes the numbers as window.__throngStats for scripts (bench/fps.mjs, the e2e tests).
+
+/** m:ss (or h:mm:ss) of `s` seconds. */
+export function clock(s) {
+  const t = Math.max(0, Math.floor(s));
+  const h = Math.floor(t / 3600), m = Math.floor((t % 3600) / 60), sec = String(t % 60).padStart(2, '0');
+  return h ? `${h}:${String(m).padStart(2, '0')}:${sec}` : `${m}:${sec}`;
+}
+
+/** Agents present and gone: remembers every id seen; `ids` the latest frame's. A frame of an
+ * earlier tick (a replay seeked back) starts the count afresh. */
+export class Attendance {
+  constructor() { this.seen = new Set(); this.present = 0; this.tick = -Infinity; }
+  frame(ids, count, tick = 0) {
+    if (tick < this.tick) this.seen.clear();
+    this.tick = tick;
+    for (let i = 0; i < count; ++i) this.seen.add(ids[i]);
+    this.present = count;
+  }
+  get gone() { return Math.max(0, this.seen.size - this.present); }
+}
+
 export class Hud {
   constructor(el) {
     this.el = el;
+    el.innerHTML = '<div class="hud-main"></div><button class="hud-debug-toggle" title="engineering figures">debug ▸</button>'
+      + '<div class="hud-debug hidden"></div>';
+    this.main = el.querySelector('.hud-main');
+    this.debug = el.querySelector('.hud-debug');
+    this.toggle = el.querySelector('.hud-debug-toggle');
+    this.toggle.onclick = () => this.showDebug(this.debug.classList.contains('hidden'));
     this.frames = 0;
     this.windowStart = performance.now();
     this.fps = 0;
     this.kbps = 0;
     this.lastBytes = 0;
     this.totalFrames = 0;
+    this.world = { name: '', dt: 0.1, duration: 0 };
+    this.simTick = 0;
+    this.attendance = new Attendance();
   }
+
+  showDebug(on) {
+    this.debug.classList.toggle('hidden', !on);
+    this.toggle.textContent = on ? 'debug ▾' : 'debug ▸';
+  }
+
+  /** The world description: {name, dt, scenario: {name, duration}}. */
+  setWorld(w) {
+    const sc = w.scenario || {};
+    this.world = { name: w.name || sc.name || '', dt: Number(w.dt) > 0 ? Number(w.dt) : 1 / (w.tickRate || 10),
+      duration: Number(sc.duration) > 0 ? Number(sc.duration) : 0 };
+  }
+
+  /** Each crowd frame received. */
+  frame(f) {
+    this.simTick = f.simTick || 0;
+    this.attendance.frame(f.ids, f.count, this.simTick);
+  }
+
+  /** Simulated time [s] of the latest frame. */
+  get simTime() { return this.simTick * this.world.dt; }
 
   /** Once per rendered frame. */
   tick(source, counts, agents, lod) {
@@ -28,19 +84,27 @@ export class Hud {
     }
     globalThis.__throngStats = {
       fps: this.fps, agents, frames: this.totalFrames, kbps: this.kbps,
-      lod: { near: counts.near, middle: counts.middle, far: counts.far, dot: counts.dot || 0, hidden: counts.hidden,
+      lod: { near: counts.near, middle: counts.middle, far: counts.far, dot: counts.dot || 0, plan: counts.plan || 0, hidden: counts.hidden,
         renderScale: lod.adaptive ? lod.renderScale : 1 },
       adaptive: lod.adaptive, participants: source.participants,
+      simTime: this.simTime, gone: this.attendance.gone, scenario: this.world.name,
     };
   }
 
   draw(source, counts, agents, lod) {
-    const cap = lod.adaptive ? `caps ${lod.maxNear}/${lod.maxMiddle} res ${Math.round(lod.renderScale * 100)}%` : 'LOD off';
-    this.el.textContent = [
-      `agents       ${agents}`,
+    const w = this.world;
+    const time = `${clock(this.simTime)}${w.duration ? ` of ${clock(w.duration)}` : ''}`;
+    this.main.textContent = [
+      w.name || 'throng',
+      `time         ${time}`,
+      `agents       ${agents}${this.attendance.gone ? `  (${this.attendance.gone} gone)` : ''}`,
       `participants ${source.participants}`,
-      `fps          ${this.fps.toFixed(1)}`,
+      `fps          ${this.fps.toFixed(0)}`,
+    ].join('\n');
+    const cap = lod.adaptive ? `caps ${lod.maxNear}/${lod.maxMiddle} res ${Math.round(lod.renderScale * 100)}%` : 'LOD off';
+    this.debug.textContent = [
       `kbit/s       ${this.kbps.toFixed(1)}`,
+      counts.plan ? `plan discs   ${counts.plan}` : null,
       `near         ${counts.near}`,
       `middle       ${counts.middle}`,
       `far          ${counts.far}`,
@@ -48,6 +112,9 @@ export class Hud {
       `off screen   ${counts.hidden}`,
       `${cap}`,
       source.rttMs ? `rtt          ${source.rttMs.toFixed(0)} ms` : `source       ${source.kind}`,
-    ].join('\n');
+    ].filter((l) => l !== null).join('\n');
   }
+
+  /** The text shown (for tests). */
+  text() { return `${this.main.textContent}\n${this.debug.classList.contains('hidden') ? '' : this.debug.textContent}`; }
 }

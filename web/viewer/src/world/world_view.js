@@ -1,7 +1,8 @@
 // The static world from the scenario JSON (docs/scenario-format.md) as the world description
 // carries it: walkable polygons as floors, obstacles extruded as walls, points as markers —
 // interest (blue ring), action (orange disc with an arrow along its orientation), exit (green
-// area) — with name labels; lights and a ground grid. World (x, y) → scene (x, 0, −y).
+// area); where their name labels go (pointLabels: drawn at a fixed screen size by
+// ui/screen_labels.js); lights. World (x, y) → scene (x, 0, −y).
 // A multi-level world (`scenario.terrain`: vertices [x, y, z], walkable and obstacle triangles)
 // is drawn from its triangles instead — walkable ones as the floor, obstacle ones as walls — with
 // world (x, y, z) → scene (x, z, −y); points stand at their height (`position[2]`, or `height`).
@@ -13,24 +14,6 @@ const kWallHeight = 2.4;  // [m]
 function shapeOf(polygon) {
   const s = new THREE.Shape();
   polygon.forEach(([x, y], i) => (i === 0 ? s.moveTo(x, y) : s.lineTo(x, y)));
-  return s;
-}
-
-function label(text, color = '#222') {
-  const c = document.createElement('canvas');
-  const ctx = c.getContext('2d');
-  ctx.font = '28px sans-serif';
-  c.width = Math.ceil(ctx.measureText(text).width) + 16;
-  c.height = 40;
-  ctx.font = '28px sans-serif';
-  ctx.fillStyle = 'rgba(255,255,255,0.75)';
-  ctx.fillRect(0, 0, c.width, c.height);
-  ctx.fillStyle = color;
-  ctx.fillText(text, 8, 30);
-  const tex = new THREE.CanvasTexture(c);
-  tex.colorSpace = THREE.SRGBColorSpace;
-  const s = new THREE.Sprite(new THREE.SpriteMaterial({ map: tex, depthWrite: false }));
-  s.scale.set((c.width / c.height) * 0.5, 0.5, 1);
   return s;
 }
 
@@ -134,7 +117,20 @@ function addTerrain(root, terrain, floorColor, wallMat) {
   }
 }
 
-export function buildWorld(scenario, { labels = true } = {}) {
+/** Importance of a point's label (which label wins when two would overlap): exits first. */
+const kLabelImportance = { exit: 3, action: 2, interest: 1 };
+
+/** Name labels of the scenario's points: [{key, name, kind, importance, at: [x, y, z]}] (world
+ * metres; z: 2.2 m above the floor the point stands on, over a standing person's head). */
+export function pointLabels(scenario) {
+  return (scenario.points || []).filter((p) => p.id && (p.polygon || p.position)).map((p) => {
+    const at = p.polygon ? centroid(p.polygon) : p.position;
+    const kind = kLabelImportance[p.kind] ? p.kind : 'interest';
+    return { key: `point:${p.id}`, name: String(p.id), kind, importance: kLabelImportance[kind], at: [at[0], at[1], pointHeight(p) + 2.2] };
+  });
+}
+
+export function buildWorld(scenario) {
   const root = new THREE.Group();
   root.name = 'world';
   const toScene = new THREE.Matrix4().makeRotationX(-Math.PI / 2);  // shape (x, y, z) → (x, z, −y)
@@ -191,11 +187,6 @@ export function buildWorld(scenario, { labels = true } = {}) {
       const arrow = new THREE.ArrowHelper(new THREE.Vector3(o[0] / l, 0, -o[1] / l), new THREE.Vector3(at[0], h + 0.05, -at[1]),
         Math.max((p.radius ?? 0.5) + 0.6, 1), 0xc05000, 0.35, 0.25);
       root.add(arrow);
-    }
-    if (labels) {
-      const s = label(p.id, p.kind === 'exit' ? '#106020' : p.kind === 'action' ? '#904000' : '#103080');
-      s.position.set(at[0], h + 2.7, -at[1]);
-      root.add(s);
     }
   }
   return root;

@@ -1,0 +1,76 @@
+// The legend (bottom left): what every colour, ring, disc and area on screen means — the colour
+// mode's own entries (crowd/colour_by.js legendOf: groups, populations, the speed or density ramp,
+// states) under a "Colour by" menu (key B cycles the modes), then the marks that mean the same in
+// every mode: the selected agent, the picked group, you, other participants, the world's points,
+// exits, walls and floor (and trails when they are on). Its header folds it away (folded at start
+// on a viewport under 560 px high). Writes the #legend panel.
+import { kColourModes, kModeNames, legendOf } from '../crowd/colour_by.js';
+
+const hex = (c) => `#${c.toString(16).padStart(6, '0')}`;
+
+/** Entries shown in every mode: [{colour, shape, label}]; shape: dot, ring, pin, disc, area, line. */
+export function fixedEntries({ selected, pickedGroup, self, other, trails }) {
+  return [
+    { colour: selected, shape: 'ring', label: 'selected agent (ringed)' },
+    { colour: pickedGroup, shape: 'dot', label: 'group picked in the list' },
+    { colour: self, shape: 'pin', label: 'you (ring and pin), once joined' },
+    { colour: other, shape: 'dot', label: 'other participants' },
+    { colour: 0x3070d0, shape: 'ring', label: 'interest point' },
+    { colour: 0xe08020, shape: 'disc', label: 'action point (arrow: facing)' },
+    { colour: 0x30b050, shape: 'area', label: 'exit' },
+    { colour: 0xb9a98f, shape: 'area', label: 'wall, obstacle' },
+    { colour: 0xd8d4cc, shape: 'area', label: 'walkable floor' },
+    ...(trails ? [{ colour: 0x555555, shape: 'line', label: 'trail: where each walked lately' }] : []),
+  ];
+}
+
+export class Legend {
+  /** `onMode(mode)`: the menu changed the colour mode. */
+  constructor(root, marks, onMode) {
+    this.root = root;
+    this.marks = marks;
+    this.trails = false;
+    root.innerHTML = '<div class="legend-head"><button class="fold" title="fold the legend">▾</button> Colour by '
+      + '<select id="colour-by" title="what the agents\' colours say (B)"></select></div><div class="legend-body"></div>';
+    this.select = root.querySelector('#colour-by');
+    for (const m of kColourModes) this.select.add(new Option(kModeNames[m], m));
+    this.select.onchange = () => onMode(this.select.value);
+    this.body = root.querySelector('.legend-body');
+    this.fold = root.querySelector('.fold');
+    this.fold.onclick = () => this.setFolded(!this.folded);
+    this.setFolded(innerHeight < 560);
+    this.key = '';
+  }
+
+  setFolded(f) {
+    this.folded = f;
+    this.body.classList.toggle('hidden', f);
+    this.fold.textContent = f ? '▸' : '▾';
+  }
+
+  /** Redraws when the mode, the populations or the groups changed. */
+  update(mode, context) {
+    const key = JSON.stringify([mode, context.populations, (context.groups || []).length, this.trails]);
+    if (key === this.key) return;
+    this.key = key;
+    this.select.value = mode;
+    const rows = [...legendOf(mode, context).map((e) => ({ ...e, shape: 'dot' })), { separator: true },
+      ...fixedEntries({ ...this.marks, trails: this.trails })];
+    this.body.innerHTML = '';
+    for (const r of rows) {
+      const row = document.createElement('div');
+      if (r.separator) { row.className = 'legend-sep'; this.body.appendChild(row); continue; }
+      row.className = 'legend-row';
+      const sw = document.createElement('span');
+      sw.className = `swatch swatch-${r.colour === null ? 'none' : r.shape}`;
+      if (r.colour !== null) sw.style.setProperty('--c', hex(r.colour));
+      const label = document.createElement('span');
+      label.textContent = r.label;
+      row.append(sw, label);
+      this.body.appendChild(row);
+    }
+  }
+
+  /** Labels of the rows shown (for tests). */
+  labels() { return [...this.body.querySelectorAll('.legend-row span:last-child')].map((s) => s.textContent); }
+}

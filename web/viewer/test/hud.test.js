@@ -1,0 +1,32 @@
+// HUD figures (src/ui/hud.js): the simulated-time clock, and agents present and gone from the
+// ids of successive frames (afresh after a seek back).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { clock, Attendance } from '../src/ui/hud.js';
+
+test('clock formats seconds as m:ss or h:mm:ss', () => {
+  assert.equal(clock(0), '0:00');
+  assert.equal(clock(83.9), '1:23');
+  assert.equal(clock(300), '5:00');
+  assert.equal(clock(3725), '1:02:05');
+  assert.equal(clock(-4), '0:00');
+});
+
+test('agents gone: seen in an earlier frame, not in the latest', () => {
+  const a = new Attendance();
+  a.frame(Uint32Array.of(1, 2, 3), 3);
+  assert.deepEqual([a.present, a.gone], [3, 0]);
+  a.frame(Uint32Array.of(2, 3, 4, 5), 4);
+  assert.deepEqual([a.present, a.gone], [4, 1], 'agent 1 left, 4 and 5 came');
+  a.frame(Uint32Array.of(5), 1);
+  assert.deepEqual([a.present, a.gone], [1, 4]);
+});
+
+test('a replay seeked back starts the count of agents gone afresh', () => {
+  const a = new Attendance();
+  a.frame(Uint32Array.of(1, 2, 3), 3, 100);
+  a.frame(Uint32Array.of(3), 1, 150);
+  assert.equal(a.gone, 2);
+  a.frame(Uint32Array.of(1), 1, 20);
+  assert.deepEqual([a.present, a.gone], [1, 0]);
+});
