@@ -4,8 +4,9 @@
 namespace throng::capi {
 
 Registry& Registry::instance() {
-  static Registry registry;  // never destroyed before the last call: a function-local static
-  return registry;
+  // Never destroyed: a handle freed from another static's destructor at exit still finds it.
+  static Registry* const registry = new Registry();
+  return *registry;
 }
 
 void Registry::add(const throng_scenario* s) {

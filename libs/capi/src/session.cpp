@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <utility>
 
 namespace throng::capi {
@@ -44,7 +45,9 @@ StepEnd Session::step(std::uint64_t ticks, std::uint64_t& stepped) {
 }
 
 StepEnd Session::run(double until) {
-  const auto endTick = static_cast<std::uint64_t>(std::max(0.0, std::round(until / desc_.dt)));
+  // `until` is finite and >= 0 (checked by the caller); beyond 2^63 ticks means "until finished".
+  const double ticks = std::round(until / desc_.dt);
+  const std::uint64_t endTick = ticks < 9.2e18 ? static_cast<std::uint64_t>(ticks) : UINT64_MAX;
   while (true) {
     if (recorder_ && recorder_->failed()) return StepEnd::WriteFailed;
     const std::uint64_t t = world_->stats().tick;

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <new>
 #include <optional>
@@ -30,10 +31,31 @@ namespace core = throng::core;
 namespace io = throng::io;
 namespace sim = throng::sim;
 
-thread_local std::string tlsLastError;
+// The last error of this thread. A plain pointer (trivially destructible) so that calls made after
+// the thread's thread_local destructors ran (a static's destructor at exit freeing a handle) still
+// find valid storage; ErrorCleanup frees the text when the thread ends.
+thread_local char* tlsLastError = nullptr;
+struct ErrorCleanup {
+  ErrorCleanup() = default;
+  ErrorCleanup(const ErrorCleanup&) = delete;
+  ErrorCleanup& operator=(const ErrorCleanup&) = delete;
+  ~ErrorCleanup() {
+    std::free(tlsLastError);
+    tlsLastError = nullptr;
+  }
+};
+thread_local ErrorCleanup tlsErrorCleanup;
 
-throng_status fail(throng_status status, std::string message) {
-  tlsLastError = std::move(message);
+void clearLastError() {
+  if (tlsLastError != nullptr) tlsLastError[0] = '\0';
+}
+
+throng_status fail(throng_status status, const std::string& message) {
+  (void)&tlsErrorCleanup;  // registers this thread's cleanup
+  char* text = static_cast<char*>(std::malloc(message.size() + 1));
+  if (text != nullptr) std::memcpy(text, message.c_str(), message.size() + 1);
+  std::free(tlsLastError);
+  tlsLastError = text;  // NULL when out of memory: throng_last_error() then says ""
   return status;
 }
 
@@ -41,7 +63,7 @@ throng_status fail(throng_status status, std::string message) {
 template <typename Body>
 throng_status guarded(Body&& body) noexcept {
   try {
-    tlsLastError.clear();
+    clearLastError();
     return body();
   } catch (const std::bad_alloc&) {
     return fail(THRONG_ERROR_INTERNAL, "out of memory");
@@ -80,8 +102,11 @@ throng_status leaseFailed(const char* function, const WorldLease& lease) {
 }
 
 throng_status notFinite(const char* function, const char* name, double value) {
-  return fail(THRONG_ERROR_INVALID_ARGUMENT, std::string(function) + ": " + name + " must be a finite number, got " + std::to_string(value));
+  return fail(THRONG_ERROR_INVALID_ARGUMENT, std::string(function) + ": " + name + " must be a finite number (within float range for coordinates), got " + std::to_string(value));
 }
+
+/// A coordinate the World stores as a float: finite, and finite once rounded to float.
+bool fitsFloat(double value) { return std::isfinite(value) && std::fabs(value) <= std::numeric_limits<float>::max(); }
 
 /// A validated scenario as a new handle.
 throng_status adopt(core::Result<io::LoadedScenario> loaded, throng_scenario** out, char** outDiagnostics) {
@@ -156,9 +181,9 @@ throng_status guide(throng_world* world, uint32_t group, double x, double y, std
   const char* function = height ? "throng_world_guide_at_height" : "throng_world_guide";
   const WorldLease lease(world);
   if (lease.status() != THRONG_OK) return leaseFailed(function, lease);
-  if (!std::isfinite(x)) return notFinite(function, "x", x);
-  if (!std::isfinite(y)) return notFinite(function, "y", y);
-  if (height && !std::isfinite(*height)) return notFinite(function, "height", *height);
+  if (!fitsFloat(x)) return notFinite(function, "x", x);
+  if (!fitsFloat(y)) return notFinite(function, "y", y);
+  if (height && !fitsFloat(*height)) return notFinite(function, "height", *height);
   sim::World& w = lease.session().world();
   const sim::GroupId g = w.groupById(group);
   const core::Vec2 p{static_cast<float>(x), static_cast<float>(y)};
@@ -200,7 +225,7 @@ const char* throng_status_name(throng_status status) {
   return "unknown";
 }
 
-const char* throng_last_error(void) { return tlsLastError.c_str(); }
+const char* throng_last_error(void) { return tlsLastError != nullptr ? tlsLastError : ""; }
 
 void throng_string_free(char* text) { std::free(text); }
 

@@ -252,7 +252,8 @@ THRONG_API throng_status throng_world_group(throng_world* world, const char* pop
 
 /* From the next tick, group `group` follows the dynamic goal (x, y) [m] (an avatar, say) instead
  * of its own goals, until throng_world_release; call again to move the goal. THRONG_ERROR_NOT_FOUND
- * for an unknown group. One thread at a time per world. */
+ * for an unknown group; THRONG_ERROR_INVALID_ARGUMENT for a coordinate that is not finite or
+ * beyond float range (+-3.4e38). One thread at a time per world. */
 THRONG_API throng_status throng_world_guide(throng_world* world, uint32_t group, double x, double y);
 
 /* The same on a multi-level world: `height` [m] is the floor the goal stands on. */
