@@ -154,8 +154,9 @@ test('viewer against a real throng serve', { timeout: 150000 }, async () => {
       const { state, toScreen } = globalThis.__throng;
       for (let i = 0; i < state.count; ++i) {
         const p = toScreen(state.x[i], state.y[i], 0.9);
-        const underPanel = (p && p.x < 230 && p.y < 210) || (p && p.x > 360 && p.y < 170);  // HUD, controls
-        if (p && p.x > 10 && p.x < 630 && p.y > 10 && p.y < 350 && !underPanel) return { id: state.ids[i], ...p };
+        // On the bare canvas: not under the HUD, the controls, the legend or a label.
+        const bare = p && document.elementFromPoint(p.x, p.y) === document.querySelector('#app canvas');
+        if (p && p.x > 10 && p.x < 630 && p.y > 10 && p.y < 350 && bare) return { id: state.ids[i], ...p };
       }
       return null;
     });

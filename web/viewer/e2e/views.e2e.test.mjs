@@ -183,13 +183,27 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
 
     // Low and steep oblique orbit views.
     for (const [distance, height, what] of [[9, 4, 'low oblique'], [6, 12, 'steep oblique']]) {
-      await page.evaluate(([d, h]) => {
-        const { state, cameras } = globalThis.__throng;
-        let cx = 0, cy = 0;
-        for (let i = 0; i < state.count; ++i) { cx += state.x[i]; cy += state.y[i]; }
-        cameras.lookAt(cx / state.count, cy / state.count, d, h);
-      }, [distance, height]);
-      await sleep(300);
+      // Look at one of the agents standing furthest from any other (in a low view a crowd hides
+      // itself; groups walk side by side): the most isolated that shows clear of the others.
+      const count = await page.evaluate(() => globalThis.__throng.state.count);
+      for (let k = 0; k < count; ++k) {
+        await page.evaluate(([d, h, rank]) => {
+          const { state, cameras } = globalThis.__throng;
+          const alone = [];
+          for (let i = 0; i < state.count; ++i) {
+            let near = Infinity;
+            for (let j = 0; j < state.count; ++j) {
+              if (j !== i) near = Math.min(near, Math.hypot(state.x[j] - state.x[i], state.y[j] - state.y[i]));
+            }
+            alone.push([near, i]);
+          }
+          alone.sort((a, b) => b[0] - a[0] || a[1] - b[1]);
+          const i = alone[Math.min(rank, alone.length - 1)][1];
+          cameras.lookAt(state.x[i], state.y[i], d, h);
+        }, [distance, height, k]);
+        await sleep(300);
+        if ((await clickable(page, 1)).length > 0) break;
+      }
       assert.equal(await page.evaluate(() => globalThis.__throng.camera.isPerspectiveCamera), true, `${what}: perspective camera`);
       assertAllSelected(await clickAgents(page, 3), what, 1);
       await shot(page, `views_${what.replace(' ', '_')}.png`);

@@ -185,7 +185,9 @@ function testHooks(w) {
     },
     /** Screen position [px] of world point (x, y, z) in the current camera, or null behind it. */
     toScreen(x, y, z = 0.9) {
-      const v = new THREE.Vector3(x, z, -y).project(view());
+      const cam = view();
+      cam.updateMatrixWorld();  // a camera moved since the last frame projects where it is now
+      const v = new THREE.Vector3(x, z, -y).project(cam);
       if (v.z > 1) return null;
       return { x: (v.x + 1) / 2 * innerWidth, y: (1 - v.y) / 2 * innerHeight };
     },
