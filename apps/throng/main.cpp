@@ -1,4 +1,5 @@
-// throng — command-line front end: run, check, info, bench, script, metrics, serve, loadgen, link and verify subcommands (CLI11).
+// throng — command-line front end: run, check, info, bench, script, metrics, serve, loadgen, link and verify subcommands (CLI11),
+// and the hidden describe-cli (the command line as JSON, for the man pages and completions).
 // Parses flags, dispatches to the subcommand and turns every failure into a message and an exit
 // code: 0 success, 1 bad input or failure, 2 bad flags or unknown subcommand, 130 interrupted.
 #include <cstdio>
@@ -44,10 +45,11 @@ int dispatch(int argc, char** argv) {
   CLI::App* loadgen = addLoadgenCommand(app, loadgenOptions);
   CLI::App* link = addLinkCommand(app, linkOptions);
   CLI::App* verify = addVerifyCommand(app, verifyOptions);
+  CLI::App* describe = addDescribeCommand(app);  // hidden: the man pages and completions read it
 
   // CLI11 reports an unknown command as "A subcommand is required"; name it instead.
   const auto isCommand = [&](const char* word) {
-    for (const CLI::App* sub : {run, check, info, bench, script, metrics, serve, loadgen, link, verify}) {
+    for (const CLI::App* sub : {run, check, info, bench, script, metrics, serve, loadgen, link, verify, describe}) {
       if (sub->check_name(word)) return true;
     }
     return false;
@@ -79,6 +81,7 @@ int dispatch(int argc, char** argv) {
   if (loadgen->parsed()) return runLoadgen(loadgenOptions);
   if (link->parsed()) return runLink(linkOptions);
   if (verify->parsed()) return runVerify(verifyOptions);
+  if (describe->parsed()) return runDescribe(app, THRONG_VERSION);
   std::fputs("throng: no command given; run 'throng --help'\n", stderr);
   return kExitUsage;
 }
