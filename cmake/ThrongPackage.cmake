@@ -26,9 +26,9 @@ function(throng_install_package)
 
   # pkg-config: the simulation and scenario-loading libraries, dependents first.
   set(THRONG_PC_LIBS "-lthrong_io -lthrong_recording -lthrong_sim -lthrong_motion -lthrong_common_ground -lthrong_crowd -lthrong_nav -lthrong_core")
-  set(THRONG_PC_LIBS_PRIVATE "")
+  # Static libraries: what they link privately goes to Libs too (there is no shared object to carry it).
   if(NOT BUILD_SHARED_LIBS)
-    set(THRONG_PC_LIBS_PRIVATE "-lsqlite3 -lRecast -lDetour -lpthread")
+    string(APPEND THRONG_PC_LIBS " -lsqlite3 -lDetour -lRecast -lpthread")
   endif()
   file(RELATIVE_PATH THRONG_PC_PREFIX_FROM_PCDIR ${CMAKE_INSTALL_FULL_LIBDIR}/pkgconfig ${CMAKE_INSTALL_PREFIX})
   string(REGEX REPLACE "/$" "" THRONG_PC_PREFIX_FROM_PCDIR "${THRONG_PC_PREFIX_FROM_PCDIR}")
