@@ -6,7 +6,8 @@
 #                  verify.py finds verification/ as ../verification from its own directory
 #   web/           the browser viewer's built files (web/dist; built by scripts/deps.sh's
 #                  throng_build_web, skipped when absent: `throng serve` then says it is not built)
-# plus the shared-memory link's C header (include/throng/throng_link.h).
+# plus the C headers of include/throng/ (the shared-memory link's throng_link.h, and any other
+# public C header placed there).
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenarios/ DESTINATION ${THRONG_INSTALL_DATADIR}/scenarios)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/verification/ DESTINATION ${THRONG_INSTALL_DATADIR}/verification)
 install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/verify.py DESTINATION ${THRONG_INSTALL_DATADIR}/scripts)
@@ -15,4 +16,4 @@ foreach(package verification validation)
           FILES_MATCHING PATTERN "*.py" PATTERN "__pycache__" EXCLUDE)
 endforeach()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/web/dist/ DESTINATION ${THRONG_INSTALL_DATADIR}/web OPTIONAL)
-install(FILES ${PROJECT_SOURCE_DIR}/include/throng/throng_link.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/throng)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
