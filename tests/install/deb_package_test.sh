@@ -10,10 +10,14 @@
 #   5. the package extracted with dpkg-deb -x runs its own museum.json from <dir>/usr/share/throng
 #      (libraries found through the binary's $ORIGIN/../lib RUNPATH: no LD_LIBRARY_PATH).
 # Never installs the package on this machine.
-#   deb_package_test.sh BUILD_DIR VERSION
+#   6. examples/embed builds with the extracted package's CMake package (CMAKE_PREFIX_PATH=<dir>/usr)
+#      and runs on its museum.json.
+#   deb_package_test.sh BUILD_DIR VERSION SOURCE_DIR CXX_COMPILER
 set -euo pipefail
 build="$1"
 version="$2"
+src="$3"
+cxx="$4"
 tmp="$(mktemp -d "${TMPDIR:-/tmp}/throng-deb-XXXXXX")"
 trap 'rm -rf "$tmp"' EXIT
 for tool in cpack dpkg-deb dpkg-shlibdeps lintian; do
@@ -69,6 +73,20 @@ grep -q "\"agents_spawned\":[1-9]" "$tmp/run.json" || fail "throng run printed n
 "$tmp/root/usr/bin/throng" verify --list --suite nist > "$tmp/verify.txt" || fail "throng verify --list failed"
 grep -q '^nist-' "$tmp/verify.txt" || fail "throng verify --list listed no NIST test"
 man -l "$tmp/root/usr/share/man/man1/throng-run.1.gz" > /dev/null 2>&1 || fail "man -l throng-run.1.gz failed"
+
+echo "== examples/embed against the extracted package's CMake package"
+generator=()
+command -v ninja > /dev/null && generator=(-G Ninja)
+if cmake -S "$src/examples/embed" -B "$tmp/embed" "${generator[@]}" -DCMAKE_CXX_COMPILER="$cxx" \
+         -DCMAKE_PREFIX_PATH="$tmp/root/usr" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF > "$tmp/embed.log" 2>&1 &&
+   grep -q "throng_DIR:PATH=$tmp/root/usr/" "$tmp/embed/CMakeCache.txt" &&
+   cmake --build "$tmp/embed" >> "$tmp/embed.log" 2>&1 &&
+   "$tmp/embed/throng_embed" "$tmp/root/usr/share/throng/scenarios/museum.json" 2 > "$tmp/embed.out"; then
+  grep -Eq '^t = +2\.0 s  agents [1-9]' "$tmp/embed.out" || fail "throng_embed printed: $(cat "$tmp/embed.out")"
+else
+  cat "$tmp/embed.log"
+  fail "examples/embed does not build or run against the package"
+fi
 
 if [ "$failures" -gt 0 ]; then
   echo "$failures failure(s)"
