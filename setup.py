@@ -15,9 +15,10 @@ class CMakeBuild(build_ext):
     def build_extension(self, ext):
         build = os.path.join(ROOT, "build-python")
         if not os.path.exists(os.path.join(build, "CMakeCache.txt")):
+            # Static libraries: the wheel's module is self-contained (no libthrong_*.so to find).
             subprocess.check_call(["cmake", "-S", ROOT, "-B", build, "-DCMAKE_BUILD_TYPE=Release",
                                    f"-DPython3_EXECUTABLE={sys.executable}", "-DTHRONG_BUILD_TESTS=OFF",
-                                   "-DTHRONG_BUILD_BENCHES=OFF", "-DTHRONG_BUILD_FUZZ=OFF"])
+                                   "-DBUILD_SHARED_LIBS=OFF", "-DTHRONG_BUILD_BENCHES=OFF", "-DTHRONG_BUILD_FUZZ=OFF"])
         subprocess.check_call(["cmake", "--build", build, "--target", "throng_python", "-j", str(os.cpu_count() or 2)])
         built = os.path.join(build, "python", "throng")
         target = os.path.dirname(self.get_ext_fullpath(ext.name))

@@ -10,6 +10,7 @@ THRONG_DEB_PACKAGES=(
   libopenmpi-dev openmpi-bin
   python3 python3-dev python3-numpy python3-matplotlib python3-pandas python3-pytest python3-hypothesis pybind11-dev
   universal-ctags
+  man-db zsh dpkg-dev lintian
   chromium nodejs
 )
 

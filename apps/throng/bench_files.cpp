@@ -29,8 +29,8 @@ std::vector<std::filesystem::path> bundledScenarioCandidates(const std::string& 
   std::vector<std::filesystem::path> candidates{std::filesystem::path("scenarios") / file};
   if (!exe.empty()) {
     const auto dir = exe.parent_path();
-    candidates.push_back((dir / "../../../scenarios" / file).lexically_normal());
     candidates.push_back((dir / "../share/throng/scenarios" / file).lexically_normal());
+    candidates.push_back((dir / "../../../scenarios" / file).lexically_normal());
   }
   return candidates;
 }

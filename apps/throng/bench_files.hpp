@@ -19,9 +19,9 @@ inline constexpr const char* kBenchScenarioValues = "random, navmesh, musse, mal
 /// name, a name ending in ".json", containing a '/', or naming an existing file; else the message.
 [[nodiscard]] std::string checkBenchScenarioValue(const std::string& value);
 
-/// Where a bundled scenario (`name`.json) is looked for, in order: ./scenarios/, the source tree
-/// seen from a build tree's executable (<exe dir>/../../../scenarios/), an installed share dir
-/// (<exe dir>/../share/throng/scenarios/). `exe` is this executable's path (empty: skipped).
+/// Where a bundled scenario (`name`.json) is looked for, in order: ./scenarios/, an installed share
+/// dir (<exe dir>/../share/throng/scenarios/), the source tree seen from a build tree's executable
+/// (<exe dir>/../../../scenarios/). `exe` is this executable's path (empty: skipped).
 [[nodiscard]] std::vector<std::filesystem::path> bundledScenarioCandidates(const std::string& name,
                                                                            const std::filesystem::path& exe);
 

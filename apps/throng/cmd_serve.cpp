@@ -24,7 +24,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "bench_files.hpp"
 #include "commands.hpp"
+#include "data_dirs.hpp"
 #include "live_world.hpp"
 #include "output.hpp"
 #include "signal.hpp"
@@ -97,13 +99,14 @@ double percentile(std::vector<double> v, double p) {
   return v[k];
 }
 
-/// The viewer's files: --web, else web/dist of the source tree this binary was built from.
+/// The viewer's files: --web, else an installed tree's <prefix>/share/throng/web, else web/dist of
+/// the source tree this binary was built from (data_dirs.hpp).
 fs::path webRoot(const std::string& flag) {
   if (!flag.empty()) return flag;
 #ifdef THRONG_WEB_DIST
-  return THRONG_WEB_DIST;
+  return bundledDataDir(currentExecutable(), "web", THRONG_WEB_DIST);
 #else
-  return {};
+  return bundledDataDir(currentExecutable(), "web", {});
 #endif
 }
 
@@ -117,13 +120,16 @@ bool isRecording(const std::string& path) {
   return n == sizeof head && std::memcmp(head, "SQLite format 3", 16) == 0;
 }
 
-/// The scenario stored in a recording, parsed as if it lay beside the recording, else in the source
-/// tree's scenarios/ (where the bundled scenarios, their motion clips and databases are): its clip
+/// The scenario stored in a recording, parsed as if it lay beside the recording, else in the bundled
+/// scenarios/ (installed, else the source tree's: where the bundled scenarios, their motion clips and databases are): its clip
 /// and database paths are relative to the scenario's directory, which the recording does not keep.
 /// `dir` receives the directory that worked.
 core::Result<io::LoadedScenario> parseStoredScenario(const hub::Replay& replay, const std::string& recording,
                                                      fs::path& dir) {
   std::vector<fs::path> dirs{fs::path(recording).parent_path()};
+  if (const auto installed = installedDataDir(currentExecutable()); !installed.empty()) {
+    dirs.push_back(installed / "scenarios");
+  }
 #ifdef THRONG_SCENARIOS_DIR
   dirs.emplace_back(THRONG_SCENARIOS_DIR);
 #endif
@@ -729,8 +735,8 @@ CLI::App* addServeCommand(CLI::App& app, ServeOptions& options) {
                                                   "Ctrl-C)")
       ->type_name("S")
       ->check(positiveNumber("s"));
-  cmd->add_option("--web", options.web, "Directory of the browser viewer's built files (default: web/dist of the "
-                                        "source tree)")
+  cmd->add_option("--web", options.web, "Directory of the browser viewer's built files (default: <prefix>/share/"
+                                        "throng/web when installed, else web/dist of the source tree)")
       ->type_name("DIR");
   cmd->add_option("--budget", options.budgetKbit, "Bandwidth target per client [kbit/s]: above it a client's "
                                                   "animation granularity X grows")

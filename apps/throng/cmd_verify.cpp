@@ -1,8 +1,7 @@
 // `throng verify` — runs the verification suites (RiMEA, NIST TN 1822, ISO 20414; docs/verification.md)
 // by handing its flags to scripts/verify.py, which runs this same binary on verification/*.json,
-// measures the recordings and prints the table. Finds the script in the source tree the binary was
-// built from (THRONG_SOURCE_DIR), else in <prefix>/share/throng/scripts next to an installed
-// binary; finds /usr/bin/python3 (numpy and matplotlib come from Debian), else python3 on PATH.
+// measures the recordings and prints the table. Finds the script in <prefix>/share/throng/scripts
+// next to an installed binary, else in the source tree the binary was built from (THRONG_SOURCE_DIR); finds /usr/bin/python3 (numpy and matplotlib come from Debian), else python3 on PATH.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -25,10 +24,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// The first existing scripts/verify.py: the source tree's, then an installed copy.
+/// The first existing scripts/verify.py: an installed copy, then the source tree's.
 fs::path findVerifyScript(const fs::path& exe) {
-  std::vector<fs::path> candidates{fs::path(THRONG_SOURCE_DIR) / "scripts" / "verify.py"};
+  std::vector<fs::path> candidates;
   if (!exe.empty()) candidates.push_back((exe.parent_path() / "../share/throng/scripts/verify.py").lexically_normal());
+  candidates.push_back(fs::path(THRONG_SOURCE_DIR) / "scripts" / "verify.py");
   for (const auto& c : candidates) {
     std::error_code ec;
     if (fs::is_regular_file(c, ec)) return c;
@@ -135,8 +135,8 @@ int runVerify(const VerifyOptions& options) {
   const fs::path exe = currentExecutable();
   const fs::path script = findVerifyScript(exe);
   if (script.empty()) {
-    printLine(stderr, fmt::format("throng verify: error: scripts/verify.py not found (looked in {}/scripts and "
-                                  "<prefix>/share/throng/scripts); run it from a source checkout",
+    printLine(stderr, fmt::format("throng verify: error: scripts/verify.py not found (looked in "
+                                  "<prefix>/share/throng/scripts and {}/scripts); run it from a source checkout",
                                   THRONG_SOURCE_DIR));
     return kExitFailure;
   }

@@ -1,6 +1,6 @@
 // throng CLI subcommands — each subcommand registers its flags on a CLI::App and runs from a plain
 // options struct (one file per subcommand: cmd_run.cpp, cmd_check.cpp, cmd_info.cpp,
-// cmd_bench.cpp, cmd_script.cpp, cmd_metrics.cpp, cmd_serve.cpp, cmd_loadgen.cpp, cmd_link.cpp, cmd_verify.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
+// cmd_bench.cpp, cmd_script.cpp, cmd_metrics.cpp, cmd_serve.cpp, cmd_loadgen.cpp, cmd_link.cpp, cmd_verify.cpp; the hidden describe-cli in cmd_describe.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
 // interrupted by SIGINT/SIGTERM.
 #pragma once
 #include <cstdint>
@@ -157,5 +157,9 @@ int runServe(const ServeOptions& options);
 int runLoadgen(const LoadgenOptions& options);
 int runLink(const LinkOptions& options);
 int runVerify(const VerifyOptions& options);
+
+/// The hidden `describe-cli` (cmd_describe.cpp): prints `app`'s subcommands and options as JSON.
+CLI::App* addDescribeCommand(CLI::App& app);
+int runDescribe(const CLI::App& app, const char* version);
 
 }  // namespace throng::cli

@@ -1,8 +1,10 @@
-// throng — command-line front end: run, check, info, bench, script, metrics, serve, loadgen, link and verify subcommands (CLI11).
+// throng — command-line front end: run, check, info, bench, script, metrics, serve, loadgen, link and verify subcommands (CLI11),
+// and the hidden describe-cli (the command line as JSON, for the man pages and completions).
 // Parses flags, dispatches to the subcommand and turns every failure into a message and an exit
 // code: 0 success, 1 bad input or failure, 2 bad flags or unknown subcommand, 130 interrupted.
 #include <cstdio>
 #include <exception>
+#include <initializer_list>
 #include <new>
 #include <string>
 
@@ -13,6 +15,22 @@
 #include "throng/core/diagnostic.hpp"
 
 namespace {
+
+/// CLI11 reports an unknown command as "A subcommand is required"; this names it instead (with the
+/// closest command) on stderr. True when argv[1] is a word that names none of `commands`.
+bool reportUnknownCommand(int argc, char** argv, std::initializer_list<const CLI::App*> commands) {
+  if (argc <= 1 || argv[1][0] == '-') return false;
+  for (const CLI::App* sub : commands) {
+    if (sub->check_name(argv[1])) return false;
+  }
+  const std::string hint = throng::core::closestMatch(argv[1], {"run", "check", "info", "bench", "script", "metrics", "serve", "loadgen", "link", "verify"});
+  std::fputs(fmt::format("throng: unknown command '{}'; expected run, check, info, bench, script, metrics, serve, loadgen, link or verify{}\n"
+                         "Run 'throng --help' for more information.\n",
+                         argv[1], hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint))
+                 .c_str(),
+             stderr);
+  return true;
+}
 
 int dispatch(int argc, char** argv) {
   using namespace throng::cli;
@@ -44,21 +62,9 @@ int dispatch(int argc, char** argv) {
   CLI::App* loadgen = addLoadgenCommand(app, loadgenOptions);
   CLI::App* link = addLinkCommand(app, linkOptions);
   CLI::App* verify = addVerifyCommand(app, verifyOptions);
+  CLI::App* describe = addDescribeCommand(app);  // hidden: the man pages and completions read it
 
-  // CLI11 reports an unknown command as "A subcommand is required"; name it instead.
-  const auto isCommand = [&](const char* word) {
-    for (const CLI::App* sub : {run, check, info, bench, script, metrics, serve, loadgen, link, verify}) {
-      if (sub->check_name(word)) return true;
-    }
-    return false;
-  };
-  if (argc > 1 && argv[1][0] != '-' && !isCommand(argv[1])) {
-    const std::string hint = throng::core::closestMatch(argv[1], {"run", "check", "info", "bench", "script", "metrics", "serve", "loadgen", "link", "verify"});
-    std::fputs(fmt::format("throng: unknown command '{}'; expected run, check, info, bench, script, metrics, serve, loadgen, link or verify{}\n"
-                           "Run 'throng --help' for more information.\n",
-                           argv[1], hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint))
-                   .c_str(),
-               stderr);
+  if (reportUnknownCommand(argc, argv, {run, check, info, bench, script, metrics, serve, loadgen, link, verify, describe})) {
     return kExitUsage;
   }
   try {
@@ -79,6 +85,7 @@ int dispatch(int argc, char** argv) {
   if (loadgen->parsed()) return runLoadgen(loadgenOptions);
   if (link->parsed()) return runLink(linkOptions);
   if (verify->parsed()) return runVerify(verifyOptions);
+  if (describe->parsed()) return runDescribe(app, THRONG_VERSION);
   std::fputs("throng: no command given; run 'throng --help'\n", stderr);
   return kExitUsage;
 }

@@ -1,0 +1,19 @@
+# The bundled data an installed `throng` reads at run time, under <prefix>/share/throng
+# (apps/throng/data_dirs.hpp finds it from the executable's path):
+#   scenarios/     the bundled scenarios, their motion clips, crowds, glTF worlds and JSON Schema
+#   verification/  the verification suites' scenarios and texts (`throng verify`)
+#   scripts/       scripts/verify.py and the Python packages it imports (verification, validation);
+#                  verify.py finds verification/ as ../verification from its own directory
+#   web/           the browser viewer's built files (web/dist; built by scripts/deps.sh's
+#                  throng_build_web, skipped when absent: `throng serve` then says it is not built)
+# plus the C headers of include/throng/ (the shared-memory link's throng_link.h, and any other
+# public C header placed there).
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenarios/ DESTINATION ${THRONG_INSTALL_DATADIR}/scenarios)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/verification/ DESTINATION ${THRONG_INSTALL_DATADIR}/verification)
+install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/verify.py DESTINATION ${THRONG_INSTALL_DATADIR}/scripts)
+foreach(package verification validation)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/scripts/${package}/ DESTINATION ${THRONG_INSTALL_DATADIR}/scripts/${package}
+          FILES_MATCHING PATTERN "*.py" PATTERN "__pycache__" EXCLUDE)
+endforeach()
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/web/dist/ DESTINATION ${THRONG_INSTALL_DATADIR}/web OPTIONAL)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
