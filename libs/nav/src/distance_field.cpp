@@ -17,6 +17,11 @@
 namespace throng::nav {
 namespace {
 
+/// Most nodes on one portal: a long portal (open floor cut into 24 m tiles) gets them further apart
+/// than `spacing`, which keeps lookups cheap (a lookup visits a portal's nodes) at the price of a
+/// longer way for an agent right next to it (at most about half the gap).
+constexpr int kMostSamples = 12;
+
 /// How far vertically a layered mesh's polygon may lie from the target's floor to count as its [m].
 constexpr float kTargetLevel = 2.0f;
 
@@ -72,6 +77,8 @@ struct Builder {
   std::vector<std::vector<std::uint32_t>> nodesOf;  ///< per polygon
   std::vector<float> x, y;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> nodePolys;
+  using Span = DistanceField::Span;
+  std::vector<std::vector<Span>> portalsOf;  ///< per polygon
 
   explicit Builder(const dtNavMesh& m) : mesh(m) {
     for (int t = 0; t < mesh.getMaxTiles(); ++t) {
@@ -81,6 +88,7 @@ struct Builder {
       for (int p = 0; p < tile->header->polyCount; ++p) polys.push_back({tile, &tile->polys[p]});
     }
     nodesOf.resize(polys.size());
+    portalsOf.resize(polys.size());
   }
 
   [[nodiscard]] std::int64_t indexOf(dtPolyRef ref) const { return flatIndex(mesh, tileBase, polys.size(), ref); }
@@ -108,7 +116,10 @@ struct Builder {
       right = va + (vb - va) * (static_cast<float>(l.bmax) * s);
     }
     const float len = core::length(right - left);
-    const int samples = std::max(2, static_cast<int>(std::ceil(len / spacing)) + 1);
+    const int samples = std::clamp(static_cast<int>(std::ceil(len / spacing)) + 1, 2, kMostSamples);
+    const Span span{left, right, static_cast<std::uint32_t>(x.size()), static_cast<std::uint32_t>(samples)};
+    portalsOf[a].push_back(span);
+    portalsOf[b].push_back(span);
     for (int k = 0; k < samples; ++k) {
       const Vec2 p = left + (right - left) * (static_cast<float>(k) / static_cast<float>(samples - 1));
       const auto node = static_cast<std::uint32_t>(x.size());
@@ -183,8 +194,7 @@ DistanceField DistanceField::build(const NavMesh& navMesh, const FieldTarget& ta
   f.nodeY_ = std::move(b.y);
   f.nodeDist_.assign(f.nodeX_.size(), kUnreachable);
   // Dijkstra from the target polygons' nodes (the straight way to the region).
-  using Entry = std::pair<float, std::uint32_t>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> heap;
+  Heap heap;
   for (std::size_t i = 0; i < polyCount; ++i) {
     if (f.targetPolys_[i] == 0) continue;
     for (std::uint32_t k = f.polyNodeOffset_[i]; k < f.polyNodeOffset_[i + 1]; ++k) {
@@ -196,16 +206,24 @@ DistanceField DistanceField::build(const NavMesh& navMesh, const FieldTarget& ta
       }
     }
   }
+  f.dijkstra(heap, b.nodePolys);
+  f.packPortals(b.portalsOf);
+  return f;
+}
+
+void DistanceField::dijkstra(Heap& heap, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& nodePolys) {
+  DistanceField& f = *this;
   while (!heap.empty()) {
     const auto [d, n] = heap.top();
     heap.pop();
     if (d > f.nodeDist_[n]) continue;
     f.maxDistance_ = std::max(f.maxDistance_, d);
-    for (const std::uint32_t poly : {b.nodePolys[n].first, b.nodePolys[n].second}) {
+    for (const std::uint32_t poly : {nodePolys[n].first, nodePolys[n].second}) {
       const float cost = f.polyCost_[poly];
       for (std::uint32_t k = f.polyNodeOffset_[poly]; k < f.polyNodeOffset_[poly + 1]; ++k) {
         const std::uint32_t m = f.polyNodes_[k];
-        const float nd = d + cost * std::hypot(f.nodeX_[m] - f.nodeX_[n], f.nodeY_[m] - f.nodeY_[n]);
+        const float dx = f.nodeX_[m] - f.nodeX_[n], dy = f.nodeY_[m] - f.nodeY_[n];
+        const float nd = d + cost * std::sqrt(dx * dx + dy * dy);
         if (nd < f.nodeDist_[m]) {
           f.nodeDist_[m] = nd;
           heap.emplace(nd, m);
@@ -213,7 +231,22 @@ DistanceField DistanceField::build(const NavMesh& navMesh, const FieldTarget& ta
       }
     }
   }
-  return f;
+}
+
+void DistanceField::packPortals(const std::vector<std::vector<Span>>& portalsOf) {
+  // Lookups go portal by portal (its segment bounds how near its nodes can be), so the node lists
+  // used by Dijkstra are no longer needed.
+  portalOffset_.assign(1, 0);
+  for (const auto& spans : portalsOf) {
+    for (const Span& s : spans) {
+      float least = kUnreachable;
+      for (std::uint32_t n = s.first; n < s.first + s.count; ++n) least = std::min(least, nodeDist_[n]);
+      portals_.push_back({s.left, s.right, least, s.first, s.count});
+    }
+    portalOffset_.push_back(static_cast<std::uint32_t>(portals_.size()));
+  }
+  polyNodes_ = {};
+  polyNodeOffset_ = {};
 }
 
 std::int64_t DistanceField::polyIndex(PolyRef ref) const {
@@ -229,10 +262,32 @@ float DistanceField::at(Vec2 p, PolyRef ref) const {
   const auto poly = static_cast<std::size_t>(i);
   const float cost = polyCost_[poly];
   float best = targetPolys_[poly] != 0 ? toTarget(p) * cost : kUnreachable;
-  for (std::uint32_t k = polyNodeOffset_[poly]; k < polyNodeOffset_[poly + 1]; ++k) {
-    const std::uint32_t n = polyNodes_[k];
-    best = std::min(best, nodeDist_[n] + cost * std::hypot(nodeX_[n] - p.x, nodeY_[n] - p.y));
+  // Portal by portal, the most promising first; a portal whose segment alone is farther than the
+  // best way found is skipped with all its nodes.
+  const std::uint32_t first = portalOffset_[poly], last = portalOffset_[poly + 1];
+  constexpr std::uint32_t kSorted = 16;
+  float bound[kSorted];
+  std::uint32_t order[kSorted];
+  const std::uint32_t count = std::min(last - first, kSorted);
+  for (std::uint32_t k = 0; k < count; ++k) {
+    const Portal& q = portals_[first + k];
+    bound[k] = q.least + cost * std::sqrt(core::distanceToSegmentSq(p, q.left, q.right));
+    order[k] = k;
   }
+  for (std::uint32_t k = 1; k < count; ++k) {  // insertion sort: a handful of portals
+    for (std::uint32_t j = k; j > 0 && bound[order[j]] < bound[order[j - 1]]; --j) std::swap(order[j], order[j - 1]);
+  }
+  auto visit = [&](const Portal& q) {
+    for (std::uint32_t n = q.first; n < q.first + q.count; ++n) {
+      const float dx = nodeX_[n] - p.x, dy = nodeY_[n] - p.y;
+      best = std::min(best, nodeDist_[n] + cost * std::sqrt(dx * dx + dy * dy));
+    }
+  };
+  for (std::uint32_t k = 0; k < count; ++k) {
+    if (bound[order[k]] >= best) break;
+    visit(portals_[first + order[k]]);
+  }
+  for (std::uint32_t k = first + count; k < last; ++k) visit(portals_[k]);  // beyond 16 portals: all of them
   return best;
 }
 

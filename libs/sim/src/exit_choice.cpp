@@ -14,6 +14,8 @@ namespace {
 /// Width of a distance bin of the queue counts [m]: about one person's depth in a queue.
 constexpr float kBin = 0.5f;
 constexpr double kNever = std::numeric_limits<double>::infinity();
+/// The queues are rebuilt this many times a (shortest) period; in between, decisions update them.
+constexpr std::uint32_t kQueueRebuilds = 8;
 
 nav::FieldTarget targetOf(const PointDesc& p) {
   nav::FieldTarget t;
@@ -49,7 +51,7 @@ void ExitChoice::prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, std
     const PopulationDesc& pop = desc.populations[p];
     if (pop.exits.empty()) continue;
     const auto ticks = static_cast<std::uint32_t>(std::max(1.0f, std::round(pop.exitChoice.period / desc.dt)));
-    periodTicks_ = exits_.empty() && groups_.empty() ? ticks : std::min(periodTicks_, ticks);
+    periodTicks_ = exits_.empty() ? ticks : std::min(periodTicks_, ticks);
     nav::DistanceFieldConfig config;
     // Stairs cost as in route choice: the mean of 1/up and 1/down per metre.
     config.stairCost = std::max(1.0f, 0.5f * (1.0f / pop.stairUp + 1.0f / pop.stairDown));
@@ -74,7 +76,7 @@ float ExitChoice::distance(std::uint32_t point, core::Vec2 p, nav::PolyRef ref) 
 void ExitChoice::setClosed(std::uint32_t point, bool closed) {
   if (point >= exitOfPoint_.size() || exitOfPoint_[point] < 0) return;
   exits_[static_cast<std::size_t>(exitOfPoint_[point])].closed = closed;
-  anyClosed_ = std::any_of(exits_.begin(), exits_.end(), [](const Exit& e) { return e.closed; });
+  availabilityChanged_ = true;
 }
 
 bool ExitChoice::closed(std::uint32_t point) const {
@@ -108,7 +110,12 @@ std::uint32_t ExitChoice::better(const PopulationDesc& pop, ExitRule rule, std::
 
 std::uint32_t ExitChoice::initial(const ScenarioDesc& desc, const PopulationDesc& pop, std::uint32_t gid,
                                   std::uint32_t members, core::Vec2 p, nav::PolyRef ref, float speed) {
-  groups_.push_back({gid, static_cast<std::uint16_t>(&pop - desc.populations.data())});
+  const auto population = static_cast<std::uint16_t>(&pop - desc.populations.data());
+  if (!ranges_.empty() && ranges_.back().population == population && ranges_.back().first + ranges_.back().count == gid) {
+    ++ranges_.back().count;  // a population's groups have consecutive ids
+  } else {
+    ranges_.push_back({gid, 1, population});
+  }
   const std::uint32_t chosen = firstChoice(desc, pop, gid, p, ref, speed);
   exitAt(chosen).queue.add(exitAt(chosen).field.at(p, ref), static_cast<std::int32_t>(members));
   return chosen;
@@ -133,61 +140,85 @@ std::uint32_t ExitChoice::firstChoice(const ScenarioDesc& desc, const Population
   return pop.exits.back();
 }
 
-void ExitChoice::countQueues(std::uint64_t tick, const GoalWriter& goals) {
-  // Each agent heading for an exit with a field measures its distance once a period (by id), and
-  // every exit counts who is heading there by distance: the queue ahead of any distance.
+void ExitChoice::countQueues(std::uint64_t tick, const GoalWriter& goals, const core::TaskSystem& tasks) {
+  // Every few ticks each exit counts who is heading there by distance (the queue ahead of any
+  // distance); each agent re-measures its distance once a period, spread by its id. The
+  // measurements are pure lookups, made in parallel; the counting is serial, in row order.
+  const std::uint32_t every = std::max(1u, periodTicks_ / kQueueRebuilds);
+  if (tick % every != 0) return;
+  const std::uint64_t round = tick / every;
+  const std::uint32_t rounds = std::max(1u, periodTicks_ / every);
   const AgentStore& agents = goals.agents;
   const GoalView view = goals.view();
-  for (Exit& e : exits_) e.queue.clear();
+  heading_.clear();
+  measure_.clear();
   for (std::size_t row = 0; row < agents.size(); ++row) {
     const GoalState state = agents.goalState[row];
     if (state == GoalState::Exited || state == GoalState::Done) continue;
     const std::uint32_t point = view.currentGoalPoint(row);
     if (point == kNoPoint || point >= exitOfPoint_.size() || exitOfPoint_[point] < 0) continue;
-    Exit& e = exits_[static_cast<std::size_t>(exitOfPoint_[point])];
     const std::uint32_t id = agents.id[row];
     if (id >= distanceOfId_.size()) distanceOfId_.resize(std::max<std::size_t>(id + 1, distanceOfId_.size() * 2), -1.0f);
-    if (distanceOfId_[id] < 0.0f || (tick + id) % periodTicks_ == 0) {
-      distanceOfId_[id] = e.field.at({agents.posX[row], agents.posY[row]}, agents.polyRef[row]);
-    }
-    e.queue.add(distanceOfId_[id], 1);
+    heading_.push_back({static_cast<std::uint32_t>(row), static_cast<std::uint32_t>(exitOfPoint_[point])});
+    if (distanceOfId_[id] < 0.0f || (round + id) % rounds == 0) measure_.push_back(heading_.back());
   }
+  tasks.parallelFor(measure_.size(), 512, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::uint32_t row = measure_[k].row;
+      distanceOfId_[agents.id[row]] = exits_[measure_[k].exit].field.at({agents.posX[row], agents.posY[row]}, agents.polyRef[row]);
+    }
+  });
+  for (Exit& e : exits_) e.queue.clear();
+  for (const Heading& h : heading_) exits_[h.exit].queue.add(distanceOfId_[agents.id[h.row]], 1);
 }
 
 void ExitChoice::reconsider(std::uint64_t tick, std::span<const std::uint32_t> rowOfId, GoalWriter& goals) {
-  const ScenarioDesc& desc = goals.desc;
-  const AgentStore& agents = goals.agents;
-  for (const Chooser& c : groups_) {
-    const PopulationDesc& pop = desc.populations[c.population];
-    const GroupState& g = goals.groups[c.group];
-    if (pop.exitChoice.rule == ExitRule::Allocation && !anyClosed_) continue;
-    const std::uint32_t period = static_cast<std::uint32_t>(std::max(1.0f, std::round(pop.exitChoice.period / desc.dt)));
-    const std::uint32_t current = goals.goalLists[g.goalList].back();
-    const bool forced = closed(current);
-    if (!forced && (tick + c.group) % period != 0) continue;
-    // The group decides where its leader (or first member present) stands.
-    std::uint32_t row = kNoRow;
-    if (g.leader != kNoAgent && g.leader < rowOfId.size()) row = rowOfId[g.leader];
-    for (std::size_t m = 0; row == kNoRow && m < g.members.size(); ++m) {
-      if (g.members[m] < rowOfId.size()) row = rowOfId[g.members[m]];
+  // The groups due this tick — those whose id + tick is a multiple of their population's period:
+  // every period-th id of each range — and, on the tick after an exit closed or opened, all.
+  const bool all = availabilityChanged_;
+  availabilityChanged_ = false;
+  for (const Range& r : ranges_) {
+    const PopulationDesc& pop = goals.desc.populations[r.population];
+    if (pop.exitChoice.rule == ExitRule::Allocation && !all) continue;
+    const auto period = static_cast<std::uint32_t>(std::max(1.0f, std::round(pop.exitChoice.period / goals.desc.dt)));
+    const std::uint32_t step = all ? 1 : period;
+    const std::uint32_t offset = all ? 0 : static_cast<std::uint32_t>((period - (tick + r.first) % period) % period);
+    for (std::uint32_t gid = r.first + offset; gid < r.first + r.count; gid += step) {
+      const std::uint32_t current = goals.goalLists[goals.groups[gid].goalList].back();
+      const bool due = (tick + gid) % period == 0 && pop.exitChoice.rule != ExitRule::Allocation;
+      if (due || closed(current)) reconsiderGroup(gid, pop, rowOfId, goals);
     }
-    if (row == kNoRow || agents.goalState[row] == GoalState::Exited) continue;
-    const core::Vec2 p{agents.posX[row], agents.posY[row]};
-    // An allocated group whose exit closed takes the nearest open one.
-    const ExitRule rule = pop.exitChoice.rule == ExitRule::Allocation ? ExitRule::Nearest : pop.exitChoice.rule;
-    const std::uint32_t next = better(pop, rule, current, p, agents.polyRef[row], agents.speed[row]);
-    if (next == current) continue;
-    // The others deciding this tick see the move at once.
-    const auto members = static_cast<std::int32_t>(g.members.size());
-    exitAt(current).queue.add(exitAt(current).field.at(p, agents.polyRef[row]), -members);
-    exitAt(next).queue.add(exitAt(next).field.at(p, agents.polyRef[row]), members);
-    goals.changeExit(c.group, next, rowOfId, agents.id[row]);
   }
 }
 
-void ExitChoice::step(std::uint64_t tick, std::span<const std::uint32_t> rowOfId, GoalWriter& goals) {
+void ExitChoice::reconsiderGroup(std::uint32_t gid, const PopulationDesc& pop, std::span<const std::uint32_t> rowOfId,
+                                 GoalWriter& goals) {
+  const AgentStore& agents = goals.agents;
+  const GroupState& g = goals.groups[gid];
+  const std::uint32_t current = goals.goalLists[g.goalList].back();
+  // The group decides where its leader (or first member present) stands.
+  std::uint32_t row = kNoRow;
+  if (g.leader != kNoAgent && g.leader < rowOfId.size()) row = rowOfId[g.leader];
+  for (std::size_t m = 0; row == kNoRow && m < g.members.size(); ++m) {
+    if (g.members[m] < rowOfId.size()) row = rowOfId[g.members[m]];
+  }
+  if (row == kNoRow || agents.goalState[row] == GoalState::Exited) return;
+  const core::Vec2 p{agents.posX[row], agents.posY[row]};
+  // An allocated group whose exit closed takes the nearest open one.
+  const ExitRule rule = pop.exitChoice.rule == ExitRule::Allocation ? ExitRule::Nearest : pop.exitChoice.rule;
+  const std::uint32_t next = better(pop, rule, current, p, agents.polyRef[row], agents.speed[row]);
+  if (next == current) return;
+  // The others deciding this tick see the move at once.
+  const auto members = static_cast<std::int32_t>(g.members.size());
+  exitAt(current).queue.add(exitAt(current).field.at(p, agents.polyRef[row]), -members);
+  exitAt(next).queue.add(exitAt(next).field.at(p, agents.polyRef[row]), members);
+  goals.changeExit(gid, next, rowOfId, agents.id[row]);
+}
+
+void ExitChoice::step(std::uint64_t tick, std::span<const std::uint32_t> rowOfId, GoalWriter& goals,
+                      const core::TaskSystem& tasks) {
   if (exits_.empty()) return;
-  countQueues(tick, goals);
+  countQueues(tick, goals, tasks);
   reconsider(tick, rowOfId, goals);
 }
 

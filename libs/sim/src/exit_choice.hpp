@@ -7,8 +7,11 @@
 //   - a nav::DistanceField per exit some population chooses among (built at creation and when a
 //     crowd brings new ones), so every distance is a constant-time lookup;
 //   - each agent's last measured distance to the exit it heads for, refreshed time-sliced, and per
-//     exit the count of agents heading there by distance (the queue ahead of a given distance);
-//   - the groups that choose, each re-evaluated once per period at a tick spread by its id.
+//     exit the count of agents heading there by distance (the queue ahead of a given distance),
+//     rebuilt 8 times a period and updated by every decision in between;
+//   - the groups that choose, as ranges of consecutive ids per population: each group re-evaluated
+//     once per period at a tick spread by its id (only the groups due are visited), every group
+//     on the tick after an exit closed or opened.
 // A group's choice is the last entry of a goal list of its own (GoalWriter::giveExitGoals), so
 // every reader of goals (GoalView) sees a plain goal. Serial code (spawning, applyCommands): the
 // same for any thread or rank count.
@@ -20,6 +23,7 @@
 #include "agent_store.hpp"
 #include "goals.hpp"
 #include "group_table.hpp"
+#include "throng/core/parallel.hpp"
 #include "throng/nav/distance_field.hpp"
 #include "throng/sim/scenario.hpp"
 
@@ -48,7 +52,7 @@ class ExitChoice {
   /// One tick of choosing: agents due (by id, once a period) measure their distance to the exit
   /// they head for; the queues are counted; groups due (by id), and every group heading for a
   /// closed exit, choose again; a change re-targets the members walking to the exit.
-  void step(std::uint64_t tick, std::span<const std::uint32_t> rowOfId, GoalWriter& goals);
+  void step(std::uint64_t tick, std::span<const std::uint32_t> rowOfId, GoalWriter& goals, const core::TaskSystem& tasks);
 
   /// Distance [m] from `p` on `ref` to exit point `point` (kUnreachable without a field).
   [[nodiscard]] float distance(std::uint32_t point, core::Vec2 p, nav::PolyRef ref) const;
@@ -76,8 +80,9 @@ class ExitChoice {
     bool closed = false;
     Queue queue;                         ///< who is heading here, by distance
   };
-  struct Chooser {
-    std::uint32_t group = 0;
+  /// Groups first .. first + count - 1, all of one population (spawned one after another).
+  struct Range {
+    std::uint32_t first = 0, count = 0;
     std::uint16_t population = 0;
   };
 
@@ -91,15 +96,20 @@ class ExitChoice {
   [[nodiscard]] Exit& exitAt(std::uint32_t point) { return exits_[static_cast<std::size_t>(exitOfPoint_[point])]; }
   [[nodiscard]] std::uint32_t firstChoice(const ScenarioDesc& desc, const PopulationDesc& pop, std::uint32_t gid, core::Vec2 p,
                                           nav::PolyRef ref, float speed) const;
-  void countQueues(std::uint64_t tick, const GoalWriter& goals);
+  void countQueues(std::uint64_t tick, const GoalWriter& goals, const core::TaskSystem& tasks);
   void reconsider(std::uint64_t tick, std::span<const std::uint32_t> rowOfId, GoalWriter& goals);
+  void reconsiderGroup(std::uint32_t gid, const PopulationDesc& pop, std::span<const std::uint32_t> rowOfId, GoalWriter& goals);
 
   std::vector<Exit> exits_;
   std::vector<std::int32_t> exitOfPoint_;   ///< point index → index into exits_, -1: none
-  std::vector<Chooser> groups_;             ///< groups that choose, in creation order
+  std::vector<Range> ranges_;               ///< groups that choose, in creation order
   std::vector<float> distanceOfId_;         ///< stable id → last measured distance to its exit [m]
+  struct Heading {
+    std::uint32_t row = 0, exit = 0;  ///< an agent heading for exits_[exit]
+  };
+  std::vector<Heading> heading_, measure_;  ///< countQueues' scratch: all, and those re-measured
   std::uint32_t periodTicks_ = 40;          ///< the shortest population period in ticks (distance refresh)
-  bool anyClosed_ = false;
+  bool availabilityChanged_ = false;        ///< an exit closed or opened: every group looks again
 };
 
 }  // namespace throng::sim

@@ -89,7 +89,7 @@ void World::step(const core::TaskSystem& tasks, PhaseObserver* observer) {
   {
     Scope s(observer, "applyCommands");
     if (w.tick > 0 || w.crowdsPending()) w.applyCommands();
-    w.chooseExits();
+    w.chooseExits(tasks);
   }
   { Scope s(observer, "sense"); w.sense(tasks); }
   { Scope s(observer, "decide"); w.decide(tasks); }
@@ -126,11 +126,11 @@ void World::Impl::applyCommands() {
   rowsChanged = true;
 }
 
-void World::Impl::chooseExits() {
+void World::Impl::chooseExits(const core::TaskSystem& tasks) {
   if (!exitChoice.active()) return;
   refreshRowOfId();
   GoalWriter goals = goalWriter();
-  exitChoice.step(tick, rowOfId, goals);
+  exitChoice.step(tick, rowOfId, goals, tasks);
 }
 
 void World::Impl::sense(const core::TaskSystem& tasks) {

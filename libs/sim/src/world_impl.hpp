@@ -100,7 +100,7 @@ struct World::Impl {
   // Exit choice (exit_choice.hpp): distance fields, queues, the groups that choose.
   ExitChoice exitChoice;
   /// Re-evaluates exits (after applyCommands, before sense).
-  void chooseExits();
+  void chooseExits(const core::TaskSystem& tasks);
 
   // Per-point action clips, and regions cut into sub-regions with their occupancy (goals.hpp).
   std::vector<std::uint16_t> pointClip;

@@ -4,16 +4,20 @@
 //
 // Method: a graph whose nodes are points on the portals (the edges shared by two polygons)
 // — their end points, which are the mesh's corners where shortest paths bend, and points every
-// `spacing` metres between them — and whose edges join the nodes of each convex polygon in
+// `spacing` metres between them (at most 12 per portal) — and whose edges join the nodes of each convex polygon in
 // straight lines, weighted by length (times a cost factor on stairs). Dijkstra from the target's
 // polygons gives each node its distance; a point's distance is the least over the nodes of its
 // polygon of the straight way there plus the node's distance. Exact where the shortest way bends
 // only at corners and crosses portals at sampled points; otherwise longer by the detour to the
-// nearest sample (a few centimetres per crossing at the default 1 m spacing). Works on flat and on
+// nearest sample (a few centimetres per crossing at the default 1 m spacing; more right next to a
+// portal longer than 11 m, whose nodes lie further apart). Works on flat and on
 // layered (multi-level) meshes alike. Immutable after build; safe to read from any thread.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <limits>
+#include <queue>
+#include <utility>
 #include <vector>
 
 #include "throng/core/geometry.hpp"
@@ -54,15 +58,32 @@ class DistanceField {
   [[nodiscard]] bool empty() const { return targetPolys_.empty(); }
   [[nodiscard]] std::size_t nodeCount() const { return nodeX_.size(); }
 
+  /// What build() gathers about a portal before the distances are known (nodes [first, first + count)).
+  struct Span {
+    Vec2 left, right;
+    std::uint32_t first = 0, count = 0;
+  };
+
  private:
+  /// A portal of a polygon: its segment, the least distance of its nodes, its nodes.
+  struct Portal {
+    Vec2 left, right;
+    float least = kUnreachable;
+    std::uint32_t first = 0, count = 0;
+  };
+  using Heap = std::priority_queue<std::pair<float, std::uint32_t>, std::vector<std::pair<float, std::uint32_t>>, std::greater<>>;
+  void dijkstra(Heap& heap, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& nodePolys);
+  void packPortals(const std::vector<std::vector<Span>>& portalsOf);
   /// Flat polygon index of `ref`, or -1.
   [[nodiscard]] std::int64_t polyIndex(PolyRef ref) const;
   [[nodiscard]] float toTarget(Vec2 p) const;
 
   const dtNavMesh* mesh_ = nullptr;
   std::vector<std::uint32_t> tileBase_;              ///< first flat polygon index of each tile
-  std::vector<std::uint32_t> polyNodeOffset_{0};     ///< polygon i's nodes: [offset[i], offset[i+1])
-  std::vector<std::uint32_t> polyNodes_;             ///< node indices
+  std::vector<std::uint32_t> polyNodeOffset_{0};     ///< while building: polygon i's nodes [offset[i], offset[i+1])
+  std::vector<std::uint32_t> polyNodes_;             ///< while building: node indices
+  std::vector<std::uint32_t> portalOffset_{0};       ///< polygon i's portals: [offset[i], offset[i+1])
+  std::vector<Portal> portals_;
   std::vector<float> polyCost_;                      ///< cost per metre inside polygon i
   std::vector<std::uint8_t> targetPolys_;            ///< 1: the polygon touches the target (direct way)
   std::vector<float> nodeX_, nodeY_, nodeDist_;

@@ -1,0 +1,120 @@
+// Google Benchmark of what the tactical layer's exit choice (libs/sim/src/exit_choice.cpp) costs a
+// tick: the `throng bench` random square (1 agent/m², groups of one) with an exit in the middle of
+// each side, everybody heading out. "fixed": four populations, each spawning in the quarter of the
+// square nearest its exit and walking to it (the same flows, no choice); "quickest" and
+// "nearest": one population choosing among the four exits (distance fields,
+// queue counts every tick, re-evaluation once every 2 s per group, re-planning on a change).
+// Counters: agent_steps/s, and the share of the tick spent choosing (choose_%) and planning paths
+// (plan_%, re-planning after a change included). Issue 18 asks the choice to cost at most 10 %.
+// The "fixed" crowd is laid out per triangle, so its flows (and its avoidance work) differ a little
+// from the choosing crowd's: compare choose_% and plan_% rather than the totals.
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <string>
+
+#include "throng/bench/scenarios.hpp"
+#include "throng/sim/world.hpp"
+
+namespace {
+
+using namespace throng;
+
+enum Mode { kFixed = 0, kQuickest = 1, kNearest = 2 };
+
+/// Wall time per phase: exit choice runs in "applyCommands" (nothing spawns after the warm-up), the
+/// re-planning a changed exit asks for in "plan".
+class PhaseClock : public sim::PhaseObserver {
+ public:
+  void phaseBegin(std::string_view) override { start_ = std::chrono::steady_clock::now(); }
+  void phaseEnd(std::string_view phase) override {
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    total += s;
+    if (phase == "applyCommands") choose += s;
+    if (phase == "plan") plan += s;
+  }
+  double total = 0, choose = 0, plan = 0;
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+sim::ScenarioDesc exitsScenario(std::size_t agents, Mode mode) {
+  sim::ScenarioDesc desc = bench::makeScenario(bench::Layout::Random, agents, 1);
+  const float side = bench::squareSide(agents);
+  const core::Vec2 centres[] = {{side / 2, 1.5f}, {side - 1.5f, side / 2}, {side / 2, side - 1.5f}, {1.5f, side / 2}};
+  for (int k = 0; k < 4; ++k) {
+    sim::PointDesc p;
+    p.id = "exit" + std::to_string(k);
+    p.kind = sim::PointKind::Exit;
+    p.position = centres[k];
+    p.radius = 1.2f;
+    p.width = 2.4f;
+    desc.points.push_back(p);
+  }
+  sim::PopulationDesc crowd = desc.populations.front();
+  crowd.wander = false;
+  desc.populations.clear();
+  if (mode == kFixed) {
+    // The same crowd and the same flows without choosing: the square cut along its diagonals into
+    // four triangles, each spawning a quarter of the crowd with the exit on its side as its goal.
+    const float r = bench::kRadius, c = side / 2;
+    const core::Polygon triangles[] = {{{r, r}, {side - r, r}, {c, c - r}},
+                                       {{side - r, r}, {side - r, side - r}, {c + r, c}},
+                                       {{side - r, side - r}, {r, side - r}, {c, c + r}},
+                                       {{r, side - r}, {r, r}, {c - r, c}}};
+    for (std::uint32_t k = 0; k < 4; ++k) {
+      sim::PopulationDesc p = crowd;
+      p.id = "crowd" + std::to_string(k);
+      p.groups = static_cast<std::uint32_t>(agents / 4);
+      p.spawn.polygon = triangles[k];
+      p.goals = {k};
+      desc.populations.push_back(p);
+    }
+  } else {
+    crowd.exits = {0, 1, 2, 3};
+    crowd.exitChoice.rule = mode == kQuickest ? sim::ExitRule::Quickest : sim::ExitRule::Nearest;
+    desc.populations.push_back(crowd);
+  }
+  return desc;
+}
+
+void BM_ExitChoice(benchmark::State& state) {
+  const auto agents = static_cast<std::size_t>(state.range(0));
+  const auto mode = static_cast<Mode>(state.range(1));
+  const int threads = static_cast<int>(state.range(2));
+  const sim::ScenarioDesc desc = exitsScenario(agents, mode);
+  auto navmesh = bench::buildNavMesh(desc);
+  if (!navmesh) {
+    state.SkipWithError("navmesh build failed");
+    return;
+  }
+  auto world = sim::World::create(desc, navmesh.value());
+  if (!world) {
+    state.SkipWithError("world creation failed");
+    return;
+  }
+  core::TaskSystem tasks(threads);
+  // Warm up past the first re-evaluation period (2 s): paths planned, choices revised, crowd moving.
+  for (int i = 0; i < 50; ++i) world.value()->step(tasks);
+  // Agents leave by the exits as it runs: count the agent-steps actually simulated.
+  const std::uint64_t before = world.value()->stats().agentSteps;
+  PhaseClock clock;
+  for (auto _ : state) world.value()->step(tasks, &clock);
+  state.counters["agent_steps/s"] =
+      benchmark::Counter(static_cast<double>(world.value()->stats().agentSteps - before), benchmark::Counter::kIsRate);
+  // The tactical layer's own share of the tick: choosing, and planning (which includes re-planning).
+  state.counters["choose_%"] = 100.0 * clock.choose / clock.total;
+  state.counters["plan_%"] = 100.0 * clock.plan / clock.total;
+}
+
+}  // namespace
+
+BENCHMARK(BM_ExitChoice)
+    ->ArgNames({"agents", "mode", "threads"})  // mode: 0 fixed exits, 1 quickest, 2 nearest
+    ->Args({10000, 0, 1})->Args({10000, 1, 1})->Args({10000, 2, 1})
+    ->Args({100000, 0, 1})->Args({100000, 1, 1})->Args({100000, 2, 1})
+    ->Args({100000, 0, 2})->Args({100000, 1, 2})
+    ->Iterations(40)  // 2 s of walking after the warm-up: few have reached an exit yet
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
