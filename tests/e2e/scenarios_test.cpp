@@ -142,6 +142,28 @@ TEST(Scenarios, EvacuationEmptiesTheRoom) {
   EXPECT_EQ(deep[0][0], 0.0) << "pairs closer than 0.3 m";
 }
 
+TEST(Scenarios, ExitChoiceUsesEveryExitAndLeavesTheClosedOne) {
+  // scenarios/exit_choice.json: 400 people choose among three exits by the quickest rule; the east
+  // exit closes at 30 s (docs/crowd-model.md "Tactical level: exit choice").
+  ScratchDir dir("exit_choice");
+  const fs::path db = dir / "exit_choice.sqlite";
+  const auto s = runScenario("exit_choice", db);
+  ASSERT_FALSE(s.is_null());
+  EXPECT_EQ(s["agents_exited"], 400);
+  const auto by = query(db, "SELECT p.id, COUNT(*), MAX(e.tick) FROM throng_events e JOIN throng_points p ON p.idx = e.a "
+                            "WHERE e.kind = 'exit' GROUP BY p.id ORDER BY p.id");
+  ASSERT_EQ(by.size(), 3u) << "every exit is used";
+  // Rows: east, north, west (by id). The 2 m north exit takes the most; nobody leaves by the east
+  // one after it closed (tick 600 at dt 0.05 s; a person already inside its region leaves at once).
+  EXPECT_GT(by[1][1], by[0][1]);
+  EXPECT_GT(by[1][1], by[2][1]);
+  EXPECT_LE(by[0][2], 601.0);
+  // Those heading east when it closed chose again at once.
+  const auto moved = query(db, "SELECT COUNT(*) FROM throng_events e JOIN throng_points p ON p.idx = e.b "
+                               "WHERE e.kind = 'exit_chosen' AND p.id = 'east' AND e.tick = 600");
+  EXPECT_GT(moved[0][0], 10.0);
+}
+
 TEST(Scenarios, PlazaFlagshipRuns) {
   ScratchDir dir("plaza");
   const fs::path db = dir / "plaza.sqlite";
