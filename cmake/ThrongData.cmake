@@ -6,6 +6,8 @@
 #                  verify.py finds verification/ as ../verification from its own directory
 #   web/           the browser viewer's built files (web/dist; built by scripts/deps.sh's
 #                  throng_build_web, skipped when absent: `throng serve` then says it is not built)
+#   examples/      the embedding examples to copy and build against the install (docs/embedding.md):
+#                  embed/ (C++, find_package(throng)) and c/crowd_summary.c (the C API)
 # plus the C headers of include/throng/ (the shared-memory link's throng_link.h, and any other
 # public C header placed there).
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenarios/ DESTINATION ${THRONG_INSTALL_DATADIR}/scenarios)
@@ -16,4 +18,7 @@ foreach(package verification validation)
           FILES_MATCHING PATTERN "*.py" PATTERN "__pycache__" EXCLUDE)
 endforeach()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/web/dist/ DESTINATION ${THRONG_INSTALL_DATADIR}/web OPTIONAL)
+install(FILES ${PROJECT_SOURCE_DIR}/examples/embed/CMakeLists.txt ${PROJECT_SOURCE_DIR}/examples/embed/main.cpp
+        DESTINATION ${THRONG_INSTALL_DATADIR}/examples/embed)
+install(FILES ${PROJECT_SOURCE_DIR}/examples/c/crowd_summary.c DESTINATION ${THRONG_INSTALL_DATADIR}/examples/c)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
