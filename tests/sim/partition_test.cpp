@@ -175,6 +175,12 @@ TEST(Partition, CrossingWithTheAnticipationModelMatchesOneProcess) {
   expectSame("crossing", 300, 3, 2, 1, "avm");
 }
 
+TEST(Partition, ExitChoiceThreeRanksTwoThreadsMatchesOneProcess) {
+  // Exit choice (exit_choice.cpp) runs on every rank; its queue lookups in parallel within each.
+  // 700 ticks: past the east exit's closing at 30 s.
+  expectSame("exit_choice", 700, 3, 2, 5);
+}
+
 TEST(Partition, MallCommonGroundTwoRanksMatchesOneProcess) {
   // Common Ground coordinations and action scripts (social.cpp) on top of groups.
   expectSame("mall", 120, 2, 1);
