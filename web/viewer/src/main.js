@@ -154,6 +154,10 @@ function testHooks(w) {
     get trails() { return trails; }, get markers() { return markers; }, selfColour: kSelfColour,
     renderer, description: w, others, groupList, remoteJoints, gesture,
     get joined() { return joined; },
+    /** The world's named parts and how many segments each has (walls, railings, risers; 1 for others). */
+    worldPart: (name) => scene.getObjectByName('world')?.getObjectByName(name) || null,
+    worldParts: () => Object.fromEntries((scene.getObjectByName('world')?.children || []).filter((c) => c.name)
+      .map((c) => [c.name, c.userData.segments ?? 1])),
     /** Texts of the participants' name labels on screen. */
     labels: () => labels.visible('name-label'),
     screenLabels: labels,

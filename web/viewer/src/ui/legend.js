@@ -2,7 +2,7 @@
 // mode's own entries (crowd/colour_by.js legendOf: groups, populations, the speed or density ramp,
 // states) under a "Colour by" menu (key B cycles the modes), then the marks that mean the same in
 // every mode: the selected agent, the picked group, you, other participants, the world's points,
-// exits, walls and floor (and trails when they are on). Its header folds it away (folded at start
+// exits, obstacles, walls and railings, stair risers and floor (and trails when they are on). Its header folds it away (folded at start
 // on a viewport under 560 px high). Writes the #legend panel.
 import { kColourModes, kModeNames, legendOf } from '../crowd/colour_by.js';
 
@@ -18,7 +18,9 @@ export function fixedEntries({ selected, pickedGroup, self, other, trails }) {
     { colour: 0x3070d0, shape: 'ring', label: 'interest point' },
     { colour: 0xe08020, shape: 'disc', label: 'action point (arrow: facing)' },
     { colour: 0x30b050, shape: 'area', label: 'exit' },
-    { colour: 0xb9a98f, shape: 'area', label: 'wall, obstacle' },
+    { colour: 0xb9a98f, shape: 'area', label: 'obstacle (solid block)' },
+    { colour: 0x5a5145, shape: 'line', label: 'wall, railing (1.2 m, see-through)' },
+    { colour: 0xa8a296, shape: 'area', label: 'stair riser' },
     { colour: 0xd8d4cc, shape: 'area', label: 'walkable floor' },
     ...(trails ? [{ colour: 0x555555, shape: 'line', label: 'trail: where each walked lately' }] : []),
   ];
