@@ -2,7 +2,8 @@
 // `throng serve`: the museum and the mall get walls along their walkable area's boundary (and the
 // mall's shops keep their doors open: fewer wall segments than polygon edges), the two-floor world
 // gets stair risers and railings; each of them changes the picture (rendered with and without
-// them). THRONG_E2E_SHOTS=DIR keeps the screenshots docs/viewer.md shows (1280×720). Run:
+// them); the museum's density map (key M) holds the classic density of the frames and is drawn.
+// THRONG_E2E_SHOTS=DIR keeps the screenshots docs/viewer.md shows (1280×720). Run:
 // THRONG_EXE=build/apps/throng/throng node --test web/viewer/e2e/world.e2e.test.mjs. Fails, like
 // the other e2e tests, when something it needs is missing.
 import { test } from 'node:test';
@@ -31,6 +32,37 @@ function changedByPart(page, name) {
     for (let i = 0; i < on.length; ++i) if (Math.abs(on[i] - off[i]) > 6) ++changed;
     return changed / on.length;
   }, name);
+}
+
+/** The density map (key M): its cells hold PedPy's classic density of the frames it saw (summed
+ * over the grid times the cell area: the mean number of agents in the world, within 15 %), it is
+ * drawn (the picture changes with it hidden), the legend and the checkbox follow, M hides it. */
+async function checkHeatmap(page) {
+  await page.keyboard.press('p');
+  await page.keyboard.press('m');
+  await page.waitForFunction(() => globalThis.__throng.heatmap.grid.frames.length >= 10, null, { timeout: 15000 });
+  const r = await page.evaluate(() => {
+    const t = globalThis.__throng, g = t.heatmap.grid;
+    let total = 0;
+    for (let j = 0; j < g.ny; ++j) for (let i = 0; i < g.nx; ++i) total += g.density(i, j) * g.cell * g.cell;
+    const frames = g.frames.length;
+    const counted = g.frames.reduce((n, f) => n + f.counts.reduce((a, b) => a + b, 0), 0) / frames;
+    const on = t.pixels(4).grey;
+    t.heatmap.mesh.visible = false;
+    const off = t.pixels(4).grey;
+    t.heatmap.mesh.visible = true;
+    let changed = 0;
+    for (let i = 0; i < on.length; ++i) if (Math.abs(on[i] - off[i]) > 6) ++changed;
+    return { total, counted, agents: t.state.count, changed: changed / on.length, checked: document.querySelector('#heatmap-toggle').checked,
+             legend: document.querySelector('#legend').textContent };
+  });
+  assert.ok(r.agents > 0 && Math.abs(r.total - r.counted) < 1e-6 && Math.abs(r.total - r.agents) <= 0.15 * r.agents + 1,
+    `density map: ${JSON.stringify({ total: r.total, counted: r.counted, agents: r.agents })}`);
+  assert.ok(r.changed > 0.001, `the density map shows (${(r.changed * 100).toFixed(2)} % of pixels)`);
+  assert.ok(r.checked && r.legend.includes('density map'), 'the Density checkbox and the legend follow the key');
+  await shot(page, 'viewer_density_map.png');
+  await page.keyboard.press('m');
+  assert.equal(await page.evaluate(() => globalThis.__throng.heatmap.enabled), false);
 }
 
 /** Opens `input` served by throng at 1280×720 (`query`: extra URL options); {server, browser, page, errors}. */
@@ -71,6 +103,7 @@ for (const [input, name, minSegments] of [['scenarios/museum.json', 'museum', 8]
       const orbit = await changedByPart(s.page, 'boundary-walls');
       assert.ok(orbit > 0.01, `the walls show in the orbit view (${(orbit * 100).toFixed(2)} % of pixels)`);
       await shot(s.page, `viewer_walls_${name}_orbit.png`);
+      if (name === 'museum') await checkHeatmap(s.page);
       assert.deepEqual(s.errors, []);
     } finally {
       await close(s);
