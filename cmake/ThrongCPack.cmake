@@ -53,6 +53,6 @@ file(WRITE ${PROJECT_BINARY_DIR}/debian-control/triggers "activate-noawait ldcon
 set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${PROJECT_BINARY_DIR}/debian-control/triggers)
 # `throng verify` runs Python with numpy and matplotlib; building against the package needs the
 # development files of what throngConfig.cmake finds (oneTBB).
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3, python3-numpy, python3-matplotlib")
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3, python3-numpy, python3-pandas, python3-matplotlib")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libtbb-dev, cmake, pkg-config")
 include(CPack)

@@ -2,8 +2,11 @@
 # (apps/throng/data_dirs.hpp finds it from the executable's path):
 #   scenarios/     the bundled scenarios, their motion clips, crowds, glTF worlds and JSON Schema
 #   verification/  the verification suites' scenarios and texts (`throng verify`)
-#   scripts/       scripts/verify.py and the Python packages it imports (verification, validation);
+#   scripts/       scripts/verify.py and scripts/plot.py and the Python packages they import
+#                  (verification, validation, plotting; plot_recording.py's WKT reader);
 #                  verify.py finds verification/ as ../verification from its own directory
+#   python/throng/ analysis.py and recording.py of the Python package, which plot.py loads by path
+#                  as ../python/throng/ (without the package's native module)
 #   web/           the browser viewer's built files (web/dist; built by scripts/deps.sh's
 #                  throng_build_web, skipped when absent: `throng serve` then says it is not built)
 #   examples/      the embedding examples to copy and build against the install (docs/embedding.md):
@@ -12,8 +15,11 @@
 # public C header placed there).
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenarios/ DESTINATION ${THRONG_INSTALL_DATADIR}/scenarios)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/verification/ DESTINATION ${THRONG_INSTALL_DATADIR}/verification)
-install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/verify.py DESTINATION ${THRONG_INSTALL_DATADIR}/scripts)
-foreach(package verification validation)
+install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/verify.py ${PROJECT_SOURCE_DIR}/scripts/plot.py
+                 ${PROJECT_SOURCE_DIR}/scripts/plot_recording.py DESTINATION ${THRONG_INSTALL_DATADIR}/scripts)
+install(FILES ${PROJECT_SOURCE_DIR}/python/throng/analysis.py ${PROJECT_SOURCE_DIR}/python/throng/recording.py
+        DESTINATION ${THRONG_INSTALL_DATADIR}/python/throng)
+foreach(package verification validation plotting)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/scripts/${package}/ DESTINATION ${THRONG_INSTALL_DATADIR}/scripts/${package}
           FILES_MATCHING PATTERN "*.py" PATTERN "__pycache__" EXCLUDE)
 endforeach()

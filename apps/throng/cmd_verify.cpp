@@ -1,13 +1,8 @@
 // `throng verify` — runs the verification suites (RiMEA, NIST TN 1822, ISO 20414; docs/verification.md)
 // by handing its flags to scripts/verify.py, which runs this same binary on verification/*.json,
 // measures the recordings and prints the table. Finds the script in <prefix>/share/throng/scripts
-// next to an installed binary, else in the source tree the binary was built from (THRONG_SOURCE_DIR); finds /usr/bin/python3 (numpy and matplotlib come from Debian), else python3 on PATH.
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <csignal>
-#include <cstring>
+// next to an installed binary, else in the source tree the binary was built from (THRONG_SOURCE_DIR); runs it with /usr/bin/python3 (numpy and matplotlib come from Debian), else
+// python3 on PATH (python_script.hpp).
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -18,38 +13,12 @@
 #include "bench_files.hpp"
 #include "commands.hpp"
 #include "output.hpp"
+#include "python_script.hpp"
 
 namespace throng::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// The first existing scripts/verify.py: an installed copy, then the source tree's.
-fs::path findVerifyScript(const fs::path& exe) {
-  std::vector<fs::path> candidates;
-  if (!exe.empty()) candidates.push_back((exe.parent_path() / "../share/throng/scripts/verify.py").lexically_normal());
-  candidates.push_back(fs::path(THRONG_SOURCE_DIR) / "scripts" / "verify.py");
-  for (const auto& c : candidates) {
-    std::error_code ec;
-    if (fs::is_regular_file(c, ec)) return c;
-  }
-  return {};
-}
-
-/// /usr/bin/python3 if it exists, else the first python3 on PATH; empty if none.
-std::string findPython() {
-  if (::access("/usr/bin/python3", X_OK) == 0) return "/usr/bin/python3";
-  const char* path = std::getenv("PATH");
-  std::string dirs = path ? path : "";
-  std::size_t start = 0;
-  while (start <= dirs.size()) {
-    const std::size_t end = std::min(dirs.find(':', start), dirs.size());
-    const fs::path candidate = fs::path(dirs.substr(start, end - start)) / "python3";
-    if (end > start && ::access(candidate.c_str(), X_OK) == 0) return candidate.string();
-    start = end + 1;
-  }
-  return {};
-}
 
 std::vector<std::string> scriptArguments(const VerifyOptions& o, const fs::path& exe) {
   std::vector<std::string> args{"--suite", o.suite, "--threads", std::to_string(o.threads)};
@@ -61,45 +30,6 @@ std::vector<std::string> scriptArguments(const VerifyOptions& o, const fs::path&
   if (o.list) args.emplace_back("--list");
   args.insert(args.end(), {"--throng", o.throng.empty() ? exe.string() : o.throng});
   return args;
-}
-
-volatile sig_atomic_t gChild = 0;
-
-/// SIGINT/SIGTERM while the script runs: passed on to it (a terminal's Ctrl-C reaches it anyway).
-void forwardSignal(int sig) {
-  if (gChild > 0) ::kill(static_cast<pid_t>(gChild), sig);
-}
-
-/// Runs argv[0] with argv and waits; its exit status (128 + signal when a signal ended it).
-int runAndWait(const std::vector<std::string>& argv) {
-  std::vector<char*> raw;
-  for (const auto& a : argv) raw.push_back(const_cast<char*>(a.c_str()));
-  raw.push_back(nullptr);
-  const pid_t pid = ::fork();
-  if (pid < 0) {
-    printLine(stderr, fmt::format("throng verify: error: cannot start {}: {}", argv[0], std::strerror(errno)));
-    return kExitFailure;
-  }
-  if (pid == 0) {
-    ::execv(raw[0], raw.data());
-    std::fprintf(stderr, "throng verify: error: cannot run %s: %s\n", raw[0], std::strerror(errno));
-    ::_exit(127);
-  }
-  // Wait for the script to finish its cleanup; signals sent to this process go on to it.
-  gChild = pid;
-  struct sigaction forward {};
-  forward.sa_handler = forwardSignal;
-  struct sigaction oldInt {}, oldTerm {};
-  ::sigaction(SIGINT, &forward, &oldInt);
-  ::sigaction(SIGTERM, &forward, &oldTerm);
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  ::sigaction(SIGINT, &oldInt, nullptr);
-  ::sigaction(SIGTERM, &oldTerm, nullptr);
-  gChild = 0;
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : kExitFailure;
 }
 
 }  // namespace
@@ -133,7 +63,7 @@ CLI::App* addVerifyCommand(CLI::App& app, VerifyOptions& options) {
 
 int runVerify(const VerifyOptions& options) {
   const fs::path exe = currentExecutable();
-  const fs::path script = findVerifyScript(exe);
+  const fs::path script = findBundledScript(exe, "verify.py", fs::path(THRONG_SOURCE_DIR) / "scripts");
   if (script.empty()) {
     printLine(stderr, fmt::format("throng verify: error: scripts/verify.py not found (looked in "
                                   "<prefix>/share/throng/scripts and {}/scripts); run it from a source checkout",
@@ -148,7 +78,7 @@ int runVerify(const VerifyOptions& options) {
   std::vector<std::string> argv{python, script.string()};
   const auto rest = scriptArguments(options, exe);
   argv.insert(argv.end(), rest.begin(), rest.end());
-  return runAndWait(argv);
+  return runScriptAndWait(argv, "verify");
 }
 
 }  // namespace throng::cli

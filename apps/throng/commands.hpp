@@ -1,6 +1,6 @@
 // throng CLI subcommands — each subcommand registers its flags on a CLI::App and runs from a plain
 // options struct (one file per subcommand: cmd_run.cpp, cmd_check.cpp, cmd_info.cpp,
-// cmd_bench.cpp, cmd_script.cpp, cmd_metrics.cpp, cmd_serve.cpp, cmd_loadgen.cpp, cmd_link.cpp, cmd_verify.cpp; the hidden describe-cli in cmd_describe.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
+// cmd_bench.cpp, cmd_script.cpp, cmd_metrics.cpp, cmd_serve.cpp, cmd_loadgen.cpp, cmd_link.cpp, cmd_verify.cpp, cmd_plot.cpp; the hidden describe-cli in cmd_describe.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
 // interrupted by SIGINT/SIGTERM.
 #pragma once
 #include <cstdint>
@@ -135,6 +135,16 @@ struct VerifyOptions {
   std::string throng;                   ///< the binary the tests run; empty = this one
 };
 
+struct PlotOptions {
+  std::string recording;                ///< recording path
+  std::string out;                      ///< PNG directory; empty = <recording stem>-plots
+  std::vector<std::string> what;        ///< figures; empty = all
+  std::vector<double> line;             ///< x0, y0, x1, y1 [m]; empty = one in front of each exit
+  std::vector<double> area;             ///< rectangle corners x0, y0, x1, y1 [m]; empty = behind the first exit's line
+  double cell = 0.5;                    ///< heatmap cell size [m]
+  bool json = false;                    ///< files and numbers as one JSON object
+};
+
 /// Each registers its subcommand (flags bound to `options`, which must outlive parsing) and returns it.
 CLI::App* addRunCommand(CLI::App& app, RunOptions& options);
 CLI::App* addCheckCommand(CLI::App& app, CheckOptions& options);
@@ -146,6 +156,7 @@ CLI::App* addServeCommand(CLI::App& app, ServeOptions& options);
 CLI::App* addLoadgenCommand(CLI::App& app, LoadgenOptions& options);
 CLI::App* addLinkCommand(CLI::App& app, LinkOptions& options);
 CLI::App* addVerifyCommand(CLI::App& app, VerifyOptions& options);
+CLI::App* addPlotCommand(CLI::App& app, PlotOptions& options);
 
 int runRun(const RunOptions& options);
 int runCheck(const CheckOptions& options);
@@ -157,6 +168,7 @@ int runServe(const ServeOptions& options);
 int runLoadgen(const LoadgenOptions& options);
 int runLink(const LinkOptions& options);
 int runVerify(const VerifyOptions& options);
+int runPlot(const PlotOptions& options);
 
 /// The hidden `describe-cli` (cmd_describe.cpp): prints `app`'s subcommands and options as JSON.
 CLI::App* addDescribeCommand(CLI::App& app);

@@ -2,7 +2,8 @@
 # ctest install_tree: the installed tree works without the source or build tree (docs/install.md).
 #   1. `cmake --install BUILD --prefix P` into a temporary prefix;
 #   2. the installed program runs a bundled scenario from P/share/throng and lists the
-#      verification tests (P/share/throng/scripts/verify.py); the schema, man pages and
+#      verification tests (P/share/throng/scripts/verify.py) and plots its recording
+#      (P/share/throng/scripts/plot.py, P/share/throng/python/throng); the schema, man pages and
 #      completions are there;
 #   3. examples/embed is configured with only P on CMAKE_PREFIX_PATH (find_package(throng CONFIG),
 #      no package registry), built and run on P's museum.json;
@@ -28,6 +29,9 @@ cd "$tmp"
 test -s "$tmp/museum.sqlite"
 "$prefix/bin/throng" verify --list --suite rimea > "$tmp/verify.txt"
 grep -q '^rimea-1 ' "$tmp/verify.txt" || { echo "throng verify --list did not list rimea-1"; cat "$tmp/verify.txt"; exit 1; }
+"$prefix/bin/throng" plot "$tmp/museum.sqlite" --out "$tmp/plots" --what trajectories,density > "$tmp/plot.txt"
+test -s "$tmp/plots/trajectories.png" && test -s "$tmp/plots/density.png" \
+  || { echo "throng plot did not write its PNGs from the installed scripts"; cat "$tmp/plot.txt"; exit 1; }
 for f in share/throng/scenarios/schema/scenario.schema.json share/man/man1/throng.1.gz share/man/man1/throng-run.1.gz \
          share/bash-completion/completions/throng share/zsh/vendor-completions/_throng; do
   test -f "$prefix/$f" || { echo "$f is not installed"; exit 1; }

@@ -28,6 +28,7 @@ import { Legend } from './ui/legend.js';
 import { Help } from './ui/help.js';
 import { Markers, kSelfColour } from './crowd/markers.js';
 import { Trails } from './crowd/trails.js';
+import { Heatmap } from './crowd/heatmap.js';
 import { kSelectedColour, kPickedGroupColour } from './crowd/crowd_view.js';
 import { kColourModes } from './crowd/colour_by.js';
 
@@ -87,6 +88,7 @@ const labels = new ScreenLabels($('labels'));
 let worldLabels = [];  // the points' name labels (world_view.js pointLabels)
 const kOtherColour = 0xd02090;  // other participants' avatars
 let markers = null;
+let heatmap = null;  // density heatmap overlay (key M)
 let trails = null, trailsStale = false;  // trajectory trails (key R), rebuilt after each frame
 const legend = new Legend($('legend'), { selected: kSelectedColour, pickedGroup: kPickedGroupColour, self: kSelfColour, other: kOtherColour },
   (m) => setColourMode(m));
@@ -107,6 +109,7 @@ source.on('frame', (f) => {
   state.applyFrame(f, performance.now() / 1000);
   hud.frame(f);
   if (trails && trails.enabled) { trails.record(f, hud.simTime); trailsStale = true; }
+  if (heatmap) heatmap.record(f, hud.simTime);
 });
 source.on('participant', (m) => {
   const o = others.get(m.participantId) || { phase: 0, name: source.names.get(m.participantId) };
@@ -136,6 +139,8 @@ source.on('world', async (w) => {
   avatars = new NearBodies(scene, w.skeleton.joints, clips);
   markers = new Markers(scene, kSelectedColour);
   trails = new Trails(scene);
+  heatmap = new Heatmap(scene, bounds);
+  if (params.get('heatmap') === '1') toggleHeatmap(true);
   if (params.get('trails') === '1') toggleTrails(true);
   const colourParam = params.get('colour');
   setColourMode(kColourModes.includes(colourParam) ? colourParam : 'group');
@@ -151,9 +156,13 @@ source.on('world', async (w) => {
 function testHooks(w) {
   return {
     cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode,
-    get trails() { return trails; }, get markers() { return markers; }, selfColour: kSelfColour,
+    get trails() { return trails; }, get heatmap() { return heatmap; }, get markers() { return markers; }, selfColour: kSelfColour,
     renderer, description: w, others, groupList, remoteJoints, gesture,
     get joined() { return joined; },
+    /** The world's named parts and how many segments each has (walls, railings, risers; 1 for others). */
+    worldPart: (name) => scene.getObjectByName('world')?.getObjectByName(name) || null,
+    worldParts: () => Object.fromEntries((scene.getObjectByName('world')?.children || []).filter((c) => c.name)
+      .map((c) => [c.name, c.userData.segments ?? 1])),
     /** Texts of the participants' name labels on screen. */
     labels: () => labels.visible('name-label'),
     screenLabels: labels,
@@ -322,6 +331,7 @@ bindKeys({
   colourBy: () => crowd && setColourMode(kColourModes[(kColourModes.indexOf(crowd.colourMode) + 1) % kColourModes.length]),
   help: () => help.show(),
   trails: () => toggleTrails(),
+  heatmap: () => toggleHeatmap(),
   escape: () => { help.show(false); if (cameras) cameras.follow(null); select(-1); },
 });
 function fitView() {
@@ -421,6 +431,14 @@ function toggleTrails(on = !(trails && trails.enabled)) {
   refreshLegend();
 }
 $('trails-toggle').onchange = (e) => toggleTrails(e.target.checked);
+function toggleHeatmap(on = !(heatmap && heatmap.enabled)) {
+  if (!heatmap) return;
+  heatmap.enabled = on;
+  $('heatmap-toggle').checked = on;
+  legend.heatmap = on;
+  refreshLegend();
+}
+$('heatmap-toggle').onchange = (e) => toggleHeatmap(e.target.checked);
 
 let last = performance.now();
 function frame() {
@@ -464,6 +482,7 @@ function frame() {
     trailsStale = false;
     trails.rebuild((id) => { const i = state.index.get(id); return i === undefined ? crowd.colour(0x9a9a9a) : crowd.colourAt(i, state); });
   }
+  if (heatmap) heatmap.update();
   const sel = selectedId >= 0 ? state.index.get(selectedId) : undefined;
   markers.update(joined ? cameras.avatar : null, sel === undefined ? null : { x: state.x[sel], y: state.y[sel], z: state.z[sel] },
     cameras.mode === 'plan' ? cameras.planMetresPerPixel(innerHeight) : 0);

@@ -2,14 +2,14 @@
 // mode's own entries (crowd/colour_by.js legendOf: groups, populations, the speed or density ramp,
 // states) under a "Colour by" menu (key B cycles the modes), then the marks that mean the same in
 // every mode: the selected agent, the picked group, you, other participants, the world's points,
-// exits, walls and floor (and trails when they are on). Its header folds it away (folded at start
+// exits, obstacles, walls and railings, stair risers and floor (and trails and the density map when they are on). Its header folds it away (folded at start
 // on a viewport under 560 px high). Writes the #legend panel.
 import { kColourModes, kModeNames, legendOf } from '../crowd/colour_by.js';
 
 const hex = (c) => `#${c.toString(16).padStart(6, '0')}`;
 
 /** Entries shown in every mode: [{colour, shape, label}]; shape: dot, ring, pin, disc, area, line. */
-export function fixedEntries({ selected, pickedGroup, self, other, trails }) {
+export function fixedEntries({ selected, pickedGroup, self, other, trails, heatmap }) {
   return [
     { colour: selected, shape: 'ring', label: 'selected agent (ringed)' },
     { colour: pickedGroup, shape: 'dot', label: 'group picked in the list' },
@@ -18,9 +18,12 @@ export function fixedEntries({ selected, pickedGroup, self, other, trails }) {
     { colour: 0x3070d0, shape: 'ring', label: 'interest point' },
     { colour: 0xe08020, shape: 'disc', label: 'action point (arrow: facing)' },
     { colour: 0x30b050, shape: 'area', label: 'exit' },
-    { colour: 0xb9a98f, shape: 'area', label: 'wall, obstacle' },
+    { colour: 0xb9a98f, shape: 'area', label: 'obstacle (solid block)' },
+    { colour: 0x5a5145, shape: 'line', label: 'wall, railing (1.2 m, see-through)' },
+    { colour: 0xa8a296, shape: 'area', label: 'stair riser' },
     { colour: 0xd8d4cc, shape: 'area', label: 'walkable floor' },
     ...(trails ? [{ colour: 0x555555, shape: 'line', label: 'trail: where each walked lately' }] : []),
+    ...(heatmap ? legendOf('density').map((e) => ({ colour: e.colour, shape: 'area', label: `density map: ${e.label}` })) : []),
   ];
 }
 
@@ -30,6 +33,7 @@ export class Legend {
     this.root = root;
     this.marks = marks;
     this.trails = false;
+    this.heatmap = false;
     root.innerHTML = '<div class="legend-head"><button class="fold" title="fold the legend">▾</button> Colour by '
       + '<select id="colour-by" title="what the agents\' colours say (B)"></select></div><div class="legend-body"></div>';
     this.select = root.querySelector('#colour-by');
@@ -50,12 +54,12 @@ export class Legend {
 
   /** Redraws when the mode, the populations or the groups changed. */
   update(mode, context) {
-    const key = JSON.stringify([mode, context.populations, (context.groups || []).length, this.trails]);
+    const key = JSON.stringify([mode, context.populations, (context.groups || []).length, this.trails, this.heatmap]);
     if (key === this.key) return;
     this.key = key;
     this.select.value = mode;
     const rows = [...legendOf(mode, context).map((e) => ({ ...e, shape: 'dot' })), { separator: true },
-      ...fixedEntries({ ...this.marks, trails: this.trails })];
+      ...fixedEntries({ ...this.marks, trails: this.trails, heatmap: this.heatmap })];
     this.body.innerHTML = '';
     for (const r of rows) {
       const row = document.createElement('div');

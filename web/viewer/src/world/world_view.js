@@ -1,15 +1,25 @@
 // The static world from the scenario JSON (docs/scenario-format.md) as the world description
-// carries it: walkable polygons as floors, obstacles extruded as walls, points as markers —
+// carries it: walkable polygons as floors, obstacles extruded as solid blocks, walls along the
+// walkable area's boundary (walls.js: kBoundaryWallHeight high, semi-transparent, with a dark line
+// along their top that reads as the wall in plan view), points as markers —
 // interest (blue ring), action (orange disc with an arrow along its orientation), exit (green
 // area); where their name labels go (pointLabels: drawn at a fixed screen size by
 // ui/screen_labels.js); lights. World (x, y) → scene (x, 0, −y).
 // A multi-level world (`scenario.terrain`: vertices [x, y, z], walkable and obstacle triangles)
-// is drawn from its triangles instead — walkable ones as the floor, obstacle ones as walls — with
+// is drawn from its triangles instead — walkable ones as the floor, obstacle ones as walls, stair
+// risers where a step drops to the one below, railings where a floor, gallery or stair ends — with
 // world (x, y, z) → scene (x, z, −y); points stand at their height (`position[2]`, or `height`).
 import * as THREE from 'three';
 import { terrainBounds } from './terrain.js';
+import { terrainWalls, walkableWalls } from './walls.js';
 
-const kWallHeight = 2.4;  // [m]
+const kWallHeight = 2.4;  // [m] obstacles (shops' blocks, pillars, kiosks)
+/** Height [m] of the walls along the walkable boundary and of railings: waist to chest high, so
+ * that an oblique view sees the crowd over them (Neufert: railings 0.9–1.1 m; a low wall). */
+export const kBoundaryWallHeight = 1.2;
+const kBoundaryWallColour = 0x9c8f7a;
+const kBoundaryTopColour = 0x5a5145;
+const kRiserColour = 0xa8a296;
 
 function shapeOf(polygon) {
   const s = new THREE.Shape();
@@ -93,6 +103,51 @@ function boundaryEdges(vertices, faces) {
   return pos;
 }
 
+/** Non-indexed scene geometry of vertical quads: each of `quads` is [x0, y0, x1, y1, zBottom0,
+ * zBottom1, zTop0, zTop1] (world metres). */
+function quadGeometry(quads) {
+  const pos = new Float32Array(quads.length * 18);
+  let o = 0;
+  for (const [x0, y0, x1, y1, b0, b1, t0, t1] of quads) {
+    for (const [x, y, z] of [[x0, y0, b0], [x1, y1, b1], [x1, y1, t1], [x0, y0, b0], [x1, y1, t1], [x0, y0, t0]]) {
+      pos[o++] = x; pos[o++] = z; pos[o++] = -y;
+    }
+  }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+  g.computeVertexNormals();
+  return g;
+}
+
+/** Walls [{x0, y0, z0, x1, y1, z1}] (z: the floor under each end) as one group named `name`:
+ * semi-transparent quads kBoundaryWallHeight high and a dark line along their top (what a plan
+ * view sees). userData.segments: how many. */
+export function wallObject(walls, name) {
+  const group = new THREE.Group();
+  group.name = name;
+  group.userData.segments = walls.length;
+  const quads = walls.map((w) => [w.x0, w.y0, w.x1, w.y1, w.z0 ?? 0, w.z1 ?? 0, (w.z0 ?? 0) + kBoundaryWallHeight, (w.z1 ?? 0) + kBoundaryWallHeight]);
+  const mesh = new THREE.Mesh(quadGeometry(quads), new THREE.MeshLambertMaterial({
+    color: kBoundaryWallColour, transparent: true, opacity: 0.55, side: THREE.DoubleSide, depthWrite: false }));
+  mesh.renderOrder = 1;  // after the opaque floor and crowd, so the crowd shows through
+  group.add(mesh);
+  const top = [];
+  for (const q of quads) top.push(q[0], q[6], -q[1], q[2], q[7], -q[3]);
+  const lines = new THREE.BufferGeometry();
+  lines.setAttribute('position', new THREE.Float32BufferAttribute(top, 3));
+  group.add(new THREE.LineSegments(lines, new THREE.LineBasicMaterial({ color: kBoundaryTopColour })));
+  return group;
+}
+
+/** Stair risers [{x0, y0, x1, y1, zLow, zHigh}] as one opaque mesh named 'stair-risers'. */
+function riserObject(risers) {
+  const mesh = new THREE.Mesh(quadGeometry(risers.map((r) => [r.x0, r.y0, r.x1, r.y1, r.zLow, r.zLow, r.zHigh, r.zHigh])),
+    new THREE.MeshLambertMaterial({ color: kRiserColour, side: THREE.DoubleSide }));
+  mesh.name = 'stair-risers';
+  mesh.userData.segments = risers.length;
+  return mesh;
+}
+
 function addTerrain(root, terrain, floorColor, wallMat) {
   const vertices = terrain.vertices || [];
   const floor = triangleGeometry(vertices, terrain.walkable);
@@ -115,6 +170,9 @@ function addTerrain(root, terrain, floorColor, wallMat) {
     m.name = 'terrain-obstacles';
     root.add(m);
   }
+  const { walls, risers } = terrainWalls(terrain);
+  if (walls.length) root.add(wallObject(walls, 'terrain-railings'));
+  if (risers.length) root.add(riserObject(risers));
 }
 
 /** Importance of a point's label (which label wins when two would overlap): exits first. */
@@ -142,11 +200,10 @@ export function buildWorld(scenario) {
     const m = new THREE.Mesh(g, floorMat);
     m.receiveShadow = true;
     root.add(m);
-    const edge = new THREE.LineLoop(
-      new THREE.BufferGeometry().setFromPoints(poly.map(([x, y]) => new THREE.Vector3(x, 0.01, -y))),
-      new THREE.LineBasicMaterial({ color: 0x8a857a }));
-    root.add(edge);
   }
+  // Walls where the walkable area ends (not between two walkable polygons: a shop's door stays open).
+  const walls = walkableWalls(scenario.walkable);
+  if (walls.length) root.add(wallObject(walls, 'boundary-walls'));
 
   const wallMat = new THREE.MeshLambertMaterial({ color: 0xb9a98f });
   for (const poly of scenario.obstacles || []) {

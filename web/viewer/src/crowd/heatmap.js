@@ -1,0 +1,113 @@
+// Density heatmap overlay (key M): PedPy's classic density on a grid, from the crowd frames the page
+// receives. DensityGrid (pure) counts, per square cell of kHeatCell metres over the world's bounds,
+// the agents whose position lies in it in each frame, keeps the frames of the last kHeatSeconds of
+// simulated time (starting afresh when time runs backwards: a replay seeked back), and gives per
+// cell the mean over those frames of N_cell / cell² [persons/m²] — the classic density of each
+// cell, averaged over the window (docs/viewer.md; the same definition as `throng plot`'s density
+// heatmap, docs/plot.md, over a shorter time). Heatmap (three.js) draws it as a texture on a plane
+// just above the ground floor, each cell coloured on colour_by.js's ramp (0 … kDensityMax), empty
+// cells transparent. Scene coordinates: (x, z, −y).
+import * as THREE from 'three';
+import { kDensityMax, rampColour } from './colour_by.js';
+
+export const kHeatCell = 1.0;    // [m] cell size
+export const kHeatSeconds = 5;   // [s] of simulated time averaged
+const kMaxCells = 1 << 20;       // a huge world gets coarser cells rather than a huge texture
+
+export class DensityGrid {
+  /** bounds: {minX, minY, maxX, maxY} [m]. */
+  constructor(bounds, cell = kHeatCell, seconds = kHeatSeconds) {
+    const w = Math.max(bounds.maxX - bounds.minX, cell), h = Math.max(bounds.maxY - bounds.minY, cell);
+    this.cell = Math.max(cell, Math.sqrt((w * h) / kMaxCells));
+    this.minX = bounds.minX;
+    this.minY = bounds.minY;
+    this.nx = Math.max(1, Math.ceil(w / this.cell));
+    this.ny = Math.max(1, Math.ceil(h / this.cell));
+    this.seconds = seconds;
+    this.frames = [];  // [{t, counts: Uint16Array}], oldest first
+    this.sum = new Float64Array(this.nx * this.ny);
+  }
+
+  clear() { this.frames = []; this.sum.fill(0); }
+
+  /** One crowd frame at simulated time t [s]: the first `count` positions of x, y [m]. */
+  record(x, y, count, t) {
+    const last = this.frames[this.frames.length - 1];
+    if (last && t < last.t) this.clear();
+    else if (last && t === last.t) return;  // the same frame again
+    const counts = new Uint16Array(this.nx * this.ny);
+    for (let i = 0; i < count; ++i) {
+      const ci = Math.floor((x[i] - this.minX) / this.cell), cj = Math.floor((y[i] - this.minY) / this.cell);
+      if (ci >= 0 && ci < this.nx && cj >= 0 && cj < this.ny) counts[cj * this.nx + ci] += 1;
+    }
+    this.frames.push({ t, counts });
+    for (let k = 0; k < counts.length; ++k) this.sum[k] += counts[k];
+    while (this.frames.length > 1 && this.frames[0].t < t - this.seconds) {
+      const old = this.frames.shift().counts;
+      for (let k = 0; k < old.length; ++k) this.sum[k] -= old[k];
+    }
+  }
+
+  /** Classic density of cell (i, j) [persons/m²]: its count averaged over the window's frames / cell². */
+  density(i, j) {
+    if (!this.frames.length) return 0;
+    return this.sum[j * this.nx + i] / (this.frames.length * this.cell * this.cell);
+  }
+
+  /** The density at world point (x, y) [persons/m²] (0 outside the grid). */
+  densityAt(x, y) {
+    const i = Math.floor((x - this.minX) / this.cell), j = Math.floor((y - this.minY) / this.cell);
+    return i >= 0 && i < this.nx && j >= 0 && j < this.ny ? this.density(i, j) : 0;
+  }
+}
+
+export class Heatmap {
+  /** bounds: worldBounds (minZ: the plane's height). */
+  constructor(scene, bounds) {
+    this.grid = new DensityGrid(bounds);
+    const g = this.grid;
+    this.data = new Uint8Array(g.nx * g.ny * 4);
+    this.texture = new THREE.DataTexture(this.data, g.nx, g.ny, THREE.RGBAFormat);
+    this.texture.magFilter = THREE.NearestFilter;
+    this.texture.minFilter = THREE.NearestFilter;
+    const w = g.nx * g.cell, h = g.ny * g.cell;
+    const plane = new THREE.PlaneGeometry(w, h);
+    plane.rotateX(-Math.PI / 2);  // (u, v) = (0, 0) at world (minX, minY)
+    plane.translate(g.minX + w / 2, (bounds.minZ || 0) + 0.04, -(g.minY + h / 2));
+    this.mesh = new THREE.Mesh(plane, new THREE.MeshBasicMaterial({ map: this.texture, transparent: true, depthWrite: false }));
+    this.mesh.name = 'density-heatmap';
+    this.mesh.renderOrder = 2;
+    this.mesh.visible = false;
+    scene.add(this.mesh);
+    this.stale = false;
+  }
+
+  get enabled() { return this.mesh.visible; }
+  set enabled(on) {
+    this.mesh.visible = on;
+    if (!on) this.grid.clear();
+  }
+
+  /** A crowd frame at simulated time t [s] (counted only while shown). */
+  record(frame, t) {
+    if (!this.enabled) return;
+    this.grid.record(frame.x, frame.y, frame.count, t);
+    this.stale = true;
+  }
+
+  /** Refills the texture from the grid (once per drawn frame after new crowd frames). */
+  update() {
+    if (!this.stale) return;
+    this.stale = false;
+    const g = this.grid, d = this.data;
+    for (let j = 0; j < g.ny; ++j) {
+      for (let i = 0; i < g.nx; ++i) {
+        const rho = g.density(i, j), o = (j * g.nx + i) * 4;
+        const c = rampColour(rho / kDensityMax);
+        d[o] = (c >> 16) & 255; d[o + 1] = (c >> 8) & 255; d[o + 2] = c & 255;
+        d[o + 3] = rho > 0 ? Math.round(90 + 110 * Math.min(rho / kDensityMax, 1)) : 0;
+      }
+    }
+    this.texture.needsUpdate = true;
+  }
+}
