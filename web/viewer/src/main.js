@@ -2,7 +2,7 @@
 // ?demo&replay), builds the scene once the world description arrives (world_view, clips, crowd
 // view, cameras) and runs the frame loop: interpolate the crowd, choose levels of detail, draw,
 // update the HUD; wires the join form, picking, guide/release, the cameras (plan, orbit, walk, fit,
-// follow: buttons and keys, ui/keys.js), the LOD toggle and the banner.
+// follow: buttons and keys, ui/keys.js), the LOD toggle, export (PNG, WebM: ui/export.js) and the banner.
 // URL options: demo, agents=N, lod=on|off, ws=URL, replay (with demo), target=FPS, shot=1 (no
 // panels: screenshots), aa=0 (no antialiasing), camera=plan|orbit|walk (the first camera).
 import * as THREE from 'three';
@@ -29,6 +29,7 @@ import { Help } from './ui/help.js';
 import { Markers, kSelfColour } from './crowd/markers.js';
 import { Trails } from './crowd/trails.js';
 import { Heatmap } from './crowd/heatmap.js';
+import { Exporter } from './ui/export.js';
 import { kSelectedColour, kPickedGroupColour } from './crowd/crowd_view.js';
 import { kColourModes } from './crowd/colour_by.js';
 
@@ -157,7 +158,7 @@ function testHooks(w) {
   return {
     cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode,
     get trails() { return trails; }, get heatmap() { return heatmap; }, get markers() { return markers; }, selfColour: kSelfColour,
-    renderer, description: w, others, groupList, remoteJoints, gesture,
+    renderer, exporter, description: w, others, groupList, remoteJoints, gesture,
     get joined() { return joined; },
     /** The world's named parts and how many segments each has (walls, railings, risers; 1 for others). */
     worldPart: (name) => scene.getObjectByName('world')?.getObjectByName(name) || null,
@@ -332,6 +333,8 @@ bindKeys({
   help: () => help.show(),
   trails: () => toggleTrails(),
   heatmap: () => toggleHeatmap(),
+  screenshot: () => exporter.screenshot(),
+  record: () => exporter.toggleRecording(),
   escape: () => { help.show(false); if (cameras) cameras.follow(null); select(-1); },
 });
 function fitView() {
@@ -439,6 +442,11 @@ function toggleHeatmap(on = !(heatmap && heatmap.enabled)) {
   refreshLegend();
 }
 $('heatmap-toggle').onchange = (e) => toggleHeatmap(e.target.checked);
+// Export (ui/export.js): the view as PNG (K) or WebM (V starts / stops; the indicator shows meanwhile).
+const exporter = new Exporter(renderer.domElement, () => renderer.render(scene, view()), () => hud.world?.name || '',
+  $('rec-indicator'), (on) => { $('export-rec').classList.toggle('active', on); $('export-rec').textContent = on ? 'Stop' : 'Rec'; });
+$('export-png').onclick = () => exporter.screenshot();
+$('export-rec').onclick = () => exporter.toggleRecording();
 
 let last = performance.now();
 function frame() {

@@ -14,6 +14,8 @@ export const kKeys = [
   { keys: 'B', match: ['b'], action: 'colourBy', what: 'colour by: group → population → speed → density → state' },
   { keys: 'R', match: ['r'], action: 'trails', what: 'trails (where each agent walked in the last 10 s) on / off' },
   { keys: 'M', match: ['m'], action: 'heatmap', what: 'density map (persons/m² per 1 m cell, last 5 s) on / off' },
+  { keys: 'K', match: ['k'], action: 'screenshot', what: 'download a PNG screenshot of the view' },
+  { keys: 'V', match: ['v'], action: 'record', what: 'record the view as a WebM video: start / stop (then downloads)' },
   { keys: '? or H', match: ['?', 'h'], action: 'help', what: 'this help' },
   { keys: 'Esc', match: ['escape'], action: 'escape', what: 'close the help, clear the selection, stop following' },
   { keys: '1 – 4', match: ['1', '2', '3', '4'], action: 'gesture', what: 'gesture of your avatar (wave, nod, point, call out), once joined' },
