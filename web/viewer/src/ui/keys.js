@@ -14,6 +14,7 @@ export const kKeys = [
   { keys: 'B', match: ['b'], action: 'colourBy', what: 'colour by: group → population → speed → density → state' },
   { keys: 'R', match: ['r'], action: 'trails', what: 'trails (where each agent walked in the last 10 s) on / off' },
   { keys: 'M', match: ['m'], action: 'heatmap', what: 'density map (persons/m² per 1 m cell, last 5 s) on / off' },
+  { keys: 'G', match: ['g'], action: 'speedmap', what: 'speed map (mean speed per 1 m cell, last 5 s) on / off' },
   { keys: 'K', match: ['k'], action: 'screenshot', what: 'download a PNG screenshot of the view' },
   { keys: 'V', match: ['v'], action: 'record', what: 'record the view as a WebM video: start / stop (then downloads)' },
   { keys: '? or H', match: ['?', 'h'], action: 'help', what: 'this help' },
