@@ -2,7 +2,8 @@
 // `throng serve`: the museum and the mall get walls along their walkable area's boundary (and the
 // mall's shops keep their doors open: fewer wall segments than polygon edges), the two-floor world
 // gets stair risers and railings; each of them changes the picture (rendered with and without
-// them); the museum's density map (key M) holds the classic density of the frames and is drawn.
+// them); the museum's density map (key M) holds the classic density of the frames and is drawn,
+// its speed map (key G) the mean speeds of walkers, and is drawn.
 // THRONG_E2E_SHOTS=DIR keeps the screenshots docs/viewer.md shows (1280×720). Run:
 // THRONG_EXE=build/apps/throng/throng node --test web/viewer/e2e/world.e2e.test.mjs. Fails, like
 // the other e2e tests, when something it needs is missing.
@@ -65,6 +66,40 @@ async function checkHeatmap(page) {
   assert.equal(await page.evaluate(() => globalThis.__throng.heatmap.enabled), false);
 }
 
+/** The speed map (key G): its cells hold mean speeds of walkers (every sampled cell 0–3 m/s, their
+ * sample-weighted mean 0.2–2 m/s: the museum's visitors walk and stop), it is drawn (the picture
+ * changes with it hidden), the legend and the checkbox follow, G hides it. */
+async function checkSpeedmap(page) {
+  await page.keyboard.press('g');
+  await page.waitForFunction(() => globalThis.__throng.speedmap.grid.frames.length >= 10, null, { timeout: 15000 });
+  const r = await page.evaluate(() => {
+    const t = globalThis.__throng, g = t.speedmap.grid;
+    let cells = 0, samples = 0, weighted = 0, lo = Infinity, hi = -Infinity;
+    for (let j = 0; j < g.ny; ++j) {
+      for (let i = 0; i < g.nx; ++i) {
+        const v = g.speed(i, j);
+        if (v === null) continue;
+        const n = g.sum[j * g.nx + i];
+        ++cells; samples += n; weighted += v * n; lo = Math.min(lo, v); hi = Math.max(hi, v);
+      }
+    }
+    const on = t.pixels(4).grey;
+    t.speedmap.mesh.visible = false;
+    const off = t.pixels(4).grey;
+    t.speedmap.mesh.visible = true;
+    let changed = 0;
+    for (let i = 0; i < on.length; ++i) if (Math.abs(on[i] - off[i]) > 6) ++changed;
+    return { cells, mean: weighted / samples, lo, hi, changed: changed / on.length,
+             checked: document.querySelector('#speedmap-toggle').checked, legend: document.querySelector('#legend').textContent };
+  });
+  assert.ok(r.cells > 3 && r.lo >= 0 && r.hi <= 3 && r.mean > 0.2 && r.mean < 2, `speed map: ${JSON.stringify(r)}`);
+  assert.ok(r.changed > 0.001, `the speed map shows (${(r.changed * 100).toFixed(2)} % of pixels)`);
+  assert.ok(r.checked && r.legend.includes('speed map') && r.legend.includes('m/s'), `the Speed checkbox and the legend follow the key: ${r.checked} ${r.legend}`);
+  await shot(page, 'viewer_speed_map.png');
+  await page.keyboard.press('g');
+  assert.equal(await page.evaluate(() => globalThis.__throng.speedmap.enabled), false);
+}
+
 /** Opens `input` served by throng at 1280×720 (`query`: extra URL options); {server, browser, page, errors}. */
 async function open(input, query = '') {
   const server = await startServer(path.join(repo, input));
@@ -104,6 +139,7 @@ for (const [input, name, minSegments] of [['scenarios/museum.json', 'museum', 8]
       assert.ok(orbit > 0.01, `the walls show in the orbit view (${(orbit * 100).toFixed(2)} % of pixels)`);
       await shot(s.page, `viewer_walls_${name}_orbit.png`);
       if (name === 'museum') await checkHeatmap(s.page);
+      if (name === 'museum') await checkSpeedmap(s.page);
       assert.deepEqual(s.errors, []);
     } finally {
       await close(s);

@@ -2,7 +2,7 @@
 // ?demo&replay), builds the scene once the world description arrives (world_view, clips, crowd
 // view, cameras) and runs the frame loop: interpolate the crowd, choose levels of detail, draw,
 // update the HUD; wires the join form, picking, guide/release, the cameras (plan, orbit, walk, fit,
-// follow: buttons and keys, ui/keys.js), the LOD toggle and the banner.
+// follow: buttons and keys, ui/keys.js), the LOD toggle, export (PNG, WebM: ui/export.js) and the banner.
 // URL options: demo, agents=N, lod=on|off, ws=URL, replay (with demo), target=FPS, shot=1 (no
 // panels: screenshots), aa=0 (no antialiasing), camera=plan|orbit|walk (the first camera).
 import * as THREE from 'three';
@@ -29,6 +29,7 @@ import { Help } from './ui/help.js';
 import { Markers, kSelfColour } from './crowd/markers.js';
 import { Trails } from './crowd/trails.js';
 import { Heatmap } from './crowd/heatmap.js';
+import { Exporter } from './ui/export.js';
 import { kSelectedColour, kPickedGroupColour } from './crowd/crowd_view.js';
 import { kColourModes } from './crowd/colour_by.js';
 
@@ -89,6 +90,7 @@ let worldLabels = [];  // the points' name labels (world_view.js pointLabels)
 const kOtherColour = 0xd02090;  // other participants' avatars
 let markers = null;
 let heatmap = null;  // density heatmap overlay (key M)
+let speedmap = null;  // speed heatmap overlay (key G)
 let trails = null, trailsStale = false;  // trajectory trails (key R), rebuilt after each frame
 const legend = new Legend($('legend'), { selected: kSelectedColour, pickedGroup: kPickedGroupColour, self: kSelfColour, other: kOtherColour },
   (m) => setColourMode(m));
@@ -110,6 +112,7 @@ source.on('frame', (f) => {
   hud.frame(f);
   if (trails && trails.enabled) { trails.record(f, hud.simTime); trailsStale = true; }
   if (heatmap) heatmap.record(f, hud.simTime);
+  if (speedmap) speedmap.record(f, hud.simTime);
 });
 source.on('participant', (m) => {
   const o = others.get(m.participantId) || { phase: 0, name: source.names.get(m.participantId) };
@@ -141,6 +144,8 @@ source.on('world', async (w) => {
   trails = new Trails(scene);
   heatmap = new Heatmap(scene, bounds);
   if (params.get('heatmap') === '1') toggleHeatmap(true);
+  speedmap = new Heatmap(scene, bounds, 'speed');
+  if (params.get('speedmap') === '1') toggleSpeedmap(true);
   if (params.get('trails') === '1') toggleTrails(true);
   const colourParam = params.get('colour');
   setColourMode(kColourModes.includes(colourParam) ? colourParam : 'group');
@@ -156,8 +161,8 @@ source.on('world', async (w) => {
 function testHooks(w) {
   return {
     cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode,
-    get trails() { return trails; }, get heatmap() { return heatmap; }, get markers() { return markers; }, selfColour: kSelfColour,
-    renderer, description: w, others, groupList, remoteJoints, gesture,
+    get trails() { return trails; }, get heatmap() { return heatmap; }, get speedmap() { return speedmap; }, get markers() { return markers; }, selfColour: kSelfColour,
+    renderer, exporter, description: w, others, groupList, remoteJoints, gesture,
     get joined() { return joined; },
     /** The world's named parts and how many segments each has (walls, railings, risers; 1 for others). */
     worldPart: (name) => scene.getObjectByName('world')?.getObjectByName(name) || null,
@@ -332,6 +337,9 @@ bindKeys({
   help: () => help.show(),
   trails: () => toggleTrails(),
   heatmap: () => toggleHeatmap(),
+  speedmap: () => toggleSpeedmap(),
+  screenshot: () => exporter.screenshot(),
+  record: () => exporter.toggleRecording(),
   escape: () => { help.show(false); if (cameras) cameras.follow(null); select(-1); },
 });
 function fitView() {
@@ -439,6 +447,19 @@ function toggleHeatmap(on = !(heatmap && heatmap.enabled)) {
   refreshLegend();
 }
 $('heatmap-toggle').onchange = (e) => toggleHeatmap(e.target.checked);
+function toggleSpeedmap(on = !(speedmap && speedmap.enabled)) {
+  if (!speedmap) return;
+  speedmap.enabled = on;
+  $('speedmap-toggle').checked = on;
+  legend.speedmap = on;
+  refreshLegend();
+}
+$('speedmap-toggle').onchange = (e) => toggleSpeedmap(e.target.checked);
+// Export (ui/export.js): the view as PNG (K) or WebM (V starts / stops; the indicator shows meanwhile).
+const exporter = new Exporter(renderer.domElement, () => renderer.render(scene, view()), () => hud.world?.name || '',
+  $('rec-indicator'), (on) => { $('export-rec').classList.toggle('active', on); $('export-rec').textContent = on ? 'Stop' : 'Rec'; });
+$('export-png').onclick = () => exporter.screenshot();
+$('export-rec').onclick = () => exporter.toggleRecording();
 
 let last = performance.now();
 function frame() {
@@ -483,6 +504,7 @@ function frame() {
     trails.rebuild((id) => { const i = state.index.get(id); return i === undefined ? crowd.colour(0x9a9a9a) : crowd.colourAt(i, state); });
   }
   if (heatmap) heatmap.update();
+  if (speedmap) speedmap.update();
   const sel = selectedId >= 0 ? state.index.get(selectedId) : undefined;
   markers.update(joined ? cameras.avatar : null, sel === undefined ? null : { x: state.x[sel], y: state.y[sel], z: state.z[sel] },
     cameras.mode === 'plan' ? cameras.planMetresPerPixel(innerHeight) : 0);

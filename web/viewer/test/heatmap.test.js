@@ -1,8 +1,8 @@
-// The density heatmap's grid (src/crowd/heatmap.js): PedPy's classic density per cell, averaged
-// over the last seconds of frames, against counts done by hand.
+// The heatmaps' grids (src/crowd/heatmap.js): PedPy's classic density per cell, averaged
+// over the last seconds of frames, and the mean speed per cell, against values done by hand.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { DensityGrid } from '../src/crowd/heatmap.js';
+import { DensityGrid, SpeedGrid } from '../src/crowd/heatmap.js';
 
 const bounds = { minX: 0, minY: 0, maxX: 10, maxY: 4 };
 
@@ -38,4 +38,33 @@ test('the mean over the window, frames older than it dropped, time going back cl
   g.record(...one, 1, 3);                                    // a replay seeked back
   assert.equal(g.frames.length, 1);
   assert.equal(g.densityAt(0.5, 0.5), 1);
+});
+
+test('speed map: mean speed per cell from successive frames, jumps and newcomers give no sample', () => {
+  const g = new SpeedGrid(bounds, 1, 5);
+  const ids = Uint32Array.of(1, 2, 3);
+  g.recordSpeeds(ids, Float32Array.of(0.2, 5.5, 8.5), Float32Array.of(0.5, 0.5, 2.5), 3, 0);
+  assert.equal(g.speedAt(0.5, 0.5), null);                 // first frame: no speeds yet
+  // 1 walks 0.5 m in 0.5 s within cell (0, 0); 2 stands in (5, 0); 3 jumps 8 m (not walking).
+  g.recordSpeeds(ids, Float32Array.of(0.7, 5.5, 0.5), Float32Array.of(0.5, 0.5, 2.5), 3, 0.5);
+  assert.equal(g.speedAt(0.5, 0.5), 1);
+  assert.equal(g.speedAt(5.5, 0.5), 0);                    // sampled, standing: 0 m/s, not empty
+  assert.equal(g.speedAt(0.5, 2.5), null);                 // the jump gives no sample
+  // 1 now walks 0.6 m in 0.5 s in the same cell: the mean of 1.0 and 1.2 m/s; a newcomer (4) none.
+  g.recordSpeeds(Uint32Array.of(1, 4), Float32Array.of(0.1, 9.5), Float32Array.of(0.5, 3.5), 2, 1);
+  assert.ok(Math.abs(g.speedAt(0.5, 0.5) - 1.1) < 1e-6);
+  assert.equal(g.speedAt(9.5, 3.5), null);
+  for (let t = 1.5; t <= 7; t += 0.5) g.recordSpeeds(Uint32Array.of(1), Float32Array.of(0.1), Float32Array.of(0.5), 1, t);
+  assert.equal(g.speedAt(0.5, 0.5), 0);                    // the walking samples left the 5 s window
+  assert.equal(g.speedAt(5.5, 0.5), null);
+  g.recordSpeeds(Uint32Array.of(1), Float32Array.of(0.3), Float32Array.of(0.5), 1, 2);  // seeked back
+  assert.equal(g.frames.length, 1);
+  assert.equal(g.speedAt(0.5, 0.5), null);                 // starts afresh: no previous positions
+});
+
+test('the legend lists the speed map\'s ramp only while it shows', async () => {
+  const { fixedEntries } = await import('../src/ui/legend.js');
+  const labels = (on) => fixedEntries({ selected: 1, pickedGroup: 2, self: 3, other: 4, speedmap: on }).map((e) => e.label);
+  assert.ok(labels(true).some((l) => l.startsWith('speed map:') && l.includes('m/s')), labels(true).join(', '));
+  assert.ok(!labels(false).some((l) => l.startsWith('speed map')));
 });

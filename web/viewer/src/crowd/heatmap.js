@@ -1,4 +1,4 @@
-// Density heatmap overlay (key M): PedPy's classic density on a grid, from the crowd frames the page
+// Density and speed heatmap overlays (keys M and G). Density: PedPy's classic density on a grid, from the crowd frames the page
 // receives. DensityGrid (pure) counts, per square cell of kHeatCell metres over the world's bounds,
 // the agents whose position lies in it in each frame, keeps the frames of the last kHeatSeconds of
 // simulated time (starting afresh when time runs backwards: a replay seeked back), and gives per
@@ -6,12 +6,17 @@
 // cell, averaged over the window (docs/viewer.md; the same definition as `throng plot`'s density
 // heatmap, docs/plot.md, over a shorter time). Heatmap (three.js) draws it as a texture on a plane
 // just above the ground floor, each cell coloured on colour_by.js's ramp (0 … kDensityMax), empty
-// cells transparent. Scene coordinates: (x, z, −y).
+// cells transparent. SpeedGrid (pure): per cell, the mean ground speed of the agents in it over the
+// same window — each agent's speed between two successive frames (distance / time; a jump over
+// kSpeedJump metres, or an agent new in the frame, gives no sample), counted in the cell where it
+// is now; drawn on the same ramp over 0 … kSpeedMax, cells nobody crossed transparent.
+// Scene coordinates: (x, z, −y).
 import * as THREE from 'three';
-import { kDensityMax, rampColour } from './colour_by.js';
+import { kDensityMax, kSpeedMax, rampColour } from './colour_by.js';
 
 export const kHeatCell = 1.0;    // [m] cell size
 export const kHeatSeconds = 5;   // [s] of simulated time averaged
+export const kSpeedJump = 5;     // [m] a move longer than this between frames is a jump, not walking
 const kMaxCells = 1 << 20;       // a huge world gets coarser cells rather than a huge texture
 
 export class DensityGrid {
@@ -59,12 +64,76 @@ export class DensityGrid {
     const i = Math.floor((x - this.minX) / this.cell), j = Math.floor((y - this.minY) / this.cell);
     return i >= 0 && i < this.nx && j >= 0 && j < this.ny ? this.density(i, j) : 0;
   }
+
+  recordFrame(f, t) { this.record(f.x, f.y, f.count, t); }
+  /** What the overlay draws in cell (i, j), or null (transparent). */
+  value(i, j) { const d = this.density(i, j); return d > 0 ? d : null; }
 }
 
+export class SpeedGrid extends DensityGrid {
+  constructor(bounds, cell = kHeatCell, seconds = kHeatSeconds) {
+    super(bounds, cell, seconds);
+    this.speedSum = new Float64Array(this.nx * this.ny);
+    this.last = new Map();  // id → [x, y, t] in the previous frame
+  }
+
+  clear() { super.clear(); if (this.speedSum) this.speedSum.fill(0); if (this.last) this.last.clear(); }
+
+  /** One crowd frame at simulated time t [s]: ids, x, y [m] of its first `count` agents. */
+  recordSpeeds(ids, x, y, count, t) {
+    const lastFrame = this.frames[this.frames.length - 1];
+    if (lastFrame && t < lastFrame.t) this.clear();
+    else if (lastFrame && t === lastFrame.t) return;
+    const counts = new Uint16Array(this.nx * this.ny), sums = new Float32Array(this.nx * this.ny);
+    const now = new Map();
+    for (let i = 0; i < count; ++i) {
+      now.set(ids[i], [x[i], y[i], t]);
+      const p = this.last.get(ids[i]);
+      if (!p || t <= p[2]) continue;
+      const d = Math.hypot(x[i] - p[0], y[i] - p[1]);
+      if (d > kSpeedJump) continue;
+      const ci = Math.floor((x[i] - this.minX) / this.cell), cj = Math.floor((y[i] - this.minY) / this.cell);
+      if (ci < 0 || ci >= this.nx || cj < 0 || cj >= this.ny) continue;
+      counts[cj * this.nx + ci] += 1;
+      sums[cj * this.nx + ci] += d / (t - p[2]);
+    }
+    this.last = now;
+    this.frames.push({ t, counts, sums });
+    for (let k = 0; k < counts.length; ++k) { this.sum[k] += counts[k]; this.speedSum[k] += sums[k]; }
+    while (this.frames.length > 1 && this.frames[0].t < t - this.seconds) {
+      const old = this.frames.shift();
+      for (let k = 0; k < old.counts.length; ++k) { this.sum[k] -= old.counts[k]; this.speedSum[k] -= old.sums[k]; }
+    }
+  }
+
+  /** Mean speed [m/s] of the samples in cell (i, j) over the window, or null when it has none. */
+  speed(i, j) {
+    const k = j * this.nx + i;
+    return this.sum[k] > 0 ? this.speedSum[k] / this.sum[k] : null;
+  }
+
+  /** The mean speed at world point (x, y) [m/s], or null (no samples, or outside the grid). */
+  speedAt(x, y) {
+    const i = Math.floor((x - this.minX) / this.cell), j = Math.floor((y - this.minY) / this.cell);
+    return i >= 0 && i < this.nx && j >= 0 && j < this.ny ? this.speed(i, j) : null;
+  }
+
+  recordFrame(f, t) { this.recordSpeeds(f.ids, f.x, f.y, f.count, t); }
+  value(i, j) { return this.speed(i, j); }
+}
+
+const kKinds = {
+  density: { Grid: DensityGrid, max: kDensityMax, lift: 0.04 },
+  speed: { Grid: SpeedGrid, max: kSpeedMax, lift: 0.05 },
+};
+
 export class Heatmap {
-  /** bounds: worldBounds (minZ: the plane's height). */
-  constructor(scene, bounds) {
-    this.grid = new DensityGrid(bounds);
+  /** bounds: worldBounds (minZ: the plane's height); kind: 'density' or 'speed'. */
+  constructor(scene, bounds, kind = 'density') {
+    const k = kKinds[kind];
+    this.kind = kind;
+    this.max = k.max;
+    this.grid = new k.Grid(bounds);
     const g = this.grid;
     this.data = new Uint8Array(g.nx * g.ny * 4);
     this.texture = new THREE.DataTexture(this.data, g.nx, g.ny, THREE.RGBAFormat);
@@ -73,9 +142,9 @@ export class Heatmap {
     const w = g.nx * g.cell, h = g.ny * g.cell;
     const plane = new THREE.PlaneGeometry(w, h);
     plane.rotateX(-Math.PI / 2);  // (u, v) = (0, 0) at world (minX, minY)
-    plane.translate(g.minX + w / 2, (bounds.minZ || 0) + 0.04, -(g.minY + h / 2));
+    plane.translate(g.minX + w / 2, (bounds.minZ || 0) + k.lift, -(g.minY + h / 2));
     this.mesh = new THREE.Mesh(plane, new THREE.MeshBasicMaterial({ map: this.texture, transparent: true, depthWrite: false }));
-    this.mesh.name = 'density-heatmap';
+    this.mesh.name = `${kind}-heatmap`;
     this.mesh.renderOrder = 2;
     this.mesh.visible = false;
     scene.add(this.mesh);
@@ -91,7 +160,7 @@ export class Heatmap {
   /** A crowd frame at simulated time t [s] (counted only while shown). */
   record(frame, t) {
     if (!this.enabled) return;
-    this.grid.record(frame.x, frame.y, frame.count, t);
+    this.grid.recordFrame(frame, t);
     this.stale = true;
   }
 
@@ -102,10 +171,10 @@ export class Heatmap {
     const g = this.grid, d = this.data;
     for (let j = 0; j < g.ny; ++j) {
       for (let i = 0; i < g.nx; ++i) {
-        const rho = g.density(i, j), o = (j * g.nx + i) * 4;
-        const c = rampColour(rho / kDensityMax);
+        const v = g.value(i, j), o = (j * g.nx + i) * 4, f = v === null ? 0 : Math.min(v / this.max, 1);
+        const c = rampColour(f);
         d[o] = (c >> 16) & 255; d[o + 1] = (c >> 8) & 255; d[o + 2] = c & 255;
-        d[o + 3] = rho > 0 ? Math.round(90 + 110 * Math.min(rho / kDensityMax, 1)) : 0;
+        d[o + 3] = v === null ? 0 : Math.round(90 + 110 * f);
       }
     }
     this.texture.needsUpdate = true;

@@ -2,14 +2,14 @@
 // mode's own entries (crowd/colour_by.js legendOf: groups, populations, the speed or density ramp,
 // states) under a "Colour by" menu (key B cycles the modes), then the marks that mean the same in
 // every mode: the selected agent, the picked group, you, other participants, the world's points,
-// exits, obstacles, walls and railings, stair risers and floor (and trails and the density map when they are on). Its header folds it away (folded at start
+// exits, obstacles, walls and railings, stair risers and floor (and trails, the density and the speed map when they are on). Its header folds it away (folded at start
 // on a viewport under 560 px high). Writes the #legend panel.
 import { kColourModes, kModeNames, legendOf } from '../crowd/colour_by.js';
 
 const hex = (c) => `#${c.toString(16).padStart(6, '0')}`;
 
 /** Entries shown in every mode: [{colour, shape, label}]; shape: dot, ring, pin, disc, area, line. */
-export function fixedEntries({ selected, pickedGroup, self, other, trails, heatmap }) {
+export function fixedEntries({ selected, pickedGroup, self, other, trails, heatmap, speedmap }) {
   return [
     { colour: selected, shape: 'ring', label: 'selected agent (ringed)' },
     { colour: pickedGroup, shape: 'dot', label: 'group picked in the list' },
@@ -24,6 +24,7 @@ export function fixedEntries({ selected, pickedGroup, self, other, trails, heatm
     { colour: 0xd8d4cc, shape: 'area', label: 'walkable floor' },
     ...(trails ? [{ colour: 0x555555, shape: 'line', label: 'trail: where each walked lately' }] : []),
     ...(heatmap ? legendOf('density').map((e) => ({ colour: e.colour, shape: 'area', label: `density map: ${e.label}` })) : []),
+    ...(speedmap ? legendOf('speed').map((e) => ({ colour: e.colour, shape: 'area', label: `speed map: ${e.label}` })) : []),
   ];
 }
 
@@ -34,6 +35,7 @@ export class Legend {
     this.marks = marks;
     this.trails = false;
     this.heatmap = false;
+    this.speedmap = false;
     root.innerHTML = '<div class="legend-head"><button class="fold" title="fold the legend">▾</button> Colour by '
       + '<select id="colour-by" title="what the agents\' colours say (B)"></select></div><div class="legend-body"></div>';
     this.select = root.querySelector('#colour-by');
@@ -54,12 +56,12 @@ export class Legend {
 
   /** Redraws when the mode, the populations or the groups changed. */
   update(mode, context) {
-    const key = JSON.stringify([mode, context.populations, (context.groups || []).length, this.trails, this.heatmap]);
+    const key = JSON.stringify([mode, context.populations, (context.groups || []).length, this.trails, this.heatmap, this.speedmap]);
     if (key === this.key) return;
     this.key = key;
     this.select.value = mode;
     const rows = [...legendOf(mode, context).map((e) => ({ ...e, shape: 'dot' })), { separator: true },
-      ...fixedEntries({ ...this.marks, trails: this.trails, heatmap: this.heatmap })];
+      ...fixedEntries({ ...this.marks, trails: this.trails, heatmap: this.heatmap, speedmap: this.speedmap })];
     this.body.innerHTML = '';
     for (const r of rows) {
       const row = document.createElement('div');
