@@ -314,7 +314,8 @@ typedef enum throng_event_kind {
   THRONG_EVENT_COORDINATION_END = 20,  /* a = coordination id, b = outcome */
   THRONG_EVENT_VISIT_START = 21,       /* a = point, b = coordination id */
   THRONG_EVENT_VISIT_END = 22,         /* a = point, b = coordination id */
-  THRONG_EVENT_REUNITED = 23           /* a = group, b = coordination id */
+  THRONG_EVENT_REUNITED = 23,          /* a = group, b = coordination id */
+  THRONG_EVENT_EXIT_CHOSEN = 24        /* exit choice; agent = the group's leader; a = exit point, b = the exit before (0xffffffff: first choice) */
 } throng_event_kind;
 
 /* One thing that happened to an agent. */
