@@ -327,25 +327,13 @@ class Simulation {
   /// next recorded frame (the recording misses nothing Python looked at first).
   void keep(const sim::FramePtr& frame) {
     pyEvents_.insert(pyEvents_.end(), frame->events.begin(), frame->events.end());
-    if (recorder_) {
-      carry_.events.insert(carry_.events.end(), frame->events.begin(), frame->events.end());
-      carry_.script.insert(carry_.script.end(), frame->script.begin(), frame->script.end());
-      carry_.coordinations.insert(carry_.coordinations.end(), frame->coordinations.begin(), frame->coordinations.end());
-    }
+    if (recorder_) carry_.add(*frame);
   }
 
   void record(sim::FramePtr frame) {
     pyEvents_.insert(pyEvents_.end(), frame->events.begin(), frame->events.end());
     if (!recorder_) return;
-    if (!carry_.events.empty() || !carry_.script.empty() || !carry_.coordinations.empty()) {
-      auto merged = std::make_shared<sim::Frame>(*frame);
-      merged->events.insert(merged->events.begin(), carry_.events.begin(), carry_.events.end());
-      merged->script.insert(merged->script.begin(), carry_.script.begin(), carry_.script.end());
-      merged->coordinations.insert(merged->coordinations.begin(), carry_.coordinations.begin(), carry_.coordinations.end());
-      carry_ = {};
-      frame = std::move(merged);
-    }
-    recorder_->push(std::move(frame));
+    recorder_->push(carry_.merge(std::move(frame)));
   }
 
   std::shared_ptr<const io::LoadedScenario> loaded_;
@@ -354,7 +342,7 @@ class Simulation {
   std::unique_ptr<core::TaskSystem> tasks_;
   std::unique_ptr<recording::Recorder> recorder_;
   std::uint64_t stride_ = 1;
-  sim::Frame carry_;                  ///< what Python's own frames drained, for the next recorded one
+  recording::FrameCarry carry_;       ///< what Python's own frames drained, for the next recorded one
   std::vector<sim::Event> pyEvents_;  ///< events not yet handed to events()
   bool closed_ = false;
 };

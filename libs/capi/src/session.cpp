@@ -65,11 +65,7 @@ const sim::Frame& Session::frame() {
 /// script records into the next recorded frame (the recording misses nothing the caller read).
 void Session::keep(const sim::FramePtr& frame) {
   pending_.insert(pending_.end(), frame->events.begin(), frame->events.end());
-  if (recorder_) {
-    carry_.events.insert(carry_.events.end(), frame->events.begin(), frame->events.end());
-    carry_.script.insert(carry_.script.end(), frame->script.begin(), frame->script.end());
-    carry_.coordinations.insert(carry_.coordinations.end(), frame->coordinations.begin(), frame->coordinations.end());
-  }
+  if (recorder_) carry_.add(*frame);
   current_ = frame;
 }
 
@@ -77,15 +73,7 @@ void Session::keep(const sim::FramePtr& frame) {
 void Session::push(sim::FramePtr frame) {
   pending_.insert(pending_.end(), frame->events.begin(), frame->events.end());
   current_ = frame;
-  if (!carry_.events.empty() || !carry_.script.empty() || !carry_.coordinations.empty()) {
-    auto merged = std::make_shared<sim::Frame>(*frame);
-    merged->events.insert(merged->events.begin(), carry_.events.begin(), carry_.events.end());
-    merged->script.insert(merged->script.begin(), carry_.script.begin(), carry_.script.end());
-    merged->coordinations.insert(merged->coordinations.begin(), carry_.coordinations.begin(), carry_.coordinations.end());
-    carry_ = {};
-    frame = std::move(merged);
-  }
-  recorder_->push(std::move(frame));
+  recorder_->push(carry_.merge(std::move(frame)));
 }
 
 std::vector<std::uint32_t> Session::groupsOf(const sim::Frame& frame) const {

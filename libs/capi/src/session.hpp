@@ -72,7 +72,7 @@ class Session {
   std::unique_ptr<recording::Recorder> recorder_;
   std::uint64_t stride_ = 1;       ///< ticks between recorded frames (1 when not recording)
   sim::FramePtr current_;          ///< the frame of the current tick, once taken
-  sim::Frame carry_;               ///< what frames taken for the caller drained, for the next recorded one
+  recording::FrameCarry carry_;    ///< what frames taken for the caller drained, for the next recorded one
   std::deque<sim::Event> pending_; ///< events not yet handed out
 };
 

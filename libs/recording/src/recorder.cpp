@@ -117,6 +117,22 @@ constexpr std::uint32_t kMaxTrackedAgentId = 1u << 26;
 
 }  // namespace
 
+void FrameCarry::add(const sim::Frame& frame) {
+  carried_.events.insert(carried_.events.end(), frame.events.begin(), frame.events.end());
+  carried_.script.insert(carried_.script.end(), frame.script.begin(), frame.script.end());
+  carried_.coordinations.insert(carried_.coordinations.end(), frame.coordinations.begin(), frame.coordinations.end());
+}
+
+sim::FramePtr FrameCarry::merge(sim::FramePtr frame) {
+  if (carried_.events.empty() && carried_.script.empty() && carried_.coordinations.empty()) return frame;
+  auto merged = std::make_shared<sim::Frame>(*frame);
+  merged->events.insert(merged->events.begin(), carried_.events.begin(), carried_.events.end());
+  merged->script.insert(merged->script.begin(), carried_.script.begin(), carried_.script.end());
+  merged->coordinations.insert(merged->coordinations.begin(), carried_.coordinations.begin(), carried_.coordinations.end());
+  carried_ = {};
+  return merged;
+}
+
 const char* eventKindName(sim::EventKind kind) {
   switch (kind) {
     case sim::EventKind::Spawn: return "spawn";

@@ -58,7 +58,6 @@ void ExitChoice::prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, std
     for (const std::uint32_t point : pop.exits) {
       if (exitOfPoint_[point] >= 0) continue;
       Exit e;
-      e.point = point;
       e.field = nav::DistanceField::build(mesh, targetOf(desc.points[point]), config);
       e.capacity = kExitSpecificFlow * desc.points[point].width;
       e.queue.reset(static_cast<std::size_t>(e.field.maxDistance() / kBin) + 2);
@@ -66,11 +65,6 @@ void ExitChoice::prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, std
       exits_.push_back(std::move(e));
     }
   }
-}
-
-float ExitChoice::distance(std::uint32_t point, core::Vec2 p, nav::PolyRef ref) const {
-  if (point >= exitOfPoint_.size() || exitOfPoint_[point] < 0) return nav::DistanceField::kUnreachable;
-  return exits_[static_cast<std::size_t>(exitOfPoint_[point])].field.at(p, ref);
 }
 
 void ExitChoice::setClosed(std::uint32_t point, bool closed) {

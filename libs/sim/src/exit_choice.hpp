@@ -54,8 +54,6 @@ class ExitChoice {
   /// closed exit, choose again; a change re-targets the members walking to the exit.
   void step(std::uint64_t tick, std::span<const std::uint32_t> rowOfId, GoalWriter& goals, const core::TaskSystem& tasks);
 
-  /// Distance [m] from `p` on `ref` to exit point `point` (kUnreachable without a field).
-  [[nodiscard]] float distance(std::uint32_t point, core::Vec2 p, nav::PolyRef ref) const;
 
  private:
   /// Agents heading for one exit by distance bin, as a Fenwick tree: adding one and counting
@@ -74,7 +72,6 @@ class ExitChoice {
     std::vector<std::int32_t> tree_;
   };
   struct Exit {
-    std::uint32_t point = 0;
     nav::DistanceField field;
     float capacity = 1.0f;               ///< persons/s (kExitSpecificFlow × the point's width)
     bool closed = false;

@@ -56,7 +56,6 @@ class DistanceField {
   /// Largest finite distance of any node [m] (0 for an empty field).
   [[nodiscard]] float maxDistance() const { return maxDistance_; }
   [[nodiscard]] bool empty() const { return targetPolys_.empty(); }
-  [[nodiscard]] std::size_t nodeCount() const { return nodeX_.size(); }
 
   /// What build() gathers about a portal before the distances are known (nodes [first, first + count)).
   struct Span {

@@ -25,6 +25,21 @@ struct RecordingOptions {
   std::size_t queueFrames = 64;    ///< frames queued before push() blocks [Limit: >= 1]
 };
 
+/// What frames taken between recorded ticks drained from the world (events, Common Ground script
+/// records, coordinations), carried into the next recorded frame, so a recording misses nothing a
+/// caller read first (the C API's and the Python module's sessions).
+class FrameCarry {
+ public:
+  /// Keeps `frame`'s records for the next recorded frame.
+  void add(const sim::Frame& frame);
+  /// `frame` itself when nothing is carried; else a copy with the carried records before its own
+  /// (and nothing carried any more).
+  [[nodiscard]] sim::FramePtr merge(sim::FramePtr frame);
+
+ private:
+  sim::Frame carried_;
+};
+
 class Recorder {
  public:
   /// Checks the path (exists without force, unwritable directory) and creates the file with its
