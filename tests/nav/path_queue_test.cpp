@@ -1,5 +1,6 @@
 // Tests for throng::nav::PathQueue (libs/nav/src/path_queue.cpp): budgeted progress across
-// updates, FIFO completion, equality with NavQuery::findPath, ticket expiry.
+// updates, FIFO completion, equality with NavQuery::findPath, ticket expiry, and the parallel
+// update (searches ahead on a TaskSystem) completing every request as one thread does.
 #include "throng/nav/path_queue.hpp"
 
 #include <gtest/gtest.h>
@@ -90,6 +91,83 @@ TEST(PathQueue, ZeroBudgetStillProgresses) {
   for (int i = 0; i < 100 && queue.state(ticket) == TicketState::Pending; ++i) queue.update(0);
   ASSERT_EQ(queue.state(ticket), TicketState::Done);
   EXPECT_EQ(queue.take(ticket).status, PathStatus::Complete);
+}
+
+}  // namespace
+}  // namespace throng::nav
+
+namespace throng::nav {
+namespace {
+
+/// What one update did: how many completed, and every ticket's state and (when taken) result.
+struct UpdateTrace {
+  int completed = 0;
+  std::vector<TicketState> states;
+  std::vector<std::pair<PathTicket, PathResult>> taken;
+};
+
+/// Feeds `queue` the same stream of requests and budgets for every queue (seeded), taking each
+/// finished result; the trace says what happened in each update.
+std::vector<UpdateTrace> drive(PathQueue& queue, const core::TaskSystem* tasks) {
+  core::Rng rng(11, 0, core::RngPurpose::Bench);
+  std::vector<PathTicket> open;
+  std::vector<UpdateTrace> trace;
+  for (int u = 0; u < 1000; ++u) {
+    const int arrivals = u < 300 ? static_cast<int>(rng.uniform(0, 9)) : 0;
+    for (int k = 0; k < arrivals; ++k) {
+      Vec2 from{static_cast<float>(rng.uniform(1, 99)), static_cast<float>(rng.uniform(1, 99))};
+      Vec2 to{static_cast<float>(rng.uniform(1, 99)), static_cast<float>(rng.uniform(1, 99))};
+      const double kind = rng.uniform(0, 1);
+      if (kind < 0.05) from = {400, 400};                    // start off the mesh: Failed at once
+      else if (kind < 0.10) to = {-300, 50};                 // end off the mesh: Partial at once
+      else if (kind < 0.15) to = {from.x + 0.01f, from.y};   // one polygon: no expansion at all
+      open.push_back(queue.request(from, to));
+    }
+    UpdateTrace t;
+    t.completed = queue.update(static_cast<int>(rng.uniform(1, 600)), tasks);
+    for (PathTicket ticket : open) t.states.push_back(queue.state(ticket));
+    for (std::size_t k = 0; k < open.size();) {
+      if (queue.state(open[k]) == TicketState::Done && rng.uniform(0, 1) < 0.9) {  // some read late
+        t.taken.emplace_back(open[k], queue.take(open[k]));
+        open.erase(open.begin() + static_cast<std::ptrdiff_t>(k));
+      } else {
+        ++k;
+      }
+    }
+    trace.push_back(std::move(t));
+  }
+  return trace;
+}
+
+TEST(PathQueue, ParallelSearchCompletesTheSameRequestsInTheSameUpdatesAsOneThread) {
+  auto mesh = pillarWorld();
+  ASSERT_TRUE(mesh);
+  PathQueue serial(mesh), parallel(mesh);
+  const core::TaskSystem one(1), four(4);
+  const std::vector<UpdateTrace> a = drive(serial, &one);
+  const std::vector<UpdateTrace> b = drive(parallel, &four);
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t results = 0, sliced = 0;
+  for (std::size_t u = 0; u < a.size(); ++u) {
+    ASSERT_EQ(a[u].completed, b[u].completed) << "update " << u;
+    ASSERT_EQ(a[u].states, b[u].states) << "update " << u;
+    ASSERT_EQ(a[u].taken.size(), b[u].taken.size()) << "update " << u;
+    for (std::size_t k = 0; k < a[u].taken.size(); ++k) {
+      EXPECT_EQ(a[u].taken[k].first, b[u].taken[k].first);
+      EXPECT_EQ(a[u].taken[k].second.status, b[u].taken[k].second.status);
+      ASSERT_EQ(a[u].taken[k].second.corners.size(), b[u].taken[k].second.corners.size());
+      for (std::size_t c = 0; c < a[u].taken[k].second.corners.size(); ++c) {
+        EXPECT_EQ(a[u].taken[k].second.corners[c].x, b[u].taken[k].second.corners[c].x);
+        EXPECT_EQ(a[u].taken[k].second.corners[c].y, b[u].taken[k].second.corners[c].y);
+      }
+      ++results;
+    }
+    for (TicketState s : a[u].states) sliced += s == TicketState::Pending ? 1 : 0;
+  }
+  EXPECT_GT(results, 1000u);  // the stream really ran through both queues
+  EXPECT_GT(sliced, 1000u);   // and the budgets really left requests waiting across updates
+  EXPECT_EQ(serial.pending(), 0u);
+  EXPECT_EQ(parallel.pending(), 0u);
 }
 
 }  // namespace

@@ -197,7 +197,8 @@ struct LeaderOutput {
 
 void updateLeaders(const LeaderInput& in, const LeaderOutput& out);
 
-// ---- plan (plan.cpp): budgeted path planning through nav::PathQueue (serial, row order).
+// ---- plan (plan.cpp): budgeted path planning through nav::PathQueue (requests in row order; the
+// searches on the workers, results independent of their number).
 
 struct PlanInput {
   std::uint64_t tick;
@@ -206,6 +207,9 @@ struct PlanInput {
   std::span<const float> posX, posY, targetX, targetY;
   std::span<const float> posZ, targetZ;               ///< floor heights; empty on a flat world
   GoalView goals;                                     ///< the goal a PathPartial event names
+  /// Workers the queue searches on ahead of the requests' turn (nav::PathQueue::update); results
+  /// are the same with or without them. nullptr: on the calling thread.
+  const core::TaskSystem* tasks = nullptr;
 };
 
 struct PlanOutput {

@@ -1,6 +1,8 @@
-// plan — budgeted path planning (serial, in row = stable id order, so deterministic): agents that
+// plan — budgeted path planning (requests in row = stable id order, so deterministic): agents that
 // asked for a path submit a request to the nav::PathQueue; the queue spends at most
-// kPathIterationsPerTick node expansions; finished paths are handed to their agents. Until its path
+// kPathIterationsPerTick node expansions, searching on the workers ahead of the requests' turn
+// (the same results and completion ticks on any number of threads); finished paths are handed to
+// their agents. Until its path
 // arrives an agent walks straight at its target (as DetourCrowd does); on a multi-level world it
 // searches with its population's stair cost (the queue's cost class). Reads PlanInput (positions,
 // targets, floor heights, ids, populations, goals for events); writes PlanOutput (needPath, tickets, corners,
@@ -22,7 +24,7 @@ void plan(const PlanInput& in, const PlanOutput& out) {
     out.ticket[row] = levels ? queue.request(from, in.posZ[row], to, in.targetZ[row], in.population[row])
                              : queue.request(from, to);
   }
-  queue.update(kPathIterationsPerTick);
+  queue.update(kPathIterationsPerTick, in.tasks);
   for (std::size_t row = 0; row < n; ++row) {
     const nav::PathTicket t = out.ticket[row];
     if (t == 0) continue;

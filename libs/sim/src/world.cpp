@@ -93,7 +93,7 @@ void World::step(const core::TaskSystem& tasks, PhaseObserver* observer) {
   }
   { Scope s(observer, "sense"); w.sense(tasks); }
   { Scope s(observer, "decide"); w.decide(tasks); }
-  { Scope s(observer, "plan"); w.plan(); }
+  { Scope s(observer, "plan"); w.plan(tasks); }
   { Scope s(observer, "steer"); w.steer(tasks); }
   if (w.partition.exchange != nullptr) { Scope s(observer, "exchange"); w.exchangeSteer(); }
   { Scope s(observer, "integrate"); w.integrate(tasks); }
@@ -150,13 +150,13 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
   decideGroups(tasks);
 }
 
-void World::Impl::plan() {
+void World::Impl::plan(const core::TaskSystem& tasks) {
   // Route costs per population (stairs: multi-level worlds), populations inserted at run time too.
   if (navmesh->layered() && pathQueue->costClasses() < desc.populations.size()) {
     pathQueue->setStairCosts(stairCosts(desc.populations));
   }
   sim::plan(PlanInput{tick, agents.id, agents.population, agents.posX, agents.posY, agents.targetX, agents.targetY, agents.posZ,
-                      agents.targetZ, goalView()},
+                      agents.targetZ, goalView(), &tasks},
             PlanOutput{agents.needPath, agents.ticket, agents.corners, *pathQueue, pendingEvents});
 }
 

@@ -146,7 +146,7 @@ struct World::Impl {
   /// decide (decide.cpp, phases.hpp), then the group pass.
   void decide(const core::TaskSystem& tasks);
   void decideGroups(const core::TaskSystem& tasks);  ///< group pass (groups.cpp), after the per-agent part of decide
-  void plan();
+  void plan(const core::TaskSystem& tasks);
   void steer(const core::TaskSystem& tasks);
   void integrate(const core::TaskSystem& tasks);
   void emit();

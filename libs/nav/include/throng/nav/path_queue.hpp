@@ -1,7 +1,10 @@
 // throng::nav::PathQueue — time-sliced path planning (after DetourPathQueue): requests queue up and
 // each tick's `update` spends at most a fixed budget of search iterations, so thousands of agents
 // re-planning in one tick never stall it. Results are polled by ticket; unread ones expire.
-// Requests are served strictly in submission order, so the outcome is deterministic.
+// Requests are served strictly in submission order, so the outcome is deterministic. Given a
+// TaskSystem of several threads, update searches the next requests in parallel ahead of their turn
+// and replays the budget over them: every result, and the update it completes in, is the same as
+// on one thread.
 #pragma once
 #include <cstdint>
 #include <cstddef>
@@ -10,6 +13,7 @@
 #include <span>
 #include <vector>
 
+#include "throng/core/parallel.hpp"
 #include "throng/nav/navmesh.hpp"
 
 namespace throng::nav {
@@ -36,13 +40,18 @@ class PathQueue {
   /// Route costs: class i searches with stairs (kStairArea) costing `stairCost[i]` times their
   /// length (level ground costs 1 per metre). Without a call: one class, stairs at cost 1. May be
   /// called at any time (more classes for populations added later); a search under way keeps its
-  /// class. [Limit: each >= 1, finite, so Detour's A* heuristic stays admissible]
+  /// class's costs as they were when it began. [Limit: each >= 1, finite, so Detour's A* heuristic
+  /// stays admissible]
   void setStairCosts(std::span<const float> stairCost);
   /// How many cost classes setStairCosts has set (0 before any call).
   [[nodiscard]] std::size_t costClasses() const;
   /// Runs queued searches until `iterationBudget` Detour node expansions are spent (at least one
-  /// request progresses per call). Returns how many requests completed.
-  int update(int iterationBudget);
+  /// request progresses per call). Returns how many requests completed. With `tasks` of more than
+  /// one thread the searches run on its workers (each with a Detour query of its own), searched
+  /// whole ahead of their turn; the budget is then spent on them as the sliced search would have
+  /// spent it, so which requests complete in which update, and their results, never depend on
+  /// the thread count.
+  int update(int iterationBudget, const core::TaskSystem* tasks = nullptr);
   [[nodiscard]] TicketState state(PathTicket ticket) const;
   /// Takes a finished result (the ticket is then forgotten). Precondition: state == Done.
   PathResult take(PathTicket ticket);
