@@ -276,6 +276,20 @@ def dynamic_exits(name):
     return s
 
 
+AFFILIATION = {"agents": 40}
+
+
+def affiliation(name, familiar):
+    """NIST 3.3: RiMEA 11's room with 40 persons (few enough that walking, not queueing, decides),
+    who know only the north ("far") exit when `familiar`: their exit choice (quickest rule) prices
+    the unknown south door at the default familiarity, twice its cost; the control run knows both."""
+    s = exit_choice(name)
+    s["populations"][0]["groups"] = AFFILIATION["agents"]
+    if familiar:
+        s["populations"][0]["exitChoice"]["familiar"] = ["far"]
+    return s
+
+
 # --- RiMEA 12 / NIST 5.1: two bottlenecks in a row ----------------------------------------------------
 BOTTLENECKS = {"agents": 150, "first": (10.0, 20.0), "second": 30.0, "door_y": (4.5, 5.5),
                "area_first": (8.0, 10.0, 4.0, 6.0), "area_second": (28.0, 30.0, 4.0, 6.0)}

@@ -86,6 +86,37 @@ TEST(ScenarioExitChoice, BadChoicesAreLocated) {
             "every share is 0");
 }
 
+TEST(ScenarioExitChoice, FamiliarExitsLoadAndMustBeThePopulationsOwn) {
+  auto r = load(withExits(R"("exits": ["exit", "east"], "exitChoice": {"rule": "nearest", "familiar": ["east"], "familiarity": 2})"));
+  ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
+  const sim::ExitChoiceDesc& c = r.value().desc.populations[0].exitChoice;
+  EXPECT_EQ(c.familiar, (std::vector<std::uint32_t>{2}));
+  EXPECT_FLOAT_EQ(c.familiarity, 2.0f);
+  auto plain = load(withExits(R"("exits": ["exit", "east"])"));
+  ASSERT_TRUE(plain.ok());
+  EXPECT_TRUE(plain.value().desc.populations[0].exitChoice.familiar.empty());
+  EXPECT_FLOAT_EQ(plain.value().desc.populations[0].exitChoice.familiarity, 2.0f);
+
+  const std::string gap = withExits(R"("exits": ["exit", "east"], "exitChoice": {"familiar": ["gap"]})");
+  const auto d = at(errorsOf(gap), kPop + "/exitChoice/familiar/0");
+  EXPECT_EQ(d.what, "point \"gap\" is not one of the population's exits");
+  EXPECT_EQ(d.hint, "add it to \"exits\"");
+  EXPECT_EQ(at(errorsOf(withExits(R"("exits": ["exit", "east"], "exitChoice": {"familiar": ["east", "east"]})")),
+               kPop + "/exitChoice/familiar/1").what,
+            "exit \"east\" listed twice");
+  EXPECT_EQ(at(errorsOf(withExits(R"("exits": ["exit", "east"], "exitChoice": {"familiar": "east"})")), kPop + "/exitChoice/familiar").what,
+            "wrong type: a string");
+  EXPECT_EQ(at(errorsOf(withExits(R"("exits": ["exit", "east"], "exitChoice": {"familiarity": 0.5})")),
+               kPop + "/exitChoice/familiarity").what,
+            "value 0.5 is out of range");
+  EXPECT_EQ(at(errorsOf(withExits(R"("exits": ["exit", "east"], "exitChoice": {"rule": "allocation", "familiar": ["east"]})")),
+               kPop + "/exitChoice/familiar").what,
+            "\"familiar\" only applies to the nearest and quickest rules");
+  // A wrong "exits" is said once, not again for each familiar exit.
+  const auto errors = errorsOf(withExits(R"("exits": ["exit", "gap"], "exitChoice": {"familiar": ["exit"]})"));
+  for (const auto& e : errors) EXPECT_NE(e.pointer, kPop + "/exitChoice/familiar/0") << e.what;
+}
+
 TEST(ScenarioExitChoice, WidthOnlyOnExitsAndTimelineClosesOnlyExits) {
   const std::string width = edit(kBottleneck, R"("radius": 0.5})", R"("radius": 0.5, "width": 2})");
   EXPECT_EQ(at(errorsOf(width), "/points/0/width").what, "\"width\" only applies to exit points");

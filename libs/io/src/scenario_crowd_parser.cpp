@@ -2,7 +2,8 @@
 // (a list of point ids, or "auto": a final action point per group, interest points near the way),
 // "paths", "autoNearDistance", "flocking", "waitTimeout", "groupSpacing", "follow" (its population
 // id resolved once every population is read), "guide" (a timed waypoint script, its release) and
-// "sociological"; see docs/scenario-format.md "Crowd model". Reads a population's JSON object;
+// "sociological"; see docs/scenario-format.md "Crowd model"; and "exits" with "exitChoice" (rule,
+// period, hysteresis, shares, familiar exits and familiarity; "Exit choice"). Reads a population's JSON object;
 // writes sim::PopulationDesc fields and diagnostics. Private to throng_io.
 #include <algorithm>
 #include <cstdint>
@@ -79,11 +80,43 @@ bool ScenarioReader::readExits(const Json& v, const std::string& ptr, sim::Popul
   return ok;
 }
 
-bool ScenarioReader::readExitChoice(const Json& v, const std::string& ptr, sim::PopulationDesc& p) {
-  if (!isObject(v, ptr, "{\"rule\": \"quickest\" | \"nearest\" | \"allocation\", \"period\", \"hysteresis\", \"shares\"}")) {
+/// exitChoice.familiar: ids of exits the population lists in "exits", each once.
+bool ScenarioReader::readFamiliar(const Json& v, const std::string& ptr, sim::PopulationDesc& p) {
+  const std::string expected = "an array of ids of this population's \"exits\", each once";
+  if (!v.is_array()) {
+    error(ptr, "wrong type: " + describeType(v), expected);
     return false;
   }
-  checkKeys(v, ptr, {"rule", "period", "hysteresis", "shares"}, "exit choice");
+  bool ok = true;
+  std::vector<std::uint32_t>& known = p.exitChoice.familiar;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const std::string eptr = ptr + "/" + std::to_string(k);
+    std::uint32_t index = 0;
+    if (!resolvePoint(v[k], eptr, index)) {
+      ok = false;
+    } else if (p.exits.empty()) {
+      ok = false;  // "exits" itself was wrong, and said so
+    } else if (std::find(p.exits.begin(), p.exits.end(), index) == p.exits.end()) {
+      error(eptr, "point " + quote(pointIds_[index]) + " is not one of the population's exits", expected,
+            "add it to \"exits\"");
+      ok = false;
+    } else if (std::find(known.begin(), known.end(), index) != known.end()) {
+      error(eptr, "exit " + quote(pointIds_[index]) + " listed twice", expected);
+      ok = false;
+    } else {
+      known.push_back(index);
+    }
+  }
+  if (!ok) known.clear();
+  return ok;
+}
+
+bool ScenarioReader::readExitChoice(const Json& v, const std::string& ptr, sim::PopulationDesc& p) {
+  if (!isObject(v, ptr, "{\"rule\": \"quickest\" | \"nearest\" | \"allocation\", \"period\", \"hysteresis\", \"shares\", "
+                       "\"familiar\", \"familiarity\"}")) {
+    return false;
+  }
+  checkKeys(v, ptr, {"rule", "period", "hysteresis", "shares", "familiar", "familiarity"}, "exit choice");
   sim::ExitChoiceDesc& c = p.exitChoice;
   bool ok = true;
   if (auto* x = optional(v, "rule")) {
@@ -94,7 +127,17 @@ bool ScenarioReader::readExitChoice(const Json& v, const std::string& ptr, sim::
       ok = false;
     }
   }
-  ok = readFloatKeys(v, ptr, {{"period", {0, 3600, true, "s"}, &c.period}, {"hysteresis", {0, 1, false, ""}, &c.hysteresis}}) && ok;
+  ok = readFloatKeys(v, ptr, {{"period", {0, 3600, true, "s"}, &c.period}, {"hysteresis", {0, 1, false, ""}, &c.hysteresis},
+                             {"familiarity", {1, 100, false, ""}, &c.familiarity}}) && ok;
+  if (auto* x = optional(v, "familiar")) {
+    if (c.rule == sim::ExitRule::Allocation) {
+      error(ptr + "/familiar", "\"familiar\" only applies to the nearest and quickest rules",
+            "\"rule\": \"nearest\" or \"quickest\", or no \"familiar\"", "", true);
+      ok = false;
+    } else {
+      ok = readFamiliar(*x, ptr + "/familiar", p) && ok;
+    }
+  }
   if (auto* x = optional(v, "shares")) {
     const std::string sptr = ptr + "/shares";
     const std::string expected = "one share >= 0 per exit (" + std::to_string(p.exits.size()) + "), not all 0";

@@ -330,6 +330,7 @@ class ScenarioReader {
   bool readGoals(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   bool readExits(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   bool readExitChoice(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
+  bool readFamiliar(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   bool readCrowdKeys(const Json& v, const std::string& ptr, std::size_t index, sim::PopulationDesc& p);
   /// "model" (scenario_model_parser.cpp): a model name, or {"name", parameters of that model}.
   bool readModel(const Json& v, const std::string& ptr, sim::ModelDesc& m);

@@ -88,9 +88,14 @@ std::uint32_t ExitChoice::better(const PopulationDesc& pop, ExitRule rule, std::
                                  nav::PolyRef ref, float speed) const {
   double best = kNever, now = kNever;
   std::uint32_t choice = current;
+  const std::vector<std::uint32_t>& known = pop.exitChoice.familiar;
   for (const std::uint32_t point : pop.exits) {
     const Exit& e = exits_[static_cast<std::size_t>(exitOfPoint_[point])];
-    const double c = cost(e, rule, e.field.at(p, ref), speed);
+    double c = cost(e, rule, e.field.at(p, ref), speed);
+    // Affiliation: an exit the group does not know looks this much dearer (kNever stays kNever).
+    if (!known.empty() && c < kNever && std::find(known.begin(), known.end(), point) == known.end()) {
+      c *= static_cast<double>(pop.exitChoice.familiarity);
+    }
     if (point == current) now = c;
     if (c < best) {
       best = c;

@@ -164,6 +164,13 @@ struct ExitChoiceDesc {
   float hysteresis = 0.2f;
   /// Allocation: one share per exit (normalised; empty: equal shares).
   std::vector<float> shares;
+  /// Affiliation (Sime 1985; NIST TN 1822 test 3.3): the exits the group knows (point indices,
+  /// each one of the population's exits). Empty: every exit is as familiar as any other.
+  std::vector<std::uint32_t> familiar;
+  /// Nearest and Quickest with `familiar`: the cost of an exit the group does not know is
+  /// multiplied by this, so a familiar exit is preferred while it costs less than this many times
+  /// the best unknown one [Limit: 1..100].
+  float familiarity = 2.0f;
 };
 
 struct PopulationDesc {
