@@ -293,9 +293,11 @@ bool World::release(GroupId handle) {
 
 std::optional<AgentInfo> World::agentInfo(std::uint32_t id) const {
   const Impl& w = *impl_;
-  if (id >= w.rowOfId.size() || w.rowOfId[id] == kNoRow) return std::nullopt;
-  const std::uint32_t row = w.rowOfId[id];
   const AgentStore& a = w.agents;
+  // Rows are in ascending id order; rowOfId may be a tick old here (agents that exited in emit).
+  const auto it = std::lower_bound(a.id.begin(), a.id.end(), id);
+  if (it == a.id.end() || *it != id) return std::nullopt;
+  const auto row = static_cast<std::size_t>(it - a.id.begin());
   AgentInfo info;
   info.id = id;
   info.group = a.group[row];
