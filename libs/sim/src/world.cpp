@@ -227,6 +227,19 @@ FramePtr World::takeFrame() {
   return sim::takeFrame(FrameInput{w.agents, w.tick, w.desc.dt}, FrameOutput{w.spawner, w.pendingEvents, w.commonGround});
 }
 
+AgentColumns World::agentColumns() const {
+  const AgentStore& a = impl_->agents;
+  return {a.id, a.group, a.posX, a.posY, a.posZ, a.velX, a.velY, a.oriX, a.oriY, a.mode, a.animClip, a.animPhase};
+}
+
+void World::keepRetiredColumns(bool on) { impl_->agents.keepRetired = on; }
+
+std::vector<std::shared_ptr<const void>> World::takeRetiredColumns() {
+  std::vector<std::shared_ptr<const void>> out = std::move(impl_->agents.retired);
+  impl_->agents.retired.clear();
+  return out;
+}
+
 bool World::finished() const {
   const Impl& w = *impl_;
   if (w.stats.scheduled > 0 || w.crowdsPending()) return false;
