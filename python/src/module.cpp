@@ -159,6 +159,10 @@ void bindSimulation(py::module_& m) {
            "Queues a crowd (JSON text of a throng-crowd/1 file; docs/scenario-format.md) for the next tick; "
            "returns its index. ScenarioError lists every problem.")
       .def("remove_crowd", &Simulation::removeCrowd, py::arg("id"), "Its agents leave at the next tick.")
+      .def("remove_agents", &Simulation::removeAgents, py::arg("ids"),
+           "These agents (stable ids: an int, a list, a numpy array) leave at the next tick, each with an exit event "
+           "(a = b = 4294967295); their groups go on with the others (a removed leader hands over to the lowest id "
+           "left). ValueError naming every id not present now, listed twice or already queued; nothing is removed then.")
       .def_property_readonly("stats", &Simulation::stats, "running totals (dict)")
       .def_property_readonly("time", &Simulation::time, "simulated time [s]")
       .def_property_readonly("tick", &Simulation::tickCount)

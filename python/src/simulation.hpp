@@ -288,6 +288,41 @@ class Simulation {
     return index.value();
   }
 
+  /// Queues the removal of these agents (stable ids; an int or any iterable of ints, numpy arrays
+  /// included) for the next tick. ValueError naming every bad id, with nothing queued.
+  void removeAgents(const py::handle& ids) {
+    usable();
+    std::vector<std::uint32_t> list;
+    std::string bad;
+    auto add = [&](const py::handle& item, std::size_t i) {
+      const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(item.ptr()));
+      if (!index) {
+        PyErr_Clear();
+        throw py::type_error("remove_agents: ids[" + std::to_string(i) + "] is a " + std::string(py::str(item.get_type().attr("__name__"))) +
+                             "; expected an int agent id");
+      }
+      const long long id = index.cast<long long>();
+      if (id < 0 || id > 0xffffffffLL) bad += "; ids[" + std::to_string(i) + "]: " + std::to_string(id) + " is not an agent id (expected 0 .. 4294967295)";
+      list.push_back(static_cast<std::uint32_t>(id));
+    };
+    if (py::isinstance<py::str>(ids) || py::isinstance<py::bytes>(ids)) throw py::type_error("remove_agents expects agent ids (ints), not a string");
+    if (py::isinstance<py::iterable>(ids)) {
+      std::size_t i = 0;
+      for (const py::handle item : py::reinterpret_borrow<py::iterable>(ids)) add(item, i++);
+    } else if (PyIndex_Check(ids.ptr())) {
+      add(ids, 0);
+    } else {
+      throw py::type_error("remove_agents expects an agent id or an iterable of ids (ints), got " +
+                           std::string(py::str(ids.get_type().attr("__name__"))));
+    }
+    if (!bad.empty()) throw py::value_error("remove_agents: " + bad.substr(2));
+    const core::Status queued = world_->removeAgents(list);
+    if (queued) return;
+    std::string what;
+    for (const core::Diagnostic& d : queued.errors()) what += "; ids[" + d.pointer.substr(1) + "]: " + d.what;
+    throw py::value_error("remove_agents: " + what.substr(2) + " (nothing removed)");
+  }
+
   void removeCrowd(const std::string& id) {
     usable();
     if (!world_->removeCrowd(id)) throw py::key_error("no crowd '" + id + "' to remove (unknown, or already removed)");

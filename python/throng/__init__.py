@@ -4,7 +4,7 @@ Scenarios:   Scenario.load(path), Scenario.from_json(text), Scenario.from_dict(d
              ScenarioBuilder: a scenario built in code (walkable area, obstacles, points, populations)
 Simulation:  Simulation(scenario, seed=..., threads=..., record=...): step(n), run(until), agents()
              (snapshots), view() (the live columns, no copy, until the next step), events(),
-             guide/release groups, insert_crowd/remove_crowd, state_hash
+             guide/release groups, insert_crowd/remove_crowd, remove_agents(ids), state_hash
 Recordings:  read_recording(path) -> Recording (pandas DataFrames in PedPy's column names)
 Analysis:    throng.analysis — classic density, speeds, passing times, flow, fundamental diagram
              (PedPy's definitions)

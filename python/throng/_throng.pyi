@@ -1,5 +1,5 @@
 """Type stubs of throng's native module (python/src/module.cpp). Units: m, s, m/s."""
-from typing import Any, Optional
+from typing import Any, Iterable, Optional
 
 import numpy as np
 import numpy.typing as npt
@@ -162,7 +162,12 @@ class Simulation:
     def release(self, group: int) -> None: ...
     def insert_crowd(self, text: str, source: str = "<crowd>") -> int:
         """Queues a throng-crowd/1 document for the next tick; returns its index."""
-    def remove_crowd(self, id: str) -> None: ...
+    def remove_crowd(self, id: str) -> None:
+        """The crowd's agents leave at the next tick."""
+    def remove_agents(self, ids: Iterable[int] | int) -> None:
+        """These agents (stable ids; a list, a numpy array or one int) leave at the next tick, each with an
+        exit event (a = b = 4294967295); their groups go on without them. ValueError naming every id not
+        present now, listed twice or already queued (nothing is removed then)."""
     def add_agents(self, positions: list[tuple[float, float]], goals: list[str] | str, speed: float = 1.34,
                    radius: Optional[float] = None, id: Optional[str] = None) -> str:
         """Agents at these positions [m] from the next tick, walking to `goals`; returns the crowd id."""

@@ -16,7 +16,7 @@ EXPECTED = (ValueError, TypeError, KeyError, OverflowError, throng.ScenarioError
 
 @settings(max_examples=150, deadline=None, database=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.lists(st.tuples(st.sampled_from(["step", "guide", "release", "agent", "group", "run", "insert", "remove",
-                                           "view"]),
+                                           "remove_agents", "view"]),
                           anything, anything, anything), max_size=8))
 def test_random_calls_never_crash(calls):
     sim = throng.Simulation(SCENARIO, threads=1)
@@ -38,6 +38,8 @@ def test_random_calls_never_crash(calls):
                 sim.insert_crowd(a if isinstance(a, str) else str(a))
             elif name == "remove":
                 sim.remove_crowd(a)
+            elif name == "remove_agents":
+                sim.remove_agents(a)
             elif name == "view":
                 v = sim.view()
                 assert len(v.x) == len(v) and (b is None or v.valid)

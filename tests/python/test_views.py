@@ -1,6 +1,6 @@
 """sim.view(): the live agent columns without a copy — equal to the agents() snapshot, refused once
 stale, never a crash or a read of freed memory while arrays are held across steps, insertions and
-removals (random sequences under hypothesis)."""
+removals of crowds and agents (random sequences under hypothesis)."""
 import gc
 import json
 
@@ -112,6 +112,7 @@ def test_arrays_outlive_growth_removal_and_the_simulation():
 OPS = st.one_of(st.tuples(st.just("step"), st.integers(0, 30)),
                 st.tuples(st.just("insert"), st.integers(1, 60)),
                 st.tuples(st.just("remove"), st.integers(0, 5)),
+                st.tuples(st.just("remove_agents"), st.integers(0, 40)),
                 st.tuples(st.just("view"), st.integers(0, 0)),
                 st.tuples(st.just("read_old"), st.integers(0, 10)))
 
@@ -134,6 +135,13 @@ def test_random_step_insert_remove_view_sequences(ops):
                 sim.remove_crowd(inserted[k % len(inserted)])
             except KeyError:
                 pass  # removed already
+        elif op == "remove_agents":
+            ids = [int(i) for i in sim.view().id[k % 7::k % 5 + 2]]
+            try:
+                sim.remove_agents(ids + ([k + 10_000] if k % 3 == 0 else []))
+                assert k % 3 != 0, "an unknown id is refused"
+            except ValueError as e:
+                assert "already queued" in str(e) or str(k + 10_000) in str(e)
         elif op == "view":
             v = sim.view()
             views.append(v)

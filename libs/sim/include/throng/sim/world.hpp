@@ -28,7 +28,7 @@ struct WorldStats {
   double time = 0.0;                 ///< [s]
   std::uint32_t spawned = 0;
   std::uint32_t exited = 0;
-  std::uint32_t removed = 0;         ///< agents that left because their crowd was removed (not in `exited`)
+  std::uint32_t removed = 0;         ///< agents removed with their crowd or by id (World::removeAgents; not in `exited`)
   std::uint32_t active = 0;          ///< in the world now
   std::uint32_t scheduled = 0;       ///< still to spawn
   double lastExitTime = -1.0;        ///< [s]; < 0 when nobody exited
@@ -184,6 +184,13 @@ class World {
   /// event with a = 0xffffffff, b = the crowd's index) and its populations spawn nobody more.
   /// Its points, groups and ids stay taken. False when no crowd has that id or it is removed.
   bool removeCrowd(std::string_view id);
+  /// Queues the removal of the agents with these stable ids for the start of the next tick (before
+  /// anyone spawns), in the order given: each leaves as a removed crowd's agents do — an Exit event
+  /// with a = b = 0xffffffff, counted in stats().removed — and its group goes on with the others (a
+  /// leader removed hands over to the lowest id left, as on an exit). Refused with nothing queued,
+  /// one diagnostic per bad id (pointer "/<index in ids>"), when an id is not an agent present now,
+  /// is listed twice or is already queued.
+  core::Status removeAgents(std::span<const std::uint32_t> ids);
   /// Every crowd inserted or queued, in insertion order (timeline crowds included).
   [[nodiscard]] std::vector<CrowdInfo> crowds() const;
   /// Viewer positions for multiresolution steering (SteeringDesc::lodDistance).
