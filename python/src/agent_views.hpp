@@ -16,15 +16,21 @@
 
 namespace throng::python {
 
+/// A read-only 1-D numpy array over `data` (n values) whose base is `keep`: numpy keeps `keep` alive
+/// as long as the array or anything derived from it, and cannot make the array writable (its base
+/// is no writable buffer).
+template <typename T>
+py::array readOnlyArray(const T* data, std::size_t n, const py::object& keep) {
+  py::array_t<T> array({static_cast<py::ssize_t>(n)}, {static_cast<py::ssize_t>(sizeof(T))}, data, keep);
+  array.attr("setflags")(py::arg("write") = false);
+  return std::move(array);
+}
 
-/// A read-only 1-D numpy array over `data` (n values) that keeps `frame` alive.
+/// A frame's column as a read-only numpy array (AgentState) that keeps the frame alive.
 template <typename T>
 py::array view(const sim::FramePtr& frame, const T* data, std::size_t n) {
   auto* keep = new sim::FramePtr(frame);
-  py::capsule owner(keep, [](void* p) { delete static_cast<sim::FramePtr*>(p); });
-  py::array_t<T> array({static_cast<py::ssize_t>(n)}, {static_cast<py::ssize_t>(sizeof(T))}, data, owner);
-  array.attr("setflags")(py::arg("write") = false);
-  return std::move(array);
+  return readOnlyArray(data, n, py::capsule(keep, [](void* p) { delete static_cast<sim::FramePtr*>(p); }));
 }
 
 /// What an AgentView's arrays hold on to: the Python Simulation (so the World and its columns live
@@ -33,14 +39,6 @@ struct ViewKeep {
   py::object simulation;
   std::shared_ptr<RetiredColumns> retired;
 };
-
-/// A read-only 1-D numpy array over `data` (n values of the live columns) whose base is `keep`.
-template <typename T>
-py::array liveArray(const T* data, std::size_t n, const py::object& keep) {
-  py::array_t<T> array({static_cast<py::ssize_t>(n)}, {static_cast<py::ssize_t>(sizeof(T))}, data, keep);
-  array.attr("setflags")(py::arg("write") = false);
-  return std::move(array);
-}
 
 /// The agents present now, read in place from the World's columns (no copy), valid until the
 /// simulation steps or closes: every access after that raises throng.StaleViewError. Its arrays are
@@ -66,11 +64,11 @@ class AgentView {
   [[nodiscard]] py::array array(std::span<const T> sim::AgentColumns::*column) const {
     check();
     const std::span<const T> c = columns_.*column;
-    return liveArray(c.data(), c.size(), keep_);
+    return readOnlyArray(c.data(), c.size(), keep_);
   }
   [[nodiscard]] py::array mode() const {
     check();
-    return liveArray(reinterpret_cast<const std::uint8_t*>(columns_.mode.data()), columns_.size(), keep_);
+    return readOnlyArray(reinterpret_cast<const std::uint8_t*>(columns_.mode.data()), columns_.size(), keep_);
   }
   [[nodiscard]] py::object z() const {
     check();
@@ -79,7 +77,7 @@ class AgentView {
       std::fill_n(zeros.mutable_data(), columns_.size(), 0.0f);
       return std::move(zeros);
     }
-    return liveArray(columns_.posZ.data(), columns_.size(), keep_);
+    return readOnlyArray(columns_.posZ.data(), columns_.size(), keep_);
   }
 
  private:
@@ -105,6 +103,5 @@ class AgentView {
   double time_;
   py::object keep_;  ///< capsule of a ViewKeep: the base of every array
 };
-
 
 }  // namespace throng::python
