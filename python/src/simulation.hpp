@@ -301,8 +301,11 @@ class Simulation {
         throw py::type_error("remove_agents: ids[" + std::to_string(i) + "] is a " + std::string(py::str(item.get_type().attr("__name__"))) +
                              "; expected an int agent id");
       }
-      const long long id = index.cast<long long>();
-      if (id < 0 || id > 0xffffffffLL) bad += "; ids[" + std::to_string(i) + "]: " + std::to_string(id) + " is not an agent id (expected 0 .. 4294967295)";
+      int overflow = 0;
+      const long long id = PyLong_AsLongLongAndOverflow(index.ptr(), &overflow);
+      if (overflow != 0 || id < 0 || id > 0xffffffffLL) {
+        bad += "; ids[" + std::to_string(i) + "]: " + std::string(py::str(index)) + " is not an agent id (expected 0 .. 4294967295)";
+      }
       list.push_back(static_cast<std::uint32_t>(id));
     };
     if (py::isinstance<py::str>(ids) || py::isinstance<py::bytes>(ids)) throw py::type_error("remove_agents expects agent ids (ints), not a string");

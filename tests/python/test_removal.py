@@ -45,6 +45,8 @@ def test_bad_ids_are_refused_by_name_and_nothing_is_removed():
         sim.remove_agents([-3])
     with pytest.raises(ValueError, match="4294967296"):
         sim.remove_agents([2**32])
+    with pytest.raises(ValueError, match=r"ids\[1\]: 9223372036854775808 is not an agent id.*ids\[2\]: -"):
+        sim.remove_agents([0, 2**63, -(2**70)])  # beyond 64 bits too
     with pytest.raises(TypeError, match="float"):
         sim.remove_agents([1.0])
     with pytest.raises(TypeError):
