@@ -1,12 +1,15 @@
 #!/usr/bin/python3
 """Agents injected while stepping: a hall where a new group of visitors enters through the west door
-every 5 s (a throng-crowd/1 document per wave, insert_crowd), and the first wave is removed after
-20 s (remove_crowd). Prints the head count as it goes (docs/python.md).
+every 5 s (a throng-crowd/1 document per wave, insert_crowd), at 12 s everyone within 3 m of the
+pillar's centre is taken out by id (remove_agents, found in the live columns: sim.view()), and the
+first wave is removed after 20 s (remove_crowd). Prints the head count as it goes (docs/python.md).
 
 usage: PYTHONPATH=build/python /usr/bin/python3 examples/python/inject_agents.py [--quick]
 """
 import argparse
 import json
+
+import numpy as np
 
 import throng
 
@@ -35,22 +38,31 @@ def main():
     k = 0
     removed = False
     peak = 0
+    taken_out = []
     while sim.time < end - 1e-6:
         if sim.tick % 100 == 0:  # every 5 s
             sim.insert_crowd(wave(k, groups=4), f"wave-{k}")
             k += 1
+        if not taken_out and sim.time >= 12.0:
+            v = sim.view()  # the live columns, no copy; valid until the next step
+            taken_out = [int(i) for i in v.id[np.hypot(v.x - 15.0, v.y - 6.0) < 3.0]]
+            sim.remove_agents(taken_out)
+            print(f"t = {sim.time:5.1f} s: {len(taken_out)} agents near the pillar taken out: {taken_out}")
+            taken_out = taken_out or [None]
         if not removed and sim.time >= 20.0:
             sim.remove_crowd("wave-0")
             removed = True
         sim.step(1)
         if sim.tick % 100 == 0:
-            n = len(sim.agents())
+            n = len(sim.view())
             peak = max(peak, n)
             print(f"t = {sim.time:5.1f} s: {n:3d} agents, {sim.stats['exited']:3d} left by the east door")
     kinds = [e["kind"] for e in sim.events()]
     print(f"{k} waves inserted, {kinds.count('spawn')} agents spawned, {kinds.count('exit')} exits")
     if peak == 0 or kinds.count("spawn") < 6 + 4 * k:
         raise SystemExit("unexpected: the waves did not spawn")
+    if taken_out == [None] or sim.stats["removed"] < len(taken_out):
+        raise SystemExit("unexpected: nobody near the pillar was taken out")
 
 
 if __name__ == "__main__":

@@ -2,24 +2,26 @@
 
 Scenarios:   Scenario.load(path), Scenario.from_json(text), Scenario.from_dict(d), scenario(x)
              ScenarioBuilder: a scenario built in code (walkable area, obstacles, points, populations)
-Simulation:  Simulation(scenario, seed=..., threads=..., record=...): step(n), run(until), agents(),
-             events(), guide/release groups, insert_crowd/remove_crowd, state_hash
+Simulation:  Simulation(scenario, seed=..., threads=..., record=...): step(n), run(until), agents()
+             (snapshots), view() (the live columns, no copy, until the next step), events(),
+             guide/release groups, insert_crowd/remove_crowd, remove_agents(ids), state_hash
 Recordings:  read_recording(path) -> Recording (pandas DataFrames in PedPy's column names)
 Analysis:    throng.analysis — classic density, speeds, passing times, flow, fundamental diagram
              (PedPy's definitions)
-Errors:      ScenarioError (a ValueError) carries .diagnostics: every problem, located.
+Errors:      ScenarioError (a ValueError) carries .diagnostics: every problem, located;
+             StaleViewError (a RuntimeError): an AgentView used after a step.
 
 Units are SI throughout: metres, seconds, metres per second.
 """
 import json as _json
 import os as _os
 
-from ._throng import AgentState, Scenario, ScenarioError, Simulation  # noqa: F401
+from ._throng import AgentState, AgentView, Scenario, ScenarioError, Simulation, StaleViewError  # noqa: F401
 from .build import ScenarioBuilder  # noqa: F401
 from .recording import Recording, read_recording  # noqa: F401
 from . import analysis  # noqa: F401
 
-__all__ = ["AgentState", "Scenario", "ScenarioError", "Simulation", "ScenarioBuilder", "Recording",
+__all__ = ["AgentState", "AgentView", "Scenario", "ScenarioError", "Simulation", "StaleViewError", "ScenarioBuilder", "Recording",
            "read_recording", "analysis", "scenario"]
 
 

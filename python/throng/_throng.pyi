@@ -1,5 +1,5 @@
 """Type stubs of throng's native module (python/src/module.cpp). Units: m, s, m/s."""
-from typing import Any, Optional
+from typing import Any, Iterable, Optional
 
 import numpy as np
 import numpy.typing as npt
@@ -8,6 +8,9 @@ class ScenarioError(ValueError):
     """A scenario, crowd or recording path was refused. `diagnostics`: every problem as a dict with
     source, line, column, pointer (JSON pointer), what, expected, hint and text (formatted)."""
     diagnostics: list[dict[str, Any]]
+
+class StaleViewError(RuntimeError):
+    """An AgentView (Simulation.view()) was used after the simulation stepped, ran or closed."""
 
 class Scenario:
     @staticmethod
@@ -40,7 +43,8 @@ class Scenario:
         """the operational model of each population ("orca", "avm", "cfsm")"""
 
 class AgentState:
-    """The agents present at one tick: read-only numpy arrays sharing the frame's memory."""
+    """The agents present at one tick (Simulation.agents()): read-only numpy arrays sharing the memory
+    of a frame the engine copied for this tick; a snapshot, valid after later steps."""
     @property
     def tick(self) -> int: ...
     @property
@@ -78,6 +82,58 @@ class AgentState:
     def phase(self) -> npt.NDArray[np.float32]:
         """position in the clip, [0, 1)"""
 
+class AgentView:
+    """The agents present now (Simulation.view()), read in place from the engine's own columns:
+    read-only numpy arrays, nothing copied. Valid until the simulation steps, runs or closes; after
+    that every access raises StaleViewError (arrays taken before remain readable memory but no longer
+    describe the agents)."""
+    @property
+    def valid(self) -> bool:
+        """False once the simulation stepped, ran or closed"""
+    @property
+    def tick(self) -> int:
+        """the tick the view was taken at"""
+    @property
+    def time(self) -> float:
+        """[s]"""
+    def __len__(self) -> int: ...
+    @property
+    def id(self) -> npt.NDArray[np.uint32]:
+        """stable agent ids (spawn order), ascending"""
+    @property
+    def group(self) -> npt.NDArray[np.uint32]:
+        """stable group ids"""
+    @property
+    def x(self) -> npt.NDArray[np.float32]:
+        """[m]"""
+    @property
+    def y(self) -> npt.NDArray[np.float32]:
+        """[m]"""
+    @property
+    def z(self) -> npt.NDArray[np.float32]:
+        """height [m] (a new array of zeros on a flat world)"""
+    @property
+    def vx(self) -> npt.NDArray[np.float32]:
+        """[m/s]"""
+    @property
+    def vy(self) -> npt.NDArray[np.float32]:
+        """[m/s]"""
+    @property
+    def ori_x(self) -> npt.NDArray[np.float32]:
+        """unit heading"""
+    @property
+    def ori_y(self) -> npt.NDArray[np.float32]:
+        """unit heading"""
+    @property
+    def mode(self) -> npt.NDArray[np.uint8]:
+        """0 walking, 1 waiting, 2 acting"""
+    @property
+    def clip(self) -> npt.NDArray[np.uint16]:
+        """motion clip playing (index into the scenario's clips)"""
+    @property
+    def phase(self) -> npt.NDArray[np.float32]:
+        """position in the clip, [0, 1)"""
+
 class Simulation:
     def __init__(self, scenario: Scenario, *, seed: Optional[int] = None, threads: int = 1,
                  record: Optional[str] = None, fps: float = 10.0, force: bool = False,
@@ -92,7 +148,10 @@ class Simulation:
         """Flushes and closes the recording."""
     def __enter__(self) -> Simulation: ...
     def __exit__(self, *exc: Any) -> None: ...
-    def agents(self) -> AgentState: ...
+    def agents(self) -> AgentState:
+        """The agents present now as a snapshot (a copy made by the engine; valid after later steps)."""
+    def view(self) -> AgentView:
+        """The agents present now, read in place (no copy); valid until the next step, run or close."""
     def events(self) -> list[dict[str, Any]]:
         """Events since the last call: tick, time [s], agent, kind, a, b."""
     def agent(self, id: int) -> dict[str, Any]: ...
@@ -103,7 +162,12 @@ class Simulation:
     def release(self, group: int) -> None: ...
     def insert_crowd(self, text: str, source: str = "<crowd>") -> int:
         """Queues a throng-crowd/1 document for the next tick; returns its index."""
-    def remove_crowd(self, id: str) -> None: ...
+    def remove_crowd(self, id: str) -> None:
+        """The crowd's agents leave at the next tick."""
+    def remove_agents(self, ids: Iterable[int] | int) -> None:
+        """These agents (stable ids; a list, a numpy array or one int) leave at the next tick, each with an
+        exit event (a = b = 4294967295); their groups go on without them. ValueError naming every id not
+        present now, listed twice or already queued (nothing is removed then)."""
     def add_agents(self, positions: list[tuple[float, float]], goals: list[str] | str, speed: float = 1.34,
                    radius: Optional[float] = None, id: Optional[str] = None) -> str:
         """Agents at these positions [m] from the next tick, walking to `goals`; returns the crowd id."""

@@ -11,11 +11,12 @@ SCENARIO = throng.scenario(corridor(n=6, duration=20))
 numbers = st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.integers(-10**12, 10**12))
 anything = st.one_of(numbers, st.text(max_size=8), st.none(), st.lists(st.integers(), max_size=3))
 
-EXPECTED = (ValueError, TypeError, KeyError, OverflowError, throng.ScenarioError)
+EXPECTED = (ValueError, TypeError, KeyError, OverflowError, throng.ScenarioError, throng.StaleViewError)
 
 
 @settings(max_examples=150, deadline=None, database=None, suppress_health_check=[HealthCheck.too_slow])
-@given(st.lists(st.tuples(st.sampled_from(["step", "guide", "release", "agent", "group", "run", "insert", "remove"]),
+@given(st.lists(st.tuples(st.sampled_from(["step", "guide", "release", "agent", "group", "run", "insert", "remove",
+                                           "remove_agents", "view"]),
                           anything, anything, anything), max_size=8))
 def test_random_calls_never_crash(calls):
     sim = throng.Simulation(SCENARIO, threads=1)
@@ -37,6 +38,11 @@ def test_random_calls_never_crash(calls):
                 sim.insert_crowd(a if isinstance(a, str) else str(a))
             elif name == "remove":
                 sim.remove_crowd(a)
+            elif name == "remove_agents":
+                sim.remove_agents(a)
+            elif name == "view":
+                v = sim.view()
+                assert len(v.x) == len(v) and (b is None or v.valid)
         except EXPECTED:
             pass
     state = sim.agents()

@@ -1,5 +1,6 @@
 // Crowds inserted into and removed from a running World (insert.cpp): ids, spawn at the next
-// tick, goals walked, removal, events, refusals, determinism across thread counts, timeline.
+// tick, goals walked, removal, events, refusals, determinism across thread counts, timeline; agents
+// removed by id (World::removeAgents): events, groups going on without them, refusals, determinism.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -315,6 +316,86 @@ TEST(InsertCrowd, AWorldWithoutCrowdsIsUnchanged) {
     b->step(tasks);
   }
   EXPECT_EQ(a->stateHash(), b->stateHash());
+}
+
+TEST(RemoveAgents, TheyLeaveAtTheNextTickAndTheirGroupGoesOnWithANewLeader) {
+  const ScenarioDesc d = baseScenario();
+  auto w = make(d);
+  core::TaskSystem tasks(1);
+  ASSERT_TRUE(w->insertCrowd(tourCrowd(d, 5)).ok());
+  for (int i = 0; i < 40; ++i) w->step(tasks);
+  (void)w->takeFrame();
+  const GroupId tour = w->groupById(4);  // the crowd's group: after the scenario's four
+  const std::optional<GroupInfo> before = w->groupInfo(tour);
+  ASSERT_TRUE(before && before->members.size() == 5u);
+  const std::uint32_t leader = before->leader, other = before->members[3];
+  const std::vector<std::uint32_t> ids{other, leader};
+  ASSERT_TRUE(w->removeAgents(ids).ok());
+  EXPECT_EQ(w->stats().active, 9u) << "not before the next tick";
+  w->step(tasks);
+  const FramePtr f = w->takeFrame();
+  EXPECT_EQ(f->size(), 7u);
+  std::vector<std::uint32_t> left;
+  for (const Event& e : f->events) {
+    if (e.kind != EventKind::Exit) continue;
+    EXPECT_EQ(e.a, 0xffffffffu);
+    EXPECT_EQ(e.b, 0xffffffffu);
+    EXPECT_EQ(e.tick, 40u);
+    left.push_back(e.agent);
+  }
+  EXPECT_EQ(left, ids) << "in the order asked";
+  EXPECT_EQ(w->stats().removed, 2u);
+  EXPECT_EQ(w->stats().exited, 0u);
+  EXPECT_FALSE(w->agentInfo(leader).has_value());
+  const std::optional<GroupInfo> after = w->groupInfo(tour);
+  ASSERT_EQ(after->members.size(), 3u);
+  EXPECT_EQ(after->leader, after->members.front()) << "the lowest id left leads, as after an exit";
+  EXPECT_EQ(w->crowds()[0].present, 3u);
+  // The three walk on to their exit.
+  test::runEvents(*w, 120.0);
+  EXPECT_EQ(w->stats().exited, 3u);
+}
+
+TEST(RemoveAgents, BadIdsAreRefusedEachNamedAndNothingIsQueued) {
+  auto w = make(baseScenario());
+  core::TaskSystem tasks(1);
+  w->step(tasks);
+  const std::vector<std::uint32_t> bad{1, 99, 1, 2};
+  const core::Status refused = w->removeAgents(bad);
+  ASSERT_FALSE(refused.ok());
+  ASSERT_EQ(refused.errors().size(), 2u);
+  EXPECT_EQ(refused.errors()[0].pointer, "/1");
+  EXPECT_NE(refused.errors()[0].what.find("99"), std::string::npos);
+  EXPECT_EQ(refused.errors()[1].pointer, "/2");
+  EXPECT_NE(refused.errors()[1].what.find("twice"), std::string::npos);
+  const std::vector<std::uint32_t> one{3};
+  ASSERT_TRUE(w->removeAgents(one).ok());
+  const core::Status again = w->removeAgents(one);
+  ASSERT_FALSE(again.ok());
+  EXPECT_NE(again.errors()[0].what.find("already queued"), std::string::npos);
+  w->step(tasks);
+  EXPECT_EQ(w->stats().active, 3u) << "only the one accepted";
+  EXPECT_FALSE(w->removeAgents(one).ok()) << "gone now";
+  EXPECT_TRUE(w->removeAgents({}).ok());
+}
+
+TEST(RemoveAgents, RemovalsAreDeterministicAcrossThreadCounts) {
+  const ScenarioDesc d = baseScenario();
+  std::uint64_t hash[3] = {0, 0, 0};
+  for (int t : {1, 2, 4}) {
+    auto w = make(d);
+    core::TaskSystem tasks(t);
+    for (int i = 0; i < 300; ++i) {
+      if (i == 20) ASSERT_TRUE(w->insertCrowd(tourCrowd(d, 7)).ok());
+      if (i == 100) ASSERT_TRUE(w->removeAgents(std::vector<std::uint32_t>{0, 6, 8}).ok());
+      if (i == 150) ASSERT_TRUE(w->removeAgents(std::vector<std::uint32_t>{4}).ok());
+      w->step(tasks);
+    }
+    EXPECT_EQ(w->stats().removed, 4u);
+    hash[t == 4 ? 2 : t - 1] = w->stateHash();
+  }
+  EXPECT_EQ(hash[0], hash[1]);
+  EXPECT_EQ(hash[0], hash[2]);
 }
 
 }  // namespace

@@ -1,9 +1,14 @@
 // AgentStore — the agents' hot data as structure of arrays: one dense row per agent present,
 // rows always in ascending stable-id order (new agents get the next id and are appended; removal
 // is a stable compaction in the emit phase). Phases read columns and write only their own row.
+// The published columns (World::agentColumns) can be kept from being freed while zero-copy readers
+// hold them (keepRetired).
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <type_traits>
 #include <vector>
 
 #include "compact_lists.hpp"
@@ -179,10 +184,43 @@ struct AgentStore {
     }
   }
 
+  /// Applies f to every column World::agentColumns publishes (zero-copy readers: the Python module).
+  template <class F>
+  void forEachPublishedColumn(F&& f) {
+    f(id); f(group); f(posX); f(posY); f(velX); f(velY); f(oriX); f(oriY); f(mode); f(animClip); f(animPhase);
+    if (levels) f(posZ);
+  }
+
+  /// While set (World::keepRetiredColumns), a published column is never freed under a reader: when
+  /// one must grow, every published column moves to a new buffer together and the old buffers go to
+  /// `retired` (World::takeRetiredColumns hands them out) instead of being freed.
+  bool keepRetired = false;
+  std::vector<std::shared_ptr<const void>> retired;
+
   /// Appends one default-initialised row and returns its index.
   std::size_t addRow() {
+    if (keepRetired && id.size() == minPublishedCapacity()) retirePublished();
     forEachColumn([](auto& column) { column.emplace_back(); });
     return size() - 1;
+  }
+
+  /// The smallest capacity of the published columns (a row more than that reallocates one).
+  [[nodiscard]] std::size_t minPublishedCapacity() {
+    std::size_t c = SIZE_MAX;
+    forEachPublishedColumn([&](auto& column) { c = std::min(c, column.capacity()); });
+    return c;
+  }
+  /// Moves every published column's buffer to `retired` and continues in a copy with room to grow.
+  void retirePublished() {
+    const std::size_t capacity = std::max<std::size_t>(64, 2 * size());
+    forEachPublishedColumn([&](auto& column) {
+      using Column = std::decay_t<decltype(column)>;
+      auto old = std::make_shared<Column>(std::move(column));  // the buffer itself moves: readers keep their memory
+      column = Column();
+      column.reserve(capacity);
+      column.assign(old->begin(), old->end());
+      retired.push_back(std::move(old));
+    });
   }
 
   /// Keeps rows whose keep[row] is non-zero, in order.

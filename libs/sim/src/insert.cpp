@@ -1,11 +1,13 @@
-// Crowds inserted at run time — World::insertCrowd / removeCrowd and the scenario timeline.
+// Crowds inserted at run time — World::insertCrowd / removeCrowd and the scenario timeline — and
+// agents removed by id (World::removeAgents).
 // A crowd (CrowdDesc: new points and populations) is checked against the world when it is queued
 // (CrowdCheck) and applied at the start of the next tick (applyCommands), before any population
 // spawns that tick: its points and populations are appended to the description, the spawner
 // schedules them and registers their groups as it did the scenario's own (Spawner::registerGroups:
 // the next stable group ids), its agents get the next agent ids as they spawn, and the optional
 // agent columns it needs (formation, sociological model) are created. A removal takes the crowd's
-// agents out at the start of the tick (an Exit event each, a = kNoPoint; leaveWorld, phases.hpp).
+// agents out at the start of the tick (an Exit event each, a = kNoPoint; leaveWorld, phases.hpp);
+// agents removed by id leave the same way, after the crowd commands (b = kNoIndex).
 // Everything is serial and in command order, so trajectories never depend on the thread count.
 // Reads and writes World::Impl (insertion edits the scenario itself).
 #include <algorithm>
@@ -202,13 +204,13 @@ void World::Impl::applyCrowdCommands() {
       }
     }
   }
-  if (insertion.commands.empty()) return;
   const std::vector<CrowdCommand> commands = std::move(insertion.commands);
   insertion.commands.clear();
   for (const CrowdCommand& c : commands) {
     if (c.insert) insertCrowdNow(insertion.crowds[c.crowd]);
     else removeCrowdNow(insertion.crowds[c.crowd]);
   }
+  removeAgentsNow();
 }
 
 void World::Impl::insertCrowdNow(CrowdState& c) {
@@ -269,6 +271,52 @@ void World::Impl::removeCrowdNow(CrowdState& c) {
   agents.compact(keep);
   rowsChanged = true;
   stats.active = static_cast<std::uint32_t>(agents.size());
+}
+
+void World::Impl::removeAgentsNow() {
+  if (agentRemovals.empty()) return;
+  std::vector<std::uint8_t> keep(agents.size(), 1);
+  bool any = false;
+  GoalWriter goals = goalWriter();
+  for (const std::uint32_t id : agentRemovals) {
+    const auto it = std::lower_bound(agents.id.begin(), agents.id.end(), id);
+    if (it == agents.id.end() || *it != id) continue;  // gone with a crowd removed this tick
+    const auto r = static_cast<std::size_t>(it - agents.id.begin());
+    if (!keep[r]) continue;
+    keep[r] = 0;
+    any = true;
+    pendingEvents.push_back({tick, id, EventKind::Exit, kNoPoint, kNoIndex});
+    ++stats.removed;
+    leaveWorld(r, goals, groups);
+  }
+  agentRemovals.clear();
+  if (!any) return;
+  agents.compact(keep);
+  rowsChanged = true;
+  stats.active = static_cast<std::uint32_t>(agents.size());
+}
+
+core::Status World::removeAgents(std::span<const std::uint32_t> ids) {
+  Impl& w = *impl_;
+  const std::vector<std::uint32_t>& present = w.agents.id;  // ascending
+  core::Diagnostics problems;
+  std::set<std::uint32_t> listed;
+  const std::set<std::uint32_t> queued(w.agentRemovals.begin(), w.agentRemovals.end());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    const std::uint32_t id = ids[i];
+    std::string what;
+    if (!std::binary_search(present.begin(), present.end(), id)) {
+      what = "no agent with id " + std::to_string(id) + " in the world (not spawned yet, or left)";
+    } else if (!listed.insert(id).second) {
+      what = "agent " + std::to_string(id) + " is listed twice";
+    } else if (queued.contains(id)) {
+      what = "agent " + std::to_string(id) + " is already queued for removal";
+    }
+    if (!what.empty()) problems.push_back({"removeAgents", 0, 0, "/" + std::to_string(i), what, "the id of an agent present now", ""});
+  }
+  if (!problems.empty()) return problems;
+  w.agentRemovals.insert(w.agentRemovals.end(), ids.begin(), ids.end());
+  return core::Ok{};
 }
 
 core::Result<std::uint32_t> World::insertCrowd(const CrowdDesc& crowd) {

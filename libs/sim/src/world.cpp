@@ -227,6 +227,19 @@ FramePtr World::takeFrame() {
   return sim::takeFrame(FrameInput{w.agents, w.tick, w.desc.dt}, FrameOutput{w.spawner, w.pendingEvents, w.commonGround});
 }
 
+AgentColumns World::agentColumns() const {
+  const AgentStore& a = impl_->agents;
+  return {a.id, a.group, a.posX, a.posY, a.posZ, a.velX, a.velY, a.oriX, a.oriY, a.mode, a.animClip, a.animPhase};
+}
+
+void World::keepRetiredColumns(bool on) { impl_->agents.keepRetired = on; }
+
+std::vector<std::shared_ptr<const void>> World::takeRetiredColumns() {
+  std::vector<std::shared_ptr<const void>> out = std::move(impl_->agents.retired);
+  impl_->agents.retired.clear();
+  return out;
+}
+
 bool World::finished() const {
   const Impl& w = *impl_;
   if (w.stats.scheduled > 0 || w.crowdsPending()) return false;
@@ -293,9 +306,11 @@ bool World::release(GroupId handle) {
 
 std::optional<AgentInfo> World::agentInfo(std::uint32_t id) const {
   const Impl& w = *impl_;
-  if (id >= w.rowOfId.size() || w.rowOfId[id] == kNoRow) return std::nullopt;
-  const std::uint32_t row = w.rowOfId[id];
   const AgentStore& a = w.agents;
+  // Rows are in ascending id order; rowOfId may be a tick old here (agents that exited in emit).
+  const auto it = std::lower_bound(a.id.begin(), a.id.end(), id);
+  if (it == a.id.end() || *it != id) return std::nullopt;
+  const auto row = static_cast<std::size_t>(it - a.id.begin());
   AgentInfo info;
   info.id = id;
   info.group = a.group[row];

@@ -9,7 +9,7 @@
 // Where things live:
 //   spawner.cpp    the Spawner: schedule, registerGroups (creation and insertion), ids, spawn events
 //   spawn.cpp      spawnDue: populations due this tick enter the world (spawn_layout.cpp: where)
-//   insert.cpp     crowds inserted and removed at run time (API and scenario timeline)
+//   insert.cpp     crowds inserted and removed at run time (API and scenario timeline), agents removed by id
 //   sense.cpp      grid rebuild and k-nearest neighbours
 //   decide.cpp     goal logic: regions reached, actions, exits, progress checks, meetings
 //   groups.cpp     the group pass after decide (commands, guidance, following, waiting, formation)
@@ -132,8 +132,11 @@ struct World::Impl {
   /// Optional agent columns populations [firstPopulation, end) need and the world did not have yet.
   void addColumnsFor(std::uint32_t firstPopulation);
   void removeCrowdNow(CrowdState& crowd);
+  /// Agents queued by World::removeAgents, in call order; applied after the crowd commands.
+  std::vector<std::uint32_t> agentRemovals;
+  void removeAgentsNow();
   [[nodiscard]] bool crowdsPending() const {
-    return !insertion.commands.empty() || insertion.timelineNext < desc.timeline.size();
+    return !insertion.commands.empty() || !agentRemovals.empty() || insertion.timelineNext < desc.timeline.size();
   }
 
   // Phases.

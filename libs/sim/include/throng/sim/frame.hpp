@@ -18,7 +18,7 @@ enum class AgentMode : std::uint8_t {
 
 enum class EventKind : std::uint8_t {
   Spawn = 0,        ///< a = population index, b = group id
-  Exit = 1,         ///< a = exit point index, or 0xffffffff when its crowd was removed (b = crowd index)
+  Exit = 1,         ///< a = exit point index, or 0xffffffff when removed: b = its crowd's index, or 0xffffffff (World::removeAgents)
   GoalReached = 2,  ///< a = point index
   ActionStart = 3,  ///< a = point index
   ActionEnd = 4,    ///< a = point index

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -27,7 +28,7 @@ struct WorldStats {
   double time = 0.0;                 ///< [s]
   std::uint32_t spawned = 0;
   std::uint32_t exited = 0;
-  std::uint32_t removed = 0;         ///< agents that left because their crowd was removed (not in `exited`)
+  std::uint32_t removed = 0;         ///< agents removed with their crowd or by id (World::removeAgents; not in `exited`)
   std::uint32_t active = 0;          ///< in the world now
   std::uint32_t scheduled = 0;       ///< still to spawn
   double lastExitTime = -1.0;        ///< [s]; < 0 when nobody exited
@@ -104,6 +105,24 @@ struct CrowdInfo {
   std::uint32_t present = 0;          ///< its agents in the world now
 };
 
+/// The agents present, read in place from the World's own columns (no copy): row i of every span is
+/// the i-th agent in ascending stable-id order, as in a Frame. Valid until the World changes (the
+/// next step(), which spawns, moves and removes agents; commands wait for it); see
+/// World::keepRetiredColumns for how long the memory itself lives.
+struct AgentColumns {
+  std::span<const std::uint32_t> id;     ///< stable spawn-order ids, ascending
+  std::span<const std::uint32_t> group;  ///< stable group id
+  std::span<const float> posX, posY;     ///< [m]
+  std::span<const float> posZ;           ///< height [m] on a multi-level world; empty on a flat one
+  std::span<const float> velX, velY;     ///< [m/s]
+  std::span<const float> oriX, oriY;     ///< unit heading
+  std::span<const AgentMode> mode;
+  std::span<const std::uint16_t> clip;   ///< motion clip playing (animationClips)
+  std::span<const float> phase;          ///< position in that clip, [0, 1)
+
+  [[nodiscard]] std::size_t size() const { return id.size(); }
+};
+
 /// Receives each phase's duration; the app passes one in (the core reads no clock itself).
 class PhaseObserver {
  public:
@@ -165,6 +184,13 @@ class World {
   /// event with a = 0xffffffff, b = the crowd's index) and its populations spawn nobody more.
   /// Its points, groups and ids stay taken. False when no crowd has that id or it is removed.
   bool removeCrowd(std::string_view id);
+  /// Queues the removal of the agents with these stable ids for the start of the next tick (before
+  /// anyone spawns), in the order given: each leaves as a removed crowd's agents do — an Exit event
+  /// with a = b = 0xffffffff, counted in stats().removed — and its group goes on with the others (a
+  /// leader removed hands over to the lowest id left, as on an exit). Refused with nothing queued,
+  /// one diagnostic per bad id (pointer "/<index in ids>"), when an id is not an agent present now,
+  /// is listed twice or is already queued.
+  core::Status removeAgents(std::span<const std::uint32_t> ids);
   /// Every crowd inserted or queued, in insertion order (timeline crowds included).
   [[nodiscard]] std::vector<CrowdInfo> crowds() const;
   /// Viewer positions for multiresolution steering (SteeringDesc::lodDistance).
@@ -174,6 +200,18 @@ class World {
   /// and finished coordinations since the previous call, which are drained (call it once per tick
   /// you want to keep, or lose those events).
   [[nodiscard]] FramePtr takeFrame();
+
+  /// The agents' columns as they are now, without a copy (takeFrame copies them). Takes and drains nothing.
+  [[nodiscard]] AgentColumns agentColumns() const;
+  /// While on, memory read through agentColumns is never freed by the World: when its columns must
+  /// grow (agents beyond the capacity reserved for the scenario, e.g. inserted crowds), they move to
+  /// new buffers together and the old ones are kept for takeRetiredColumns instead of freed. For
+  /// readers that cannot be told when to stop reading (the Python module's numpy views); off by
+  /// default. The values are the same either way.
+  void keepRetiredColumns(bool on);
+  /// The buffers retired since the last call (see keepRetiredColumns): the caller frees them by
+  /// dropping the handles, once nothing reads them any more.
+  [[nodiscard]] std::vector<std::shared_ptr<const void>> takeRetiredColumns();
 
   /// True when nothing is left to simulate: every agent spawned has exited and none is scheduled
   /// (only when the scenario has exits or finite goals; wandering crowds never finish).
