@@ -99,11 +99,13 @@ class Assembler {
 
   static nlohmann::json pointJson(core::Vec2 p) {
     // Through the float's shortest decimal form: 1.234 stays 1.234, not 1.2339999675750732.
-    const auto d = [](float v) {
+    // Whole metres as integers: "10", not "10.0".
+    const auto d = [](float v) -> nlohmann::json {
       char buf[32];
       const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
       double out = 0;
       std::from_chars(buf, end, out);
+      if (out == std::floor(out)) return static_cast<std::int64_t>(out);
       return out;
     };
     return nlohmann::json::array({d(p.x), d(p.y)});
