@@ -81,3 +81,25 @@ def test_builder_refuses_bad_coordinates():
         throng.ScenarioBuilder().walkable([(0, 0), (1, math.inf), (1, 1)])
     with pytest.raises(TypeError):
         throng.ScenarioBuilder().walkable("square")
+
+
+def test_builder_takes_shapely_polygons_and_recordings_give_them_back(tmp_path):
+    # python3-shapely (scripts/deps.sh): a polygon with a hole becomes walkable + obstacle; the
+    # recording's walkable area comes back as a shapely geometry with the hole cut out.
+    from shapely.geometry import Polygon
+    room = Polygon([(0, 0), (12, 0), (12, 6), (0, 6)], holes=[[(5, 2), (7, 2), (7, 4), (5, 4)]])
+    b = (throng.ScenarioBuilder("shapely", seed=3, duration=15)
+         .walkable(room)
+         .exit("out", polygon=Polygon([(11.5, 0), (12, 0), (12, 6), (11.5, 6)]))
+         .population("p", goals=["out"], spawn=Polygon([(0.5, 0.5), (3, 0.5), (3, 5.5), (0.5, 5.5)]), groups=10))
+    doc = b.to_dict()
+    assert doc["walkable"] == [[[0.0, 0.0], [12.0, 0.0], [12.0, 6.0], [0.0, 6.0], [0.0, 0.0]]]
+    assert doc["obstacles"] == [[[5.0, 2.0], [7.0, 2.0], [7.0, 4.0], [5.0, 4.0], [5.0, 2.0]]]  # the hole
+    out = str(tmp_path / "shapely.sqlite")
+    sim = throng.Simulation(throng.scenario(b), record=out)
+    sim.run()
+    sim.close()
+    area = throng.read_recording(out).walkable_polygon()
+    assert area.area == pytest.approx(12 * 6 - 2 * 2, rel=0.02)  # the hole is cut out
+    assert not area.contains(Polygon([(5.5, 2.5), (6.5, 2.5), (6.5, 3.5), (5.5, 3.5)]))
+    assert area.contains(Polygon([(1, 1), (2, 1), (2, 2), (1, 2)]))
