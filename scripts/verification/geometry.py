@@ -290,6 +290,23 @@ def affiliation(name, familiar):
     return s
 
 
+INFLUENCE = {"choosers": 30, "leaders": 15, "herding": 0.8}
+
+
+def social_influence(name, herding):
+    """NIST 3.2: RiMEA 11's room with 30 persons choosing their exit (quickest rule) among 15 who all
+    walk to the north ("far") exit; with `herding` the choosers weigh where the people within 5 m
+    are heading (herding 0.8), without it (the control run) they do not."""
+    s = exit_choice(name)
+    chooser = s["populations"][0]
+    chooser["id"], chooser["groups"] = "choosers", INFLUENCE["choosers"]
+    if herding:
+        chooser["exitChoice"]["herding"] = INFLUENCE["herding"]
+    x0, y0, x1, y1 = CHOICE["spawn"]
+    s["populations"].append(population("leaders", INFLUENCE["leaders"], {"polygon": rect(x0, y0, x1, y1)}, ["far"], SPEED))
+    return s
+
+
 # --- RiMEA 12 / NIST 5.1: two bottlenecks in a row ----------------------------------------------------
 BOTTLENECKS = {"agents": 150, "first": (10.0, 20.0), "second": 30.0, "door_y": (4.5, 5.5),
                "area_first": (8.0, 10.0, 4.0, 6.0), "area_second": (28.0, 30.0, 4.0, 6.0)}

@@ -62,6 +62,8 @@ def scenarios():
         "rimea/15-large-corner": G.corner("RiMEA 15: 500 persons round a left corner", G.CORNER_LARGE, 34.0),
         "nist/2.9-groups": G.groups("NIST 2.9: groups of 2 to 4 walking together"),
         "nist/2.10-impaired": impaired("NIST 2.10: persons with reduced mobility among others"),
+        "nist/3.2-social-influence": G.social_influence("NIST 3.2: 30 choosers among 15 walking to the far exit", True),
+        "nist/3.2-social-influence-control": G.social_influence("NIST 3.2 control: the same without herding", False),
         "nist/3.3-affiliation": G.affiliation("NIST 3.3: 40 persons who know only the far exit", True),
         "nist/3.3-affiliation-control": G.affiliation("NIST 3.3 control: 40 persons who know both exits", False),
         "nist/4.1-dynamic-exits": G.dynamic_exits("NIST 4.1: the far exit closes at 15 s"),

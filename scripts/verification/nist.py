@@ -76,6 +76,22 @@ def measure_dynamic_exits(results, ctx):
             Check("persons out by the far exit before it closed (reported)", f"{before}", None)], {}
 
 
+def measure_social_influence(results, ctx):
+    """Share of the choosers leaving by the far exit, where the others around them go, with herding
+    and without (the control run)."""
+    def far_share(run):
+        agents = [a for a in M.load_agents(results[run]["recording"]).values() if a["population"] == "choosers"]
+        out = [a for a in agents if a["exit_s"] is not None]
+        return sum(1 for a in out if a["exit_point"] == "far") / max(1, len(agents)), len(out), len(agents)
+    herding, out, n = far_share("herding")
+    control, _, _ = far_share("control")
+    return [band("herding moves choosers to the exit the others take (share − control ≥ 0.15)", herding - control, 0.15,
+                 None, "", "{:+.2f}"),
+            Check("every chooser leaves", f"{out} of {n}", out == n == G.INFLUENCE["choosers"]),
+            Check("choosers' far-exit share with herding / without (reported)", f"{herding:.2f} / {control:.2f}", None)], \
+        {"herding": herding, "control": control}
+
+
 def measure_affiliation(results, ctx):
     """Share of persons leaving by the far exit, knowing only it, against the same crowd choosing
     freely (the control run)."""
@@ -125,7 +141,8 @@ def tests():
         n("3.1", "Exit route allocation", "everybody uses the allocated exit", "3.1-allocation",
           [Run("run", "rimea/10-assigned-exits.json")], R.measure_assigned),
         n("3.2", "Social influence", "exit choice follows others", "3.2-social-influence",
-          xfail="not measured: exit choice weighs distance and queues, not what others do (issue 18)"),
+          [Run("herding", "nist/3.2-social-influence.json"), Run("control", "nist/3.2-social-influence-control.json")],
+          measure_social_influence),
         n("3.3", "Affiliation", "persons prefer a familiar exit", "3.3-affiliation",
           [Run("familiar", "nist/3.3-affiliation.json"), Run("control", "nist/3.3-affiliation-control.json")], measure_affiliation,
           xfail={"cfsm": "cfsm (not calibrated) leaves persons stuck at a door: 37 of 40 out"}),

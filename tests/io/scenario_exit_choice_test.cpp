@@ -86,7 +86,7 @@ TEST(ScenarioExitChoice, BadChoicesAreLocated) {
             "every share is 0");
 }
 
-TEST(ScenarioExitChoice, FamiliarExitsLoadAndMustBeThePopulationsOwn) {
+TEST(ScenarioExitChoice, FamiliarExitsAndHerdingLoadAndAreChecked) {
   auto r = load(withExits(R"("exits": ["exit", "east"], "exitChoice": {"rule": "nearest", "familiar": ["east"], "familiarity": 2})"));
   ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
   const sim::ExitChoiceDesc& c = r.value().desc.populations[0].exitChoice;
@@ -112,6 +112,19 @@ TEST(ScenarioExitChoice, FamiliarExitsLoadAndMustBeThePopulationsOwn) {
   EXPECT_EQ(at(errorsOf(withExits(R"("exits": ["exit", "east"], "exitChoice": {"rule": "allocation", "familiar": ["east"]})")),
                kPop + "/exitChoice/familiar").what,
             "\"familiar\" only applies to the nearest and quickest rules");
+  auto herd = load(withExits(R"("exits": ["exit", "east"], "exitChoice": {"herding": 0.5, "herdingRadius": 8})"));
+  ASSERT_TRUE(herd.ok()) << core::formatAll(herd.errors());
+  EXPECT_FLOAT_EQ(herd.value().desc.populations[0].exitChoice.herding, 0.5f);
+  EXPECT_FLOAT_EQ(herd.value().desc.populations[0].exitChoice.herdingRadius, 8.0f);
+  EXPECT_FLOAT_EQ(plain.value().desc.populations[0].exitChoice.herding, 0.0f);
+  EXPECT_EQ(at(errorsOf(withExits(R"("exits": ["exit", "east"], "exitChoice": {"herding": 1.5})")), kPop + "/exitChoice/herding").what,
+            "value 1.5 is out of range");
+  EXPECT_EQ(at(errorsOf(withExits(R"("exits": ["exit", "east"], "exitChoice": {"herdingRadius": 0})")),
+               kPop + "/exitChoice/herdingRadius").what,
+            "value 0 m is out of range");
+  EXPECT_EQ(at(errorsOf(withExits(R"("exits": ["exit", "east"], "exitChoice": {"rule": "allocation", "herding": 0.5})")),
+               kPop + "/exitChoice/herding").what,
+            "\"herding\" only applies to the nearest and quickest rules");
   // A wrong "exits" is said once, not again for each familiar exit.
   const auto errors = errorsOf(withExits(R"("exits": ["exit", "gap"], "exitChoice": {"familiar": ["exit"]})"));
   for (const auto& e : errors) EXPECT_NE(e.pointer, kPop + "/exitChoice/familiar/0") << e.what;

@@ -122,6 +122,34 @@ TEST(ExitChoice, FamiliarityDrawsPeopleToTheExitTheyKnow) {
   EXPECT_EQ(run(room(200, south)).firstBy[0], 200);
 }
 
+TEST(ExitChoice, HerdingFollowsWhereThePeopleAroundAreGoing) {
+  // 40 choosers nearer the south door among 20 who all walk to the north one (few enough that
+  // walking, not the queues, decides): with herding the choosers go where those around them go;
+  // the "leaders" population has no choice (goals only).
+  auto scenario = [](float herding) {
+    sim::ExitChoiceDesc c;
+    c.herding = herding;
+    sim::ScenarioDesc d = room(40, c);
+    sim::PopulationDesc leaders = d.populations[0];
+    leaders.id = "leaders";
+    leaders.groups = 20;
+    leaders.exits.clear();
+    leaders.exitChoice = {};
+    leaders.goals = {1};
+    d.populations.push_back(leaders);
+    return d;
+  };
+  auto choosersNorth = [](const Outcome& o) {
+    int north = 0;
+    for (const sim::Event& e : o.events) north += e.kind == sim::EventKind::Exit && e.a == 1 && e.agent < 40 ? 1 : 0;
+    return north;
+  };
+  Outcome none = run(scenario(0.0f)), some = run(scenario(0.8f));
+  EXPECT_EQ(none.exitsBy[0] + none.exitsBy[1], 60);
+  EXPECT_EQ(some.exitsBy[0] + some.exitsBy[1], 60);
+  EXPECT_GT(choosersNorth(some), choosersNorth(none) + 8) << choosersNorth(some) << " vs " << choosersNorth(none);
+}
+
 TEST(ExitChoice, AllocationSplitsBySharesAndNeverReconsiders) {
   sim::ExitChoiceDesc c;
   c.rule = sim::ExitRule::Allocation;

@@ -3,7 +3,7 @@
 // "paths", "autoNearDistance", "flocking", "waitTimeout", "groupSpacing", "follow" (its population
 // id resolved once every population is read), "guide" (a timed waypoint script, its release) and
 // "sociological"; see docs/scenario-format.md "Crowd model"; and "exits" with "exitChoice" (rule,
-// period, hysteresis, shares, familiar exits and familiarity; "Exit choice"). Reads a population's JSON object;
+// period, hysteresis, shares, familiar exits and familiarity, herding; "Exit choice"). Reads a population's JSON object;
 // writes sim::PopulationDesc fields and diagnostics. Private to throng_io.
 #include <algorithm>
 #include <cstdint>
@@ -113,10 +113,11 @@ bool ScenarioReader::readFamiliar(const Json& v, const std::string& ptr, sim::Po
 
 bool ScenarioReader::readExitChoice(const Json& v, const std::string& ptr, sim::PopulationDesc& p) {
   if (!isObject(v, ptr, "{\"rule\": \"quickest\" | \"nearest\" | \"allocation\", \"period\", \"hysteresis\", \"shares\", "
-                       "\"familiar\", \"familiarity\"}")) {
+                       "\"familiar\", \"familiarity\", \"herding\", \"herdingRadius\"}")) {
     return false;
   }
-  checkKeys(v, ptr, {"rule", "period", "hysteresis", "shares", "familiar", "familiarity"}, "exit choice");
+  checkKeys(v, ptr, {"rule", "period", "hysteresis", "shares", "familiar", "familiarity", "herding", "herdingRadius"},
+            "exit choice");
   sim::ExitChoiceDesc& c = p.exitChoice;
   bool ok = true;
   if (auto* x = optional(v, "rule")) {
@@ -128,7 +129,13 @@ bool ScenarioReader::readExitChoice(const Json& v, const std::string& ptr, sim::
     }
   }
   ok = readFloatKeys(v, ptr, {{"period", {0, 3600, true, "s"}, &c.period}, {"hysteresis", {0, 1, false, ""}, &c.hysteresis},
-                             {"familiarity", {1, 100, false, ""}, &c.familiarity}}) && ok;
+                             {"familiarity", {1, 100, false, ""}, &c.familiarity}, {"herding", {0, 1, false, ""}, &c.herding},
+                             {"herdingRadius", {0, 50, true, "m"}, &c.herdingRadius}}) && ok;
+  if (optional(v, "herding") != nullptr && c.rule == sim::ExitRule::Allocation) {
+    error(ptr + "/herding", "\"herding\" only applies to the nearest and quickest rules",
+          "\"rule\": \"nearest\" or \"quickest\", or no \"herding\"", "", true);
+    ok = false;
+  }
   if (auto* x = optional(v, "familiar")) {
     if (c.rule == sim::ExitRule::Allocation) {
       error(ptr + "/familiar", "\"familiar\" only applies to the nearest and quickest rules",

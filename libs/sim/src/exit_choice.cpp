@@ -16,6 +16,8 @@ constexpr float kBin = 0.5f;
 constexpr double kNever = std::numeric_limits<double>::infinity();
 /// The queues are rebuilt this many times a (shortest) period; in between, decisions update them.
 constexpr std::uint32_t kQueueRebuilds = 8;
+/// Buckets of the herding index (cells hashed into them; a power of two).
+constexpr std::uint32_t kHerdBuckets = 4096;
 
 nav::FieldTarget targetOf(const PointDesc& p) {
   nav::FieldTarget t;
@@ -52,6 +54,7 @@ void ExitChoice::prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, std
     if (pop.exits.empty()) continue;
     const auto ticks = static_cast<std::uint32_t>(std::max(1.0f, std::round(pop.exitChoice.period / desc.dt)));
     periodTicks_ = exits_.empty() ? ticks : std::min(periodTicks_, ticks);
+    if (pop.exitChoice.herding > 0.0f) herdCell_ = std::max(herdCell_, pop.exitChoice.herdingRadius);
     nav::DistanceFieldConfig config;
     // Stairs cost as in route choice: the mean of 1/up and 1/down per metre.
     config.stairCost = std::max(1.0f, 0.5f * (1.0f / pop.stairUp + 1.0f / pop.stairDown));
@@ -85,17 +88,23 @@ double ExitChoice::cost(const Exit& e, ExitRule rule, float d, float speed) cons
 }
 
 std::uint32_t ExitChoice::better(const PopulationDesc& pop, ExitRule rule, std::uint32_t current, core::Vec2 p,
-                                 nav::PolyRef ref, float speed) const {
+                                 nav::PolyRef ref, float speed, std::uint32_t group) const {
   double best = kNever, now = kNever;
   std::uint32_t choice = current;
   const std::vector<std::uint32_t>& known = pop.exitChoice.familiar;
-  for (const std::uint32_t point : pop.exits) {
+  thread_local std::vector<double> share;  // serial code; thread_local only spares an allocation
+  const bool herds = pop.exitChoice.herding > 0.0f && herdCell_ > 0.0f;
+  if (herds) sharesNear(pop, p, group, share);
+  for (std::size_t k = 0; k < pop.exits.size(); ++k) {
+    const std::uint32_t point = pop.exits[k];
     const Exit& e = exits_[static_cast<std::size_t>(exitOfPoint_[point])];
     double c = cost(e, rule, e.field.at(p, ref), speed);
     // Affiliation: an exit the group does not know looks this much dearer (kNever stays kNever).
     if (!known.empty() && c < kNever && std::find(known.begin(), known.end(), point) == known.end()) {
       c *= static_cast<double>(pop.exitChoice.familiarity);
     }
+    // Herding: the more of the people around head there, the cheaper it looks.
+    if (herds && c < kNever) c *= 1.0 - static_cast<double>(pop.exitChoice.herding) * share[k];
     if (point == current) now = c;
     if (c < best) {
       best = c;
@@ -123,7 +132,7 @@ std::uint32_t ExitChoice::initial(const ScenarioDesc& desc, const PopulationDesc
 std::uint32_t ExitChoice::firstChoice(const ScenarioDesc& desc, const PopulationDesc& pop, std::uint32_t gid, core::Vec2 p,
                                       nav::PolyRef ref, float speed) const {
   if (pop.exitChoice.rule != ExitRule::Allocation) {
-    const std::uint32_t chosen = better(pop, pop.exitChoice.rule, kNoPoint, p, ref, speed);
+    const std::uint32_t chosen = better(pop, pop.exitChoice.rule, kNoPoint, p, ref, speed, gid);
     return chosen != kNoPoint ? chosen : pop.exits.front();
   }
   // A probabilistic split by fixed shares, drawn per group from (seed, group id).
@@ -169,6 +178,61 @@ void ExitChoice::countQueues(std::uint64_t tick, const GoalWriter& goals, const 
   });
   for (Exit& e : exits_) e.queue.clear();
   for (const Heading& h : heading_) exits_[h.exit].queue.add(distanceOfId_[agents.id[h.row]], 1);
+  if (herdCell_ > 0.0f) indexHerders(agents);
+}
+
+std::uint32_t ExitChoice::herdBucket(int cx, int cy) const {
+  const auto h = static_cast<std::uint32_t>(cx) * 73856093u ^ static_cast<std::uint32_t>(cy) * 19349663u;
+  return h & (kHerdBuckets - 1);
+}
+
+void ExitChoice::indexHerders(const AgentStore& agents) {
+  // A counting sort of heading_ (row order) into hashed cells of herdCell_ metres.
+  herdStart_.assign(kHerdBuckets + 1, 0);
+  herders_.resize(heading_.size());
+  std::vector<std::uint32_t> bucketOf(heading_.size());
+  for (std::size_t k = 0; k < heading_.size(); ++k) {
+    const std::uint32_t row = heading_[k].row;
+    bucketOf[k] = herdBucket(static_cast<int>(std::floor(agents.posX[row] / herdCell_)),
+                             static_cast<int>(std::floor(agents.posY[row] / herdCell_)));
+    ++herdStart_[bucketOf[k] + 1];
+  }
+  for (std::uint32_t b = 0; b < kHerdBuckets; ++b) herdStart_[b + 1] += herdStart_[b];
+  std::vector<std::uint32_t> next(herdStart_.begin(), herdStart_.end() - 1);
+  for (std::size_t k = 0; k < heading_.size(); ++k) {
+    const std::uint32_t row = heading_[k].row;
+    herders_[next[bucketOf[k]]++] = Herder{agents.posX[row], agents.posY[row], heading_[k].exit, agents.group[row]};
+  }
+}
+
+void ExitChoice::sharesNear(const PopulationDesc& pop, core::Vec2 p, std::uint32_t group, std::vector<double>& share) const {
+  share.assign(pop.exits.size(), 0.0);
+  if (herdStart_.empty()) return;
+  const float r = pop.exitChoice.herdingRadius;
+  const int reach = static_cast<int>(std::ceil(r / herdCell_));
+  const int cx = static_cast<int>(std::floor(p.x / herdCell_)), cy = static_cast<int>(std::floor(p.y / herdCell_));
+  double total = 0.0;
+  for (int y = cy - reach; y <= cy + reach; ++y) {
+    for (int x = cx - reach; x <= cx + reach; ++x) {
+      const std::uint32_t b = herdBucket(x, y);
+      for (std::uint32_t k = herdStart_[b]; k < herdStart_[b + 1]; ++k) {
+        const Herder& h = herders_[k];
+        // Hashed cells can share a bucket, and a bucket can be visited twice: the distance and
+        // the cell itself decide.
+        if (h.group == group || static_cast<int>(std::floor(h.x / herdCell_)) != x ||
+            static_cast<int>(std::floor(h.y / herdCell_)) != y) continue;
+        const float dx = h.x - p.x, dy = h.y - p.y;
+        if (dx * dx + dy * dy > r * r) continue;
+        total += 1.0;
+        for (std::size_t e = 0; e < pop.exits.size(); ++e) {
+          if (exitOfPoint_[pop.exits[e]] == static_cast<std::int32_t>(h.exit)) share[e] += 1.0;
+        }
+      }
+    }
+  }
+  if (total > 0.0) {
+    for (double& s : share) s /= total;
+  }
 }
 
 void ExitChoice::reconsider(std::uint64_t tick, std::span<const std::uint32_t> rowOfId, GoalWriter& goals) {
@@ -205,7 +269,7 @@ void ExitChoice::reconsiderGroup(std::uint32_t gid, const PopulationDesc& pop, s
   const core::Vec2 p{agents.posX[row], agents.posY[row]};
   // An allocated group whose exit closed takes the nearest open one.
   const ExitRule rule = pop.exitChoice.rule == ExitRule::Allocation ? ExitRule::Nearest : pop.exitChoice.rule;
-  const std::uint32_t next = better(pop, rule, current, p, agents.polyRef[row], agents.speed[row]);
+  const std::uint32_t next = better(pop, rule, current, p, agents.polyRef[row], agents.speed[row], gid);
   if (next == current) return;
   // The others deciding this tick see the move at once.
   const auto members = static_cast<std::int32_t>(g.members.size());

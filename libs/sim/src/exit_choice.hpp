@@ -12,6 +12,8 @@
 //   - the groups that choose, as ranges of consecutive ids per population: each group re-evaluated
 //     once per period at a tick spread by its id (only the groups due are visited), every group
 //     on the tick after an exit closed or opened.
+// Herding (social influence): a population's "herding" lowers an exit's cost by the share of the
+// people around heading for it (a cell index of who heads where, rebuilt with the queue counts).
 // A group's choice is the last entry of a goal list of its own (GoalWriter::giveExitGoals), so
 // every reader of goals (GoalView) sees a plain goal. Serial code (spawning, applyCommands): the
 // same for any thread or rank count.
@@ -88,8 +90,12 @@ class ExitChoice {
   [[nodiscard]] double cost(const Exit& e, ExitRule rule, float d, float speed) const;
   /// The group's new exit by `rule` among `pop`'s exits (or `current` when none is better by the
   /// population's hysteresis; kNoPoint as `current`: the best, without hysteresis).
+  /// `group`: the deciding group's id (its own members are not "others" for herding; kNoGroup at spawn).
   [[nodiscard]] std::uint32_t better(const PopulationDesc& pop, ExitRule rule, std::uint32_t current, core::Vec2 p,
-                                     nav::PolyRef ref, float speed) const;
+                                     nav::PolyRef ref, float speed, std::uint32_t group) const;
+  /// Herding: per exit of `pop`, the share of the people within the population's herding radius
+  /// of p (not of `group`) heading for it, from the last queue count; all 0 when nobody is near.
+  void sharesNear(const PopulationDesc& pop, core::Vec2 p, std::uint32_t group, std::vector<double>& share) const;
   [[nodiscard]] Exit& exitAt(std::uint32_t point) { return exits_[static_cast<std::size_t>(exitOfPoint_[point])]; }
   [[nodiscard]] std::uint32_t firstChoice(const ScenarioDesc& desc, const PopulationDesc& pop, std::uint32_t gid, core::Vec2 p,
                                           nav::PolyRef ref, float speed) const;
@@ -105,6 +111,17 @@ class ExitChoice {
     std::uint32_t row = 0, exit = 0;  ///< an agent heading for exits_[exit]
   };
   std::vector<Heading> heading_, measure_;  ///< countQueues' scratch: all, and those re-measured
+  /// Herding (when some population uses it): who heads where, by cells of herdCell_ metres, from
+  /// the last queue count; cells hashed (x, y) → bucket, each entry (position, exit, group).
+  struct Herder {
+    float x = 0.0f, y = 0.0f;
+    std::uint32_t exit = 0, group = 0;
+  };
+  std::vector<std::uint32_t> herdStart_;     ///< bucket → first entry in herders_ (size buckets + 1)
+  std::vector<Herder> herders_;              ///< sorted by bucket
+  float herdCell_ = 0.0f;                    ///< 0: no population herds
+  [[nodiscard]] std::uint32_t herdBucket(int cx, int cy) const;
+  void indexHerders(const AgentStore& agents);
   std::uint32_t periodTicks_ = 40;          ///< the shortest population period in ticks (distance refresh)
   bool availabilityChanged_ = false;        ///< an exit closed or opened: every group looks again
 };

@@ -171,6 +171,11 @@ struct ExitChoiceDesc {
   /// multiplied by this, so a familiar exit is preferred while it costs less than this many times
   /// the best unknown one [Limit: 1..100].
   float familiarity = 2.0f;
+  /// Social influence (herding; NIST TN 1822 test 3.2): an exit's cost is multiplied by
+  /// 1 − herding × the share of the other people within `herdingRadius` (of other groups, heading
+  /// for an exit) who head for it. 0: off [Limit: 0..1).
+  float herding = 0.0f;
+  float herdingRadius = 5.0f;  ///< [m] [Limit: > 0 .. 50]
 };
 
 struct PopulationDesc {
