@@ -2,7 +2,7 @@
 // wall, where a door leaves a gap, and where a staircase gets risers instead of walls.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { walkableWalls, terrainWalls, insidePolygon } from '../src/world/walls.js';
+import { walkableWalls, terrainWalls, insidePolygon, wallRectangles } from '../src/world/walls.js';
 
 const length = (segs) => segs.reduce((s, w) => s + Math.hypot(w.x1 - w.x0, w.y1 - w.y0), 0);
 const near = (a, b, eps = 1e-6) => Math.abs(a - b) <= eps;
@@ -85,4 +85,20 @@ test('a staircase gets a riser at each step, railings along its sides and no wal
 test('a flat world and an empty terrain have no terrain walls', () => {
   assert.deepEqual(terrainWalls(null), { walls: [], risers: [] });
   assert.deepEqual(terrainWalls({ vertices: [], walkable: [] }), { walls: [], risers: [] });
+});
+
+test('a scenario wall is drawn as the rectangles the engine cuts out: thickness wide, ends lengthened', () => {
+  // An L: 4 m east, then 3 m north, 0.2 m thick (the default).
+  const rects = wallRectangles({ line: [[0, 0], [4, 0], [4, 3]] });
+  assert.equal(rects.length, 2);
+  const xs = rects[0].map((p) => p[0]), ys = rects[0].map((p) => p[1]);
+  assert.ok(near(Math.min(...xs), -0.1) && near(Math.max(...xs), 4.1), `x ${xs}`);
+  assert.ok(near(Math.min(...ys), -0.1) && near(Math.max(...ys), 0.1), `y ${ys}`);
+  // The corner (4, 0) is inside both rectangles: the joint is covered.
+  assert.ok(insidePolygon(4.05, -0.05, rects[0]) && insidePolygon(4.05, -0.05, rects[1]));
+  // A thickness of its own; zero-length segments and missing lines give nothing.
+  const thick = wallRectangles({ line: [[0, 0], [0, 0], [0, 2]], thickness: 0.5 });
+  assert.equal(thick.length, 1);
+  assert.ok(near(Math.max(...thick[0].map((p) => p[0])), 0.25));
+  assert.deepEqual(wallRectangles({}), []);
 });

@@ -7,6 +7,9 @@
 //   stretch is open (another walkable triangle continues at the same height), a riser (one
 //   continues within kMaxStep lower: a step; the riser spans the two heights) or a wall or railing
 //   (nothing walkable beyond it within kMaxStep: a room's wall, a gallery's or a stair's edge).
+// - wallRectangles(wall): a scenario wall ({line: [[x, y], ...], thickness}) as the obstacle
+//   rectangles the engine cuts out of the walkable area: each segment `thickness` wide, lengthened
+//   by thickness / 2 at both ends so joints are covered (as libs/io's scenario_walls_parser.cpp).
 // Edges are probed every `step` metres at kProbe beyond the edge, so a partly shared edge (a
 // door, the foot of a staircase on a floor) is split where the neighbour ends, to that step.
 import { kMaxStep, terrainHeightAt } from './terrain.js';
@@ -131,4 +134,24 @@ export function terrainWalls(terrain, step = 0.25) {
     });
   }
   return { walls, risers };
+}
+
+/** A scenario wall {line: [[x, y], ...], thickness = 0.2} as rectangles [[x, y] × 4], one per segment
+ * of non-zero length, `thickness` wide and lengthened by thickness / 2 at both ends (what the engine
+ * cuts out of the walkable area, so the drawing matches where nobody walks). */
+export function wallRectangles(wall) {
+  const t = Number.isFinite(wall?.thickness) ? wall.thickness : 0.2;
+  const line = Array.isArray(wall?.line) ? wall.line : [];
+  const out = [];
+  for (let i = 0; i + 1 < line.length; ++i) {
+    const [x0, y0] = line[i], [x1, y1] = line[i + 1];
+    const len = Math.hypot(x1 - x0, y1 - y0);
+    if (!(len > 1e-9)) continue;
+    const ux = (x1 - x0) / len, uy = (y1 - y0) / len;  // along
+    const h = t / 2;
+    const ax = x0 - ux * h, ay = y0 - uy * h, bx = x1 + ux * h, by = y1 + uy * h;
+    const nx = -uy * h, ny = ux * h;  // across
+    out.push([[ax + nx, ay + ny], [ax - nx, ay - ny], [bx - nx, by - ny], [bx + nx, by + ny]]);
+  }
+  return out;
 }

@@ -1,5 +1,6 @@
 // The static world from the scenario JSON (docs/scenario-format.md) as the world description
-// carries it: walkable polygons as floors, obstacles extruded as solid blocks, walls along the
+// carries it: walkable polygons as floors, obstacles and the scenario's `walls` (wallRectangles)
+// extruded as solid blocks, its `measurements` as purple lines and outlines on the floor, walls along the
 // walkable area's boundary (walls.js: kBoundaryWallHeight high, semi-transparent, with a dark line
 // along their top that reads as the wall in plan view), points as markers —
 // interest (blue ring), action (orange disc with an arrow along its orientation), exit (green
@@ -11,7 +12,7 @@
 // world (x, y, z) → scene (x, z, −y); points stand at their height (`position[2]`, or `height`).
 import * as THREE from 'three';
 import { terrainBounds } from './terrain.js';
-import { terrainWalls, walkableWalls } from './walls.js';
+import { terrainWalls, walkableWalls, wallRectangles } from './walls.js';
 
 const kWallHeight = 2.4;  // [m] obstacles (shops' blocks, pillars, kiosks)
 /** Height [m] of the walls along the walkable boundary and of railings: waist to chest high, so
@@ -139,6 +140,26 @@ export function wallObject(walls, name) {
   return group;
 }
 
+/** The scenario's measurement lines ({line: [[x, y], [x, y]]}) and areas ({polygon}) as purple
+ * lines 3 cm above the floor, one group named 'measurements' (userData.count: how many). */
+function measurementObject(measurements) {
+  const pts = [];
+  for (const m of measurements) {
+    const ring = m.line || m.polygon || [];
+    const n = m.line ? ring.length - 1 : ring.length;
+    for (let i = 0; i < n; ++i) {
+      const [x0, y0] = ring[i], [x1, y1] = ring[(i + 1) % ring.length];
+      pts.push(x0, 0.03, -y0, x1, 0.03, -y1);
+    }
+  }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(pts, 3));
+  const lines = new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: 0x8a3ab9 }));
+  lines.name = 'measurements';
+  lines.userData.count = measurements.length;
+  return lines;
+}
+
 /** Stair risers [{x0, y0, x1, y1, zLow, zHigh}] as one opaque mesh named 'stair-risers'. */
 function riserObject(risers) {
   const mesh = new THREE.Mesh(quadGeometry(risers.map((r) => [r.x0, r.y0, r.x1, r.y1, r.zLow, r.zLow, r.zHigh, r.zHigh])),
@@ -206,11 +227,13 @@ export function buildWorld(scenario) {
   if (walls.length) root.add(wallObject(walls, 'boundary-walls'));
 
   const wallMat = new THREE.MeshLambertMaterial({ color: 0xb9a98f });
-  for (const poly of scenario.obstacles || []) {
+  const solids = [...(scenario.obstacles || []), ...(scenario.walls || []).flatMap(wallRectangles)];
+  for (const poly of solids) {
     const g = new THREE.ExtrudeGeometry(shapeOf(poly), { depth: kWallHeight, bevelEnabled: false });
     g.applyMatrix4(toScene);
     root.add(new THREE.Mesh(g, wallMat));
   }
+  if (scenario.measurements?.length) root.add(measurementObject(scenario.measurements));
   if (scenario.terrain) addTerrain(root, scenario.terrain, 0xd8d4cc, wallMat);
 
   const mats = {
