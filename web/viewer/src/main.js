@@ -29,6 +29,8 @@ import { Help } from './ui/help.js';
 import { Markers, kSelfColour } from './crowd/markers.js';
 import { Trails } from './crowd/trails.js';
 import { Heatmap } from './crowd/heatmap.js';
+import { Measurements } from './crowd/measure.js';
+import { MeasurePanel } from './ui/measure_panel.js';
 import { Exporter } from './ui/export.js';
 import { kSelectedColour, kPickedGroupColour } from './crowd/crowd_view.js';
 import { kColourModes } from './crowd/colour_by.js';
@@ -90,6 +92,8 @@ let worldLabels = [];  // the points' name labels (world_view.js pointLabels)
 const kOtherColour = 0xd02090;  // other participants' avatars
 let markers = null;
 let heatmap = null;  // density heatmap overlay (key M)
+let measurements = null;  // the scenario's measurement lines and areas, measured live
+let measurePanel = null;
 let speedmap = null;  // speed heatmap overlay (key G)
 let trails = null, trailsStale = false;  // trajectory trails (key R), rebuilt after each frame
 const legend = new Legend($('legend'), { selected: kSelectedColour, pickedGroup: kPickedGroupColour, self: kSelfColour, other: kOtherColour },
@@ -113,6 +117,7 @@ source.on('frame', (f) => {
   if (trails && trails.enabled) { trails.record(f, hud.simTime); trailsStale = true; }
   if (heatmap) heatmap.record(f, hud.simTime);
   if (speedmap) speedmap.record(f, hud.simTime);
+  if (measurements) measurements.record(f, hud.simTime);
 });
 source.on('participant', (m) => {
   const o = others.get(m.participantId) || { phase: 0, name: source.names.get(m.participantId) };
@@ -144,6 +149,8 @@ source.on('world', async (w) => {
   trails = new Trails(scene);
   heatmap = new Heatmap(scene, bounds);
   if (params.get('heatmap') === '1') toggleHeatmap(true);
+  measurements = new Measurements((w.scenario || {}).measurements || []);
+  measurePanel = new MeasurePanel($('measure'), measurements);
   speedmap = new Heatmap(scene, bounds, 'speed');
   if (params.get('speedmap') === '1') toggleSpeedmap(true);
   if (params.get('trails') === '1') toggleTrails(true);
@@ -161,7 +168,7 @@ source.on('world', async (w) => {
 function testHooks(w) {
   return {
     cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode,
-    get trails() { return trails; }, get heatmap() { return heatmap; }, get speedmap() { return speedmap; }, get markers() { return markers; }, selfColour: kSelfColour,
+    get trails() { return trails; }, get heatmap() { return heatmap; }, get measurements() { return measurements; }, get speedmap() { return speedmap; }, get markers() { return markers; }, selfColour: kSelfColour,
     renderer, exporter, description: w, others, groupList, remoteJoints, gesture,
     get joined() { return joined; },
     /** The world's named parts and how many segments each has (walls, railings, risers; 1 for others). */
@@ -505,6 +512,7 @@ function frame() {
   }
   if (heatmap) heatmap.update();
   if (speedmap) speedmap.update();
+  if (measurePanel) measurePanel.update(nowMs);
   const sel = selectedId >= 0 ? state.index.get(selectedId) : undefined;
   markers.update(joined ? cameras.avatar : null, sel === undefined ? null : { x: state.x[sel], y: state.y[sel], z: state.z[sel] },
     cameras.mode === 'plan' ? cameras.planMetresPerPixel(innerHeight) : 0);
