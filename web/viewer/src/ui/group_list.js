@@ -1,8 +1,28 @@
 // Group list: the world's groups (world description: id, population, members) in a drop-down, so a
-// participant can pick one without finding its members on screen; Guide makes the picked group
+// participant can pick one without finding its members on screen, filtered by the search box
+// (filterGroups: population names, ids, sizes); Guide makes the picked group
 // follow the participant's avatar, Release gives it back. Shows which groups this viewer guides
 // (from GuideResult) and how many of a group's members are in view. Writes nothing but the DOM;
 // onSelect / onGuide / onRelease go to main.js.
+/** The groups matching `query`: words separated by spaces, all of which must match — a number or
+ * #number: the group's id; >=n, <=n, >n, <n, =n: its size (members); any other word: part of its
+ * population's name (case-insensitive). An empty query keeps every group. */
+export function filterGroups(groups, query) {
+  const words = String(query || '').trim().toLowerCase().split(/\s+/).filter(Boolean);
+  const tests = words.map((w) => {
+    const id = /^#?(\d+)$/.exec(w);
+    if (id) return (g) => g.id === Number(id[1]);
+    const size = /^(>=|<=|>|<|=)(\d+)$/.exec(w);
+    if (size) {
+      const n = Number(size[2]);
+      const cmp = { '>=': (a) => a >= n, '<=': (a) => a <= n, '>': (a) => a > n, '<': (a) => a < n, '=': (a) => a === n }[size[1]];
+      return (g) => cmp((g.members || []).length);
+    }
+    return (g) => String(g.population || '').toLowerCase().includes(w);
+  });
+  return (groups || []).filter((g) => tests.every((t) => t(g)));
+}
+
 export class GroupList {
   constructor(root, { onSelect, onGuide, onRelease }) {
     this.root = root;
@@ -11,6 +31,9 @@ export class GroupList {
     this.guideButton = this.$('group-guide');
     this.releaseButton = this.$('group-release');
     this.status = this.$('group-status');
+    this.filter = this.$('group-filter');
+    this.query = '';
+    if (this.filter) this.filter.oninput = () => { this.query = this.filter.value; this.signature = null; this.setGroups(this.groups); };
     this.groups = [];
     this.guiding = new Set();
     this.joined = false;
@@ -27,17 +50,19 @@ export class GroupList {
     if (signature === this.signature) return;  // unchanged: leave an open drop-down alone
     this.signature = signature;
     this.select.replaceChildren();
+    const shown = filterGroups(this.groups, this.query);
     const none = document.createElement('option');
     none.value = '-1';
-    none.textContent = this.groups.length ? `groups (${this.groups.length})…` : 'no groups';
+    none.textContent = !this.groups.length ? 'no groups'
+      : shown.length === this.groups.length ? `groups (${this.groups.length})…` : `${shown.length} of ${this.groups.length} groups…`;
     this.select.append(none);
-    for (const g of this.groups) {
+    for (const g of shown) {
       const o = document.createElement('option');
       o.value = String(g.id);
       o.textContent = `group ${g.id}${g.population ? ` · ${g.population}` : ''} · ${(g.members || []).length}`;
       this.select.append(o);
     }
-    if (this.groups.some((g) => g.id === keep)) this.select.value = String(keep);
+    if (shown.some((g) => g.id === keep)) this.select.value = String(keep);
     this.$('group-row').classList.toggle('hidden', this.groups.length === 0);
     this.refresh();
   }
@@ -47,6 +72,12 @@ export class GroupList {
   /** Picks group `g` (e.g. the group of a clicked agent). */
   pick(g) {
     if (g === undefined || !this.groups.some((x) => x.id === g)) return;
+    if (!filterGroups(this.groups, this.query).some((x) => x.id === g)) {  // picked on screen: show it
+      this.query = '';
+      if (this.filter) this.filter.value = '';
+      this.signature = null;
+      this.setGroups(this.groups);
+    }
     this.select.value = String(g);
     this.refresh();
   }
