@@ -466,11 +466,13 @@ ParsedScenario ScenarioReader::run() {
   if (!isObject(root, "", "a scenario object {\"format\": \"throng/1\", ...}")) return out;
   checkKeys(root, "",
             {"$schema", "format", "name", "seed", "duration", "dt", "walkable", "obstacles", "terrain", "points",
-             "populations", "steering", "navCellSize", "social", "timeline"},
+             "populations", "steering", "navCellSize", "social", "timeline", "walls", "measurements"},
             "the scenario");
   readScenarioHeader(root, out.desc);
   readTiming(root, out.desc);
   readGeometry(root, out);
+  readWallList(root, out);
+  readMeasurementList(root, out);
   readPointList(root, out);
   indexPoints(out.desc);
   readPopulationList(root, out);

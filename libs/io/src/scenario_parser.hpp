@@ -20,7 +20,13 @@ namespace throng::io {
 struct ParsedScenario {
   sim::ScenarioDesc desc;
   std::vector<bool> walkableOk;    ///< per walkable polygon: a simple polygon with area
-  std::vector<bool> obstaclesOk;   ///< per obstacle polygon
+  std::vector<bool> obstaclesOk;   ///< per obstacle polygon (the file's, then the walls' footprints)
+  std::vector<bool> wallsOk;       ///< per wall: line and thickness valid (its footprints are in desc.obstacles)
+  std::vector<bool> measurementsOk;  ///< per measurement line or area
+  /// How many of desc.obstacles come from "/obstacles"; the rest are wall footprints.
+  std::size_t listedObstacles = 0;
+  /// Per wall footprint (desc.obstacles[listedObstacles + k]): the index of its wall in "/walls".
+  std::vector<std::uint32_t> obstacleWall;
   bool terrainOk = true;           ///< "terrain" absent, or its vertices and triangles all valid
   std::vector<bool> pointsOk;      ///< per point: region parsed and valid
   std::vector<bool> populationsOk; ///< per population: every field parsed (spawn, goals and follow resolved)
@@ -44,10 +50,25 @@ inline constexpr std::uint64_t kSelfIntersectionTests = 10000000;
 inline constexpr std::size_t kMaxPoints = 100000;
 inline constexpr std::size_t kMaxPopulations = 10000;
 
+/// Most wall segments a file may hold in total: each becomes an obstacle polygon.
+inline constexpr std::size_t kMaxWallSegments = 100000;
+/// Most measurement lines and areas a file may list.
+inline constexpr std::size_t kMaxMeasurements = 10000;
+
 [[nodiscard]] ParsedScenario parseScenarioJson(const JsonDocument& doc, core::Diagnostics& diagnostics);
 
 /// Removes a closing vertex equal to the first and consecutive duplicates; `original` receives,
 /// for each kept vertex, its index in the input.
 [[nodiscard]] core::Polygon normalizePolygon(const core::Polygon& poly, std::vector<std::size_t>& original);
+
+/// The obstacles a wall stands for: per segment of its line (consecutive duplicates skipped), a
+/// rectangle `thickness` wide lengthened by thickness/2 at both ends, so that the rectangles of two
+/// segments meeting at any angle cover the joint (each holds the disc of radius thickness/2 around
+/// the shared point). Counter-clockwise; computed in double precision.
+[[nodiscard]] std::vector<core::Polygon> wallFootprints(const sim::WallDesc& wall);
+
+/// The JSON pointer of desc.obstacles[k]: "/obstacles/k" for a listed obstacle, "/walls/j" for a
+/// wall's footprint.
+[[nodiscard]] std::string obstaclePointer(const ParsedScenario& parsed, std::size_t k);
 
 }  // namespace throng::io

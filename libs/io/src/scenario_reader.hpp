@@ -73,6 +73,12 @@ class ScenarioReader {
   void readTiming(const Json& root, sim::ScenarioDesc& desc);          ///< duration, dt, navCellSize, steering
   void readGeometry(const Json& root, ParsedScenario& out);            ///< walkable + obstacles, or terrain
   void readPointList(const Json& root, ParsedScenario& out);
+  /// "walls" (scenario_walls_parser.cpp): read, then appended to desc.obstacles as footprints.
+  void readWallList(const Json& root, ParsedScenario& out);
+  bool readWall(const Json& v, const std::string& ptr, sim::WallDesc& w, std::size_t& segments);
+  /// "measurements" (scenario_walls_parser.cpp): lines and areas for analysis.
+  void readMeasurementList(const Json& root, ParsedScenario& out);
+  bool readMeasurement(const Json& v, const std::string& ptr, sim::MeasurementDesc& m);
   /// The point ids and heights that goals and spawns resolve against (run and runCrowd).
   void indexPoints(const sim::ScenarioDesc& desc);
   void readPopulationList(const Json& root, ParsedScenario& out);

@@ -83,7 +83,8 @@ class Validator {
     }
     const bool geometryOk = !desc_.walkable.empty() &&
                             std::all_of(parsed_.walkableOk.begin(), parsed_.walkableOk.end(), [](bool b) { return b; }) &&
-                            std::all_of(parsed_.obstaclesOk.begin(), parsed_.obstaclesOk.end(), [](bool b) { return b; });
+                            std::all_of(parsed_.obstaclesOk.begin(), parsed_.obstaclesOk.end(), [](bool b) { return b; }) &&
+                            std::all_of(parsed_.wallsOk.begin(), parsed_.wallsOk.end(), [](bool b) { return b; });
     if (!geometryOk) return;  // the parser already said why
     if (!buildAreas()) return;
     std::vector<std::optional<core::Vec2>> starts(desc_.populations.size());
@@ -144,7 +145,7 @@ class Validator {
       return false;
     }
     if (bg::area(free_) < 1e-6) {
-      error(desc_.obstacles.empty() ? "/walkable" : "/obstacles", "nothing walkable remains after removing obstacles",
+      error(desc_.obstacles.empty() ? "/walkable" : parsed_.listedObstacles > 0 ? "/obstacles" : "/walls", "nothing walkable remains after removing obstacles",
             "walkable area not entirely covered by /obstacles");
       return false;
     }
@@ -177,13 +178,13 @@ class Validator {
   }
 
   /// Empty when `p` lies strictly inside the walkable area and outside every obstacle; otherwise
-  /// "(x, y) is outside the walkable area" or "(x, y) is inside obstacle /obstacles/k".
+  /// "(x, y) is outside the walkable area" or "(x, y) is inside obstacle /obstacles/k" (or "/walls/j").
   std::string positionProblem(core::Vec2 p) const {
     const BPoint b(p.x, p.y);
     const std::string where = "(" + num(p.x) + ", " + num(p.y) + ")";
     if (!bg::within(b, walk_)) return where + " is outside the walkable area";
     for (std::size_t k = 0; k < obstacles_.size(); ++k) {
-      if (bg::within(b, obstacles_[k])) return where + " is inside obstacle /obstacles/" + std::to_string(k);
+      if (bg::within(b, obstacles_[k])) return where + " is inside obstacle " + obstaclePointer(parsed_, k);
     }
     return {};
   }
@@ -233,7 +234,8 @@ class Validator {
       for (std::size_t k = 0; k < obstacles_.size(); ++k) {
         BMulti overlap;
         bg::intersection(s.region, obstacles_[k], overlap);
-        if (bg::area(overlap) > 1e-9) which += (which.empty() ? "/obstacles/" : ", /obstacles/") + std::to_string(k);
+        const std::string name = obstaclePointer(parsed_, k);  // a wall's segments name it once
+        if (bg::area(overlap) > 1e-9 && !which.ends_with(name)) which += (which.empty() ? "" : ", ") + name;
       }
       error(s.pointer,
             "spawn area overlaps obstacle " + which + " (" + num(walkArea - freeArea) + " of " + num(area) + " m² covered)",

@@ -323,6 +323,23 @@ struct TimelineEntry {
   std::uint32_t point = 0;  ///< CloseExit, OpenExit: the exit's point index
 };
 
+/// A wall (scenario key "walls"): a polyline with a thickness. io turns each of its segments into a
+/// rectangle `thickness` wide, lengthened by thickness/2 at both ends so that joints are covered, and
+/// appends these footprints to ScenarioDesc::obstacles: the simulation sees walls only as obstacles.
+struct WallDesc {
+  std::string id;          ///< optional; unique among the walls when given
+  std::vector<Vec2> line;  ///< at least 2 distinct points [m]
+  float thickness = 0.2f;  ///< [m] [Limit: 0.01 .. 5]; default: a plastered interior masonry wall
+};
+
+/// A measurement line or area (scenario key "measurements") for analysis (throng plot); the
+/// simulation never reads it.
+struct MeasurementDesc {
+  std::string id;          ///< unique among the measurements
+  std::vector<Vec2> line;  ///< a line: exactly 2 points, non-zero length; empty for an area
+  Polygon polygon;         ///< an area: a simple polygon; empty for a line
+};
+
 struct ScenarioDesc {
   std::string format = "throng/1";
   std::string name;
@@ -330,7 +347,10 @@ struct ScenarioDesc {
   float duration = 300.0f;   ///< [s]; a run also ends once every agent has exited
   float dt = 0.05f;          ///< simulation time step [s] [Limit: 0.001 .. 0.5]
   std::vector<Polygon> walkable;
+  /// The "obstacles" of the file, followed by the footprints of its `walls` (see WallDesc).
   std::vector<Polygon> obstacles;
+  std::vector<WallDesc> walls;                ///< as written; already part of `obstacles`
+  std::vector<MeasurementDesc> measurements;  ///< analysis only
   /// Multi-level worlds: 3D walking geometry (floors, stairs, ramps, solid obstacles). When it is
   /// non-empty the navmesh is built from it, `walkable` and `obstacles` are empty, and agents,
   /// points, spawns and guides carry heights. Empty: the flat 2D world of `walkable`/`obstacles`.

@@ -1,0 +1,219 @@
+// The scenario keys "walls" and "measurements" (scenario_walls_parser.cpp): walls become obstacle
+// rectangles that cover their joints and behave exactly like the same polygons listed in
+// "obstacles" (same trajectories, reachability, spawn checks naming the wall); measurements are
+// parsed and leave the simulation unchanged; bad values get located diagnostics.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "scenario_parser.hpp"
+#include "scenario_test_util.hpp"
+#include "throng/core/polygon_check.hpp"
+#include "throng/sim/world.hpp"
+
+namespace throng::io::test {
+namespace {
+
+/// The bottleneck's two obstacles as walls: vertical lines at x = 9.5, 1 m thick.
+const std::string kWalls =
+    R"("walls": [ {"id": "south", "line": [[9.5,0.5],[9.5,4]], "thickness": 1}, {"line": [[9.5,6],[9.5,9.5]], "thickness": 1} ],)";
+
+std::string withWalls(const std::string& walls = kWalls) {
+  return edit(kBottleneck, R"("obstacles": [ [[9,0],[10,0],[10,4.5],[9,4.5]], [[9,5.5],[10,5.5],[10,10],[9,10]] ],)", walls);
+}
+
+/// Steps the world `ticks` times; the hash of every tick's state, chained.
+std::uint64_t runHash(const sim::ScenarioDesc& desc, int ticks) {
+  auto world = sim::World::create(desc);
+  EXPECT_TRUE(world.ok());
+  if (!world.ok()) return 0;
+  core::TaskSystem tasks(1);
+  std::uint64_t h = 14695981039346656037ull;
+  for (int t = 0; t < ticks; ++t) {
+    world.value()->step(tasks);
+    h = (h ^ world.value()->stateHash()) * 1099511628211ull;
+  }
+  return h;
+}
+
+bool insideAny(const std::vector<core::Polygon>& polys, core::Vec2 p) {
+  for (const auto& poly : polys) {
+    if (core::pointInPolygon(poly, p)) return true;
+  }
+  return false;
+}
+
+TEST(ScenarioWalls, SegmentsBecomeRectanglesLengthenedByHalfTheThickness) {
+  const auto footprints = wallFootprints({"w", {{0, 0}, {4, 0}, {4, 0}, {4, 3}}, 0.2f});
+  ASSERT_EQ(footprints.size(), 2u);  // the repeated point adds no segment
+  EXPECT_NEAR(core::signedArea(footprints[0]), 4.2 * 0.2, 1e-5);  // counter-clockwise, (L + t) × t
+  EXPECT_NEAR(core::signedArea(footprints[1]), 3.2 * 0.2, 1e-5);
+  const core::Vec2 expected[] = {{-0.1f, -0.1f}, {4.1f, -0.1f}, {4.1f, 0.1f}, {-0.1f, 0.1f}};
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(footprints[0][std::size_t(i)].x, expected[i].x, 1e-6);
+    EXPECT_NEAR(footprints[0][std::size_t(i)].y, expected[i].y, 1e-6);
+  }
+}
+
+TEST(ScenarioWalls, JointsAreCoveredAtAnyAngle) {
+  for (const double deg : {10.0, 45.0, 90.0, 135.0, 170.0}) {
+    const double a = deg * 3.14159265358979 / 180.0;
+    const core::Vec2 joint{2, 2};
+    const sim::WallDesc wall{"", {{0, 2}, joint, {float(2 + 3 * std::cos(a)), float(2 + 3 * std::sin(a))}}, 0.4f};
+    const auto footprints = wallFootprints(wall);
+    for (int k = 0; k < 64; ++k) {  // the disc of radius t/2 around the joint, just inside its rim
+      const double b = 2.0 * 3.14159265358979 * k / 64;
+      const core::Vec2 p{float(joint.x + 0.199 * std::cos(b)), float(joint.y + 0.199 * std::sin(b))};
+      EXPECT_TRUE(insideAny(footprints, p)) << deg << "° at " << p.x << ", " << p.y;
+    }
+  }
+}
+
+TEST(ScenarioWalls, AreAppendedToTheObstaclesAfterTheListedOnes) {
+  auto r = load(withWalls(R"("obstacles": [ [[12,0],[13,0],[13,1],[12,1]] ],)" + kWalls));
+  ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
+  const sim::ScenarioDesc& d = r->desc;
+  ASSERT_EQ(d.walls.size(), 2u);
+  EXPECT_EQ(d.walls[0].id, "south");
+  EXPECT_EQ(d.walls[1].id, "");
+  EXPECT_FLOAT_EQ(d.walls[0].thickness, 1.0f);
+  ASSERT_EQ(d.obstacles.size(), 3u);
+  EXPECT_EQ(d.obstacles[1], wallFootprints(d.walls[0])[0]);
+  EXPECT_EQ(d.obstacles[2], wallFootprints(d.walls[1])[0]);
+}
+
+TEST(ScenarioWalls, DefaultThicknessIsTwentyCentimetres) {
+  auto r = load(withWalls(R"("walls": [ {"line": [[9.5,0],[9.5,4.5]]} ],)"));
+  ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
+  EXPECT_FLOAT_EQ(r->desc.walls[0].thickness, 0.2f);
+}
+
+TEST(ScenarioWalls, RunExactlyAsTheSamePolygonsListedAsObstacles) {
+  auto walls = load(withWalls(), true);
+  ASSERT_TRUE(walls.ok()) << core::formatAll(walls.errors());
+  std::string listed = "\"obstacles\": [";
+  for (const auto& poly : walls->desc.obstacles) {
+    listed += std::string(listed.back() == '[' ? "" : ",") + "[";
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%s[%.9g,%.9g]", i ? "," : "", double(poly[i].x), double(poly[i].y));
+      listed += buf;
+    }
+    listed += "]";
+  }
+  auto obstacles = load(withWalls(listed + "],"), true);
+  ASSERT_TRUE(obstacles.ok()) << core::formatAll(obstacles.errors());
+  EXPECT_EQ(obstacles->desc.obstacles, walls->desc.obstacles);
+  EXPECT_EQ(runHash(walls->desc, 200), runHash(obstacles->desc, 200));
+}
+
+TEST(ScenarioWalls, ReachabilitySeesThem) {
+  const std::string closed = withWalls(R"("walls": [ {"id": "closed", "line": [[9.5,0],[9.5,10]], "thickness": 0.5} ],)");
+  const auto errors = errorsOf(closed, true);
+  bool unreachable = false;
+  for (const auto& d : errors) unreachable = unreachable || contains(d.what, "cannot be reached") || contains(d.what, "unreachable");
+  EXPECT_TRUE(unreachable) << core::formatAll(errors);
+  EXPECT_TRUE(load(withWalls(), true).ok());
+}
+
+TEST(ScenarioWalls, ASpawnOnAWallNamesTheWall) {
+  const std::string text = edit(withWalls(), R"("spawn": {"polygon": [[1,1],[8,1],[8,9],[1,9]]})",
+                                R"("spawn": {"polygon": [[9,1],[10,1],[10,3],[9,3]]})");
+  const auto errors = errorsOf(text);
+  const auto d = at(errors, "/populations/0/spawn/polygon");
+  EXPECT_TRUE(contains(d.what, "/walls/0")) << d.format();
+  EXPECT_FALSE(contains(d.what, "/obstacles")) << d.format();
+}
+
+TEST(ScenarioWalls, BadValuesAreLocated) {
+  const std::string thin = withWalls(R"("walls": [ {"line": [[9.5,0],[9.5,4.5]], "thickness": 0.001} ],)");
+  const auto d1 = at(errorsOf(thin), "/walls/0/thickness");
+  expectAt(d1, thin, "0.001");
+  EXPECT_TRUE(contains(d1.expected, "0.01 to 5 m")) << d1.format();
+  const std::string thick = withWalls(R"("walls": [ {"line": [[9.5,0],[9.5,4.5]], "thickness": 6} ],)");
+  EXPECT_TRUE(contains(at(errorsOf(thick), "/walls/0/thickness").what, "out of range"));
+
+  const std::string point = withWalls(R"("walls": [ {"line": [[9.5,0],[9.5,0]]} ],)");
+  const auto d2 = at(errorsOf(point), "/walls/0/line");
+  EXPECT_TRUE(contains(d2.what, "1 distinct point")) << d2.format();
+  EXPECT_TRUE(contains(d2.expected, "at least 2 distinct points")) << d2.format();
+
+  const std::string coordinate = withWalls(R"("walls": [ {"line": [[9.5,0],[9.5,"x"]]} ],)");
+  expectAt(at(errorsOf(coordinate), "/walls/0/line/1/1"), coordinate, "\"x\"");
+
+  const std::string typo = withWalls(R"("walls": [ {"line": [[9.5,0],[9.5,4]], "thicknes": 1} ],)");
+  const auto d3 = at(errorsOf(typo), "/walls/0/thicknes");
+  EXPECT_TRUE(contains(d3.hint, "thickness")) << d3.format();
+
+  const std::string missing = withWalls(R"("walls": [ {"id": "w"} ],)");
+  EXPECT_TRUE(contains(at(errorsOf(missing), "/walls/0").what, "missing required key \"line\""));
+
+  const std::string notArray = withWalls(R"("walls": {"line": []},)");
+  EXPECT_TRUE(contains(at(errorsOf(notArray), "/walls").what, "wrong type"));
+
+  const std::string twice = withWalls(R"("walls": [ {"id": "w", "line": [[9.5,0],[9.5,4]]}, {"id": "w", "line": [[9.5,6],[9.5,10]]} ],)");
+  const auto d4 = at(errorsOf(twice), "/walls/1/id");
+  EXPECT_TRUE(contains(d4.what, "duplicate wall id")) << d4.format();
+  EXPECT_TRUE(contains(d4.hint, "/walls/0")) << d4.format();
+}
+
+TEST(ScenarioWalls, RefusedOnMultiLevelWorlds) {
+  const std::string text = R"({"format": "throng/1",
+ "terrain": {"vertices": [[0,0,0],[10,0,0],[10,0,10],[0,0,10]], "walkable": [0,1,2, 0,2,3]},
+ "walls": [ {"line": [[1,1],[2,2]]} ],
+ "populations": []})";
+  const auto d = at(errorsOf(text), "/walls");
+  EXPECT_TRUE(contains(d.what, "multi-level")) << d.format();
+}
+
+TEST(ScenarioMeasurements, LinesAndAreasAreParsed) {
+  const std::string text = edit(kBottleneck, R"("points": [)", R"("measurements": [
+    {"id": "m1", "line": [[10,3],[10,7]]},
+    {"id": "a1", "polygon": [[7,3],[9,3],[9,7],[7,7]]}
+  ],
+  "points": [)");
+  auto r = load(text);
+  ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
+  ASSERT_EQ(r->desc.measurements.size(), 2u);
+  EXPECT_EQ(r->desc.measurements[0].id, "m1");
+  ASSERT_EQ(r->desc.measurements[0].line.size(), 2u);
+  EXPECT_EQ(r->desc.measurements[0].line[1], core::Vec2(10, 7));
+  EXPECT_TRUE(r->desc.measurements[0].polygon.empty());
+  EXPECT_EQ(r->desc.measurements[1].polygon.size(), 4u);
+  EXPECT_TRUE(r->desc.measurements[1].line.empty());
+  // Analysis only: the same trajectories as without them.
+  auto plain = load(kBottleneck);
+  ASSERT_TRUE(plain.ok());
+  EXPECT_EQ(runHash(r->desc, 100), runHash(plain->desc, 100));
+}
+
+TEST(ScenarioMeasurements, BadValuesAreLocated) {
+  const auto with = [](const std::string& list) { return edit(kBottleneck, R"("points": [)", "\"measurements\": " + list + ",\n  \"points\": ["); };
+  const std::string three = with(R"([{"id": "m", "line": [[0,0],[1,1],[2,2]]}])");
+  const auto d1 = at(errorsOf(three), "/measurements/0/line");
+  EXPECT_TRUE(contains(d1.what, "line of 3 points")) << d1.format();
+  EXPECT_TRUE(contains(d1.expected, "exactly 2")) << d1.format();
+
+  const std::string zero = with(R"([{"id": "m", "line": [[1,1],[1,1]]}])");
+  EXPECT_TRUE(contains(at(errorsOf(zero), "/measurements/0/line").what, "zero-length"));
+
+  const std::string both = with(R"([{"id": "m", "line": [[0,0],[1,1]], "polygon": [[0,0],[1,0],[1,1]]}])");
+  EXPECT_TRUE(contains(at(errorsOf(both), "/measurements/0/polygon").what, "a line and an area"));
+
+  const std::string neither = with(R"([{"id": "m"}])");
+  EXPECT_TRUE(contains(at(errorsOf(neither), "/measurements/0").what, "no \"line\" or \"polygon\""));
+
+  const std::string noId = with(R"([{"line": [[0,0],[1,1]]}])");
+  EXPECT_TRUE(contains(at(errorsOf(noId), "/measurements/0").what, "missing required key \"id\""));
+
+  const std::string crossed = with(R"([{"id": "a", "polygon": [[0,0],[2,2],[2,0],[0,2]]}])");
+  EXPECT_TRUE(contains(at(errorsOf(crossed), "/measurements/0/polygon/2").what, "self-intersecting"));
+
+  const std::string twice = with(R"([{"id": "m", "line": [[0,0],[1,1]]}, {"id": "m", "polygon": [[0,0],[1,0],[1,1]]}])");
+  const auto d2 = at(errorsOf(twice), "/measurements/1/id");
+  expectAt(d2, twice, "\"m\"", 1);
+  EXPECT_TRUE(contains(d2.hint, "/measurements/0")) << d2.format();
+}
+
+}  // namespace
+}  // namespace throng::io::test
