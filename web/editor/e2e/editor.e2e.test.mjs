@@ -8,63 +8,12 @@
 // succeed or the test fails. THRONG_EDITOR_SHOT=FILE.png also saves a screenshot (docs/img).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawn, spawnSync } from 'node:child_process';
+import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { exe, launchBrowser, requirePrerequisites, sleep, stopServer, webRoot } from '../../viewer/e2e/harness.mjs';
-
-function startEditor(file) {
-  const proc = spawn(exe, ['edit', file, '--port', '0', '--web', path.join(webRoot, 'dist')], { stdio: ['ignore', 'pipe', 'pipe'] });
-  const log = [];
-  return new Promise((resolve, reject) => {
-    const timer = setTimeout(() => reject(new Error(`throng edit printed no URL in 30 s:\n${log.join('')}`)), 30000);
-    const onData = (d) => {
-      log.push(d.toString());
-      const m = /editor\s+(http:\/\/127\.0\.0\.1:(\d+)\/)/.exec(log.join(''));
-      if (m) { clearTimeout(timer); resolve({ proc, url: m[1], log }); }
-    };
-    proc.stdout.on('data', onData);
-    proc.stderr.on('data', (d) => log.push(d.toString()));
-    proc.on('exit', (code) => { clearTimeout(timer); reject(new Error(`throng edit exited (${code}):\n${log.join('')}`)); });
-  });
-}
-
-/** Page coordinates of a plan position [m]. */
-async function at(page, p) {
-  return page.evaluate(([x, y]) => {
-    const app = window.throngEditor;
-    const r = app.svg.getBoundingClientRect();
-    const [sx, sy] = app.cam.toScreen([x, y]);
-    return [r.left + sx, r.top + sy];
-  }, p);
-}
-
-async function drag(page, a, b) {
-  const [x0, y0] = await at(page, a);
-  const [x1, y1] = await at(page, b);
-  await page.mouse.move(x0, y0);
-  await page.mouse.down();
-  await page.mouse.move((x0 + x1) / 2, (y0 + y1) / 2, { steps: 3 });
-  await page.mouse.move(x1, y1, { steps: 3 });
-  await page.mouse.up();
-}
-
-async function click(page, p) {
-  const [x, y] = await at(page, p);
-  await page.mouse.click(x, y);
-}
-
-const checkState = (page) => page.locator('#check-state').textContent();
-
-async function waitForCheck(page, pattern, what) {
-  for (let i = 0; i < 100; i++) {
-    const text = await checkState(page);
-    if (pattern.test(text)) return text;
-    await sleep(100);
-  }
-  assert.fail(`${what}: the check state is "${await checkState(page)}"`);
-}
+import { exe, launchBrowser, requirePrerequisites, sleep, stopServer } from '../../viewer/e2e/harness.mjs';
+import { click, drag, startEditor, waitForCheck } from './helpers.mjs';
 
 test('a room with a door, a crowd and an exit, from an empty page to a file that runs', { timeout: 180000 }, async () => {
   requirePrerequisites('editor e2e');
