@@ -1,7 +1,8 @@
 // End-to-end test of the issue's "done when": a new user builds the bottleneck scenario
 // (scenarios/bottleneck.json) in the editor from an empty page — walkable area, two obstacles
 // leaving a 1 m gap, a waypoint in the gap, an exit, a crowd of 100 whose goals are picked on the
-// plan, its model and a model parameter set in the schema-generated form — checks it valid, saves
+// plan, its model, a model parameter and a pre-movement time set in the schema-generated form, over
+// a background image — checks it valid, saves
 // it with Ctrl+S and runs it with `throng run`. Then an invalid scenario is not saved until the user,
 // shown why, chooses Save anyway.
 import { test } from 'node:test';
@@ -53,6 +54,18 @@ test('the bottleneck from an empty page, saved and run; an invalid save only whe
     assert.match(await page.locator('.field:has([data-field=timeGap]) .field-error').textContent(), /maximum 10/);
     await page.fill('[data-field=timeGap]', '0.6');
     await page.press('[data-field=timeGap]', 'Enter');
+    // Pre-movement: a distribution without its keys is a problem until they are given.
+    await page.selectOption('[data-field=preMovement]', 'uniform');
+    await waitForCheck(page, /problem/, 'pre-movement without min and max');
+    await page.fill('[data-field="preMovement.min"]', '0');
+    await page.press('[data-field="preMovement.min"]', 'Enter');
+    await page.fill('[data-field="preMovement.max"]', '2');
+    await page.press('[data-field="preMovement.max"]', 'Enter');
+    // A floor plan image to trace over, 20 m wide.
+    page.once('dialog', (d) => d.accept('20'));
+    await page.setInputFiles('#background-file', path.join(path.dirname(new URL(import.meta.url).pathname), '../../../docs/img/museum.png'));
+    await page.waitForFunction(() => document.querySelector('svg image.background'));
+    await page.evaluate(() => { const a = window.throngEditor; a.cam.fit({ x0: -1, y0: -1, x1: 21, y1: 11 }); a.render(); });
 
     const doc = await page.evaluate(() => window.throngEditor.doc);
     assert.deepEqual(doc.walkable, [[[0, 0], [20, 0], [20, 10], [0, 10]]]);
@@ -64,6 +77,7 @@ test('the bottleneck from an empty page, saved and run; an invalid save only whe
     assert.deepEqual(crowd.goals, ['waypoint1', 'exit1']);
     assert.equal(crowd.groups, 100);
     assert.deepEqual(crowd.model, { name: 'avm', timeGap: 0.6 });
+    assert.deepEqual(crowd.preMovement, { distribution: 'uniform', min: 0, max: 2 });
     await waitForCheck(page, /valid · 100 agents/, 'the bottleneck');
 
     await page.keyboard.press('Escape');

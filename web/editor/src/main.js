@@ -299,6 +299,26 @@ class EditorApp {
     setTimeout(() => URL.revokeObjectURL(a.href), 1000);
   }
 
+  /** A floor plan image, scaled by the width in metres the user gives (not saved in the scenario). */
+  loadBackground(file) {
+    if (!file) return;
+    const reader = new FileReader();
+    reader.onload = () => {
+      const img = new Image();
+      img.onload = () => {
+        const width = Number(window.prompt(`Width of ${file.name} in metres (${img.width} pixels)?`, '20'));
+        if (!(width > 0)) return;
+        this.state.background = { href: reader.result, x0: 0, y0: 0, width, height: (width * img.height) / img.width };
+        this.cam.fit({ x0: 0, y0: 0, x1: width, y1: this.state.background.height });
+        this.render();
+        this.setStatus(`background ${file.name}: ${width} m wide, lower-left corner at 0, 0`);
+      };
+      img.src = reader.result;
+    };
+    reader.readAsDataURL(file);
+    $('background-file').value = '';
+  }
+
   // --- view -------------------------------------------------------------------------------------
 
   resize() {
@@ -349,6 +369,11 @@ class EditorApp {
     $('download').addEventListener('click', () => this.download());
     $('fit').addEventListener('click', () => this.fit());
     $('help-button').addEventListener('click', () => $('help').classList.toggle('hidden'));
+    $('background').addEventListener('click', () => {
+      if (this.state.background) { this.state.background = null; this.render(); return; }
+      $('background-file').click();
+    });
+    $('background-file').addEventListener('change', (e) => this.loadBackground(e.target.files[0]));
     $('help').addEventListener('click', () => $('help').classList.add('hidden'));
     $('snap-toggle').addEventListener('change', (e) => { this.state.snap = e.target.checked; });
     $('grid-step').addEventListener('change', (e) => { this.state.grid = Math.max(0, Number(e.target.value) || 0); this.render(); });

@@ -3,8 +3,10 @@
 // (picked on the plan) and the pedestrian model with its parameters, a form generated from the
 // JSON Schema (schema_form.js). A value out of its schema limits is shown under its field and not
 // written; every accepted change is one undoable edit (`app.commit`).
-import { coerce, fieldOf, modelNames, modelParameters, objectFields, readModel, writeModel } from './schema_form.js';
-import { polygonArea, polylineLength } from './geometry.js';
+import {
+  coerce, fieldOf, modelNames, modelParameters, objectFields, readModel, variantFields, variantNames, writeModel,
+} from './schema_form.js';
+import { polygonArea, polygonProblem, polylineLength } from './geometry.js';
 import { isClosed, renamePoint, verticesOf } from './doc.js';
 
 function h(tag, attrs = {}, ...children) {
@@ -76,6 +78,8 @@ export class Panel {
       ? `area ${polygonArea(vs).toFixed(2)} m² · perimeter ${polylineLength(vs, true).toFixed(2)} m · ${vs.length} vertices`
       : `length ${polylineLength(vs).toFixed(2)} m · ${vs.length} points`;
     this.root.append(h('div', { class: 'measures', id: 'measures' }, text));
+    const problem = isClosed(this.app.doc, sel) ? polygonProblem(vs) : null;
+    if (problem) this.root.append(h('div', { class: 'field-error', id: 'shape-problem' }, `not a simple polygon: ${problem}`));
   }
 
   set(obj, key, value) {
@@ -149,8 +153,26 @@ export class Panel {
         this.set(pop, 'speed', Object.keys(next).length ? next : undefined);
       }));
     }
+    this.renderPreMovement(pop);
     this.renderGoals(pop);
     this.renderModel(pop);
+  }
+
+  /** Pre-movement time: none or one of the schema's distributions, with its keys. */
+  renderPreMovement(pop) {
+    const node = this.schema.$defs?.preMovement;
+    const current = pop.preMovement?.distribution;
+    this.root.append(this.input({ key: 'preMovement', type: 'enum', options: ['none', ...variantNames(this.schema, node, 'distribution')],
+      description: 'pre-movement time: agents stand where they appear for a time drawn from this distribution [s]' },
+      current || 'none', (v) => this.set(pop, 'preMovement', v === 'none' ? undefined : { distribution: v })));
+    if (!current) return;
+    for (const f of variantFields(this.schema, node, 'distribution', current)) {
+      this.root.append(this.input({ ...f, key: `preMovement.${f.key}` }, pop.preMovement[f.key], (v) => {
+        const next = { ...pop.preMovement, [f.key]: v };
+        if (v === undefined) delete next[f.key];
+        this.set(pop, 'preMovement', next);
+      }));
+    }
   }
 
   renderGoals(pop) {

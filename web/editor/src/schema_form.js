@@ -39,12 +39,22 @@ export function modelNames(schema) {
   return named ? named.enum.slice() : [];
 }
 
+/** The variants of a oneOf of objects told apart by the constant of `key` ("distribution"). */
+export function variantNames(schema, node, key) {
+  return (resolve(schema, node).oneOf || [])
+    .filter((o) => o.type === 'object' && o.properties?.[key]?.const !== undefined).map((o) => o.properties[key].const);
+}
+
+/** The fields of variant `value` of such a oneOf (its properties but `key`); [] for none. */
+export function variantFields(schema, node, key, value) {
+  const form = (resolve(schema, node).oneOf || []).find((o) => o.type === 'object' && o.properties?.[key]?.const === value);
+  if (!form) return [];
+  return Object.entries(form.properties).filter(([k]) => k !== key).map(([k, v]) => fieldOf(schema, k, v)).filter(Boolean);
+}
+
 /** The parameters of model `name` as fields (the object form's properties but "name"). */
 export function modelParameters(schema, name) {
-  const model = resolve(schema, schema.$defs?.model);
-  const form = (model.oneOf || []).find((o) => o.type === 'object' && o.properties?.name?.const === name);
-  if (!form) return [];
-  return Object.entries(form.properties).filter(([k]) => k !== 'name').map(([k, v]) => fieldOf(schema, k, v)).filter(Boolean);
+  return variantFields(schema, schema.$defs?.model, 'name', name);
 }
 
 /** The model of a population as {name, params}: "avm" or {"name": "avm", ...}; orca by default. */

@@ -1,7 +1,7 @@
 // The plan view of the scenario editor: draws the document into an SVG in screen coordinates
 // (metres → pixels through the camera: centre, scale, y up) — grid, walkable area, obstacles,
 // walls, measurements, spawn areas, goal arrows, points, the selection with its vertex handles,
-// live lengths and areas, the diagnostics' markers, the polygon being drawn and the preview's
+// live lengths and areas, a background image to trace over, the diagnostics' markers, the polygon being drawn and the preview's
 // agents. Every element carries data-layer/data-index (handles data-vertex) for picking.
 import { centroid, dist, polygonArea, polylineLength } from './geometry.js';
 import { LAYERS, anchorOf, isClosed, pointPosition, verticesOf } from './doc.js';
@@ -185,6 +185,13 @@ function drawPreview(g, cam, frame) {
   }
 }
 
+/** A floor plan image to trace over: its lower-left corner at (x0, y0), `width` × `height` metres. */
+function drawBackground(svg, cam, bg) {
+  const [x, y] = cam.toScreen([bg.x0, bg.y0 + bg.height]);
+  el('image', { href: bg.href, x: x.toFixed(1), y: y.toFixed(1), width: (bg.width * cam.scale).toFixed(1),
+                height: (bg.height * cam.scale).toFixed(1), opacity: 0.45, preserveAspectRatio: 'none', class: 'background' }, svg);
+}
+
 /** Redraws everything. `state`: doc, sel, draft, cursor, snapKind, diagnostics, grid, previewFrame. */
 export function render(svg, cam, state) {
   svg.replaceChildren();
@@ -192,6 +199,7 @@ export function render(svg, cam, state) {
   const marker = el('marker', { id: 'arrow', viewBox: '0 0 10 10', refX: 9, refY: 5, markerWidth: 7, markerHeight: 7, orient: 'auto-start-reverse' }, defs);
   el('path', { d: 'M0,0L10,5L0,10z', class: 'arrow-head' }, marker);
   drawGrid(el('g', { class: 'grid' }, svg), cam, state.grid);
+  if (state.background) drawBackground(svg, cam, state.background);
   const flagged = new Set(state.diagnostics.filter((d) => d.element && d.element.index != null)
     .map((d) => `${d.element.layer}/${d.element.index}`));
   const world = el('g', { class: 'world' }, svg);

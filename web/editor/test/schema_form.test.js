@@ -4,7 +4,9 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
-import { coerce, modelNames, modelParameters, objectFields, readModel, resolve, writeModel } from '../src/schema_form.js';
+import {
+  coerce, modelNames, modelParameters, objectFields, readModel, resolve, variantFields, variantNames, writeModel,
+} from '../src/schema_form.js';
 
 const schema = JSON.parse(fs.readFileSync(new URL('../../../scenarios/schema/scenario.schema.json', import.meta.url), 'utf8'));
 
@@ -56,4 +58,14 @@ test('typed text: numbers within limits, whole numbers, enums, empty means the d
   assert.match(coerce({ key: 't', type: 'number', exclusiveMinimum: 0 }, '0').error, /above 0/);
   assert.deepEqual(coerce({ key: 'b', type: 'boolean' }, true), { value: true });
   assert.match(coerce({ key: 'k', type: 'enum', options: ['a', 'b'] }, 'c').error, /one of a, b/);
+});
+
+test('pre-movement distributions and their keys, from the schema', () => {
+  const node = schema.$defs.preMovement;
+  assert.deepEqual(variantNames(schema, node, 'distribution'), ['uniform', 'normal', 'lognormal']);
+  assert.deepEqual(variantFields(schema, node, 'distribution', 'uniform').map((f) => f.key), ['min', 'max']);
+  const lognormal = Object.fromEntries(variantFields(schema, node, 'distribution', 'lognormal').map((f) => [f.key, f]));
+  assert.equal(lognormal.mu.minimum, -10);
+  assert.equal(lognormal.sigma.maximum, 3);
+  assert.deepEqual(variantFields(schema, node, 'distribution', 'weibull'), []);
 });
