@@ -12,8 +12,10 @@ Figures (--what, a comma list; default all):
   flow          cumulative passings N(t) at each measurement line and the flow in 5 s windows
   fd            fundamental diagram: classic density and mean speed in the measurement area per
                 frame, with Weidmann's (1993) curve
-Without --line, one line lies 1 m in front of each exit, across the walkable area there (passings
-counted toward the exit); without --area, the area is 2 m deep behind the first exit's line.
+Without --line, the lines are the scenario's "measurements" lines (passings counted both ways), or
+when it has none, one line 1 m in front of each exit, across the walkable area there (passings
+counted toward the exit); without --area, the area is the scenario's first measurement area, or when
+it has none, 2 m deep behind the first exit's line.
 Exit status: 0 when the figures are written; 1 for a recording that cannot be read or a line or area
 that cannot measure anything; 2 for bad flags. `throng plot ...` runs this script with the same
 flags. Needs numpy, pandas and matplotlib from Debian (python3-numpy, python3-pandas,
@@ -71,9 +73,11 @@ def parse_args(argv):
     ap.add_argument("recording", help="a recording written by throng run (SQLite)")
     ap.add_argument("--out", metavar="DIR", help="directory for the PNGs (default: RECORDING without .sqlite, plus -plots)")
     ap.add_argument("--what", default=",".join(FIGURES), metavar="LIST", help=f"figures to draw: {', '.join(FIGURES)}")
-    ap.add_argument("--line", metavar="X0,Y0,X1,Y1", help="the measurement line [m] (default: one in front of each exit)")
+    ap.add_argument("--line", metavar="X0,Y0,X1,Y1", help="the measurement line [m] (default: the scenario's measurement lines, "
+                                                          "else one in front of each exit)")
     ap.add_argument("--area", metavar="X0,Y0,X1,Y1", help="the measurement area, two opposite corners [m] "
-                                                          "(default: 2 m deep behind the first exit's line)")
+                                                          "(default: the scenario's first measurement area, else 2 m deep "
+                                                          "behind the first exit's line)")
     ap.add_argument("--cell", type=float, default=0.5, metavar="METRES", help="heatmap cell size [m] (default 0.5)")
     ap.add_argument("--json", action="store_true", help="print the written files and the numbers as one JSON object")
     ap.add_argument("--prog", default="plot.py", help=argparse.SUPPRESS)  # the name errors start with (throng plot)
@@ -124,8 +128,11 @@ class Input:
 
     def _measurement(self, args, G):
         notes = {}
+        own_lines, own_area = G.scenario_measurements(self.rec.scenario)
         if args.line:
             lines = [{"name": "line", "line": G.check_line(args.line, self.world), "normal": None}]
+        elif own_lines:
+            lines = own_lines
         else:
             start = self.traj.groupby("id").first()[["x", "y"]].mean().to_numpy() if len(self.traj) else (0.0, 0.0)
             lines = G.exit_lines(self.exits, self.rings, start)
@@ -133,6 +140,8 @@ class Input:
                 notes["flow"] = "the recording has no exit to put a measurement line in front of; give --line x0,y0,x1,y1"
         if args.area:
             area = G.check_area(args.area, self.world)
+        elif own_area:
+            area = own_area
         else:
             area = G.area_in_front(lines[0], self.rings) if lines and lines[0].get("width") else None
             if area is None:

@@ -1,6 +1,6 @@
 // throng CLI subcommands — each subcommand registers its flags on a CLI::App and runs from a plain
 // options struct (one file per subcommand: cmd_run.cpp, cmd_check.cpp, cmd_info.cpp,
-// cmd_bench.cpp, cmd_script.cpp, cmd_metrics.cpp, cmd_serve.cpp, cmd_loadgen.cpp, cmd_link.cpp, cmd_verify.cpp, cmd_plot.cpp, cmd_edit.cpp; the hidden describe-cli in cmd_describe.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
+// cmd_bench.cpp, cmd_script.cpp, cmd_metrics.cpp, cmd_serve.cpp, cmd_loadgen.cpp, cmd_link.cpp, cmd_verify.cpp, cmd_plot.cpp, cmd_import.cpp, cmd_edit.cpp; the hidden describe-cli in cmd_describe.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
 // interrupted by SIGINT/SIGTERM.
 #pragma once
 #include <cstdint>
@@ -153,6 +153,16 @@ struct PlotOptions {
   bool json = false;                    ///< files and numbers as one JSON object
 };
 
+struct ImportOptions {
+  std::string plan;                     ///< DXF or WKT floor plan
+  std::string out;                      ///< scenario path; empty = <plan stem>.json; "-" = stdout
+  double scale = 1.0;                   ///< multiplies coordinates after the file's units
+  std::vector<std::string> layers;      ///< NAME=ROLE (walkable, obstacle, wall, ignore)
+  double wallThickness = 0.2;           ///< [m]
+  bool force = false;                   ///< overwrite an existing scenario file
+  bool json = false;                    ///< result as one JSON object
+};
+
 /// Each registers its subcommand (flags bound to `options`, which must outlive parsing) and returns it.
 CLI::App* addRunCommand(CLI::App& app, RunOptions& options);
 CLI::App* addCheckCommand(CLI::App& app, CheckOptions& options);
@@ -165,6 +175,7 @@ CLI::App* addLoadgenCommand(CLI::App& app, LoadgenOptions& options);
 CLI::App* addLinkCommand(CLI::App& app, LinkOptions& options);
 CLI::App* addVerifyCommand(CLI::App& app, VerifyOptions& options);
 CLI::App* addPlotCommand(CLI::App& app, PlotOptions& options);
+CLI::App* addImportCommand(CLI::App& app, ImportOptions& options);
 CLI::App* addEditCommand(CLI::App& app, EditOptions& options);
 
 int runRun(const RunOptions& options);
@@ -178,6 +189,7 @@ int runLoadgen(const LoadgenOptions& options);
 int runLink(const LinkOptions& options);
 int runVerify(const VerifyOptions& options);
 int runPlot(const PlotOptions& options);
+int runImport(const ImportOptions& options);
 int runEdit(const EditOptions& options);
 
 /// The hidden `describe-cli` (cmd_describe.cpp): prints `app`'s subcommands and options as JSON.

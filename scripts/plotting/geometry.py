@@ -5,6 +5,7 @@ walkable_rings(wkt)                  every ring (outer and holes) of the walkabl
 inside_walkable(x, y, rings)         even-odd test over all rings (holes excluded)
 exit_lines(points, rings, starts)    one default line per exit: 1 m in front of it, across the walkable area
 area_in_front(line, rings)           the default measurement area: 2 m deep, upstream of the line
+scenario_measurements(scenario)      the scenario's own measurement lines and first area (the defaults when given)
 check_line(line, bounds) / check_area(...)   ValueError for a line or area that cannot measure anything
 grid(bounds, cell)                   the heatmap's cell edges
 """
@@ -155,6 +156,19 @@ def area_in_front(exit_line, rings):
     if not inside_walkable([centre[0]], [centre[1]], rings)[0]:
         return None
     return [(float(c[0]), float(c[1])) for c in corners]
+
+
+def scenario_measurements(scenario):
+    """The scenario's own "measurements" (docs/scenario-format.md): its lines, named by id, passings counted
+    both ways, and its first area's corners (None when it has none). The loader checked them."""
+    lines, area = [], None
+    for m in (scenario or {}).get("measurements", []):
+        if "line" in m:
+            (x0, y0), (x1, y1) = m["line"]
+            lines.append({"name": m["id"], "line": ((float(x0), float(y0)), (float(x1), float(y1))), "normal": None})
+        elif "polygon" in m and area is None:
+            area = [(float(x), float(y)) for x, y in m["polygon"]]
+    return lines, area
 
 
 def rectangle(spec):

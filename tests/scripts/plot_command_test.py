@@ -3,6 +3,7 @@
 and plots it. Fails when a figure is missing, blank or the wrong size, when the numbers --json prints
 are out of their plausible bands (the flow through the 1 m door, the default line in front of the
 exit, the density and speed heatmaps, the fundamental diagram's area), when --help misses a flag, or
+when a scenario's own measurement line and area are not the defaults (or flags do not override them),
 when bad input does not give one clear message and exit 1 (bad flags: exit 2).
 
 usage: plot_command_test.py THRONG_BINARY SOURCE_DIR"""
@@ -108,6 +109,36 @@ def check_door(binary, rec, tmp):
         fail(f"the text summary does not give the passings: {plain.stdout}{plain.stderr}")
 
 
+def check_scenario_measurements(binary, src, tmp):
+    """A scenario's own "measurements" are the defaults (the door line, the queue area); flags override them."""
+    with open(os.path.join(src, "scenarios", "bottleneck.json")) as f:
+        scenario = json.load(f)
+    scenario["measurements"] = [{"id": "door", "line": [[10, 4.5], [10, 5.5]]},
+                                {"id": "queue", "polygon": [[7, 3.5], [9, 3.5], [9, 6.5], [7, 6.5]]}]
+    path = os.path.join(tmp, "measured.json")
+    with open(path, "w") as f:
+        json.dump(scenario, f)
+    rec = os.path.join(tmp, "measured.sqlite")
+    res = subprocess.run([binary, "run", path, "--duration", "20", "--out", rec, "--quiet"], capture_output=True,
+                         text=True, timeout=120)
+    if res.returncode != 0:
+        fail(f"throng run measured.json exited {res.returncode}: {res.stderr}")
+    res = plot(binary, rec, "--out", os.path.join(tmp, "measured"), "--what", "flow,fd", "--json")
+    if res.returncode != 0:
+        fail(f"throng plot of measured.sqlite exited {res.returncode}: {res.stderr}")
+    s = json.loads(res.stdout)
+    (line,) = s["lines"]
+    if line["name"] != "door" or line["line"] != [10, 4.5, 10, 5.5] or line["counted"] != "both directions":
+        fail(f"scenario line {line}: expected the door line named 'door', counted both ways")
+    if s["area"]["polygon"] != [[7, 3.5], [9, 3.5], [9, 6.5], [7, 6.5]] or not 2.0 <= s["area"]["mean_density"] <= 7.0:
+        fail(f"scenario area {s['area']}: expected the queue before the door")
+    res = plot(binary, rec, "--out", os.path.join(tmp, "measured"), "--what", "flow,fd", "--json",
+               "--line", "12,0,12,10", "--area", "1,1,3,3")
+    s = json.loads(res.stdout) if res.returncode == 0 else fail(f"throng plot --line exited {res.returncode}: {res.stderr}")
+    if [l["name"] for l in s["lines"]] != ["line"] or s["area"]["polygon"] != [[1, 1], [3, 1], [3, 3], [1, 3]]:
+        fail(f"--line/--area did not override the scenario's measurements: {s['lines']}, {s['area']}")
+
+
 def check_errors(binary, rec, tmp):
     with open(os.path.join(tmp, "text.sqlite"), "w") as f:
         f.write("not a database\n")
@@ -143,6 +174,7 @@ def main():
         rec = record(binary, src, tmp)
         check_defaults(binary, rec, tmp)
         check_door(binary, rec, tmp)
+        check_scenario_measurements(binary, src, tmp)
         check_errors(binary, rec, tmp)
     print("plot_command_test: ok")
 
