@@ -1,7 +1,8 @@
 // `throng edit [FILE.json]` — the scenario editor: serves the browser editor (web/dist/editor) and
 // its JSON API on one HTTP port until Ctrl-C. GET /api/scenario gives FILE's text (or an empty
 // scenario when FILE does not exist yet); POST /api/check, /api/preview and /api/save check,
-// simulate and save with the validator of `throng check` (edit_api.hpp), each on a worker thread
+// simulate and save with the validator of `throng check`, /api/import reads a DXF or WKT floor
+// plan (edit_api.hpp), each on a worker thread
 // (edit_jobs.hpp) that stops when the client hangs up or its time is up. Writes only FILE.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -93,9 +94,17 @@ class EditApi {
                               {"text", text}});
   }
 
-  /// POST /api/check, /api/preview, /api/save.
+  /// POST /api/check, /api/preview, /api/save, /api/import.
   bool post(HttpRequest request, const HttpResponder& responder) {
     const std::string path = request.target.substr(0, request.target.find('?'));
+    if (path == "/api/import") {
+      const bool started = jobs_.launch(responder, std::chrono::milliseconds(static_cast<long>(edit::kCheckSeconds * 1000)),
+                                        [body = std::move(request.body), responder](const JobFlags&) {
+                                          responder.respond(fromAnswer(edit::importPlanText(body)));
+                                        });
+      if (!started) busy(responder);
+      return true;
+    }
     if (path != "/api/check" && path != "/api/preview" && path != "/api/save") return false;
     const bool isCheck = path == "/api/check";
     edit::ScenarioRequest parsed = edit::readScenarioRequest(request.body, isCheck);

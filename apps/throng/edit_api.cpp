@@ -1,20 +1,17 @@
-// `throng edit`'s API work (edit_api.hpp): check, preview, format and save a scenario text.
+// `throng edit`'s API work (edit_api.hpp): check, preview and save a scenario text (formatted and
+// written by io's scenario writer), and import a floor plan (io::importPlan).
 #include "edit_api.hpp"
 
 #include <fmt/format.h>
 
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
-#include <fstream>
-#include <system_error>
-#include <unistd.h>
 
 #include "output.hpp"
 #include "throng/core/parallel.hpp"
 #include "throng/core/text.hpp"
+#include "throng/io/plan_import.hpp"
 #include "throng/io/scenario_loader.hpp"
+#include "throng/io/scenario_writer.hpp"
 #include "throng/sim/world.hpp"
 
 namespace throng::cli::edit {
@@ -117,101 +114,13 @@ PreviewRun simulatePreview(sim::World& world, double seconds, std::uint64_t stri
   return run;
 }
 
-// --- formatting ---------------------------------------------------------------------------------
-
-/// True when `value` holds no object at any depth (points, polygons, lists of ids).
-bool flat(const ordered_json& value) {
-  if (value.is_object()) return false;
-  if (!value.is_array()) return true;
-  for (const auto& item : value) {
-    if (!flat(item)) return false;
-  }
-  return true;
-}
-
-/// An object without objects inside ({"mean": 1.34, "sd": 0.26}, {"polygon": [[0,0],[1,0],[1,1]]}).
-bool flatObject(const ordered_json& value) {
-  if (!value.is_object()) return false;
-  for (const auto& item : value) {
-    if (!flat(item)) return false;
-  }
-  return true;
-}
-
-std::string inlineText(const ordered_json& value) {
-  if (value.is_object()) {
-    std::string out = "{";
-    bool first = true;
-    for (const auto& [key, item] : value.items()) {
-      out += (first ? "" : ", ") + ordered_json(key).dump() + ": " + inlineText(item);
-      first = false;
-    }
-    return out + "}";
-  }
-  return value.dump(-1, ' ', false, ordered_json::error_handler_t::replace);
-}
-
-void writeValue(std::string& out, const ordered_json& value, std::size_t indent) {
-  constexpr std::size_t kLine = 100;
-  const std::string inner(indent + 2, ' ');
-  const bool inlinable = indent > 0 && ((value.is_array() && flat(value)) || flatObject(value));
-  if (inlinable || !value.is_structured() || value.empty()) {
-    const std::string text = inlineText(value);
-    if (!value.is_structured() || value.empty() || indent + text.size() <= kLine) {
-      out += text;
-      return;
-    }
-  }
-  if (value.is_object()) {
-    out += "{\n";
-    std::size_t i = 0;
-    for (const auto& [key, item] : value.items()) {
-      out += inner + ordered_json(key).dump() + ": ";
-      writeValue(out, item, indent + 2);
-      out += ++i < value.size() ? ",\n" : "\n";
-    }
-    out += std::string(indent, ' ') + "}";
-    return;
-  }
-  out += "[\n";
-  for (std::size_t i = 0; i < value.size(); ++i) {
-    out += inner;
-    writeValue(out, value[i], indent + 2);
-    out += i + 1 < value.size() ? ",\n" : "\n";
-  }
-  out += std::string(indent, ' ') + "]";
-}
-
-/// Writes `text` next to `file` and renames it over `file`; an error message, or empty.
-std::string writeAtomically(const fs::path& file, const std::string& text) {
-  const fs::path temp = file.parent_path() / (".#" + file.filename().string() + "." + std::to_string(::getpid()));
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(temp, ignored);
-      return fmt::format("cannot write {}: {}", temp.string(), std::strerror(errno));
-    }
-  }
-  std::error_code ec;
-  fs::rename(temp, file, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    return fmt::format("cannot replace {}: {}", file.string(), ec.message());
-  }
-  return {};
-}
-
 }  // namespace
 
 std::string emptyScenario(const std::string& name) {
   const ordered_json scenario = {{"format", "throng/1"}, {"name", name},          {"duration", 60},
                                  {"walkable", ordered_json::array()}, {"points", ordered_json::array()},
                                  {"populations", ordered_json::array()}};
-  return formatScenario(scenario);
+  return io::formatJsonForDiffs(scenario);
 }
 
 nlohmann::json diagnosticsJson(const core::Diagnostics& diagnostics) {
@@ -281,13 +190,6 @@ ApiAnswer previewScenario(const std::string& text, const std::string& source, do
   return {200, std::move(body)};
 }
 
-std::string formatScenario(const ordered_json& scenario) {
-  std::string out;
-  writeValue(out, scenario, 0);
-  out += '\n';
-  return out;
-}
-
 ApiAnswer saveScenario(const ScenarioRequest& request, const fs::path& file, const std::atomic<int>& cancel,
                        const std::atomic<bool>& timedOut) {
   if (file.empty()) {
@@ -309,10 +211,37 @@ ApiAnswer saveScenario(const ScenarioRequest& request, const fs::path& file, con
   } catch (const ordered_json::parse_error& e) {
     return {400, jsonText({{"ok", false}, {"saved", false}, {"error", std::string("the scenario is not JSON: ") + e.what()}})};
   }
-  if (const std::string error = writeAtomically(file, formatScenario(scenario)); !error.empty()) {
-    return {500, jsonText({{"ok", false}, {"saved", false}, {"path", file.string()}, {"error", error}})};
+  if (auto written = io::writeFileAtomically(file.string(), io::formatJsonForDiffs(scenario), true); !written) {
+    return {500, jsonText({{"ok", false}, {"saved", false}, {"path", file.string()},
+                           {"error", core::formatAll(written.errors())}})};
   }
   return {200, jsonText({{"ok", problems.empty()}, {"saved", true}, {"path", file.string()}, {"diagnostics", diagnostics}})};
+}
+
+}  // namespace throng::cli::edit
+
+namespace throng::cli::edit {
+
+ApiAnswer importPlanText(std::string_view body) {
+  ordered_json request;
+  try {
+    request = ordered_json::parse(body);
+  } catch (const ordered_json::parse_error& e) {
+    return {400, jsonText({{"ok", false}, {"error", fmt::format("the request body is not JSON: {}", e.what())}})};
+  }
+  const bool wellFormed = request.is_object() && request.contains("text") && request["text"].is_string() &&
+                          request.contains("name") && request["name"].is_string();
+  if (!wellFormed) return {400, jsonText({{"ok", false}, {"error", "expected {\"name\": \"plan.dxf\", \"text\": \"...\"}"}})};
+  const std::string name = request["name"].get<std::string>();
+  const auto format = io::planFormatOf(name);
+  if (!format) return {400, jsonText({{"ok", false}, {"error", fmt::format("{}: expected a .dxf or .wkt file", name)}})};
+  io::PlanImportOptions options;
+  const double scale = request.value("scale", 1.0);
+  if (!(scale > 0)) return {400, jsonText({{"ok", false}, {"error", "expected \"scale\" > 0"}})};
+  options.scale = scale;
+  auto fragment = io::importPlan(request["text"].get<std::string>(), *format, name, options);
+  if (!fragment) return invalid(fragment.errors());
+  return {200, jsonText({{"ok", true}, {"fragment", *fragment}})};
 }
 
 }  // namespace throng::cli::edit

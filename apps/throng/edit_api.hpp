@@ -1,8 +1,8 @@
 // `throng edit`'s work behind its JSON API (cmd_edit.cpp routes the requests here): checking a
 // scenario text with the validator of `throng check`, previewing it (a short simulation whose
-// positions come back per frame), formatting it for diffs and saving it atomically. Pure of HTTP:
-// each takes text and a cancel flag and returns the response body; the callers run them on worker
-// threads. Reads and writes only the one scenario file it is given.
+// positions come back per frame), saving it atomically, formatted for diffs, and importing a floor
+// plan (DXF, WKT). Pure of HTTP: each takes text (and a cancel flag) and returns the response body;
+// the callers run them on worker threads. Reads and writes only the one scenario file it is given.
 #pragma once
 #include <atomic>
 #include <cstdint>
@@ -57,13 +57,14 @@ struct ScenarioRequest {
 [[nodiscard]] ApiAnswer previewScenario(const std::string& text, const std::string& source, double seconds, double fps,
                                         const std::atomic<int>& cancel, const std::atomic<bool>& timedOut);
 
-/// The scenario as saved: 2-space indentation, one key per line, short arrays (points, polygons,
-/// goals) and small flat objects on one line, the keys in the order given.
-[[nodiscard]] std::string formatScenario(const nlohmann::ordered_json& scenario);
-
-/// POST /api/save to `file`: checks first; writes (temp file + rename) when valid or `force`.
+/// POST /api/save to `file`: checks first; writes (temp file + rename, formatted for diffs:
+/// io::formatJsonForDiffs, as `throng import` writes) when valid or `force`.
 /// {"ok", "saved", "path", "diagnostics"}; 422 when invalid and not forced, 409 without a file.
 [[nodiscard]] ApiAnswer saveScenario(const ScenarioRequest& request, const std::filesystem::path& file,
                                      const std::atomic<int>& cancel, const std::atomic<bool>& timedOut);
+
+/// POST /api/import, body {"name": "plan.dxf" or ".wkt", "text", "scale"?}: {"ok", "fragment":
+/// {"walkable", "obstacles", "walls"}} (io::importPlan), or the located diagnostics (422).
+[[nodiscard]] ApiAnswer importPlanText(std::string_view body);
 
 }  // namespace throng::cli::edit

@@ -2,7 +2,8 @@
 // over HTTP — GET /api/scenario (an empty scenario before FILE exists, then FILE's text), POST
 // /api/check (the diagnostics of `throng check`, with pointers), /api/preview (frames in which
 // agents move; bad limits refused), /api/save (refused while invalid unless forced, formatted,
-// runs), bad JSON and Ctrl-C. (The body limit, 413, is tested in tests/transport/http_post_test.cpp.)
+// runs), /api/import (a WKT plan → walkable, obstacles, walls; a bad one located), bad JSON and
+// Ctrl-C. (The body limit, 413, is tested in tests/transport/http_post_test.cpp.)
 #include <gtest/gtest.h>
 
 #include <csignal>
@@ -143,7 +144,8 @@ TEST(Edit, SaveRefusesAnInvalidScenarioUnlessForcedAndWritesOnlyItsFile) {
   const client::HttpReply saved = editor.post("/api/save", json{{"scenario", json::parse(kRoom)}}.dump());
   EXPECT_EQ(saved.status, 200u) << saved.body;
   const std::string text = readFile(editor.path);
-  EXPECT_NE(text.find("\n  \"walkable\": [[[0,0],[10,0],[10,6],[0,6]]],\n"), std::string::npos) << text;
+  // Formatted for diffs as `throng import` writes (io::formatJsonForDiffs): a point per line.
+  EXPECT_NE(text.find("\n  \"walkable\": [\n    [\n      [0, 0],\n      [10, 0],\n"), std::string::npos) << text;
   EXPECT_NE(text.find("\n  \"name\": \"room\",\n"), std::string::npos) << text;  // key order kept
   EXPECT_EQ(json::parse(text), json::parse(kRoom));
   const json reread = json::parse(editor.get("/api/scenario").body);
@@ -159,6 +161,28 @@ TEST(Edit, SaveRefusesAnInvalidScenarioUnlessForcedAndWritesOnlyItsFile) {
   EXPECT_EQ(check.exitCode, 0) << check.out << check.err;
   const CliResult run = runThrong({"run", editor.path.string(), "--duration", "5", "--quiet"}, editor.path.parent_path());
   EXPECT_EQ(run.exitCode, 0) << run.out << run.err;
+}
+
+TEST(Edit, ImportsAFloorPlanAsAFragment) {
+  Editor editor("plan.json");
+  ASSERT_NE(editor.port, 0);
+  const json request = {{"name", "ground.wkt"},
+                        {"text", "GEOMETRYCOLLECTION (POLYGON ((0 0, 10 0, 10 6, 0 6)), LINESTRING (5 0, 5 2.5))"}};
+  const client::HttpReply reply = editor.post("/api/import", request.dump());
+  ASSERT_EQ(reply.status, 200u) << reply.body;
+  const json plan = json::parse(reply.body);
+  EXPECT_EQ(plan["ok"], true);
+  ASSERT_EQ(plan["fragment"]["walls"].size(), 1u);
+  EXPECT_EQ(plan["fragment"]["walls"][0]["line"], json::parse("[[5, 0], [5, 2.5]]"));
+  ASSERT_EQ(plan["fragment"]["walkable"].size(), 1u);
+
+  const client::HttpReply bad = editor.post("/api/import", json{{"name", "ground.wkt"}, {"text", "POLYGON ((0 0, 1 0"}}.dump());
+  EXPECT_EQ(bad.status, 422u);
+  const json problems = json::parse(bad.body);
+  ASSERT_FALSE(problems["diagnostics"].empty());
+  EXPECT_GT(problems["diagnostics"][0]["line"].get<int>(), 0);
+  EXPECT_EQ(editor.post("/api/import", json{{"name", "ground.pdf"}, {"text", "x"}}.dump()).status, 400u);
+  EXPECT_EQ(editor.post("/api/import", json{{"text", "x"}}.dump()).status, 400u);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // The scenario document the editor edits — the scenario JSON object itself, so that every
 // diagnostic's JSON pointer names a place in it — and pure operations on it (no DOM): the editable
 // elements and their vertices, JSON pointer ↔ element, anchors for markers, unique ids, removal
-// (references to a removed point go with it), and the undo/redo history of snapshots.
+// (references to a removed point go with it), merging an imported plan, and the undo/redo history.
 import { centroid } from './geometry.js';
 
 /** The collections the plan shows, in drawing order (docs/scenario-format.md). */
@@ -139,6 +139,23 @@ export function removeElement(doc, sel) {
     }
   }
   if (!list.length && sel.layer !== 'walkable' && sel.layer !== 'points' && sel.layer !== 'populations') delete doc[sel.layer];
+}
+
+/**
+ * Adds an imported plan fragment ({walkable, obstacles, walls}, io::importPlan's) to the document:
+ * its walkable polygons replace an empty walkable area (else join it), obstacles and walls are
+ * appended, each wall with a fresh id. Returns how many of each were added.
+ */
+export function mergePlan(doc, fragment) {
+  const added = { walkable: 0, obstacles: 0, walls: 0 };
+  for (const poly of fragment.walkable || []) { (doc.walkable ||= []).push(poly); added.walkable++; }
+  for (const poly of fragment.obstacles || []) { (doc.obstacles ||= []).push(poly); added.obstacles++; }
+  for (const wall of fragment.walls || []) {
+    const id = wall.id && !(doc.walls || []).some((w) => w.id === wall.id) ? wall.id : uniqueId(doc, 'walls', 'wall');
+    (doc.walls ||= []).push({ ...wall, id });
+    added.walls++;
+  }
+  return added;
 }
 
 /** Renames a point and every reference to it. */

@@ -3,10 +3,12 @@
 // every edit with POST /api/check (debounced) and shows each diagnostic on the plan at the element
 // its JSON pointer names, previews it with POST /api/preview (frames animated in the plan), saves
 // it with POST /api/save (Ctrl+S; an invalid scenario only after the user has seen why) or
-// downloads it. Undo/redo over snapshots; keyboard shortcuts with a help overlay (?).
+// downloads it, imports a DXF or WKT floor plan (POST /api/import). Undo/redo over snapshots; keyboard shortcuts with a help overlay (?).
 import schema from '../../../scenarios/schema/scenario.schema.json';
 import { bounds } from './geometry.js';
-import { History, LAYERS, allVertices, elementForPointer, emptyScenario, isClosed, removeElement, verticesOf } from './doc.js';
+import {
+  History, LAYERS, allVertices, elementForPointer, emptyScenario, isClosed, mergePlan, removeElement, verticesOf,
+} from './doc.js';
 import { Camera, render } from './view.js';
 import { TOOLS, ToolController } from './tools.js';
 import { Panel } from './panel.js';
@@ -299,6 +301,29 @@ class EditorApp {
     setTimeout(() => URL.revokeObjectURL(a.href), 1000);
   }
 
+  /** A DXF or WKT floor plan through POST /api/import: its shapes are added to the plan (one edit). */
+  async importPlan(file) {
+    if (!file) return;
+    $('import-file').value = '';
+    const text = await file.text();
+    let result;
+    try {
+      result = await postJson('api/import', { name: file.name, text });
+    } catch {
+      this.setStatus('import needs the server (`throng edit`)');
+      return;
+    }
+    if (!result.json.ok) {
+      const first = (result.json.diagnostics || [])[0];
+      this.setStatus(`${file.name} not imported: ${first ? `line ${first.line}:${first.column}: ${first.message}` : result.json.error}`);
+      return;
+    }
+    const n = mergePlan(this.doc, result.json.fragment);
+    this.sel = null;
+    this.commit(`${file.name}: ${n.walkable} walkable, ${n.obstacles} obstacles, ${n.walls} walls imported`);
+    this.fit();
+  }
+
   /** A floor plan image, scaled by the width in metres the user gives (not saved in the scenario). */
   loadBackground(file) {
     if (!file) return;
@@ -374,6 +399,8 @@ class EditorApp {
       $('background-file').click();
     });
     $('background-file').addEventListener('change', (e) => this.loadBackground(e.target.files[0]));
+    $('import').addEventListener('click', () => $('import-file').click());
+    $('import-file').addEventListener('change', (e) => this.importPlan(e.target.files[0]));
     $('help').addEventListener('click', () => $('help').classList.add('hidden'));
     $('snap-toggle').addEventListener('change', (e) => { this.state.snap = e.target.checked; });
     $('grid-step').addEventListener('change', (e) => { this.state.grid = Math.max(0, Number(e.target.value) || 0); this.render(); });

@@ -4,7 +4,8 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
-  History, allVertices, anchorOf, elementForPointer, elementPointer, isClosed, removeElement, renamePoint, uniqueId, verticesOf,
+  History, allVertices, anchorOf, elementForPointer, elementPointer, isClosed, mergePlan, removeElement, renamePoint, uniqueId,
+  verticesOf,
 } from '../src/doc.js';
 
 const scenario = () => ({
@@ -92,4 +93,18 @@ test('history: undo, redo, and a new edit dropping the redo list', () => {
   h.push({ a: 5 });
   assert.equal(h.redo(), null);
   assert.deepEqual(h.undo(), { a: 2 });
+});
+
+test('an imported plan joins the document, walls with fresh ids', () => {
+  const doc = scenario();
+  const added = mergePlan(doc, { walkable: [[[20, 0], [30, 0], [30, 5]]], obstacles: [], walls: [{ line: [[0, 0], [1, 0]], thickness: 0.2 },
+    { id: 'wall1', line: [[2, 0], [3, 0]], thickness: 0.1 }] });
+  assert.deepEqual(added, { walkable: 1, obstacles: 0, walls: 2 });
+  assert.equal(doc.walkable.length, 2);
+  assert.deepEqual(doc.walls.map((w) => w.id), ['wall1', 'wall2', 'wall3']);  // the clashing "wall1" renamed
+  const empty = { format: 'throng/1', walkable: [], points: [], populations: [] };
+  mergePlan(empty, { walkable: [[[0, 0], [1, 0], [1, 1]]], obstacles: [[[0.2, 0.2], [0.4, 0.2], [0.4, 0.4]]], walls: [] });
+  assert.equal(empty.walkable.length, 1);
+  assert.equal(empty.obstacles.length, 1);
+  assert.equal(empty.walls, undefined);
 });
