@@ -52,7 +52,7 @@ set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS_POLICY "=")
 file(WRITE ${PROJECT_BINARY_DIR}/debian-control/triggers "activate-noawait ldconfig\n")
 set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${PROJECT_BINARY_DIR}/debian-control/triggers)
 # `throng verify` runs Python with numpy and matplotlib; building against the package needs the
-# development files of what throngConfig.cmake finds (oneTBB).
+# development files of what throngConfig.cmake finds (oneTBB, nlohmann_json).
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3, python3-numpy, python3-pandas, python3-matplotlib")
-set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libtbb-dev, cmake, pkg-config")
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libtbb-dev, nlohmann-json3-dev, cmake, pkg-config")
 include(CPack)
