@@ -366,7 +366,7 @@ class EditorApp {
     this.renderToolbar();
   }
 
-  setStatus(text) { $('status').textContent = text; }
+  setStatus(text) { $('status').textContent = text; $('status').title = text; }
   setCursorText(p, kind) { $('cursor').textContent = `${p[0].toFixed(2)}, ${p[1].toFixed(2)} m${kind && kind !== 'none' ? ` · ${kind}` : ''}`; }
   updateTitle() { document.title = `${this.dirty ? '• ' : ''}${this.file || 'scenario'} — throng editor`; }
 

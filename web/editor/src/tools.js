@@ -2,7 +2,7 @@
 // vertices and whole elements (snapped), and picks goals for the selected crowd; the drawing tools
 // make polygons (clicks, or one drag for a rectangle), polylines and points, and turn the finished
 // drawing into a scenario element with a fresh id. Edits go through `app.commit()` (undo, check).
-import { rectangle, snapPoint, dist, distanceToSegment } from './geometry.js';
+import { rectangle, snapPoint, dist, distanceToSegment, polygonArea, polylineLength } from './geometry.js';
 import { allVertices, uniqueId, verticesOf, isClosed } from './doc.js';
 
 /** key: shortcut; shape: 'polygon' (closed), 'polyline' (open, max points), 'point'. */
@@ -53,7 +53,7 @@ export class ToolController {
     svg.addEventListener('pointerdown', (e) => this.down(e));
     svg.addEventListener('pointermove', (e) => this.move(e));
     svg.addEventListener('pointerup', (e) => this.up(e));
-    svg.addEventListener('dblclick', (e) => this.doubleClick(e));
+    this.lastUp = null;  // {time, screen}: double-clicks are told by time and place (the plan is redrawn between the clicks)
     svg.addEventListener('wheel', (e) => this.wheel(e), { passive: false });
     svg.addEventListener('contextmenu', (e) => e.preventDefault());
   }
@@ -178,10 +178,23 @@ export class ToolController {
     const p = this.press;
     this.press = null;
     this.app.state.dragPreview = null;
+    const screen = this.screenOf(e);
+    const last = this.lastUp;
+    this.lastUp = { time: e.timeStamp, screen };
+    const second = last && e.timeStamp - last.time < 450 && dist(last.screen, screen) < 6 && !(p && p.moved) && !(p && p.drag);
+    if (second) this.lastUp = null;
+    if (second && this.tool === 'select' && !this.app.state.pickGoals) return this.insertVertex(screen);
+    if (second && this.draft) {
+      this.upDraw(p, screen);
+      return this.finishDraft();
+    }
+    this.upDraw(p, screen);
+  }
+
+  upDraw(p, screen) {
     if (!p) return;
     if ((p.mode === 'vertex' || p.mode === 'element') && p.moved) return this.app.commit('moved');
     if (p.mode !== 'draw') return;
-    const screen = this.screenOf(e);
     const shape = TOOLS[this.tool].shape;
     if (p.drag) {
       const end = this.draftSnap(screen).point;
@@ -196,11 +209,6 @@ export class ToolController {
     pts.push(at);
     if (TOOLS[this.tool].max && pts.length >= TOOLS[this.tool].max) return this.finishDraft();
     this.app.render();
-  }
-
-  doubleClick(e) {
-    if (this.tool === 'select') return this.insertVertex(this.screenOf(e));
-    this.finishDraft();
   }
 
   /** Double-click on an edge of the selection: a new vertex there. */
@@ -236,6 +244,12 @@ export class ToolController {
   finish(points) {
     this.draft = null;
     this.app.state.cursor = null;
+    const shape = TOOLS[this.tool].shape;
+    if ((shape === 'polygon' && polygonArea(points) < 1e-6) || (shape === 'polyline' && polylineLength(points) < 1e-6)) {
+      this.app.setStatus('nothing drawn: the shape has no area or length');
+      this.app.render();
+      return;
+    }
     const made = elementFor(this.app.doc, this.tool, points);
     if (!made) return;
     if (!Array.isArray(this.app.doc[made.layer])) this.app.doc[made.layer] = [];
