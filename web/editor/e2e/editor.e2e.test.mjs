@@ -60,10 +60,7 @@ test('a room with a door, a crowd and an exit, from an empty page to a file that
     assert.ok(await page.locator('svg .diagnostic').count() >= 1, 'no diagnostic marker on the plan');
     await page.locator('#diagnostics li', { hasText: /reach/i }).first().click();
     assert.equal(await page.evaluate(() => window.throngEditor.sel.layer), 'populations');
-    if (process.env.THRONG_EDITOR_SHOT) {
-      await page.screenshot({ path: process.env.THRONG_EDITOR_SHOT });
-      await sleep(500);  // the screenshot may resize the page for a moment: let the plan settle
-    }
+    if (process.env.THRONG_EDITOR_SHOT) await page.screenshot({ path: process.env.THRONG_EDITOR_SHOT });
 
     // Open the door: select its wall and delete it.
     await page.keyboard.press('v');
