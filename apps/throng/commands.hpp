@@ -1,6 +1,6 @@
 // throng CLI subcommands — each subcommand registers its flags on a CLI::App and runs from a plain
 // options struct (one file per subcommand: cmd_run.cpp, cmd_check.cpp, cmd_info.cpp,
-// cmd_bench.cpp, cmd_script.cpp, cmd_metrics.cpp, cmd_serve.cpp, cmd_loadgen.cpp, cmd_link.cpp, cmd_verify.cpp, cmd_plot.cpp, cmd_import.cpp; the hidden describe-cli in cmd_describe.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
+// cmd_bench.cpp, cmd_script.cpp, cmd_metrics.cpp, cmd_serve.cpp, cmd_loadgen.cpp, cmd_link.cpp, cmd_verify.cpp, cmd_plot.cpp, cmd_import.cpp, cmd_edit.cpp; the hidden describe-cli in cmd_describe.cpp). Exit codes: 0 success, 1 bad input or failure, 2 bad flags (CLI11), 130
 // interrupted by SIGINT/SIGTERM.
 #pragma once
 #include <cstdint>
@@ -91,6 +91,14 @@ struct ServeOptions {
   bool json = false;
 };
 
+struct EditOptions {
+  std::string file;                     ///< scenario to edit; empty = none (download only)
+  int port = 8080;                      ///< HTTP; 0 = any free port
+  std::string host = "127.0.0.1";
+  bool open = false;                    ///< open the default browser
+  std::string web;                      ///< built pages; default web/dist of the source tree
+};
+
 struct LoadgenOptions {
   std::string url = "ws://127.0.0.1:8080/ws";
   int clients = 10;
@@ -168,6 +176,7 @@ CLI::App* addLinkCommand(CLI::App& app, LinkOptions& options);
 CLI::App* addVerifyCommand(CLI::App& app, VerifyOptions& options);
 CLI::App* addPlotCommand(CLI::App& app, PlotOptions& options);
 CLI::App* addImportCommand(CLI::App& app, ImportOptions& options);
+CLI::App* addEditCommand(CLI::App& app, EditOptions& options);
 
 int runRun(const RunOptions& options);
 int runCheck(const CheckOptions& options);
@@ -181,6 +190,7 @@ int runLink(const LinkOptions& options);
 int runVerify(const VerifyOptions& options);
 int runPlot(const PlotOptions& options);
 int runImport(const ImportOptions& options);
+int runEdit(const EditOptions& options);
 
 /// The hidden `describe-cli` (cmd_describe.cpp): prints `app`'s subcommands and options as JSON.
 CLI::App* addDescribeCommand(CLI::App& app);

@@ -1,4 +1,4 @@
-// throng — command-line front end: run, check, info, bench, script, metrics, serve, loadgen, link, verify, plot and import subcommands (CLI11),
+// throng — command-line front end: run, check, info, bench, script, metrics, serve, loadgen, link, verify, plot, import and edit subcommands (CLI11),
 // and the hidden describe-cli (the command line as JSON, for the man pages and completions).
 // Parses flags, dispatches to the subcommand and turns every failure into a message and an exit
 // code: 0 success, 1 bad input or failure, 2 bad flags or unknown subcommand, 130 interrupted.
@@ -23,8 +23,8 @@ bool reportUnknownCommand(int argc, char** argv, std::initializer_list<const CLI
   for (const CLI::App* sub : commands) {
     if (sub->check_name(argv[1])) return false;
   }
-  const std::string hint = throng::core::closestMatch(argv[1], {"run", "check", "info", "bench", "script", "metrics", "serve", "loadgen", "link", "verify", "plot", "import"});
-  std::fputs(fmt::format("throng: unknown command '{}'; expected run, check, info, bench, script, metrics, serve, loadgen, link, verify, plot or import{}\n"
+  const std::string hint = throng::core::closestMatch(argv[1], {"run", "check", "info", "bench", "script", "metrics", "serve", "loadgen", "link", "verify", "plot", "import", "edit"});
+  std::fputs(fmt::format("throng: unknown command '{}'; expected run, check, info, bench, script, metrics, serve, loadgen, link, verify, plot, import or edit{}\n"
                          "Run 'throng --help' for more information.\n",
                          argv[1], hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint))
                  .c_str(),
@@ -54,6 +54,7 @@ int dispatch(int argc, char** argv) {
   VerifyOptions verifyOptions;
   PlotOptions plotOptions;
   ImportOptions importOptions;
+  EditOptions editOptions;
   CLI::App* run = addRunCommand(app, runOptions);
   CLI::App* check = addCheckCommand(app, checkOptions);
   CLI::App* info = addInfoCommand(app, infoOptions);
@@ -66,9 +67,10 @@ int dispatch(int argc, char** argv) {
   CLI::App* verify = addVerifyCommand(app, verifyOptions);
   CLI::App* plot = addPlotCommand(app, plotOptions);
   CLI::App* importCmd = addImportCommand(app, importOptions);
+  CLI::App* edit = addEditCommand(app, editOptions);
   CLI::App* describe = addDescribeCommand(app);  // hidden: the man pages and completions read it
 
-  if (reportUnknownCommand(argc, argv, {run, check, info, bench, script, metrics, serve, loadgen, link, verify, plot, importCmd, describe})) {
+  if (reportUnknownCommand(argc, argv, {run, check, info, bench, script, metrics, serve, loadgen, link, verify, plot, importCmd, edit, describe})) {
     return kExitUsage;
   }
   try {
@@ -91,6 +93,7 @@ int dispatch(int argc, char** argv) {
   if (verify->parsed()) return runVerify(verifyOptions);
   if (plot->parsed()) return runPlot(plotOptions);
   if (importCmd->parsed()) return runImport(importOptions);
+  if (edit->parsed()) return runEdit(editOptions);
   if (describe->parsed()) return runDescribe(app, THRONG_VERSION);
   std::fputs("throng: no command given; run 'throng --help'\n", stderr);
   return kExitUsage;

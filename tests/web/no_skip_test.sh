@@ -3,7 +3,7 @@
 # - No ctest test of the build carries SKIP_RETURN_CODE, nor SKIP_REGULAR_EXPRESSION other than
 #   GoogleTest's "[  SKIPPED ]" (tests/web/skip_properties.cmake), so no missing component turns a
 #   test into "skipped" or "passed"; scripts/test.sh fails when any test is reported skipped.
-# - tests/web/node_test.cmake (protocol_js_decoder, viewer_js_unit, viewer_e2e) fails, naming what
+# - tests/web/node_test.cmake (protocol_js_decoder, viewer_js_unit, viewer_e2e, editor_js_unit, editor_e2e) fails, naming what
 #   is missing, without node, without a REQUIRE path (web/node_modules, web/dist, chromium), when
 #   its globs match nothing and when a test file fails; runs every file with ONE_BY_ONE even after
 #   a failure; passes when its tests pass.
@@ -24,7 +24,7 @@ else
   fail "$out"
 fi
 json="$(cd "$build" && ctest --show-only=json-v1)" || fail "ctest --show-only=json-v1 failed in $build"
-for t in protocol_js_decoder viewer_js_unit viewer_e2e; do
+for t in protocol_js_decoder viewer_js_unit viewer_e2e editor_js_unit editor_e2e; do
   grep -q "\"name\" : \"$t\"" <<< "$json" && echo "ok: $t registered" || fail "$t is not registered"
 done
 

@@ -1,5 +1,5 @@
 # Runs node's test runner on the files GLOBS match (cmake -P; ctest's protocol_js_decoder,
-# viewer_js_unit and viewer_e2e). Never skips: fails, naming what is missing and how to get it,
+# viewer_js_unit, viewer_e2e, editor_js_unit and editor_e2e). Never skips: fails, naming what is missing and how to get it,
 # when node (≥ 18, Debian 12's own is 18.20) is not found or too old, when a path of REQUIRE
 # (web/node_modules, web/dist, chromium…) is absent, or when GLOBS match no file.
 #   -DNODE=path (empty or NOTFOUND: looked up on PATH now)  -DGLOBS="a/*.test.js;b/*.test.mjs"

@@ -11,15 +11,23 @@ using namespace detail;
 
 core::Result<HttpReply> httpRequest(const std::string& host, std::uint16_t port, const std::string& method,
                                     const std::string& target, std::chrono::milliseconds timeout) {
+  return httpRequest(host, port, method, target, HttpBody{}, timeout);
+}
+
+core::Result<HttpReply> httpRequest(const std::string& host, std::uint16_t port, const std::string& method,
+                                    const std::string& target, const HttpBody& body, std::chrono::milliseconds timeout) {
   asio::io_context ioc;
   beast::tcp_stream stream(ioc);
   tcp::resolver resolver(ioc);
-  http::request<http::empty_body> req;
+  http::request<http::string_body> req;
   req.method_string(method);
   req.target(target);
   req.version(11);
   req.set(http::field::host, host + ":" + std::to_string(port));
   req.set(http::field::connection, "close");
+  if (!body.contentType.empty()) req.set(http::field::content_type, body.contentType);
+  req.body() = body.text;
+  if (!body.text.empty() || method == "POST") req.prepare_payload();
   beast::flat_buffer buffer;
   http::response_parser<http::string_body> parser;
   parser.body_limit(256 << 20);

@@ -1,6 +1,8 @@
-// throng::transport::detail::HttpSession — HTTP/1.1 GET/HEAD with keep-alive, and the /ws upgrade.
-// Answers: /health (JSON), the dynamic hook, static files; 400 for a malformed or escaping
-// target, 404, 405 for other methods, 503 when the peer limit is reached.
+// throng::transport::detail::HttpSession — HTTP/1.1 GET/HEAD/POST with keep-alive, and the /ws upgrade.
+// Answers: /health (JSON), the dynamic hook, static files, POST through the POST hook (answered
+// later, from any thread, through HttpResponder); 400 for a malformed or escaping target, 404,
+// 405 for other methods (and POST without a hook), 413 for a POST body over the limit, 503 when
+// the peer limit is reached.
 #include "http_session.hpp"
 
 #include <exception>
@@ -35,6 +37,35 @@ std::string endpointText(const tcp::endpoint& endpoint) {
 
 }  // namespace
 
+PostState::~PostState() {
+  if (!answered.load()) answer(HttpResponse{500, "text/plain", "internal error: the request was not answered\n", {}});
+}
+
+void PostState::answer(HttpResponse response) {
+  if (answered.exchange(true)) return;
+  std::shared_ptr<HttpSession> target = std::move(session);
+  if (!target) return;
+  asio::post(target->executor_, [target, response = std::move(response)]() mutable {
+    target->sendPostAnswer(std::move(response));
+  });
+}
+
+}  // namespace throng::transport::detail
+
+namespace throng::transport {
+
+HttpResponder::HttpResponder(std::shared_ptr<detail::PostState> state) : state_(std::move(state)) {}
+
+void HttpResponder::respond(HttpResponse response) const { state_->answer(std::move(response)); }
+
+bool HttpResponder::cancelled() const { return state_->cancelled.load() != 0; }
+
+const std::atomic<int>& HttpResponder::cancelFlag() const { return state_->cancelled; }
+
+}  // namespace throng::transport
+
+namespace throng::transport::detail {
+
 HttpSession::HttpSession(TransportImpl& transport, tcp::socket&& socket)
     : transport_(transport), stream_(std::move(socket)), executor_(stream_.get_executor()) {
   error_code ec;
@@ -61,7 +92,8 @@ void HttpSession::requestClose() {
 void HttpSession::doRead() {
   parser_.emplace();
   parser_->header_limit(kHeaderLimit);
-  parser_->body_limit(kBodyLimit);
+  const TransportOptions& options = transport_.options();
+  parser_->body_limit(options.postHandler ? options.maxPostBytes : kBodyLimit);
   stream_.expires_after(transport_.options().httpTimeout);
   http::async_read(stream_, buffer_, *parser_, beast::bind_front_handler(&HttpSession::onRead, shared_from_this()));
 }
@@ -70,6 +102,13 @@ void HttpSession::onRead(error_code ec, std::size_t) {
   if (done_) return;
   if (ec) {
     const error_code endOfStream = http::error::end_of_stream;
+    if (ec == http::error::body_limit) {
+      send(textResponse(http::status::payload_too_large, "text/plain",
+                        "request body too large; the limit is " + std::to_string(transport_.options().maxPostBytes) +
+                            " bytes\n",
+                        11, false));
+      return;
+    }
     if (ec.category() == endOfStream.category() && ec != endOfStream) {
       // A malformed request: say so once, then hang up.
       send(textResponse(http::status::bad_request, "text/plain", "bad request\n", 11, false));
@@ -93,10 +132,17 @@ void HttpSession::handle(http::request<http::string_body>&& req) {
     return;
   }
   const Reply reply{req.version(), req.keep_alive() && !transport_.stopping(), req.method() == http::verb::head};
+  const bool posts = static_cast<bool>(transport_.options().postHandler);
+  if (posts && req.method() == http::verb::post) {
+    handlePost(reply, std::move(req));
+    return;
+  }
   if (!reply.head && req.method() != http::verb::get) {
-    auto res = textResponse(http::status::method_not_allowed, "text/plain", "method not allowed; expected GET or HEAD\n",
+    auto res = textResponse(http::status::method_not_allowed, "text/plain",
+                            posts ? "method not allowed; expected GET, HEAD or POST\n"
+                                  : "method not allowed; expected GET or HEAD\n",
                             reply.version, reply.keepAlive);
-    res.set(http::field::allow, "GET, HEAD");
+    res.set(http::field::allow, posts ? "GET, HEAD, POST" : "GET, HEAD");
     send(std::move(res));
     return;
   }
@@ -136,6 +182,59 @@ bool HttpSession::serveDynamic(const Reply& reply, std::string_view target) {
     sendText(reply, static_cast<http::status>(dynamic->status), dynamic->contentType, std::move(dynamic->body));
   }
   return true;
+}
+
+void HttpSession::handlePost(const Reply& reply, http::request<http::string_body>&& req) {
+  auto state = std::make_shared<PostState>();
+  state->session = shared_from_this();
+  pending_ = state;
+  postReply_ = reply;
+  stream_.expires_never();  // the answer may take a while (a simulation); a hang-up cancels it
+  HttpRequest request;
+  request.target.assign(req.target().data(), req.target().size());
+  const auto type = req[http::field::content_type];
+  request.contentType.assign(type.data(), type.size());
+  request.body = std::move(req.body());
+  bool taken = false;
+  try {
+    taken = transport_.options().postHandler(std::move(request), HttpResponder(state));
+  } catch (const std::exception& e) {
+    state->answer(HttpResponse{500, "text/plain", std::string("internal error: ") + e.what() + "\n", {}});
+    return;
+  }
+  if (!taken) {
+    state->answer(HttpResponse{404, "text/plain", "not found\n", {}});
+    return;
+  }
+  if (!state->answered.load()) watchForHangUp();
+}
+
+void HttpSession::watchForHangUp() {
+  stream_.socket().async_wait(tcp::socket::wait_read, [self = shared_from_this()](error_code ec) {
+    if (ec || self->done_) return;  // cancelled by the answer
+    auto state = self->pending_.lock();
+    if (!state) return;
+    error_code availableEc;
+    // Readable with nothing to read: the client closed its side. (Bytes waiting are a pipelined
+    // request, read after the answer.)
+    if (self->stream_.socket().available(availableEc) == 0 || availableEc) {
+      state->cancelled.store(1);
+      self->finish();
+    }
+  });
+}
+
+void HttpSession::sendPostAnswer(HttpResponse response) {
+  pending_.reset();
+  if (done_) return;
+  error_code ignored;
+  stream_.socket().cancel(ignored);  // the hang-up watch
+  stream_.expires_after(transport_.options().httpTimeout);
+  if (!response.file.empty()) {
+    sendFile(postReply_, response.file, response.contentType);
+  } else {
+    sendText(postReply_, static_cast<http::status>(response.status), response.contentType, std::move(response.body));
+  }
 }
 
 void HttpSession::sendFile(const Reply& reply, const std::filesystem::path& path, std::string_view contentType) {
@@ -210,6 +309,7 @@ void HttpSession::onWrite(bool close, error_code ec) {
 void HttpSession::finish() {
   if (done_) return;
   done_ = true;
+  if (auto state = pending_.lock()) state->cancelled.store(1);
   error_code ignored;
   stream_.socket().shutdown(tcp::socket::shutdown_both, ignored);
   stream_.close();

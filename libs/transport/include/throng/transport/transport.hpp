@@ -1,11 +1,12 @@
 // throng::transport::Transport — moves whole binary messages between the server and its peers:
-// HTTP (static files, /health, a dynamic hook) and WebSocket (/ws) on one TCP port, datagrams on
+// HTTP (static files, /health, a dynamic GET hook, a POST hook) and WebSocket (/ws) on one TCP port, datagrams on
 // a UDP port. Message-agnostic: it never looks inside a message. Reads sockets; writes sockets;
 // calls the TransportHandler on its own thread. See docs/server.md ("Transport"). The places it
 // reads and writes protocol bytes: a message too large for one datagram goes to a UDP peer as
 // Fragment messages (docs/protocol.md "Fragment"), and a UDP peer opens only after a cookie round
 // trip (UdpHello / Cookie, docs/protocol.md "Opening a UDP session").
 #pragma once
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -55,6 +56,33 @@ struct HttpResponse {
   std::filesystem::path file;             ///< when set: serve this file (Content-Type from `contentType`)
 };
 
+/// A POST request handed to TransportOptions::postHandler.
+struct HttpRequest {
+  std::string target;       ///< path and query string, as sent
+  std::string contentType;  ///< the Content-Type header, may be empty
+  std::string body;         ///< at most TransportOptions::maxPostBytes
+};
+
+namespace detail {
+struct PostState;
+}
+
+/// Answers one POST, from any thread, once: copies share one answer and the first respond() wins.
+/// When the last copy goes without an answer the client gets 500. cancelled() turns true when the
+/// client hangs up or the transport shuts down: long work should stop then. Every responder must
+/// be answered or dropped before the Transport is destroyed.
+class HttpResponder {
+ public:
+  explicit HttpResponder(std::shared_ptr<detail::PostState> state);
+  void respond(HttpResponse response) const;
+  [[nodiscard]] bool cancelled() const;
+  /// Non-zero once cancelled (the shape io::LoadOptions::cancel takes); valid while a copy lives.
+  [[nodiscard]] const std::atomic<int>& cancelFlag() const;
+
+ private:
+  std::shared_ptr<detail::PostState> state_;
+};
+
 struct TransportOptions {
   std::string bindAddress = "127.0.0.1";  ///< IPv4 or IPv6 literal ("0.0.0.0" for all interfaces)
   std::uint16_t httpPort = 8080;          ///< HTTP + WebSocket; 0 = pick a free port
@@ -64,6 +92,12 @@ struct TransportOptions {
   /// Dynamic GET/HEAD paths, tried before the static files (target includes the query string).
   /// Runs on the transport thread: keep it quick and thread-safe. nullopt = not handled.
   std::function<std::optional<HttpResponse>(std::string_view target)> httpHandler;
+  /// POST requests (none when empty: POST is answered 405). Runs on the transport thread and must
+  /// return at once: true when it took the request (it answers through the responder, now or later
+  /// from another thread), false for 404. A throwing hook answers 500. The connection waits for
+  /// the answer without a timeout; a client that hangs up meanwhile cancels the responder.
+  std::function<bool(HttpRequest request, HttpResponder responder)> postHandler;
+  std::size_t maxPostBytes = 8 << 20;  ///< POST body limit [bytes]; a larger body is answered 413
 
   std::size_t threads = 1;                    ///< io threads [limit: 1..64]
   std::size_t maxMessageBytes = 1 << 20;      ///< incoming and outgoing WebSocket message [bytes]

@@ -1,0 +1,59 @@
+// Shared plumbing of the editor's end-to-end tests: starting the built `throng edit` (THRONG_EXE)
+// on a file and reading the URL it prints, and driving the plan with the mouse at positions given
+// in metres (through the page's camera). Downloads nothing.
+import { spawn } from 'node:child_process';
+import assert from 'node:assert/strict';
+import path from 'node:path';
+import { exe, sleep, webRoot } from '../../viewer/e2e/harness.mjs';
+
+export function startEditor(file) {
+  const proc = spawn(exe, ['edit', file, '--port', '0', '--web', path.join(webRoot, 'dist')], { stdio: ['ignore', 'pipe', 'pipe'] });
+  const log = [];
+  return new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error(`throng edit printed no URL in 30 s:\n${log.join('')}`)), 30000);
+    const onData = (d) => {
+      log.push(d.toString());
+      const m = /editor\s+(http:\/\/127\.0\.0\.1:(\d+)\/)/.exec(log.join(''));
+      if (m) { clearTimeout(timer); resolve({ proc, url: m[1], log }); }
+    };
+    proc.stdout.on('data', onData);
+    proc.stderr.on('data', (d) => log.push(d.toString()));
+    proc.on('exit', (code) => { clearTimeout(timer); reject(new Error(`throng edit exited (${code}):\n${log.join('')}`)); });
+  });
+}
+
+/** Page coordinates of a plan position [m]. */
+export async function at(page, p) {
+  return page.evaluate(([x, y]) => {
+    const app = window.throngEditor;
+    const r = app.svg.getBoundingClientRect();
+    const [sx, sy] = app.cam.toScreen([x, y]);
+    return [r.left + sx, r.top + sy];
+  }, p);
+}
+
+export async function drag(page, a, b) {
+  const [x0, y0] = await at(page, a);
+  const [x1, y1] = await at(page, b);
+  await page.mouse.move(x0, y0);
+  await page.mouse.down();
+  await page.mouse.move((x0 + x1) / 2, (y0 + y1) / 2, { steps: 3 });
+  await page.mouse.move(x1, y1, { steps: 3 });
+  await page.mouse.up();
+}
+
+export async function click(page, p) {
+  const [x, y] = await at(page, p);
+  await page.mouse.click(x, y);
+}
+
+export const checkState = (page) => page.locator('#check-state').textContent();
+
+export async function waitForCheck(page, pattern, what) {
+  for (let i = 0; i < 100; i++) {
+    const text = await checkState(page);
+    if (pattern.test(text)) return text;
+    await sleep(100);
+  }
+  assert.fail(`${what}: the check state is "${await checkState(page)}"`);
+}

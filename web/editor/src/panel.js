@@ -1,0 +1,201 @@
+// The properties panel: a form for the selection (or the scenario's own keys when nothing is
+// selected). Points by kind, walls, measurements and crowds — size, speed, start, goals in order
+// (picked on the plan) and the pedestrian model with its parameters, a form generated from the
+// JSON Schema (schema_form.js). A value out of its schema limits is shown under its field and not
+// written; every accepted change is one undoable edit (`app.commit`).
+import {
+  coerce, fieldOf, modelNames, modelParameters, objectFields, readModel, variantFields, variantNames, writeModel,
+} from './schema_form.js';
+import { polygonArea, polygonProblem, polylineLength } from './geometry.js';
+import { isClosed, renamePoint, verticesOf } from './doc.js';
+
+function h(tag, attrs = {}, ...children) {
+  const node = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs)) {
+    if (k.startsWith('on')) node.addEventListener(k.slice(2), v);
+    else if (v !== undefined && v !== null && v !== false) node.setAttribute(k, v === true ? '' : String(v));
+  }
+  for (const c of children) if (c !== null && c !== undefined) node.append(c);
+  return node;
+}
+
+export class Panel {
+  constructor(app, root, schema) {
+    this.app = app;
+    this.root = root;
+    this.schema = schema;
+  }
+
+  /** One input for a schema field; `set(value)` writes the accepted value (undefined: remove). */
+  input(field, value, set) {
+    const id = `f-${field.key}`;
+    const error = h('div', { class: 'field-error' });
+    let control;
+    const apply = (raw) => {
+      const r = coerce(field, raw);
+      error.textContent = r.error || '';
+      if (!r.error) set(r.value);
+    };
+    if (field.type === 'boolean') {
+      control = h('input', { type: 'checkbox', id, 'data-field': field.key, checked: value ?? field.default ?? false,
+        onchange: (e) => apply(e.target.checked) });
+    } else if (field.type === 'enum') {
+      control = h('select', { id, 'data-field': field.key, onchange: (e) => apply(e.target.value) },
+        ...field.options.map((o) => h('option', { value: o, selected: (value ?? field.default) === o }, String(o))));
+    } else {
+      const limits = [field.minimum ?? (field.exclusiveMinimum !== undefined ? `>${field.exclusiveMinimum}` : null), field.maximum]
+        .filter((x) => x !== null && x !== undefined);
+      control = h('input', { id, 'data-field': field.key, value: value ?? '', placeholder: field.default ?? '',
+        title: `${field.description}${limits.length ? ` [${limits.join(' … ')}]` : ''}`,
+        onchange: (e) => apply(e.target.value) });
+    }
+    return h('div', { class: 'field' }, h('label', { for: id, title: field.description }, field.key), control, error);
+  }
+
+  render() {
+    const { doc, sel } = this.app;
+    this.root.replaceChildren();
+    if (!sel || sel.index == null || !doc[sel.layer]?.[sel.index]) return this.renderScenario();
+    const item = doc[sel.layer][sel.index];
+    this.root.append(h('h3', {}, `${sel.layer} ${sel.index}`));
+    this.measures(sel);
+    if (sel.layer === 'points') this.renderPoint(item, sel.index);
+    else if (sel.layer === 'populations') this.renderPopulation(item);
+    else if (sel.layer === 'walls') {
+      this.root.append(this.input({ key: 'id', type: 'string', description: 'wall id' }, item.id, (v) => this.set(item, 'id', v)));
+      const f = fieldOf(this.schema, 'thickness', this.schema.$defs?.wall?.properties?.thickness || { type: 'number', exclusiveMinimum: 0, maximum: 5, default: 0.2 });
+      this.root.append(this.input(f, item.thickness, (v) => this.set(item, 'thickness', v)));
+    } else if (sel.layer === 'measurements') {
+      this.root.append(this.input({ key: 'id', type: 'string', description: 'measurement id' }, item.id, (v) => this.set(item, 'id', v)));
+    }
+    this.root.append(h('button', { class: 'danger', 'data-action': 'delete', onclick: () => this.app.deleteSelection() }, 'Delete (Del)'));
+  }
+
+  measures(sel) {
+    const vs = verticesOf(this.app.doc, sel);
+    if (!vs || vs.length < 2) return;
+    const text = isClosed(this.app.doc, sel)
+      ? `area ${polygonArea(vs).toFixed(2)} m² · perimeter ${polylineLength(vs, true).toFixed(2)} m · ${vs.length} vertices`
+      : `length ${polylineLength(vs).toFixed(2)} m · ${vs.length} points`;
+    this.root.append(h('div', { class: 'measures', id: 'measures' }, text));
+    const problem = isClosed(this.app.doc, sel) ? polygonProblem(vs) : null;
+    if (problem) this.root.append(h('div', { class: 'field-error', id: 'shape-problem' }, `not a simple polygon: ${problem}`));
+  }
+
+  set(obj, key, value) {
+    if (value === undefined) delete obj[key];
+    else obj[key] = value;
+    this.app.commit(`${key} changed`);
+  }
+
+  renderScenario() {
+    const { doc } = this.app;
+    this.root.append(h('h3', {}, 'Scenario'));
+    for (const f of objectFields(this.schema, this.schema, ['name', 'seed', 'duration', 'dt'])) {
+      this.root.append(this.input(f, doc[f.key], (v) => this.set(doc, f.key, v)));
+    }
+    this.root.append(h('p', { class: 'small' }, 'Pick a tool (keys on the toolbar, ? for all) and draw on the plan.'));
+  }
+
+  renderPoint(point, index) {
+    const defs = this.schema.$defs || {};
+    this.root.append(this.input({ key: 'id', type: 'string', description: 'unique id; goals name it' }, point.id, (v) => {
+      if (v) { renamePoint(this.app.doc, index, v); this.app.commit('renamed'); }
+    }));
+    const keys = ['kind'];
+    if (Array.isArray(point.position)) keys.push('radius');
+    if (point.kind === 'exit') keys.push('width');
+    if (point.kind === 'action') keys.push('stop', 'duration', 'action', 'clip');
+    keys.push('category');
+    for (const f of objectFields(this.schema, defs.point, keys)) {
+      this.root.append(this.input(f, point[f.key], (v) => {
+        if (f.key === 'kind') this.changeKind(point, v);
+        else this.set(point, f.key, v);
+      }));
+    }
+    if (point.kind === 'action') {
+      const o = point.orientation || [1, 0];
+      const angle = Math.round((Math.atan2(o[1], o[0]) * 180) / Math.PI);
+      this.root.append(this.input({ key: 'orientation°', type: 'number', minimum: -360, maximum: 360, description: 'facing direction while stopped, degrees from +x' },
+        angle, (v) => {
+          const a = ((v ?? 0) * Math.PI) / 180;
+          this.set(point, 'orientation', [Number(Math.cos(a).toFixed(4)), Number(Math.sin(a).toFixed(4))]);
+        }));
+    }
+  }
+
+  /** Keys of one kind are errors on another: they go when the kind changes. */
+  changeKind(point, kind) {
+    point.kind = kind;
+    if (kind !== 'action') for (const k of ['stop', 'orientation', 'action', 'duration', 'clip']) delete point[k];
+    if (kind !== 'exit') delete point.width;
+    if (kind === 'action' && !point.orientation) point.orientation = [1, 0];
+    this.app.commit('kind changed');
+  }
+
+  renderPopulation(pop) {
+    const defs = this.schema.$defs || {};
+    for (const f of objectFields(this.schema, defs.population, ['id', 'groups', 'start', 'radius'])) {
+      this.root.append(this.input(f, pop[f.key], (v) => this.set(pop, f.key, v)));
+    }
+    const size = Array.isArray(pop.size) ? pop.size.join('-') : pop.size ?? '';
+    this.root.append(this.input({ key: 'size', type: 'string', description: 'agents per group: N or MIN-MAX' }, size, (v) => {
+      const m = /^(\d+)(?:\s*-\s*(\d+))?$/.exec(v || '');
+      if (!v) this.set(pop, 'size', undefined);
+      else if (m) this.set(pop, 'size', m[2] ? [Number(m[1]), Number(m[2])] : Number(m[1]));
+    }));
+    const speed = typeof pop.speed === 'number' ? { mean: pop.speed } : pop.speed || {};
+    const speedFields = objectFields(this.schema, (defs.speed?.oneOf || []).find((o) => o.properties?.mean) || {}, ['mean', 'sd']);
+    for (const f of speedFields) {
+      this.root.append(this.input({ ...f, key: `speed.${f.key}` }, speed[f.key], (v) => {
+        const next = { ...speed, [f.key]: v };
+        if (v === undefined) delete next[f.key];
+        this.set(pop, 'speed', Object.keys(next).length ? next : undefined);
+      }));
+    }
+    this.renderPreMovement(pop);
+    this.renderGoals(pop);
+    this.renderModel(pop);
+  }
+
+  /** Pre-movement time: none or one of the schema's distributions, with its keys. */
+  renderPreMovement(pop) {
+    const node = this.schema.$defs?.preMovement;
+    const current = pop.preMovement?.distribution;
+    this.root.append(this.input({ key: 'preMovement', type: 'enum', options: ['none', ...variantNames(this.schema, node, 'distribution')],
+      description: 'pre-movement time: agents stand where they appear for a time drawn from this distribution [s]' },
+      current || 'none', (v) => this.set(pop, 'preMovement', v === 'none' ? undefined : { distribution: v })));
+    if (!current) return;
+    for (const f of variantFields(this.schema, node, 'distribution', current)) {
+      this.root.append(this.input({ ...f, key: `preMovement.${f.key}` }, pop.preMovement[f.key], (v) => {
+        const next = { ...pop.preMovement, [f.key]: v };
+        if (v === undefined) delete next[f.key];
+        this.set(pop, 'preMovement', next);
+      }));
+    }
+  }
+
+  renderGoals(pop) {
+    const goals = Array.isArray(pop.goals) ? pop.goals : [];
+    const list = h('ol', { class: 'goals', id: 'goal-list' }, ...goals.map((g, i) => h('li', {}, g, ' ',
+      h('button', { class: 'x', title: 'remove this goal', onclick: () => { pop.goals.splice(i, 1); this.app.commit('goal removed'); } }, '×'))));
+    const picking = this.app.state.pickGoals;
+    this.root.append(h('div', { class: 'field' }, h('label', {}, 'goals'), list,
+      h('button', { id: 'pick-goals', class: picking ? 'on' : '', onclick: () => this.app.togglePickGoals() },
+        picking ? 'Picking… click points (G ends)' : 'Pick goals (G)')));
+  }
+
+  renderModel(pop) {
+    const { name, params } = readModel(pop.model);
+    const names = modelNames(this.schema);
+    const write = (n, p) => {
+      const value = writeModel(n, p);
+      this.set(pop, 'model', value === 'orca' && pop.model === undefined ? undefined : value);
+    };
+    this.root.append(this.input({ key: 'model', type: 'enum', options: names, description: 'pedestrian model (docs/scenario-format.md, Models)' },
+      name, (v) => write(v, {})));
+    for (const f of modelParameters(this.schema, name)) {
+      this.root.append(this.input(f, params[f.key], (v) => write(name, { ...params, [f.key]: v })));
+    }
+  }
+}
