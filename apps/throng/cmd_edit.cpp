@@ -2,7 +2,7 @@
 // its JSON API on one HTTP port until Ctrl-C. GET /api/scenario gives FILE's text (or an empty
 // scenario when FILE does not exist yet); POST /api/check, /api/preview and /api/save check,
 // simulate and save with the validator of `throng check`, /api/import reads a DXF or WKT floor
-// plan (edit_api.hpp), each on a worker thread
+// plan (edit_api.hpp), routed by edit_routes.hpp, each on a worker thread
 // (edit_jobs.hpp) that stops when the client hangs up or its time is up. Writes only FILE.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -11,8 +11,6 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <thread>
 
 #include "bench_files.hpp"
@@ -20,6 +18,7 @@
 #include "data_dirs.hpp"
 #include "edit_api.hpp"
 #include "edit_jobs.hpp"
+#include "edit_routes.hpp"
 #include "output.hpp"
 #include "signal.hpp"
 #include "validators.hpp"
@@ -29,11 +28,8 @@ namespace throng::cli {
 namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
-using edit::ApiAnswer;
-using edit::JobFlags;
 using transport::HttpRequest;
 using transport::HttpResponder;
-using transport::HttpResponse;
 
 constexpr std::size_t kMaxBodyBytes = 8 << 20;
 
@@ -49,14 +45,6 @@ fs::path editorRoot(const std::string& flag) {
   return web.empty() ? fs::path() : web / "editor";
 }
 
-HttpResponse jsonResponse(unsigned status, const nlohmann::json& body) {
-  return HttpResponse{status, "application/json", dumpJson(body), {}};
-}
-
-HttpResponse fromAnswer(ApiAnswer answer) {
-  return HttpResponse{answer.status, "application/json", std::move(answer.body), {}};
-}
-
 /// No WebSocket here: any peer that opens is closed at once.
 class NoPeers final : public transport::TransportHandler {
  public:
@@ -66,90 +54,6 @@ class NoPeers final : public transport::TransportHandler {
   }
   void onMessage(transport::PeerId, std::span<const std::uint8_t>) override {}
   void onClose(transport::PeerId, std::string_view) override {}
-};
-
-/// The API's routes (GET on the transport thread; POST work on Jobs' threads).
-class EditApi {
- public:
-  EditApi(fs::path file, edit::Jobs& jobs) : file_(std::move(file)), jobs_(jobs) {}
-
-  /// GET /api/scenario: {"file", "exists", "canSave", "text"}.
-  std::optional<HttpResponse> get(std::string_view target) const {
-    const std::string_view path = target.substr(0, target.find('?'));
-    if (path != "/api/scenario") return std::nullopt;
-    std::error_code ec;
-    const bool exists = !file_.empty() && fs::is_regular_file(file_, ec);
-    std::string text;
-    if (exists) {
-      std::ifstream in(file_, std::ios::binary);
-      std::ostringstream buffer;
-      buffer << in.rdbuf();
-      text = buffer.str();
-    } else {
-      text = edit::emptyScenario(file_.empty() ? "scenario" : file_.stem().string());
-    }
-    return jsonResponse(200, {{"file", file_.empty() ? nlohmann::json() : nlohmann::json(file_.filename().string())},
-                              {"exists", exists},
-                              {"canSave", !file_.empty()},
-                              {"text", text}});
-  }
-
-  /// POST /api/check, /api/preview, /api/save, /api/import.
-  bool post(HttpRequest request, const HttpResponder& responder) {
-    const std::string path = request.target.substr(0, request.target.find('?'));
-    if (path == "/api/import") {
-      const bool started = jobs_.launch(responder, std::chrono::milliseconds(static_cast<long>(edit::kCheckSeconds * 1000)),
-                                        [body = std::move(request.body), responder](const JobFlags&) {
-                                          responder.respond(fromAnswer(edit::importPlanText(body)));
-                                        });
-      if (!started) busy(responder);
-      return true;
-    }
-    if (path != "/api/check" && path != "/api/preview" && path != "/api/save") return false;
-    const bool isCheck = path == "/api/check";
-    edit::ScenarioRequest parsed = edit::readScenarioRequest(request.body, isCheck);
-    if (!parsed.error.empty()) {
-      responder.respond(jsonResponse(400, {{"ok", false}, {"error", parsed.error}}));
-      return true;
-    }
-    if (path == "/api/preview") return preview(std::move(parsed), responder);
-    const auto limit = std::chrono::milliseconds(static_cast<long>(edit::kCheckSeconds * 1000));
-    const bool started = jobs_.launch(responder, limit, [this, isCheck, parsed = std::move(parsed), responder](const JobFlags& f) {
-      responder.respond(fromAnswer(isCheck ? edit::checkScenario(parsed.text, source(), f.cancel, f.timedOut)
-                                           : edit::saveScenario(parsed, file_, f.cancel, f.timedOut)));
-    });
-    if (!started) busy(responder);
-    return true;
-  }
-
- private:
-  bool preview(edit::ScenarioRequest parsed, const HttpResponder& responder) {
-    const double seconds = parsed.body.value("seconds", 20.0);
-    const double fps = parsed.body.value("fps", 5.0);
-    if (!(seconds > 0 && seconds <= edit::kMaxPreviewSeconds) || !(fps > 0 && fps <= edit::kMaxPreviewFps)) {
-      responder.respond(jsonResponse(
-          400, {{"ok", false},
-                {"error", fmt::format("expected \"seconds\" in (0, {:g}] and \"fps\" in (0, {:g}]", edit::kMaxPreviewSeconds,
-                                      edit::kMaxPreviewFps)}}));
-      return true;
-    }
-    const auto limit = std::chrono::milliseconds(static_cast<long>(edit::kPreviewSeconds * 1000));
-    const bool started = jobs_.launch(responder, limit, [this, text = std::move(parsed.text), seconds, fps, responder](const JobFlags& f) {
-      responder.respond(fromAnswer(edit::previewScenario(text, source(), seconds, fps, f.cancel, f.timedOut)));
-    });
-    if (!started) busy(responder);
-    return true;
-  }
-
-  static void busy(const HttpResponder& responder) {
-    responder.respond(jsonResponse(503, {{"ok", false}, {"error", "the server is busy with other requests; try again"}}));
-  }
-
-  /// What diagnostics name and clip paths are resolved against.
-  std::string source() const { return file_.empty() ? std::string("scenario.json") : file_.string(); }
-
-  fs::path file_;
-  edit::Jobs& jobs_;
 };
 
 void openBrowser(const std::string& url) {
@@ -191,7 +95,7 @@ int runEdit(const EditOptions& options) {
   const fs::path root = editorRoot(options.web);
   const bool haveEditor = !root.empty() && fs::is_regular_file(root / "index.html", ec);
   edit::Jobs jobs;
-  EditApi api(file, jobs);
+  edit::EditApi api(file, jobs);
   transport::TransportOptions t;
   t.bindAddress = options.host;
   t.httpPort = static_cast<std::uint16_t>(options.port);

@@ -27,6 +27,8 @@
 #include "bench_files.hpp"
 #include "commands.hpp"
 #include "data_dirs.hpp"
+#include "edit_jobs.hpp"
+#include "edit_routes.hpp"
 #include "live_world.hpp"
 #include "output.hpp"
 #include "signal.hpp"
@@ -690,6 +692,28 @@ void printSummary(const ServeOptions& options, const ServeSummary& r) {
   }
 }
 
+/// The editor's routes for the world served: its scenario text (a JSON scenario, or the one a
+/// recording stores; none for a glTF world, whose editor page starts empty), never saved.
+edit::EditApi editorFor(const ServeOptions& options, const Served& served, edit::Jobs& jobs) {
+  const std::string& text = served.live.scenario.text;
+  const auto first = text.find_first_not_of(" \t\r\n");
+  std::optional<std::string> scenario;
+  if (first != std::string::npos && text[first] == '{') scenario = text;
+  return edit::EditApi({}, jobs, "/editor", std::move(scenario), options.scenario);
+}
+
+/// GET /editor/api/scenario beside the server's own dynamic paths; POST /editor/api/… to the editor.
+void addEditorRoutes(transport::TransportOptions& t, edit::EditApi& editor) {
+  t.httpHandler = [base = std::move(t.httpHandler), &editor](std::string_view target) {
+    if (auto answer = editor.get(target)) return answer;
+    return base ? base(target) : std::nullopt;
+  };
+  t.postHandler = [&editor](transport::HttpRequest request, transport::HttpResponder responder) {
+    return editor.post(std::move(request), responder);
+  };
+  t.maxPostBytes = 8 << 20;
+}
+
 }  // namespace
 
 CLI::App* addServeCommand(CLI::App& app, ServeOptions& options) {
@@ -765,6 +789,11 @@ int runServe(const ServeOptions& options) {
   hub::TickWatch tickWatch(1.0 / served->tickRate);
   WorldQueries queries;
   t.httpHandler = HttpApi(*served, hub, bridge, queries, tickWindow, tickWatch);
+  // The scenario editor at /editor/ (its built page beside the viewer's) on the world served:
+  // check, preview, import and download; never saved over the served file.
+  edit::Jobs editJobs;
+  edit::EditApi editor = editorFor(options, *served, editJobs);
+  addEditorRoutes(t, editor);
   auto started = transport::Transport::start(t, bridge);
   if (!started) {
     printDiagnostics(started.errors());
@@ -782,6 +811,7 @@ int runServe(const ServeOptions& options) {
   if (!options.quiet && loop.terminal()) std::fputs("\n", stderr);
   const std::string goodbye = InterruptGuard::requested() ? "server shutting down (Ctrl-C)" : "server shutting down";
   hub.shutdown(goodbye);
+  editJobs.stop();  // each job holds an HttpResponder: done before the transport goes
   transport->shutdown(goodbye);
   summary.totals = transport->totals();
   summary.hub = hub.status();

@@ -47,6 +47,17 @@ test('measurements: the panel counts the people crossing the line and standing i
     assert.match(text, /\/m² · [0-9.]+ m\/s/);
     const fd = await page.evaluate(() => globalThis.__throng.measurements.rows()[1].meter.fd.length);
     assert.ok(fd >= 2, `fundamental-diagram samples: ${fd}`);
+    // The Edit link opens the served scenario in the editor at /editor/ (check and preview, no save).
+    assert.equal(await page.getAttribute('#edit-link', 'href'), 'editor/');
+    const served = await page.evaluate(async () => (await fetch('editor/api/scenario')).json());
+    assert.equal(served.canSave, false);
+    assert.equal(JSON.parse(served.text).name, 'bottleneck-measured');
+    const check = await page.evaluate(async (text) => (await fetch('editor/api/check', { method: 'POST', body: text })).json(), served.text);
+    assert.equal(check.ok, true, JSON.stringify(check.diagnostics));
+    const editor = await browser.newPage({ viewport: { width: 1000, height: 700 } });
+    await editor.goto(`${server.url}editor/`);
+    await editor.waitForFunction(() => document.body.textContent.includes('measured'), null, { timeout: 20000 });
+    await editor.close();
     assert.deepEqual(errors, []);
   } finally {
     await browser.close();
