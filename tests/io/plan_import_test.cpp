@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -311,7 +313,47 @@ TEST(PlanImportWkt, BadTextGetsLineAndColumn) {
 TEST(PlanImport, FormatFromTheFileName) {
   EXPECT_EQ(planFormatOf("plans/Floor.DXF"), PlanFormat::Dxf);
   EXPECT_EQ(planFormatOf("a.wkt"), PlanFormat::Wkt);
+  EXPECT_EQ(planFormatOf("w/Gallery.GLTF"), PlanFormat::Gltf);
+  EXPECT_EQ(planFormatOf("w.glb"), PlanFormat::Gltf);
   EXPECT_FALSE(planFormatOf("a.json").has_value());
+}
+
+std::string fileText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(PlanImportGltf, AFlatWorldsFloorBecomesWalkableAndObstacles) {
+  // scenarios/gallery.gltf: an L-shaped 30 x 25 m floor (docs/world-files.md) with pillars.
+  const std::string path = std::string(THRONG_SOURCE_DIR) + "/scenarios/gallery.gltf";
+  auto r = importPlan(fileText(path), PlanFormat::Gltf, path);
+  ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
+  const nlohmann::json& f = r.value();
+  ASSERT_EQ(f["walkable"].size(), 1u);
+  double area = 0;  // shoelace
+  const auto& ring = f["walkable"][0];
+  for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+    area += ring[j][0].get<double>() * ring[i][1].get<double>() - ring[i][0].get<double>() * ring[j][1].get<double>();
+  }
+  EXPECT_NEAR(std::fabs(area) / 2, 30.0 * 12 + 10.0 * 13, 1e-6);
+  EXPECT_FALSE(f["obstacles"].empty());
+  EXPECT_TRUE(f["walls"].empty());
+  // Coordinates to the micrometre (the loader's floats are not carried over as 7.400000095...).
+  for (const auto& poly : f["obstacles"]) {
+    for (const auto& p : poly) EXPECT_EQ(p[0].get<double>(), std::round(p[0].get<double>() * 1e6) / 1e6);
+  }
+}
+
+TEST(PlanImportGltf, AMultiLevelWorldIsRefusedAndABrokenOneLocated) {
+  const std::string path = std::string(THRONG_SOURCE_DIR) + "/scenarios/two_floors.gltf";
+  auto r = importPlan(fileText(path), PlanFormat::Gltf, path);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.errors()[0].what, "a multi-level world (floors at several heights)");
+  auto broken = importPlan("{\"asset\": {\"version\": \"2.0\"}, \"nodes\": 5}", PlanFormat::Gltf, "broken.gltf");
+  ASSERT_FALSE(broken.ok());
+  EXPECT_EQ(broken.errors()[0].source, "broken.gltf");
 }
 
 }  // namespace

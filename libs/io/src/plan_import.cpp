@@ -5,6 +5,7 @@
 // at most kMaxWallSegments segments), and the bounding rectangle as the walkable area when the plan
 // has no walkable outline. Reads plan text; writes JSON or located diagnostics.
 #include "throng/io/plan_import.hpp"
+#include "throng/io/world_file.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -219,8 +220,52 @@ std::optional<PlanFormat> planFormatOf(std::string_view path) {
   const auto ends = [&](std::string_view ext) { return p.size() >= ext.size() && p.compare(p.size() - ext.size(), ext.size(), ext) == 0; };
   if (ends(".dxf")) return PlanFormat::Dxf;
   if (ends(".wkt")) return PlanFormat::Wkt;
+  if (ends(".gltf") || ends(".glb")) return PlanFormat::Gltf;
   return std::nullopt;
 }
+
+namespace {
+
+/// A flat glTF world's floor through the world loader (which unites its walkable meshes and
+/// checks the world as a scenario), as {"walkable", "obstacles", "walls": []}.
+core::Result<nlohmann::json> importGltfFloor(std::string_view bytes, const std::string& source) {
+  LoadOptions load;
+  load.checkReachability = false;  // a floor plan, not yet a scenario: nobody has to get anywhere
+  auto world = parseWorld(bytes, source, load);
+  if (!world.ok()) return world.errors();
+  const nlohmann::json doc = nlohmann::json::parse(world.value().text, nullptr, false);
+  if (doc.is_discarded() || doc.contains("terrain")) {
+    core::Diagnostic d;
+    d.source = source;
+    d.what = "a multi-level world (floors at several heights)";
+    d.expected = "a flat glTF world: the 2D plan has one floor";
+    d.hint = "edit multi-level worlds in the glTF file or as \"terrain\" (docs/world-files.md)";
+    return core::Diagnostics{d};
+  }
+  // Coordinates to the micrometre, as the other formats' (the loader's are float32 widened).
+  const auto rounded = [](const nlohmann::json& polygons) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& polygon : polygons) {
+      nlohmann::json ring = nlohmann::json::array();
+      for (const auto& p : polygon) {
+        nlohmann::json q = nlohmann::json::array();
+        for (const auto& c : p) {
+          const double v = std::round(c.get<double>() * 1e6) / 1e6 + 0.0;
+          if (v == std::floor(v) && std::fabs(v) < 1e15) q.push_back(static_cast<std::int64_t>(v));  // whole metres
+          else q.push_back(v);
+        }
+        ring.push_back(std::move(q));
+      }
+      out.push_back(std::move(ring));
+    }
+    return out;
+  };
+  return nlohmann::json{{"walkable", rounded(doc.value("walkable", nlohmann::json::array()))},
+                        {"obstacles", rounded(doc.value("obstacles", nlohmann::json::array()))},
+                        {"walls", nlohmann::json::array()}};
+}
+
+}  // namespace
 
 core::Result<nlohmann::json> importPlan(std::string_view text, PlanFormat format, const std::string& source,
                                         const PlanImportOptions& options) {
@@ -230,6 +275,7 @@ core::Result<nlohmann::json> importPlan(std::string_view text, PlanFormat format
     report.error(0, 0, "plan of " + std::to_string(text.size()) + " bytes", "at most " + std::to_string(kMaxPlanBytes) + " bytes");
   }
   if (report.failed()) return report.take();
+  if (format == PlanFormat::Gltf) return importGltfFloor(text, source);
   const plan::Drawing drawing = format == PlanFormat::Dxf ? plan::readDxf(text, options, report) : plan::readWkt(text, options, report);
   if (report.failed()) return report.take();
   nlohmann::json fragment = Assembler(drawing, options, report).run();

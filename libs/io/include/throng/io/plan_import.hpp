@@ -19,6 +19,10 @@ namespace throng::io {
 enum class PlanFormat : std::uint8_t {
   Dxf,  ///< AutoCAD DXF, ASCII (binary DXF is refused)
   Wkt,  ///< OGC well-known text (POLYGON, MULTIPOLYGON, LINESTRING, ..., GEOMETRYCOLLECTION)
+  /// A flat glTF 2.0 world (docs/world-files.md: "walkable…" and "obstacle…" meshes): its floor as
+  /// the world loader unites it (walkable outlines, holes and obstacle footprints as obstacles).
+  /// A multi-level world is refused (the 2D plan has one floor). JSON .gltf, or .glb bytes.
+  Gltf,
 };
 
 /// What a DXF layer's shapes become. Open lines and polylines are walls on every layer but an
@@ -45,14 +49,15 @@ inline constexpr std::size_t kMaxPlanShapes = 200000;      ///< entities (DXF) o
 inline constexpr std::size_t kMaxPlanVertices = 2000000;   ///< after arcs are approximated
 inline constexpr int kMaxWktDepth = 32;                    ///< GEOMETRYCOLLECTIONs inside each other
 
-/// The file's format from its extension (".dxf", ".wkt", any case); none for another.
+/// The file's format from its extension (".dxf", ".wkt", ".gltf", ".glb", any case); none for another.
 [[nodiscard]] std::optional<PlanFormat> planFormatOf(std::string_view path);
 
 /// The plan as a scenario fragment {"walkable", "obstacles", "walls"} (each an array, in the shapes
 /// of docs/scenario-format.md; coordinates in metres, rounded to the micrometre). Walkable: the
 /// walkable outlines, or when there are none the bounding rectangle of everything. Every polygon is
 /// simple with an area and every wall has 2 distinct points, as `throng check` wants them.
-/// `source` names the file in diagnostics.
+/// `source` names the file in diagnostics (a glTF's external buffers resolve against its directory).
+/// A glTF floor has no walls; `scale` and the layer roles do not apply to it.
 [[nodiscard]] core::Result<nlohmann::json> importPlan(std::string_view text, PlanFormat format, const std::string& source,
                                                       const PlanImportOptions& options = {});
 
