@@ -97,6 +97,18 @@ test('a room with a door, a crowd and an exit, from an empty page to a file that
     await page.click('#preview-reset');
     assert.equal(await page.locator('svg .agent').count(), 0);
 
+    // Exit choice in the crowd's form: its exit ticked, the nearest rule, the exit marked familiar.
+    await page.keyboard.press('v');
+    await click(page, [3, 4]);  // inside the crowd's spawn area
+    assert.equal(await page.evaluate(() => window.throngEditor.sel.layer), 'populations');
+    const exitId = await page.evaluate(() => window.throngEditor.doc.points[0].id);
+    await page.check(`#exits-list input[data-exit="${exitId}"]`);
+    await page.selectOption('[data-field="exitChoice.rule"]', 'nearest');
+    await page.check(`#familiar-list input[data-exit="${exitId}"]`);
+    await waitForCheck(page, /valid/, 'exit choice');
+    assert.deepEqual(await page.evaluate(() => { const p = window.throngEditor.doc.populations[0]; return [p.exits, p.exitChoice]; }),
+      [[exitId], { rule: 'nearest', familiar: [exitId] }]);
+
     // Save with Ctrl+S.
     await page.locator('#plan').focus();
     await page.keyboard.press('Control+s');
@@ -105,6 +117,7 @@ test('a room with a door, a crowd and an exit, from an empty page to a file that
     await page.waitForFunction(() => /saved/.test(document.querySelector('#status').textContent));
     const saved = fs.readFileSync(file, 'utf8');
     assert.match(saved, /\n {2}"walkable": \[\n {4}\[\n {6}\[0, 0\],\n {6}\[14, 0\],\n/);  // formatted for diffs
+    assert.deepEqual(JSON.parse(saved).populations[0].exitChoice, { rule: 'nearest', familiar: [exitId] });
     assert.deepEqual(errors, []);
   } finally {
     await browser.close();

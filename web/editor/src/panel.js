@@ -1,6 +1,7 @@
 // The properties panel: a form for the selection (or the scenario's own keys when nothing is
 // selected). Points by kind, walls, measurements and crowds — size, speed, start, goals in order
-// (picked on the plan) and the pedestrian model with its parameters, a form generated from the
+// (picked on the plan), exit choice (the exits, the rule and its keys, the familiar exits) and the
+// pedestrian model with its parameters, a form generated from the
 // JSON Schema (schema_form.js). A value out of its schema limits is shown under its field and not
 // written; every accepted change is one undoable edit (`app.commit`).
 import {
@@ -155,7 +156,40 @@ export class Panel {
     }
     this.renderPreMovement(pop);
     this.renderGoals(pop);
+    this.renderExitChoice(pop);
     this.renderModel(pop);
+  }
+
+  /** Exit choice (docs/scenario-format.md "Exit choice"): after its goals each group chooses one of
+   * the ticked exits by the rule; the familiar ones among them; the rule's keys from the schema. */
+  renderExitChoice(pop) {
+    const exits = (this.app.doc.points || []).filter((p) => p.kind === 'exit').map((p) => p.id);
+    if (!exits.length) return;
+    const chosen = Array.isArray(pop.exits) ? pop.exits : [];
+    const toggle = (list, id, on) => (on ? [...list.filter((x) => x !== id), id] : list.filter((x) => x !== id));
+    const boxes = (name, list, onChange, among) => h('div', { class: 'checks', id: `${name}-list` }, ...among.map((id) =>
+      h('label', { class: 'check' }, h('input', { type: 'checkbox', 'data-exit': id, ...(list.includes(id) ? { checked: '' } : {}),
+        onchange: (e) => onChange(toggle(list, id, e.target.checked)) }), ` ${id}`)));
+    this.root.append(h('div', { class: 'field' }, h('label', { title: 'after its goals, each group chooses one of these exits' }, 'exits'),
+      boxes('exits', chosen, (next) => {
+        if (next.length) pop.exits = exits.filter((x) => next.includes(x));
+        else { delete pop.exits; delete pop.exitChoice; }
+        if (pop.exitChoice?.familiar) pop.exitChoice.familiar = pop.exitChoice.familiar.filter((x) => next.includes(x));
+        this.app.commit('exits changed');
+      }, exits)));
+    if (!chosen.length) return;
+    const choice = pop.exitChoice || {};
+    const setChoice = (key, value) => {
+      const next = { ...choice, [key]: value };
+      if (value === undefined || (Array.isArray(value) && !value.length)) delete next[key];
+      this.set(pop, 'exitChoice', Object.keys(next).length ? next : undefined);
+    };
+    const node = this.schema.$defs?.population?.properties?.exitChoice || {};
+    for (const f of objectFields(this.schema, node, ['rule', 'period', 'hysteresis', 'familiarity', 'herding', 'herdingRadius'])) {
+      this.root.append(this.input({ ...f, key: `exitChoice.${f.key}` }, choice[f.key], (v) => setChoice(f.key, v)));
+    }
+    this.root.append(h('div', { class: 'field' }, h('label', { title: 'the exits the group knows; the others look familiarity times as dear' }, 'familiar'),
+      boxes('familiar', Array.isArray(choice.familiar) ? choice.familiar : [], (next) => setChoice('familiar', next), chosen)));
   }
 
   /** Pre-movement time: none or one of the schema's distributions, with its keys. */
