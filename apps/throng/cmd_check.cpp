@@ -26,17 +26,6 @@ AgentRange agentRange(const sim::ScenarioDesc& desc) {
   return r;
 }
 
-int reportProblems(const core::Diagnostics& diagnostics, bool json) {
-  if (json) {
-    nlohmann::json out{{"ok", false}, {"diagnostics", diagnosticsToJson(diagnostics)}};
-    if (diagnostics.size() > kMaxPrintedDiagnostics) out["diagnostics_total"] = diagnostics.size();
-    printLine(stdout, dumpJson(out));
-  } else {
-    printDiagnostics(diagnostics);
-  }
-  return kExitFailure;
-}
-
 }  // namespace
 
 CLI::App* addCheckCommand(CLI::App& app, CheckOptions& options) {
@@ -55,7 +44,7 @@ CLI::App* addCheckCommand(CLI::App& app, CheckOptions& options) {
 
 int runCheck(const CheckOptions& options) {
   if (auto missing = checkInputFile(options.scenario, "scenario"); !missing.empty()) {
-    return reportProblems(missing, options.json);
+    return reportFailure(missing, options.json);
   }
   InterruptGuard interrupts;  // Ctrl-C stops a long validation (exit 130)
   io::LoadOptions load;
@@ -65,7 +54,7 @@ int runCheck(const CheckOptions& options) {
     printLine(stderr, fmt::format("throng: interrupted; {} was not checked completely", displayText(options.scenario)));
     return kExitInterrupted;
   }
-  if (!loaded) return reportProblems(loaded.errors(), options.json);
+  if (!loaded) return reportFailure(loaded.errors(), options.json);
 
   const sim::ScenarioDesc& desc = loaded->desc;
   const AgentRange agents = agentRange(desc);

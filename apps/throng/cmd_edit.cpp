@@ -31,8 +31,6 @@ using namespace std::chrono_literals;
 using transport::HttpRequest;
 using transport::HttpResponder;
 
-constexpr std::size_t kMaxBodyBytes = 8 << 20;
-
 /// The editor's built files: <web>/editor, <web> being --web, an installed tree's
 /// <prefix>/share/throng/web, else web/dist of the source tree.
 fs::path editorRoot(const std::string& flag) {
@@ -102,7 +100,7 @@ int runEdit(const EditOptions& options) {
   t.enableUdp = false;
   t.maxPeers = 1;
   if (haveEditor) t.staticRoot = root;
-  t.maxPostBytes = kMaxBodyBytes;
+  t.maxPostBytes = edit::kMaxBodyBytes;
   t.httpHandler = [&api](std::string_view target) { return api.get(target); };
   t.postHandler = [&api](HttpRequest request, HttpResponder responder) { return api.post(std::move(request), responder); };
   NoPeers peers;

@@ -37,17 +37,6 @@ std::string parseLayer(const std::string& spec, std::pair<std::string, io::PlanR
   return "--layer " + spec + ": expected NAME=ROLE with ROLE walkable, obstacle, wall or ignore";
 }
 
-int report(const core::Diagnostics& diagnostics, bool json) {
-  if (json) {
-    nlohmann::json out{{"ok", false}, {"diagnostics", diagnosticsToJson(diagnostics)}};
-    if (diagnostics.size() > kMaxPrintedDiagnostics) out["diagnostics_total"] = diagnostics.size();
-    printLine(stdout, dumpJson(out));
-  } else {
-    printDiagnostics(diagnostics);
-  }
-  return kExitFailure;
-}
-
 /// The whole scenario: header, the plan's geometry, empty points and populations, in reading order.
 nlohmann::ordered_json skeleton(const nlohmann::json& fragment, const std::string& name) {
   nlohmann::ordered_json s;
@@ -119,12 +108,12 @@ CLI::App* addImportCommand(CLI::App& app, ImportOptions& options) {
 int runImport(const ImportOptions& options) {
   const auto format = io::planFormatOf(options.plan);
   if (!format) {
-    return report({core::Diagnostic{options.plan, 0, 0, "", "unknown plan format", "a .dxf or .wkt file", ""}}, options.json);
+    return reportFailure({core::Diagnostic{options.plan, 0, 0, "", "unknown plan format", "a .dxf or .wkt file", ""}}, options.json);
   }
   auto text = readPlan(options.plan);
-  if (!text) return report(text.errors(), options.json);
+  if (!text) return reportFailure(text.errors(), options.json);
   auto fragment = io::importPlan(text.value(), *format, options.plan, planOptions(options));
-  if (!fragment) return report(fragment.errors(), options.json);
+  if (!fragment) return reportFailure(fragment.errors(), options.json);
 
   const std::string name = fs::path(options.plan).stem().string();
   const std::string json = io::formatJsonForDiffs(skeleton(fragment.value(), name));
@@ -133,7 +122,7 @@ int runImport(const ImportOptions& options) {
     std::fputs(json.c_str(), stdout);
     return kExitOk;
   }
-  if (auto written = io::writeFileAtomically(out, json, options.force); !written) return report(written.errors(), options.json);
+  if (auto written = io::writeFileAtomically(out, json, options.force); !written) return reportFailure(written.errors(), options.json);
   const auto count = [&](const char* key) { return fragment.value()[key].size(); };
   if (options.json) {
     printLine(stdout, dumpJson({{"ok", true}, {"out", out}, {"walkable", count("walkable")}, {"obstacles", count("obstacles")},

@@ -711,7 +711,7 @@ void addEditorRoutes(transport::TransportOptions& t, edit::EditApi& editor) {
   t.postHandler = [&editor](transport::HttpRequest request, transport::HttpResponder responder) {
     return editor.post(std::move(request), responder);
   };
-  t.maxPostBytes = 8 << 20;
+  t.maxPostBytes = edit::kMaxBodyBytes;
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // POST <prefix>/api/check, /api/preview, /api/save and /api/import, each POST on a Jobs worker
 // thread (edit_jobs.hpp) with the work of edit_api.hpp.
 #pragma once
+#include <cstddef>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -13,6 +14,9 @@
 #include "throng/transport/transport.hpp"
 
 namespace throng::cli::edit {
+
+/// The largest request body the editor's routes take (TransportOptions::maxPostBytes) [bytes].
+inline constexpr std::size_t kMaxBodyBytes = std::size_t(8) << 20;
 
 class EditApi {
  public:

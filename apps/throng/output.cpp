@@ -1,6 +1,8 @@
 // throng CLI output helpers — see output.hpp.
 #include "output.hpp"
 
+#include "commands.hpp"
+
 #include "throng/core/text.hpp"
 
 #include <algorithm>
@@ -21,6 +23,17 @@ void printDiagnostics(const core::Diagnostics& diagnostics) {
     printLine(stderr, fmt::format("throng: ... and {} more problem{} (not listed; {} in all)", more, more == 1 ? "" : "s",
                                   diagnostics.size()));
   }
+}
+
+int reportFailure(const core::Diagnostics& diagnostics, bool json) {
+  if (json) {
+    nlohmann::json out{{"ok", false}, {"diagnostics", diagnosticsToJson(diagnostics)}};
+    if (diagnostics.size() > kMaxPrintedDiagnostics) out["diagnostics_total"] = diagnostics.size();
+    printLine(stdout, dumpJson(out));
+  } else {
+    printDiagnostics(diagnostics);
+  }
+  return kExitFailure;
 }
 
 nlohmann::json diagnosticsToJson(const core::Diagnostics& diagnostics, std::size_t limit) {

@@ -19,6 +19,10 @@ inline constexpr std::size_t kMaxPrintedDiagnostics = 50;
 /// "throng: ... and N more problems (not listed)" when there are more.
 void printDiagnostics(const core::Diagnostics& diagnostics);
 
+/// A command's failure on its input: the diagnostics as {"ok": false, "diagnostics", "diagnostics_total"?}
+/// on stdout with `json`, else printDiagnostics; returns kExitFailure.
+int reportFailure(const core::Diagnostics& diagnostics, bool json);
+
 /// [{source, line, column, pointer, what, expected, hint}, ...]: the first `limit` diagnostics,
 /// every text made printable (core::printable), so that dumping never fails on bad UTF-8.
 [[nodiscard]] nlohmann::json diagnosticsToJson(const core::Diagnostics& diagnostics,

@@ -44,6 +44,20 @@ PlanRole layerRole(const std::string& layer, const PlanImportOptions& options) {
   return PlanRole::Obstacle;
 }
 
+/// A point as the scenario writes it: each coordinate through the float's shortest decimal form
+/// (1.234 stays 1.234, not 1.2339999675750732), whole metres as integers ("10", not "10.0").
+nlohmann::json pointJson(core::Vec2 p) {
+  const auto d = [](float v) -> nlohmann::json {
+    char buf[32];
+    const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
+    double out = 0;
+    std::from_chars(buf, end, out);
+    if (out == std::floor(out)) return static_cast<std::int64_t>(out);
+    return out;
+  };
+  return nlohmann::json::array({d(p.x), d(p.y)});
+}
+
 /// Checks and converts the shapes into the fragment's three lists.
 class Assembler {
  public:
@@ -96,20 +110,6 @@ class Assembler {
     lo_[1] = std::min(lo_[1], y);
     hi_[0] = std::max(hi_[0], x);
     hi_[1] = std::max(hi_[1], y);
-  }
-
-  static nlohmann::json pointJson(core::Vec2 p) {
-    // Through the float's shortest decimal form: 1.234 stays 1.234, not 1.2339999675750732.
-    // Whole metres as integers: "10", not "10.0".
-    const auto d = [](float v) -> nlohmann::json {
-      char buf[32];
-      const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
-      double out = 0;
-      std::from_chars(buf, end, out);
-      if (out == std::floor(out)) return static_cast<std::int64_t>(out);
-      return out;
-    };
-    return nlohmann::json::array({d(p.x), d(p.y)});
   }
 
   void wall(const Shape& s, std::vector<core::Vec2> points, bool closed) {
@@ -242,20 +242,12 @@ core::Result<nlohmann::json> importGltfFloor(std::string_view bytes, const std::
     d.hint = "edit multi-level worlds in the glTF file or as \"terrain\" (docs/world-files.md)";
     return core::Diagnostics{d};
   }
-  // Coordinates to the micrometre, as the other formats' (the loader's are float32 widened).
+  // The loader's coordinates are floats widened to double: written as the other formats' are.
   const auto rounded = [](const nlohmann::json& polygons) {
     nlohmann::json out = nlohmann::json::array();
     for (const auto& polygon : polygons) {
       nlohmann::json ring = nlohmann::json::array();
-      for (const auto& p : polygon) {
-        nlohmann::json q = nlohmann::json::array();
-        for (const auto& c : p) {
-          const double v = std::round(c.get<double>() * 1e6) / 1e6 + 0.0;
-          if (v == std::floor(v) && std::fabs(v) < 1e15) q.push_back(static_cast<std::int64_t>(v));  // whole metres
-          else q.push_back(v);
-        }
-        ring.push_back(std::move(q));
-      }
+      for (const auto& p : polygon) ring.push_back(pointJson(core::Vec2(p[0].get<float>(), p[1].get<float>())));
       out.push_back(std::move(ring));
     }
     return out;
