@@ -1,4 +1,4 @@
-// `throng import PLAN.dxf|PLAN.wkt` — a floor plan → a scenario skeleton (docs/import.md): the
+// `throng import PLAN.dxf|.wkt|.gltf|.glb` — a floor plan → a scenario skeleton (docs/import.md): the
 // plan's walkable outlines, obstacles and walls (io::importPlan) with empty points and populations,
 // formatted for diffs and written atomically; an existing file is kept unless --force.
 #include <filesystem>
@@ -72,7 +72,7 @@ core::Result<std::string> readPlan(const std::string& path) {
 }  // namespace
 
 CLI::App* addImportCommand(CLI::App& app, ImportOptions& options) {
-  CLI::App* cmd = app.add_subcommand("import", "Make a scenario skeleton from a floor plan (DXF or WKT)");
+  CLI::App* cmd = app.add_subcommand("import", "Make a scenario skeleton from a floor plan (DXF, WKT or a flat glTF world)");
   cmd->footer(
       "Make a scenario skeleton from a floor plan: the plan's walkable outlines, obstacles and walls\n"
       "in metres, with empty \"points\" and \"populations\" to fill in (docs/import.md). DXF (ASCII):\n"
@@ -82,7 +82,7 @@ CLI::App* addImportCommand(CLI::App& app, ImportOptions& options) {
       "POLYGON (outer ring walkable, holes obstacles), MULTIPOLYGON, LINESTRING and MULTILINESTRING\n"
       "(walls), GEOMETRYCOLLECTION. Without a walkable outline the bounding rectangle is walkable.\n"
       "Problems are printed one per line (DXF file:line, WKT file:line:column), exit 1, nothing written.");
-  cmd->add_option("plan", options.plan, "Floor plan file (.dxf or .wkt)")->required()->type_name("PLAN.dxf|PLAN.wkt");
+  cmd->add_option("plan", options.plan, "Floor plan file (.dxf, .wkt, or a flat glTF world .gltf, .glb)")->required()->type_name("PLAN.dxf|.wkt|.gltf|.glb");
   cmd->add_option("-o,--out", options.out,
                   "Scenario file to write; default: the plan's name with .json in the current directory; - for stdout")
       ->type_name("SCENARIO.json");
@@ -108,7 +108,7 @@ CLI::App* addImportCommand(CLI::App& app, ImportOptions& options) {
 int runImport(const ImportOptions& options) {
   const auto format = io::planFormatOf(options.plan);
   if (!format) {
-    return reportFailure({core::Diagnostic{options.plan, 0, 0, "", "unknown plan format", "a .dxf or .wkt file", ""}}, options.json);
+    return reportFailure({core::Diagnostic{options.plan, 0, 0, "", "unknown plan format", "a .dxf, .wkt, .gltf or .glb file", ""}}, options.json);
   }
   auto text = readPlan(options.plan);
   if (!text) return reportFailure(text.errors(), options.json);

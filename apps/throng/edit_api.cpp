@@ -234,7 +234,7 @@ ApiAnswer importPlanText(std::string_view body) {
   if (!wellFormed) return {400, jsonText({{"ok", false}, {"error", "expected {\"name\": \"plan.dxf\", \"text\": \"...\"}"}})};
   const std::string name = request["name"].get<std::string>();
   const auto format = io::planFormatOf(name);
-  if (!format) return {400, jsonText({{"ok", false}, {"error", fmt::format("{}: expected a .dxf or .wkt file", name)}})};
+  if (!format) return {400, jsonText({{"ok", false}, {"error", fmt::format("{}: expected a .dxf, .wkt or .gltf file", name)}})};
   io::PlanImportOptions options;
   const double scale = request.value("scale", 1.0);
   if (!(scale > 0)) return {400, jsonText({{"ok", false}, {"error", "expected \"scale\" > 0"}})};

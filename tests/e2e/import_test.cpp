@@ -123,7 +123,7 @@ TEST(CliImport, BadPlansAreLocatedAndWriteNothing) {
   dir.write("plan.svg", "<svg/>");
   r = runThrong({"import", "plan.svg"}, dir.path());
   EXPECT_EQ(r.exitCode, 1);
-  EXPECT_TRUE(contains(r.err, "unknown plan format; expected a .dxf or .wkt file")) << r.err;
+  EXPECT_TRUE(contains(r.err, "unknown plan format; expected a .dxf, .wkt, .gltf or .glb file")) << r.err;
   r = runThrong({"import", "missing.dxf"}, dir.path());
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_TRUE(contains(r.err, "plan file not found")) << r.err;
