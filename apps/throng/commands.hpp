@@ -87,6 +87,8 @@ struct ServeOptions {
   std::optional<double> duration;       ///< wall-clock seconds; default until Ctrl-C
   std::string web;                      ///< viewer files; default web/dist of the source tree
   double budgetKbit = 500.0;            ///< per-client bandwidth target [kbit/s]
+  std::string recordings;               ///< --recordings DIR: recordings a viewer may list, open, upload; empty = none
+  int maxUploadMiB = 256;               ///< largest recording a viewer may upload [MiB]
   bool quiet = false;
   bool json = false;
 };

@@ -32,6 +32,7 @@ import { Heatmap } from './crowd/heatmap.js';
 import { Measurements } from './crowd/measure.js';
 import { MeasurePanel } from './ui/measure_panel.js';
 import { Exporter } from './ui/export.js';
+import { RecordingsPanel } from './ui/recordings.js';
 import { kSelectedColour, kPickedGroupColour } from './crowd/crowd_view.js';
 import { kColourModes } from './crowd/colour_by.js';
 
@@ -111,6 +112,12 @@ function refreshLegend() {
 globalThis.__throngStats = globalThis.__throngStats || {};
 
 source.on('status', (s) => banner.show(s));
+// Another world after a reconnect (a viewer opened another recording: throng serve --recordings):
+// everything built from the old one goes, so the page starts again.
+source.on('worldChanged', () => globalThis.location.reload());
+const recordings = source.kind === 'live' ? new RecordingsPanel({ row: $('recordings-row'), list: $('rec-list'),
+  open: $('rec-open'), upload: $('rec-upload'), status: $('rec-status') }) : null;
+if (recordings) recordings.refresh();
 source.on('frame', (f) => {
   state.applyFrame(f, performance.now() / 1000);
   hud.frame(f);
@@ -167,7 +174,7 @@ source.on('world', async (w) => {
 /** What scripts and the tests reach through window.__throng: the parts, and screen helpers. */
 function testHooks(w) {
   return {
-    cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode,
+    cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode, recordings,
     get trails() { return trails; }, get heatmap() { return heatmap; }, get measurements() { return measurements; }, get speedmap() { return speedmap; }, get markers() { return markers; }, selfColour: kSelfColour,
     renderer, exporter, description: w, others, groupList, remoteJoints, gesture,
     get joined() { return joined; },
