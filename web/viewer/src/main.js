@@ -98,7 +98,7 @@ let heatmapMethod = 'classic', heatmapScenario = {}, heatmapBounds = null;  // i
 let measurements = null;  // the scenario's measurement lines and areas, measured live
 let measurePanel = null;
 let speedmap = null;  // speed heatmap overlay (key G)
-let trails = null, trailsStale = false;  // trajectory trails (key R), rebuilt after each frame
+let trails = null, trailsStale = false;  // trajectory trails (key R), rebuilt after a frame added samples
 const legend = new Legend($('legend'), { selected: kSelectedColour, pickedGroup: kPickedGroupColour, self: kSelfColour, other: kOtherColour },
   (m) => setColourMode(m));
 const help = new Help($('help'));
@@ -123,7 +123,7 @@ if (recordings) recordings.refresh();
 source.on('frame', (f) => {
   state.applyFrame(f, performance.now() / 1000);
   hud.frame(f);
-  if (trails && trails.enabled) { trails.record(f, hud.simTime); trailsStale = true; }
+  if (trails && trails.enabled && trails.record(f, hud.simTime)) trailsStale = true;
   if (heatmap) heatmap.record(f, hud.simTime);
   if (speedmap) speedmap.record(f, hud.simTime);
   if (measurements) measurements.record(f, hud.simTime);
