@@ -824,7 +824,14 @@ bool openRecordings(const ServeOptions& options, std::unique_ptr<RecordingRoutes
     return false;
   }
   const std::size_t maxUpload = static_cast<std::size_t>(options.maxUploadMiB) << 20;
+  // The positional recording, when it is one of DIR's, is listed as playing.
+  std::error_code ec;
+  const fs::path given = fs::weakly_canonical(options.scenario, ec);
+  const std::string name = fs::path(options.scenario).filename().string();
+  auto inDir = dir.value().resolve(name);
+  const bool playing = !ec && inDir && inDir.value() == given;
   out = std::make_unique<RecordingRoutes>(std::move(dir).value(), maxUpload);
+  if (playing) out->setPlaying(name);
   return true;
 }
 

@@ -1,6 +1,6 @@
 // End-to-end test of recordings from the page (issue 20): `throng serve DIR/museum.sqlite
 // --recordings DIR` with a museum recording in DIR, two viewers. The first lists DIR (the row
-// appears with museum.sqlite, its scenario and duration), uploads a file that is no recording (one
+// appears with museum.sqlite marked as playing, its scenario and duration), uploads a file that is no recording (one
 // message naming what was wrong; nothing added to DIR), uploads a bottleneck recording (stored,
 // listed and picked), and opens it: the server plays it for every viewer — both pages reload by
 // themselves into the bottleneck (HUD, world description, the timeline's 0:08) and crowd frames of
@@ -53,7 +53,7 @@ test('viewer lists, uploads and opens recordings (throng serve --recordings)', {
     await page.waitForSelector('#recordings-row:not(.hidden)', { timeout: 10000 });
     const options = await page.$$eval('#rec-list option', (os) => os.map((o) => o.textContent));
     assert.equal(options.length, 1, options.join(' | '));
-    assert.match(options[0], /museum\.sqlite — museum, 0:10, \d+ agents/);
+    assert.match(options[0], /^▶ museum\.sqlite — museum, 0:10, \d+ agents/, 'the recording served is marked as playing');
 
     // A file that is no recording: one message saying what was wrong, nothing stored.
     await page.setInputFiles('#rec-upload', notRecording);
