@@ -7,7 +7,8 @@ usage: /usr/bin/python3 scripts/plot.py RECORDING.sqlite [--out DIR] [--what LIS
 
 Figures (--what, a comma list; default all):
   trajectories  every agent's path over the walkable area, the exits, the line(s) and the area
-  density       classic density per grid cell, averaged over every recorded frame [1/m²]
+  density       classic density per grid cell, averaged over every recorded frame [1/m²]; with
+                --density voronoi PedPy's Voronoi density per cell (plotting/voronoi.py)
   speed         mean individual speed of the agents seen in each grid cell [m/s]
   flow          cumulative passings N(t) at each measurement line and the flow in 5 s windows
   fd            fundamental diagram: classic density and mean speed in the measurement area per
@@ -79,6 +80,8 @@ def parse_args(argv):
                                                           "(default: the scenario's first measurement area, else 2 m deep "
                                                           "behind the first exit's line)")
     ap.add_argument("--cell", type=float, default=0.5, metavar="METRES", help="heatmap cell size [m] (default 0.5)")
+    ap.add_argument("--density", default="classic", metavar="DEF",
+                    help="the density heatmap's definition: classic (default) or voronoi (cells cut to 2 m)")
     ap.add_argument("--json", action="store_true", help="print the written files and the numbers as one JSON object")
     ap.add_argument("--prog", default="plot.py", help=argparse.SUPPRESS)  # the name errors start with (throng plot)
     args = ap.parse_args(argv)
@@ -86,6 +89,8 @@ def parse_args(argv):
     bad = [w for w in args.what if w not in FIGURES]
     if bad or not args.what:
         raise UsageError(f"--what: unknown figure {', '.join(bad) or '(none)'}; expected some of {', '.join(FIGURES)}")
+    if args.density not in ("classic", "voronoi"):
+        raise UsageError(f"--density {args.density}: expected classic or voronoi")
     if not 0.05 <= args.cell <= 100:
         raise UsageError(f"--cell {args.cell:g}: expected a cell size from 0.05 to 100 m")
     args.line = _numbers("--line", args.line, 4) if args.line else None
@@ -162,14 +167,20 @@ def frame_step(fps):
     return max(1, int(round(SPEED_HALF_WINDOW_S * fps)))
 
 
-def cell_grids(inp, cell, A, G):
-    """Per cell: mean classic density over every recorded frame [1/m²] and mean individual speed [m/s]
-    (NaN where nobody was seen, or the cell's centre is not walkable); the cell edges."""
+def cell_grids(inp, cell, A, G, definition="classic"):
+    """Per cell: mean classic (or Voronoi) density over every recorded frame (Voronoi: at most
+    voronoi.MAX_FRAMES of them) [1/m²] and mean individual speed [m/s] (NaN where nobody was seen,
+    or the cell's centre is not walkable); the cell edges."""
     import numpy as np
     xs, ys = G.grid(inp.world, cell)
     t = inp.traj
-    counts, _, _ = np.histogram2d(t["x"], t["y"], bins=(xs, ys))
-    density = counts / (max(inp.frames, 1) * cell * cell)
+    if definition == "voronoi":
+        from plotting import voronoi as V
+        density, used = V.voronoi_density(t, xs, ys, inp.rings, G.inside_walkable)
+        progress(f"Voronoi density over {used} frames")
+    else:
+        counts, _, _ = np.histogram2d(t["x"], t["y"], bins=(xs, ys))
+        density = counts / (max(inp.frames, 1) * cell * cell)
     speeds = A.individual_speed(t, inp.fps, frame_step(inp.fps)).merge(t[["id", "frame", "x", "y"]], on=["id", "frame"])
     n, _, _ = np.histogram2d(speeds["x"], speeds["y"], bins=(xs, ys))
     total, _, _ = np.histogram2d(speeds["x"], speeds["y"], bins=(xs, ys), weights=speeds["speed"])
@@ -234,13 +245,15 @@ def draw(args, inp, plt, A, M, G, F):
                            inp.lines, inp.area, inp.name)
         elif what in ("density", "speed"):
             if "_grids" not in numbers:
-                numbers["_grids"] = cell_grids(inp, args.cell, A, G)
+                numbers["_grids"] = cell_grids(inp, args.cell, A, G, args.density)
             density, speed, xs, ys, samples = numbers["_grids"]
             values = density if what == "density" else speed
-            label = "mean classic density [1/m²]" if what == "density" else "mean speed [m/s]"
+            label = f"mean {args.density} density [1/m²]".replace("voronoi", "Voronoi") if what == "density" else "mean speed [m/s]"
             F.heatmap(plt, path(what), values, xs, ys, inp.rec.walkable_area, inp.world, label,
                       f"{inp.name}: {label} ({args.cell:g} m cells)", "magma_r" if what == "density" else "viridis")
             numbers[what] = grid_numbers(values, samples, args.cell, what)
+            if what == "density":
+                numbers[what]["definition"] = args.density
         elif what == "flow":
             series, numbers["lines"] = measure_lines(inp, A, M)
             F.passings(plt, path(what), series, FLOW_WINDOW_S, f"{inp.name}: passings at the measurement line(s)")

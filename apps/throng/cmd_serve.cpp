@@ -8,7 +8,9 @@
 // The parts: Bridge (transport callbacks → hub, hub sends → transport), Served (the scenario or
 // recording and its World), WorldQueries (HTTP questions answered between ticks), HttpApi (the
 // dynamic HTTP paths), Publisher (crowd frames encoded on their own thread), TickLoop (the real-time
-// loop) and printSummary.
+// loop), Session (all of these for one world), Router (HTTP to the session in use and to the
+// recordings directory, recording_routes.hpp), switchRecording (a viewer opened another recording:
+// a new Session, the clients told and closed) and printSummary.
 #include <algorithm>
 #include <chrono>
 #include <cstring>
@@ -17,6 +19,7 @@
 #include <condition_variable>
 #include <map>
 #include <mutex>
+#include <shared_mutex>
 #include <unistd.h>
 #include <thread>
 
@@ -31,6 +34,7 @@
 #include "edit_routes.hpp"
 #include "live_world.hpp"
 #include "output.hpp"
+#include "recording_routes.hpp"
 #include "signal.hpp"
 #include "validators.hpp"
 #include "throng/core/parallel.hpp"
@@ -50,24 +54,34 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-/// Connects the transport's callbacks to the hub, and the hub's sends to the transport.
+/// Connects the transport's callbacks to the hub, and the hub's sends to the transport. The hub
+/// changes when a viewer opens another recording (setHub, simulation thread): without one, a new
+/// connection is closed at once (its viewer reconnects to the next hub) and messages are dropped.
 class Bridge final : public transport::TransportHandler, public hub::Outbox {
  public:
   explicit Bridge(Clock::time_point start) : start_(start) {}
-  void attach(hub::Hub* h, transport::Transport* t) {
+  void attach(transport::Transport* t) { transport_ = t; }
+  void setHub(hub::Hub* h) {
+    std::unique_lock lock(hubMutex_);
     hub_ = h;
-    transport_ = t;
   }
   [[nodiscard]] double now() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
   // TransportHandler (transport thread).
   void onOpen(transport::PeerId peer, transport::PeerKind kind, std::string remote) override {
-    if (hub_) hub_->onOpen(peer.value, std::move(remote), now());
+    std::shared_lock lock(hubMutex_);
+    if (hub_) {
+      hub_->onOpen(peer.value, std::move(remote), now());
+    } else if (transport_) {
+      transport_->close(peer, "switching recordings");
+    }
   }
   void onMessage(transport::PeerId peer, std::span<const std::uint8_t> message) override {
+    std::shared_lock lock(hubMutex_);
     if (hub_) hub_->onMessage(peer.value, message, now());
   }
   void onClose(transport::PeerId peer, std::string_view reason) override {
+    std::shared_lock lock(hubMutex_);
     if (hub_) hub_->onClose(peer.value, reason);
   }
 
@@ -90,6 +104,7 @@ class Bridge final : public transport::TransportHandler, public hub::Outbox {
 
  private:
   Clock::time_point start_;
+  std::shared_mutex hubMutex_;
   hub::Hub* hub_ = nullptr;
   transport::Transport* transport_ = nullptr;
 };
@@ -172,15 +187,16 @@ struct Served {
   std::string worldJson;  ///< the world description (Welcome, /api/world)
 };
 
-/// Opens the scenario or the recording and builds the World; diagnostics printed, nullopt on failure.
-std::optional<Served> openServed(const ServeOptions& options) {
-  if (auto missing = checkInputFile(options.scenario, "scenario"); !missing.empty()) {
+/// Opens the scenario or the recording at `path` and builds the World; diagnostics printed, nullopt
+/// on failure.
+std::optional<Served> openServed(const ServeOptions& options, const std::string& path) {
+  if (auto missing = checkInputFile(path, "scenario"); !missing.empty()) {
     printDiagnostics(missing);
     return std::nullopt;
   }
   std::optional<hub::Replay> replay;
-  if (isRecording(options.scenario)) {
-    auto opened = hub::Replay::open(options.scenario);
+  if (isRecording(path)) {
+    auto opened = hub::Replay::open(path);
     if (!opened) {
       printDiagnostics(opened.errors());
       return std::nullopt;
@@ -188,9 +204,8 @@ std::optional<Served> openServed(const ServeOptions& options) {
     replay.emplace(std::move(opened).value());
   }
   fs::path storedScenarioDir;
-  auto loaded = replay ? parseStoredScenario(*replay, options.scenario, storedScenarioDir)
-                       : io::loadScenarioFile(options.scenario);
-  const fs::path scenarioDir = replay ? storedScenarioDir : fs::path(options.scenario).parent_path();
+  auto loaded = replay ? parseStoredScenario(*replay, path, storedScenarioDir) : io::loadScenarioFile(path);
+  const fs::path scenarioDir = replay ? storedScenarioDir : fs::path(path).parent_path();
   auto live = makeLiveWorld(std::move(loaded), options.seed, scenarioDir, "serve", options.quiet);
   if (!live) return std::nullopt;
   const double dt = live->scenario.desc.dt;
@@ -204,12 +219,12 @@ std::optional<Served> openServed(const ServeOptions& options) {
   return Served{std::move(*live), std::move(replay), tickRate, std::move(worldJson)};
 }
 
-hub::HubOptions hubOptionsFor(const ServeOptions& options, const Served& served) {
+hub::HubOptions hubOptionsFor(const ServeOptions& options, const Served& served, const std::string& path) {
   hub::HubOptions hubOptions;
   const std::string& name = served.live.scenario.desc.name;
   // Sent in Welcome and printed: valid UTF-8, control characters escaped, at most 64 bytes.
   hubOptions.serverName =
-      hub::printable(name.empty() ? fs::path(options.scenario).stem().string() : name, protocol::kMaxNameLength);
+      hub::printable(name.empty() ? fs::path(path).stem().string() : name, protocol::kMaxNameLength);
   hubOptions.maxClients = static_cast<std::size_t>(options.maxClients);
   hubOptions.granularity.budgetKbitPerSecond = options.budgetKbit;
   hubOptions.replay = served.replay.has_value();
@@ -523,13 +538,16 @@ class Publisher {
   std::thread thread_;  // last: starts once everything above exists
 };
 
+/// What TickLoop::run returns when a viewer asked to open a recording.
+constexpr const char* kOpenRecording = "open a recording";
+
 /// The real-time loop on the simulation thread: one frame per period (stepped, or the recording's
 /// at the replay clock), questions answered, the frame handed to the publisher, the status window
 /// and line refreshed once a second. Runs until Ctrl-C or --duration.
 class TickLoop {
  public:
   TickLoop(const ServeOptions& options, Served& served, hub::Hub& hub, const Bridge& bridge, WorldQueries& queries,
-           TickWindow& window, hub::TickWatch& tickWatch, Publisher& publisher)
+           TickWindow& window, hub::TickWatch& tickWatch, Publisher& publisher, const RecordingRoutes* recordings)
       : options_(options),
         served_(served),
         hub_(hub),
@@ -538,17 +556,20 @@ class TickLoop {
         window_(window),
         tickWatch_(tickWatch),
         publisher_(publisher),
+        recordings_(recordings),
         clock_(served.replay ? served.replay->duration() : 0.0, true),
         tasks_(options.threads),
         terminal_(isatty(fileno(stderr)) != 0) {}
 
-  /// Why it ended: "interrupted (Ctrl-C)" or "duration reached".
+  /// Why it ended: "interrupted (Ctrl-C)", "duration reached" or kOpenRecording (a viewer asked
+  /// for another recording: see RecordingRoutes::takeOpen). May be called again after kOpenRecording.
   std::string run() {
     const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / served_.tickRate));
     auto next = Clock::now();
     while (true) {
       if (InterruptGuard::requested()) return "interrupted (Ctrl-C)";
       if (options_.duration && bridge_.now() >= *options_.duration) return "duration reached";
+      if (recordings_ && recordings_->pending()) return kOpenRecording;
       const auto t0 = Clock::now();
       tickWatch_.started(bridge_.now());
       const sim::FramePtr frame = nextFrame();
@@ -629,6 +650,7 @@ class TickLoop {
   TickWindow& window_;
   hub::TickWatch& tickWatch_;
   Publisher& publisher_;
+  const RecordingRoutes* recordings_;
   hub::ReplayClock clock_;
   core::TaskSystem tasks_;
   const bool terminal_;
@@ -694,31 +716,166 @@ void printSummary(const ServeOptions& options, const ServeSummary& r) {
 
 /// The editor's routes for the world served: its scenario text (a JSON scenario, or the one a
 /// recording stores; none for a glTF world, whose editor page starts empty), never saved.
-edit::EditApi editorFor(const ServeOptions& options, const Served& served, edit::Jobs& jobs) {
+edit::EditApi editorFor(const std::string& path, const Served& served, edit::Jobs& jobs) {
   const std::string& text = served.live.scenario.text;
   const auto first = text.find_first_not_of(" \t\r\n");
   std::optional<std::string> scenario;
   if (first != std::string::npos && text[first] == '{') scenario = text;
-  return edit::EditApi({}, jobs, "/editor", std::move(scenario), options.scenario);
+  return edit::EditApi({}, jobs, "/editor", std::move(scenario), path);
 }
 
-/// GET /editor/api/scenario beside the server's own dynamic paths; POST /editor/api/… to the editor.
-void addEditorRoutes(transport::TransportOptions& t, edit::EditApi& editor) {
-  t.httpHandler = [base = std::move(t.httpHandler), &editor](std::string_view target) {
-    if (auto answer = editor.get(target)) return answer;
-    return base ? base(target) : std::nullopt;
-  };
-  t.postHandler = [&editor](transport::HttpRequest request, transport::HttpResponder responder) {
-    return editor.post(std::move(request), responder);
-  };
-  t.maxPostBytes = edit::kMaxBodyBytes;
+/// One world served and everything that serves it: the hub, its HTTP answers, the editor on its
+/// scenario, the publisher and the tick loop. Rebuilt when a viewer opens another recording; the
+/// transport and the recordings directory outlive it. Not movable (its parts refer to each other).
+struct Session {
+  Session(const ServeOptions& options, Served world, std::string path, Bridge& bridge, const RecordingRoutes* recordings)
+      : source(std::move(path)),
+        served(std::move(world)),
+        hubOptions(hubOptionsFor(options, served, source)),
+        hub(hubOptions, served.worldJson, static_cast<float>(served.tickRate), served.live.motions, bridge),
+        tickWatch(1.0 / served.tickRate),  // late and stalled ticks, the one running now included
+        api(served, hub, bridge, queries, tickWindow, tickWatch),
+        editor(editorFor(source, served, editJobs)),
+        publisher(hub, bridge, options.threads),
+        loop(options, served, hub, bridge, queries, tickWindow, tickWatch, publisher, recordings) {}
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  /// Stops publishing, tells every client `reason` and closes it, ends the editor's jobs.
+  void close(const std::string& reason) {
+    publisher.stop();
+    hub.shutdown(reason);
+    editJobs.stop();  // each job holds an HttpResponder: done before the transport goes
+  }
+
+  std::string source;  ///< the scenario or recording served
+  Served served;
+  hub::HubOptions hubOptions;
+  hub::Hub hub;
+  TickWindow tickWindow;
+  hub::TickWatch tickWatch;
+  WorldQueries queries;
+  HttpApi api;
+  edit::Jobs editJobs;
+  edit::EditApi editor;  // the scenario editor at /editor/: check, preview, import, download; never saves
+  Publisher publisher;
+  TickLoop loop;
+};
+
+/// The transport's HTTP hooks (transport thread), for the transport's whole life: the recordings
+/// directory's routes, then the current session's (editor first), none while sessions change.
+class Router {
+ public:
+  explicit Router(RecordingRoutes* recordings) : recordings_(recordings) {}
+
+  void set(Session* session) {
+    std::unique_lock lock(mutex_);
+    session_ = session;
+  }
+
+  std::optional<transport::HttpResponse> get(std::string_view target) {
+    if (recordings_) {
+      if (auto answer = recordings_->get(target)) return answer;
+    } else if (target.substr(0, target.find('?')) == "/api/recordings") {
+      // Answered, not 404: the viewer asks every server, and a browser logs each failed fetch.
+      return transport::HttpResponse{200, "application/json",
+                                     R"({"dir":null,"playing":null,"maxUploadBytes":0,"recordings":[]})", {}};
+    }
+    std::shared_lock lock(mutex_);
+    if (session_ == nullptr) return jsonError(503, "switching recordings; try again");
+    if (auto answer = session_->editor.get(target)) return answer;
+    return session_->api(target);
+  }
+
+  bool post(transport::HttpRequest request, const transport::HttpResponder& responder) {
+    if (recordings_ && recordings_->post(request, responder)) return true;
+    if (!recordings_ && request.target.starts_with("/api/recordings")) {
+      responder.respond(noRecordings());
+      return true;
+    }
+    // The transport's limit is the upload's; the editor keeps its own.
+    if (request.body.size() > edit::kMaxBodyBytes) {
+      responder.respond(jsonError(413, fmt::format("request body too large; the limit is {} bytes", edit::kMaxBodyBytes)));
+      return true;
+    }
+    std::shared_lock lock(mutex_);
+    if (session_ == nullptr) {
+      responder.respond(jsonError(503, "switching recordings; try again"));
+      return true;
+    }
+    return session_->editor.post(std::move(request), responder);
+  }
+
+ private:
+  static transport::HttpResponse noRecordings() {
+    return jsonError(404, "this server has no recordings directory (throng serve --recordings DIR)");
+  }
+  RecordingRoutes* recordings_;
+  std::shared_mutex mutex_;
+  Session* session_ = nullptr;
+};
+
+/// The recordings directory of --recordings, or nullptr without it; false when it cannot be used.
+bool openRecordings(const ServeOptions& options, std::unique_ptr<RecordingRoutes>& out) {
+  if (options.recordings.empty()) return true;
+  auto dir = RecordingsDir::open(options.recordings);
+  if (!dir) {
+    printDiagnostics(dir.errors());
+    return false;
+  }
+  const std::size_t maxUpload = static_cast<std::size_t>(options.maxUploadMiB) << 20;
+  // The positional recording, when it is one of DIR's, is listed as playing.
+  std::error_code ec;
+  const fs::path given = fs::weakly_canonical(options.scenario, ec);
+  const std::string name = fs::path(options.scenario).filename().string();
+  auto inDir = dir.value().resolve(name);
+  const bool playing = !ec && inDir && inDir.value() == given;
+  out = std::make_unique<RecordingRoutes>(std::move(dir).value(), maxUpload);
+  if (playing) out->setPlaying(name);
+  return true;
+}
+
+/// Replaces `session` by one playing the recording a viewer asked for; on failure the old one goes
+/// on. Answers the request either way. Every client of the old one is told why and closed: its
+/// viewer reconnects and, finding another world, reloads itself (docs/viewer.md).
+void switchRecording(const ServeOptions& options, OpenRequest request, std::unique_ptr<Session>& session,
+                     Bridge& bridge, Router& router, RecordingRoutes& recordings) {
+  std::optional<Served> next = openServed(options, request.path.string());
+  if (!next) {
+    request.responder.respond(
+        jsonError(422, fmt::format("{}: cannot be played (the server's log says why)", request.name)));
+    return;
+  }
+  bridge.setHub(nullptr);
+  router.set(nullptr);
+  session->close("switching to recording " + request.name);
+  session.reset();
+  session = std::make_unique<Session>(options, std::move(*next), request.path.string(), bridge, &recordings);
+  bridge.setHub(&session->hub);
+  router.set(session.get());
+  recordings.setPlaying(request.name);
+  request.responder.respond(transport::HttpResponse{
+      200, "application/json", dumpJson({{"opened", request.name}, {"server", session->hubOptions.serverName}}), {}});
+  if (!options.quiet) printLine(stdout, "throng serve: now playing " + request.name);
+}
+
+/// Runs the tick loop of the session in use, switching recordings on request, until Ctrl-C or
+/// --duration; why it ended.
+std::string runSessions(const ServeOptions& options, std::unique_ptr<Session>& session, Bridge& bridge, Router& router,
+                        RecordingRoutes* recordings) {
+  while (true) {
+    std::string reason = session->loop.run();
+    if (reason != kOpenRecording || recordings == nullptr) return reason;
+    if (std::optional<OpenRequest> request = recordings->takeOpen()) {
+      switchRecording(options, std::move(*request), session, bridge, router, *recordings);
+    }
+  }
 }
 
 }  // namespace
 
-CLI::App* addServeCommand(CLI::App& app, ServeOptions& options) {
-  CLI::App* cmd = app.add_subcommand("serve", "Serve a live crowd into a shared world (HTTP, WebSocket, UDP)");
-  cmd->footer(
+/// `throng serve --help`'s text after the options.
+constexpr const char* kServeFooter =
       "Runs the scenario in real time and serves it: the browser viewer and the motion clips over HTTP,\n"
       "the shared-world protocol (docs/protocol.md) over WebSocket at /ws on the same port and over UDP\n"
       "on --udp-port. Participants join with a name, move their avatars and guide groups. Each client\n"
@@ -727,7 +884,18 @@ CLI::App* addServeCommand(CLI::App& app, ServeOptions& options) {
       "Ctrl-C tells every client why and stops. GET /api/status gives the server's state as JSON.\n"
       "Participants may insert crowds (InsertCrowd: a crowd file's JSON) and remove them; GET /api/crowds lists them.\n"
       "Given a recording (FILE.sqlite) instead, it plays it back as the same crowd messages: viewers\n"
-      "play, pause, seek and change speed with ReplayControl messages (the viewer's timeline).");
+      "play, pause, seek and change speed with ReplayControl messages (the viewer's timeline).\n"
+      "With --recordings DIR the viewer lists the recordings in DIR (GET /api/recordings), uploads one into\n"
+      "it (POST /api/recordings?name=FILE.sqlite: stored under a safe unique name once it checks as a throng\n"
+      "recording, at most --max-upload MiB) and opens one (POST /api/recordings/open {\"name\": FILE}). Opening\n"
+      "switches what this server plays for every viewer, as the replay timeline is shared: each client is told\n"
+      "\"switching to recording FILE\" and closed, and the viewer reconnects and shows the new recording.\n"
+      "Only plain .sqlite names directly in DIR are read (no paths, no links out of DIR). Going back to a\n"
+      "live scenario takes a restart.";
+
+CLI::App* addServeCommand(CLI::App& app, ServeOptions& options) {
+  CLI::App* cmd = app.add_subcommand("serve", "Serve a live crowd into a shared world (HTTP, WebSocket, UDP)");
+  cmd->footer(kServeFooter);
   cmd->add_option("scenario", options.scenario, "Scenario JSON file, or a recording of `throng run` to play back")
       ->required()
       ->type_name("SCENARIO.json|FILE.sqlite");
@@ -766,6 +934,12 @@ CLI::App* addServeCommand(CLI::App& app, ServeOptions& options) {
                                                   "animation granularity X grows")
       ->check(positiveNumber("kbit/s"))
       ->capture_default_str();
+  cmd->add_option("--recordings", options.recordings, "Directory of recordings the viewer may list, open and upload "
+                                                      "to (the page's Recordings row); opening one switches every viewer")
+      ->type_name("DIR");
+  cmd->add_option("--max-upload", options.maxUploadMiB, "Largest recording a viewer may upload into --recordings [MiB]")
+      ->check(integerRange(1, 4096))
+      ->capture_default_str();
   cmd->add_flag("--quiet", options.quiet, "No status line and no summary, only errors");
   cmd->add_flag("--json", options.json, "Summary as one JSON object on stdout");
   return cmd;
@@ -773,54 +947,50 @@ CLI::App* addServeCommand(CLI::App& app, ServeOptions& options) {
 
 int runServe(const ServeOptions& options) {
   InterruptGuard interrupts;
-  std::optional<Served> served = openServed(options);
+  std::unique_ptr<RecordingRoutes> recordings;
+  if (!openRecordings(options, recordings)) return kExitFailure;
+  std::optional<Served> served = openServed(options, options.scenario);
   if (!served) return kExitFailure;
-  const Clock::time_point start = Clock::now();
-  Bridge bridge(start);
-  const hub::HubOptions hubOptions = hubOptionsFor(options, *served);
-  hub::Hub hub(hubOptions, served->worldJson, static_cast<float>(served->tickRate), served->live.motions, bridge);
+  Bridge bridge(Clock::now());
+  auto session = std::make_unique<Session>(options, std::move(*served), options.scenario, bridge, recordings.get());
+  bridge.setHub(&session->hub);
 
   const fs::path web = webRoot(options.web);
   std::error_code ec;
   const bool haveViewer = !web.empty() && fs::is_regular_file(web / "index.html", ec);
   transport::TransportOptions t = transportOptionsFor(options, haveViewer ? web : fs::path());
-  TickWindow tickWindow;
-  // Late and stalled ticks, the one running now included (a tick stuck for 14 s shows at once).
-  hub::TickWatch tickWatch(1.0 / served->tickRate);
-  WorldQueries queries;
-  t.httpHandler = HttpApi(*served, hub, bridge, queries, tickWindow, tickWatch);
-  // The scenario editor at /editor/ (its built page beside the viewer's) on the world served:
-  // check, preview, import and download; never saved over the served file.
-  edit::Jobs editJobs;
-  edit::EditApi editor = editorFor(options, *served, editJobs);
-  addEditorRoutes(t, editor);
+  Router router(recordings.get());
+  router.set(session.get());
+  t.httpHandler = [&router](std::string_view target) { return router.get(target); };
+  t.postHandler = [&router](transport::HttpRequest request, transport::HttpResponder responder) {
+    return router.post(std::move(request), responder);
+  };
+  t.maxPostBytes = std::max(edit::kMaxBodyBytes, recordings ? static_cast<std::size_t>(options.maxUploadMiB) << 20 : 0);
   auto started = transport::Transport::start(t, bridge);
   if (!started) {
     printDiagnostics(started.errors());
     return kExitFailure;
   }
   std::unique_ptr<transport::Transport> transport = std::move(started).value();
-  bridge.attach(&hub, transport.get());
-  if (!options.quiet) printBanner(hubOptions.serverName, served->tickRate, options, *transport, haveViewer);
+  bridge.attach(transport.get());
+  if (!options.quiet) printBanner(session->hubOptions.serverName, session->served.tickRate, options, *transport, haveViewer);
 
-  Publisher publisher(hub, bridge, options.threads);
-  TickLoop loop(options, *served, hub, bridge, queries, tickWindow, tickWatch, publisher);
   ServeSummary summary;
-  summary.endReason = loop.run();
-  publisher.stop();
-  if (!options.quiet && loop.terminal()) std::fputs("\n", stderr);
+  summary.endReason = runSessions(options, session, bridge, router, recordings.get());
+  session->publisher.stop();
+  if (!options.quiet && session->loop.terminal()) std::fputs("\n", stderr);
   const std::string goodbye = InterruptGuard::requested() ? "server shutting down (Ctrl-C)" : "server shutting down";
-  hub.shutdown(goodbye);
-  editJobs.stop();  // each job holds an HttpResponder: done before the transport goes
+  session->close(goodbye);
+  if (recordings) recordings->stop();  // its jobs and a waiting request hold HttpResponders
   transport->shutdown(goodbye);
   summary.totals = transport->totals();
-  summary.hub = hub.status();
+  summary.hub = session->hub.status();
   summary.wall = bridge.now();
-  summary.ticks = tickWatch.report(summary.wall);
-  summary.tickRate = served->tickRate;
-  summary.tickMs = &loop.tickMs();
-  summary.publishMs = &publisher.ms();
-  summary.framesSkipped = publisher.skipped();
+  summary.ticks = session->tickWatch.report(summary.wall);
+  summary.tickRate = session->served.tickRate;
+  summary.tickMs = &session->loop.tickMs();
+  summary.publishMs = &session->publisher.ms();
+  summary.framesSkipped = session->publisher.skipped();
   printSummary(options, summary);
   return InterruptGuard::requested() ? kExitInterrupted : kExitOk;
 }

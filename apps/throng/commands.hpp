@@ -87,6 +87,8 @@ struct ServeOptions {
   std::optional<double> duration;       ///< wall-clock seconds; default until Ctrl-C
   std::string web;                      ///< viewer files; default web/dist of the source tree
   double budgetKbit = 500.0;            ///< per-client bandwidth target [kbit/s]
+  std::string recordings;               ///< --recordings DIR: recordings a viewer may list, open, upload; empty = none
+  int maxUploadMiB = 256;               ///< largest recording a viewer may upload [MiB]
   bool quiet = false;
   bool json = false;
 };
@@ -150,6 +152,7 @@ struct PlotOptions {
   std::vector<double> line;             ///< x0, y0, x1, y1 [m]; empty = one in front of each exit
   std::vector<double> area;             ///< rectangle corners x0, y0, x1, y1 [m]; empty = behind the first exit's line
   double cell = 0.5;                    ///< heatmap cell size [m]
+  std::string density = "classic";      ///< the density heatmap's definition: classic or voronoi
   bool json = false;                    ///< files and numbers as one JSON object
 };
 

@@ -6,6 +6,9 @@
 // docs/img/viewer_{near,middle,far,dots}.png (one per level of detail) instead.
 //   node viewer/bench/fps.mjs [--agents 100,1000,10000] [--seconds 6] [--gpu] [--screenshots]
 //                             [--chromium /usr/bin/chromium] [--width 1280 --height 720]
+//                             [--overlays [trails,heatmap,speedmap]] [--only-on]
+// --overlays: with the trails, the density map and the speed map on (?trails=1&heatmap=1&speedmap=1),
+// or those listed; --only-on: the adaptive display on only (no "off" column).
 import http from 'node:http';
 import fs from 'node:fs';
 import path from 'node:path';
@@ -28,6 +31,10 @@ const seconds = Number(arg('seconds', 6));
 const width = Number(arg('width', 1280)), height = Number(arg('height', 720));
 const gpu = arg('gpu', false) === true;
 const screenshots = arg('screenshots', false) === true;
+const overlayArg = arg('overlays', false);
+const overlays = (overlayArg === true ? ['trails', 'heatmap', 'speedmap'] : overlayArg ? String(overlayArg).split(',') : [])
+  .map((o) => `&${o}=1`).join('');
+const onlyOn = arg('only-on', false) === true;
 const exe = arg('chromium', '/usr/bin/chromium');
 
 const types = { '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.bvh': 'text/plain' };
@@ -59,7 +66,7 @@ async function open(browser, base, query) {
 }
 
 async function measure(browser, base, n, lod) {
-  const page = await open(browser, base, `demo&agents=${n}&lod=${lod}&aa=0&camera=orbit`);  // the 3D view the table measures
+  const page = await open(browser, base, `demo&agents=${n}&lod=${lod}&aa=0&camera=orbit${overlays}`);  // the 3D view the table measures
   await sleep(3000);  // warm-up: the LOD budget settles
   const a = await page.evaluate(() => ({ f: globalThis.__throngStats.frames, t: performance.now() }));
   await sleep(seconds * 1000);
@@ -119,7 +126,7 @@ try {
     console.log(`|---:|---:|---|---:|---:|`);
     for (const n of counts) {
       const on = await measure(browser, base, n, 'on');
-      const off = await measure(browser, base, n, 'off');
+      const off = onlyOn ? { fps: NaN } : await measure(browser, base, n, 'off');
       const l = on.stats.lod;
       console.log(`| ${n} | ${on.fps.toFixed(1)} | ${l.near} / ${l.middle} / ${l.far} / ${l.dot ?? 0} | ${(l.renderScale ?? 1).toFixed(2)} | ${off.fps.toFixed(1)} |`);
     }

@@ -31,10 +31,10 @@ export function requirePrerequisites(what) {
 
 export const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
-/** Starts `throng serve INPUT` (scenario or recording; HTTP `port`, 0: any free one); resolves
- * {proc, url, port, log} once it prints the viewer URL. */
-export function startServer(input, port = 0) {
-  const args = ['serve', input, '--port', String(port), '--udp-port', '0', '--web', path.join(webRoot, 'dist')];
+/** Starts `throng serve INPUT` (scenario or recording; HTTP `port`, 0: any free one; `extra`: more
+ * flags); resolves {proc, url, port, log} once it prints the viewer URL. */
+export function startServer(input, port = 0, extra = []) {
+  const args = ['serve', input, '--port', String(port), '--udp-port', '0', '--web', path.join(webRoot, 'dist'), ...extra];
   const proc = spawn(exe, args, { stdio: ['ignore', 'pipe', 'pipe'] });
   const log = [];
   return new Promise((resolve, reject) => {

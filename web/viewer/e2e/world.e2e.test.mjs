@@ -66,6 +66,37 @@ async function checkHeatmap(page) {
   assert.equal(await page.evaluate(() => globalThis.__throng.heatmap.enabled), false);
 }
 
+/** The density map's Voronoi definition (the menu beside Density): each frame's Voronoi shares
+ * sum to the agents whose cell covers walkable ground (within 15 % of those on screen), spread over
+ * more cells than the classic counts, the legend says "density map (Voronoi)"; back to classic. */
+async function checkVoronoiMap(page) {
+  await page.selectOption('#heatmap-method', 'voronoi');
+  await page.keyboard.press('m');
+  await page.waitForFunction(() => globalThis.__throng.heatmap.grid.frames.length >= 10, null, { timeout: 20000 });
+  const r = await page.evaluate(() => {
+    const t = globalThis.__throng, g = t.heatmap.grid;
+    let total = 0, cells = 0;
+    for (let j = 0; j < g.ny; ++j) for (let i = 0; i < g.nx; ++i) {
+      const d = g.density(i, j);
+      total += d * g.cell * g.cell;
+      if (d > 0) ++cells;
+    }
+    // The classic counts of the latest frame, for comparison: cells with someone in them.
+    const occupied = new Set();
+    for (let k = 0; k < t.state.count; ++k) occupied.add(`${Math.floor((t.state.x[k] - g.minX) / g.cell)},${Math.floor((t.state.y[k] - g.minY) / g.cell)}`);
+    return { total, cells, occupied: occupied.size, agents: t.state.count, voronoi: g.definition,
+             legend: document.querySelector('#legend').textContent };
+  });
+  assert.equal(r.voronoi, 'voronoi');
+  assert.ok(r.agents > 0 && r.total <= r.agents + 1e-6 && r.total >= 0.85 * r.agents - 1, `Voronoi map: ${JSON.stringify(r)}`);
+  assert.ok(r.cells > r.occupied, `Voronoi cells spread over more grid cells (${r.cells}) than agents occupy (${r.occupied})`);
+  assert.ok(r.legend.includes('density map (Voronoi)'), r.legend);
+  await shot(page, 'viewer_density_voronoi.png');
+  await page.keyboard.press('m');
+  await page.selectOption('#heatmap-method', 'classic');
+  assert.equal(await page.evaluate(() => globalThis.__throng.heatmap.grid.definition), 'classic');
+}
+
 /** The speed map (key G): its cells hold mean speeds of walkers (every sampled cell 0–3 m/s, their
  * sample-weighted mean 0.2–2 m/s: the museum's visitors walk and stop), it is drawn (the picture
  * changes with it hidden), the legend and the checkbox follow, G hides it. */
@@ -139,6 +170,7 @@ for (const [input, name, minSegments] of [['scenarios/museum.json', 'museum', 8]
       assert.ok(orbit > 0.01, `the walls show in the orbit view (${(orbit * 100).toFixed(2)} % of pixels)`);
       await shot(s.page, `viewer_walls_${name}_orbit.png`);
       if (name === 'museum') await checkHeatmap(s.page);
+      if (name === 'museum') await checkVoronoiMap(s.page);
       if (name === 'museum') await checkSpeedmap(s.page);
       assert.deepEqual(s.errors, []);
     } finally {

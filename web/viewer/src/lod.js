@@ -7,6 +7,9 @@
 //     bodies: the largest on screen win, found with a log-size histogram in O(n));
 //   LodBudget: adapts caps and thresholds from the measured frame time so the frame rate holds as
 //     the crowd grows (shrinks fast when over budget, grows slowly when under, a dead band between).
+// Whatever the budget does, the selected agent (when on screen) and the alwaysNear agents nearest
+// the camera (largest on screen, when at least alwaysNearMinPx high) stay full bodies: people the
+// viewer looks at stay people (nearestVisible).
 
 export const Level = Object.freeze({ Near: 0, Middle: 1, Far: 2, Hidden: 3, Dot: 4 });
 
@@ -24,8 +27,29 @@ export const defaultLodParams = Object.freeze({
   maxMiddle: 4000,  // cap on middle bodies
   dotPx: 6,         // below this projected height a Far agent is drawn as a dot [px]
   hysteresis: 0.15, // a level is kept until the size is this fraction below its threshold
+  alwaysNear: 4,    // the agents nearest the camera that are Near whatever the thresholds and caps
+  alwaysNearMinPx: 24, // … when at least this high on screen (about 55 m away at 720 px) [px]
   adaptive: true,   // false: every visible agent is Near (the "display off" baseline)
 });
+
+/**
+ * Indices of the `k` largest visible agents (sizes ≥ minPx), largest first, ties by index: the
+ * nearest to the camera, as every body has the same height. O(n·k) for the few k it is used with.
+ */
+export function nearestVisible(sizes, count, k, minPx) {
+  const best = [];
+  if (k <= 0) return best;
+  for (let i = 0; i < count; ++i) {
+    const s = sizes[i];
+    if (!(s >= minPx) || s < 0) continue;
+    if (best.length === k && s <= sizes[best[k - 1]]) continue;
+    let at = best.length === k ? k - 1 : best.length;
+    while (at > 0 && sizes[best[at - 1]] < s) { best[at] = best[at - 1]; --at; }
+    best[at] = i;
+    if (best.length > k) best.length = k;
+  }
+  return best;
+}
 
 const kBuckets = 64;
 const kLogMin = 0;   // log2(1 px)
@@ -76,12 +100,14 @@ function admitLargest(sizes, count, eligible, prev, level, cap, out, hist) {
 /**
  * Picks each agent's level. `sizes[i]`: projected height [px], negative when the agent is off
  * screen (→ Hidden). `prev`: the levels of the previous call (same agent order) or null.
- * `out`: Uint8Array ≥ count. Returns {near, middle, far, dot, hidden, nearDemand, middleDemand}: the
- * counts assigned and how many agents were large enough for each level before the caps.
+ * `out`: Uint8Array ≥ count. `pinned`: indices always Near when on screen (the selected agent),
+ * besides the params.alwaysNear nearest; neither counts against maxNear nor in nearDemand.
+ * Returns {near, middle, far, dot, hidden, nearDemand, middleDemand, pinned}: the counts assigned,
+ * how many agents were large enough for each level before the caps, and how many were pinned Near.
  */
-export function assignLevels(sizes, count, prev, out, params = defaultLodParams, scratch = null) {
+export function assignLevels(sizes, count, prev, out, params = defaultLodParams, scratch = null, pinned = null) {
   const p = { ...defaultLodParams, ...params };
-  const counts = { near: 0, middle: 0, far: 0, dot: 0, hidden: 0, nearDemand: 0, middleDemand: 0 };
+  const counts = { near: 0, middle: 0, far: 0, dot: 0, hidden: 0, nearDemand: 0, middleDemand: 0, pinned: 0 };
   if (!p.adaptive) {
     for (let i = 0; i < count; ++i) {
       out[i] = sizes[i] < 0 ? Level.Hidden : Level.Near;
@@ -100,6 +126,7 @@ export function assignLevels(sizes, count, prev, out, params = defaultLodParams,
     const t = was === Level.Near ? p.nearPx * keep : p.nearPx;
     eligible[i] = sizes[i] >= 0 && sizes[i] >= t ? 1 : 0;
   }
+  counts.pinned = pinNear(sizes, count, p, pinned, out, eligible);
   let nd = 0;
   for (let i = 0; i < count; ++i) nd += eligible[i];
   counts.nearDemand = nd;
@@ -131,6 +158,20 @@ export function assignLevels(sizes, count, prev, out, params = defaultLodParams,
     else counts.hidden++;
   }
   return counts;
+}
+
+/** Sets the pinned and the alwaysNear nearest visible agents Near, outside the caps; how many. */
+function pinNear(sizes, count, p, pinned, out, eligible) {
+  let n = 0;
+  const pin = (i) => {
+    if (i < 0 || i >= count || sizes[i] < 0 || out[i] === Level.Near) return;
+    out[i] = Level.Near;
+    eligible[i] = 0;
+    n++;
+  };
+  for (const i of nearestVisible(sizes, count, p.alwaysNear, p.alwaysNearMinPx)) pin(i);
+  if (pinned) for (const i of pinned) pin(i);
+  return n;
 }
 
 /** Reusable buffers for assignLevels (avoids allocation per frame). */

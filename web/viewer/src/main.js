@@ -28,10 +28,12 @@ import { Legend } from './ui/legend.js';
 import { Help } from './ui/help.js';
 import { Markers, kSelfColour } from './crowd/markers.js';
 import { Trails } from './crowd/trails.js';
-import { Heatmap } from './crowd/heatmap.js';
+import { Heatmap, DensityGrid } from './crowd/heatmap.js';
+import { VoronoiDensityGrid } from './crowd/voronoi.js';
 import { Measurements } from './crowd/measure.js';
 import { MeasurePanel } from './ui/measure_panel.js';
 import { Exporter } from './ui/export.js';
+import { RecordingsPanel } from './ui/recordings.js';
 import { kSelectedColour, kPickedGroupColour } from './crowd/crowd_view.js';
 import { kColourModes } from './crowd/colour_by.js';
 
@@ -92,10 +94,11 @@ let worldLabels = [];  // the points' name labels (world_view.js pointLabels)
 const kOtherColour = 0xd02090;  // other participants' avatars
 let markers = null;
 let heatmap = null;  // density heatmap overlay (key M)
+let heatmapMethod = 'classic', heatmapScenario = {}, heatmapBounds = null;  // its definition (the menu beside it)
 let measurements = null;  // the scenario's measurement lines and areas, measured live
 let measurePanel = null;
 let speedmap = null;  // speed heatmap overlay (key G)
-let trails = null, trailsStale = false;  // trajectory trails (key R), rebuilt after each frame
+let trails = null, trailsStale = false;  // trajectory trails (key R), rebuilt after a frame added samples
 const legend = new Legend($('legend'), { selected: kSelectedColour, pickedGroup: kPickedGroupColour, self: kSelfColour, other: kOtherColour },
   (m) => setColourMode(m));
 const help = new Help($('help'));
@@ -111,10 +114,16 @@ function refreshLegend() {
 globalThis.__throngStats = globalThis.__throngStats || {};
 
 source.on('status', (s) => banner.show(s));
+// Another world after a reconnect (a viewer opened another recording: throng serve --recordings):
+// everything built from the old one goes, so the page starts again.
+source.on('worldChanged', () => globalThis.location.reload());
+const recordings = source.kind === 'live' ? new RecordingsPanel({ row: $('recordings-row'), list: $('rec-list'),
+  open: $('rec-open'), upload: $('rec-upload'), status: $('rec-status') }) : null;
+if (recordings) recordings.refresh();
 source.on('frame', (f) => {
   state.applyFrame(f, performance.now() / 1000);
   hud.frame(f);
-  if (trails && trails.enabled) { trails.record(f, hud.simTime); trailsStale = true; }
+  if (trails && trails.enabled && trails.record(f, hud.simTime)) trailsStale = true;
   if (heatmap) heatmap.record(f, hud.simTime);
   if (speedmap) speedmap.record(f, hud.simTime);
   if (measurements) measurements.record(f, hud.simTime);
@@ -148,7 +157,10 @@ source.on('world', async (w) => {
   markers = new Markers(scene, kSelectedColour);
   trails = new Trails(scene);
   heatmap = new Heatmap(scene, bounds);
-  if (params.get('heatmap') === '1') toggleHeatmap(true);
+  heatmapScenario = w.scenario || {};
+  heatmapBounds = bounds;
+  if (params.get('heatmap') === 'voronoi') setHeatmapMethod('voronoi');
+  if (params.get('heatmap') === '1' || params.get('heatmap') === 'voronoi') toggleHeatmap(true);
   measurements = new Measurements((w.scenario || {}).measurements || []);
   measurePanel = new MeasurePanel($('measure'), measurements);
   speedmap = new Heatmap(scene, bounds, 'speed');
@@ -167,8 +179,8 @@ source.on('world', async (w) => {
 /** What scripts and the tests reach through window.__throng: the parts, and screen helpers. */
 function testHooks(w) {
   return {
-    cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode,
-    get trails() { return trails; }, get heatmap() { return heatmap; }, get measurements() { return measurements; }, get speedmap() { return speedmap; }, get markers() { return markers; }, selfColour: kSelfColour,
+    cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode, recordings,
+    get trails() { return trails; }, get heatmap() { return heatmap; }, setHeatmapMethod, get measurements() { return measurements; }, get speedmap() { return speedmap; }, get markers() { return markers; }, selfColour: kSelfColour,
     renderer, exporter, description: w, others, groupList, remoteJoints, gesture,
     get joined() { return joined; },
     /** The world's named parts and how many segments each has (walls, railings, risers; 1 for others). */
@@ -450,9 +462,18 @@ function toggleHeatmap(on = !(heatmap && heatmap.enabled)) {
   if (!heatmap) return;
   heatmap.enabled = on;
   $('heatmap-toggle').checked = on;
-  legend.heatmap = on;
+  legend.heatmap = on && heatmapMethod;
   refreshLegend();
 }
+/** The density map's definition: 'classic' (DensityGrid) or 'voronoi' (VoronoiDensityGrid). */
+function setHeatmapMethod(method) {
+  if (!heatmap || (method !== 'classic' && method !== 'voronoi')) return;
+  heatmapMethod = method;
+  $('heatmap-method').value = method;
+  heatmap.setGrid(method === 'voronoi' ? new VoronoiDensityGrid(heatmapBounds, heatmapScenario) : new DensityGrid(heatmapBounds));
+  if (heatmap.enabled) { legend.heatmap = method; refreshLegend(); }
+}
+$('heatmap-method').onchange = (e) => setHeatmapMethod(e.target.value);
 $('heatmap-toggle').onchange = (e) => toggleHeatmap(e.target.checked);
 function toggleSpeedmap(on = !(speedmap && speedmap.enabled)) {
   if (!speedmap) return;

@@ -2,9 +2,10 @@
 // screen win), hysteresis at the thresholds, and the frame-time budget's adaptation.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { Level, assignLevels, projectedHeight, LodBudget } from '../src/lod.js';
+import { Level, assignLevels, projectedHeight, LodBudget, nearestVisible, defaultLodParams } from '../src/lod.js';
 
-const params = { nearPx: 100, middlePx: 20, maxNear: 10, maxMiddle: 100, hysteresis: 0.2, adaptive: true };
+// alwaysNear 0: the rules of size, caps and hysteresis alone (the pinned nearest are tested below).
+const params = { nearPx: 100, middlePx: 20, maxNear: 10, maxMiddle: 100, hysteresis: 0.2, alwaysNear: 0, adaptive: true };
 
 test('projected height falls with distance and grows with screen height', () => {
   const fov = Math.PI / 3;
@@ -139,4 +140,56 @@ test('budget: dynamic resolution drops when over budget, faster when far over, a
   assert.equal(c.params().renderScale, 1);
   // Dot threshold follows the size-threshold scale.
   assert.equal(c.params().dotPx, 6);
+});
+
+test('nearestVisible: the k largest on screen at or above the floor, largest first', () => {
+  const sizes = Float32Array.from([30, -1, 500, 90, 20, 500, 700, 10]);
+  assert.deepEqual(nearestVisible(sizes, sizes.length, 3, 24), [6, 2, 5]);
+  assert.deepEqual(nearestVisible(sizes, sizes.length, 10, 24), [6, 2, 5, 3, 0]);
+  assert.deepEqual(nearestVisible(sizes, sizes.length, 0, 24), []);
+  assert.deepEqual(nearestVisible(Float32Array.from([-1, 5]), 2, 4, 24), []);
+});
+
+test('the selected agent and the nearest few stay full bodies when the budget squeezes the rest', () => {
+  // A budget long over its target: caps at their floor, thresholds scaled up 4×.
+  const budget = new LodBudget({ targetFrameMs: 10 });
+  let p = budget.params();
+  for (let k = 0; k < 200; ++k) p = budget.update(100, { nearDemand: 1000, middleDemand: 1000 });
+  assert.equal(p.maxNear, 2);
+  assert.ok(p.nearPx >= 4 * defaultLodParams.nearPx - 1e-9);
+  // 1000 agents 100–300 px high (under the squeezed near threshold), the four nearest 400–460 px,
+  // the selected one far away (40 px), one off screen.
+  const n = 1006;
+  const sizes = new Float32Array(n);
+  for (let i = 0; i < 1000; ++i) sizes[i] = 100 + (i % 200);
+  sizes[1000] = 400; sizes[1001] = 420; sizes[1002] = 440; sizes[1003] = 460;
+  sizes[1004] = 40;   // selected
+  sizes[1005] = -1;   // off screen
+  const out = new Uint8Array(n);
+  const c = assignLevels(sizes, n, null, out, p, null, [1004, 1005]);
+  for (const i of [1000, 1001, 1002, 1003, 1004]) assert.equal(out[i], Level.Near, `agent ${i}`);
+  assert.equal(out[1005], Level.Hidden);
+  assert.equal(c.pinned, defaultLodParams.alwaysNear + 1);
+  assert.equal(c.near, c.pinned, 'nobody else qualifies for a skinned body under the squeezed budget');
+  assert.equal(c.nearDemand, 0, 'pinned bodies do not make the budget grow the cap');
+  // Without the rule they would all have been middle bodies at best.
+  const plain = new Uint8Array(n);
+  assignLevels(sizes, n, null, plain, { ...p, alwaysNear: 0 });
+  for (const i of [1000, 1001, 1002, 1003, 1004]) assert.notEqual(plain[i], Level.Near, `agent ${i}`);
+});
+
+test('the nearest few are pinned only within a looking distance; the cap still holds for the rest', () => {
+  const sizes = Float32Array.from([20, 15, 10, 5]);  // all under alwaysNearMinPx
+  const out = new Uint8Array(4);
+  const c = assignLevels(sizes, 4, null, out, { ...params, maxNear: 0, alwaysNear: 4, alwaysNearMinPx: 24 });
+  assert.equal(c.near, 0);
+  assert.equal(c.pinned, 0);
+  // Large agents over the cap: the nearest alwaysNear pinned, then maxNear more from the rest.
+  const big = Float32Array.from({ length: 20 }, (_, i) => 200 + i);
+  const o2 = new Uint8Array(20);
+  const c2 = assignLevels(big, 20, null, o2, { ...params, maxNear: 3, alwaysNear: 2 });
+  assert.equal(c2.pinned, 2);
+  assert.equal(c2.near, 5);
+  assert.equal(o2[19], Level.Near);
+  assert.equal(o2[18], Level.Near);
 });

@@ -33,3 +33,32 @@ test('a jump breaks the line; agents long gone are dropped; time going back clea
   one(b, 2, 0, 0, 1);
   assert.equal(segments(b).length, 0, 'seeked back: afresh');
 });
+
+test('record says when the trails changed: a sample added, an agent dropped, time going back', () => {
+  const b = new TrailBuffer(10, 0.2);
+  const ids = Uint32Array.from([1]), z = Float32Array.from([0]);
+  assert.equal(b.record(ids, Float32Array.from([0]), Float32Array.from([0]), z, 1, 0), true);
+  assert.equal(b.record(ids, Float32Array.from([0.1]), Float32Array.from([0]), z, 1, 0.1), false, 'within a step: nothing new');
+  assert.equal(b.record(ids, Float32Array.from([0.3]), Float32Array.from([0]), z, 1, 0.2), true);
+  assert.equal(b.record(ids, Float32Array.from([0.3]), Float32Array.from([0]), z, 1, 0.25), false);
+  assert.equal(b.record(ids, Float32Array.from([0]), Float32Array.from([0]), z, 1, 0.05), true, 'time back: afresh');
+  assert.equal(b.record(new Uint32Array(0), new Float32Array(0), new Float32Array(0), new Float32Array(0), 0, 20), true, 'agent 1 gone');
+});
+
+test('a huge crowd gets coarser trails under the segment cap, each still ending at its newest sample', () => {
+  const b = new TrailBuffer(10, 0.2);
+  const n = 10, ids = Uint32Array.from({ length: n }, (_, i) => i), z = new Float32Array(n);
+  for (let s = 0; s < 20; ++s) {
+    const x = Float32Array.from({ length: n }, (_, i) => s * 0.25), y = Float32Array.from({ length: n }, (_, i) => i);
+    b.record(ids, x, y, z, n, s * 0.2);
+  }
+  const full = b.forEachSegment(() => {});
+  assert.equal(full, n * 19);
+  const ends = new Map();
+  const capped = b.forEachSegment((id, ax, ay, az, bx, by, bz, ageA, ageB) => {
+    assert.ok(Math.abs(bx - ax - 4 * 0.25) < 1e-6, 'every 4th sample joined');
+    if (!ends.has(id) || ageB < ends.get(id).age) ends.set(id, { age: ageB, x: bx });
+  }, 50);
+  assert.equal(capped, n * 4);
+  for (const e of ends.values()) { assert.ok(Math.abs(e.age) < 1e-9); assert.ok(Math.abs(e.x - 19 * 0.25) < 1e-6); }
+});

@@ -1,6 +1,6 @@
 // The crowd on screen: each frame, from the interpolated crowd state (interpolate.js) and the
 // camera, computes every agent's projected size, asks the global LOD function (lod.js) for its
-// level within the frame-time budget, and fills the three renderers: skinned bodies (near),
+// level within the frame-time budget (the selected agent and the nearest few always full bodies), and fills the three renderers: skinned bodies (near),
 // instanced low-polygon bodies (middle), billboards (far), dots (a few pixels high). Seen from an
 // orthographic plan camera, every agent is a disc with its heading instead (plan_discs.js). Also:
 // each agent's colour by the chosen mode (colour_by.js: group, population, speed, local density,
@@ -45,6 +45,7 @@ export class CrowdView {
     this.prevIds = new Uint32Array(0);
     this.sizes = new Float32Array(0);
     this.scratch = makeLodScratch(1024);
+    this.pinned = [-1];  // agent indices always Near when on screen: the selected one
     this.counts = { near: 0, middle: 0, far: 0, dot: 0, hidden: 0 };
     this.selectedId = -1;
     this.selectedGroup = -1;  // group picked in the group list: its members are highlighted
@@ -137,7 +138,10 @@ export class CrowdView {
     }
     const params = this.adaptive ? this.budget.update(frameMs, this.counts) : { ...defaultLodParams, adaptive: false };
     this.params = params;
-    this.counts = assignLevels(this.sizes, n, prev, this.levels, params, this.scratch);
+    // The selected agent stays a full body whatever the budget (as do the nearest few: lod.js).
+    const selected = this.selectedId >= 0 && state.index ? state.index.get(this.selectedId) : undefined;
+    this.pinned[0] = selected === undefined ? -1 : selected;
+    this.counts = assignLevels(this.sizes, n, prev, this.levels, params, this.scratch, this.pinned);
     const walkClip = this.clips.walkClipId(), idleClip = this.clips.idleClipId();
     this.near.begin();
     this.middle.begin(n);

@@ -28,6 +28,7 @@ export class DensityGrid {
     this.minY = bounds.minY;
     this.nx = Math.max(1, Math.ceil(w / this.cell));
     this.ny = Math.max(1, Math.ceil(h / this.cell));
+    this.definition = 'classic';  // the density's definition (voronoi.js: 'voronoi')
     this.seconds = seconds;
     this.frames = [];  // [{t, counts: Uint16Array}], oldest first
     this.sum = new Float64Array(this.nx * this.ny);
@@ -128,12 +129,13 @@ const kKinds = {
 };
 
 export class Heatmap {
-  /** bounds: worldBounds (minZ: the plane's height); kind: 'density' or 'speed'. */
-  constructor(scene, bounds, kind = 'density') {
+  /** bounds: worldBounds (minZ: the plane's height); kind: 'density' or 'speed'; grid: another
+   * grid of the same bounds and cell to draw (the Voronoi density, voronoi.js), else the kind's. */
+  constructor(scene, bounds, kind = 'density', grid = null) {
     const k = kKinds[kind];
     this.kind = kind;
     this.max = k.max;
-    this.grid = new k.Grid(bounds);
+    this.grid = grid || new k.Grid(bounds);
     const g = this.grid;
     this.data = new Uint8Array(g.nx * g.ny * 4);
     this.texture = new THREE.DataTexture(this.data, g.nx, g.ny, THREE.RGBAFormat);
@@ -155,6 +157,14 @@ export class Heatmap {
   set enabled(on) {
     this.mesh.visible = on;
     if (!on) this.grid.clear();
+  }
+
+  /** Draws `grid` from now on (same bounds and cell: the classic ↔ Voronoi switch); starts afresh. */
+  setGrid(grid) {
+    if (grid.nx !== this.grid.nx || grid.ny !== this.grid.ny) throw new Error('heatmap: a grid of another size');
+    this.grid = grid;
+    grid.clear();
+    this.stale = true;
   }
 
   /** A crowd frame at simulated time t [s] (counted only while shown). */

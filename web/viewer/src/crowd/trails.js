@@ -4,12 +4,15 @@
 // drops what is older than the window and agents not seen for as long, and starts afresh when time
 // runs backwards (a replay seeked back); a jump longer than kTrailJump (a teleport, a floor
 // change the frames skipped) breaks the line. Trails (three.js) draws them as one LineSegments
-// with vertex colours, rebuilt once per received frame. Scene coordinates: (x, z, −y).
+// with vertex colours, rebuilt after a received frame added a sample (at most every kTrailStep of
+// simulated time: between samples nothing moves), into buffers reused while they are large enough.
+// Scene coordinates: (x, z, −y).
 import * as THREE from 'three';
 
 export const kTrailSeconds = 10;  // [s] of simulated time shown
 export const kTrailStep = 0.2;    // [s] between samples
 export const kTrailJump = 5;      // [m] longer steps are not joined
+export const kMaxTrailSegments = 100000;  // more would be drawn: every k-th sample joined instead
 
 export class TrailBuffer {
   constructor(seconds = kTrailSeconds, step = kTrailStep) {
@@ -22,30 +25,39 @@ export class TrailBuffer {
 
   clear() { this.agents.clear(); this.time = -Infinity; }
 
-  /** One crowd frame at simulated time `t` [s]: ids, x, y, z (world metres) of `count` agents. */
+  /** One crowd frame at simulated time `t` [s]: ids, x, y, z (world metres) of `count` agents.
+   * Returns whether it changed what forEachSegment gives (a sample added or dropped, time back). */
   record(ids, x, y, z, count, t) {
+    let changed = t < this.time || this.agents.size === 0;
     if (t < this.time) this.clear();
     this.time = t;
     for (let i = 0; i < count; ++i) {
       let a = this.agents.get(ids[i]);
       if (!a) { a = { t: new Float64Array(this.cap), p: new Float32Array(this.cap * 3), head: 0, len: 0, last: -Infinity }; this.agents.set(ids[i], a); }
       if (t - a.last < this.step * 0.999 && a.len) continue;
+      changed = true;
       a.last = t;
       a.t[a.head] = t;
       a.p[a.head * 3] = x[i]; a.p[a.head * 3 + 1] = y[i]; a.p[a.head * 3 + 2] = z[i];
       a.head = (a.head + 1) % this.cap;
       a.len = Math.min(a.len + 1, this.cap);
     }
-    for (const [id, a] of this.agents) if (t - a.last > this.seconds) this.agents.delete(id);
+    for (const [id, a] of this.agents) if (t - a.last > this.seconds) { this.agents.delete(id); changed = true; }
+    return changed;
   }
 
   /** Calls fn(id, ax, ay, az, bx, by, bz, ageA, ageB) for each segment within the window, oldest
-   * first per agent (ages [s] before the latest time, ≥ 0). Returns the number of segments. */
-  forEachSegment(fn) {
-    let n = 0;
+   * first per agent (ages [s] before the latest time, ≥ 0). Returns the number of segments. With
+   * more than `maxSegments` (a huge crowd), every stride-th sample is joined instead, stride the
+   * least that keeps them under it, the newest always included: the same trails, coarser. */
+  forEachSegment(fn, maxSegments = kMaxTrailSegments) {
+    let n = 0, total = 0;
+    for (const a of this.agents.values()) total += Math.max(a.len - 1, 0);
+    const stride = Math.max(1, Math.ceil(total / maxSegments));
     for (const [id, a] of this.agents) {
       let prev = -1;
       for (let k = a.len - 1; k >= 0; --k) {
+        if (k % stride !== 0) continue;
         const j = (a.head - 1 - k + this.cap * 2) % this.cap;
         const age = this.time - a.t[j];
         if (age > this.seconds) continue;
@@ -78,20 +90,42 @@ export class Trails {
   get enabled() { return this.lines.visible; }
   set enabled(on) { this.lines.visible = on; if (!on) this.buffer.clear(); }
 
-  /** Each crowd frame (while enabled): `frame` as sources/frame.js, `t` its simulated time [s]. */
-  record(frame, t) { if (this.enabled) this.buffer.record(frame.ids, frame.x, frame.y, frame.z, frame.count, t); }
+  /** Each crowd frame (while enabled): `frame` as sources/frame.js, `t` its simulated time [s].
+   * Returns whether the lines need a rebuild. */
+  record(frame, t) {
+    return this.enabled && this.buffer.record(frame.ids, frame.x, frame.y, frame.z, frame.count, t);
+  }
 
   /** Rebuilds the lines; `colourOf(id)`: the agent's THREE.Color now. */
   rebuild(colourOf) {
     if (!this.enabled) return;
-    const pos = [], col = [];
+    let bound = 0;
+    for (const a of this.buffer.agents.values()) bound += Math.max(a.len - 1, 0);
+    bound = Math.min(bound, kMaxTrailSegments + this.buffer.agents.size);  // forEachSegment's cap
+    if (!this.pos || this.pos.length < bound * 6) {
+      this.pos = new Float32Array(Math.ceil(bound * 1.5) * 6 + 6);
+      this.col = new Float32Array(this.pos.length);
+      this.geometry.setAttribute('position', new THREE.BufferAttribute(this.pos, 3));
+      this.geometry.setAttribute('color', new THREE.BufferAttribute(this.col, 3));
+    }
+    const pos = this.pos, col = this.col;
     const s = this.buffer.seconds, c = this.tmp;
+    let o = 0;
     this.segments = this.buffer.forEachSegment((id, ax, ay, az, bx, by, bz, ageA, ageB) => {
-      pos.push(ax, az + 0.08, -ay, bx, bz + 0.08, -by);
+      pos[o] = ax; pos[o + 1] = az + 0.08; pos[o + 2] = -ay; pos[o + 3] = bx; pos[o + 4] = bz + 0.08; pos[o + 5] = -by;
       const base = colourOf(id);
-      for (const age of [ageA, ageB]) { c.copy(base).lerp(this.floor, Math.min(age / s, 1) * 0.85); col.push(c.r, c.g, c.b); }
+      c.copy(base).lerp(this.floor, Math.min(ageA / s, 1) * 0.85);
+      col[o] = c.r; col[o + 1] = c.g; col[o + 2] = c.b;
+      c.copy(base).lerp(this.floor, Math.min(ageB / s, 1) * 0.85);
+      col[o + 3] = c.r; col[o + 4] = c.g; col[o + 5] = c.b;
+      o += 6;
     });
-    this.geometry.setAttribute('position', new THREE.Float32BufferAttribute(pos, 3));
-    this.geometry.setAttribute('color', new THREE.Float32BufferAttribute(col, 3));
+    this.geometry.setDrawRange(0, this.segments * 2);
+    for (const name of ['position', 'color']) {
+      const attribute = this.geometry.attributes[name];
+      attribute.clearUpdateRanges();
+      attribute.addUpdateRange(0, o);  // only what is drawn goes to the GPU
+      attribute.needsUpdate = true;
+    }
   }
 }

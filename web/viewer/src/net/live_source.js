@@ -7,7 +7,9 @@
 // reconnect with exponential backoff (0.5 s … 10 s, jittered); after it, the participant joins
 // again under the same name. Presence (participants joining/leaving, with names) → 'presence';
 // a server replaying a recording sends ReplayStatus (→ 'timeline' {time, duration, playing,
-// speed}) and takes ReplayControl from play()/pause()/seek()/setSpeed(). Relayed Joints of other
+// speed}) and takes ReplayControl from play()/pause()/seek()/setSpeed(). A Welcome after a
+// reconnect with another world description than the first (the server now plays another
+// recording) → 'worldChanged' (the page reloads). Relayed Joints of other
 // participants (→ 'joints' {participantId, angles}); sendJoints() sends the avatar's. Decoding is
 // web/protocol's (through protocol_adapter.js).
 import { Emitter } from '../sources/emitter.js';
@@ -129,6 +131,10 @@ export class LiveSource extends Emitter {
       case 'Welcome': {
         this.attempt = 0;
         const first = !this.world;
+        // Another world than before the reconnect (the server switched recordings): 'worldChanged'.
+        const text = JSON.stringify(m.world);
+        if (!first && text !== this.worldText) { this.emit('worldChanged', m.world); return; }
+        this.worldText = text;
         this.world = m.world;
         this.tickRate = m.tickRateHz;
         this.emit('status', { state: 'open', text: `connected to ${m.serverName}` });

@@ -23,7 +23,8 @@ export function fixedEntries({ selected, pickedGroup, self, other, trails, heatm
     { colour: 0xa8a296, shape: 'area', label: 'stair riser' },
     { colour: 0xd8d4cc, shape: 'area', label: 'walkable floor' },
     ...(trails ? [{ colour: 0x555555, shape: 'line', label: 'trail: where each walked lately' }] : []),
-    ...(heatmap ? legendOf('density').map((e) => ({ colour: e.colour, shape: 'area', label: `density map: ${e.label}` })) : []),
+    ...(heatmap ? legendOf('density').map((e) => ({ colour: e.colour, shape: 'area',
+      label: `density map${heatmap === 'voronoi' ? ' (Voronoi)' : ''}: ${e.label}` })) : []),
     ...(speedmap ? legendOf('speed').map((e) => ({ colour: e.colour, shape: 'area', label: `speed map: ${e.label}` })) : []),
   ];
 }

@@ -1,0 +1,160 @@
+// `throng serve --recordings DIR`'s HTTP routes (recording_routes.hpp): the listing, uploads on a
+// worker thread, open requests handed to the simulation thread.
+#include "recording_routes.hpp"
+
+#include <chrono>
+
+#include <nlohmann/json.hpp>
+
+
+namespace throng::cli {
+namespace {
+
+constexpr std::string_view kList = "/api/recordings";
+constexpr std::string_view kOpen = "/api/recordings/open";
+constexpr auto kUploadLimit = std::chrono::seconds(120);  ///< wall-clock limit of one upload's check
+
+transport::HttpResponse json(unsigned status, const nlohmann::json& body) {
+  // Replacing invalid UTF-8 (a file name in DIR may have any bytes) rather than throwing.
+  return transport::HttpResponse{status, "application/json",
+                                 body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), {}};
+}
+
+nlohmann::json entryJson(const RecordingEntry& e) {
+  nlohmann::json j = {{"name", e.name}, {"size", e.size}, {"duration", e.duration}, {"agents", e.agents},
+                      {"scenario", e.scenario}};
+  if (!e.error.empty()) j["error"] = e.error;
+  return j;
+}
+
+std::string_view pathOf(std::string_view target) { return target.substr(0, target.find('?')); }
+
+int hexDigit(char ch) {
+  if (ch >= '0' && ch <= '9') return ch - '0';
+  if (ch >= 'a' && ch <= 'f') return ch - 'a' + 10;
+  if (ch >= 'A' && ch <= 'F') return ch - 'A' + 10;
+  return -1;
+}
+
+}  // namespace
+
+transport::HttpResponse jsonError(unsigned status, const std::string& text) { return json(status, {{"error", text}}); }
+
+std::optional<std::string> percentDecode(std::string_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '+') {
+      out.push_back(' ');
+    } else if (text[i] == '%') {
+      if (i + 2 >= text.size()) return std::nullopt;
+      const int hi = hexDigit(text[i + 1]), lo = hexDigit(text[i + 2]);
+      if (hi < 0 || lo < 0) return std::nullopt;
+      out.push_back(static_cast<char>(hi * 16 + lo));
+      i += 2;
+    } else {
+      out.push_back(text[i]);
+    }
+  }
+  return out;
+}
+
+std::optional<std::string> queryValue(std::string_view target, std::string_view key) {
+  const std::size_t q = target.find('?');
+  if (q == std::string_view::npos) return std::nullopt;
+  std::string_view rest = target.substr(q + 1);
+  while (!rest.empty()) {
+    const std::size_t amp = rest.find('&');
+    const std::string_view pair = rest.substr(0, amp);
+    const std::size_t eq = pair.find('=');
+    if (pair.substr(0, eq) == key) return eq == std::string_view::npos ? std::string() : percentDecode(pair.substr(eq + 1));
+    if (amp == std::string_view::npos) break;
+    rest.remove_prefix(amp + 1);
+  }
+  return std::nullopt;
+}
+
+std::optional<transport::HttpResponse> RecordingRoutes::get(std::string_view target) const {
+  if (pathOf(target) != kList) return std::nullopt;
+  nlohmann::json list = nlohmann::json::array();
+  for (const RecordingEntry& e : dir_.list()) list.push_back(entryJson(e));
+  std::lock_guard lock(mutex_);
+  return json(200, {{"dir", dir_.path().string()},
+                    {"playing", playing_.empty() ? nlohmann::json(nullptr) : nlohmann::json(playing_)},
+                    {"maxUploadBytes", maxUpload_},
+                    {"recordings", std::move(list)}});
+}
+
+bool RecordingRoutes::post(transport::HttpRequest& request, const transport::HttpResponder& responder) {
+  const std::string_view path = pathOf(request.target);
+  if (path == kOpen) {
+    open(request, responder);
+    return true;
+  }
+  if (path == kList) {
+    upload(request, responder);
+    return true;
+  }
+  return false;
+}
+
+void RecordingRoutes::upload(transport::HttpRequest& request, const transport::HttpResponder& responder) {
+  const std::optional<std::string> name = queryValue(request.target, "name");
+  if (!name || name->empty()) {
+    responder.respond(jsonError(400, "POST /api/recordings?name=FILE.sqlite: the file's name is missing or malformed"));
+    return;
+  }
+  // The check reads the whole recording: off the transport thread.
+  auto body = std::make_shared<std::string>(std::move(request.body));
+  const bool started = jobs_.launch(responder, kUploadLimit, [this, name = *name, body, responder](const edit::JobFlags&) {
+    auto stored = dir_.store(name, *body, maxUpload_);
+    if (!stored) {
+      const bool tooLarge = body->size() > maxUpload_;
+      responder.respond(jsonError(tooLarge ? 413 : 422, stored.errors().front().format()));
+      return;
+    }
+    responder.respond(json(201, entryJson(stored.value())));
+  });
+  if (!started) responder.respond(jsonError(503, "busy: too many uploads at once; try again"));
+}
+
+void RecordingRoutes::open(const transport::HttpRequest& request, const transport::HttpResponder& responder) {
+  const nlohmann::json body = nlohmann::json::parse(request.body, nullptr, false);
+  if (!body.is_object() || !body.contains("name") || !body["name"].is_string()) {
+    responder.respond(jsonError(400, R"(POST /api/recordings/open: expected {"name": "FILE.sqlite"})"));
+    return;
+  }
+  const std::string name = body["name"].get<std::string>();
+  auto path = dir_.resolve(name);
+  if (!path) {
+    responder.respond(jsonError(404, path.errors().front().format()));
+    return;
+  }
+  std::optional<OpenRequest> replaced;
+  {
+    std::lock_guard lock(mutex_);
+    replaced = std::move(open_);
+    open_ = OpenRequest{name, path.value(), responder};
+    pending_.store(true, std::memory_order_release);
+  }
+  if (replaced) replaced->responder.respond(jsonError(409, "superseded: another viewer opened " + name));
+}
+
+std::optional<OpenRequest> RecordingRoutes::takeOpen() {
+  std::lock_guard lock(mutex_);
+  pending_.store(false, std::memory_order_release);
+  std::optional<OpenRequest> taken = std::move(open_);
+  open_.reset();
+  return taken;
+}
+
+void RecordingRoutes::setPlaying(std::string name) {
+  std::lock_guard lock(mutex_);
+  playing_ = std::move(name);
+}
+
+void RecordingRoutes::stop() {
+  jobs_.stop();
+  if (auto waiting = takeOpen()) waiting->responder.respond(jsonError(503, "server shutting down"));
+}
+
+}  // namespace throng::cli

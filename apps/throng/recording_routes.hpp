@@ -1,0 +1,71 @@
+// `throng serve --recordings DIR`'s HTTP routes (docs/server.md, docs/viewer.md): GET
+// /api/recordings lists DIR, POST /api/recordings?name=FILE stores an upload (checked on a worker
+// thread, edit::Jobs), POST /api/recordings/open {"name": …} asks to play one. Opening is the
+// simulation thread's to do (it owns the served world): the request waits here, with its
+// responder, until the tick loop takes it (takeOpen) and answers once the switch is done or failed.
+#pragma once
+#include <atomic>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "edit_jobs.hpp"
+#include "recordings_dir.hpp"
+#include "throng/transport/transport.hpp"
+
+namespace throng::cli {
+
+/// A viewer's request to play the recording `name` (at `path`, resolved in DIR).
+struct OpenRequest {
+  std::string name;
+  std::filesystem::path path;
+  transport::HttpResponder responder;
+};
+
+class RecordingRoutes {
+ public:
+  RecordingRoutes(RecordingsDir dir, std::size_t maxUploadBytes) : dir_(std::move(dir)), maxUpload_(maxUploadBytes) {}
+  ~RecordingRoutes() { stop(); }
+  RecordingRoutes(const RecordingRoutes&) = delete;
+  RecordingRoutes& operator=(const RecordingRoutes&) = delete;
+
+  /// GET /api/recordings: {"dir", "playing", "maxUploadBytes", "recordings": [{name, size, duration,
+  /// agents, scenario[, error]}]}; nullopt for any other path. (A server without --recordings answers
+  /// "dir": null and no recordings: cmd_serve.cpp's Router.)
+  [[nodiscard]] std::optional<transport::HttpResponse> get(std::string_view target) const;
+  /// POST /api/recordings?name=FILE (the body: the file) and /api/recordings/open; false otherwise.
+  bool post(transport::HttpRequest& request, const transport::HttpResponder& responder);
+
+  /// The latest open request not yet taken (simulation thread); pending() is its cheap check.
+  [[nodiscard]] std::optional<OpenRequest> takeOpen();
+  [[nodiscard]] bool pending() const { return pending_.load(std::memory_order_acquire); }
+  /// The name now played ("" when the positional scenario or recording is), for the listing.
+  void setPlaying(std::string name);
+  /// Ends the upload jobs and answers a waiting open request (before the transport goes).
+  void stop();
+
+ private:
+  void upload(transport::HttpRequest& request, const transport::HttpResponder& responder);
+  void open(const transport::HttpRequest& request, const transport::HttpResponder& responder);
+
+  RecordingsDir dir_;
+  std::size_t maxUpload_;
+  edit::Jobs jobs_;
+  mutable std::mutex mutex_;
+  std::optional<OpenRequest> open_;
+  std::atomic<bool> pending_{false};
+  std::string playing_;
+};
+
+/// `{"error": text}` with `status`.
+[[nodiscard]] transport::HttpResponse jsonError(unsigned status, const std::string& text);
+
+/// Decodes %XX and '+' of a query-string value; nullopt when an escape is malformed.
+[[nodiscard]] std::optional<std::string> percentDecode(std::string_view text);
+
+/// The value of `key` in the target's query string, decoded; nullopt when absent or malformed.
+[[nodiscard]] std::optional<std::string> queryValue(std::string_view target, std::string_view key);
+
+}  // namespace throng::cli
