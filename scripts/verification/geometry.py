@@ -151,16 +151,19 @@ def corner(name, geo, spawn_len):
 # Walking speed ranges on the flat per group (Weidmann 1993, as tabulated for RiMEA 7) [m/s].
 SPEED_GROUPS = [("under-30", 0.58, 1.61, 15), ("30-to-50", 1.41, 1.54, 15), ("over-50", 0.68, 1.41, 15),
                 ("impaired", 0.46, 0.76, 5)]
-DEMOGRAPHICS = {"length": 60.0, "width": 10.0, "spawn_to": 12.0, "measure": (20.0, 50.0)}
+# "wide": the same 50 in one end of a hall 200 m wide whose whole far wall is the exit (a wide goal area:
+# the spot each aims at inside it must lie near straight ahead, not along the strip).
+DEMOGRAPHICS = {"length": 60.0, "width": 10.0, "wide": 200.0, "spawn_to": 12.0, "measure": (20.0, 50.0)}
 
 
-def demographics(name):
+def demographics(name, width=None):
     d = DEMOGRAPHICS
+    hall = d["width"] if width is None else width
     pops = [population(gid, n, {"polygon": rect(0.3, 0.3, d["spawn_to"], d["width"] - 0.3)}, ["end"],
                        {"mean": round((lo + hi) / 2, 3), "sd": round((hi - lo) / 4, 3), "min": lo, "max": hi})
             for gid, lo, hi, n in SPEED_GROUPS]
-    return scenario(name, [rect(0, 0, d["length"], d["width"])],
-                    [exit_point("end", rect(d["length"] - 0.5, 0, d["length"], d["width"]))], pops, 150)
+    return scenario(name, [rect(0, 0, d["length"], hall)],
+                    [exit_point("end", rect(d["length"] - 0.5, 0, d["length"], hall))], pops, 150)
 
 
 # --- RiMEA 8: parameter analysis (desired speed) ------------------------------------------------------

@@ -51,6 +51,8 @@ def scenarios():
         "rimea/05-premovement": G.premovement("RiMEA 5: ten persons, pre-movement 10 ... 100 s"),
         "rimea/06-corner": G.corner("RiMEA 6: 20 persons round a left corner", G.CORNER_SMALL, 6.0),
         "rimea/07-demographics": G.demographics("RiMEA 7: 50 persons in four speed groups"),
+        "rimea/07-demographics-wide": G.demographics("RiMEA 7: the 50 at one end of a 200 m wide exit",
+                                                     G.DEMOGRAPHICS["wide"]),
         "rimea/08-office": G.office_floor("RiMEA 8: office floor, parameter analysis"),
         "rimea/09-hall-open": G.hall("RiMEA 9: 1000 persons, four doors open", ()),
         "rimea/09-hall-closed": G.hall("RiMEA 9: 1000 persons, two doors closed", ("west-south", "west-north")),

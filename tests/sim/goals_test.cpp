@@ -1,14 +1,18 @@
 // Tests for libs/sim/src/goals.hpp: GoalWriter on hand-built state (no World) — a goal's target is
 // drawn inside the point's region and occupies one of its sub-regions, which is released when the
-// agent moves on; pending goal changes are applied in row order.
+// agent moves on; pending goal changes are applied in row order; only an exit limits the target to
+// its near side. And one World run: agents in front of one end of a long exit strip leave through
+// it near straight ahead.
 #include "goals.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <vector>
 
 #include "goal_world.hpp"
+#include "throng/sim/world.hpp"
 
 using namespace throng;
 using namespace throng::sim;
@@ -89,4 +93,65 @@ TEST(Goals, ApplyPendingGoalsAdvancesTheListedRowsAndClearsTheirFlags) {
   EXPECT_TRUE(chunks[0].pendingRows.empty() && chunks[1].pendingRows.empty());
   EXPECT_EQ(w.occupied(0), 1u);
   EXPECT_EQ(w.occupied(1), 1u);
+}
+
+TEST(Goals, OnlyAnExitLimitsTheTargetToItsNearSide) {
+  // 40 agents 20 m in front of the left end of a 200 m strip pick in turn: as an exit, among the
+  // cells at most 5 % farther than the nearest (within ~7 m of straight ahead); as an interest or
+  // action point, over the whole region (Musse et al. §3.1.3), free cells first, so far along it.
+  const auto subs = crowd::divideRegion(crowd::Region::poly(test::rect(0, 20, 200, 21)));
+  const auto farthest = [&](PointKind kind) {
+    std::vector<std::uint32_t> occupancy(subs.size(), 0);
+    core::Rng rng(3, 3, core::RngPurpose::Target);
+    float far = 0.0f;
+    for (int m = 0; m < 40; ++m) {
+      const std::size_t i = crowd::pickSubregion(subs, {1, 0}, occupancy, rng, pickParams(kind));
+      ++occupancy[i];
+      far = std::max(far, subs[i].centre.x);
+    }
+    return far;
+  };
+  EXPECT_LT(farthest(PointKind::Exit), 10.0f);
+  EXPECT_GT(farthest(PointKind::Interest), 60.0f);
+  EXPECT_GT(farthest(PointKind::Action), 60.0f);
+}
+
+TEST(Goals, AgentsInFrontOfOneEndOfALongExitStripLeaveNearStraightAhead) {
+  // A 200 m wide room whose whole far wall is the exit (RiMEA 7's wide exit): 20 agents start in
+  // front of its left end, 7..10 m from it. Each aims at a spot of the strip at most 2 m farther
+  // than the nearest (crowd::PickParams::detourMin), so it crosses the strip within ~8 m of where
+  // it started; the old occupancy-first pick gave each a free 2 m cell, up to ~40 m along.
+  ScenarioDesc d;
+  d.seed = 11;
+  d.walkable = {test::rect(0, 0, 200, 12)};
+  PointDesc exit;
+  exit.id = "exit";
+  exit.kind = PointKind::Exit;
+  exit.polygon = test::rect(0, 11, 200, 12);
+  exit.position = {100, 11.5f};
+  d.points = {exit};
+  PopulationDesc p;
+  p.id = "walkers";
+  p.groups = 20;
+  p.spawn.polygon = test::rect(1, 1, 5, 4);
+  p.goals = {0};
+  d.populations = {p};
+  auto created = World::create(d);
+  ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
+  World& w = *created.value();
+  const core::TaskSystem tasks(1);
+  std::map<std::uint32_t, float> lastX;
+  int exited = 0;
+  while (!w.finished() && w.stats().time < 60.0) {
+    w.step(tasks);
+    const FramePtr f = w.takeFrame();
+    for (const Event& e : f->events) {
+      if (e.kind != EventKind::Exit) continue;
+      ++exited;
+      ASSERT_TRUE(lastX.contains(e.agent));
+      EXPECT_LT(lastX[e.agent], 14.0f) << "agent " << e.agent << " walked along the strip";
+    }
+    for (std::size_t i = 0; i < f->size(); ++i) lastX[f->ids[i]] = f->posX[i];
+  }
+  EXPECT_EQ(exited, 20);
 }

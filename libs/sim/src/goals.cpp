@@ -1,13 +1,14 @@
 // goals — one home for where an agent is going (Musse et al. §3.1: goals are interest and action
 // points visited in order): the active goal list of a group (its own, or the followed group's),
 // the current goal point of an agent, setting and advancing goals, drawing a target inside a goal's
-// region (sub-regions, §3.1.3) and releasing it, Bézier paths to it (§3.2.2), automatic goals
+// region (sub-regions, §3.1.3; an exit's near side, pickParams) and releasing it, Bézier paths to it (§3.2.2), automatic goals
 // (§3.1.2) and the pending goal changes decide hands to the group pass. Serial code (the group pass
 // and spawning) writes goals through GoalWriter (goals.hpp), the points' sub-regions being
 // PointRegions; the parallel phases only read them (currentGoalPoint, stopsAtGoal) through GoalView
 // (phases.hpp), which World::Impl's helpers of the same names use too.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "throng/crowd/bezier_path.hpp"
 #include "throng/crowd/path_reconstruction.hpp"
@@ -54,6 +55,16 @@ void PointRegions::add(const PointDesc& p) {
   occupancy.resize(subregions.size(), 0);
 }
 
+crowd::PickParams pickParams(PointKind kind) {
+  // An exit is left wherever it is reached, so only its near side is worth aiming at: a wide one is
+  // never crossed sideways to an empty spot (crowd::PickParams' detour limit). Interest and action
+  // points are places a group spreads over (Musse et al. §3.1.3): the whole region stays open.
+  if (kind == PointKind::Exit) return {};
+  crowd::PickParams whole;
+  whole.detourMin = std::numeric_limits<float>::infinity();
+  return whole;
+}
+
 void GoalWriter::releaseTarget(std::size_t row) {
   if (agents.targetSub[row] >= 0) {
     --regions.occupancy[static_cast<std::size_t>(agents.targetSub[row])];
@@ -64,7 +75,8 @@ void GoalWriter::releaseTarget(std::size_t row) {
 core::Vec2 GoalWriter::drawTarget(std::size_t row, const PointDesc& point) {
   // Sub-regions (Musse et al. §3.1.3): the target lies in a sub-region of the goal's region picked
   // by proximity and by how many agents already target it, so group members take similar but never
-  // identical paths and spread over the region. Serial (group pass / spawning): occupancy is shared.
+  // identical paths and spread over the region (an exit: over its near side, pickParams).
+  // Serial (group pass / spawning): occupancy is shared.
   core::Rng rng(desc.seed, (static_cast<std::uint64_t>(agents.id[row]) << 20) ^ agents.targetDraws[row]++,
                 core::RngPurpose::Target);
   releaseTarget(row);
@@ -74,7 +86,8 @@ core::Vec2 GoalWriter::drawTarget(std::size_t row, const PointDesc& point) {
   if (last > first) {
     const std::span<const crowd::Subregion> subs(regions.subregions.data() + first, last - first);
     const std::span<const std::uint32_t> occupancy(regions.occupancy.data() + first, last - first);
-    const std::size_t k = crowd::pickSubregion(subs, core::Vec2{agents.posX[row], agents.posY[row]}, occupancy, rng);
+    const std::size_t k = crowd::pickSubregion(subs, core::Vec2{agents.posX[row], agents.posY[row]}, occupancy, rng,
+                                               pickParams(point.kind));
     target = crowd::samplePoint(subs[k], rng);
     agents.targetSub[row] = static_cast<std::int32_t>(first + k);
     ++regions.occupancy[first + k];

@@ -32,6 +32,10 @@ struct PointRegions {
   void add(const PointDesc& p);
 };
 
+/// How a target is picked inside a point of this kind (crowd::pickSubregion): an exit's near side
+/// (the default detour limit), the whole region of an interest or action point.
+[[nodiscard]] crowd::PickParams pickParams(PointKind kind);
+
 /// Writes goals (serial). Built by World::Impl::goalWriter() where goals change; references only.
 struct GoalWriter {
   const ScenarioDesc& desc;   ///< seed, points, populations (wander, bezierPaths, autoNearDistance)
@@ -47,7 +51,7 @@ struct GoalWriter {
 
   [[nodiscard]] GoalView view() const { return {groups, goalLists, agents.group, agents.goalCursor}; }
   /// Chooses a target inside the point's region (on the navmesh) for agent `row`: in a sub-region
-  /// picked by proximity and occupancy, which it then occupies (the old one is released).
+  /// picked by proximity and occupancy (pickParams), which it then occupies (the old one is released).
   core::Vec2 drawTarget(std::size_t row, const PointDesc& point);
   /// Releases the sub-region `row` was targeting (its occupancy drops).
   void releaseTarget(std::size_t row);
