@@ -1,8 +1,9 @@
 // Tests for libs/sim/src/goals.hpp: GoalWriter on hand-built state (no World) — a goal's target is
 // drawn inside the point's region and occupies one of its sub-regions, which is released when the
 // agent moves on; pending goal changes are applied in row order; only an exit limits the target to
-// its near side. And one World run: agents in front of one end of a long exit strip leave through
-// it near straight ahead.
+// its near side. And World runs: agents in front of one end of a long exit strip leave through
+// it near straight ahead; waypoint choices split a population by shares or least targeted, per
+// group, the same for any thread count.
 #include "goals.hpp"
 
 #include <gtest/gtest.h>
@@ -154,4 +155,88 @@ TEST(Goals, AgentsInFrontOfOneEndOfALongExitStripLeaveNearStraightAhead) {
     for (std::size_t i = 0; i < f->size(); ++i) lastX[f->ids[i]] = f->posX[i];
   }
   EXPECT_EQ(exited, 20);
+}
+
+namespace {
+
+/// A 30 × 20 m hall: three interest stands (discs at x = 15) and the east wall as exit; `groups`
+/// groups of `size` pick a stand by `choice` (options: the stands, slot 0), then leave.
+ScenarioDesc standsHall(std::uint32_t groups, std::uint32_t size, GoalSplit split, std::vector<float> shares) {
+  ScenarioDesc d;
+  d.seed = 3;
+  d.walkable = {test::rect(0, 0, 30, 20)};
+  for (const float y : {4.0f, 10.0f, 16.0f}) {
+    PointDesc stand;
+    stand.id = "stand" + std::to_string(d.points.size());
+    stand.position = {15, y};
+    stand.radius = 1.5f;
+    d.points.push_back(stand);
+  }
+  PointDesc exit;
+  exit.id = "exit";
+  exit.kind = PointKind::Exit;
+  exit.polygon = test::rect(29.5f, 0, 30, 20);
+  exit.position = {29.75f, 10};
+  d.points.push_back(exit);
+  PopulationDesc p;
+  p.id = "visitors";
+  p.groups = groups;
+  p.sizeMin = p.sizeMax = size;
+  p.spawn.polygon = test::rect(0.5f, 0.5f, 6, 19.5f);
+  p.goals = {0, 3};
+  GoalChoiceDesc c;
+  c.options = {0, 1, 2};
+  c.split = split;
+  c.shares = std::move(shares);
+  p.goalChoices = {c};
+  d.populations = {p};
+  return d;
+}
+
+/// Runs `d` on `threads` threads until 2 s have passed; per agent (stable id), the stand it heads for.
+std::map<std::uint32_t, std::uint32_t> standOfEachAgent(const ScenarioDesc& d, unsigned threads) {
+  auto created = World::create(d);
+  EXPECT_TRUE(created.ok()) << core::formatAll(created.errors());
+  World& w = *created.value();
+  const core::TaskSystem tasks(threads);
+  while (w.stats().time < 2.0) {
+    w.step(tasks);
+    (void)w.takeFrame();
+  }
+  std::map<std::uint32_t, std::uint32_t> stand;
+  for (std::uint32_t id = 0; id < w.stats().spawned; ++id) {
+    if (const auto info = w.agentInfo(id)) stand[id] = info->goalPoint;
+  }
+  return stand;
+}
+
+}  // namespace
+
+TEST(Goals, ASharesSplitSendsGroupsByTheShares) {
+  // 120 groups, shares 2 : 1 : 1 — about 60, 30 and 30 (binomial sd ≈ 5.5 and 4.7).
+  const auto stand = standOfEachAgent(standsHall(120, 1, GoalSplit::Shares, {2, 1, 1}), 1);
+  ASSERT_EQ(stand.size(), 120u);
+  std::map<std::uint32_t, int> count;
+  for (const auto& [id, point] : stand) ++count[point];
+  EXPECT_NEAR(count[0], 60, 15);
+  EXPECT_NEAR(count[1], 30, 12);
+  EXPECT_NEAR(count[2], 30, 12);
+}
+
+TEST(Goals, ALeastTargetedSplitBalancesTheStandsAndKeepsGroupsTogether) {
+  // 30 pairs: each pair takes the stand the fewest head for when it appears, so 20 agents each,
+  // and both members of a pair the same stand.
+  const auto stand = standOfEachAgent(standsHall(30, 2, GoalSplit::LeastTargeted, {}), 1);
+  ASSERT_EQ(stand.size(), 60u);
+  std::map<std::uint32_t, int> count;
+  for (const auto& [id, point] : stand) ++count[point];
+  EXPECT_EQ(count[0], 20);
+  EXPECT_EQ(count[1], 20);
+  EXPECT_EQ(count[2], 20);
+  for (std::uint32_t id = 0; id < 60; id += 2) EXPECT_EQ(stand.at(id), stand.at(id + 1)) << "pair " << id / 2;
+}
+
+TEST(Goals, WaypointChoicesAreTheSameForAnyThreadCount) {
+  const ScenarioDesc d = standsHall(200, 1, GoalSplit::Shares, {1, 3, 1});
+  EXPECT_EQ(standOfEachAgent(d, 1), standOfEachAgent(d, 4));
 }
