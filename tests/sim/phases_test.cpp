@@ -225,6 +225,56 @@ TEST(Phases, DecideExitsActsAndChecksProgressRowByRow) {
   EXPECT_TRUE(chunks[0].pendingRows.empty());
 }
 
+TEST(Phases, DecideLetsAWalkerHeldUpNextToAnActionPointWatchFromThere) {
+  // An action point of radius 0.5 m at (10, 8) whose spots are taken: row 0 is held up (stuck for
+  // 2 s) 1.2 m from its centre, within the point's area + 1 m, and starts the action where it
+  // stands; row 1 is as close but walks freely (no audience yet); row 2 is held up 2 m away, too far.
+  ScenarioDesc desc;
+  desc.dt = 0.05f;
+  desc.populations.emplace_back();
+  PointDesc stand;
+  stand.kind = PointKind::Action;
+  stand.position = {10, 8};
+  stand.radius = 0.5f;
+  stand.stop = true;
+  stand.actionDuration = 2.0f;
+  stand.orientation = {0, 1};
+  desc.points = {stand};
+  GroupTable groups;
+  groups.add(GroupState{});
+  const std::vector<std::vector<std::uint32_t>> goalLists{{0}};
+  AgentStore a;
+  const float xs[] = {10.0f, 11.2f, 10.0f}, ys[] = {6.8f, 8.0f, 6.0f};
+  for (std::uint32_t r = 0; r < 3; ++r) {
+    a.addRow();
+    a.id[r] = r;
+    a.posX[r] = xs[r];
+    a.posY[r] = ys[r];
+    a.targetX[r] = 10.2f;  // a spot on the far side, taken by people standing there
+    a.targetY[r] = 8.2f;
+    a.radius[r] = 0.2f;
+    a.speed[r] = 1.2f;
+    a.velY[r] = r == 1 ? 1.2f : 0.0f;
+    a.stuckTime[r] = r == 1 ? 0.0f : 2.0f;
+  }
+  auto mesh = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)}, {}, nav::NavMeshConfig{});
+  ASSERT_TRUE(mesh.ok());
+  std::vector<WorkerScratch> workers(1);
+  workers[0].query = std::make_unique<nav::NavQuery>(mesh.value());
+  const CommonGroundState commonGround;
+  std::vector<ChunkOutput> chunks(1);
+  core::TaskSystem tasks(1);
+  const GoalView goals{groups, goalLists, a.group, a.goalCursor};
+  decide(DecideInput{a, desc, 1, groups, goals, commonGround, workers}, decideOutput(a, chunks), tasks);
+  EXPECT_EQ(a.goalState[0], GoalState::Acting) << "held up next to the area: watches from there";
+  EXPECT_EQ(a.mode[0], AgentMode::Acting);
+  EXPECT_EQ(a.goalState[1], GoalState::Seeking) << "walking freely: goes on to its spot";
+  EXPECT_EQ(a.goalState[2], GoalState::Seeking) << "held up 2 m away: too far to watch";
+  ASSERT_EQ(chunks[0].events.size(), 1u);
+  EXPECT_EQ(chunks[0].events[0].kind, EventKind::ActionStart);
+  EXPECT_EQ(chunks[0].events[0].agent, 0u);
+}
+
 TEST(Phases, FormationPullsTwoWalkersOfAFlockingGroupAbreast) {
   // A flocking pair walking east one behind the other (0.1 m apart): the group's heading is east,
   // its centroid between them, and each gets a correction toward its own side (spacing 0.75 m).
@@ -294,6 +344,7 @@ TEST(Phases, SteerWalksToTheTargetSlowsBeforeAStopAndLeavesOtherRowsAlone) {
   ScenarioDesc desc;
   desc.populations.resize(2);
   desc.populations[0].wander = true;
+  for (auto& pop : desc.populations) pop.model = ModelDesc(ModelKind::Orca);  // ORCA for all
   AgentStore a;
   const std::vector<float> xs{5, 5, 5}, ys{2, 5, 8}, tx{10, 5.2f, 5}, ty{2, 5, 8};
   for (std::size_t r = 0; r < 3; ++r) {

@@ -550,8 +550,8 @@ class Validator {
     if (distance <= point.radius) return;
     error("/points/" + std::to_string(i - firstOwnPoint_) + "/position",
           kindName(point) + " \"" + core::printable(point.id, 80) + "\" cannot be reached: " + at3(point.position, point.height) +
-              " is off the walkable surface and its radius " + num(point.radius) + " m reaches no ground where agents (radius " +
-              num(agentRadius) + " m) can stand; the nearest walkable point is " + centimetres(snapped.p) + " at height " +
+              " is off the walkable surface and its radius " + num(point.radius) + " m reaches no ground where agents can stand (their centres keep " +
+              num(agentRadius) + " m from walls); the nearest walkable point is " + centimetres(snapped.p) + " at height " +
               num(std::round(snapped.height * 100.0f) / 100.0f) + " m, " + num(std::round(distance * 100.0f) / 100.0f) + " m away",
           "a point whose disc reaches a floor, stair or ramp of /terrain/walkable",
           "move it to " + centimetres(snapped.p) + " or enlarge \"radius\" to at least " +
@@ -637,8 +637,8 @@ class Validator {
     }
     error(ptr + "/position",
           kind + " \"" + core::printable(point.id, 80) + "\" cannot be reached: " + positionText(point.position) +
-              " and its radius " + num(point.radius) + " m reaches no ground where agents (radius " + num(agentRadius) +
-              " m) can stand" + nearestText(near, point.position),
+              " and its radius " + num(point.radius) + " m reaches no ground where agents can stand (their centres keep " + num(agentRadius) +
+              " m from walls)" + nearestText(near, point.position),
           "a point whose disc reaches walkable ground clear of /obstacles", hint);
   }
 

@@ -1,5 +1,6 @@
 // decide — the goal state machine of every agent (parallel, each agent writes only its own row and
-// its chunk's output): reaching a goal's region, stopping at action points, leaving through
+// its chunk's output): reaching a goal's region, stopping at action points (or next to one, behind
+// the people already there: inAudience), leaving through
 // exits, asking the group pass for the next goal (goalPending) and `plan` for a path (needPath),
 // noticing agents that are stuck, the end of an agent's pre-movement time, the Common Ground goal
 // generator and the sociological model's meetings. Reads DecideInput (positions, targets, groups, goals, neighbours, …); writes
@@ -17,6 +18,13 @@ namespace {
 
 /// Distance at which an agent counts as arrived at an action point's (or wander) target [m].
 constexpr float kArriveDistance = 0.3f;
+/// An audience: a walker held up this long [s] (stuck) or walking slower than a quarter of its
+/// desired speed within kAudienceMargin [m] of an action point's area (people standing there
+/// between it and its spot) starts the action where it stands, as people at
+/// the back of a crowd round a fountain or a street performer watch from there (Still 2000, "Crowd
+/// dynamics", ch. 6, crowds round attractions). Common Ground's script walks arrive the same way.
+constexpr float kAudienceWait = 1.5f;
+constexpr float kAudienceMargin = 1.0f;
 /// A guided (or following) agent that made no progress over a check period re-plans only while it is
 /// farther than this from its target [m].
 constexpr float kGuidedReplanDistance = 1.0f;
@@ -35,6 +43,15 @@ struct RowDecision {
   [[nodiscard]] float targetDistanceSq() const {
     const float dx = out.targetX[row] - in.agents.posX[row], dy = out.targetY[row] - in.agents.posY[row];
     return dx * dx + dy * dy;
+  }
+  /// Held up next to an action point's area (kAudienceWait, kAudienceMargin).
+  [[nodiscard]] bool inAudience(const PointDesc& point) const {
+    const float vx = in.agents.velX[row], vy = in.agents.velY[row];
+    const float slow = 0.25f * in.agents.speed[row];
+    if (in.agents.stuckTime[row] < kAudienceWait && vx * vx + vy * vy > slow * slow) return false;
+    const float dx = point.position.x - in.agents.posX[row], dy = point.position.y - in.agents.posY[row];
+    const float reach = point.radius + kAudienceMargin;
+    return dx * dx + dy * dy < reach * reach;
   }
   void wait() {
     out.goalState[row] = GoalState::WaitingForGroup;
@@ -146,7 +163,8 @@ void RowDecision::seekGoal(const GroupState& g) {
   const PointDesc& point = in.desc.points[pointIndex];
   bool arrived;
   if (point.kind == PointKind::Action && point.stop) {
-    arrived = targetDistanceSq() < kArriveDistance * kArriveDistance && in.agents.sameLevel(row, targetHeight());
+    arrived = (targetDistanceSq() < kArriveDistance * kArriveDistance || inAudience(point)) &&
+              in.agents.sameLevel(row, targetHeight());
   } else {
     arrived = insideRegion(point, in.agents.posX[row], in.agents.posY[row]) && in.agents.sameLevel(row, point.height);
   }

@@ -5,7 +5,7 @@
 // JSON Schema (schema_form.js). A value out of its schema limits is shown under its field and not
 // written; every accepted change is one undoable edit (`app.commit`).
 import {
-  coerce, fieldOf, modelNames, modelParameters, objectFields, readModel, variantFields, variantNames, writeModel,
+  DEFAULT_MODEL, coerce, fieldOf, modelNames, modelParameters, objectFields, readModel, variantFields, variantNames, writeModel,
 } from './schema_form.js';
 import { polygonArea, polygonProblem, polylineLength } from './geometry.js';
 import { isClosed, renamePoint, verticesOf } from './doc.js';
@@ -224,7 +224,7 @@ export class Panel {
     const names = modelNames(this.schema);
     const write = (n, p) => {
       const value = writeModel(n, p);
-      this.set(pop, 'model', value === 'orca' && pop.model === undefined ? undefined : value);
+      this.set(pop, 'model', value === DEFAULT_MODEL && pop.model === undefined ? undefined : value);
     };
     this.root.append(this.input({ key: 'model', type: 'enum', options: names, description: 'pedestrian model (docs/scenario-format.md, Models)' },
       name, (v) => write(v, {})));

@@ -57,14 +57,17 @@ export function modelParameters(schema, name) {
   return variantFields(schema, schema.$defs?.model, 'name', name);
 }
 
-/** The model of a population as {name, params}: "avm" or {"name": "avm", ...}; orca by default. */
+/** The model a population walks with when it names none (the engine default, docs/scenario-format.md). */
+export const DEFAULT_MODEL = 'avm';
+
+/** The model of a population as {name, params}: "orca" or {"name": "orca", ...}; avm (the engine's default) when absent. */
 export function readModel(value) {
   if (typeof value === 'string') return { name: value, params: {} };
   if (value && typeof value === 'object') {
     const { name, ...params } = value;
-    return { name: name || 'orca', params };
+    return { name: name || DEFAULT_MODEL, params };
   }
-  return { name: 'orca', params: {} };
+  return { name: DEFAULT_MODEL, params: {} };
 }
 
 /** The JSON for a model: the bare name without parameters, else the object. */

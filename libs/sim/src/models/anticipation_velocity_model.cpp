@@ -205,6 +205,7 @@ class AnticipationVelocityModel final : public OperationalModel {
       }
       const float cosPhi = core::dot(e0, d) / dist;
       if (cosPhi <= 0.0f) continue;  // behind: not seen
+      if (a.group[o] == a.group[row]) continue;  // one's own group keeps its formation (steer), no swerving
       // Closest approach within the anticipation time, both walking on.
       const core::Vec2 w = core::Vec2{a.velX[o], a.velY[o]} - u;
       const float ww = core::lengthSq(w);

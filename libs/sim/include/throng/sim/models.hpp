@@ -61,7 +61,7 @@ struct ModelInfo {
 /// A population's model and its parameter values (the model's defaults unless the scenario gives
 /// others). The default is ORCA with its defaults: the model of every scenario that names none.
 struct ModelDesc {
-  ModelDesc() : ModelDesc(ModelKind::Orca) {}
+  ModelDesc() : ModelDesc(ModelKind::AnticipationVelocity) {}
   explicit ModelDesc(ModelKind k);
 
   ModelKind kind;
