@@ -196,7 +196,7 @@ void GoalWriter::openGoalChoices(std::uint32_t gid) {
   OpenChoices::List& list = choices.lists[g.goalList];
   list.group = gid;
   list.choiceAt.assign(goalLists[g.goalList].size(), 0);
-  for (std::size_t k = 0; k < pop.goalChoices.size(); ++k) list.choiceAt[pop.goalChoices[k].slot] = static_cast<std::uint16_t>(k + 1);
+  for (std::size_t k = 0; k < pop.goalChoices.size(); ++k) list.choiceAt[pop.goalChoices[k].slot] = static_cast<std::uint32_t>(k + 1);
 }
 
 void GoalWriter::chooseWaypoint(std::size_t row, std::uint32_t cursor) {

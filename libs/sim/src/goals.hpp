@@ -38,7 +38,7 @@ struct PointRegions {
 struct OpenChoices {
   struct List {
     std::uint32_t group = 0;
-    std::vector<std::uint16_t> choiceAt;
+    std::vector<std::uint32_t> choiceAt;
   };
   std::vector<List> lists;  ///< indexed by goal list
 };
