@@ -75,12 +75,13 @@ class ScenarioBuilder:
 
     def population(self, id, goals, spawn, groups=1, size=1, speed=None, radius=None, start=None, model=None, **extra):
         """Who spawns where and walks to what. `spawn` is a polygon (or {"point": id} / {"position": [x, y]}),
-        `goals` a list of point ids, `speed` a number [m/s] or {"mean": m, "sd": s}, `model` "orca", "avm",
+        `goals` a list of point ids and waypoint choices ({"choose": [ids], "split": ..., "shares": [...]}),
+        `speed` a number [m/s] or {"mean": m, "sd": s}, `model` "orca", "avm",
         "cfsm" or {"name": ..., parameter: value}; other keys of docs/scenario-format.md pass through."""
         if isinstance(goals, str):
             goals = [goals]
         pop = {"id": str(id), "groups": int(groups), "size": size if isinstance(size, (list, tuple)) else int(size),
-               "goals": [str(g) for g in goals]}
+               "goals": [g if isinstance(g, dict) else str(g) for g in goals]}
         pop["spawn"] = spawn if isinstance(spawn, dict) else {"polygon": _points(spawn, f"population '{id}' spawn")}
         for key, value in (("speed", speed), ("radius", radius), ("start", start), ("model", model)):
             if value is not None:

@@ -97,18 +97,53 @@ def stairs(name, up):
                     [population("walker", 1, {"position": start[0]}, ["end"], FLAT_SPEED)], 80, terrain=terrain)
 
 
-STAIR_JAM = {"width": 10.0, "room": 10.0, "agents": 200}
+# NIST 2.4: one sloped quad 10 m long along its slope between two 5 m landings, 2 m wide. A gentle
+# ramp (1:12, the steepest most building codes allow) is level ground to throng; a steep one (20°,
+# above nav::NavMeshConfig::stairSlopeDeg = 15°) is walked at the population's "stairs" factors.
+RAMP = {"length": 10.0, "width": 2.0, "foot_x": 5.0, "landing": 5.0, "speed": 1.0,
+        "gentle": math.degrees(math.atan(1 / 12)), "steep": 20.0, "steep_factors": {"up": 0.8, "down": 0.9}}
+
+
+def ramp_top_x(slope_deg):
+    return RAMP["foot_x"] + RAMP["length"] * math.cos(math.radians(slope_deg))
+
+
+def ramp(name, up, slope_deg, factors=None):
+    r = RAMP
+    w, foot, top = r["width"], r["foot_x"], round(ramp_top_x(slope_deg), 6)
+    h = round(r["length"] * math.sin(math.radians(slope_deg)), 6)
+    end = round(top + r["landing"], 6)
+    verts, tris = [], []
+    _quad(verts, tris, [[0, 0, 0], [foot, 0, 0], [foot, w, 0], [0, w, 0]])
+    _quad(verts, tris, [[foot, 0, 0], [top, 0, h], [top, w, h], [foot, w, 0]])
+    _quad(verts, tris, [[top, 0, h], [end, 0, h], [end, w, h], [top, w, h]])
+    low = ([0.5, w / 2, 0.0], rect(0, 0, 0.6, w), 0.0)
+    high = ([end - 0.5, w / 2, h], rect(end - 0.6, 0, end, w), h)
+    start, goal = (low, high) if up else (high, low)
+    extra = {} if factors is None else {"stairs": factors}
+    return scenario(name, [], [exit_point("end", goal[1], height=goal[2])],
+                    [population("walker", 1, {"position": start[0]}, ["end"], r["speed"], **extra)], 80,
+                    terrain={"vertices": verts, "walkable": tris, "obstacles": []})
+
+
+# RiMEA 13: a 10 x 10 m room, its crowd entering a 2 m corridor (the bottleneck) that ends at the foot of
+# a flight up as wide as itself; the exit lies on the upper landing.
+STAIR_JAM = {"width": 2.0, "corridor": 12.0, "room": 10.0, "agents": 250}
 
 
 def stair_jam(name):
-    """RiMEA 13: a 10 x 10 m room whose whole east side is the foot of a 10 m wide flight up."""
-    w = STAIR_JAM["width"]
-    terrain, top_end = stair_terrain(w, lower_from=STAIR["foot_x"] - STAIR_JAM["room"])
+    """RiMEA 13: room -> 12 m corridor -> 2 m wide flight up (the steps of test 2) -> exit."""
+    j = STAIR_JAM
+    w, foot = j["width"], STAIR["foot_x"]
+    terrain, top_end = stair_terrain(w, lower_from=foot - j["corridor"])
+    x1 = foot - j["corridor"]
+    x0, yc = x1 - j["room"], w / 2
+    _quad(terrain["vertices"], terrain["walkable"],
+          [[x0, yc - j["room"] / 2, 0], [x1, yc - j["room"] / 2, 0], [x1, yc + j["room"] / 2, 0], [x0, yc + j["room"] / 2, 0]])
     h = round(stair_height(), 6)
-    x0 = STAIR["foot_x"] - STAIR_JAM["room"]
+    spawn = rect(x0 + 0.3, yc - j["room"] / 2 + 0.3, x1 - 0.5, yc + j["room"] / 2 - 0.3)
     return scenario(name, [], [exit_point("up", rect(top_end - 0.6, 0, top_end, w), height=h)],
-                    [population("crowd", STAIR_JAM["agents"], {"polygon": rect(x0 + 0.3, 0.3, x0 + 6.0, w - 0.3)},
-                                ["up"], SPEED)], 200, terrain=terrain)
+                    [population("crowd", j["agents"], {"polygon": spawn}, ["up"], SPEED)], 300, terrain=terrain)
 
 
 # --- RiMEA 5 / NIST 1.1: pre-movement times ---------------------------------------------------------
@@ -151,16 +186,19 @@ def corner(name, geo, spawn_len):
 # Walking speed ranges on the flat per group (Weidmann 1993, as tabulated for RiMEA 7) [m/s].
 SPEED_GROUPS = [("under-30", 0.58, 1.61, 15), ("30-to-50", 1.41, 1.54, 15), ("over-50", 0.68, 1.41, 15),
                 ("impaired", 0.46, 0.76, 5)]
-DEMOGRAPHICS = {"length": 60.0, "width": 10.0, "spawn_to": 12.0, "measure": (20.0, 50.0)}
+# "wide": the same 50 in one end of a hall 200 m wide whose whole far wall is the exit (a wide goal area:
+# the spot each aims at inside it must lie near straight ahead, not along the strip).
+DEMOGRAPHICS = {"length": 60.0, "width": 10.0, "wide": 200.0, "spawn_to": 12.0, "measure": (20.0, 50.0)}
 
 
-def demographics(name):
+def demographics(name, width=None):
     d = DEMOGRAPHICS
+    hall = d["width"] if width is None else width
     pops = [population(gid, n, {"polygon": rect(0.3, 0.3, d["spawn_to"], d["width"] - 0.3)}, ["end"],
                        {"mean": round((lo + hi) / 2, 3), "sd": round((hi - lo) / 4, 3), "min": lo, "max": hi})
             for gid, lo, hi, n in SPEED_GROUPS]
-    return scenario(name, [rect(0, 0, d["length"], d["width"])],
-                    [exit_point("end", rect(d["length"] - 0.5, 0, d["length"], d["width"]))], pops, 150)
+    return scenario(name, [rect(0, 0, d["length"], hall)],
+                    [exit_point("end", rect(d["length"] - 0.5, 0, d["length"], hall))], pops, 150)
 
 
 # --- RiMEA 8: parameter analysis (desired speed) ------------------------------------------------------

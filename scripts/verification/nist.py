@@ -27,6 +27,29 @@ def measure_corridor_1ms(results, ctx):
     return R.measure_corridor(results, ctx, 39.0, 41.0)
 
 
+RAMP_RUNS = [("gentle", "up"), ("gentle", "down"), ("steep", "up"), ("steep", "down")]
+RAMP_TOL = 0.05   # m/s around the speed set for the ramp
+
+
+def measure_ramps(results, ctx):
+    """Speed along the slope on each ramp (its 10 m between the foot and the top, timed by the first
+    crossing of each end), against the speed set for it: the desired 1 m/s on the gentle ramp (level
+    ground to throng), the population's "stairs" factor of it on the steep one."""
+    r = G.RAMP
+    checks, rows = [], []
+    for slope, way in RAMP_RUNS:
+        traj = M.load_recording(results[f"{slope}-{way}"]["recording"])
+        foot, top = r["foot_x"], G.ramp_top_x(r[slope])
+        a, b, direction = (foot, top, +1) if way == "up" else (top, foot, -1)
+        t0, t1 = R._first_cross(traj, a, direction), R._first_cross(traj, b, direction)
+        v = None if t0 is None or t1 is None or t1 <= t0 else r["length"] / (t1 - t0)
+        want = r["speed"] * (r["steep_factors"][way] if slope == "steep" else 1.0)
+        rows.append({"ramp": slope, "way": way, "speed": v, "set": want})
+        checks.append(band(f"{slope} ramp ({r[slope]:.1f}°) {way}: {want:.2f} ± {RAMP_TOL} m/s along the slope", v,
+                           want - RAMP_TOL, want + RAMP_TOL, "m/s"))
+    return checks, {"rows": rows}
+
+
 def measure_groups(results, ctx):
     res = results["run"]
     traj = M.load_recording(res["recording"])
@@ -125,13 +148,16 @@ def tests():
         n("2.3", "Speed on stairs (down)", "the stair speed is kept", "2.3-stairs-down",
           [Run("run", "rimea/03-stairs-down.json")], R.measure_stairs(False)),
         n("2.4", "Speed on ramps", "the ramp speed is kept", "2.4-ramps",
-          xfail="not measured: slopes do not change the walking speed yet (issue 18 tactical layer)"),
+          [Run(f"{slope}-{way}", f"nist/2.4-ramp-{slope}-{way}.json") for slope, way in RAMP_RUNS], measure_ramps),
         n("2.5", "Reduced visibility", "speed falls in smoke", "2.5-visibility",
-          xfail="not measured: no reduced-visibility speed (issue 18 lists it; nothing models smoke yet)"),
+          xfail="not measured: throng has no smoke: no extinction coefficient or visibility field, and walking speed "
+                "does not depend on either (a user could only lower a population's speed by hand, which tests nothing)"),
         n("2.6", "Occupant incapacitation", "incapacitated persons stop", "2.6-incapacitation",
-          xfail="not measured: throng has no toxic-effluent or incapacitation model (out of scope so far)"),
+          xfail="not measured: throng has no fire products and no toxicity dose (FED): nobody can be incapacitated, "
+                "only removed at a time the user gives (the timeline), which is not what the test checks"),
         n("2.7", "Elevators", "elevator use and its timing", "2.7-elevators",
-          xfail="not measured: throng has no elevators"),
+          xfail="not measured: throng has no elevators: floors are joined only by walkable stairs and ramps "
+                "(no cars, capacities, call or travel times)"),
         n("2.8", "Horizontal counter-flow", "travel time grows with the counter-flow", "2.8-counterflow", counter_runs,
           R.measure_counter, plot=P.counter),
         n("2.9", "Group behaviour", "group members walk together", "2.9-groups", [Run("run", "nist/2.9-groups.json")],

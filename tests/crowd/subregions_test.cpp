@@ -84,25 +84,43 @@ RC_GTEST_PROP(Subregions, PartitionTheRegion, (std::uint64_t seed)) {
   }
 }
 
-// Members of a group assigned in turn, occupancy updated after each, never share a sub-region
-// while a free one exists; once all are taken, everyone still gets one.
-RC_GTEST_PROP(Subregions, GroupMembersNeverShareWhileFreeOnesExist, (std::uint64_t seed)) {
+/// The sub-regions pickSubregion may choose from `from`: those whose centre is at most
+/// max(detourMin, detourFraction · nearest) farther than the nearest centre.
+std::vector<std::size_t> candidates(const std::vector<crowd::Subregion>& subs, Vec2 from,
+                                    const crowd::PickParams& params) {
+  float nearest = 1e30f;
+  for (const auto& s : subs) nearest = std::min(nearest, core::distance(s.centre, from));
+  const float reach = nearest + std::max(params.detourMin, params.detourFraction * nearest);
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < subs.size(); ++i) {
+    if (core::distance(subs[i].centre, from) <= reach) out.push_back(i);
+  }
+  return out;
+}
+
+// Members of a group assigned in turn, occupancy updated after each, take only candidates (the
+// near side of the region) and never share one while a free candidate exists; once all are taken,
+// everyone still gets one.
+RC_GTEST_PROP(Subregions, GroupMembersNeverShareWhileFreeCandidatesExist, (std::uint64_t seed)) {
   core::Rng rng(seed, 0, core::RngPurpose::Bench);
   const auto region = randomRegion(rng);
   const auto subs = crowd::divideRegion(region);
   RC_PRE(!subs.empty());
   const Vec2 from{float(rng.uniform(-80, 80)), float(rng.uniform(-80, 80))};
+  const crowd::PickParams params;
+  const std::vector<std::size_t> near = candidates(subs, from, params);
+  RC_ASSERT(!near.empty());
   std::vector<std::uint32_t> occupancy(subs.size(), 0);
-  const std::size_t members = subs.size() + rng.uniformInt(0, 5);
+  const std::size_t members = near.size() + rng.uniformInt(0, 5);
   std::set<std::size_t> taken;
   for (std::size_t m = 0; m < members; ++m) {
-    const std::size_t i = crowd::pickSubregion(subs, from, occupancy, rng);
-    RC_ASSERT(i < subs.size());
-    if (m < subs.size()) RC_ASSERT(occupancy[i] == 0u);
+    const std::size_t i = crowd::pickSubregion(subs, from, occupancy, rng, params);
+    RC_ASSERT(std::find(near.begin(), near.end(), i) != near.end());
+    if (m < near.size()) RC_ASSERT(occupancy[i] == 0u);
     ++occupancy[i];
     taken.insert(i);
   }
-  RC_ASSERT(taken.size() == subs.size());
+  RC_ASSERT(taken.size() == near.size());
 }
 
 TEST(Subregions, FreeSubregionsAreTakenNearestFirstWithoutJitter) {
@@ -121,6 +139,34 @@ TEST(Subregions, FreeSubregionsAreTakenNearestFirstWithoutJitter) {
   const std::size_t second = crowd::pickSubregion(subs, from, occupancy, rng, params);
   EXPECT_NE(second, nearest);
   EXPECT_GT(subs[second].centre.x, 0.0f) << "the next pick is still on the near side";
+}
+
+TEST(Subregions, AFarFreeSubregionNeverBeatsANearOccupiedOne) {
+  // A 200 m × 0.5 m exit strip seen from 50 m in front of its left end (RiMEA 7's wide exit): 50
+  // agents picking in turn stay where the walk is at most 5 % longer than straight ahead, about
+  // 16 m along the strip (the old density-first rule took every free 2 m cell first, up to ~100 m).
+  const auto subs = crowd::divideRegion(crowd::Region::poly(crowd::testing::rect(0, 50, 200, 50.5f)));
+  std::vector<std::uint32_t> occupancy(subs.size(), 0);
+  core::Rng rng(5, 5, core::RngPurpose::Target);
+  const Vec2 from{2, 0};
+  float farthest = 0.0f;
+  for (int m = 0; m < 50; ++m) {
+    const std::size_t i = crowd::pickSubregion(subs, from, occupancy, rng);
+    ++occupancy[i];
+    farthest = std::max(farthest, std::abs(subs[i].centre.x - from.x));
+  }
+  EXPECT_LE(farthest, 17.0f) << "along the strip";
+  EXPECT_GE(farthest, 10.0f) << "the near side still spreads the 50";
+}
+
+TEST(Subregions, AGoalSmallAgainstItsDistanceIsOpenWhole) {
+  // 10 m exit strip 24 m away (RiMEA 16's corridor-wide exit): every sub-region is a candidate, so
+  // twice as many agents as sub-regions fill each one twice, the far corners too.
+  const auto subs = crowd::divideRegion(crowd::Region::poly(crowd::testing::rect(24, 0, 24.5f, 10)));
+  std::vector<std::uint32_t> occupancy(subs.size(), 0);
+  core::Rng rng(6, 6, core::RngPurpose::Target);
+  for (std::size_t m = 0; m < 2 * subs.size(); ++m) ++occupancy[crowd::pickSubregion(subs, {0, 5}, occupancy, rng)];
+  for (const std::uint32_t o : occupancy) EXPECT_EQ(o, 2u);
 }
 
 TEST(Subregions, DeterministicForAGivenSeed) {

@@ -76,6 +76,18 @@ def test_builder_builds_a_valid_scenario():
     assert s.models == ["avm"]
 
 
+def test_builder_passes_waypoint_choices_through():
+    choice = {"choose": ["a", "b"], "split": "leastTargeted"}
+    b = (throng.ScenarioBuilder("stands", seed=2, duration=20)
+         .walkable([(0, 0), (12, 0), (12, 6), (0, 6)])
+         .interest("a", position=(6, 1.5), radius=1)
+         .interest("b", position=(6, 4.5), radius=1)
+         .exit("out", polygon=[(11.5, 0), (12, 0), (12, 6), (11.5, 6)])
+         .population("p", goals=[choice, "out"], spawn=[(0.5, 0.5), (3, 0.5), (3, 5.5), (0.5, 5.5)], groups=4))
+    assert b.to_dict()["populations"][0]["goals"] == [choice, "out"]
+    assert throng.scenario(b).points == ["a", "b", "out"]
+
+
 def test_builder_refuses_bad_coordinates():
     with pytest.raises(ValueError):
         throng.ScenarioBuilder().walkable([(0, 0), (1, math.inf), (1, 1)])

@@ -16,6 +16,7 @@ import numpy as np  # noqa: E402
 
 from validation import measures as M  # noqa: E402
 from verification import core as C  # noqa: E402
+from verification import rimea as R  # noqa: E402
 
 FAILURES = []
 
@@ -68,6 +69,14 @@ def test_motion_measures():
     expect(abs(spread["median"] - 0.4) < 1e-9 and spread["samples"] == 20, f"group_spread {spread}")
 
 
+def test_sideways_detours():
+    # Towards a strip at x = 10: agent 1 walks straight ahead from (2, 3); agent 2 from (4, 0) ends
+    # 8 m along it, a straight walk of 10 m for 6 m ahead (+2/3).
+    rows = [(1, 0, 2.0, 3.0), (1, 1, 6.0, 3.0), (1, 2, 10.0, 3.0), (2, 0, 4.0, 0.0), (2, 1, 10.0, 8.0)]
+    side, excess = R.sideways_detours(M.Trajectories(rows, 1.0), 10.0)
+    expect(np.allclose(side, [0.0, 8.0]) and np.allclose(excess, [0.0, 4.0 / 6.0]), f"sideways_detours {side} {excess}")
+
+
 def test_committed_scenarios():
     res = subprocess.run([sys.executable, os.path.join(SCRIPTS, "verification", "make_scenarios.py"), "--check"],
                          capture_output=True, text=True)
@@ -78,6 +87,7 @@ def main():
     test_status()
     test_geometry_measures()
     test_motion_measures()
+    test_sideways_detours()
     test_committed_scenarios()
     for f in FAILURES:
         print("verification_test: FAIL:", f)

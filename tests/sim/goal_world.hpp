@@ -21,6 +21,7 @@ struct GoalWorld {
   GroupTable groups;
   std::vector<std::vector<std::uint32_t>> goalLists{{0, 1}};
   PointRegions regions;
+  OpenChoices choices;
   AgentStore agents;
   std::vector<std::uint32_t> rowOfId;
   std::shared_ptr<const nav::NavMesh> mesh;
@@ -62,7 +63,7 @@ struct GoalWorld {
     mesh = std::move(built.value());
     query = std::make_unique<nav::NavQuery>(mesh);
   }
-  [[nodiscard]] GoalWriter writer() { return {desc, groups, goalLists, regions, agents, *query, 3, events}; }
+  [[nodiscard]] GoalWriter writer() { return {desc, groups, goalLists, regions, choices, agents, *query, 3, events}; }
   /// Agents targeting a sub-region of `point`.
   [[nodiscard]] std::uint32_t occupied(std::uint32_t point) const {
     return std::accumulate(regions.occupancy.begin() + regions.subOffset[point],

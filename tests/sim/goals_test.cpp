@@ -1,14 +1,19 @@
 // Tests for libs/sim/src/goals.hpp: GoalWriter on hand-built state (no World) — a goal's target is
 // drawn inside the point's region and occupies one of its sub-regions, which is released when the
-// agent moves on; pending goal changes are applied in row order.
+// agent moves on; pending goal changes are applied in row order; only an exit limits the target to
+// its near side. And World runs: agents in front of one end of a long exit strip leave through
+// it near straight ahead; waypoint choices split a population by shares or least targeted, per
+// group, the same for any thread count.
 #include "goals.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <vector>
 
 #include "goal_world.hpp"
+#include "throng/sim/world.hpp"
 
 using namespace throng;
 using namespace throng::sim;
@@ -89,4 +94,149 @@ TEST(Goals, ApplyPendingGoalsAdvancesTheListedRowsAndClearsTheirFlags) {
   EXPECT_TRUE(chunks[0].pendingRows.empty() && chunks[1].pendingRows.empty());
   EXPECT_EQ(w.occupied(0), 1u);
   EXPECT_EQ(w.occupied(1), 1u);
+}
+
+TEST(Goals, OnlyAnExitLimitsTheTargetToItsNearSide) {
+  // 40 agents 20 m in front of the left end of a 200 m strip pick in turn: as an exit, among the
+  // cells at most 5 % farther than the nearest (within ~7 m of straight ahead); as an interest or
+  // action point, over the whole region (Musse et al. §3.1.3), free cells first, so far along it.
+  const auto subs = crowd::divideRegion(crowd::Region::poly(test::rect(0, 20, 200, 21)));
+  const auto farthest = [&](PointKind kind) {
+    std::vector<std::uint32_t> occupancy(subs.size(), 0);
+    core::Rng rng(3, 3, core::RngPurpose::Target);
+    float far = 0.0f;
+    for (int m = 0; m < 40; ++m) {
+      const std::size_t i = crowd::pickSubregion(subs, {1, 0}, occupancy, rng, pickParams(kind));
+      ++occupancy[i];
+      far = std::max(far, subs[i].centre.x);
+    }
+    return far;
+  };
+  EXPECT_LT(farthest(PointKind::Exit), 10.0f);
+  EXPECT_GT(farthest(PointKind::Interest), 60.0f);
+  EXPECT_GT(farthest(PointKind::Action), 60.0f);
+}
+
+TEST(Goals, AgentsInFrontOfOneEndOfALongExitStripLeaveNearStraightAhead) {
+  // A 200 m wide room whose whole far wall is the exit (RiMEA 7's wide exit): 20 agents start in
+  // front of its left end, 7..10 m from it. Each aims at a spot of the strip at most 2 m farther
+  // than the nearest (crowd::PickParams::detourMin), so it crosses the strip within ~8 m of where
+  // it started; the old occupancy-first pick gave each a free 2 m cell, up to ~40 m along.
+  ScenarioDesc d;
+  d.seed = 11;
+  d.walkable = {test::rect(0, 0, 200, 12)};
+  PointDesc exit;
+  exit.id = "exit";
+  exit.kind = PointKind::Exit;
+  exit.polygon = test::rect(0, 11, 200, 12);
+  exit.position = {100, 11.5f};
+  d.points = {exit};
+  PopulationDesc p;
+  p.id = "walkers";
+  p.groups = 20;
+  p.spawn.polygon = test::rect(1, 1, 5, 4);
+  p.goals = {0};
+  d.populations = {p};
+  auto created = World::create(d);
+  ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
+  World& w = *created.value();
+  const core::TaskSystem tasks(1);
+  std::map<std::uint32_t, float> lastX;
+  int exited = 0;
+  while (!w.finished() && w.stats().time < 60.0) {
+    w.step(tasks);
+    const FramePtr f = w.takeFrame();
+    for (const Event& e : f->events) {
+      if (e.kind != EventKind::Exit) continue;
+      ++exited;
+      ASSERT_TRUE(lastX.contains(e.agent));
+      EXPECT_LT(lastX[e.agent], 14.0f) << "agent " << e.agent << " walked along the strip";
+    }
+    for (std::size_t i = 0; i < f->size(); ++i) lastX[f->ids[i]] = f->posX[i];
+  }
+  EXPECT_EQ(exited, 20);
+}
+
+namespace {
+
+/// A 30 × 20 m hall: three interest stands (discs at x = 15) and the east wall as exit; `groups`
+/// groups of `size` pick a stand by `choice` (options: the stands, slot 0), then leave.
+ScenarioDesc standsHall(std::uint32_t groups, std::uint32_t size, GoalSplit split, std::vector<float> shares) {
+  ScenarioDesc d;
+  d.seed = 3;
+  d.walkable = {test::rect(0, 0, 30, 20)};
+  for (const float y : {4.0f, 10.0f, 16.0f}) {
+    PointDesc stand;
+    stand.id = "stand" + std::to_string(d.points.size());
+    stand.position = {15, y};
+    stand.radius = 1.5f;
+    d.points.push_back(stand);
+  }
+  PointDesc exit;
+  exit.id = "exit";
+  exit.kind = PointKind::Exit;
+  exit.polygon = test::rect(29.5f, 0, 30, 20);
+  exit.position = {29.75f, 10};
+  d.points.push_back(exit);
+  PopulationDesc p;
+  p.id = "visitors";
+  p.groups = groups;
+  p.sizeMin = p.sizeMax = size;
+  p.spawn.polygon = test::rect(0.5f, 0.5f, 6, 19.5f);
+  p.goals = {0, 3};
+  GoalChoiceDesc c;
+  c.options = {0, 1, 2};
+  c.split = split;
+  c.shares = std::move(shares);
+  p.goalChoices = {c};
+  d.populations = {p};
+  return d;
+}
+
+/// Runs `d` on `threads` threads until 2 s have passed; per agent (stable id), the stand it heads for.
+std::map<std::uint32_t, std::uint32_t> standOfEachAgent(const ScenarioDesc& d, unsigned threads) {
+  auto created = World::create(d);
+  EXPECT_TRUE(created.ok()) << core::formatAll(created.errors());
+  World& w = *created.value();
+  const core::TaskSystem tasks(threads);
+  while (w.stats().time < 2.0) {
+    w.step(tasks);
+    (void)w.takeFrame();
+  }
+  std::map<std::uint32_t, std::uint32_t> stand;
+  for (std::uint32_t id = 0; id < w.stats().spawned; ++id) {
+    if (const auto info = w.agentInfo(id)) stand[id] = info->goalPoint;
+  }
+  return stand;
+}
+
+}  // namespace
+
+TEST(Goals, ASharesSplitSendsGroupsByTheShares) {
+  // 120 groups, shares 2 : 1 : 1 — about 60, 30 and 30 (binomial sd ≈ 5.5 and 4.7).
+  const auto stand = standOfEachAgent(standsHall(120, 1, GoalSplit::Shares, {2, 1, 1}), 1);
+  ASSERT_EQ(stand.size(), 120u);
+  std::map<std::uint32_t, int> count;
+  for (const auto& [id, point] : stand) ++count[point];
+  EXPECT_NEAR(count[0], 60, 15);
+  EXPECT_NEAR(count[1], 30, 12);
+  EXPECT_NEAR(count[2], 30, 12);
+}
+
+TEST(Goals, ALeastTargetedSplitBalancesTheStandsAndKeepsGroupsTogether) {
+  // 30 pairs: each pair takes the stand the fewest head for when it appears, so 20 agents each,
+  // and both members of a pair the same stand.
+  const auto stand = standOfEachAgent(standsHall(30, 2, GoalSplit::LeastTargeted, {}), 1);
+  ASSERT_EQ(stand.size(), 60u);
+  std::map<std::uint32_t, int> count;
+  for (const auto& [id, point] : stand) ++count[point];
+  EXPECT_EQ(count[0], 20);
+  EXPECT_EQ(count[1], 20);
+  EXPECT_EQ(count[2], 20);
+  for (std::uint32_t id = 0; id < 60; id += 2) EXPECT_EQ(stand.at(id), stand.at(id + 1)) << "pair " << id / 2;
+}
+
+TEST(Goals, WaypointChoicesAreTheSameForAnyThreadCount) {
+  const ScenarioDesc d = standsHall(200, 1, GoalSplit::Shares, {1, 3, 1});
+  EXPECT_EQ(standOfEachAgent(d, 1), standOfEachAgent(d, 4));
 }

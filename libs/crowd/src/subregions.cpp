@@ -1,5 +1,6 @@
 // throng::crowd sub-regions (§3.1.3, Figure 5): division of an IP/AP region into sectors (discs)
-// or clipped grid cells (polygons), priority choice by proximity and density, uniform sampling.
+// or clipped grid cells (polygons), priority choice by proximity and density among the sub-regions
+// on the agent's near side of the region, uniform sampling.
 #include "throng/crowd/subregions.hpp"
 
 #include <algorithm>
@@ -232,10 +233,16 @@ std::size_t pickSubregion(std::span<const Subregion> subregions, Vec2 from, std:
                           core::Rng& rng, const PickParams& params) {
   THRONG_ASSERT(!subregions.empty() && occupancy.size() == subregions.size());
   THRONG_ASSERT(params.jitter >= 0.0f && params.densityWeight > 1.0f + params.jitter);
+  THRONG_ASSERT(params.detourFraction >= 0.0f && params.detourMin >= 0.0f);
+  float nearest = std::numeric_limits<float>::infinity();
+  for (const Subregion& s : subregions) nearest = std::min(nearest, core::distance(s.centre, from));
+  const float reach = nearest + std::max(params.detourMin, params.detourFraction * nearest);
   float maxDist = 0.0f;
   float maxArea = 0.0f;
   for (const Subregion& s : subregions) {
-    maxDist = std::max(maxDist, core::distance(s.centre, from));
+    const float d = core::distance(s.centre, from);
+    if (d > reach) continue;
+    maxDist = std::max(maxDist, d);
     maxArea = std::max(maxArea, s.area);
   }
   std::size_t best = 0;
@@ -243,7 +250,9 @@ std::size_t pickSubregion(std::span<const Subregion> subregions, Vec2 from, std:
   for (std::size_t i = 0; i < subregions.size(); ++i) {
     const double u = rng.uniform();  // one draw per sub-region, always
     const Subregion& s = subregions[i];
-    const double proximity = maxDist > 0.0f ? core::distance(s.centre, from) / double(maxDist) : 0.0;
+    const float d = core::distance(s.centre, from);
+    if (d > reach) continue;  // beyond the near side of the goal
+    const double proximity = maxDist > 0.0f ? d / double(maxDist) : 0.0;
     const double density = s.area > 0.0f ? double(occupancy[i]) / s.area * maxArea : double(occupancy[i]);
     const double cost = proximity + params.jitter * u + params.densityWeight * density;
     if (cost < bestCost) {

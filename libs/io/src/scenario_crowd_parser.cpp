@@ -1,5 +1,6 @@
 // throng::io scenario crowd parser — the Musse et al. crowd-model keys of a population: "goals"
-// (a list of point ids, or "auto": a final action point per group, interest points near the way),
+// (a list of point ids and waypoint choices {"choose", "split", "shares"}, or "auto": a final
+// action point per group, interest points near the way),
 // "paths", "autoNearDistance", "flocking", "waitTimeout", "groupSpacing", "follow" (its population
 // id resolved once every population is read), "guide" (a timed waypoint script, its release) and
 // "sociological"; see docs/scenario-format.md "Crowd model"; and "exits" with "exitChoice" (rule,
@@ -48,8 +49,81 @@ bool ScenarioReader::readGoals(const Json& v, const std::string& ptr, sim::Popul
   bool ok = true;
   for (std::size_t g = 0; g < v.size(); ++g) {
     std::uint32_t index = 0;
-    if (resolvePoint(v[g], ptr + "/" + std::to_string(g), index)) p.goals.push_back(index);
+    if (v[g].is_object()) ok = readGoalChoice(v[g], ptr + "/" + std::to_string(g), p) && ok;
+    else if (resolvePoint(v[g], ptr + "/" + std::to_string(g), index)) p.goals.push_back(index);
     else ok = false;
+  }
+  return ok;
+}
+
+/// A waypoint choice in "goals": {"choose": [ids of interest or action points, >= 2, each once],
+/// "split": "shares" | "leastTargeted", "shares": [one per option]}. Its slot holds the first
+/// option until a group chooses.
+bool ScenarioReader::readGoalChoice(const Json& v, const std::string& ptr, sim::PopulationDesc& p) {
+  checkKeys(v, ptr, {"choose", "split", "shares"}, "goal choice");
+  sim::GoalChoiceDesc c;
+  c.slot = static_cast<std::uint32_t>(p.goals.size());
+  p.goals.push_back(0);  // a slot even when the choice is wrong, so later slots keep their index
+  bool ok = true;
+  const Json* options = optional(v, "choose");
+  const std::string optr = ptr + "/choose";
+  const std::string expected = "an array of at least 2 ids of interest or action points, each once";
+  if (options == nullptr) {
+    error(ptr, "a goal choice without \"choose\"", expected, "write {\"choose\": [\"a\", \"b\"]}, or a point id for one goal");
+    return false;
+  }
+  if (!options->is_array() || options->size() < 2) {
+    error(optr, options->is_array() ? "fewer than 2 options" : "wrong type: " + describeType(*options), expected);
+    return false;
+  }
+  for (std::size_t k = 0; k < options->size(); ++k) {
+    const std::string eptr = optr + "/" + std::to_string(k);
+    std::uint32_t index = 0;
+    if (!resolvePoint((*options)[k], eptr, index)) {
+      ok = false;
+    } else if (index < pointIsExit_.size() && pointIsExit_[index] != 0) {
+      error(eptr, "point " + quote(pointIds_[index]) + " is an exit", expected,
+            "to choose among exits, list them in the population's \"exits\" with \"exitChoice\"");
+      ok = false;
+    } else if (std::find(c.options.begin(), c.options.end(), index) != c.options.end()) {
+      error(eptr, "point " + quote(pointIds_[index]) + " listed twice", expected);
+      ok = false;
+    } else {
+      c.options.push_back(index);
+    }
+  }
+  if (auto* x = optional(v, "split")) {
+    std::size_t split = 0;
+    if (readChoice(*x, ptr + "/split", {"shares", "leastTargeted"}, "split", split)) c.split = static_cast<sim::GoalSplit>(split);
+    else ok = false;
+  }
+  if (auto* x = optional(v, "shares")) ok = ok && readChoiceShares(*x, ptr + "/shares", c);
+  if (!ok) return false;
+  p.goals.back() = c.options.front();
+  p.goalChoices.push_back(std::move(c));
+  return true;
+}
+
+bool ScenarioReader::readChoiceShares(const Json& v, const std::string& ptr, sim::GoalChoiceDesc& c) {
+  const std::string expected = "one share >= 0 per option (" + std::to_string(c.options.size()) + "), not all 0";
+  if (c.split != sim::GoalSplit::Shares) {
+    error(ptr, "\"shares\" only apply to the shares split", "\"split\": \"shares\" or no \"shares\"", "", true);
+    return false;
+  }
+  if (!v.is_array() || v.size() != c.options.size()) {
+    error(ptr, v.is_array() ? std::to_string(v.size()) + " shares" : "wrong type: " + describeType(v), expected);
+    return false;
+  }
+  bool ok = true;
+  float total = 0.0f;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    float share = 0.0f;
+    if (readFloat(v[k], ptr + "/" + std::to_string(k), {0, 1e6, false, ""}, share)) c.shares.push_back(share), total += share;
+    else ok = false;
+  }
+  if (ok && total <= 0.0f) {
+    error(ptr, "every share is 0", expected);
+    ok = false;
   }
   return ok;
 }

@@ -335,6 +335,8 @@ class ScenarioReader {
   bool readStairs(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   bool readGoals(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   bool readExits(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
+  bool readGoalChoice(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
+  bool readChoiceShares(const Json& v, const std::string& ptr, sim::GoalChoiceDesc& c);
   bool readExitChoice(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   bool readFamiliar(const Json& v, const std::string& ptr, sim::PopulationDesc& p);
   bool readCrowdKeys(const Json& v, const std::string& ptr, std::size_t index, sim::PopulationDesc& p);

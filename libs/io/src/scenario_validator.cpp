@@ -524,12 +524,19 @@ class Validator {
     }
   }
 
-  /// The points population i walks to, with their JSON pointers: its goals, then its exits.
+  /// The points population i walks to, with their JSON pointers: its goals (every option of a
+  /// waypoint choice), then its exits.
   [[nodiscard]] std::vector<std::pair<std::uint32_t, std::string>> destinations(std::size_t i) const {
     const sim::PopulationDesc& pop = desc_.populations[i];
     const std::string ptr = "/populations/" + std::to_string(i);
     std::vector<std::pair<std::uint32_t, std::string>> out;
     for (std::size_t g = 0; g < pop.goals.size(); ++g) out.emplace_back(pop.goals[g], ptr + "/goals/" + std::to_string(g));
+    for (const sim::GoalChoiceDesc& c : pop.goalChoices) {
+      out[c.slot].second += "/choose/0";
+      for (std::size_t k = 1; k < c.options.size(); ++k) {
+        out.emplace_back(c.options[k], ptr + "/goals/" + std::to_string(c.slot) + "/choose/" + std::to_string(k));
+      }
+    }
     for (std::size_t e = 0; e < pop.exits.size(); ++e) out.emplace_back(pop.exits[e], ptr + "/exits/" + std::to_string(e));
     return out;
   }

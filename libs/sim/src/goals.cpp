@@ -1,13 +1,15 @@
 // goals — one home for where an agent is going (Musse et al. §3.1: goals are interest and action
 // points visited in order): the active goal list of a group (its own, or the followed group's),
 // the current goal point of an agent, setting and advancing goals, drawing a target inside a goal's
-// region (sub-regions, §3.1.3) and releasing it, Bézier paths to it (§3.2.2), automatic goals
+// region (sub-regions, §3.1.3; an exit's near side, pickParams) and releasing it, waypoint choices
+// (a goal picked among several by shares or least targeted, when a group reaches it), Bézier paths to it (§3.2.2), automatic goals
 // (§3.1.2) and the pending goal changes decide hands to the group pass. Serial code (the group pass
 // and spawning) writes goals through GoalWriter (goals.hpp), the points' sub-regions being
 // PointRegions; the parallel phases only read them (currentGoalPoint, stopsAtGoal) through GoalView
 // (phases.hpp), which World::Impl's helpers of the same names use too.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "throng/crowd/bezier_path.hpp"
 #include "throng/crowd/path_reconstruction.hpp"
@@ -17,9 +19,11 @@
 
 namespace throng::sim {
 
-const std::vector<std::uint32_t>& GoalView::activeGoals(const GroupState& g) const {
-  return goalLists[g.following && groups.routeOf(g).followGroup != kNoGroup ? groups[groups.routeOf(g).followGroup].goalList : g.goalList];
+std::uint32_t GoalView::activeList(const GroupState& g) const {
+  return g.following && groups.routeOf(g).followGroup != kNoGroup ? groups[groups.routeOf(g).followGroup].goalList : g.goalList;
 }
+
+const std::vector<std::uint32_t>& GoalView::activeGoals(const GroupState& g) const { return goalLists[activeList(g)]; }
 
 std::uint32_t GoalView::groupGoalPoint(const GroupState& g) const {
   const std::vector<std::uint32_t>& goals = activeGoals(g);
@@ -54,6 +58,16 @@ void PointRegions::add(const PointDesc& p) {
   occupancy.resize(subregions.size(), 0);
 }
 
+crowd::PickParams pickParams(PointKind kind) {
+  // An exit is left wherever it is reached, so only its near side is worth aiming at: a wide one is
+  // never crossed sideways to an empty spot (crowd::PickParams' detour limit). Interest and action
+  // points are places a group spreads over (Musse et al. §3.1.3): the whole region stays open.
+  if (kind == PointKind::Exit) return {};
+  crowd::PickParams whole;
+  whole.detourMin = std::numeric_limits<float>::infinity();
+  return whole;
+}
+
 void GoalWriter::releaseTarget(std::size_t row) {
   if (agents.targetSub[row] >= 0) {
     --regions.occupancy[static_cast<std::size_t>(agents.targetSub[row])];
@@ -64,7 +78,8 @@ void GoalWriter::releaseTarget(std::size_t row) {
 core::Vec2 GoalWriter::drawTarget(std::size_t row, const PointDesc& point) {
   // Sub-regions (Musse et al. §3.1.3): the target lies in a sub-region of the goal's region picked
   // by proximity and by how many agents already target it, so group members take similar but never
-  // identical paths and spread over the region. Serial (group pass / spawning): occupancy is shared.
+  // identical paths and spread over the region (an exit: over its near side, pickParams).
+  // Serial (group pass / spawning): occupancy is shared.
   core::Rng rng(desc.seed, (static_cast<std::uint64_t>(agents.id[row]) << 20) ^ agents.targetDraws[row]++,
                 core::RngPurpose::Target);
   releaseTarget(row);
@@ -74,7 +89,8 @@ core::Vec2 GoalWriter::drawTarget(std::size_t row, const PointDesc& point) {
   if (last > first) {
     const std::span<const crowd::Subregion> subs(regions.subregions.data() + first, last - first);
     const std::span<const std::uint32_t> occupancy(regions.occupancy.data() + first, last - first);
-    const std::size_t k = crowd::pickSubregion(subs, core::Vec2{agents.posX[row], agents.posY[row]}, occupancy, rng);
+    const std::size_t k = crowd::pickSubregion(subs, core::Vec2{agents.posX[row], agents.posY[row]}, occupancy, rng,
+                                               pickParams(point.kind));
     target = crowd::samplePoint(subs[k], rng);
     agents.targetSub[row] = static_cast<std::int32_t>(first + k);
     ++regions.occupancy[first + k];
@@ -101,6 +117,7 @@ void GoalWriter::setGoal(std::size_t row, std::uint32_t cursor) {
   agents.corners[row].clear();
   agents.progressDistance[row] = 1e30f;
   if (cursor < goals.size()) {
+    chooseWaypoint(row, cursor);
     const core::Vec2 t = drawTarget(row, desc.points[goals[cursor]]);
     agents.targetX[row] = t.x;
     agents.targetY[row] = t.y;
@@ -165,6 +182,55 @@ void GoalWriter::giveExitGoals(std::uint32_t gid, std::uint32_t exit) {
   goals.push_back(exit);
   g.goalList = static_cast<std::uint32_t>(goalLists.size());
   goalLists.push_back(std::move(goals));
+}
+
+void GoalWriter::openGoalChoices(std::uint32_t gid) {
+  GroupState& g = groups[gid];
+  const PopulationDesc& pop = desc.populations[g.population];
+  if (pop.goalChoices.empty()) return;
+  if (pop.exits.empty()) {  // still the population's shared list: a copy of its own
+    g.goalList = static_cast<std::uint32_t>(goalLists.size());
+    goalLists.push_back(pop.goals);
+  }
+  if (choices.lists.size() <= g.goalList) choices.lists.resize(g.goalList + 1);
+  OpenChoices::List& list = choices.lists[g.goalList];
+  list.group = gid;
+  list.choiceAt.assign(goalLists[g.goalList].size(), 0);
+  for (std::size_t k = 0; k < pop.goalChoices.size(); ++k) list.choiceAt[pop.goalChoices[k].slot] = static_cast<std::uint32_t>(k + 1);
+}
+
+void GoalWriter::chooseWaypoint(std::size_t row, std::uint32_t cursor) {
+  const GroupState& g = groups[agents.group[row]];
+  const std::uint32_t listIndex = view().activeList(g);
+  if (listIndex >= choices.lists.size()) return;
+  OpenChoices::List& list = choices.lists[listIndex];
+  if (cursor >= list.choiceAt.size() || list.choiceAt[cursor] == 0) return;
+  const GoalChoiceDesc& choice = desc.populations[groups[list.group].population].goalChoices[list.choiceAt[cursor] - 1u];
+  list.choiceAt[cursor] = 0;  // chosen once, for the whole group
+  std::uint32_t chosen = choice.options.front();
+  if (choice.split == GoalSplit::LeastTargeted) {
+    // The option the fewest agents head for now (their targets lie in its sub-regions); ties: first listed.
+    std::uint64_t fewest = UINT64_MAX;
+    for (const std::uint32_t point : choice.options) {
+      std::uint64_t heading = 0;
+      for (std::uint32_t s = regions.subOffset[point]; s < regions.subOffset[point + 1]; ++s) heading += regions.occupancy[s];
+      if (heading < fewest) fewest = heading, chosen = point;
+    }
+  } else {
+    // By shares (equal when none are given): one draw from the group's stream for this slot.
+    core::Rng rng(desc.seed, (static_cast<std::uint64_t>(list.group) << 20) ^ cursor, core::RngPurpose::GoalChoice);
+    double total = 0.0;
+    for (std::size_t k = 0; k < choice.options.size(); ++k) total += choice.shares.empty() ? 1.0 : choice.shares[k];
+    double u = rng.uniform() * total;
+    for (std::size_t k = 0; k < choice.options.size(); ++k) {
+      u -= choice.shares.empty() ? 1.0 : choice.shares[k];
+      if (u < 0.0 || k + 1 == choice.options.size()) {
+        chosen = choice.options[k];
+        break;
+      }
+    }
+  }
+  goalLists[listIndex][cursor] = chosen;
 }
 
 void GoalWriter::changeExit(std::uint32_t gid, std::uint32_t exit, std::span<const std::uint32_t> rowOfId,

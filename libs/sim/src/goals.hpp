@@ -3,7 +3,7 @@
 // owned by World::Impl; GoalWriter references it with the goal lists, the group table, the agent
 // columns it writes and the main navmesh query, and holds the operations that change an agent's
 // goal: setGoal / advanceGoal, drawTarget / releaseTarget, bezierPath, reconstructGoals and
-// applyPendingGoals. Serial code only (the group pass, spawning, run-time insertion): occupancy
+// applyPendingGoals, and the waypoint choices (OpenChoices) made when a group reaches them. Serial code only (the group pass, spawning, run-time insertion): occupancy
 // and goal lists are shared. Reading goals is GoalView (phases.hpp), which the parallel phases use.
 #pragma once
 #include <cstdint>
@@ -32,12 +32,28 @@ struct PointRegions {
   void add(const PointDesc& p);
 };
 
+/// Waypoint choices not made yet (PopulationDesc::goalChoices), per goal list: the group whose
+/// own list it is, and per slot 1 + the index of its population's choice there (0: a plain goal,
+/// or one chosen already). Lists without choices have no entry (or an empty one).
+struct OpenChoices {
+  struct List {
+    std::uint32_t group = 0;
+    std::vector<std::uint32_t> choiceAt;
+  };
+  std::vector<List> lists;  ///< indexed by goal list
+};
+
+/// How a target is picked inside a point of this kind (crowd::pickSubregion): an exit's near side
+/// (the default detour limit), the whole region of an interest or action point.
+[[nodiscard]] crowd::PickParams pickParams(PointKind kind);
+
 /// Writes goals (serial). Built by World::Impl::goalWriter() where goals change; references only.
 struct GoalWriter {
   const ScenarioDesc& desc;   ///< seed, points, populations (wander, bezierPaths, autoNearDistance)
   GroupTable& groups;         ///< a group's goal list, cursor and flocking; reconstructGoals sets goalList
   std::vector<std::vector<std::uint32_t>>& goalLists;  ///< reconstructGoals appends a group's own list
-  PointRegions& regions;      ///< sub-region occupancy (drawTarget, releaseTarget)
+  PointRegions& regions;      ///< sub-region occupancy (drawTarget, releaseTarget; least-targeted choices)
+  OpenChoices& choices;       ///< waypoint choices still to make (openGoalChoices, setGoal)
   /// Reads id, group, posX/Y/Z; writes goalCursor, goalState, mode, targetX/Y/Z, targetSub,
   /// targetDraws, needPath, ticket, corners, dynamicTarget, progressDistance, goalPending.
   AgentStore& agents;
@@ -47,7 +63,7 @@ struct GoalWriter {
 
   [[nodiscard]] GoalView view() const { return {groups, goalLists, agents.group, agents.goalCursor}; }
   /// Chooses a target inside the point's region (on the navmesh) for agent `row`: in a sub-region
-  /// picked by proximity and occupancy, which it then occupies (the old one is released).
+  /// picked by proximity and occupancy (pickParams), which it then occupies (the old one is released).
   core::Vec2 drawTarget(std::size_t row, const PointDesc& point);
   /// Releases the sub-region `row` was targeting (its occupancy drops).
   void releaseTarget(std::size_t row);
@@ -62,6 +78,14 @@ struct GoalWriter {
   /// Exit choice (exit_choice.hpp): gives group `gid` a goal list of its own, its population's
   /// goals and then `exit`.
   void giveExitGoals(std::uint32_t gid, std::uint32_t exit);
+  /// Waypoint choices: when group `gid`'s population has goal choices, gives the group a goal list
+  /// of its own (unless it has one: exits) whose choice slots setGoal fills in, once, when the
+  /// group's first member reaches each (chooseWaypoint).
+  void openGoalChoices(std::uint32_t gid);
+  /// Fills in the choice at `cursor` of `row`'s active goal list if it is still open: by shares
+  /// (one draw from the list owner's stream) or the option fewest agents target now (sub-region
+  /// occupancy), for the whole group.
+  void chooseWaypoint(std::size_t row, std::uint32_t cursor);
   /// Changes group `gid`'s exit (the last entry of its own list) to `exit`: members walking to the
   /// exit get a target in the new one (standing ones before their pre-movement time ends keep
   /// standing); an ExitChosen event names `agentId` (the member who decided).

@@ -121,6 +121,13 @@ class CrowdCheck {
     for (std::size_t g = 0; g < pop.goals.size(); ++g) {
       if (pop.goals[g] >= pointCount) error(ptr + "/goals/" + std::to_string(g), "point index out of range", "a point of the world or of the crowd");
     }
+    for (const GoalChoiceDesc& c : pop.goalChoices) {
+      const std::string cptr = ptr + "/goals/" + std::to_string(c.slot) + "/choose";
+      if (c.slot >= pop.goals.size()) error(ptr + "/goals", "a choice past the last goal", "a choice at one of the goals");
+      for (const std::uint32_t o : c.options) {
+        if (o >= pointCount) error(cptr, "point index out of range", "points of the world or of the crowd");
+      }
+    }
     if (pop.spawn.kind == SpawnKind::Point && pop.spawn.point >= pointCount) {
       error(ptr + "/spawn/point", "point index out of range", "a point of the world or of the crowd");
     }
@@ -363,6 +370,9 @@ void World::Impl::addCrowdPopulations(const CrowdDesc& cd, std::uint32_t firstPo
     PopulationDesc pop = source;
     for (std::uint32_t& g : pop.goals) g = mapPoint(g);
     for (std::uint32_t& e : pop.exits) e = mapPoint(e);
+    for (GoalChoiceDesc& c : pop.goalChoices) {
+      for (std::uint32_t& o : c.options) o = mapPoint(o);
+    }
     if (pop.spawn.kind == SpawnKind::Point) pop.spawn.point = mapPoint(pop.spawn.point);
     if (pop.follow.mode != FollowMode::None) pop.follow.population = mapPopulation(pop.follow.population);
     // Times in a crowd count from its insertion: spawn, guide script and release.

@@ -81,6 +81,8 @@ struct GoalView {
 
   /// The goal list a group follows now: its own, or the followed group's while following.
   [[nodiscard]] const std::vector<std::uint32_t>& activeGoals(const GroupState& g) const;
+  /// That list's index into goalLists.
+  [[nodiscard]] std::uint32_t activeList(const GroupState& g) const;
   /// The point the group is heading for (its cursor in its active list), kNoPoint past the last.
   [[nodiscard]] std::uint32_t groupGoalPoint(const GroupState& g) const;
   /// The point `row` is heading for (from its group's active goal list), kNoPoint past the last.

@@ -122,6 +122,7 @@ class PopulationEntry {
       const std::uint32_t groupId = out_.spawner.firstGroupId(plan_.population) + g;
       if (pop_.autoGoals) out_.goals.reconstructGoals(groupId, plan_.anchors[g]);
       const std::uint32_t exit = chooseExit(groupId, sizes[g], plan_.spots[spot]);
+      out_.goals.openGoalChoices(groupId);
       for (std::uint32_t m = 0; m < sizes[g]; ++m) {
         const std::size_t row = addRow(groupId, m, sizes[g], plan_.spots[spot++]);
         drawInterests(row);

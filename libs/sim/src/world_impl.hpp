@@ -105,6 +105,7 @@ struct World::Impl {
   // Per-point action clips, and regions cut into sub-regions with their occupancy (goals.hpp).
   std::vector<std::uint16_t> pointClip;
   PointRegions pointRegions;
+  OpenChoices openChoices;  ///< waypoint choices groups have still to make (goals.hpp)
 
   // Common Ground (common_ground.cpp, common_ground_play.cpp; its state in common_ground_state.hpp,
   // its group-pass steps' contexts in group_pass.hpp).
@@ -158,7 +159,7 @@ struct World::Impl {
   void ensureScratch(const core::TaskSystem& tasks);
   /// What writing goals needs (goals.hpp): setGoal, drawTarget, releaseTarget, … (serial code).
   [[nodiscard]] GoalWriter goalWriter() {
-    return {desc, groups, goalLists, pointRegions, agents, *mainQuery, tick, pendingEvents};
+    return {desc, groups, goalLists, pointRegions, openChoices, agents, *mainQuery, tick, pendingEvents};
   }
   /// What the phases may ask about goals (phases.hpp, goals.cpp); the two below (the API's) use it.
   [[nodiscard]] GoalView goalView() const { return {groups, goalLists, agents.group, agents.goalCursor}; }

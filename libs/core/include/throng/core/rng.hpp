@@ -19,6 +19,7 @@ enum class RngPurpose : std::uint32_t {
   Social = 8,  ///< Common Ground: goal generator (needs, attraction, interests)
   PreMovement = 9,  ///< an agent's pre-movement time (PopulationDesc::preMovement)
   ExitChoice = 10,  ///< a group's exit drawn by shares (ExitRule::Allocation)
+  GoalChoice = 11,  ///< a group's waypoint drawn by shares (GoalSplit::Shares)
 };
 
 /// SplitMix64 finaliser: a well-mixed 64-bit hash of x.

@@ -148,6 +148,23 @@ enum class ExitRule : std::uint8_t {
   Allocation,  ///< drawn once by fixed shares (a probabilistic split), never re-evaluated
 };
 
+/// How a group picks among the points of a goal choice (scenario: a "goals" entry {"choose": [...]}).
+enum class GoalSplit : std::uint8_t {
+  Shares,         ///< drawn by fixed shares (a probabilistic split), per group
+  LeastTargeted,  ///< the option the fewest agents head for at that moment (JuPedSim's least-targeted
+                  ///< transition), ties to the first listed
+};
+
+/// A choice among waypoints (JuPedSim's journeys: a stage with a split to several next stages):
+/// goal `slot` of the population's list is one of `options`, picked by each group when its first
+/// member reaches that slot, for the whole group.
+struct GoalChoiceDesc {
+  std::uint32_t slot = 0;              ///< index into PopulationDesc::goals (which holds options.front() until chosen)
+  std::vector<std::uint32_t> options;  ///< point indices (interest or action points), at least 2, each once
+  GoalSplit split = GoalSplit::Shares;
+  std::vector<float> shares;           ///< Shares: one share >= 0 per option (normalised; empty: equal shares)
+};
+
 /// Specific flow through a short bottleneck [persons/(m·s)]: the capacity of an exit of width w is
 /// this × w (Kretz, Grünebohm, Schreckenberg, J. Stat. Mech. 2006 P10014; Seyfried et al.,
 /// Transportation Science 43, 395, 2009: about 1.9 for 0.8–1.2 m).
@@ -186,6 +203,8 @@ struct PopulationDesc {
   SpawnDesc spawn;
   float start = 0.0f;             ///< spawn time [s]
   std::vector<std::uint32_t> goals;  ///< indices into ScenarioDesc::points, visited in order
+  /// Waypoint choices: goals whose point each group picks among several (opt-in; empty: none).
+  std::vector<GoalChoiceDesc> goalChoices;
   /// Exit choice: after `goals`, each group walks to one of these exits (point indices, kind
   /// Exit), chosen by `exitChoice`. Empty: no choice (the goals are the route).
   std::vector<std::uint32_t> exits;
