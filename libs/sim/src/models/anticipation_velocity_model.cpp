@@ -5,7 +5,8 @@
 // times a direction, each from its own rule.
 //
 // Direction. The desired direction e0 (the steer phase's preferred velocity) is turned aside by
-// every neighbour j in front, at the point of closest approach within the anticipation time t_a
+// every neighbour j in front (not those of i's own group, whose formation steer keeps), at the point
+// of closest approach within the anticipation time t_a
 // (both walking on: j with its velocity, i with its preferred one):
 //   d_ij = min over t in [0, t_a] of |(x_j + v_j t) − (x_i + u_i t)|, as the vector c_ij from i,
 //   R_ij = a · exp((ℓ_ij − |c_ij|) / D) · w_ij · side_ij,
