@@ -274,3 +274,68 @@ TEST(Models, TheDefaultBodyPassesAHalfMetreDoorWithTheAnticipationModel) {
   EXPECT_EQ(exited, 0u) << "ORCA's navmesh is eroded by the whole radius: a 0.5 m door is closed to it";
   EXPECT_LT(roomWithDoor(0.5f, 1, sim::ModelKind::AnticipationVelocity).navRadius(), 0.15f);
 }
+
+// Issue 17: an avm walker with visionRange 8 m sees a knot of people standing between it and its
+// exit and walks round it (Moussaïd et al. 2011's heuristic in seeAhead): it reaches its exit and
+// keeps 0.36 m between its body and theirs. With visionRange 0 (the default) it walks into the knot,
+// overlaps the first people and is still stuck there after a minute.
+TEST(Models, AnticipationWalkersGoRoundAKnotOfPeopleTheySeeAhead) {
+  sim::ScenarioDesc d;
+  d.name = "knot";
+  d.seed = 9;
+  d.walkable = {{{0, 0}, {30, 0}, {30, 14}, {0, 14}}};
+  sim::PointDesc exit;
+  exit.id = "exit";
+  exit.kind = sim::PointKind::Exit;
+  exit.polygon = {{29, 6}, {30, 6}, {30, 8}, {29, 8}};
+  exit.position = {29.5f, 7.0f};
+  sim::PointDesc spot;  // where the knot stands: an action lasting longer than the test
+  spot.id = "spot";
+  spot.kind = sim::PointKind::Action;
+  spot.position = {15, 7};
+  spot.radius = 1.5f;
+  spot.stop = true;
+  spot.actionDuration = 1000.0f;
+  spot.orientation = {0, 1};
+  d.points = {exit, spot};
+  sim::PopulationDesc knot;
+  knot.id = "knot";
+  knot.groups = 30;
+  knot.spawn.kind = sim::SpawnKind::Polygon;
+  knot.spawn.polygon = {{13.5f, 5.5f}, {16.5f, 5.5f}, {16.5f, 8.5f}, {13.5f, 8.5f}};
+  knot.goals = {1};
+  knot.speedMean = 1.0f;
+  knot.speedSd = 0.0f;
+  knot.model = sim::ModelDesc(sim::ModelKind::AnticipationVelocity);
+  sim::PopulationDesc walker = knot;
+  walker.id = "walker";
+  walker.groups = 1;
+  walker.spawn.kind = sim::SpawnKind::Position;
+  walker.spawn.position = {2, 7};
+  walker.goals = {0};
+  walker.speedMean = 1.3f;
+  walker.start = 6.0f;  // once the knot stands
+  ASSERT_TRUE(walker.model.set("visionRange", 8.0f));
+  d.populations = {knot, walker};
+  auto created = sim::World::create(d);
+  ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
+  sim::World& w = *created.value();
+  core::TaskSystem tasks(1);
+  float nearest = 1e9f;
+  bool out = false;
+  while (w.stats().time < 60 && !out) {
+    w.step(tasks);
+    const auto f = w.takeFrame();
+    std::size_t me = f->size();
+    for (std::size_t i = 0; i < f->size(); ++i) {
+      if (f->ids[i] == 30) me = i;  // the walker: ids 0-29 are the knot's
+    }
+    if (w.stats().time > 6.5 && me == f->size()) out = true;  // left through the exit
+    if (me == f->size()) continue;
+    for (std::size_t i = 0; i < f->size(); ++i) {
+      if (i != me) nearest = std::min(nearest, std::hypot(f->posX[i] - f->posX[me], f->posY[i] - f->posY[me]) - 0.4f);
+    }
+  }
+  EXPECT_TRUE(out) << "the walker reaches the exit beyond the knot";
+  EXPECT_GT(nearest, 0.25f) << "closest approach to the knot's people (gap between bodies) [m]";
+}
