@@ -27,54 +27,12 @@ nlohmann::json entryJson(const RecordingEntry& e) {
   return j;
 }
 
-std::string_view pathOf(std::string_view target) { return target.substr(0, target.find('?')); }
-
-int hexDigit(char ch) {
-  if (ch >= '0' && ch <= '9') return ch - '0';
-  if (ch >= 'a' && ch <= 'f') return ch - 'a' + 10;
-  if (ch >= 'A' && ch <= 'F') return ch - 'A' + 10;
-  return -1;
-}
-
 }  // namespace
 
 transport::HttpResponse jsonError(unsigned status, const std::string& text) { return json(status, {{"error", text}}); }
 
-std::optional<std::string> percentDecode(std::string_view text) {
-  std::string out;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    if (text[i] == '+') {
-      out.push_back(' ');
-    } else if (text[i] == '%') {
-      if (i + 2 >= text.size()) return std::nullopt;
-      const int hi = hexDigit(text[i + 1]), lo = hexDigit(text[i + 2]);
-      if (hi < 0 || lo < 0) return std::nullopt;
-      out.push_back(static_cast<char>(hi * 16 + lo));
-      i += 2;
-    } else {
-      out.push_back(text[i]);
-    }
-  }
-  return out;
-}
-
-std::optional<std::string> queryValue(std::string_view target, std::string_view key) {
-  const std::size_t q = target.find('?');
-  if (q == std::string_view::npos) return std::nullopt;
-  std::string_view rest = target.substr(q + 1);
-  while (!rest.empty()) {
-    const std::size_t amp = rest.find('&');
-    const std::string_view pair = rest.substr(0, amp);
-    const std::size_t eq = pair.find('=');
-    if (pair.substr(0, eq) == key) return eq == std::string_view::npos ? std::string() : percentDecode(pair.substr(eq + 1));
-    if (amp == std::string_view::npos) break;
-    rest.remove_prefix(amp + 1);
-  }
-  return std::nullopt;
-}
-
 std::optional<transport::HttpResponse> RecordingRoutes::get(std::string_view target) const {
-  if (pathOf(target) != kList) return std::nullopt;
+  if (transport::targetPath(target) != kList) return std::nullopt;
   nlohmann::json list = nlohmann::json::array();
   for (const RecordingEntry& e : dir_.list()) list.push_back(entryJson(e));
   std::lock_guard lock(mutex_);
@@ -85,7 +43,7 @@ std::optional<transport::HttpResponse> RecordingRoutes::get(std::string_view tar
 }
 
 bool RecordingRoutes::post(transport::HttpRequest& request, const transport::HttpResponder& responder) {
-  const std::string_view path = pathOf(request.target);
+  const std::string_view path = transport::targetPath(request.target);
   if (path == kOpen) {
     open(request, responder);
     return true;
@@ -98,7 +56,7 @@ bool RecordingRoutes::post(transport::HttpRequest& request, const transport::Htt
 }
 
 void RecordingRoutes::upload(transport::HttpRequest& request, const transport::HttpResponder& responder) {
-  const std::optional<std::string> name = queryValue(request.target, "name");
+  const std::optional<std::string> name = transport::queryValue(request.target, "name");
   if (!name || name->empty()) {
     responder.respond(jsonError(400, "POST /api/recordings?name=FILE.sqlite: the file's name is missing or malformed"));
     return;

@@ -62,10 +62,4 @@ class RecordingRoutes {
 /// `{"error": text}` with `status`.
 [[nodiscard]] transport::HttpResponse jsonError(unsigned status, const std::string& text);
 
-/// Decodes %XX and '+' of a query-string value; nullopt when an escape is malformed.
-[[nodiscard]] std::optional<std::string> percentDecode(std::string_view text);
-
-/// The value of `key` in the target's query string, decoded; nullopt when absent or malformed.
-[[nodiscard]] std::optional<std::string> queryValue(std::string_view target, std::string_view key);
-
 }  // namespace throng::cli

@@ -195,15 +195,6 @@ TEST_F(RecordingsDirTest, RefusesASqliteFileThatIsNoThrongRecording) {
   EXPECT_TRUE(namesIn(dir_.path()).empty());
 }
 
-TEST(RecordingRoutes, DecodesQueryValues) {
-  EXPECT_EQ(queryValue("/api/recordings?name=a%20b.sqlite", "name"), "a b.sqlite");
-  EXPECT_EQ(queryValue("/api/recordings?x=1&name=..%2Fx.sqlite", "name"), "../x.sqlite");
-  EXPECT_EQ(queryValue("/api/recordings?name=a+b", "name"), "a b");
-  EXPECT_EQ(queryValue("/api/recordings?name=%2", "name"), std::nullopt);
-  EXPECT_EQ(queryValue("/api/recordings?name=%zz", "name"), std::nullopt);
-  EXPECT_EQ(queryValue("/api/recordings", "name"), std::nullopt);
-  EXPECT_EQ(queryValue("/api/recordings?other=1", "name"), std::nullopt);
-}
 
 }  // namespace
 }  // namespace throng::cli

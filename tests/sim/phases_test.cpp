@@ -162,6 +162,37 @@ DecideOutput decideOutput(AgentStore& a, std::span<ChunkOutput> chunks) {
           a.desirePoint, a.desireTrigger, chunks};
 }
 
+/// A stopping action point at `position` of `radius`, 2 s long, facing +y.
+PointDesc standingPoint(core::Vec2 position, float radius) {
+  PointDesc stand;
+  stand.kind = PointKind::Action;
+  stand.position = position;
+  stand.radius = radius;
+  stand.stop = true;
+  stand.actionDuration = 2.0f;
+  stand.orientation = {0, 1};
+  return stand;
+}
+
+/// Runs decide once, at `tick`, on rows of one group with `goalLists`, in a 20 × 10 m room;
+/// returns its one chunk's output.
+ChunkOutput decideOnce(const ScenarioDesc& desc, AgentStore& a, const std::vector<std::vector<std::uint32_t>>& goalLists,
+                       std::uint64_t tick) {
+  GroupTable groups;
+  groups.add(GroupState{});
+  auto mesh = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)}, {}, nav::NavMeshConfig{});
+  EXPECT_TRUE(mesh.ok());
+  if (!mesh.ok()) return {};
+  std::vector<WorkerScratch> workers(1);
+  workers[0].query = std::make_unique<nav::NavQuery>(mesh.value());
+  const CommonGroundState commonGround;
+  std::vector<ChunkOutput> chunks(1);
+  core::TaskSystem tasks(1);
+  const GoalView goals{groups, goalLists, a.group, a.goalCursor};
+  decide(DecideInput{a, desc, tick, groups, goals, commonGround, workers}, decideOutput(a, chunks), tasks);
+  return std::move(chunks[0]);
+}
+
 }  // namespace
 
 TEST(Phases, DecideExitsActsAndChecksProgressRowByRow) {
@@ -174,16 +205,7 @@ TEST(Phases, DecideExitsActsAndChecksProgressRowByRow) {
   exit.kind = PointKind::Exit;
   exit.position = {18, 5};
   exit.radius = 1.0f;
-  PointDesc stand;
-  stand.kind = PointKind::Action;
-  stand.position = {10, 8};
-  stand.radius = 0.5f;
-  stand.stop = true;
-  stand.actionDuration = 2.0f;
-  stand.orientation = {0, 1};
-  desc.points = {exit, stand};
-  GroupTable groups;
-  groups.add(GroupState{});
+  desc.points = {exit, standingPoint({10, 8}, 0.5f)};
   const std::vector<std::vector<std::uint32_t>> goalLists{{0, 1}};
   AgentStore a;
   const float xs[] = {18.2f, 10.1f, 2.0f}, ys[] = {5.0f, 8.0f, 5.0f};
@@ -197,16 +219,8 @@ TEST(Phases, DecideExitsActsAndChecksProgressRowByRow) {
     a.radius[r] = 0.25f;
     a.goalCursor[r] = r == 1 ? 1 : 0;
   }
-  auto mesh = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)}, {}, nav::NavMeshConfig{});
-  ASSERT_TRUE(mesh.ok());
-  std::vector<WorkerScratch> workers(1);
-  workers[0].query = std::make_unique<nav::NavQuery>(mesh.value());
-  const CommonGroundState commonGround;
-  std::vector<ChunkOutput> chunks(1);
-  core::TaskSystem tasks(1);
   const std::uint64_t tick = 78;  // (tick + id 2) is a multiple of the 80-tick check period
-  const GoalView goals{groups, goalLists, a.group, a.goalCursor};
-  decide(DecideInput{a, desc, tick, groups, goals, commonGround, workers}, decideOutput(a, chunks), tasks);
+  const ChunkOutput chunk = decideOnce(desc, a, goalLists, tick);
 
   EXPECT_EQ(a.goalState[0], GoalState::Exited);
   EXPECT_EQ(a.goalState[1], GoalState::Acting);
@@ -217,12 +231,12 @@ TEST(Phases, DecideExitsActsAndChecksProgressRowByRow) {
   EXPECT_EQ(a.needPath[2], 1u) << "no closer than at the last check: re-plan";
   EXPECT_FLOAT_EQ(a.progressDistance[2], 16.0f);
   EXPECT_EQ(a.needPath[0] + a.needPath[1], 0);
-  ASSERT_EQ(chunks[0].events.size(), 2u);
-  EXPECT_EQ(chunks[0].events[0].kind, EventKind::Exit);
-  EXPECT_EQ(chunks[0].events[0].agent, 0u);
-  EXPECT_EQ(chunks[0].events[1].kind, EventKind::ActionStart);
-  EXPECT_EQ(chunks[0].events[1].a, 1u) << "the action point";
-  EXPECT_TRUE(chunks[0].pendingRows.empty());
+  ASSERT_EQ(chunk.events.size(), 2u);
+  EXPECT_EQ(chunk.events[0].kind, EventKind::Exit);
+  EXPECT_EQ(chunk.events[0].agent, 0u);
+  EXPECT_EQ(chunk.events[1].kind, EventKind::ActionStart);
+  EXPECT_EQ(chunk.events[1].a, 1u) << "the action point";
+  EXPECT_TRUE(chunk.pendingRows.empty());
 }
 
 TEST(Phases, DecideLetsAWalkerHeldUpNextToAnActionPointWatchFromThere) {
@@ -232,16 +246,7 @@ TEST(Phases, DecideLetsAWalkerHeldUpNextToAnActionPointWatchFromThere) {
   ScenarioDesc desc;
   desc.dt = 0.05f;
   desc.populations.emplace_back();
-  PointDesc stand;
-  stand.kind = PointKind::Action;
-  stand.position = {10, 8};
-  stand.radius = 0.5f;
-  stand.stop = true;
-  stand.actionDuration = 2.0f;
-  stand.orientation = {0, 1};
-  desc.points = {stand};
-  GroupTable groups;
-  groups.add(GroupState{});
+  desc.points = {standingPoint({10, 8}, 0.5f)};
   const std::vector<std::vector<std::uint32_t>> goalLists{{0}};
   AgentStore a;
   const float xs[] = {10.0f, 11.2f, 10.0f}, ys[] = {6.8f, 8.0f, 6.0f};
@@ -257,22 +262,14 @@ TEST(Phases, DecideLetsAWalkerHeldUpNextToAnActionPointWatchFromThere) {
     a.velY[r] = r == 1 ? 1.2f : 0.0f;
     a.stuckTime[r] = r == 1 ? 0.0f : 2.0f;
   }
-  auto mesh = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)}, {}, nav::NavMeshConfig{});
-  ASSERT_TRUE(mesh.ok());
-  std::vector<WorkerScratch> workers(1);
-  workers[0].query = std::make_unique<nav::NavQuery>(mesh.value());
-  const CommonGroundState commonGround;
-  std::vector<ChunkOutput> chunks(1);
-  core::TaskSystem tasks(1);
-  const GoalView goals{groups, goalLists, a.group, a.goalCursor};
-  decide(DecideInput{a, desc, 1, groups, goals, commonGround, workers}, decideOutput(a, chunks), tasks);
+  const ChunkOutput chunk = decideOnce(desc, a, goalLists, 1);
   EXPECT_EQ(a.goalState[0], GoalState::Acting) << "held up next to the area: watches from there";
   EXPECT_EQ(a.mode[0], AgentMode::Acting);
   EXPECT_EQ(a.goalState[1], GoalState::Seeking) << "walking freely: goes on to its spot";
   EXPECT_EQ(a.goalState[2], GoalState::Seeking) << "held up 2 m away: too far to watch";
-  ASSERT_EQ(chunks[0].events.size(), 1u);
-  EXPECT_EQ(chunks[0].events[0].kind, EventKind::ActionStart);
-  EXPECT_EQ(chunks[0].events[0].agent, 0u);
+  ASSERT_EQ(chunk.events.size(), 1u);
+  EXPECT_EQ(chunk.events[0].kind, EventKind::ActionStart);
+  EXPECT_EQ(chunk.events[0].agent, 0u);
 }
 
 TEST(Phases, FormationPullsTwoWalkersOfAFlockingGroupAbreast) {

@@ -1,4 +1,4 @@
-// Tests for libs/transport/src/static_files.cpp: percent-decoding, traversal refusal, index.html,
+// Tests for libs/transport/src/static_files.cpp: percent-decoding, query values, traversal refusal, index.html,
 // symbolic links out of the root, Content-Types.
 #include "static_files.hpp"
 
@@ -18,6 +18,17 @@ TEST(StaticFiles, PercentDecode) {
   EXPECT_FALSE(percentDecode("%4"));
   EXPECT_FALSE(percentDecode("%zz"));
   EXPECT_FALSE(percentDecode("a%00b"));
+}
+
+TEST(StaticFiles, QueryValuesAreDecoded) {
+  EXPECT_EQ(queryValue("/api/recordings?name=a%20b.sqlite", "name"), "a b.sqlite");
+  EXPECT_EQ(queryValue("/api/recordings?x=1&name=..%2Fx.sqlite", "name"), "../x.sqlite");
+  EXPECT_EQ(queryValue("/api/recordings?name=a+b", "name"), "a b");
+  EXPECT_EQ(queryValue("/api/recordings?name=%2", "name"), std::nullopt);
+  EXPECT_EQ(queryValue("/api/recordings?name=%zz", "name"), std::nullopt);
+  EXPECT_EQ(queryValue("/api/recordings", "name"), std::nullopt);
+  EXPECT_EQ(queryValue("/api/recordings?other=1", "name"), std::nullopt);
+  EXPECT_EQ(targetPath("/api/recordings?name=x#y"), "/api/recordings");
 }
 
 TEST(StaticFiles, SafeRelativePath) {

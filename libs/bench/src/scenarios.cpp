@@ -27,7 +27,7 @@ sim::PopulationDesc wanderers(std::string id, core::Polygon area, std::uint32_t 
   p.speedMin = kSpeed;
   p.speedMax = kSpeed;
   p.radius = kRadius;
-  // ORCA, not the engine's default model: the in-memory scenarios are compared with DetourCrowd and
+  // ORCA whatever the engine's default model: the in-memory scenarios are compared with DetourCrowd and
   // RVO2, which avoid the same way (`throng bench --model NAME` picks another).
   p.model = sim::ModelDesc(sim::ModelKind::Orca);
   return p;

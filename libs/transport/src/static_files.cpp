@@ -7,13 +7,35 @@
 #include <system_error>
 #include <utility>
 
-namespace throng::transport::detail {
-namespace fs = std::filesystem;
+namespace throng::transport {
 
 std::string_view targetPath(std::string_view target) {
   const auto end = target.find_first_of("?#");
   return end == std::string_view::npos ? target : target.substr(0, end);
 }
+
+std::optional<std::string> queryValue(std::string_view target, std::string_view key) {
+  const std::size_t q = target.find('?');
+  if (q == std::string_view::npos) return std::nullopt;
+  std::string_view rest = target.substr(q + 1);
+  rest = rest.substr(0, rest.find('#'));
+  while (!rest.empty()) {
+    const std::size_t amp = rest.find('&');
+    const std::string_view pair = rest.substr(0, amp);
+    const std::size_t eq = pair.find('=');
+    if (pair.substr(0, eq) == key) {
+      return eq == std::string_view::npos ? std::string() : detail::percentDecode(pair.substr(eq + 1), true);
+    }
+    if (amp == std::string_view::npos) break;
+    rest.remove_prefix(amp + 1);
+  }
+  return std::nullopt;
+}
+
+}  // namespace throng::transport
+
+namespace throng::transport::detail {
+namespace fs = std::filesystem;
 
 namespace {
 int hexValue(char c) {
@@ -24,12 +46,14 @@ int hexValue(char c) {
 }
 }  // namespace
 
-std::optional<std::string> percentDecode(std::string_view text) {
+std::optional<std::string> percentDecode(std::string_view text, bool plusIsSpace) {
   std::string out;
   out.reserve(text.size());
   for (std::size_t i = 0; i < text.size(); ++i) {
     char c = text[i];
-    if (c == '%') {
+    if (c == '+' && plusIsSpace) {
+      c = ' ';
+    } else if (c == '%') {
       if (i + 2 >= text.size()) return std::nullopt;
       const int hi = hexValue(text[i + 1]);
       const int lo = hexValue(text[i + 2]);

@@ -7,13 +7,13 @@
 #include <string>
 #include <string_view>
 
+#include "throng/transport/transport.hpp"
+
 namespace throng::transport::detail {
 
-/// The path part of a request target: everything before '?' or '#'.
-[[nodiscard]] std::string_view targetPath(std::string_view target);
-
-/// Decodes %XX escapes. nullopt for a malformed escape or a decoded NUL byte.
-[[nodiscard]] std::optional<std::string> percentDecode(std::string_view text);
+/// Decodes %XX escapes (and '+' as a space in a query value). nullopt for a malformed escape or a
+/// decoded NUL byte.
+[[nodiscard]] std::optional<std::string> percentDecode(std::string_view text, bool plusIsSpace = false);
 
 /// The relative path a target names ("" for "/"), or nullopt when the target is malformed
 /// (not starting with '/', bad escape, NUL, backslash) or has a ".." segment.

@@ -73,19 +73,18 @@ class EditorApp {
   /** After every edit: history, redraw, form, check, preview reset. */
   commit(what = 'edit') {
     if (!this.history.push(this.doc)) { this.render(); return; }
-    this.dirty = true;
-    this.stopPreview(true);
-    this.render();
-    this.panel.render();
-    this.scheduleCheck();
-    this.setStatus(what);
-    this.updateTitle();
+    this.changed(what);
   }
 
   replaceDoc(doc, what) {
     if (!doc) return;
     this.doc = doc;
     if (this.sel && !this.doc[this.sel.layer]?.[this.sel.index]) this.sel = null;
+    this.changed(what);
+  }
+
+  /** The document changed (`what` for the status line): unsaved, preview stopped, redrawn, re-checked. */
+  changed(what) {
     this.dirty = true;
     this.stopPreview(true);
     this.render();

@@ -57,6 +57,13 @@ struct HttpResponse {
 };
 
 /// A POST request handed to TransportOptions::postHandler.
+/// The path part of a request target: everything before '?' or '#'.
+[[nodiscard]] std::string_view targetPath(std::string_view target);
+
+/// The value of `key` in a request target's query string, %XX and '+' decoded; nullopt when the
+/// key is absent, an escape is malformed or the value decodes to a NUL byte.
+[[nodiscard]] std::optional<std::string> queryValue(std::string_view target, std::string_view key);
+
 struct HttpRequest {
   std::string target;       ///< path and query string, as sent
   std::string contentType;  ///< the Content-Type header, may be empty
