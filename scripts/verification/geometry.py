@@ -432,3 +432,78 @@ def route_choice(name):
     return scenario(name, [], [exit_point("goal", rect(39.4, 0, 40, 2), height=0)],
                     [population("walkers", ROUTES["agents"], {"polygon": rect(0.5, 0.3, 6.0, 1.7), "height": 0},
                                 ["goal"], SPEED)], 200, terrain={"vertices": verts, "walkable": tris, "obstacles": []})
+
+
+# --- ISO 20414 tests that differ from RiMEA's and NIST's ---------------------------------------------
+# ISO 7: one slow person ahead of ten faster ones in a 2 m corridor: they must overtake it.
+OVERTAKING = {"length": 50.0, "width": 2.0, "slow_x": 8.0, "slow_speed": 0.6, "slow_radius": 0.25, "others": 10,
+              "others_speed": {"mean": 1.34, "sd": 0.15, "min": 1.1, "max": 1.6}, "measure": (10.0, 45.0)}
+
+
+def overtaking(name):
+    o = OVERTAKING
+    w, length = o["width"], o["length"]
+    return scenario(name, [rect(0, 0, length, w)], [exit_point("end", rect(length - 0.5, 0, length, w))],
+                    [population("slow", 1, {"position": [o["slow_x"], w / 2]}, ["end"], o["slow_speed"],
+                                radius=o["slow_radius"]),
+                     population("others", o["others"], {"polygon": rect(0.3, 0.3, 5.0, w - 0.3)}, ["end"],
+                                o["others_speed"])], 120)
+
+
+# ISO 12: a crowd walks down a 2 m wide flight (the steps of RiMEA 2) from a 10 x 10 m room on the
+# upper floor; the flow on the flight against the SFPE Handbook's maximum specific flow on stairs.
+STAIR_FLOW = {"width": 2.0, "room": 10.0, "agents": 120, "lower": 5.0,
+              # SFPE Handbook (Gwynne & Rosenbaum, 5th ed.): 1.01 /(s·m effective width) on a 7/11 stair
+              # (0.178 m riser, 0.279 m tread; ours 0.17 / 0.29), effective width = width − 2 × 0.15 m.
+              "sfpe_max": 1.01, "boundary": 0.15}
+
+
+def stair_flow(name):
+    """Room (upper floor) -> 5 m landing -> 2 m wide flight down -> 5 m lower landing -> exit."""
+    f = STAIR_FLOW
+    w = f["width"]
+    terrain, top_end = stair_terrain(w, lower_from=STAIR["foot_x"] - f["lower"])
+    h = round(stair_height(), 6)
+    x0, x1, yc = top_end, round(top_end + f["room"], 6), w / 2
+    _quad(terrain["vertices"], terrain["walkable"],
+          [[x0, yc - f["room"] / 2, h], [x1, yc - f["room"] / 2, h], [x1, yc + f["room"] / 2, h],
+           [x0, yc + f["room"] / 2, h]])
+    spawn = rect(x0 + 0.5, yc - f["room"] / 2 + 0.3, x1 - 0.3, yc + f["room"] / 2 - 0.3)
+    lo = STAIR["foot_x"] - f["lower"]
+    return scenario(name, [], [exit_point("down", rect(lo, 0, lo + 0.6, w), height=0.0)],
+                    [{"id": "crowd", "groups": f["agents"], "size": 1, "spawn": {"polygon": spawn, "height": h},
+                      "goals": ["down"], "speed": SPEED}], 400, terrain=terrain)
+
+
+# ISO 13: a 2 m wide corridor; a crowd at three densities in its first 20 m walks to its far end, and
+# flow, density and speed are measured in x 30 .. 40.
+CORRIDOR_FD = {"length": 60.0, "width": 2.0, "fill": 20.0, "densities": [0.5, 1.0, 2.0], "zone": (30.0, 40.0),
+               # SFPE Handbook: at most 1.3 persons /(s·m effective width) in a corridor, walls' boundary
+               # layer 0.2 m each side.
+               "sfpe_max": 1.3, "boundary": 0.2}
+
+
+def corridor_fd(name, rho):
+    c = CORRIDOR_FD
+    w, n = c["width"], int(round(rho * c["fill"] * c["width"]))
+    return scenario(name, [rect(0, 0, c["length"], w)], [exit_point("end", rect(c["length"] - 0.5, 0, c["length"], w))],
+                    [population("crowd", n, {"polygon": rect(0.2, 0.2, c["fill"], w - 0.2)}, ["end"], SPEED)], 200)
+
+
+# ISO 17: two exits, the west one nearer as the crow flies but behind a long wall, the east one
+# farther but straight ahead; each person chooses by walking distance (the "nearest" rule).
+LAYOUT = {"w": 30.0, "h": 20.0, "door_y": 5.0, "wall_x": (3.0, 3.5), "wall_to": 18.0, "spawn": (11.0, 2.0, 14.0, 8.0),
+          "agents": 20}
+
+
+def route_layout(name):
+    g = LAYOUT
+    w, h, y = g["w"], g["h"], g["door_y"]
+    walk = [rect(0, 0, w, h), rect(-1.0, y - 0.5, 0, y + 0.5), rect(w, y - 0.5, w + 1.0, y + 0.5)]
+    wx0, wx1 = g["wall_x"]
+    exits = [exit_point("west", rect(-1.0, y - 0.5, -0.5, y + 0.5)), exit_point("east", rect(w + 0.5, y - 0.5, w + 1.0, y + 0.5))]
+    x0, y0, x1, y1 = g["spawn"]
+    return scenario(name, walk, exits,
+                    [population("crowd", g["agents"], {"polygon": rect(x0, y0, x1, y1)}, [], SPEED,
+                                exits=["west", "east"], exitChoice={"rule": "nearest"})], 200,
+                    obstacles=[rect(wx0, 0, wx1, g["wall_to"])])

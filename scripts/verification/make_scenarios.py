@@ -1,7 +1,8 @@
 #!/usr/bin/python3
-"""Writes the verification scenarios (verification/rimea/*.json, verification/nist/*.json) from
-scripts/verification/geometry.py. The files are committed; run this after changing a builder and
-commit what changes (scripts/verify.py reads the files, not the builders).
+"""Writes the verification scenarios (verification/rimea/*.json, verification/nist/*.json,
+verification/iso/*.json) from scripts/verification/geometry.py. The files are committed; run this
+after changing a builder and commit what changes (scripts/verify.py reads the files, not the
+builders).
 
 usage: /usr/bin/python3 scripts/verification/make_scenarios.py [--check]
   --check  write nothing; exit 1 if a committed file differs from what the builders give
@@ -81,6 +82,17 @@ def scenarios():
         r[f"rimea/04-ring-{rho:g}"] = ring(rho)
     for k in G.COUNTER["against"]:
         r[f"rimea/16-counterflow-{k}"] = G.counter_flow(f"RiMEA 16: 50 persons east, {k} west", k)
+    r.update(iso_scenarios())
+    return r
+
+
+def iso_scenarios():
+    """ISO 20414 tests that differ from RiMEA's and NIST's (verification/iso/README.md)."""
+    r = {"iso/07-overtaking": G.overtaking("ISO 20414 test 7: ten persons overtake one with reduced mobility"),
+         "iso/12-stair-flow": G.stair_flow(f"ISO 20414 test 12: {G.STAIR_FLOW['agents']} persons down a 2 m wide flight"),
+         "iso/17-route-layout": G.route_layout("ISO 20414 test 17: the exit nearer by walking, not as the crow flies")}
+    for rho in G.CORRIDOR_FD["densities"]:
+        r[f"iso/13-corridor-{rho:g}"] = G.corridor_fd(f"ISO 20414 test 13: a 2 m corridor, crowd at {rho:g} /m^2", rho)
     return r
 
 

@@ -1,5 +1,5 @@
 """NIST Technical Note 1822 (Ronchi, Kuligowski, Reneke, Peacock, Nilsson 2013) tests for
-scripts/verify.py, and the ISO 20414 placeholder. Where a NIST test sets up what a RiMEA test
+scripts/verify.py. Where a NIST test sets up what a RiMEA test
 already does, it runs the RiMEA scenario (the run is simulated once) with the NIST criterion; the
 texts are verification/nist/*.md."""
 from validation import measures as M
@@ -181,9 +181,3 @@ def tests():
                                      "expects this test to fail too)" for m, f in (("orca", "1.44 /s"), ("avm", "2.13 /s"))}),
     ]
 
-
-def iso_tests():
-    return [Test("iso-20414", "iso", "ISO 20414 tests beyond NIST TN 1822", "—", "ISO 20414:2020",
-                 "verification/iso/README.md",
-                 xfail="not written yet: the ISO 20414 verification tests that differ from NIST TN 1822 still have "
-                       "to be listed one by one (issue 18)")]

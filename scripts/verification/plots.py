@@ -101,3 +101,26 @@ def counter(datas, path, title):
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     _save(fig, path)
+
+
+def corridor_fd(datas, path, title):
+    """ISO 13: speed and flow against the measured density, per model, with Weidmann's speed and the
+    SFPE flow limit."""
+    from . import geometry as G
+    plt = _plt()
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(8.4, 3.6), dpi=80)
+    rho = np.linspace(0.1, 1.4, 100)
+    a1.plot(rho, M.weidmann(rho), "k-", lw=1.2, label="Weidmann (1993)")
+    c = G.CORRIDOR_FD
+    a2.axhline(c["sfpe_max"] * (c["width"] - 2 * c["boundary"]), color="k", lw=0.8, label="SFPE maximum")
+    for (tag, d), col in zip(datas.items(), COLOURS):
+        dens = [r["density"] for r in d["rows"]]
+        a1.plot(dens, [r["speed"] for r in d["rows"]], "o-", color=col, label=tag)
+        a2.plot(dens, [r["flow"] for r in d["rows"]], "o-", color=col, label=tag)
+    a1.set(xlabel="density in x 30 … 40 m [1/m²]", ylabel="speed [m/s]", ylim=(0, 1.6))
+    a2.set(xlabel="density in x 30 … 40 m [1/m²]", ylabel="flow across x = 40 m [1/s]")
+    for ax in (a1, a2):
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle(title, fontsize=10)
+    _save(fig, path)

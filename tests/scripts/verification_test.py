@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Unit test of the verification harness (ctest: verification_unit): the status rule (PASS, FAIL,
 XFAIL, XPASS; reported-only checks ignored), per-model expectations, the measurements verify.py
-adds to scripts/validation/measures.py on hand-made trajectories with known answers, and that the
+adds to scripts/validation/measures.py (RiMEA's detours, ISO's line crossings and zone speeds) on
+hand-made trajectories with known answers, and that the
 committed scenario files under verification/ are what scripts/verification/make_scenarios.py
 writes."""
 import os
@@ -16,6 +17,7 @@ import numpy as np  # noqa: E402
 
 from validation import measures as M  # noqa: E402
 from verification import core as C  # noqa: E402
+from verification import iso as I  # noqa: E402
 from verification import rimea as R  # noqa: E402
 
 FAILURES = []
@@ -77,6 +79,18 @@ def test_sideways_detours():
     expect(np.allclose(side, [0.0, 8.0]) and np.allclose(excess, [0.0, 4.0 / 6.0]), f"sideways_detours {side} {excess}")
 
 
+def test_iso_crossings():
+    # Agent 1 walks +x at 1 m/s from x = 0, agent 2 at 0.5 m/s from x = 1 (10 frames a second); agent 3
+    # walks back (-x) and never crosses +x.
+    rows = [(1, f, f * 0.1, 0.0) for f in range(100)] + [(2, f, 1.0 + f * 0.05, 1.0) for f in range(100)]
+    rows += [(3, f, 5.0 - f * 0.1, 1.5) for f in range(50)]
+    traj = M.Trajectories(rows, 10.0)
+    t = I.crossing_times(traj, 2.05)
+    expect(sorted(t) == [1, 2] and abs(t[1] - 2.05) < 1e-9 and abs(t[2] - 2.1) < 1e-9, f"crossing_times {t}")
+    v = I.zone_speeds(traj, 2.0, 4.0)
+    expect(sorted(v) == [1, 2] and abs(v[1] - 1.0) < 1e-9 and abs(v[2] - 0.5) < 1e-9, f"zone_speeds {v}")
+
+
 def test_committed_scenarios():
     res = subprocess.run([sys.executable, os.path.join(SCRIPTS, "verification", "make_scenarios.py"), "--check"],
                          capture_output=True, text=True)
@@ -88,6 +102,7 @@ def main():
     test_geometry_measures()
     test_motion_measures()
     test_sideways_detours()
+    test_iso_crossings()
     test_committed_scenarios()
     for f in FAILURES:
         print("verification_test: FAIL:", f)
