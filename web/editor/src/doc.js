@@ -1,8 +1,10 @@
 // The scenario document the editor edits — the scenario JSON object itself, so that every
 // diagnostic's JSON pointer names a place in it — and pure operations on it (no DOM): the editable
 // elements and their vertices, JSON pointer ↔ element, anchors for markers, unique ids, removal
-// (references to a removed point go with it), merging an imported plan, and the undo/redo history.
+// (references to a removed point go with it, from waypoint choices too), merging an imported plan,
+// and the undo/redo history.
 import { centroid } from './geometry.js';
+import { removeOption, renameInGoal } from './goals.js';
 
 /** The collections the plan shows, in drawing order (docs/scenario-format.md). */
 export const LAYERS = ['walkable', 'obstacles', 'walls', 'measurements', 'populations', 'points'];
@@ -124,14 +126,15 @@ export function allVertices(doc, skip = null) {
   return out;
 }
 
-/** Removes an element; removing a point drops it from every population's goals and exits. */
+/** Removes an element; removing a point drops it from every population's goals (and waypoint
+ * choices) and exits. */
 export function removeElement(doc, sel) {
   const list = doc[sel.layer];
   if (!Array.isArray(list) || !list[sel.index]) return;
   const [removed] = list.splice(sel.index, 1);
   if (sel.layer === 'points' && removed?.id) {
     for (const pop of doc.populations || []) {
-      if (Array.isArray(pop.goals)) pop.goals = pop.goals.filter((g) => g !== removed.id);
+      if (Array.isArray(pop.goals)) pop.goals = pop.goals.map((g) => removeOption(g, removed.id)).filter((g) => g !== null);
       if (Array.isArray(pop.exits)) {
         pop.exits = pop.exits.filter((g) => g !== removed.id);
         if (!pop.exits.length) { delete pop.exits; delete pop.exitChoice; }
@@ -163,7 +166,8 @@ export function renamePoint(doc, index, id) {
   const old = doc.points[index].id;
   doc.points[index].id = id;
   for (const pop of doc.populations || []) {
-    for (const key of ['goals', 'exits']) if (Array.isArray(pop[key])) pop[key] = pop[key].map((g) => (g === old ? id : g));
+    if (Array.isArray(pop.goals)) pop.goals = pop.goals.map((g) => renameInGoal(g, old, id));
+    if (Array.isArray(pop.exits)) pop.exits = pop.exits.map((g) => (g === old ? id : g));
     if (pop.spawn?.point === old) pop.spawn.point = id;
   }
 }

@@ -3,7 +3,9 @@
 // every edit with POST /api/check (debounced) and shows each diagnostic on the plan at the element
 // its JSON pointer names, previews it with POST /api/preview (frames animated in the plan), saves
 // it with POST /api/save (Ctrl+S; an invalid scenario only after the user has seen why) or
-// downloads it, imports a DXF or WKT floor plan (POST /api/import). Undo/redo over snapshots; keyboard shortcuts with a help overlay (?).
+// downloads it, imports a DXF or WKT floor plan (POST /api/import). Picks a crowd's goals on the
+// plan, or the options of one of its waypoint choices. Undo/redo over snapshots; keyboard shortcuts
+// with a help overlay (?).
 import schema from '../../../scenarios/schema/scenario.schema.json';
 import { bounds } from './geometry.js';
 import {
@@ -29,7 +31,7 @@ class EditorApp {
     this.cam = new Camera();
     this.doc = emptyScenario();
     this.sel = null;
-    this.state = { grid: 0.5, snap: true, diagnostics: [], cursor: null, snapKind: null, pickGoals: false, previewFrame: null, dragPreview: null };
+    this.state = { grid: 0.5, snap: true, diagnostics: [], cursor: null, snapKind: null, pickGoals: false, pickChoice: null, previewFrame: null, dragPreview: null };
     this.history = new History(this.doc);
     this.checkSeq = 0;
     this.checkTimer = null;
@@ -99,7 +101,7 @@ class EditorApp {
 
   select(sel) {
     this.sel = sel;
-    if (!sel || sel.layer !== 'populations') this.state.pickGoals = false;
+    if (!sel || sel.layer !== 'populations') { this.state.pickGoals = false; this.state.pickChoice = null; }
     this.render();
     this.panel.render();
   }
@@ -132,8 +134,20 @@ class EditorApp {
   togglePickGoals() {
     if (this.sel?.layer !== 'populations') { this.setStatus('select a crowd first, then G picks its goals'); return; }
     this.state.pickGoals = !this.state.pickGoals;
+    this.state.pickChoice = null;
     if (this.state.pickGoals && this.tools.tool !== 'select') this.tools.tool = 'select';
     this.setStatus(this.state.pickGoals ? 'click points on the plan: each becomes the next goal (G or Esc ends)' : 'goals picked');
+    this.renderToolbar();
+    this.panel.render();
+  }
+
+  /** Picking on the plan adds options to the selected crowd's goal `index` (a waypoint choice). */
+  pickOptions(index) {
+    if (this.sel?.layer !== 'populations') return;
+    this.state.pickGoals = true;
+    this.state.pickChoice = index;
+    if (this.tools.tool !== 'select') this.tools.tool = 'select';
+    this.setStatus(`click points on the plan: each becomes an option of goal ${index + 1} (G or Esc ends)`);
     this.renderToolbar();
     this.panel.render();
   }

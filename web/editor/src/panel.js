@@ -1,6 +1,7 @@
 // The properties panel: a form for the selection (or the scenario's own keys when nothing is
 // selected). Points by kind, walls, measurements and crowds — size, speed, start, goals in order
-// (picked on the plan), exit choice (the exits, the rule and its keys, the familiar exits) and the
+// (picked on the plan; a goal may be a waypoint choice among points, with its split and shares),
+// exit choice (the exits, the rule and its keys, the familiar exits) and the
 // pedestrian model with its parameters, a form generated from the
 // JSON Schema (schema_form.js). A value out of its schema limits is shown under its field and not
 // written; every accepted change is one undoable edit (`app.commit`).
@@ -9,6 +10,7 @@ import {
 } from './schema_form.js';
 import { polygonArea, polygonProblem, polylineLength } from './geometry.js';
 import { isClosed, renamePoint, verticesOf } from './doc.js';
+import { goalIds, isChoice, parseShares, removeOption, setShares, setSplit } from './goals.js';
 
 function h(tag, attrs = {}, ...children) {
   const node = document.createElement(tag);
@@ -27,7 +29,8 @@ export class Panel {
     this.schema = schema;
   }
 
-  /** One input for a schema field; `set(value)` writes the accepted value (undefined: remove). */
+  /** One input for a schema field (labelled `field.label`, else its key); `set(value)` writes the
+   * accepted value (undefined: remove). */
   input(field, value, set) {
     const id = `f-${field.key}`;
     const error = h('div', { class: 'field-error' });
@@ -50,7 +53,7 @@ export class Panel {
         title: `${field.description}${limits.length ? ` [${limits.join(' … ')}]` : ''}`,
         onchange: (e) => apply(e.target.value) });
     }
-    return h('div', { class: 'field' }, h('label', { for: id, title: field.description }, field.key), control, error);
+    return h('div', { class: 'field' }, h('label', { for: id, title: field.description }, field.label ?? field.key), control, error);
   }
 
   render() {
@@ -209,14 +212,51 @@ export class Panel {
     }
   }
 
+  /** The goals in order; each a point or a waypoint choice (docs/scenario-format.md, Waypoint
+   * choices): "or…" turns a goal into a choice and picks its options on the plan; a choice shows its
+   * options (each removable), its split and, for the shares split, its shares. */
   renderGoals(pop) {
     const goals = Array.isArray(pop.goals) ? pop.goals : [];
-    const list = h('ol', { class: 'goals', id: 'goal-list' }, ...goals.map((g, i) => h('li', {}, g, ' ',
-      h('button', { class: 'x', title: 'remove this goal', onclick: () => { pop.goals.splice(i, 1); this.app.commit('goal removed'); } }, '×'))));
-    const picking = this.app.state.pickGoals;
-    this.root.append(h('div', { class: 'field' }, h('label', {}, 'goals'), list,
-      h('button', { id: 'pick-goals', class: picking ? 'on' : '', onclick: () => this.app.togglePickGoals() },
-        picking ? 'Picking… click points (G ends)' : 'Pick goals (G)')));
+    const { pickGoals, pickChoice } = this.app.state;
+    const replace = (i, goal, what) => {
+      if (goal === null) pop.goals.splice(i, 1);
+      else pop.goals[i] = goal;
+      this.app.commit(what);
+    };
+    const items = goals.map((g, i) => {
+      const picking = pickGoals && pickChoice === i;
+      const more = h('button', { class: `or${picking ? ' on' : ''}`, 'data-choice': i,
+        title: 'add options to choose among: click points on the plan', onclick: () => this.app.pickOptions(i) },
+      picking ? 'picking…' : (isChoice(g) ? '+ option' : 'or…'));
+      const remove = h('button', { class: 'x', title: 'remove this goal', onclick: () => replace(i, null, 'goal removed') }, '×');
+      if (!isChoice(g)) return h('li', {}, g, ' ', more, remove);
+      const options = goalIds(g).map((id) => h('span', { class: 'option' }, id,
+        h('button', { class: 'x', title: `remove ${id} from the choice`, 'data-option': id,
+          onclick: () => replace(i, removeOption(g, id), `${id} removed from the choice`) }, '×')));
+      return h('li', { class: 'choice' }, h('div', {}, 'one of ', ...options, ' ', more, remove), ...this.choiceFields(g, (next, what) => replace(i, next, what), i));
+    });
+    this.root.append(h('div', { class: 'field goals-field' }, h('label', {}, 'goals'), h('ol', { class: 'goals', id: 'goal-list' }, ...items),
+      h('button', { id: 'pick-goals', class: pickGoals && pickChoice === null ? 'on' : '', onclick: () => this.app.togglePickGoals() },
+        pickGoals && pickChoice === null ? 'Picking… click points (G ends)' : 'Pick goals (G)')));
+  }
+
+  /** The split of a waypoint choice (the schema's enum) and, with the shares split, its shares. */
+  choiceFields(goal, write, index) {
+    const node = this.schema.$defs?.goalChoice?.properties || {};
+    const split = fieldOf(this.schema, 'split', node.split || { enum: ['shares', 'leastTargeted'], default: 'shares' });
+    const out = [this.input({ ...split, key: `goals.${index}.split`, label: 'split' }, goal.split, (v) => write(setSplit(goal, v), 'split changed'))];
+    if (goal.split === 'leastTargeted') return out;
+    const id = `f-goals-${index}-shares`;
+    const error = h('div', { class: 'field-error' });
+    const control = h('input', { id, 'data-field': `goals.${index}.shares`, value: Array.isArray(goal.shares) ? goal.shares.join(', ') : '',
+      placeholder: 'equal', title: node.shares?.description || 'one share per option',
+      onchange: (e) => {
+        const r = parseShares(goal, e.target.value);
+        error.textContent = r.error || '';
+        if (!r.error) write(setShares(goal, r.value), 'shares changed');
+      } });
+    out.push(h('div', { class: 'field' }, h('label', { for: id, title: node.shares?.description || '' }, 'shares'), control, error));
+    return out;
   }
 
   renderModel(pop) {

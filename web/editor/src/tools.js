@@ -1,9 +1,11 @@
 // The editor's tools: what a click, a drag, a double-click or Enter does in the plan. Select moves
-// vertices and whole elements (snapped), and picks goals for the selected crowd; the drawing tools
-// make polygons (clicks, or one drag for a rectangle), polylines and points, and turn the finished
-// drawing into a scenario element with a fresh id. Edits go through `app.commit()` (undo, check).
+// vertices and whole elements (snapped), and picks goals for the selected crowd (or options of one
+// of its waypoint choices); the drawing tools make polygons (clicks, or one drag for a rectangle),
+// polylines and points, and turn the finished drawing into a scenario element with a fresh id.
+// Edits go through `app.commit()` (undo, check).
 import { rectangle, snapPoint, dist, distanceToSegment, polygonArea, polylineLength } from './geometry.js';
 import { allVertices, uniqueId, verticesOf, isClosed } from './doc.js';
+import { addOption } from './goals.js';
 
 /** key: shortcut; shape: 'polygon' (closed), 'polyline' (open, max points), 'point'. */
 export const TOOLS = {
@@ -63,6 +65,7 @@ export class ToolController {
     this.tool = name;
     this.draft = null;
     this.app.state.pickGoals = false;
+    this.app.state.pickChoice = null;
     this.app.setStatus(TOOLS[name].help);
     this.app.render();
   }
@@ -105,7 +108,11 @@ export class ToolController {
     if (this.app.state.pickGoals && sel?.layer === 'populations' && layer === 'points') {
       const id = this.app.doc.points[index]?.id;
       const pop = this.app.doc.populations[sel.index];
-      if (id && pop) {
+      const into = this.app.state.pickChoice;
+      if (id && pop && into !== null && Array.isArray(pop.goals) && pop.goals[into] !== undefined) {
+        pop.goals[into] = addOption(pop.goals[into], id);
+        this.app.commit(`${id} added as an option of goal ${into + 1} of ${pop.id}`);
+      } else if (id && pop) {
         pop.goals = Array.isArray(pop.goals) ? [...pop.goals, id] : [id];
         this.app.commit(`goal ${id} added to ${pop.id}`);
       }
@@ -259,6 +266,7 @@ export class ToolController {
     this.app.sel = { layer: made.layer, index };
     if (tool === 'crowd') this.tool = 'select';  // next: pick its goals
     this.app.state.pickGoals = tool === 'crowd';
+    this.app.state.pickChoice = null;
     this.app.commit(`${TOOLS[tool].label.toLowerCase()} added`);
     if (tool === 'crowd') this.app.setStatus('crowd added: click points (interest, exit…) for its goals in order; G or Esc ends');
   }

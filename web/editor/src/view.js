@@ -1,10 +1,12 @@
 // The plan view of the scenario editor: draws the document into an SVG in screen coordinates
 // (metres → pixels through the camera: centre, scale, y up) — grid, walkable area, obstacles,
-// walls, measurements, spawn areas, goal arrows, points, the selection with its vertex handles,
-// live lengths and areas, a background image to trace over, the diagnostics' markers, the polygon being drawn and the preview's
-// agents. Every element carries data-layer/data-index (handles data-vertex) for picking.
+// walls, measurements, spawn areas, goal arrows (dotted to each option of a waypoint choice),
+// points, the selection with its vertex handles, live lengths and areas, a background image to
+// trace over, the diagnostics' markers, the polygon being drawn and the preview's agents. Every
+// element carries data-layer/data-index (handles data-vertex) for picking.
 import { centroid, dist, polygonArea, polylineLength } from './geometry.js';
 import { LAYERS, anchorOf, isClosed, pointPosition, verticesOf } from './doc.js';
+import { goalIds, isChoice } from './goals.js';
 
 const NS = 'http://www.w3.org/2000/svg';
 
@@ -106,20 +108,26 @@ function drawElement(g, cam, doc, layer, index, flagged) {
   }
 }
 
-/** Arrows from each population's spawn through its goals, numbered in order. */
+/** Arrows from each population's spawn through its goals, numbered in order (a waypoint choice:
+ * dotted arrows to each of its options, numbered with a "?"). */
 function drawGoals(g, cam, doc, selected) {
   const byId = new Map((doc.points || []).map((p) => [p.id, pointPosition(p)]));
   (doc.populations || []).forEach((pop, index) => {
     if (!Array.isArray(pop.goals)) return;
     let from = anchorOf(doc, { layer: 'populations', index });
     const active = selected && selected.layer === 'populations' && selected.index === index;
-    pop.goals.forEach((id, k) => {
-      const to = byId.get(id);
-      if (!from || !to) return;
-      const a = cam.toScreen(from), b = cam.toScreen(to);
-      el('line', { x1: a[0], y1: a[1], x2: b[0], y2: b[1], class: `goal-arrow${active ? ' active' : ''}`, 'marker-end': 'url(#arrow)' }, g);
-      label(g, cam, [(from[0] + to[0]) / 2, (from[1] + to[1]) / 2], String(k + 1), 'label goal-order');
-      from = to;
+    pop.goals.forEach((goal, k) => {
+      // A waypoint choice: a dotted arrow to each option, the next goal's arrow from their centre.
+      const choice = isChoice(goal);
+      const tos = goalIds(goal).map((id) => byId.get(id)).filter(Boolean);
+      if (!from || !tos.length) return;
+      for (const to of tos) {
+        const a = cam.toScreen(from), b = cam.toScreen(to);
+        el('line', { x1: a[0], y1: a[1], x2: b[0], y2: b[1], class: `goal-arrow${choice ? ' choice' : ''}${active ? ' active' : ''}`,
+          'marker-end': 'url(#arrow)' }, g);
+        label(g, cam, [(from[0] + to[0]) / 2, (from[1] + to[1]) / 2], choice ? `${k + 1}?` : String(k + 1), 'label goal-order');
+      }
+      from = [tos.reduce((s, p) => s + p[0], 0) / tos.length, tos.reduce((s, p) => s + p[1], 0) / tos.length];
     });
   });
 }
