@@ -501,7 +501,8 @@ def route_layout(name):
     w, h, y = g["w"], g["h"], g["door_y"]
     walk = [rect(0, 0, w, h), rect(-1.0, y - 0.5, 0, y + 0.5), rect(w, y - 0.5, w + 1.0, y + 0.5)]
     wx0, wx1 = g["wall_x"]
-    exits = [exit_point("west", rect(-1.0, y - 0.5, -0.5, y + 0.5)), exit_point("east", rect(w + 0.5, y - 0.5, w + 1.0, y + 0.5))]
+    exits = [exit_point("west", rect(-1.0, y - 0.5, -0.5, y + 0.5)),
+             exit_point("east", rect(w + 0.5, y - 0.5, w + 1.0, y + 0.5))]
     x0, y0, x1, y1 = g["spawn"]
     return scenario(name, walk, exits,
                     [population("crowd", g["agents"], {"polygon": rect(x0, y0, x1, y1)}, [], SPEED,

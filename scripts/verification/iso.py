@@ -123,8 +123,8 @@ def measure_corridor_fd(results, ctx):
     speeds, flows = [r["speed"] for r in rows], [r["flow"] for r in rows]
     drop = None if None in speeds else speeds[0] - speeds[-1]
     rises = None not in flows and all(b > a for a, b in zip(flows, flows[1:]))
-    return [band(f"flow ≤ SFPE's {c['sfpe_max']:g} /(s·m) × {effective:g} m effective width = {cap:.2f} /s at every "
-                 "density", max((r["flow"] or 0) for r in rows), 0.0, cap, "/s", "highest {:.2f}"),
+    return [band(f"flow ≤ SFPE's {c['sfpe_max']:g} /(s·m) × {effective:g} m effective width = {cap:.2f} /s "
+                 "at every density", max((r["flow"] or 0) for r in rows), 0.0, cap, "/s", "highest {:.2f}"),
             band("speed falls with density: ≥ 0.1 m/s slower at 2 than at 0.5 /m²", drop, 0.1, None, "m/s",
                  "{:+.2f}"),
             Check("flow rises with density (free-flow branch, 0.5 → 1 → 2 /m²)",
@@ -176,11 +176,13 @@ def tests():
                          "with the flight walked at the flat speed (no headway term slows it in a crowd, issue 17)",
                  "avm": "throng caps no flow: avm passes 2.40 /s down the 2 m flight, above SFPE's 1.72 /s (as NIST "
                         "5.2's door)"}),
-        i("13", "Flow rate, density and walking speed in a corridor", "flow ≤ SFPE's maximum, speed falls with "
-          "density, flow = density × speed × width", "13-corridor",
-          [Run(f"rho{r:g}", f"iso/13-corridor-{r:g}.json") for r in G.CORRIDOR_FD["densities"]], measure_corridor_fd, plot=P.corridor_fd,
+        i("13", "Flow rate, density and walking speed in a corridor", "flow ≤ SFPE's maximum; speed falls and flow "
+          "rises with density", "13-corridor",
+          [Run(f"rho{r:g}", f"iso/13-corridor-{r:g}.json") for r in G.CORRIDOR_FD["densities"]], measure_corridor_fd,
+          plot=P.corridor_fd,
           xfail={"orca": "ORCA keeps near its free speed in a crowd (1.32 → 1.25 m/s from 0.3 to 0.9 /m²) and passes "
-                         "2.60 /s through the 2 m corridor, above SFPE's 2.08 /s (no headway term, issue 17; as RiMEA 4)",
+                         "2.60 /s through the 2 m corridor, above SFPE's 2.08 /s (no headway term, issue 17; as "
+                         "RiMEA 4)",
                  "avm": "throng caps no flow: avm passes 2.48 /s through the 2 m corridor, above SFPE's design "
                         "maximum of 2.08 /s (Weidmann's peak, 1.22 /(s·m), would give 2.45 /s)"}),
         i("17", "Route choice based on geometric layout", "persons take the exit nearer by walking, not as the crow "

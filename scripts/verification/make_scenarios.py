@@ -89,7 +89,8 @@ def scenarios():
 def iso_scenarios():
     """ISO 20414 tests that differ from RiMEA's and NIST's (verification/iso/README.md)."""
     r = {"iso/07-overtaking": G.overtaking("ISO 20414 test 7: ten persons overtake one with reduced mobility"),
-         "iso/12-stair-flow": G.stair_flow(f"ISO 20414 test 12: {G.STAIR_FLOW['agents']} persons down a 2 m wide flight"),
+         "iso/12-stair-flow": G.stair_flow(f"ISO 20414 test 12: {G.STAIR_FLOW['agents']} persons down a 2 m wide "
+                                           "flight"),
          "iso/17-route-layout": G.route_layout("ISO 20414 test 17: the exit nearer by walking, not as the crow flies")}
     for rho in G.CORRIDOR_FD["densities"]:
         r[f"iso/13-corridor-{rho:g}"] = G.corridor_fd(f"ISO 20414 test 13: a 2 m corridor, crowd at {rho:g} /m^2", rho)

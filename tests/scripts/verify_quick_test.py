@@ -1,11 +1,11 @@
 #!/usr/bin/python3
 """End-to-end test of `throng verify` (ctest: verify_quick): runs a fast subset of the verification
 suite as CI does and fails when a measured criterion fails (a test FAILs or an expected failure
-passes: throng verify exits 1). Also checks that `throng verify --help` lists the flags, that bad
-flags, suites, tests and models exit 2, that --json and --report write what they promise, that
---model all runs the three models side by side, that every scenario under verification/ passes
-`throng check`, and that
-a run that breaks (a throng binary that fails) is a FAIL with exit 1, not a pass.
+passes: throng verify exits 1). Also checks that `throng verify --help` lists the flags and
+describes the suites (ISO 20414's too), that bad flags, suites, tests and models exit 2, that
+--json and --report write what they promise, that --model all runs the three models side by side,
+that every scenario under verification/ passes `throng check`, and that a run that breaks (a
+throng binary that fails) is a FAIL with exit 1, not a pass.
 
 usage: verify_quick_test.py THRONG_BINARY"""
 import json
@@ -40,6 +40,9 @@ def check_flags(binary):
     missing = [f for f in FLAGS if f not in res.stdout]
     if missing:
         fail(f"throng verify --help does not list {missing}")
+    for suite in ("RiMEA", "NIST TN 1822", "ISO 20414", "iso (", "verification/iso/README.md"):
+        if suite not in res.stdout:
+            fail(f"throng verify --help does not describe the suites ({suite!r} missing)")
     for bad in (["--bogus"], ["--suite", "rimeaa"], ["--test", "rimea-99"], ["--model", "nope"], ["--threads", "0"]):
         res = run(binary, *bad)
         if res.returncode != 2:

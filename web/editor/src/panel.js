@@ -233,9 +233,11 @@ export class Panel {
       const options = goalIds(g).map((id) => h('span', { class: 'option' }, id,
         h('button', { class: 'x', title: `remove ${id} from the choice`, 'data-option': id,
           onclick: () => replace(i, removeOption(g, id), `${id} removed from the choice`) }, '×')));
-      return h('li', { class: 'choice' }, h('div', {}, 'one of ', ...options, ' ', more, remove), ...this.choiceFields(g, (next, what) => replace(i, next, what), i));
+      return h('li', { class: 'choice' }, h('div', {}, 'one of ', ...options, ' ', more, remove),
+        ...this.choiceFields(g, (next, what) => replace(i, next, what), i));
     });
-    this.root.append(h('div', { class: 'field goals-field' }, h('label', {}, 'goals'), h('ol', { class: 'goals', id: 'goal-list' }, ...items),
+    this.root.append(h('div', { class: 'field goals-field' }, h('label', {}, 'goals'),
+      h('ol', { class: 'goals', id: 'goal-list' }, ...items),
       h('button', { id: 'pick-goals', class: pickGoals && pickChoice === null ? 'on' : '', onclick: () => this.app.togglePickGoals() },
         pickGoals && pickChoice === null ? 'Picking… click points (G ends)' : 'Pick goals (G)')));
   }
@@ -244,7 +246,8 @@ export class Panel {
   choiceFields(goal, write, index) {
     const node = this.schema.$defs?.goalChoice?.properties || {};
     const split = fieldOf(this.schema, 'split', node.split || { enum: ['shares', 'leastTargeted'], default: 'shares' });
-    const out = [this.input({ ...split, key: `goals.${index}.split`, label: 'split' }, goal.split, (v) => write(setSplit(goal, v), 'split changed'))];
+    const out = [this.input({ ...split, key: `goals.${index}.split`, label: 'split' }, goal.split,
+      (v) => write(setSplit(goal, v), 'split changed'))];
     if (goal.split === 'leastTargeted') return out;
     const id = `f-goals-${index}-shares`;
     const error = h('div', { class: 'field-error' });
