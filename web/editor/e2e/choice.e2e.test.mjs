@@ -1,9 +1,10 @@
 // End-to-end test of waypoint choices in the editor (docs/editor.md; docs/scenario-format.md,
 // Waypoint choices): in a room with two booths and an exit, a crowd's first goal is picked on the
-// plan, turned into a choice ("or…", then the second booth clicked), its shares typed (a wrong
-// count refused with the reason), its split switched to least targeted (the shares go), an option
-// removed (the choice becomes a plain goal) and the removal undone; the check finds the scenario
-// valid, Ctrl+S saves it, and the file passes `throng check` and runs.
+// plan, turned into a choice ("or…", then the second booth clicked; the exit refused as an option
+// and offering no "or…" itself), its shares typed (a wrong count refused with the reason), its
+// split switched to least targeted (the shares go), an option removed (the choice becomes a plain
+// goal) and the removal undone; the check finds the scenario valid, Ctrl+S saves it, and the file
+// passes `throng check` and runs.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
@@ -45,8 +46,11 @@ test('a waypoint choice made, split and shares edited, saved and run', { timeout
     assert.deepEqual(await goalsOf(page), ['waypoint1', 'exit1']);
 
     // "or…" on goal 1, then the north booth on the plan: a choice between the two.
+    assert.equal(await page.locator('[data-choice="1"]').count(), 0, 'an exit goal offers no "or…"');
     await page.click('[data-choice="0"]');
     await click(page, [10, 7]);
+    await click(page, [19.5, 5]);  // the exit: refused as an option, said why
+    assert.match(await page.locator('#status').textContent(), /exit1 is an exit/);
     await page.keyboard.press('g');
     assert.deepEqual(await goalsOf(page), [{ choose: ['waypoint1', 'waypoint2'] }, 'exit1']);
     assert.equal(await page.locator('#goal-list li.choice .option').count(), 2);

@@ -219,13 +219,17 @@ export class Panel {
     const goals = Array.isArray(pop.goals) ? pop.goals : [];
     const { pickGoals, pickChoice } = this.app.state;
     const replace = (i, goal, what) => {
-      if (goal === null) pop.goals.splice(i, 1);
-      else pop.goals[i] = goal;
+      if (goal === null) {
+        pop.goals.splice(i, 1);
+        if (pickChoice !== null) { this.app.state.pickGoals = false; this.app.state.pickChoice = null; }  // its index moved
+      } else pop.goals[i] = goal;
       this.app.commit(what);
     };
+    const exits = new Set((this.app.doc.points || []).filter((p) => p.kind === 'exit').map((p) => p.id));
     const items = goals.map((g, i) => {
       const picking = pickGoals && pickChoice === i;
-      const more = h('button', { class: `or${picking ? ' on' : ''}`, 'data-choice': i,
+      // An exit is no waypoint to choose among (the crowd's "exits" and "exitChoice" are for that).
+      const more = exits.has(g) ? null : h('button', { class: `or${picking ? ' on' : ''}`, 'data-choice': i,
         title: 'add options to choose among: click points on the plan', onclick: () => this.app.pickOptions(i) },
       picking ? 'picking…' : (isChoice(g) ? '+ option' : 'or…'));
       const remove = h('button', { class: 'x', title: 'remove this goal', onclick: () => replace(i, null, 'goal removed') }, '×');

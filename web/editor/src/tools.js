@@ -110,8 +110,13 @@ export class ToolController {
       const pop = this.app.doc.populations[sel.index];
       const into = this.app.state.pickChoice;
       if (id && pop && into !== null && Array.isArray(pop.goals) && pop.goals[into] !== undefined) {
-        pop.goals[into] = addOption(pop.goals[into], id);
-        this.app.commit(`${id} added as an option of goal ${into + 1} of ${pop.id}`);
+        // Exits are chosen among with the crowd's "exits" and "exitChoice", not in a waypoint choice.
+        if (this.app.doc.points[index].kind === 'exit') {
+          this.app.setStatus(`${id} is an exit: a waypoint choice is among interest or action points (tick exits under "exits")`);
+        } else {
+          pop.goals[into] = addOption(pop.goals[into], id);
+          this.app.commit(`${id} added as an option of goal ${into + 1} of ${pop.id}`);
+        }
       } else if (id && pop) {
         pop.goals = Array.isArray(pop.goals) ? [...pop.goals, id] : [id];
         this.app.commit(`goal ${id} added to ${pop.id}`);
