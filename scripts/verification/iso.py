@@ -7,6 +7,7 @@ import numpy as np
 from validation import measures as M
 
 from . import geometry as G
+from . import rimea as R
 from .core import Check, Run, Test, band
 
 SOURCE = "ISO 20414:2020 test {}"
@@ -63,13 +64,6 @@ def measure_overtaking(results, ctx):
 
 
 # --- 12 --------------------------------------------------------------------------------------------
-def _flat_stairs(s):
-    """The control: the same crowd walking the flight at its flat speed (stair factors 1)."""
-    for p in s["populations"]:
-        p["stairs"] = {"up": 1.0, "down": 1.0}
-    return s
-
-
 def stair_flow(res):
     """Persons a second down the middle of the flight (its steps' crossings walking -x): (N − 1) over
     the time from the first to the last crossing."""
@@ -170,7 +164,7 @@ def tests():
           xfail={"cfsm": "cfsm (not calibrated) holds 2 of the 10 behind the slow person (the slowest crosses the "
                          "corridor at 0.62 m/s)"}),
         i("12", "Stair flow rates", "flow down a flight ≤ SFPE's maximum, lower than on the flat", "12-stair-flow",
-          [Run("run", "iso/12-stair-flow.json"), Run("flat", "iso/12-stair-flow.json", _flat_stairs, "flat")],
+          [Run("run", "iso/12-stair-flow.json"), Run("flat", "iso/12-stair-flow.json", R._flat_stairs, "flat")],
           measure_stair_flow,
           xfail={"orca": "ORCA packs the flight: 4.00 /s down 2 m, above SFPE's 1.72 /s and above its own 3.14 /s "
                          "with the flight walked at the flat speed (no headway term slows it in a crowd, issue 17)",
