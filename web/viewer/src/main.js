@@ -2,7 +2,8 @@
 // ?demo&replay), builds the scene once the world description arrives (world_view, clips, crowd
 // view, cameras) and runs the frame loop: interpolate the crowd, choose levels of detail, draw,
 // update the HUD; wires the join form, picking, guide/release, the cameras (plan, orbit, walk, fit,
-// follow: buttons and keys, ui/keys.js), the LOD toggle, export (PNG, WebM: ui/export.js) and the banner.
+// follow: buttons and keys, ui/keys.js), the LOD toggle, export (PNG, WebM: ui/export.js), the banner and
+// the avatar's look (the join form's menu: crowd/avatar_looks.js, remembered in localStorage).
 // URL options: demo, agents=N, lod=on|off, ws=URL, replay (with demo), target=FPS, shot=1 (no
 // panels: screenshots), aa=0 (no antialiasing), camera=plan|orbit|walk (the first camera).
 import * as THREE from 'three';
@@ -36,6 +37,7 @@ import { Exporter } from './ui/export.js';
 import { RecordingsPanel } from './ui/recordings.js';
 import { kSelectedColour, kPickedGroupColour } from './crowd/crowd_view.js';
 import { kColourModes } from './crowd/colour_by.js';
+import { kAvatarLooks, lookAt, loadLookChoice, saveLookChoice } from './crowd/avatar_looks.js';
 
 const params = new URLSearchParams(location.search);
 const demo = params.has('demo');
@@ -92,6 +94,7 @@ const remoteJoints = new RemoteJoints(); // other participants' latest relayed J
 const labels = new ScreenLabels($('labels'));
 let worldLabels = [];  // the points' name labels (world_view.js pointLabels)
 const kOtherColour = 0xd02090;  // other participants' avatars
+let lookIndex = loadLookChoice(globalThis.localStorage);  // your avatar's look (the join form's menu)
 let markers = null;
 let heatmap = null;  // density heatmap overlay (key M)
 let heatmapMethod = 'classic', heatmapScenario = {}, heatmapBounds = null;  // its definition (the menu beside it)
@@ -181,10 +184,13 @@ function testHooks(w) {
   return {
     cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode, recordings,
     get trails() { return trails; }, get heatmap() { return heatmap; }, setHeatmapMethod, get measurements() { return measurements; }, get speedmap() { return speedmap; }, get markers() { return markers; }, selfColour: kSelfColour,
-    renderer, exporter, description: w, others, groupList, remoteJoints, gesture,
+    renderer, exporter, description: w, others, groupList, remoteJoints, gesture, setLook,
+    get look() { return lookIndex; },
     get joined() { return joined; },
     /** The world's named parts and how many segments each has (walls, railings, risers; 1 for others). */
     worldPart: (name) => scene.getObjectByName('world')?.getObjectByName(name) || null,
+    /** The world's drawing (floors, walls, …): a test hides it to see a body alone. */
+    worldRoot: () => scene.getObjectByName('world'),
     worldParts: () => Object.fromEntries((scene.getObjectByName('world')?.children || []).filter((c) => c.name)
       .map((c) => [c.name, c.userData.segments ?? 1])),
     /** Texts of the participants' name labels on screen. */
@@ -291,8 +297,18 @@ $('join-form').addEventListener('submit', (e) => {
   }
   const name = $('join-name').value.trim() || 'visitor';
   $('join-status').textContent = `joining as ${name}…`;
-  source.join(name);
+  source.join(name, lookIndex);
 });
+// The avatar's look: the menu lists crowd/avatar_looks.js's; a change shows at once (also once joined).
+for (const [i, l] of kAvatarLooks.entries()) $('join-look').add(new Option(l.name, String(i)));
+/** Draws your avatar in look `i` (an index of kAvatarLooks) from now on, and remembers it. */
+function setLook(i) {
+  lookIndex = kAvatarLooks.indexOf(lookAt(i));
+  $('join-look').value = String(lookIndex);
+  saveLookChoice(globalThis.localStorage, lookIndex);
+}
+setLook(lookIndex);
+$('join-look').onchange = (e) => setLook(e.target.value);
 function setMode(m) {
   if (!cameras) return;
   cameras.setMode(m);
@@ -514,7 +530,7 @@ function frame() {
     const a = cameras.avatar;
     localPhase.phase = (localPhase.phase + (a.speed * dt) / 1.5) % 1;
     const g = gesture.sample(nowMs);
-    avatars.add(a.x, a.y, a.z, a.yaw, a.moving ? walk : idle, a.moving ? localPhase.phase : (nowMs / 2000) % 1, kSelfColour,
+    avatars.add(a.x, a.y, a.z, a.yaw, a.moving ? walk : idle, a.moving ? localPhase.phase : (nowMs / 2000) % 1, lookAt(lookIndex),
       g ? g.angles : null);
     source.sendMove(a.x, a.y, a.z, a.yaw);  // z: the floor it stands on (0 in a flat world)
     if (g && g.send && source.sendJoints) source.sendJoints(g.angles);
