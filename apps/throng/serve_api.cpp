@@ -83,6 +83,15 @@ nlohmann::json agentJson(const sim::AgentInfo& info, const sim::ScenarioDesc& d,
   return j;
 }
 
+/// The Content-Type of a world model's file by its name.
+std::string modelContentType(const std::string& name) {
+  if (name.ends_with(".glb")) return "model/gltf-binary";
+  if (name.ends_with(".gltf")) return "model/gltf+json";
+  if (name.ends_with(".png")) return "image/png";
+  if (name.ends_with(".jpg") || name.ends_with(".jpeg")) return "image/jpeg";
+  return "application/octet-stream";
+}
+
 }  // namespace
 
 std::future<std::optional<sim::AgentInfo>> WorldQueries::askAgent(std::uint32_t id) {
@@ -141,6 +150,8 @@ std::optional<transport::HttpResponse> HttpApi::operator()(std::string_view targ
   if (path.starts_with(kAgent)) return agent(path.substr(kAgent.size()));
   if (path == "/api/status") return status();
   if (path == "/api/world") return jsonResponse(200, served_.worldJson);
+  constexpr std::string_view kModel = "/api/world/model";
+  if (path == kModel || path.starts_with("/api/world/model/")) return model(path.substr(kModel.size()));
   constexpr std::string_view kMotions = "/motions/";
   if (path.starts_with(kMotions) && path.ends_with(".bvh")) {
     return motion(path.substr(kMotions.size(), path.size() - kMotions.size() - 4));
@@ -198,6 +209,25 @@ transport::HttpResponse HttpApi::motion(std::string_view id) const {
     return transport::HttpResponse{404, "text/plain", "no such clip\n", {}};
   }
   return transport::HttpResponse{200, "text/plain; charset=utf-8", {}, motions.clipFile(index)};
+}
+
+/// GET /api/world/model: {"url": where the world's glTF file is, or null when the world is none};
+/// /api/world/model/world.gltf (or .glb): the file; /api/world/model/<uri>: a resource it names
+/// (WorldModel::resources), from its directory. Answered 200 with a null url rather than 404: the
+/// viewer asks every live server, and a browser logs each failed fetch.
+transport::HttpResponse HttpApi::model(std::string_view rest) const {
+  const WorldModel& m = served_.model;
+  if (rest.empty() || rest == "/") {
+    if (m.file.empty()) return jsonResponse(200, R"({"url":null})");
+    return jsonResponse(200, dumpJson({{"url", "/api/world/model/" + m.servedName()}}));
+  }
+  const std::string name(rest.substr(1));
+  if (m.file.empty()) return jsonResponse(404, R"({"error":"the world served is no glTF file"})");
+  if (name == m.servedName()) return transport::HttpResponse{200, modelContentType(name), {}, m.file};
+  if (std::find(m.resources.begin(), m.resources.end(), name) != m.resources.end()) {
+    return transport::HttpResponse{200, modelContentType(name), {}, m.file.parent_path() / name};
+  }
+  return jsonResponse(404, R"({"error":"no such file of the world model"})");
 }
 
 }  // namespace throng::cli::serve

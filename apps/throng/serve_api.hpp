@@ -1,6 +1,7 @@
 // `throng serve`'s dynamic HTTP answers: TickWindow (tick and publish times for /api/status),
 // WorldQueries (questions about the World that the simulation thread answers between ticks) and
-// HttpApi (/api/groups, /api/crowds, /api/agent/<id>, /api/status, /api/world, /motions/<n>.bvh).
+// HttpApi (/api/groups, /api/crowds, /api/agent/<id>, /api/status, /api/world, /api/world/model
+// (a glTF world file and its resources), /motions/<n>.bvh).
 #pragma once
 #include <cstdint>
 #include <future>
@@ -57,7 +58,8 @@ class WorldQueries {
 [[nodiscard]] transport::HttpResponse jsonResponse(unsigned status, std::string body);
 
 /// The server's dynamic HTTP paths (TransportOptions::httpHandler, on the transport thread):
-/// /api/groups, /api/crowds, /api/agent/<id>, /api/status, /api/world and /motions/<n>.bvh.
+/// /api/groups, /api/crowds, /api/agent/<id>, /api/status, /api/world, /api/world/model[/<file>]
+/// and /motions/<n>.bvh.
 class HttpApi {
  public:
   HttpApi(const Served& served, hub::Hub& hub, const Bridge& bridge, WorldQueries& queries, TickWindow& window,
@@ -71,6 +73,7 @@ class HttpApi {
   transport::HttpResponse agent(std::string_view digits) const;
   transport::HttpResponse status() const;
   transport::HttpResponse motion(std::string_view id) const;
+  transport::HttpResponse model(std::string_view rest) const;
 
   const Served& served_;
   hub::Hub& hub_;

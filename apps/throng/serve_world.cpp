@@ -1,11 +1,14 @@
 // `throng serve`'s world served (serve_world.hpp): opening a scenario or a recording (isRecording,
 // parseStoredScenario: the scenario a recording stores, found beside it or in the bundled
-// scenarios/), where the viewer's files are, and the hub's and the transport's options.
+// scenarios/), a glTF world file's model (worldModelOf: which of its resources may be served),
+// where the viewer's files are, and the hub's and the transport's options.
 #include "serve_world.hpp"
 
 #include <algorithm>
 #include <cstdio>
+#include <cctype>
 #include <cstring>
+#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -72,7 +75,54 @@ core::Result<io::LoadedScenario> parseStoredScenario(const hub::Replay& replay, 
   return std::move(*first);
 }
 
+/// `path`'s extension in lower case (".gltf").
+std::string lowerExtension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+/// A resource URI the viewer may fetch beside the world file: relative, inside its directory,
+/// nothing to percent-decode.
+bool servableUri(const std::string& uri) {
+  if (uri.empty() || uri.front() == '/' || uri == "world.gltf" || uri == "world.glb") return false;
+  const bool plain = std::all_of(uri.begin(), uri.end(), [](unsigned char c) {
+    return std::isalnum(c) != 0 || c == '.' || c == '_' || c == '-' || c == '/';
+  });
+  if (!plain) return false;
+  const fs::path p(uri);
+  return std::none_of(p.begin(), p.end(), [](const fs::path& part) { return part == ".." || part == "."; });
+}
+
+/// The servable external resources (buffers, images) a .gltf names; none for a .glb.
+std::vector<std::string> modelResources(const fs::path& file) {
+  if (lowerExtension(file) != ".gltf") return {};
+  std::ifstream in(file, std::ios::binary);
+  const nlohmann::json gltf = nlohmann::json::parse(in, nullptr, false);
+  if (gltf.is_discarded() || !gltf.is_object()) return {};
+  std::vector<std::string> out;
+  for (const char* key : {"buffers", "images"}) {
+    const auto list = gltf.find(key);
+    if (list == gltf.end() || !list->is_array()) continue;
+    for (const nlohmann::json& entry : *list) {
+      if (!entry.is_object()) continue;
+      const auto uri = entry.find("uri");
+      if (uri != entry.end() && uri->is_string() && servableUri(uri->get<std::string>())) out.push_back(uri->get<std::string>());
+    }
+  }
+  return out;
+}
+
 }  // namespace
+
+std::string WorldModel::servedName() const { return lowerExtension(file) == ".glb" ? "world.glb" : "world.gltf"; }
+
+WorldModel worldModelOf(const std::string& path) {
+  const fs::path file(path);
+  const std::string ext = lowerExtension(file);
+  if (ext != ".gltf" && ext != ".glb") return {};
+  return WorldModel{file, modelResources(file)};
+}
 
 /// The viewer's files: --web, else an installed tree's <prefix>/share/throng/web, else web/dist of
 /// the source tree this binary was built from (data_dirs.hpp).
@@ -114,7 +164,8 @@ std::optional<Served> openServed(const ServeOptions& options, const std::string&
     described["replay"] = {{"duration", replay->duration()}, {"fps", replay->fps()}, {"frames", replay->frameCount()}};
     worldJson = dumpJson(described);
   }
-  return Served{std::move(*live), std::move(replay), tickRate, std::move(worldJson)};
+  WorldModel model = replay ? WorldModel{} : worldModelOf(path);
+  return Served{std::move(*live), std::move(replay), tickRate, std::move(worldJson), std::move(model)};
 }
 
 hub::HubOptions hubOptionsFor(const ServeOptions& options, const Served& served, const std::string& path) {

@@ -45,7 +45,9 @@ test('a participant picks how the avatar looks; it is sent in Join and drawn so'
       const m = decodeAny(new Uint8Array(f.payload));
       if (m.type === 'Join') joins.push(m);
     }));
-    await page.reload();  // the listener sees the connection from its start
+    // Reloaded once the first load is done (its clips fetched), so the listener sees the connection from its start.
+    await page.waitForFunction(() => globalThis.__throng && globalThis.__throng.state.count > 0, null, { timeout: 30000 });
+    await page.reload();
     await page.waitForFunction(() => globalThis.__throng && globalThis.__throng.state.count > 0, null, { timeout: 30000 });
     const looks = await page.$$eval('#join-look option', (o) => o.map((x) => x.textContent));
     assert.ok(looks.length >= 4, `looks offered: ${looks.join(' | ')}`);
@@ -65,7 +67,7 @@ test('a participant picks how the avatar looks; it is sent in Join and drawn so'
       cameras.lookAt(cameras.avatar.x, cameras.avatar.y, 4, 1.6);
     });
     await sleep(500);
-    await shot(page, 'e2e_avatar_look.png');
+    await shot(page, 'viewer_avatar_look.png');
     const blue = await chestColour(page);
     assert.equal(dominant(blue), 2, `blue coat: the chest is ${blue}`);
     await page.selectOption('#join-look', '3');  // green top: recoloured at once, still joined
