@@ -33,7 +33,7 @@ class RecordingRoutes {
 
   /// GET /api/recordings: {"dir", "playing", "maxUploadBytes", "recordings": [{name, size, duration,
   /// agents, scenario[, error]}]}; nullopt for any other path. (A server without --recordings answers
-  /// "dir": null and no recordings: cmd_serve.cpp's Router.)
+  /// "dir": null and no recordings: serve_session.hpp's Router.)
   [[nodiscard]] std::optional<transport::HttpResponse> get(std::string_view target) const;
   /// POST /api/recordings?name=FILE (the body: the file) and /api/recordings/open; false otherwise.
   bool post(transport::HttpRequest& request, const transport::HttpResponder& responder);

@@ -213,6 +213,61 @@ TEST(Serve, ConnectDisconnectCyclesLeaveNoClientBehindAndHttpServesClipsAndStatu
   EXPECT_GT(fresh->stats().crowdFrames, 0u);
 }
 
+/// GET `path` of the server on `port`: its status and body.
+std::pair<unsigned, std::string> get(std::uint16_t port, const std::string& path) {
+  auto r = client::httpRequest("127.0.0.1", port, "GET", path);
+  if (!r.ok()) return {0u, ""};
+  return {r->status, r->body};
+}
+
+TEST(Serve, AGltfWorldsFileAndTheResourcesItNamesAreServedForItsMaterialsAndNothingElse) {
+  // The gallery with its geometry in a file beside it and two images: one with a plain name, one
+  // whose name would need decoding (not served); a secret beside the world is never served.
+  ScratchDir dir("serve-model");
+  auto gltf = nlohmann::json::parse(readFile(std::string(THRONG_SOURCE_DIR) + "/scenarios/gallery.gltf"));
+  const std::string uri = gltf["buffers"][0]["uri"].get<std::string>();
+  const std::string b64 = uri.substr(uri.find(',') + 1);
+  std::string bytes;  // base64 → bytes (the test's own decoder: standard alphabet, padded)
+  const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  unsigned acc = 0;
+  int bits = 0;
+  for (char c : b64) {
+    if (c == '=') break;
+    acc = (acc << 6) | static_cast<unsigned>(alphabet.find(c));
+    bits += 6;
+    if (bits >= 8) { bits -= 8; bytes.push_back(static_cast<char>((acc >> bits) & 0xff)); }
+  }
+  std::filesystem::create_directories(dir / "data");
+  dir.write("data/geometry.bin", bytes);
+  dir.write("data/tiles.png", "not really a png");
+  dir.write("odd name.png", "x");
+  dir.write("secret.txt", "secret");
+  gltf["buffers"][0]["uri"] = "data/geometry.bin";
+  gltf["images"] = {{{"uri", "data/tiles.png"}}, {{"uri", "odd name.png"}}};
+  const auto world = dir.write("world file.gltf", gltf.dump());
+  Server server(world.string());
+  ASSERT_NE(server.port, 0);
+  const auto [status, body] = get(server.port, "/api/world/model");
+  ASSERT_EQ(status, 200u);
+  EXPECT_EQ(nlohmann::json::parse(body)["url"], "/api/world/model/world.gltf");
+  const auto file = get(server.port, "/api/world/model/world.gltf");
+  EXPECT_EQ(file.first, 200u);
+  EXPECT_EQ(nlohmann::json::parse(file.second), gltf);
+  EXPECT_EQ(get(server.port, "/api/world/model/data/geometry.bin").second, bytes);
+  EXPECT_EQ(get(server.port, "/api/world/model/data/tiles.png").second, "not really a png");
+  for (const char* refused : {"/api/world/model/odd%20name.png", "/api/world/model/secret.txt",
+                              "/api/world/model/data/../secret.txt", "/api/world/model/world%20file.gltf"}) {
+    EXPECT_EQ(get(server.port, refused).first, 404u) << refused;
+  }
+  server.stop();
+  // A JSON scenario has no model: answered, with a null url.
+  Server museum;
+  const auto none = get(museum.port, "/api/world/model");
+  EXPECT_EQ(none.first, 200u);
+  EXPECT_TRUE(nlohmann::json::parse(none.second)["url"].is_null()) << none.second;
+  EXPECT_EQ(get(museum.port, "/api/world/model/world.gltf").first, 404u);
+}
+
 TEST(Serve, ParticipantsAreAnnouncedToEveryone) {
   Server server;
   auto a = open(server.options("a"));

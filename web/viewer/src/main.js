@@ -2,7 +2,9 @@
 // ?demo&replay), builds the scene once the world description arrives (world_view, clips, crowd
 // view, cameras) and runs the frame loop: interpolate the crowd, choose levels of detail, draw,
 // update the HUD; wires the join form, picking, guide/release, the cameras (plan, orbit, walk, fit,
-// follow: buttons and keys, ui/keys.js), the LOD toggle, export (PNG, WebM: ui/export.js) and the banner.
+// follow: buttons and keys, ui/keys.js), the LOD toggle, export (PNG, WebM: ui/export.js), the banner and
+// the avatar's look (the join form's menu: crowd/avatar_looks.js, remembered in localStorage) and a
+// glTF world's own meshes with their materials (world/gltf_materials.js, live worlds).
 // URL options: demo, agents=N, lod=on|off, ws=URL, replay (with demo), target=FPS, shot=1 (no
 // panels: screenshots), aa=0 (no antialiasing), camera=plan|orbit|walk (the first camera).
 import * as THREE from 'three';
@@ -36,6 +38,8 @@ import { Exporter } from './ui/export.js';
 import { RecordingsPanel } from './ui/recordings.js';
 import { kSelectedColour, kPickedGroupColour } from './crowd/crowd_view.js';
 import { kColourModes } from './crowd/colour_by.js';
+import { kAvatarLooks, lookAt, loadLookChoice, saveLookChoice } from './crowd/avatar_looks.js';
+import { loadWorldModel, showWorldModel } from './world/gltf_materials.js';
 
 const params = new URLSearchParams(location.search);
 const demo = params.has('demo');
@@ -92,6 +96,8 @@ const remoteJoints = new RemoteJoints(); // other participants' latest relayed J
 const labels = new ScreenLabels($('labels'));
 let worldLabels = [];  // the points' name labels (world_view.js pointLabels)
 const kOtherColour = 0xd02090;  // other participants' avatars
+let lookIndex = loadLookChoice(globalThis.localStorage);  // your avatar's look (the join form's menu)
+let worldModel = null;  // a glTF world's meshes with their materials, drawn instead of the flat floors
 let markers = null;
 let heatmap = null;  // density heatmap overlay (key M)
 let heatmapMethod = 'classic', heatmapScenario = {}, heatmapBounds = null;  // its definition (the menu beside it)
@@ -146,6 +152,7 @@ source.on('world', async (w) => {
   hud.setWorld(w);
   const bounds = worldBounds(w.scenario || {});
   scene.add(buildWorld(w.scenario || {}));
+  if (source.kind === 'live') loadModel();
   worldLabels = pointLabels(w.scenario || {});
   addLights(scene, bounds);
   clips = new ClipLibrary(w);
@@ -155,7 +162,7 @@ source.on('world', async (w) => {
   crowd = new CrowdView(scene, renderer, w, clips, { adaptive: lodOn, targetFrameMs: 1000 / Number(params.get('target') || 30) });
   avatars = new NearBodies(scene, w.skeleton.joints, clips);
   markers = new Markers(scene, kSelectedColour);
-  trails = new Trails(scene);
+  trails = new Trails(scene, undefined, bounds);
   heatmap = new Heatmap(scene, bounds);
   heatmapScenario = w.scenario || {};
   heatmapBounds = bounds;
@@ -176,36 +183,57 @@ source.on('world', async (w) => {
   groupList.setGroups(w.groups || []);
   globalThis.__throng = testHooks(w);
 });
+/** A glTF world's own meshes (GET /api/world/model gives the file's URL, null for a scenario JSON or
+ * a recording): drawn, with their materials, instead of the flat floors and obstacles. */
+function loadModel() {
+  fetch('/api/world/model').then((r) => (r.ok ? r.json() : null)).then((j) => (j && j.url ? loadWorldModel(j.url) : null))
+    .then((model) => {
+      const root = scene.getObjectByName('world');
+      if (!model || !root) return;
+      root.add(model);
+      showWorldModel(root, model, true);
+      worldModel = model;
+    })
+    .catch((e) => console.info(`throng: the world's glTF materials are not drawn (${e.message})`));
+}
 /** What scripts and the tests reach through window.__throng: the parts, and screen helpers. */
 function testHooks(w) {
   return {
     cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode, recordings,
     get trails() { return trails; }, get heatmap() { return heatmap; }, setHeatmapMethod, get measurements() { return measurements; }, get speedmap() { return speedmap; }, get markers() { return markers; }, selfColour: kSelfColour,
-    renderer, exporter, description: w, others, groupList, remoteJoints, gesture,
+    renderer, exporter, description: w, others, groupList, remoteJoints, gesture, setLook,
+    get look() { return lookIndex; },
+    get worldModel() { return worldModel; },
+    /** Draws the glTF world's own meshes (`on`) or the flat floors and obstacles; false without a model. */
+    showWorldModel: (on) => { if (!worldModel) return false; showWorldModel(scene.getObjectByName('world'), worldModel, on); return true; },
     get joined() { return joined; },
     /** The world's named parts and how many segments each has (walls, railings, risers; 1 for others). */
     worldPart: (name) => scene.getObjectByName('world')?.getObjectByName(name) || null,
+    /** The world's drawing (floors, walls, …): a test hides it to see a body alone. */
+    worldRoot: () => scene.getObjectByName('world'),
     worldParts: () => Object.fromEntries((scene.getObjectByName('world')?.children || []).filter((c) => c.name)
       .map((c) => [c.name, c.userData.segments ?? 1])),
     /** Texts of the participants' name labels on screen. */
     labels: () => labels.visible('name-label'),
     screenLabels: labels,
     playGesture,
-    /** Renders now and reads the canvas back: grey levels (0–255) every `step` px, for tests. */
-    pixels(step = 4) {
+    /** Renders now and reads the canvas back: grey levels (0–255) every `step` px, for tests; with
+     * `rgb`, also each sample's [r, g, b]. */
+    pixels(step = 4, rgb = false) {
       renderer.render(scene, view());
       const gl = renderer.getContext();
       const w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
       const buf = new Uint8Array(w * h * 4);
       gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, buf);
-      const grey = [];
+      const grey = [], colours = [];
       for (let y = 0; y < h; y += step) {
         for (let x = 0; x < w; x += step) {
           const o = (y * w + x) * 4;
           grey.push(Math.round(0.299 * buf[o] + 0.587 * buf[o + 1] + 0.114 * buf[o + 2]));
+          if (rgb) colours.push([buf[o], buf[o + 1], buf[o + 2]]);
         }
       }
-      return { width: w, height: h, step, grey };
+      return rgb ? { width: w, height: h, step, grey, rgb: colours } : { width: w, height: h, step, grey };
     },
     /** Colour [r, g, b] (0–255) of the drawn pixel at screen point (x, y) [px], for tests. */
     rgbAt(x, y) {
@@ -291,8 +319,18 @@ $('join-form').addEventListener('submit', (e) => {
   }
   const name = $('join-name').value.trim() || 'visitor';
   $('join-status').textContent = `joining as ${name}…`;
-  source.join(name);
+  source.join(name, lookIndex);
 });
+// The avatar's look: the menu lists crowd/avatar_looks.js's; a change shows at once (also once joined).
+for (const [i, l] of kAvatarLooks.entries()) $('join-look').add(new Option(l.name, String(i)));
+/** Draws your avatar in look `i` (an index of kAvatarLooks) from now on, and remembers it. */
+function setLook(i) {
+  lookIndex = kAvatarLooks.indexOf(lookAt(i));
+  $('join-look').value = String(lookIndex);
+  saveLookChoice(globalThis.localStorage, lookIndex);
+}
+setLook(lookIndex);
+$('join-look').onchange = (e) => setLook(e.target.value);
 function setMode(m) {
   if (!cameras) return;
   cameras.setMode(m);
@@ -514,7 +552,7 @@ function frame() {
     const a = cameras.avatar;
     localPhase.phase = (localPhase.phase + (a.speed * dt) / 1.5) % 1;
     const g = gesture.sample(nowMs);
-    avatars.add(a.x, a.y, a.z, a.yaw, a.moving ? walk : idle, a.moving ? localPhase.phase : (nowMs / 2000) % 1, kSelfColour,
+    avatars.add(a.x, a.y, a.z, a.yaw, a.moving ? walk : idle, a.moving ? localPhase.phase : (nowMs / 2000) % 1, lookAt(lookIndex),
       g ? g.angles : null);
     source.sendMove(a.x, a.y, a.z, a.yaw);  // z: the floor it stands on (0 in a flat world)
     if (g && g.send && source.sendJoints) source.sendJoints(g.angles);

@@ -23,9 +23,14 @@ export function bakeBvh(result, jointNames, name, loops) {
       else quats[o + 3] = 1;
     }
   }
+  // The root's position channels hold where the hips are (0.95 m up in the bundled clips); three's
+  // BVHLoader adds the root's OFFSET to them, which would lift every body by that offset again.
   const rootTrack = tracks.get(`${jointNames[0]}.position`);
+  const offset = result.skeleton?.bones?.[0]?.position ?? { x: 0, y: 0, z: 0 };
   for (let f = 0; f < frames; ++f) {
-    if (rootTrack && rootTrack.values.length >= (f + 1) * 3) root.set(rootTrack.values.subarray(f * 3, f * 3 + 3), f * 3);
+    if (!rootTrack || rootTrack.values.length < (f + 1) * 3) continue;
+    const v = rootTrack.values;
+    root.set([v[f * 3] - offset.x, v[f * 3 + 1] - offset.y, v[f * 3 + 2] - offset.z], f * 3);
   }
   const frameTime = frames > 1 && anyTrack ? anyTrack.times[1] - anyTrack.times[0] : 0.04;
   return { name, duration: frames * frameTime, loops, frames, jointCount: J, quats, root };

@@ -2,9 +2,12 @@
 // geometry (body_geometry.js), each with its own bones (the description's skeleton), posed every
 // frame from the agent's clip sampled at its phase, or from the joint angles the server sent for
 // near-tier agents (3 per joint, X Y Z [rad], applied in BVH order Z, X, Y). The avatar of the
-// local participant and other participants' avatars use the same bodies.
+// local participant and other participants' avatars use the same bodies; an avatar drawn in a look
+// (avatar_looks.js: shirt, trousers, skin, shoes, height) gets a copy of the geometry coloured per
+// vertex, one per look.
 import * as THREE from 'three';
 import { skinnedBodyGeometry } from './body_geometry.js';
+import { lookVertexColours } from './avatar_looks.js';
 import { sampleClip, quatFromZXY } from './pose_math.js';
 import { sceneYaw } from '../coords.js';
 
@@ -31,6 +34,8 @@ export class NearBodies {
     this.clips = clips;
     this.geometry = skinnedBodyGeometry(joints);
     this.materials = new Map();
+    this.lookGeometries = new Map();  // look → its vertex-coloured copy of the geometry
+    this.lookMaterial = new THREE.MeshLambertMaterial({ vertexColors: true });
     this.pool = [];
     this.used = 0;
     this.quats = new Float32Array(joints.length * 4);
@@ -43,19 +48,36 @@ export class NearBodies {
     return m;
   }
 
+  /** The geometry coloured in `look`, made on first use. */
+  lookGeometry(look) {
+    let g = this.lookGeometries.get(look);
+    if (!g) {
+      g = this.geometry.clone();
+      const toRgb = (hex) => new THREE.Color(hex).toArray();  // sRGB hex → the renderer's linear values
+      g.setAttribute('color', new THREE.Float32BufferAttribute(
+        lookVertexColours(g.attributes.skinIndex.array, this.joints, look, toRgb), 3));
+      this.lookGeometries.set(look, g);
+    }
+    return g;
+  }
+
   begin() { this.used = 0; }
 
-  /** Places the next pooled body at world (x, y, z) with yaw, posed by clip/phase or joints. */
+  /** Places the next pooled body at world (x, y, z) with yaw, posed by clip/phase or joints;
+   * `color`: 0xRRGGBB for the whole body, or a look (avatar_looks.js). */
   add(x, y, z, yaw, clipId, phase, color, jointAngles = null) {
     let mesh = this.pool[this.used];
     if (!mesh) {
-      mesh = createSkinnedBody(this.joints, this.geometry, this.material(color));
+      mesh = createSkinnedBody(this.joints, this.geometry, this.material(0x808080));
       this.pool.push(mesh);
       this.scene.add(mesh);
     }
     this.used++;
     mesh.visible = true;
-    mesh.material = this.material(color);
+    const look = typeof color === 'object' ? color : null;
+    mesh.geometry = look ? this.lookGeometry(look) : this.geometry;
+    mesh.material = look ? this.lookMaterial : this.material(color);
+    mesh.scale.setScalar(look ? look.height : 1);
     this.pose(mesh, x, y, z, yaw, clipId, phase, jointAngles);
     return mesh;
   }

@@ -53,6 +53,7 @@ export class LiveSource extends Emitter {
     this.attempt = 0;
     this.world = null;
     this.joinName = null;
+    this.joinAvatar = 0;
     this.stopped = false;
     this.others = new Map();  // participant id → last Move
     this.names = new Map();   // participant id → name (Presence)
@@ -139,7 +140,7 @@ export class LiveSource extends Emitter {
         this.tickRate = m.tickRateHz;
         this.emit('status', { state: 'open', text: `connected to ${m.serverName}` });
         if (first) this.emit('world', m.world);
-        if (this.joinName) this.send(encodeJoin({ name: this.joinName }));
+        if (this.joinName) this.send(encodeJoin({ name: this.joinName, avatar: this.joinAvatar }));
         break;
       }
       case 'Joined':
@@ -211,9 +212,11 @@ export class LiveSource extends Emitter {
   seek(t) { this.replayControl('seek', Math.max(0, t)); }
   setSpeed(s) { this.replayControl('speed', s); }
 
-  join(name) {
+  /** Joins as `name`; `avatar`: the look chosen (crowd/avatar_looks.js), sent as Join's avatar index. */
+  join(name, avatar = 0) {
     this.joinName = name;
-    this.send(encodeJoin({ name }));
+    this.joinAvatar = avatar;
+    this.send(encodeJoin({ name, avatar }));
   }
 
   leave() {

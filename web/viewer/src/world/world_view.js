@@ -10,6 +10,8 @@
 // is drawn from its triangles instead — walkable ones as the floor, obstacle ones as walls, stair
 // risers where a step drops to the one below, railings where a floor, gallery or stair ends — with
 // world (x, y, z) → scene (x, z, −y); points stand at their height (`position[2]`, or `height`).
+// Floors and obstacles carry userData.flat: a glTF world's own meshes, with their materials, replace
+// them (gltf_materials.js).
 import * as THREE from 'three';
 import { terrainBounds } from './terrain.js';
 import { terrainWalls, walkableWalls, wallRectangles } from './walls.js';
@@ -175,6 +177,7 @@ function addTerrain(root, terrain, floorColor, wallMat) {
   if (floor) {
     const m = new THREE.Mesh(floor, new THREE.MeshLambertMaterial({ color: floorColor, side: THREE.DoubleSide }));
     m.name = 'terrain-floor';
+    m.userData.flat = 'floor';
     m.receiveShadow = true;
     root.add(m);
     const edges = boundaryEdges(vertices, terrain.walkable);
@@ -189,6 +192,7 @@ function addTerrain(root, terrain, floorColor, wallMat) {
     const m = new THREE.Mesh(solid, wallMat.clone());
     m.material.side = THREE.DoubleSide;
     m.name = 'terrain-obstacles';
+    m.userData.flat = 'obstacle';
     root.add(m);
   }
   const { walls, risers } = terrainWalls(terrain);
@@ -220,6 +224,7 @@ export function buildWorld(scenario) {
     g.applyMatrix4(toScene);
     const m = new THREE.Mesh(g, floorMat);
     m.receiveShadow = true;
+    m.userData.flat = 'floor';  // hidden when a glTF world's own meshes are drawn (gltf_materials.js)
     root.add(m);
   }
   // Walls where the walkable area ends (not between two walkable polygons: a shop's door stays open).
@@ -231,7 +236,9 @@ export function buildWorld(scenario) {
   for (const poly of solids) {
     const g = new THREE.ExtrudeGeometry(shapeOf(poly), { depth: kWallHeight, bevelEnabled: false });
     g.applyMatrix4(toScene);
-    root.add(new THREE.Mesh(g, wallMat));
+    const m = new THREE.Mesh(g, wallMat);
+    m.userData.flat = 'obstacle';
+    root.add(m);
   }
   if (scenario.measurements?.length) root.add(measurementObject(scenario.measurements));
   if (scenario.terrain) addTerrain(root, scenario.terrain, 0xd8d4cc, wallMat);

@@ -1,0 +1,104 @@
+// End-to-end test of the avatar's look (issue 20, "avatar choice") against a real `throng serve
+// scenarios/museum.json` in Debian's headless chromium: the join form offers the looks of
+// src/crowd/avatar_looks.js; the look picked before joining goes to the server as Join's avatar
+// index (the WebSocket frame is decoded with web/protocol/decode.js); the avatar's chest is drawn in
+// the chosen shirt colour, and changing the look while joined recolours it at once; the red ring and
+// pin that mark your own avatar stay whatever the look; the choice is remembered after a reload.
+// Run: THRONG_EXE=build/apps/throng/throng node --test web/viewer/e2e/avatar.e2e.test.mjs
+// (THRONG_E2E_SHOTS=DIR keeps a screenshot). Fails, like the other e2e tests, when something it needs is missing.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { repo, requirePrerequisites, startServer, stopServer, launchBrowser, openViewer, sleep } from './harness.mjs';
+import { decodeAny } from '../../protocol/decode.js';
+
+/** The avatar's chest colour [r, g, b] as drawn now: the median of 9 pixels around it. */
+function chestColour(page) {
+  return page.evaluate(() => {
+    const { cameras, toScreen, rgbAt } = globalThis.__throng;
+    const a = cameras.avatar;
+    const p = toScreen(a.x, a.y, a.z + 1.25);
+    const px = [];
+    for (const dx of [-3, 0, 3]) for (const dy of [-3, 0, 3]) px.push(rgbAt(p.x + dx, p.y + dy));
+    return [0, 1, 2].map((c) => px.map((q) => q[c]).sort((u, v) => u - v)[4]);
+  });
+}
+const shotsDir = process.env.THRONG_E2E_SHOTS || '';
+async function shot(page, name) {
+  if (!shotsDir) return;
+  fs.mkdirSync(shotsDir, { recursive: true });
+  await page.screenshot({ path: path.join(shotsDir, name) });
+}
+const dominant = (rgb) => rgb.indexOf(Math.max(...rgb));
+
+test('a participant picks how the avatar looks; it is sent in Join and drawn so', { timeout: 150000 }, async () => {
+  requirePrerequisites('avatar.e2e');
+  const server = await startServer(path.join(repo, 'scenarios/museum.json'));
+  const browser = await launchBrowser();
+  const errors = [];
+  try {
+    const page = await openViewer(browser, server.url, errors);
+    const joins = [];
+    page.on('websocket', (ws) => ws.on('framesent', (f) => {
+      if (typeof f.payload === 'string') return;
+      const m = decodeAny(new Uint8Array(f.payload));
+      if (m.type === 'Join') joins.push(m);
+    }));
+    // Reloaded once the first load is done (its clips fetched), so the listener sees the connection from its start.
+    await page.waitForFunction(() => globalThis.__throng && globalThis.__throng.state.count > 0, null, { timeout: 30000 });
+    await page.reload();
+    await page.waitForFunction(() => globalThis.__throng && globalThis.__throng.state.count > 0, null, { timeout: 30000 });
+    const looks = await page.$$eval('#join-look option', (o) => o.map((x) => x.textContent));
+    assert.ok(looks.length >= 4, `looks offered: ${looks.join(' | ')}`);
+
+    await page.selectOption('#join-look', '2');  // blue coat, tall
+    await page.fill('#join-name', 'e2e-look');
+    await page.click('#join-button');
+    await page.waitForFunction(() => globalThis.__throng.joined !== null, null, { timeout: 15000 });
+    assert.equal(joins.length, 1, `Join messages sent: ${JSON.stringify(joins)}`);
+    assert.deepEqual({ name: joins[0].name, avatar: joins[0].avatar }, { name: 'e2e-look', avatar: 2 });
+
+    // Joined. Seen from 4 m with the world's walls and floors hidden (the avatar is placed where
+    // the view was centred, maybe by a wall), the avatar's chest shows the look's shirt.
+    await page.evaluate(() => {
+      const { cameras, worldRoot } = globalThis.__throng;
+      worldRoot().visible = false;
+      cameras.lookAt(cameras.avatar.x, cameras.avatar.y, 4, 1.6);
+    });
+    await sleep(500);
+    await shot(page, 'viewer_avatar_look.png');
+    const blue = await chestColour(page);
+    assert.equal(dominant(blue), 2, `blue coat: the chest is ${blue}`);
+    await page.selectOption('#join-look', '3');  // green top: recoloured at once, still joined
+    await sleep(300);
+    const green = await chestColour(page);
+    assert.equal(dominant(green), 1, `green top: the chest is ${green}`);
+    await page.evaluate(() => globalThis.__throng.setLook(0));  // red jacket
+    await sleep(300);
+    const red = await chestColour(page);
+    assert.equal(dominant(red), 0, `red jacket: the chest is ${red}`);
+    assert.equal(await page.$eval('#join-look', (s) => s.value), '0', 'the menu follows a look set by a script');
+
+    await page.evaluate(() => { globalThis.__throng.worldRoot().visible = true; });
+
+    // Your own avatar stays unmistakable whatever its look: the red ring and pin.
+    const marks = await page.evaluate(() => {
+      const { markers, selfColour } = globalThis.__throng;
+      return { visible: markers.self.visible, colours: markers.self.children.map((c) => c.material.color.getHex()), selfColour };
+    });
+    assert.ok(marks.visible, 'the ring and pin are shown');
+    assert.ok(marks.colours.every((c) => c === marks.selfColour), `ring and pin colours ${marks.colours}`);
+
+    // Remembered: a reload offers the look chosen last.
+    await page.selectOption('#join-look', '4');
+    await page.reload();
+    await page.waitForFunction(() => globalThis.__throng && globalThis.__throng.state.count > 0, null, { timeout: 30000 });
+    assert.equal(await page.evaluate(() => globalThis.__throng.look), 4);
+    assert.equal(await page.$eval('#join-look', (s) => s.value), '4');
+    assert.deepEqual(errors, []);
+  } finally {
+    await browser.close();
+    await stopServer(server);
+  }
+});
