@@ -275,10 +275,10 @@ TEST(Models, TheDefaultBodyPassesAHalfMetreDoorWithTheAnticipationModel) {
   EXPECT_LT(roomWithDoor(0.5f, 1, sim::ModelKind::AnticipationVelocity).navRadius(), 0.15f);
 }
 
-// Issue 17: an avm walker with visionRange 8 m sees a knot of people standing between it and its
-// exit and walks round it (Moussaïd et al. 2011's heuristic in seeAhead): it reaches its exit and
-// keeps 0.36 m between its body and theirs. With visionRange 0 (the default) it walks into the knot,
-// overlaps the first people and is still stuck there after a minute.
+// Issue 17: an avm walker (the default visionRange, 20 m) sees a knot of people standing between it
+// and its exit and walks round it (Moussaïd et al. 2011's heuristic in seeAhead): it reaches its exit
+// and keeps its body clear of theirs. With visionRange 0 (off) it walks into the knot, overlaps the
+// first people and is still stuck there after a minute.
 TEST(Models, AnticipationWalkersGoRoundAKnotOfPeopleTheySeeAhead) {
   sim::ScenarioDesc d;
   d.name = "knot";
@@ -315,7 +315,6 @@ TEST(Models, AnticipationWalkersGoRoundAKnotOfPeopleTheySeeAhead) {
   walker.goals = {0};
   walker.speedMean = 1.3f;
   walker.start = 6.0f;  // once the knot stands
-  ASSERT_TRUE(walker.model.set("visionRange", 8.0f));
   d.populations = {knot, walker};
   auto created = sim::World::create(d);
   ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
