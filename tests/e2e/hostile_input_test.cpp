@@ -201,9 +201,9 @@ TEST(HostileInput, AnInterestPointInsideAWallIsReportedWhereItStands) {
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_TRUE(contains(r.err, "wall.json:7:52 /points/0/position: interest point \"shop\" cannot be reached: (9.5, 5) is "
                               "inside obstacle /obstacles/0 and its radius 0.3 m reaches no ground where agents can stand (their "
-                              "centres keep 0.2 m from walls); "
-                              "the nearest walkable point is (8.75, 5), 0.75 m away; expected a point whose disc reaches "
-                              "walkable ground clear of /obstacles (move it to (8.75, 5) or enlarge \"radius\" to at least 0.75 m)"))
+                              "centres keep 0.13 m from walls); the nearest walkable point is (8.84, 5), 0.66 m away; expected "
+                              "a point whose disc reaches walkable ground clear of /obstacles (move it to (8.84, 5) or enlarge "
+                              "\"radius\" to at least 0.66 m)"))
       << r.err;
 }
 

@@ -231,10 +231,11 @@ TEST(ScenarioErrors, UnreachableGoal) {
   const auto d = at(ds, "/populations/0/goals/1");
   expectAt(d, text, "\"exit\"]");
   EXPECT_EQ(d.what, "point \"exit\" cannot be reached from the spawn area of population \"crowd\"");
-  // The real limit, not 2 × radius: ORCA's navmesh keeps centres 0.25 m (the radius rounded up to
-  // whole cells plus one) from walls, so openings narrower than 0.5 m close.
-  EXPECT_TRUE(contains(d.expected, "0.5 m wide")) << d.format();
-  EXPECT_TRUE(contains(d.expected, "keeps body centres 0.25 m from walls")) << d.format();
+  // The real limit, not 2 × radius: the default model's navmesh keeps centres 0.2 × 0.65 m (shoulders
+  // turned) from walls, rounded up to whole cells, so openings narrower than 0.325 m close.
+  EXPECT_TRUE(contains(d.expected, "at least 0.325 m wide")) << d.format();
+  EXPECT_TRUE(contains(d.expected, "keeps body centres 0.162 m from walls: body radius 0.2 m × the model's passage ratio"))
+      << d.format();
 }
 
 TEST(ScenarioErrors, PointOutsideTheWalkableArea) {

@@ -122,7 +122,7 @@ TEST(ScenarioHostile, PointBeyondAFloorsEdgeIsRefusedOnMultiLevelWorlds) {
   const auto d = at(ds, "/points/0/position");
   expectAt(d, text, "[12.6, 4, 0]");
   EXPECT_TRUE(contains(d.what, "interest point \"kiosk\" cannot be reached: (12.6, 4, 0) is off the walkable surface and its "
-                               "radius 0.5 m reaches no ground where agents can stand (their centres keep 0.2 m from walls); the "
+                               "radius 0.5 m reaches no ground where agents can stand (their centres keep 0.13 m from walls); the "
                                "nearest walkable "
                                "point is (11.")) << d.format();
   EXPECT_TRUE(load(edit(text, "[12.6, 4, 0]", "[11.9, 4, 0]"), true).ok());

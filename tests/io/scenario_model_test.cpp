@@ -19,12 +19,13 @@ std::string withModel(const std::string& model) {
 
 }  // namespace
 
-TEST(ScenarioModel, NoModelMeansOrcaWithItsDefaults) {
+TEST(ScenarioModel, NoModelMeansTheCalibratedModelWithItsDefaults) {
   auto r = load(kBottleneck);
   ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
   const sim::ModelDesc& m = r->desc.populations[0].model;
-  EXPECT_EQ(m.kind, sim::ModelKind::Orca);
-  EXPECT_FLOAT_EQ(m.value("yieldResponsibility"), 0.8f);
+  EXPECT_EQ(m.kind, sim::ModelKind::AnticipationVelocity);
+  EXPECT_FLOAT_EQ(m.value("timeGap"), 0.55f);
+  EXPECT_FLOAT_EQ(m.value("passageRatio"), 0.65f);
 }
 
 TEST(ScenarioModel, ANameOrAnObjectWithParameters) {
@@ -135,18 +136,18 @@ TEST(ScenarioModel, TheSchemaDescribesEveryModelAsTheCatalogueDoes) {
   EXPECT_TRUE(schema.at("/$defs/population/properties"_json_pointer).contains("model"));
 }
 
-// Issue 17: `throng check` accepts a 0.5 m door for the default body when its model lets people
-// turn their shoulders (avm's passageRatio), and for ORCA's hard discs it refuses it naming the
-// real narrowest opening of the navmesh (0.5 m for r = 0.2 m: the radius rounded up to whole cells
-// plus one cell), not 2 × radius.
+// Issue 17: `throng check` accepts a 0.5 m door for the default body, whose model (avm) lets people
+// turn their shoulders (passageRatio), and for ORCA's hard discs it refuses it naming the real
+// narrowest opening of the navmesh (0.5 m for r = 0.2 m: the radius rounded up to whole cells plus
+// one cell), not 2 × radius.
 TEST(ScenarioModel, AHalfMetreDoorIsOpenToTheDefaultBodyWithShouldersTurned) {
   std::string door = edit(kBottleneck, "[[9,0],[10,0],[10,4.5],[9,4.5]], [[9,5.5],[10,5.5],[10,10],[9,10]]",
                                 "[[9,0],[10,0],[10,4.75],[9,4.75]], [[9,5.25],[10,5.25],[10,10],[9,10]]");
   door = edit(edit(door, R"({"id": "gap",  "kind": "interest", "position": [9.5, 5], "radius": 0.5},)", ""),
               R"("goals": ["gap", "exit"])", R"("goals": ["exit"])");
-  const auto avm = load(edit(door, "\"radius\": 0.2}", "\"radius\": 0.2, \"model\": \"avm\"}"), true);
-  EXPECT_TRUE(avm.ok()) << core::formatAll(avm.errors());
-  const auto ds = errorsOf(door, true);
+  const auto byDefault = load(door, true);
+  EXPECT_TRUE(byDefault.ok()) << core::formatAll(byDefault.errors());
+  const auto ds = errorsOf(edit(door, "\"radius\": 0.2}", "\"radius\": 0.2, \"model\": \"orca\"}"), true);
   const auto d = at(ds, "/populations/0/goals/0");
   EXPECT_TRUE(contains(d.expected, "at least 0.5 m wide")) << d.format();
 }

@@ -14,7 +14,7 @@ def test_load_a_bundled_scenario(root):
     assert s.name == "bottleneck"
     assert s.populations == ["crowd"]
     assert s.points == ["gap", "exit"]
-    assert s.models == ["orca"]
+    assert s.models == ["avm"]
     assert s.dt == pytest.approx(0.05)
     assert json.loads(s.json)["name"] == "bottleneck"
 

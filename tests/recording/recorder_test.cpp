@@ -198,16 +198,16 @@ TEST(Recorder, MetadataNamesEachPopulationsModelWithItsValues) {
   const std::string path = dir.file("models.sqlite");
   sim::ScenarioDesc s = bottleneck();
   s.populations[1].id = "late \"quoted\"";
-  s.populations[1].model = sim::ModelDesc(sim::ModelKind::AnticipationVelocity);
-  ASSERT_TRUE(s.populations[1].model.set("timeGap", 0.65f));
+  s.populations[1].model = sim::ModelDesc(sim::ModelKind::Orca);
+  ASSERT_TRUE(s.populations[1].model.set("yieldResponsibility", 0.6f));
   auto rec = openOk(s, optionsFor(path));
   ASSERT_NE(rec, nullptr);
   ASSERT_TRUE(rec->close(true).ok());
   Db db(path);
   EXPECT_EQ(db.one("SELECT value FROM metadata WHERE key = 'throng_models'"),
-            "{\"left\": {\"name\": \"orca\", \"yieldResponsibility\": 0.8, \"lodNeighbours\": 4, \"wallMargin\": 0.01}, "
-            "\"late \\\"quoted\\\"\": {\"name\": \"avm\", \"timeGap\": 0.65, \"anticipationTime\": 0.5, \"reactionTime\": 0.1, "
-            "\"neighbourStrength\": 4, \"neighbourRange\": 0.1, \"wallStrength\": 5, \"wallRange\": 0.02, \"passageRatio\": 0.65, \"visionRange\": 20}}");
+            "{\"left\": {\"name\": \"avm\", \"timeGap\": 0.55, \"anticipationTime\": 0.5, \"reactionTime\": 0.1, "
+            "\"neighbourStrength\": 4, \"neighbourRange\": 0.1, \"wallStrength\": 5, \"wallRange\": 0.02, \"passageRatio\": 0.65, \"visionRange\": 20}, "
+            "\"late \\\"quoted\\\"\": {\"name\": \"orca\", \"yieldResponsibility\": 0.6, \"lodNeighbours\": 4, \"wallMargin\": 0.01}}");
 }
 
 namespace bg = boost::geometry;

@@ -204,7 +204,7 @@ TEST(InsertCrowd, BadCrowdsAreRefusedAndChangeNothing) {
                       "/points/0/id: point id \"left\" is already taken",
                       "/populations/0/id: population id \"walkers\" is already taken",
                       "/populations/0/goals/2: point index out of range",
-                      "/populations/0/radius: body radius 0.400000 m (× passage ratio 1.000000) exceeds the world's navmesh erosion radius 0.250000 m"}));
+                      "/populations/0/radius: body radius 0.400000 m (× passage ratio 0.650000) exceeds the world's navmesh erosion radius 0.162500 m"}));
   CrowdDesc big = tourCrowd(d);
   big.populations[0].groups = 2001;
   big.populations[0].sizeMin = big.populations[0].sizeMax = 5;

@@ -116,11 +116,12 @@ TEST(Models, TheCatalogueDeclaresEveryModelWithLimitsAndDefaults) {
     }
   }
   EXPECT_EQ(sim::findModel("social-force"), nullptr);
-  EXPECT_EQ(sim::ModelDesc().kind, sim::ModelKind::Orca) << "scenarios that name no model walk with ORCA";
+  EXPECT_EQ(sim::ModelDesc().kind, sim::ModelKind::AnticipationVelocity)
+      << "scenarios that name no model walk with the calibrated model (issue 17)";
 }
 
 TEST(Models, ParametersAreSetByKeyOnlyForTheirModel) {
-  sim::ModelDesc orca;
+  sim::ModelDesc orca(sim::ModelKind::Orca);
   EXPECT_TRUE(orca.set("yieldResponsibility", 0.6f));
   EXPECT_FLOAT_EQ(orca.value("yieldResponsibility"), 0.6f);
   EXPECT_FALSE(orca.set("timeGap", 2.0f)) << "timeGap is a parameter of the collision-free speed model";

@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+
+#include "bodies.hpp"
 
 using namespace throng;
 
@@ -37,6 +40,7 @@ struct RunResult {
   double meanSpeed = 0;
   std::uint64_t hash = 0;
   float minGap = 1e9f;  // smallest centre distance minus radii seen
+  float deepestBodyOverlap = 0.0f;  // deepest overlap of the default model's bodies (ellipses) seen [m]
   float firstX = -1.0f;  // where the first agent stood after the first tick [m]
   sim::WorldStats stats;  // at the end
 };
@@ -56,6 +60,9 @@ RunResult simulate(const sim::ScenarioDesc& d, int threads, double maxTime) {
       for (std::size_t j = i + 1; j < f->size(); ++j) {
         const float dx = f->posX[i] - f->posX[j], dy = f->posY[i] - f->posY[j];
         run.minGap = std::min(run.minGap, std::sqrt(dx * dx + dy * dy) - 0.4f);
+        const auto body = static_cast<float>(
+            test::ellipseOverlap(dx, dy, f->oriX[i], f->oriY[i], f->oriX[j], f->oriY[j]));
+        run.deepestBodyOverlap = std::max(run.deepestBodyOverlap, body);
       }
     }
     run.hash ^= w.stateHash() + 0x9e3779b97f4a7c15ull + (run.hash << 6) + (run.hash >> 2);
@@ -96,10 +103,13 @@ TEST(World, HeadOnAgentsPassWithoutOverlap) {
   EXPECT_GT(r.minGap, -0.02f) << "bodies overlapped by more than 2 cm";
 }
 
+// The corridor's crowd walks with the default model (avm), whose bodies are ellipses: two people one
+// behind the other touch at 0.26 m between centres, so the depth that counts is the ellipses'. The
+// deepest seen is 5.6 cm (a shoulder brushing a back as walkers merge); the bound leaves 2.4 cm.
 TEST(World, ModerateDensityHasNoDeepOverlap) {
   const RunResult r = simulate(corridor(30, 4, 40, 8.0f), 2, 90);
   EXPECT_GT(r.exitTime, 0.0);
-  EXPECT_GT(r.minGap, -0.05f);
+  EXPECT_LT(r.deepestBodyOverlap, 0.08f);
 }
 
 // Issue 17: overlaps are reported (WorldStats, `throng run`'s summary). The world's own measure, taken

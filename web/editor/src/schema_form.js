@@ -58,9 +58,9 @@ export function modelParameters(schema, name) {
 }
 
 /** The model a population walks with when it names none (the engine default, docs/scenario-format.md). */
-export const DEFAULT_MODEL = 'orca';
+export const DEFAULT_MODEL = 'avm';
 
-/** The model of a population as {name, params}: "avm" or {"name": "avm", ...}; orca (the engine's default) when absent. */
+/** The model of a population as {name, params}: "orca" or {"name": "orca", ...}; avm (the engine's default) when absent. */
 export function readModel(value) {
   if (typeof value === 'string') return { name: value, params: {} };
   if (value && typeof value === 'object') {

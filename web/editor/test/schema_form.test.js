@@ -39,7 +39,7 @@ test('object fields follow $ref and keep the schema order', () => {
 });
 
 test('model values: a bare name without parameters, else an object', () => {
-  assert.deepEqual(readModel(undefined), { name: 'orca', params: {} });
+  assert.deepEqual(readModel(undefined), { name: 'avm', params: {} });
   assert.deepEqual(readModel('avm'), { name: 'avm', params: {} });
   assert.deepEqual(readModel({ name: 'cfsm', timeGap: 0.8 }), { name: 'cfsm', params: { timeGap: 0.8 } });
   assert.equal(writeModel('avm', {}), 'avm');

@@ -59,9 +59,10 @@ struct ModelInfo {
 [[nodiscard]] const ModelInfo* findModel(std::string_view name);
 
 /// A population's model and its parameter values (the model's defaults unless the scenario gives
-/// others). The default is ORCA with its defaults: the model of every scenario that names none.
+/// others). The default is avm (the calibrated pedestrian model) with its defaults: the model of
+/// every population that names none.
 struct ModelDesc {
-  ModelDesc() : ModelDesc(ModelKind::Orca) {}
+  ModelDesc() : ModelDesc(ModelKind::AnticipationVelocity) {}
   explicit ModelDesc(ModelKind k);
 
   ModelKind kind;
