@@ -159,7 +159,7 @@ def tests():
           xfail="not measured: throng has no elevators: floors are joined only by walkable stairs and ramps "
                 "(no cars, capacities, call or travel times)"),
         n("2.8", "Horizontal counter-flow", "travel time grows with the counter-flow", "2.8-counterflow", counter_runs,
-          R.measure_counter, plot=P.counter, xfail={"avm": R.COUNTERFLOW_AVM}),
+          R.measure_counter, plot=P.counter),
         n("2.9", "Group behaviour", "group members walk together", "2.9-groups", [Run("run", "nist/2.9-groups.json")],
           measure_groups, xfail={"cfsm": "cfsm (not calibrated) lets groups string out: 95th percentile 3.9 m"}),
         n("2.10", "People with movement disabilities", "slower, larger persons keep their speed", "2.10-impaired",

@@ -17,11 +17,6 @@ RING_WINDOW = (10.0, 20.0)   # warm-up, end of the measurement [s] (make_scenari
 RING_TOL = 0.15              # m/s around Weidmann (issue 17's band)
 
 
-# Why avm fails the counter-flow tests (RiMEA 16, NIST 2.8), shared by both.
-COUNTERFLOW_AVM = ("avm since looking ahead (visionRange 20 m, session 31): with 10 walking against them the 50 need 56 "
-                   "s, with 25 only 44 s (then 206 s with 50): walkers who see the oncoming group as a crowd go round it"
-                   ", so the time is not monotonic; everybody arrives (regression to fix, docs/crowd-model.md)")
-
 def _traj(results, key):
     return M.load_recording(results[key]["recording"])
 
@@ -375,9 +370,7 @@ def tests():
              "RiMEA 4.1.1 test 7", _doc("07-demographics"),
              [Run("run", "rimea/07-demographics.json"), Run("wide", "rimea/07-demographics-wide.json")],
              measure_demographics, plot=P.demographics,
-             xfail={"cfsm": "cfsm (not calibrated) holds 3 of 50 free walkers below their group's range",
-                    "avm": "avm holds 1 of 50 free walkers below its group's range: a fast walker that catches up a "
-                           "slower one keeps the 0.55 s time gap behind it (no overtaking rule; docs/crowd-model.md)"}),
+             xfail={"cfsm": "cfsm (not calibrated) holds 3 of 50 free walkers below their group's range"}),
         Test("rimea-8", "rimea", "Parameter analysis", "evacuation time falls with the desired speed",
              "RiMEA 4.1.1 test 8", _doc("08-parameter-analysis"),
              [Run(f"v{v:g}", "rimea/08-office.json", _speed_edit(v), f"v{v:g}") for v in G.SENSITIVITY_SPEEDS],
@@ -417,6 +410,6 @@ def tests():
         Test("rimea-16", "rimea", "Counter-flow", "travel time grows with the counter-flow, no deadlock",
              "RiMEA 4.1.1 test 16", _doc("16-counterflow"),
              [Run(f"k{k}", f"rimea/16-counterflow-{k}.json") for k in G.COUNTER["against"]], measure_counter,
-             plot=P.counter, xfail={"avm": COUNTERFLOW_AVM}),
+             plot=P.counter),
     ]
     return t

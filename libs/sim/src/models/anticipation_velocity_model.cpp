@@ -64,7 +64,7 @@ constexpr std::string_view kCalibrated =
     "(docs/validation.md, scripts/validate.py)";
 constexpr std::string_view kWalls = "Tordeux et al. 2016; JuPedSim's collision-free speed model defaults";
 constexpr ModelParameter kParameters[] = {
-    {"timeGap", "s", 0.0, true, 10.0, false, 0.55f, "time gap T kept to the person ahead", kCalibrated},
+    {"timeGap", "s", 0.0, true, 10.0, false, 0.58f, "time gap T kept to the person ahead", kCalibrated},
     {"anticipationTime", "s", 0.0, false, 10.0, false, 0.5f, "how far ahead t_a neighbours' paths are anticipated", kCalibrated},
     {"reactionTime", "s", 0.0, true, 10.0, false, 0.1f, "time τ over which the walking direction turns", kCalibrated},
     {"neighbourStrength", "1", 0.0, false, 100.0, false, 4.0f, "strength a of the sideways push from neighbours", kCalibrated},
@@ -92,7 +92,7 @@ enum Parameter : std::size_t {
 };
 
 struct AvmParams {
-  float timeGap = 0.55f;           ///< T [s]
+  float timeGap = 0.58f;           ///< T [s]
   float anticipationTime = 0.5f;   ///< t_a [s]
   float reactionTime = 0.1f;       ///< τ [s]
   float neighbourStrength = 4.0f;  ///< a [1]
@@ -152,7 +152,7 @@ constexpr float kSlipStep = 0.2617994f;         ///< 15° between candidates [ra
 /// see along α before a wall or a crowded cell (kCrowdedCount agents or more in a cell of
 /// kCrowdCell m: 3 /m², not a stream going i's way: kJoinCos, kOrderedShare). So walkers go round a
 /// knot of people instead of into it, which keeps crowds crossing in every direction from locking up
-/// (the bundled square, 1000 strollers in groups of 4 between random points: 0.98 m/s on three seeds
+/// (the bundled square, 1000 strollers in groups of 4 between random points: 0.87–0.96 m/s over three seeds
 /// against 0.32 m/s and a 700-agent knot without it; docs/crowd-model.md). Only when the crowd lies
 /// between the walker and its target (more than kVisionBeyond beyond the crowded cell): a queue at
 /// one's own door is followed, not walked round. The default range, 20 m, is measured: the paper's
@@ -390,6 +390,10 @@ class AnticipationVelocityModel final : public OperationalModel {
     for (std::uint32_t wid : wallIds) {
       const core::Segment& seg = in.walls.segments()[wid];
       const core::Vec2 e = seg.b - seg.a;
+      // The walkable side is on the right of a → b (nav::NavMesh::boundary keeps the polygons'
+      // winding): a step towards it is never blocked, even for someone standing on the wall line,
+      // as the navmesh holds people pressed against a wall.
+      if (core::dot(dir, rightOf(e)) >= 0.0f) continue;
       const float den = core::cross(dir, e);
       if (std::abs(den) < 1e-9f) continue;  // parallel
       const core::Vec2 q = seg.a - pos;
