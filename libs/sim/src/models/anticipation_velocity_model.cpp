@@ -307,6 +307,10 @@ class AnticipationVelocityModel final : public OperationalModel {
     float best = h * h + f0 * f0 - 2.0f * h * f0;
     core::Vec2 out = e0;
     for (int k = 1; k <= kSlipSteps; ++k) {
+      // Along α the destination gets no nearer than H·sin α (seen clear to H·cos α), which only grows
+      // with α up to 90°: once that cannot beat the best, no wider direction can.
+      const float widest = std::sin(static_cast<float>(k) * kSlipStep);
+      if (h * h * widest * widest >= best - 1e-4f) break;
       for (const int side : {1, -1}) {  // nearer angles first, the right before the left
         const float angle = static_cast<float>(side * k) * kSlipStep;
         const float c = std::cos(angle), sn = std::sin(angle);
