@@ -181,6 +181,7 @@ class CrowdGrid {
   void build(const AgentStore& a, float range) {
     range_ = range;
     counts_.clear();
+    kind_.clear();
     const std::size_t n = a.posX.size();
     if (n == 0) return;
     float x0 = a.posX[0], x1 = x0, y0 = a.posY[0], y1 = y0, z0 = a.height(0), z1 = z0;
@@ -209,6 +210,12 @@ class CrowdGrid {
       const float len = core::length(want);
       if (len > 1e-6f) heading_[static_cast<std::size_t>(c)] += want / len;
     }
+    kind_.assign(cells, kClear);
+    for (std::size_t k = 0; k < cells; ++k) {
+      if (counts_[k] < kCrowdedCount) continue;
+      const float people = static_cast<float>(counts_[k]);
+      kind_[k] = core::length(heading_[k]) < kOrderedShare * people ? kKnot : kStream;
+    }
   }
 
   /// How far along the unit vector dir from pos (at floor height z) before a cell crowded with
@@ -216,14 +223,16 @@ class CrowdGrid {
   [[nodiscard]] float clearAhead(core::Vec2 pos, float z, core::Vec2 dir, core::Vec2 e0, float range) const {
     constexpr float kStep = 0.5f * kCrowdCell;
     range = std::min(range, range_);
+    const std::int64_t floor = static_cast<std::int64_t>(storey(z)) * ny_;
     for (float t = kCrowdCell; t <= range; t += kStep) {
       const core::Vec2 q = pos + dir * t;
-      const std::int64_t c = cell(q.x, q.y, z);
-      if (c < 0) return range;
-      const auto k = static_cast<std::size_t>(c);
-      if (counts_[k] < kCrowdedCount) continue;
-      const float n = static_cast<float>(counts_[k]);
-      if (core::dot(heading_[k], e0) < kJoinCos * n || core::length(heading_[k]) < kOrderedShare * n) return t;
+      const float fx = (q.x - x0_) / kCrowdCell, fy = (q.y - y0_) / kCrowdCell;
+      if (!(fx >= 0.0f && fy >= 0.0f)) return range;  // off the grid (truncation is floor from here)
+      const int cx = static_cast<int>(fx), cy = static_cast<int>(fy);
+      if (cx >= nx_ || cy >= ny_) return range;
+      const auto k = static_cast<std::size_t>((floor + cy) * nx_ + cx);
+      if (kind_[k] == kClear) continue;
+      if (kind_[k] == kKnot || core::dot(heading_[k], e0) < kJoinCos * static_cast<float>(counts_[k])) return t;
     }
     return range;
   }
@@ -231,17 +240,26 @@ class CrowdGrid {
   [[nodiscard]] bool empty() const { return counts_.empty(); }
 
  private:
+  /// A cell's crowd: fewer than kCrowdedCount people, a stream (its people go one way: blocks those
+  /// it is not within kJoinCos of) or a knot (they go every which way: blocks everyone).
+  enum : std::uint8_t { kClear, kStream, kKnot };
+
+  /// The storey bin of height z.
+  [[nodiscard]] int storey(float z) const {
+    return std::min(nz_ - 1, std::max(0, static_cast<int>((z - z0_) / kCrowdStorey)));
+  }
+
   /// The cell index of a point, or -1 outside the grid.
   [[nodiscard]] std::int64_t cell(float x, float y, float z) const {
     const int cx = static_cast<int>(std::floor((x - x0_) / kCrowdCell));
     const int cy = static_cast<int>(std::floor((y - y0_) / kCrowdCell));
-    const int cz = std::min(nz_ - 1, std::max(0, static_cast<int>((z - z0_) / kCrowdStorey)));
     if (cx < 0 || cy < 0 || cx >= nx_ || cy >= ny_) return -1;
-    return (static_cast<std::int64_t>(cz) * ny_ + cy) * nx_ + cx;
+    return (static_cast<std::int64_t>(storey(z)) * ny_ + cy) * nx_ + cx;
   }
 
   std::vector<std::uint16_t> counts_;
   std::vector<core::Vec2> heading_;  ///< sum of the unit desired directions of a cell's agents
+  std::vector<std::uint8_t> kind_;   ///< kClear, kStream or kKnot per cell
   float x0_ = 0, y0_ = 0, z0_ = 0, range_ = 0;
   int nx_ = 0, ny_ = 0, nz_ = 1;
 };
