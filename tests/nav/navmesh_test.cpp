@@ -141,5 +141,31 @@ TEST(NavMesh, BuildIsDeterministic) {
   for (std::size_t i = 0; i < pa.size(); ++i) EXPECT_EQ(pa[i], pb[i]);
 }
 
+// The walls keep their polygon's winding: the walkable side of every boundary segment is on the
+// right of a → b, round the room's outline and round an obstacle alike (the anticipation model's
+// room measure relies on it: a step towards that side is never blocked).
+TEST(NavMesh, BoundarySegmentsHaveTheWalkableSideOnTheirRight) {
+  auto mesh = buildOrFail({rect(0, 0, 20, 10)}, {rect(8, 4, 12, 6)});
+  ASSERT_TRUE(mesh);
+  NavQuery query(mesh);
+  const auto walls = mesh->boundary();
+  ASSERT_GE(walls.size(), 8u);
+  int checked = 0;
+  for (const core::Segment& w : walls) {
+    const Vec2 e = w.b - w.a;
+    const float len = core::length(e);
+    if (len < 0.3f) continue;  // a corner's cut: too short to step off its middle reliably
+    const Vec2 right{e.y / len, -e.x / len};
+    const Vec2 mid = (w.a + w.b) * 0.5f;
+    const auto in = query.nearest(mid + right * 0.05f, 0.5f);
+    const auto out = query.nearest(mid - right * 0.05f, 0.5f);
+    ASSERT_TRUE(in && out);
+    EXPECT_LT(core::length(in->first - (mid + right * 0.05f)), 1e-3f) << "right of the wall is walkable";
+    EXPECT_GT(core::length(out->first - (mid - right * 0.05f)), 0.03f) << "left of the wall is not";
+    ++checked;
+  }
+  EXPECT_GE(checked, 8);
+}
+
 }  // namespace
 }  // namespace throng::nav
