@@ -318,9 +318,11 @@ class AnticipationVelocityModel final : public OperationalModel {
     if (f0 >= range) return e0;
     const core::Vec2 toTarget{a.targetX[row] - pos.x, a.targetY[row] - pos.y};
     if (core::length(toTarget) < f0 + kVisionBeyond) return e0;  // the crowd is where i is going
+    // Walls matter only nearer than the crowd along a ray: fetch them that far, further when a ray needs it.
+    float wallsTo = f0;
     ws.visionWalls.clear();
-    in.walls.query(pos.x, pos.y, range, ws.visionWalls);
-    f0 = std::min(f0, room(in, ws.visionWalls, pos, e0, range));
+    in.walls.query(pos.x, pos.y, wallsTo, ws.visionWalls);
+    f0 = std::min(f0, room(in, ws.visionWalls, pos, e0, f0));
     const float h = range;
     float best = h * h + f0 * f0 - 2.0f * h * f0;
     core::Vec2 out = e0;
@@ -333,7 +335,13 @@ class AnticipationVelocityModel final : public OperationalModel {
         const float angle = static_cast<float>(side * k) * kSlipStep;
         const float c = std::cos(angle), sn = std::sin(angle);
         const core::Vec2 ec{e0.x * c - e0.y * sn, e0.x * sn + e0.y * c};
-        const float f = std::min(crowd_.clearAhead(pos, z, ec, e0, range), room(in, ws.visionWalls, pos, ec, range));
+        const float crowd = crowd_.clearAhead(pos, z, ec, e0, range);
+        if (crowd > wallsTo) {
+          wallsTo = range;
+          ws.visionWalls.clear();
+          in.walls.query(pos.x, pos.y, wallsTo, ws.visionWalls);
+        }
+        const float f = std::min(crowd, room(in, ws.visionWalls, pos, ec, crowd));
         const float d2 = h * h + f * f - 2.0f * h * f * c;
         if (d2 < best - 1e-4f) {
           best = d2;
