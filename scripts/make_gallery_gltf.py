@@ -66,14 +66,16 @@ def unit_box():
     return v, [t for a, b, c, d in faces for t in ((a, b, c), (a, c, d))]
 
 
-def write_gltf(out, b, nodes, scene_name, scene_extras, generator):
-    """Writes a .gltf with every node in its one scene, the builder's meshes and one embedded buffer."""
+def write_gltf(out, b, nodes, scene_name, scene_extras, generator, looks=None):
+    """Writes a .gltf with every node in its one scene, the builder's meshes and one embedded buffer;
+    `looks` (materials, textures, images, samplers), when given, go after the meshes."""
     gltf = {
         "asset": {"version": "2.0", "generator": "throng " + generator},
         "scene": 0,
         "scenes": [{"name": scene_name, "nodes": list(range(len(nodes))), "extras": {"throng": scene_extras}}],
         "nodes": nodes,
         "meshes": b.meshes,
+        **(looks or {}),
         "accessors": b.accessors,
         "bufferViews": b.views,
         "buffers": [{"byteLength": len(b.data),

@@ -9,14 +9,13 @@ red carpet down the middle (a base colour, no texture), two marble plinths and a
 (x, y) is the glTF position (x, height, -y). Usage: scripts/make_tiled_hall_gltf.py [output path]
 """
 import base64
-import json
 import struct
 import sys
 import zlib
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from make_gallery_gltf import Builder, ground, slab, unit_box  # noqa: E402
+from make_gallery_gltf import Builder, ground, slab, unit_box, write_gltf  # noqa: E402
 
 
 def png(width, height, pixel):
@@ -80,25 +79,15 @@ def main():
          "extras": {"throng": {"groups": 10, "size": [1, 3], "goals": ["statue", "door"], "speed": {"mean": 1.1, "sd": 0.2}}}},
     ]
     image = png(8, 8, tiles)
-    gltf = {
-        "asset": {"version": "2.0", "generator": "throng scripts/make_tiled_hall_gltf.py"},
-        "scene": 0,
-        "scenes": [{"name": "tiled_hall", "nodes": list(range(len(nodes))),
-                    "extras": {"throng": {"name": "tiled_hall", "seed": 5, "duration": 120}}}],
-        "nodes": nodes,
-        "meshes": b.meshes,
+    looks = {
         "materials": materials,
         "textures": [{"source": 0, "sampler": 0}],
         "images": [{"uri": "data:image/png;base64," + base64.b64encode(image).decode()}],
         # Nearest filtering keeps the tiles' edges sharp; REPEAT tiles the 2 m texture over the floor.
         "samplers": [{"magFilter": 9728, "minFilter": 9986, "wrapS": 10497, "wrapT": 10497}],
-        "accessors": b.accessors,
-        "bufferViews": b.views,
-        "buffers": [{"byteLength": len(b.data),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(b.data)).decode()}],
     }
-    out.write_text(json.dumps(gltf, indent=1) + "\n")
-    print(f"wrote {out}")
+    write_gltf(out, b, nodes, "tiled_hall", {"name": "tiled_hall", "seed": 5, "duration": 120},
+               "scripts/make_tiled_hall_gltf.py", looks)
 
 
 if __name__ == "__main__":

@@ -12,7 +12,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { exe, launchBrowser, requirePrerequisites, sleep, stopServer } from '../../viewer/e2e/harness.mjs';
-import { click, drag, startEditor, waitForCheck } from './helpers.mjs';
+import { click, drag, openEditor, startEditor, waitForCheck } from './helpers.mjs';
 
 test('the bottleneck from an empty page, saved and run; an invalid save only when forced', { timeout: 180000 }, async () => {
   requirePrerequisites('editor e2e');
@@ -23,12 +23,8 @@ test('the bottleneck from an empty page, saved and run; an invalid save only whe
   const errors = [];
   let savedValid = '';
   try {
-    const page = await browser.newPage({ viewport: { width: 1200, height: 760 } });
-    page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
     // A refused save is answered 422 by design (chromium logs it as a failed resource): not an error.
-    page.on('console', (m) => { if (m.type() === 'error' && !/status of 422/.test(m.text())) errors.push(`console: ${m.text()}`); });
-    await page.goto(server.url);
-    await page.waitForFunction(() => window.throngEditor && document.querySelector('#file-name').textContent === 'bottleneck.json');
+    const page = await openEditor(browser, server, 'bottleneck.json', errors, { allow: /status of 422/ });
     await page.evaluate(() => { const a = window.throngEditor; a.cam.fit({ x0: -1, y0: -1, x1: 21, y1: 11 }); a.render(); });
 
     await page.keyboard.press('w');

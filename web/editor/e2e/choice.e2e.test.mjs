@@ -12,7 +12,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { exe, launchBrowser, requirePrerequisites, stopServer } from '../../viewer/e2e/harness.mjs';
-import { click, drag, startEditor, waitForCheck } from './helpers.mjs';
+import { click, drag, openEditor, startEditor, waitForCheck } from './helpers.mjs';
 
 const goalsOf = (page) => page.evaluate(() => window.throngEditor.doc.populations[0].goals);
 
@@ -24,11 +24,7 @@ test('a waypoint choice made, split and shares edited, saved and run', { timeout
   const browser = await launchBrowser();
   const errors = [];
   try {
-    const page = await browser.newPage({ viewport: { width: 1200, height: 760 } });
-    page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
-    page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
-    await page.goto(server.url);
-    await page.waitForFunction(() => window.throngEditor && document.querySelector('#file-name').textContent === 'booths.json');
+    const page = await openEditor(browser, server, 'booths.json', errors);
     await page.evaluate(() => { const a = window.throngEditor; a.cam.fit({ x0: -1, y0: -1, x1: 21, y1: 11 }); a.render(); });
 
     await page.keyboard.press('w');

@@ -13,7 +13,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { exe, launchBrowser, requirePrerequisites, sleep, stopServer } from '../../viewer/e2e/harness.mjs';
-import { click, drag, startEditor, waitForCheck } from './helpers.mjs';
+import { click, drag, openEditor, startEditor, waitForCheck } from './helpers.mjs';
 
 test('a room with a door, a crowd and an exit, from an empty page to a file that runs', { timeout: 180000 }, async () => {
   requirePrerequisites('editor e2e');
@@ -23,11 +23,7 @@ test('a room with a door, a crowd and an exit, from an empty page to a file that
   const browser = await launchBrowser();
   const errors = [];
   try {
-    const page = await browser.newPage({ viewport: { width: 1200, height: 760 } });
-    page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
-    page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
-    await page.goto(server.url);
-    await page.waitForFunction(() => window.throngEditor && document.querySelector('#file-name').textContent === 'room.json');
+    const page = await openEditor(browser, server, 'room.json', errors);
     // The empty scenario has no walkable area: the check says so.
     await waitForCheck(page, /problem/, 'empty page');
     assert.match(await page.locator('#diagnostics li').first().textContent(), /walkable/);

@@ -1,6 +1,6 @@
 // Shared plumbing of the editor's end-to-end tests: starting the built `throng edit` (THRONG_EXE)
 // on a file and reading the URL it prints, and driving the plan with the mouse at positions given
-// in metres (through the page's camera). Downloads nothing.
+// in metres (through the page's camera), opening its page with errors collected. Downloads nothing.
 import { spawn } from 'node:child_process';
 import assert from 'node:assert/strict';
 import path from 'node:path';
@@ -20,6 +20,20 @@ export function startEditor(file) {
     proc.stderr.on('data', (d) => log.push(d.toString()));
     proc.on('exit', (code) => { clearTimeout(timer); reject(new Error(`throng edit exited (${code}):\n${log.join('')}`)); });
   });
+}
+
+/**
+ * A new page of the editor served by `server`, once it shows `fileName`. Page errors and console
+ * errors go to `errors` (the test fails on any); `allow` is a pattern of console errors that are
+ * expected (a refused save is answered 422 by design, which chromium logs as a failed resource).
+ */
+export async function openEditor(browser, server, fileName, errors, { width = 1200, height = 760, allow = null } = {}) {
+  const page = await browser.newPage({ viewport: { width, height } });
+  page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
+  page.on('console', (m) => { if (m.type() === 'error' && !(allow && allow.test(m.text()))) errors.push(`console: ${m.text()}`); });
+  await page.goto(server.url);
+  await page.waitForFunction((name) => window.throngEditor && document.querySelector('#file-name').textContent === name, fileName);
+  return page;
 }
 
 /** Page coordinates of a plan position [m]. */

@@ -7,7 +7,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { launchBrowser, requirePrerequisites, stopServer } from '../../viewer/e2e/harness.mjs';
-import { startEditor, waitForCheck } from './helpers.mjs';
+import { openEditor, startEditor, waitForCheck } from './helpers.mjs';
 
 test('a WKT floor plan imported into an empty scenario; a broken one refused', { timeout: 120000 }, async () => {
   requirePrerequisites('editor e2e');
@@ -16,11 +16,7 @@ test('a WKT floor plan imported into an empty scenario; a broken one refused', {
   const browser = await launchBrowser();
   const errors = [];
   try {
-    const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });
-    page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
-    page.on('console', (m) => { if (m.type() === 'error' && !/status of 422/.test(m.text())) errors.push(`console: ${m.text()}`); });
-    await page.goto(server.url);
-    await page.waitForFunction(() => window.throngEditor && document.querySelector('#file-name').textContent === 'plan.json');
+    const page = await openEditor(browser, server, 'plan.json', errors, { width: 1000, height: 700, allow: /status of 422/ });
     await waitForCheck(page, /problem/, 'empty page');
     const wkt = 'GEOMETRYCOLLECTION (POLYGON ((0 0, 12 0, 12 8, 0 8)), LINESTRING (6 0, 6 3), LINESTRING (6 5, 6 8))';
     await page.setInputFiles('#import-file', { name: 'ground.wkt', mimeType: 'text/plain', buffer: Buffer.from(wkt) });

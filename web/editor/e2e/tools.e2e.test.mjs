@@ -9,7 +9,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { launchBrowser, requirePrerequisites, stopServer } from '../../viewer/e2e/harness.mjs';
-import { at, click, drag, startEditor, waitForCheck } from './helpers.mjs';
+import { at, click, drag, openEditor, startEditor, waitForCheck } from './helpers.mjs';
 
 test('every tool and gesture leaves the scenario it should', { timeout: 150000 }, async () => {
   requirePrerequisites('editor e2e');
@@ -19,11 +19,7 @@ test('every tool and gesture leaves the scenario it should', { timeout: 150000 }
   const browser = await launchBrowser();
   const errors = [];
   try {
-    const page = await browser.newPage({ viewport: { width: 1100, height: 720 } });
-    page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
-    page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
-    await page.goto(server.url);
-    await page.waitForFunction(() => window.throngEditor && document.querySelector('#file-name').textContent === 'tools.json');
+    const page = await openEditor(browser, server, 'tools.json', errors, { width: 1100, height: 720 });
     await page.evaluate(() => { const a = window.throngEditor; a.cam.fit({ x0: -1, y0: -1, x1: 13, y1: 9 }); a.render(); });
     const doc = () => page.evaluate(() => window.throngEditor.doc);
 
