@@ -170,8 +170,6 @@ constexpr float kJoinCos = 0.3f;
 constexpr float kOrderedShare = 0.6f;
 /// Floors of a multi-level world are told apart in bins of this height [m] (a storey is 2.5–4 m).
 constexpr float kCrowdStorey = 2.5f;
-/// The crowd grid covers at most this many cells per side (beyond it nobody is seen as crowd).
-constexpr int kCrowdGridMax = 4096;
 
 /// Agents per cell of kCrowdCell metres (and storey bins of kCrowdStorey on multi-level worlds) over
 /// the box round every agent: what walkers see of the crowd ahead. Built serially once a tick from
@@ -180,8 +178,7 @@ class CrowdGrid {
  public:
   void build(const AgentStore& a, float range) {
     range_ = range;
-    counts_.clear();
-    kind_.clear();
+    cells_.clear();
     const std::size_t n = a.posX.size();
     if (n == 0) return;
     float x0 = a.posX[0], x1 = x0, y0 = a.posY[0], y1 = y0, z0 = a.height(0), z1 = z0;
@@ -196,25 +193,39 @@ class CrowdGrid {
     x0_ = x0 - range;
     y0_ = y0 - range;
     z0_ = z0;
-    nx_ = std::min(kCrowdGridMax, static_cast<int>((x1 - x0 + 2.0f * range) / kCrowdCell) + 1);
-    ny_ = std::min(kCrowdGridMax, static_cast<int>((y1 - y0 + 2.0f * range) / kCrowdCell) + 1);
+    nx_ = static_cast<std::int64_t>((x1 - x0 + 2.0f * range) / kCrowdCell) + 1;
+    ny_ = static_cast<std::int64_t>((y1 - y0 + 2.0f * range) / kCrowdCell) + 1;
     nz_ = std::min(64, static_cast<int>((z1 - z0) / kCrowdStorey) + 1);
-    const std::size_t cells = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_) * static_cast<std::size_t>(nz_);
-    counts_.assign(cells, 0);
-    heading_.assign(cells, core::Vec2{});
+    // Occupied cells are stored once (cells_), found through a dense index over the box while that
+    // stays within kDenseCellsPerAgent cells an agent, else through an open-addressed table at most a
+    // quarter full: memory and the per-tick reset follow the number of agents, not the world's size.
+    cells_.clear();
+    dense_.clear();
+    slots_.clear();
+    const auto boxCells = static_cast<double>(nx_) * static_cast<double>(ny_) * nz_;
+    if (boxCells <= kDenseCellsPerAgent * static_cast<double>(n) + kDenseCellsMin) {
+      dense_.assign(static_cast<std::size_t>(boxCells), -1);
+    } else {
+      std::size_t size = 64;
+      while (size < 4 * n) size *= 2;
+      mask_ = size - 1;
+      slots_.assign(size, Slot{});
+    }
     for (std::size_t i = 0; i < n; ++i) {
-      const std::int64_t c = cell(a.posX[i], a.posY[i], a.height(i));
-      if (c < 0 || counts_[static_cast<std::size_t>(c)] == 0xffff) continue;
-      ++counts_[static_cast<std::size_t>(c)];
+      const float fx = (a.posX[i] - x0_) / kCrowdCell, fy = (a.posY[i] - y0_) / kCrowdCell;
+      Cell& c = slot(key(static_cast<std::int64_t>(std::floor(fx)), static_cast<std::int64_t>(std::floor(fy)), storey(a.height(i))));
+      if (c.count == 0xffff) continue;
+      ++c.count;
       const core::Vec2 want{a.prefVelX[i], a.prefVelY[i]};
       const float len = core::length(want);
-      if (len > 1e-6f) heading_[static_cast<std::size_t>(c)] += want / len;
+      if (len > 1e-6f) c.heading += want / len;
     }
-    kind_.assign(cells, kClear);
-    for (std::size_t k = 0; k < cells; ++k) {
-      if (counts_[k] < kCrowdedCount) continue;
-      const float people = static_cast<float>(counts_[k]);
-      kind_[k] = core::length(heading_[k]) < kOrderedShare * people ? kKnot : kStream;
+    for (Cell& c : cells_) {
+      if (c.count >= kCrowdedCount) {
+        c.kind = core::length(c.heading) < kOrderedShare * static_cast<float>(c.count) ? kKnot : kStream;
+      } else if (!dense_.empty()) {
+        dense_[static_cast<std::size_t>(c.key)] = -1;  // not a crowd: the look along a ray skips it unread
+      }
     }
   }
 
@@ -223,45 +234,95 @@ class CrowdGrid {
   [[nodiscard]] float clearAhead(core::Vec2 pos, float z, core::Vec2 dir, core::Vec2 e0, float range) const {
     constexpr float kStep = 0.5f * kCrowdCell;
     range = std::min(range, range_);
-    const std::int64_t floor = static_cast<std::int64_t>(storey(z)) * ny_;
+    const int floor = storey(z);
     for (float t = kCrowdCell; t <= range; t += kStep) {
       const core::Vec2 q = pos + dir * t;
       const float fx = (q.x - x0_) / kCrowdCell, fy = (q.y - y0_) / kCrowdCell;
       if (!(fx >= 0.0f && fy >= 0.0f)) return range;  // off the grid (truncation is floor from here)
-      const int cx = static_cast<int>(fx), cy = static_cast<int>(fy);
+      const auto cx = static_cast<std::int64_t>(fx), cy = static_cast<std::int64_t>(fy);
       if (cx >= nx_ || cy >= ny_) return range;
-      const auto k = static_cast<std::size_t>((floor + cy) * nx_ + cx);
-      if (kind_[k] == kClear) continue;
-      if (kind_[k] == kKnot || core::dot(heading_[k], e0) < kJoinCos * static_cast<float>(counts_[k])) return t;
+      const Cell* c = find(key(cx, cy, floor));
+      if (c == nullptr || c->kind == kClear) continue;
+      if (c->kind == kKnot || core::dot(c->heading, e0) < kJoinCos * static_cast<float>(c->count)) return t;
     }
     return range;
   }
 
-  [[nodiscard]] bool empty() const { return counts_.empty(); }
+  [[nodiscard]] bool empty() const { return cells_.empty(); }
 
  private:
   /// A cell's crowd: fewer than kCrowdedCount people, a stream (its people go one way: blocks those
   /// it is not within kJoinCos of) or a knot (they go every which way: blocks everyone).
   enum : std::uint8_t { kClear, kStream, kKnot };
 
+  struct Cell {
+    std::int64_t key = 0;
+    core::Vec2 heading;  ///< sum of the unit desired directions of the cell's agents
+    std::uint16_t count = 0;
+    std::uint8_t kind = kClear;
+  };
+  struct Slot {
+    std::int64_t key = -1;  ///< -1: free
+    std::int32_t cell = -1;
+  };
+  /// The dense index is used while the box holds at most this many cells per agent (plus kDenseCellsMin).
+  static constexpr double kDenseCellsPerAgent = 16.0;
+  static constexpr double kDenseCellsMin = 65536.0;
+
   /// The storey bin of height z.
   [[nodiscard]] int storey(float z) const {
     return std::min(nz_ - 1, std::max(0, static_cast<int>((z - z0_) / kCrowdStorey)));
   }
 
-  /// The cell index of a point, or -1 outside the grid.
-  [[nodiscard]] std::int64_t cell(float x, float y, float z) const {
-    const int cx = static_cast<int>(std::floor((x - x0_) / kCrowdCell));
-    const int cy = static_cast<int>(std::floor((y - y0_) / kCrowdCell));
-    if (cx < 0 || cy < 0 || cx >= nx_ || cy >= ny_) return -1;
-    return (static_cast<std::int64_t>(storey(z)) * ny_ + cy) * nx_ + cx;
+  [[nodiscard]] std::int64_t key(std::int64_t cx, std::int64_t cy, int cz) const {
+    return (static_cast<std::int64_t>(cz) * ny_ + cy) * nx_ + cx;
   }
 
-  std::vector<std::uint16_t> counts_;
-  std::vector<core::Vec2> heading_;  ///< sum of the unit desired directions of a cell's agents
-  std::vector<std::uint8_t> kind_;   ///< kClear, kStream or kKnot per cell
+  [[nodiscard]] std::size_t home(std::int64_t k) const {
+    return static_cast<std::size_t>((static_cast<std::uint64_t>(k) * 0x9e3779b97f4a7c15ull) >> 20) & mask_;
+  }
+
+  /// Where cell k's index into cells_ is kept (-1 until someone is in it).
+  std::int32_t& indexOf(std::int64_t k) {
+    if (!dense_.empty()) return dense_[static_cast<std::size_t>(k)];
+    for (std::size_t i = home(k);; i = (i + 1) & mask_) {
+      if (slots_[i].key == k) return slots_[i].cell;
+      if (slots_[i].key < 0) {
+        slots_[i].key = k;
+        return slots_[i].cell;
+      }
+    }
+  }
+
+  /// Cell k, taken if nobody was in it yet.
+  Cell& slot(std::int64_t k) {
+    std::int32_t& i = indexOf(k);
+    if (i < 0) {
+      i = static_cast<std::int32_t>(cells_.size());
+      cells_.push_back(Cell{k, {}, 0, kClear});
+    }
+    return cells_[static_cast<std::size_t>(i)];
+  }
+
+  /// Cell k, or null when nobody is in it.
+  [[nodiscard]] const Cell* find(std::int64_t k) const {
+    if (!dense_.empty()) {
+      const std::int32_t i = dense_[static_cast<std::size_t>(k)];
+      return i < 0 ? nullptr : &cells_[static_cast<std::size_t>(i)];
+    }
+    for (std::size_t i = home(k);; i = (i + 1) & mask_) {
+      if (slots_[i].key == k) return &cells_[static_cast<std::size_t>(slots_[i].cell)];
+      if (slots_[i].key < 0) return nullptr;
+    }
+  }
+
+  std::vector<Cell> cells_;          ///< the occupied cells, in the order they were first met
+  std::vector<std::int32_t> dense_;  ///< index into cells_ per cell of the box, or empty
+  std::vector<Slot> slots_;          ///< open-addressed cell → index, when the box is too large
+  std::size_t mask_ = 0;
   float x0_ = 0, y0_ = 0, z0_ = 0, range_ = 0;
-  int nx_ = 0, ny_ = 0, nz_ = 1;
+  std::int64_t nx_ = 0, ny_ = 0;
+  int nz_ = 1;
 };
 
 /// The perpendicular of e pointing to its right.
