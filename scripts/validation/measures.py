@@ -6,7 +6,11 @@ documentation and the papers named in docs/validation.md):
   trajectory (speed = its length);
 - classic density: persons inside a measurement area / its area, per frame;
 - flow through a line: (N - 1) / (t_N - t_1) from the instants the persons first cross it;
-- overlap depth of two bodies: r_i + r_j - |x_i - x_j| (positive when they overlap);
+- overlap depth of two bodies: r_i + r_j - |x_i - x_j| for discs (positive when they overlap); for
+  the bodies of the anticipation model (avm, the default), ellipses of shoulder breadth 2r across
+  the heading and depth q * 2r along it (q its passageRatio, the heading the recording's ori_x,
+  ori_y), the mean of the two ellipses' reach along the line of centres minus the distance (as
+  tests/support/bodies.hpp);
 - walk-back: how much farther from a target an agent is than the closest it has been so far;
 - lane order (Rex & Loewen 2007): per agent, ((n_same - n_opp) / (n_same + n_opp))^2 over the agents
   in its lateral slice, averaged over agents and frames.
@@ -42,10 +46,17 @@ class Trajectories:
     """Rows (id, frame, x, y) sorted by id then frame, with per-row velocity (vx, vy) and speed
     [m/s]; fps [1/s]; radius: per-row body radius [m] (or None); group: per-row population index."""
 
-    def __init__(self, rows, fps, radius_of=None, population_of=None):
+    def __init__(self, rows, fps, radius_of=None, population_of=None, ori=None, depth_ratio_of=None):
+        """ori: optional (ori_x, ori_y) arrays in the order of `rows`, the heading of each row;
+        depth_ratio_of: optional agent id -> body depth over shoulder breadth (1 for a disc), with
+        ori the bodies are ellipses (max_overlap)."""
         rows = np.asarray(rows, dtype=float).reshape(-1, 4)
         order = np.lexsort((rows[:, 1], rows[:, 0]))
         rows = rows[order]
+        self.ori_x = self.ori_y = None
+        if ori is not None:
+            self.ori_x = np.asarray(ori[0], float)[order]
+            self.ori_y = np.asarray(ori[1], float)[order]
         self.fps = float(fps)
         self.id = rows[:, 0].astype(np.int64)
         self.frame = rows[:, 1].astype(np.int64)
@@ -55,6 +66,8 @@ class Trajectories:
         self.speed = np.hypot(self.vx, self.vy)
         self.radius = None if radius_of is None else np.array([radius_of[i] for i in self.id], float)
         self.population = None if population_of is None else np.array([population_of[i] for i in self.id], int)
+        self.depth_ratio = (None if depth_ratio_of is None or ori is None
+                            else np.array([depth_ratio_of.get(i, 1.0) for i in self.id], float))
 
     def _velocities(self):
         k = max(1, int(round(SPEED_HALF_WINDOW_S * self.fps)))
@@ -141,14 +154,26 @@ def load_recording(path):
     db = sqlite3.connect(path)
     try:
         meta = dict(db.execute("SELECT key, value FROM metadata").fetchall())
-        rows = db.execute("SELECT id, frame, pos_x, pos_y FROM trajectory_data").fetchall()
-        agents = db.execute("SELECT a.id, a.population, p.radius FROM throng_agents a "
+        data = np.array(db.execute("SELECT id, frame, pos_x, pos_y, ori_x, ori_y FROM trajectory_data").fetchall(),
+                        float).reshape(-1, 6)
+        agents = db.execute("SELECT a.id, a.population, p.radius, p.id FROM throng_agents a "
                             "JOIN throng_populations p ON p.idx = a.population").fetchall()
     finally:
         db.close()
-    radius_of = {a: r for a, _, r in agents}
-    population_of = {a: p for a, p, _ in agents}
-    return Trajectories(rows, float(meta.get("fps", 10.0)), radius_of, population_of)
+    radius_of = {a: r for a, _, r, _ in agents}
+    population_of = {a: p for a, p, _, _ in agents}
+    ratio = {pop: float(m.get("passageRatio", 1.0)) for pop, m in _model_params(meta).items()
+             if m.get("name") == "avm"}
+    depth_ratio_of = {a: ratio.get(pid, 1.0) for a, _, _, pid in agents}
+    return Trajectories(data[:, :4], float(meta.get("fps", 10.0)), radius_of, population_of,
+                        ori=(data[:, 4], data[:, 5]), depth_ratio_of=depth_ratio_of)
+
+
+def _model_params(meta):
+    """Population id -> its model's parameters from the metadata throng_models ({} if absent)."""
+    import json
+    models = json.loads(meta.get("throng_models", "{}") or "{}")
+    return {pop: m for pop, m in models.items() if isinstance(m, dict)}
 
 
 # --- Flow ----------------------------------------------------------------------------------------
@@ -200,9 +225,7 @@ def max_overlap(traj, t_from=0.0):
     for frame, rows in traj.by_frame(traj.frame >= start):
         if len(rows) < 2:
             continue
-        dx = traj.x[rows][:, None] - traj.x[rows][None, :]
-        dy = traj.y[rows][:, None] - traj.y[rows][None, :]
-        depth = traj.radius[rows][:, None] + traj.radius[rows][None, :] - np.hypot(dx, dy)
+        depth = _depths(traj, rows)
         np.fill_diagonal(depth, -np.inf)
         m = float(depth.max())
         if m > best:
@@ -215,10 +238,33 @@ def max_overlap(traj, t_from=0.0):
 def overlapping_pairs(traj, frame, deeper_than=0.05):
     """Pairs of bodies overlapping by more than `deeper_than` [m] in one frame."""
     rows = np.flatnonzero(traj.frame == frame)
-    dx = traj.x[rows][:, None] - traj.x[rows][None, :]
-    dy = traj.y[rows][:, None] - traj.y[rows][None, :]
-    depth = traj.radius[rows][:, None] + traj.radius[rows][None, :] - np.hypot(dx, dy)
+    depth = _depths(traj, rows)
     return int(np.triu(depth > deeper_than, k=1).sum())
+
+
+def _depths(traj, rows):
+    """Overlap depth [m] of every pair of the given rows (one frame): discs, or ellipses along the
+    heading where the trajectories have headings and depth ratios."""
+    dx = traj.x[rows][None, :] - traj.x[rows][:, None]
+    dy = traj.y[rows][None, :] - traj.y[rows][:, None]
+    dist = np.hypot(dx, dy)
+    reach_sum = traj.radius[rows][:, None] + traj.radius[rows][None, :]
+    if traj.depth_ratio is None:
+        return reach_sum - dist
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ux = np.where(dist > 1e-9, dx / dist, 1.0)
+        uy = np.where(dist > 1e-9, dy / dist, 0.0)
+
+        def reach(ox, oy, q):
+            along = ox * ux + oy * uy
+            across = ox * uy - oy * ux
+            den = np.sqrt(along * along + q * q * across * across)
+            return np.where(den > 1e-9, reach_sum * q / den, reach_sum)
+
+        ox, oy, q = traj.ori_x[rows], traj.ori_y[rows], traj.depth_ratio[rows]
+        mine = reach(ox[:, None], oy[:, None], q[:, None])
+        theirs = reach(ox[None, :], oy[None, :], q[None, :])
+    return 0.5 * (mine + theirs) - dist
 
 
 def walk_back(traj, target, before=None):

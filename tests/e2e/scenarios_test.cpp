@@ -136,10 +136,12 @@ TEST(Scenarios, EvacuationEmptiesTheRoom) {
   EXPECT_GE(s["evacuation_time_s"].get<double>(), 38.0);
   EXPECT_LE(s["evacuation_time_s"].get<double>(), 66.0);
   // Bodies: the default model's are ellipses 0.4 m wide and 0.26 m deep (passageRatio 0.65) facing
-  // their heading, so two touch at 0.26..0.4 m between centres depending on how they stand. Nobody
-  // walks through anyone: no overlap deeper than 0.35 m, and overlaps deeper than 10 cm stay rare
-  // (under 1 % of agent-frames). The dense-room target of issue 17 (no overlap deeper than 3 cm)
-  // is stricter and not met yet: scripts/validate.py --only room reports it (docs/validation.md).
+  // their heading, so two touch at 0.26..0.4 m between centres depending on how they stand. Bodies
+  // in contact step apart (the model's contact term), so nobody is pressed into anyone: no overlap
+  // deeper than 0.15 m (0.10 measured; 0.33, two walkers stacked at a wall, before the contact
+  // term), and overlaps deeper than 10 cm stay rare (under 1 % of agent-frames). The dense-room
+  // target of issue 17 (no overlap deeper than 3 cm) is stricter and not met yet:
+  // scripts/validate.py --only room reports it (docs/validation.md).
   const auto pairs = query(db,
                            "SELECT a.pos_x - b.pos_x, a.pos_y - b.pos_y, a.ori_x, a.ori_y, b.ori_x, b.ori_y "
                            "FROM trajectory_data a JOIN trajectory_data b ON a.frame = b.frame AND a.id < b.id "
@@ -153,7 +155,7 @@ TEST(Scenarios, EvacuationEmptiesTheRoom) {
     deepest = std::max(deepest, depth);
     if (depth > 0.1) ++over10cm;
   }
-  EXPECT_LT(deepest, 0.35) << "deepest overlap of two bodies [m]";
+  EXPECT_LT(deepest, 0.15) << "deepest overlap of two bodies [m]";
   ASSERT_GT(agentFrames[0][0], 10000.0);
   EXPECT_LT(over10cm, 0.01 * agentFrames[0][0]) << over10cm << " pair-frames overlap by more than 10 cm";
 }

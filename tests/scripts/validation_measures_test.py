@@ -129,6 +129,22 @@ class Bodies(unittest.TestCase):
         self.assertAlmostEqual(late["at_s"], 1.0)
         self.assertEqual(late["agents_over_1cm"], 2)
 
+    def test_ellipse_bodies_overlap_across_their_shoulders_not_front_to_back(self):
+        # Shoulders 0.4 m across, chests 0.26 m deep (passage ratio 0.65), both facing +x. One 0.30 m
+        # behind the other: discs would overlap by 0.10, ellipses stand 0.04 apart. Side by side
+        # 0.30 m apart: 0.10 deep either way. Facing each other across 0.20 m: 0.06 deep.
+        def pair(dx, dy, o1=(1.0, 0.0)):
+            rows = [(0, 0, 0.0, 0.0), (1, 0, dx, dy)]
+            t = M.Trajectories(rows, 10.0, {0: 0.2, 1: 0.2}, {0: 0, 1: 0},
+                               ori=([1.0, o1[0]], [0.0, o1[1]]), depth_ratio_of={0: 0.65, 1: 0.65})
+            return M.max_overlap(t)["max_depth"]
+        self.assertEqual(pair(0.30, 0.0), 0.0)
+        self.assertAlmostEqual(pair(0.0, 0.30), 0.10)
+        self.assertAlmostEqual(pair(0.20, 0.0, (-1.0, 0.0)), 0.06)
+        # Without depth ratios the same rows are discs.
+        t = M.Trajectories([(0, 0, 0.0, 0.0), (1, 0, 0.30, 0.0)], 10.0, {0: 0.2, 1: 0.2}, {0: 0, 1: 0})
+        self.assertAlmostEqual(M.max_overlap(t)["max_depth"], 0.10)
+
     def test_no_overlap_is_zero(self):
         rows = [(0, f, 0.0, 0.0) for f in range(5)] + [(1, f, 1.0, 0.0) for f in range(5)]
         self.assertEqual(M.max_overlap(traj(rows))["max_depth"], 0.0)

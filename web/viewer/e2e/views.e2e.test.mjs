@@ -28,8 +28,8 @@ export async function shot(page, name) {
 }
 
 /** Up to `n` agents drawn on the bare canvas (no panel over them), clear of any other agent on
- * screen (by `gap` px, or in perspective by what 0.7 m at the agent spans on screen when that is
- * more: a body in front would hide it): [{id, x, y}] (screen px, the body's middle). */
+ * screen (by `gap` px, or in perspective by what 0.7 m spans on screen at the agent or at the
+ * other, whichever is more: a body in front would hide it): [{id, x, y}] (screen px, the body's middle). */
 export function clickable(page, n, gap = 5) {
   return page.evaluate(([n, gap]) => {
     const { state, toScreen } = globalThis.__throng;
@@ -44,7 +44,9 @@ export function clickable(page, n, gap = 5) {
     for (const p of pts) {
       if (p.x < 8 || p.y < 8 || p.x > innerWidth - 8 || p.y > innerHeight - 8) continue;
       if (document.elementFromPoint(p.x, p.y) !== document.querySelector('#app canvas')) continue;
-      if (pts.some((q) => q !== p && Math.hypot(q.x - p.x, q.y - p.y) < p.clear)) continue;
+      // Clear by the larger of the two spans: a body nearer the camera is larger on screen and
+      // covers a farther one further from its own middle than the farther one's span.
+      if (pts.some((q) => q !== p && Math.hypot(q.x - p.x, q.y - p.y) < Math.max(p.clear, q.clear))) continue;
       out.push({ id: p.id, x: p.x, y: p.y });
       if (out.length >= n) break;
     }

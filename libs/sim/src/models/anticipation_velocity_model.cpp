@@ -42,6 +42,9 @@
 // within kSqueezeIn of its own target squeezes in beside people standing there. Neighbours' desired
 // directions are those of the previous tick (beginStep), so the result does not depend on the
 // thread or rank that steers them.
+// Contact: bodies overlapping deeper than 1 cm step apart along their line of centres, each half the
+// excess within the tick (contact), and the walking direction relaxes from the one meant a tick ago
+// when the navmesh slid the walker along a wall away from its goal.
 // Merging (two people converging less than 90° apart) the one nearer the shared space goes first,
 // the other yields (givesWay); without that both see the other ahead and both stop, which clogs
 // every door. The navmesh keeps centres q·r from walls (ScenarioDesc::navRadius): people turn
@@ -168,6 +171,11 @@ constexpr float kVisionBeyond = 2.0f;
 /// crossing or coming the other way, is walked round.
 constexpr float kJoinCos = 0.3f;
 constexpr float kOrderedShare = 0.6f;
+/// Contact (AnticipationVelocityModel::contact): overlaps of the bodies up to this depth are left
+/// alone [m]; deeper, the two step apart, at most kContactSpeed [m/s].
+constexpr float kContactSlack = 0.01f;
+constexpr float kContactSpeed = 1.0f;
+constexpr float kContactShare = 0.5f;
 /// Floors of a multi-level world are told apart in bins of this height [m] (a storey is 2.5–4 m).
 constexpr float kCrowdStorey = 2.5f;
 
@@ -342,6 +350,8 @@ class AnticipationVelocityModel final : public OperationalModel {
         const auto& v = pop.model.values;
         p = {v[kTimeGap],        v[kAnticipationTime], v[kReactionTime], v[kNeighbourStrength],
              v[kNeighbourRange], v[kWallStrength],     v[kWallRange],    v[kPassageRatio], v[kVisionRange]};
+      } else {
+        p.passageRatio = 1.0f;  // another model's bodies are discs (contact)
       }
       params_.push_back(p);
       vision_ = std::max(vision_, p.visionRange);
@@ -607,8 +617,12 @@ class AnticipationVelocityModel final : public OperationalModel {
     const float len = core::length(target);
     if (len < 1e-6f) return {};
     target = target / len;
-    // Turn over the reaction time from the direction walked so far.
-    const core::Vec2 vel{a.velX[row], a.velY[row]};
+    // Turn over the reaction time from the direction i meant to walk a tick ago (newVel, this row's
+    // own output of the last tick), not from the displacement the navmesh let it make: pressed into a
+    // wall, the mesh slides it along the wall, and turning from that slide would make the slide its
+    // own cause (a walker beside a door slid 4 m along the wall away from it).
+    core::Vec2 vel{a.velX[row], a.velY[row]};
+    if (core::dot(vel, e0) < 0.0f) vel = {a.newVelX[row], a.newVelY[row]};
     const float speedNow = core::length(vel);
     core::Vec2 e = target;
     if (speedNow > 0.05f) {
@@ -622,8 +636,43 @@ class AnticipationVelocityModel final : public OperationalModel {
     const float speed = std::min(v0, gap / p.timeGap);
     const auto bo = static_cast<std::uint32_t>(blocker);
     if (blocker >= 0 && speed < kSlipSpeed * v0 && (opposed(a, row, bo, kSlipCos) || a.mode[bo] != AgentMode::Walking))
-      return slip(in, row, e0, v0, p, ws, e, speed);
-    return e * speed;
+      return slip(in, row, e0, v0, p, ws, e, speed) + contact(in, row, p);
+    return e * speed + contact(in, row, p);
+  }
+
+  /// Bodies in contact give way to each other: for every neighbour whose ellipse (headings as drawn,
+  /// oriX/oriY) overlaps i's deeper than kContactSlack, i steps back along the line of centres by
+  /// half the excess this tick (the neighbour, seeing the same overlap, takes the other half), at
+  /// most kContactSpeed. The time-gap law keeps walkers from walking into the person ahead, but
+  /// pushes from behind and the side, walls and turning bodies still press people into each other;
+  /// this keeps a crush's overlaps to a few centimetres (docs/crowd-model.md).
+  core::Vec2 contact(const ModelInput& in, std::size_t row, const AvmParams& p) const {
+    const AgentStore& a = in.agents;
+    const core::Vec2 pos{a.posX[row], a.posY[row]};
+    const core::Vec2 oi{a.oriX[row], a.oriY[row]};
+    const std::size_t k = in.desc.steering.maxNeighbours;
+    const std::uint32_t* nb = &a.neighbours[row * k];
+    core::Vec2 out;
+    for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
+      const std::uint32_t o = nb[n];
+      const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
+      const float l = a.radius[row] + a.radius[o];
+      const float dist2 = core::lengthSq(d);
+      if (dist2 >= l * l) continue;
+      const float dist = std::sqrt(dist2);
+      const core::Vec2 u = dist > 1e-6f ? d / dist : core::Vec2{a.id[row] < a.id[o] ? 1.0f : -1.0f, 0.0f};
+      const float q = p.passageRatio;
+      const float qo = params_[a.population[o]].passageRatio;
+      const auto reach = [&](core::Vec2 ori, float ratio) {
+        const float along = core::dot(ori, u), across = core::cross(ori, u);
+        const float den = std::sqrt(along * along + ratio * ratio * across * across);
+        return den > 1e-6f ? l * ratio / den : l;
+      };
+      const float depth = 0.5f * (reach(oi, q) + reach({a.oriX[o], a.oriY[o]}, qo)) - dist;
+      if (depth > kContactSlack) out -= u * (kContactShare * (depth - kContactSlack) / dt_);
+    }
+    const float len = core::length(out);
+    return len > kContactSpeed ? out * (kContactSpeed / len) : out;
   }
 
   std::vector<AvmParams> params_;  ///< per population
