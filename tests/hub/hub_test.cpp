@@ -132,7 +132,7 @@ TEST_F(HubFixture, RefusesAVersionMismatchAFullServerAndAnythingBeforeHello) {
   const Refuse* r = find<Refuse>(got);
   ASSERT_NE(r, nullptr);
   EXPECT_EQ(r->reason, ReasonCode::VersionMismatch);
-  EXPECT_NE(r->text.find("version 1"), std::string::npos) << r->text;
+  EXPECT_NE(r->text.find("versions 1 to 2"), std::string::npos) << r->text;
   EXPECT_TRUE(outbox.closed.count(1));
 
   hub->onOpen(2, "b", now);
@@ -352,6 +352,40 @@ TEST_F(HubFixture, EveryoneHearsWhoJoinsAndWhoLeaves) {
   ASSERT_NE(gone, nullptr);
   EXPECT_FALSE(gone->present);
   EXPECT_EQ(gone->participantId, a.participantId);
+}
+
+TEST_F(HubFixture, VersionTwoClientsHearEachParticipantsLookVersionOneClientsGetVersionOneMessages) {
+  connect(1);  // version 2
+  hub->onOpen(2, "old", now);
+  say(2, encode(Hello{1, ClientKind::Browser, "old viewer"}));
+  auto welcomed = outbox.drain(2);
+  const Welcome* w = find<Welcome>(welcomed);
+  ASSERT_NE(w, nullptr);
+  EXPECT_EQ(w->protocolVersion, 1);  // spoken to in its own version
+  EXPECT_TRUE(worldJson(*w).ok());
+  say(1, encode(Join{"alice", 5}));
+  outbox.drain(1);
+  auto heardByOld = outbox.drain(2);
+  const Presence* plain = find<Presence>(heardByOld);
+  ASSERT_NE(plain, nullptr);
+  EXPECT_EQ(plain->name, "alice");
+  EXPECT_FALSE(plain->avatar.has_value());  // the version-1 layout: ends with the name
+  say(2, encode(Join{"bob", 3}));
+  auto heardByNew = outbox.drain(1);
+  const Presence* bob = find<Presence>(heardByNew);
+  ASSERT_NE(bob, nullptr);
+  EXPECT_EQ(bob->name, "bob");
+  EXPECT_EQ(bob->avatar, std::optional<std::uint16_t>(3));
+  // A version-2 newcomer learns the look of each participant already there.
+  hub->onClose(2, "done");
+  hub->onOpen(3, "late", now);
+  say(3, encode(Hello{kProtocolVersion, ClientKind::Browser, "late"}));
+  auto late = outbox.drain(3);
+  const Presence* there = find<Presence>(late);
+  ASSERT_NE(there, nullptr);
+  EXPECT_EQ(there->name, "alice");
+  EXPECT_EQ(there->avatar, std::optional<std::uint16_t>(5));
+  EXPECT_EQ(find<Welcome>(late)->protocolVersion, kProtocolVersion);
 }
 
 TEST_F(HubFixture, ReplayControlIsRefusedByALiveWorldAndQueuedByAReplay) {

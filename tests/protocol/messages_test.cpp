@@ -28,8 +28,16 @@ TEST(ProtocolMessages, EveryTruncationIsAnError) {
     // only cuts into its header or leaving no payload are errors.
     const bool fragment = bytes.size() > 1 && bytes[1] == static_cast<std::uint8_t>(MessageType::Fragment);
     const std::size_t cuts = fragment ? 7 : bytes.size();  // the golden Fragment's header is 6 bytes
+    // A Presence's look (version 2) is optional: without its 2 bytes it is a version-1 Presence.
+    const bool look = bytes.size() > 1 && bytes[1] == static_cast<std::uint8_t>(MessageType::Presence) &&
+                      std::get<Presence>(decodeAny(bytes).value()).avatar.has_value();
     for (std::size_t n = 0; n < cuts; ++n) {
       auto r = decodeAny(std::span(bytes.data(), n));
+      if (look && n == bytes.size() - 2) {
+        ASSERT_TRUE(r) << core::formatAll(r.errors());
+        EXPECT_FALSE(std::get<Presence>(r.value()).avatar.has_value());
+        continue;
+      }
       ASSERT_FALSE(r) << "prefix of " << n << " of " << bytes.size() << " bytes decoded";
       EXPECT_FALSE(r.errors().front().what.empty());
     }
@@ -132,7 +140,7 @@ void putF64(std::vector<std::uint8_t>& bytes, std::size_t at, double v) {
 }
 
 TEST(ProtocolMessages, PresenceFlagMustBeZeroOrOne) {
-  auto b = encode(Presence{5, false, "Bo"});
+  auto b = encode(Presence{5, false, "Bo", std::nullopt});
   auto ok = decodeAny(b);
   ASSERT_TRUE(ok);
   EXPECT_FALSE(std::get<Presence>(ok.value()).present);
@@ -144,7 +152,7 @@ TEST(ProtocolMessages, PresenceFlagMustBeZeroOrOne) {
   EXPECT_EQ(r.errors()[0].column, 4);
   EXPECT_NE(r.errors()[0].what.find("at byte 3"), std::string::npos) << r.errors()[0].format();
   // Names longer than kMaxNameLength: clamped by the encoder, refused by the decoder.
-  auto longName = decodeAny(encode(Presence{1, true, std::string(100, 'n')}));
+  auto longName = decodeAny(encode(Presence{1, true, std::string(100, 'n'), std::nullopt}));
   ASSERT_TRUE(longName);
   EXPECT_EQ(std::get<Presence>(longName.value()).name.size(), kMaxNameLength);
   std::vector<std::uint8_t> tooLong{kMagic, static_cast<std::uint8_t>(MessageType::Presence), 1, 1, 65};
@@ -152,6 +160,34 @@ TEST(ProtocolMessages, PresenceFlagMustBeZeroOrOne) {
   auto t = decodeAny(tooLong);
   ASSERT_FALSE(t);
   EXPECT_EQ(t.errors()[0].pointer, "/Presence/name");
+}
+
+TEST(ProtocolMessages, PresenceCarriesTheLookInVersionTwoAndDecodesVersionOneMessages) {
+  // Version 2: the look (Join's avatar) trails the name and survives the round trip.
+  const Bytes withLook = encode(Presence{300, true, "Ada", 7});
+  EXPECT_EQ(withLook, (Bytes{kMagic, 18, 0xac, 0x02, 1, 3, 'A', 'd', 'a', 7, 0}));
+  auto look = decodeAny(withLook);
+  ASSERT_TRUE(look) << core::formatAll(look.errors());
+  EXPECT_EQ(std::get<Presence>(look.value()).avatar, std::optional<std::uint16_t>(7));
+  EXPECT_EQ(std::get<Presence>(look.value()).name, "Ada");
+  EXPECT_EQ(encode(look.value()), withLook);
+  // A version-1 Presence (what a version-1 server sends, and this one sends version-1 clients):
+  // the name ends the message, and it still decodes, without a look.
+  const Bytes old{kMagic, 18, 0xac, 0x02, 0, 3, 'A', 'd', 'a'};
+  auto v1 = decodeAny(old);
+  ASSERT_TRUE(v1) << core::formatAll(v1.errors());
+  EXPECT_FALSE(std::get<Presence>(v1.value()).avatar.has_value());
+  EXPECT_FALSE(std::get<Presence>(v1.value()).present);
+  EXPECT_EQ(encode(Presence{300, false, "Ada", std::nullopt}), old);
+  // One byte of a look is not a look; a byte after it is one too many.
+  Bytes half = old;
+  half.push_back(7);
+  auto h = decodeAny(half);
+  ASSERT_FALSE(h);
+  EXPECT_EQ(h.errors()[0].pointer, "/Presence/avatar");
+  Bytes extra = withLook;
+  extra.push_back(0);
+  EXPECT_FALSE(decodeAny(extra));
 }
 
 TEST(ProtocolMessages, ReplayControlChecksCommandAndValue) {

@@ -135,6 +135,7 @@ inline nlohmann::json messageJson(const Message& m) {
           j["participantId"] = v.participantId;
           j["present"] = v.present;
           j["name"] = v.name;
+          if (v.avatar) j["avatar"] = *v.avatar;
         } else if constexpr (std::is_same_v<T, ReplayControl>) {
           j["token"] = std::to_string(v.token);
           j["command"] = static_cast<int>(v.command);
@@ -231,7 +232,7 @@ inline std::pair<std::vector<std::uint8_t>, std::vector<std::uint8_t>> goldenCro
 inline std::vector<std::pair<std::string, Message>> goldenMessages() {
   std::vector<std::pair<std::string, Message>> m;
   m.emplace_back("hello", Hello{kProtocolVersion, ClientKind::Browser, "viewer-firefox"});
-  m.emplace_back("refuse", Refuse{kProtocolVersion, ReasonCode::VersionMismatch, "protocol 2 requested; this server speaks 1"});
+  m.emplace_back("refuse", Refuse{kProtocolVersion, ReasonCode::VersionMismatch, "protocol 3 requested; this server speaks 2"});
   m.emplace_back("welcome", makeWelcome("throng-museum", 20.0f, R"({"name":"museum","clips":[{"name":"walk","duration":1.05}]})"));
   Welcome raw;
   raw.serverName = "raw";
@@ -262,7 +263,8 @@ inline std::vector<std::pair<std::string, Message>> goldenMessages() {
   m.emplace_back("release", Release{0x0123456789abcdefULL, 4});
   m.emplace_back("guide_result", GuideResult{4, true, false, ReasonCode::GroupTaken});
   m.emplace_back("ack", Ack{0x0123456789abcdefULL, 129});
-  m.emplace_back("presence", Presence{300, true, "Ada"});
+  m.emplace_back("presence", Presence{300, true, "Ada", std::nullopt});  // version 1: no avatar (what version-1 clients get)
+  m.emplace_back("presence_look", Presence{301, true, "Bo", 3});
   m.emplace_back("replay_control", ReplayControl{0x0123456789abcdefULL, ReplayCommand::Seek, 12.5});
   m.emplace_back("replay_status", ReplayStatus{12.5, 120.25, true, 2.0f});
   m.emplace_back("insert_crowd",

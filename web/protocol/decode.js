@@ -1,10 +1,10 @@
-// throng shared-world protocol, version 1 — JavaScript decoder (docs/protocol.md). Plain ES
+// throng shared-world protocol, version 2 — JavaScript decoder (docs/protocol.md). Plain ES
 // module; zstd payloads go through fzstd. decodeAny(bytes) → a plain object in wire units
 // (cm, 1/65536 turn, 1/256 phase, int16 joint angles; 64-bit values as decimal strings), or
 // throws ProtocolError {offset, field, message}. CrowdDecoder applies crowd frames to their base.
 import { decompress } from 'fzstd';
 
-export const PROTOCOL_VERSION = 1;
+export const PROTOCOL_VERSION = 2;  // 2: Presence's optional trailing `avatar` (version-1 messages still decode)
 export const MAGIC = 0x54;
 export const LIMITS = { maxMessageSize: 8 << 20, maxCrowdPayload: 16 << 20, maxWorldSize: 64 << 20,
   maxNameLength: 64, maxTextLength: 1024, maxAgents: 65536, maxJoints: 128, maxExpressionWeights: 64,
@@ -140,7 +140,11 @@ const bodies = {
     return { groupId, ok: (flags & 1) !== 0, guiding: (flags & 2) !== 0, reason: enumByte(r, 'reason', 13) };
   },
   Ack: (r) => ({ token: r.u64('token'), frameNumber: r.varint('frameNumber') }),
-  Presence: (r) => ({ participantId: r.varint('participantId'), present: flag(r, 'present'), name: r.string('name', LIMITS.maxNameLength) }),
+  Presence: (r) => {
+    const m = { participantId: r.varint('participantId'), present: flag(r, 'present'), name: r.string('name', LIMITS.maxNameLength) };
+    if (r.p < r.b.length) m.avatar = r.u16('avatar');  // version 2: the participant's look (Join's avatar)
+    return m;
+  },
   ReplayControl: (r) => {
     const token = r.u64('token'); const command = enumByte(r, 'command', 3);
     return { token, command, value: replayValue(r, command) };

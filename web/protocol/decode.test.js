@@ -35,7 +35,13 @@ test('every truncation throws ProtocolError', () => {
     // A Fragment's payload is the rest of the datagram: only cuts into its 6-byte header (or
     // leaving no payload) are errors.
     const cuts = name === 'fragment' ? 7 : b.length;
+    // A Presence's look (version 2) is optional: without its 2 bytes it is a version-1 Presence.
+    const look = name.startsWith('presence') && 'avatar' in decodeAny(b);
     for (let n = 0; n < cuts; n++) {
+      if (look && n === b.length - 2) {
+        assert.equal('avatar' in decodeAny(b.subarray(0, n)), false, `${name} cut before its look`);
+        continue;
+      }
       assert.throws(() => decodeAny(b.subarray(0, n)), ProtocolError, `${name} cut at ${n}`);
     }
   }
@@ -58,6 +64,15 @@ test('Presence: present flag must be 0 or 1', () => {
   assert.throws(() => decodeAny(new Uint8Array([0x54, 18, 5, 2, 0])),
     (e) => e instanceof ProtocolError && e.field === '/Presence/present' && e.offset === 3);
   assert.throws(() => decodeAny(new Uint8Array([0x54, 18, 5, 1, 65, ...new Array(65).fill(0x78)])), /\/Presence\/name/);
+});
+
+test('Presence: the look trails the name in version 2; a version-1 Presence decodes without one', () => {
+  assert.deepEqual(decodeAny(new Uint8Array([0x54, 18, 5, 1, 2, 0x42, 0x6f, 3, 1])),
+    { type: 'Presence', participantId: 5, present: true, name: 'Bo', avatar: 259 });
+  assert.equal('avatar' in decodeAny(new Uint8Array([0x54, 18, 5, 1, 2, 0x42, 0x6f])), false);
+  assert.throws(() => decodeAny(new Uint8Array([0x54, 18, 5, 1, 2, 0x42, 0x6f, 3])),
+    (e) => e instanceof ProtocolError && e.field === '/Presence/avatar' && e.offset === 7);
+  assert.throws(() => decodeAny(new Uint8Array([0x54, 18, 5, 1, 2, 0x42, 0x6f, 3, 0, 0])), /\/Presence\/end/);
 });
 
 test('ReplayControl: command and value rules', () => {

@@ -37,10 +37,12 @@ struct Client {
   std::string name;
   bool welcomed = false;
   bool closing = false;  ///< a Bye was sent; everything else it sends is ignored
+  std::uint16_t protocolVersion = protocol::kProtocolVersion;  ///< its Hello's: what it is sent
   // Participant.
   bool participant = false;
   std::uint32_t participantId = 0;
   std::uint64_t token = 0;
+  std::uint16_t look = 0;  ///< Join's avatar: the look other viewers draw it in (Presence, version 2)
   std::optional<core::Vec2> avatar;
   float avatarZ = 0.0f;
   std::uint32_t moveSeq = 0;
@@ -208,13 +210,28 @@ struct Hub::Impl {
     from.lastState[type] = std::move(bytes);
   }
 
+  /// `who`'s Presence as a client of protocol `version` reads it: with the look from version 2.
+  static Bytes presence(const Client& who, bool present, std::uint16_t version) {
+    protocol::Presence m{who.participantId, present, who.name, std::nullopt};
+    if (version >= 2) m.avatar = who.look;
+    return protocol::encode(m);
+  }
+
   /// Tells every welcomed client (but `except`) that a participant came or went.
   void announce(const Client& who, bool present, PeerKey except) {
-    const Bytes bytes = protocol::encode(protocol::Presence{who.participantId, present, who.name});
+    const Bytes bytes = presence(who, present, protocol::kProtocolVersion), v1 = presence(who, present, 1);
     for (auto& [peer, c] : clients) {
       if (peer == except || !c.welcomed || c.closing) continue;
-      outbox.send(peer, bytes, false, 0);
+      outbox.send(peer, c.protocolVersion >= 2 ? bytes : v1, false, 0);
     }
+  }
+
+  /// The Welcome for a client of protocol `version`: the shared one, its version field set to it.
+  Bytes welcomeFor(std::uint16_t version) const {
+    Bytes w = welcome;
+    w[2] = static_cast<std::uint8_t>(version & 0xff);  // u16 protocolVersion right after the header
+    w[3] = static_cast<std::uint8_t>(version >> 8);
+    return w;
   }
 
   /// The participant is gone (Leave, closed): its groups go back to their own goals.
@@ -418,10 +435,10 @@ void Hub::Impl::greet(Client& c, const protocol::Message& message) {
          std::string("expected Hello as the first message, got ") + messageTypeName(messageType(message)));
     return;
   }
-  if (hello->protocolVersion != kProtocolVersion) {
+  if (hello->protocolVersion < kMinProtocolVersion || hello->protocolVersion > kProtocolVersion) {
     refuse(c, ReasonCode::VersionMismatch,
-           "this server speaks protocol version " + std::to_string(kProtocolVersion) + ", the client " +
-               std::to_string(hello->protocolVersion));
+           "this server speaks protocol versions " + std::to_string(kMinProtocolVersion) + " to " +
+               std::to_string(kProtocolVersion) + ", the client " + std::to_string(hello->protocolVersion));
     return;
   }
   const auto welcomed = static_cast<std::size_t>(std::count_if(
@@ -437,12 +454,13 @@ void Hub::Impl::greet(Client& c, const protocol::Message& message) {
   }
   c.welcomed = true;
   c.name = hello->clientName;
-  outbox.send(c.peer, welcome, false, 0);
+  c.protocolVersion = hello->protocolVersion;
+  outbox.send(c.peer, welcomeFor(c.protocolVersion), false, 0);
   // Who is here, and everything participants said last, so the newcomer sees their avatars at once.
   for (auto& [peer, other] : clients) {
     if (peer == c.peer) continue;
     if (other.participant && !other.closing) {
-      outbox.send(c.peer, encode(Presence{other.participantId, true, other.name}), false, 0);
+      outbox.send(c.peer, presence(other, true, c.protocolVersion), false, 0);
     }
     for (const auto& [type, state] : other.lastState) outbox.send(c.peer, state, true, relaySlot(other.participantId, type));
   }
@@ -461,6 +479,7 @@ void Hub::Impl::on(Client& c, const protocol::Join& m, double) {
   c.participantId = nextParticipantId++;
   do c.token = tokenSource(); while (c.token == 0);
   if (!m.name.empty()) c.name = m.name;
+  c.look = m.avatar;
   {
     std::lock_guard lock(input.mutex);
     input.participants[c.participantId] = c.peer;

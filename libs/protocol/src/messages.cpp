@@ -245,6 +245,7 @@ Bytes encode(const Presence& m) {
   w.varint(m.participantId);
   w.u8(m.present ? 1 : 0);
   w.string(clampString(m.name, kMaxNameLength));
+  if (m.avatar) w.u16(*m.avatar);  // version 2; a version-1 Presence ends with the name
   return out;
 }
 
@@ -567,6 +568,7 @@ Message decodeBody(MessageType type, ByteReader& r) {
       m.participantId = static_cast<std::uint32_t>(r.varint("participantId", 0xffffffffu));
       m.present = readFlag(r, "present", "1 (present) or 0 (left)");
       m.name = r.string("name", kMaxNameLength);
+      if (r.ok() && r.remaining() > 0) m.avatar = r.u16("avatar");  // version 2: optional trailing look
       return m;
     }
     case MessageType::ReplayControl: {

@@ -102,3 +102,63 @@ test('a participant picks how the avatar looks; it is sent in Join and drawn so'
     await stopServer(server);
   }
 });
+
+/** The chest colour [r, g, b] of the other participant `name` as page draws it now (median of 9 pixels). */
+function otherChestColour(page, name) {
+  return page.evaluate((who) => {
+    const { others, toScreen, rgbAt } = globalThis.__throng;
+    const o = [...others.values()].find((x) => x.name === who);
+    const p = toScreen(o.x, o.y, (o.z || 0) + 1.25);
+    const px = [];
+    for (const dx of [-3, 0, 3]) for (const dy of [-3, 0, 3]) px.push(rgbAt(p.x + dx, p.y + dy));
+    return [0, 1, 2].map((c) => px.map((q) => q[c]).sort((u, v) => u - v)[4]);
+  }, name);
+}
+
+test('two participants with different looks each see the other in theirs (Presence, protocol 2)', { timeout: 150000 }, async () => {
+  requirePrerequisites('avatar.e2e');
+  const server = await startServer(path.join(repo, 'scenarios/museum.json'));
+  const browser = await launchBrowser();
+  const errors = [];
+  try {
+    const pages = [];
+    for (const [name, look] of [['e2e-blue', '2'], ['e2e-green', '3']]) {
+      const page = await openViewer(browser, server.url, errors);
+      await page.waitForFunction(() => globalThis.__throng && globalThis.__throng.state.count > 0, null, { timeout: 30000 });
+      await page.selectOption('#join-look', look);
+      await page.fill('#join-name', name);
+      await page.click('#join-button');
+      await page.waitForFunction(() => globalThis.__throng.joined !== null, null, { timeout: 15000 });
+      pages.push(page);
+    }
+    // Both were placed where their views were centred: the second steps 3 m aside, so each body stands alone.
+    await pages[1].evaluate(() => { globalThis.__throng.cameras.avatar.x += 3; });
+    const [blue, green] = pages;
+    const seen = async (page, other) => {
+      await page.waitForFunction((o) => globalThis.__throng.otherLooks()[o] !== undefined, other, { timeout: 15000 });
+      return page.evaluate(() => globalThis.__throng.otherLooks());
+    };
+    assert.deepEqual(await seen(blue, 'e2e-green'), { 'e2e-green': 'green top, short' });
+    assert.deepEqual(await seen(green, 'e2e-blue'), { 'e2e-blue': 'blue coat, tall' });
+    assert.equal(await blue.evaluate(() => globalThis.__throng.source.looks.get([...globalThis.__throng.source.names]
+      .find(([, n]) => n === 'e2e-green')[0])), 3, 'the look index Presence carried');
+
+    // And drawn so: seen from 4 m with the world hidden, the other's chest shows their shirt.
+    for (const [page, other, channel] of [[blue, 'e2e-green', 1], [green, 'e2e-blue', 2]]) {
+      await page.evaluate((who) => {
+        const { cameras, worldRoot, others } = globalThis.__throng;
+        worldRoot().visible = false;
+        const o = [...others.values()].find((x) => x.name === who);
+        cameras.lookAt(o.x, o.y, 4, 1.6);
+      }, other);
+      await sleep(500);
+      const rgb = await otherChestColour(page, other);
+      assert.equal(dominant(rgb), channel, `${other} seen with the chest ${rgb}`);
+    }
+    await shot(blue, 'viewer_avatar_looks_shared.png');
+    assert.deepEqual(errors, []);
+  } finally {
+    await browser.close();
+    await stopServer(server);
+  }
+});

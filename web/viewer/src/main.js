@@ -203,6 +203,9 @@ function testHooks(w) {
     get trails() { return trails; }, get heatmap() { return heatmap; }, setHeatmapMethod, get measurements() { return measurements; }, get speedmap() { return speedmap; }, get markers() { return markers; }, selfColour: kSelfColour,
     renderer, exporter, description: w, others, groupList, remoteJoints, gesture, setLook,
     get look() { return lookIndex; },
+    /** Other participants as drawn last frame: name → the name of their look, null when drawn plainly. */
+    otherLooks: () => Object.fromEntries([...others.values()].filter((o) => 'drawnLook' in o)
+      .map((o) => [o.name ?? '?', o.drawnLook])),
     get worldModel() { return worldModel; },
     /** Draws the glTF world's own meshes (`on`) or the flat floors and obstacles; false without a model. */
     showWorldModel: (on) => { if (!worldModel) return false; showWorldModel(scene.getObjectByName('world'), worldModel, on); return true; },
@@ -561,7 +564,10 @@ function frame() {
   for (const [id, o] of others) {
     if (nowMs - o.at > 15000) continue;
     o.phase = (o.phase + (o.moving ? dt / 1.12 : dt / 2)) % 1;
-    avatars.add(o.x, o.y, o.z, o.yaw, o.moving ? walk : idle, o.phase, kOtherColour, remoteJoints.get(id, nowMs));
+    const look = source.looks?.get(id);  // the look they chose (Presence); magenta when the server did not say
+    o.drawnLook = look === undefined ? null : lookAt(look).name;
+    avatars.add(o.x, o.y, o.z, o.yaw, o.moving ? walk : idle, o.phase, look === undefined ? kOtherColour : lookAt(look),
+      remoteJoints.get(id, nowMs));
     tags.push({ key: id, name: o.name || source.names?.get(id) || `participant ${id}`, at: [o.x, o.y, o.z] });
   }
   avatars.end();

@@ -37,8 +37,8 @@ for (const [name, make] of Object.entries(samples)) {
 const le64 = (v) => { const o = []; let b = BigInt(v); for (let i = 0; i < 8; ++i) { o.push(Number(b & 0xffn)); b >>= 8n; } return o; };
 
 test('hand-computed bytes (docs/protocol.md layouts)', () => {
-  // Hello: magic, type 1, u16 version 1, u8 kind 0 (browser), varint length 2, "ab".
-  assert.deepEqual([...enc.encodeHello({ clientName: 'ab' })], [0x54, 1, 1, 0, 0, 2, 0x61, 0x62]);
+  // Hello: magic, type 1, u16 version 2, u8 kind 0 (browser), varint length 2, "ab".
+  assert.deepEqual([...enc.encodeHello({ clientName: 'ab' })], [0x54, 1, 2, 0, 0, 2, 0x61, 0x62]);
   // Join: string "Ada", u16 avatar 2.
   assert.deepEqual([...enc.encodeJoin({ name: 'Ada', avatar: 2 })], [0x54, 4, 3, 0x41, 0x64, 0x61, 2, 0]);
   // Ack: u64 token, varint 129 = 0x81 0x01.

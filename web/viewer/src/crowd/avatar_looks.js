@@ -4,8 +4,9 @@
 // of a skinned body in a look (lookVertexColours), and the choice remembered in the browser
 // (loadLookChoice / saveLookChoice). Pure but for the storage passed in. The marks that make your
 // own avatar unmistakable (crowd/markers.js: the red ring and pin) stay whatever the look.
-// The look's index goes to the server in Join's `avatar` field; Presence does not relay it, so
-// other viewers draw every other participant alike (docs/viewer.md, "Avatar look").
+// The look's index goes to the server in Join's `avatar` field; the server relays it to the other
+// viewers in Presence (protocol 2), which draw each participant in their look (docs/viewer.md,
+// "Avatar look").
 
 /** The looks: [{name, shirt, trousers, skin, shoes (0xRRGGBB), height (scale of the skeleton)}]. */
 export const kAvatarLooks = [

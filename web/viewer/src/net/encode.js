@@ -1,11 +1,11 @@
-// Client → server message encoders of the throng wire protocol, version 1 (docs/protocol.md),
+// Client → server message encoders of the throng wire protocol, version 2 (docs/protocol.md),
 // byte for byte as libs/protocol encodes them: magic 0x54 ('T'), the type byte, then the fields;
 // integers little-endian, varints LEB128, strings varint length + UTF-8 bytes (cut at the limits),
 // positions int32 centimetres, angles uint16 1/65536 turn. Tokens are 64-bit: pass a BigInt (or a
 // number ≤ 2^53). Checked against tests/protocol/golden/<message>.bin (test/encode.test.js).
 // The server → client direction is decoded by web/protocol/ (not here).
 
-export const kProtocolVersion = 1;
+export const kProtocolVersion = 2;
 export const kMagic = 0x54;
 export const MessageType = Object.freeze({
   Hello: 1, Refuse: 2, Welcome: 3, Join: 4, Joined: 5, Leave: 6, Heartbeat: 7, Bye: 8, Move: 9, Joints: 10,

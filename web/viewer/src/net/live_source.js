@@ -57,6 +57,7 @@ export class LiveSource extends Emitter {
     this.stopped = false;
     this.others = new Map();  // participant id → last Move
     this.names = new Map();   // participant id → name (Presence)
+    this.looks = new Map();   // participant id → look index (Presence's avatar; none from a version-1 server)
     this.present = new Set(); // participant ids present (Presence), this viewer's own included
     this.replay = null;       // last ReplayStatus when the server replays a recording
   }
@@ -165,9 +166,12 @@ export class LiveSource extends Emitter {
         break;
       case 'Presence': {
         const id = Number(m.participantId);
-        if (m.present) { this.present.add(id); this.names.set(id, m.name); } else { this.present.delete(id); this.others.delete(id); }
+        if (m.present) {
+          this.present.add(id); this.names.set(id, m.name);
+          if (m.avatar !== undefined) this.looks.set(id, m.avatar);  // protocol 2: the look they chose
+        } else { this.present.delete(id); this.others.delete(id); this.looks.delete(id); }
         this.countParticipants();
-        this.emit('presence', { participantId: id, present: !!m.present, name: m.name });
+        this.emit('presence', { participantId: id, present: !!m.present, name: m.name, avatar: m.avatar });
         break;
       }
       case 'ReplayStatus':

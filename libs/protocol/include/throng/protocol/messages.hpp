@@ -5,6 +5,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <variant>
@@ -131,6 +132,9 @@ struct Presence {
   std::uint32_t participantId = 0;
   bool present = false;  ///< true: present (joined); false: left
   std::string name;      ///< participant name, ≤ kMaxNameLength bytes
+  /// The participant's look: Join's `avatar` (version 2; a trailing u16 on the wire, absent in
+  /// version-1 messages, which still decode). Sent only to clients that said version 2 in Hello.
+  std::optional<std::uint16_t> avatar;
 };
 
 /// Drives the replay of a server started on a recording. A viewer need not join to send it.

@@ -1,4 +1,4 @@
-// throng::protocol — the shared-world wire protocol, version 1 (docs/protocol.md): message types,
+// throng::protocol — the shared-world wire protocol, version 2 (docs/protocol.md): message types,
 // enums shared by several messages, and the limits every decoder enforces. Pure data: no sockets,
 // no I/O. One message = one WebSocket binary frame or one UDP datagram; every message starts with
 // the magic byte kMagic and a MessageType byte; integers are little-endian, varints are LEB128.
@@ -8,7 +8,11 @@
 
 namespace throng::protocol {
 
-inline constexpr std::uint16_t kProtocolVersion = 1;
+/// The version this code speaks. Version 2 added Presence's trailing `avatar` (a participant's look).
+inline constexpr std::uint16_t kProtocolVersion = 2;
+/// The oldest version a server still serves: a version-1 client gets version-1 messages (Presence
+/// without `avatar`), so clients built before version 2 keep working.
+inline constexpr std::uint16_t kMinProtocolVersion = 1;
 inline constexpr std::uint8_t kMagic = 0x54;  ///< 'T', byte 0 of every message
 
 // Limits (a decoder refuses anything beyond them; allocations never exceed them).
