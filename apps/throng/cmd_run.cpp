@@ -6,6 +6,7 @@
 // environment), every rank builds the world and they share the steer phase (libs/dist,
 // docs/scaling.md); only rank 0 writes the recording and prints.
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -427,6 +428,15 @@ EarlyExit applyOverrides(const RunOptions& options, bool speaks, sim::ScenarioDe
   return std::nullopt;
 }
 
+/// The file name of a glTF / GLB world the scenario is read from (stored so that a replay can draw
+/// its materials); empty for a scenario JSON.
+std::string worldFileName(const std::string& scenario) {
+  const std::filesystem::path p(scenario);
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".gltf" || ext == ".glb" ? p.filename().string() : std::string();
+}
+
 recording::RecordingOptions recordingOptions(const RunOptions& options, const io::LoadedScenario& loaded, const FramePlan& plan) {
   recording::RecordingOptions recording;
   recording.path = options.out.empty() ? defaultOutput(options.scenario) : options.out;
@@ -434,6 +444,7 @@ recording::RecordingOptions recordingOptions(const RunOptions& options, const io
   recording.fps = plan.fps;
   recording.seed = loaded.desc.seed;
   recording.scenarioText = loaded.text;
+  recording.worldFile = worldFileName(options.scenario);
   return recording;
 }
 

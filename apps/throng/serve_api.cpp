@@ -211,14 +211,17 @@ transport::HttpResponse HttpApi::motion(std::string_view id) const {
   return transport::HttpResponse{200, "text/plain; charset=utf-8", {}, motions.clipFile(index)};
 }
 
-/// GET /api/world/model: {"url": where the world's glTF file is, or null when the world is none};
+/// GET /api/world/model: {"url": where the world's glTF file is, or null when the world is none,
+/// with "missing": why, for a recording whose glTF file is not served};
 /// /api/world/model/world.gltf (or .glb): the file; /api/world/model/<uri>: a resource it names
 /// (WorldModel::resources), from its directory. Answered 200 with a null url rather than 404: the
 /// viewer asks every live server, and a browser logs each failed fetch.
 transport::HttpResponse HttpApi::model(std::string_view rest) const {
   const WorldModel& m = served_.model;
   if (rest.empty() || rest == "/") {
-    if (m.file.empty()) return jsonResponse(200, R"({"url":null})");
+    if (m.file.empty()) {
+      return jsonResponse(200, m.missing.empty() ? R"({"url":null})" : dumpJson({{"url", nullptr}, {"missing", m.missing}}));
+    }
     return jsonResponse(200, dumpJson({{"url", "/api/world/model/" + m.servedName()}}));
   }
   const std::string name(rest.substr(1));

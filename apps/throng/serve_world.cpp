@@ -1,6 +1,7 @@
 // `throng serve`'s world served (serve_world.hpp): opening a scenario or a recording (isRecording,
 // parseStoredScenario: the scenario a recording stores, found beside it or in the bundled
-// scenarios/), a glTF world file's model (worldModelOf: which of its resources may be served),
+// scenarios/), a glTF world file's model (worldModelOf: which of its resources may be served; a
+// recording's: replayWorldModelOf, the glTF file it names found again beside it or in scenarios/),
 // where the viewer's files are, and the hub's and the transport's options.
 #include "serve_world.hpp"
 
@@ -34,12 +35,9 @@ bool isRecording(const std::string& path) {
   return n == sizeof head && std::memcmp(head, "SQLite format 3", 16) == 0;
 }
 
-/// The scenario stored in a recording, parsed as if it lay beside the recording, else in the bundled
-/// scenarios/ (installed, else the source tree's: where the bundled scenarios, their motion clips and databases are): its clip
-/// and database paths are relative to the scenario's directory, which the recording does not keep.
-/// `dir` receives the directory that worked.
-core::Result<io::LoadedScenario> parseStoredScenario(const hub::Replay& replay, const std::string& recording,
-                                                     fs::path& dir) {
+/// Where a recording's stored scenario and world file are looked for: beside the recording, then the
+/// bundled scenarios/ (installed, else the source tree's).
+std::vector<fs::path> storedScenarioDirs(const std::string& recording) {
   std::vector<fs::path> dirs{fs::path(recording).parent_path()};
   if (const auto installed = installedDataDir(currentExecutable()); !installed.empty()) {
     dirs.push_back(installed / "scenarios");
@@ -47,6 +45,16 @@ core::Result<io::LoadedScenario> parseStoredScenario(const hub::Replay& replay, 
 #ifdef THRONG_SCENARIOS_DIR
   dirs.emplace_back(THRONG_SCENARIOS_DIR);
 #endif
+  return dirs;
+}
+
+/// The scenario stored in a recording, parsed as if it lay beside the recording, else in the bundled
+/// scenarios/ (installed, else the source tree's: where the bundled scenarios, their motion clips and databases are): its clip
+/// and database paths are relative to the scenario's directory, which the recording does not keep.
+/// `dir` receives the directory that worked.
+core::Result<io::LoadedScenario> parseStoredScenario(const hub::Replay& replay, const std::string& recording,
+                                                     fs::path& dir) {
+  const std::vector<fs::path> dirs = storedScenarioDirs(recording);
   const std::string name = fs::path(recording).stem().string() + ".stored-scenario.json";
   // The first directory where it parses and its motion clips are; else the first where it parses
   // (bodies then get the viewer's built-in skeleton and procedural clips).
@@ -121,7 +129,31 @@ WorldModel worldModelOf(const std::string& path) {
   const fs::path file(path);
   const std::string ext = lowerExtension(file);
   if (ext != ".gltf" && ext != ".glb") return {};
-  return WorldModel{file, modelResources(file)};
+  return WorldModel{file, modelResources(file), {}};
+}
+
+WorldModel replayWorldModelOf(const hub::Replay& replay, const std::string& recording) {
+  const std::string& name = replay.worldFile();
+  WorldModel none;
+  if (name.empty()) {
+    none.missing = "the recording names no glTF world file (recorded from a scenario JSON, or before recordings kept it)";
+    return none;
+  }
+  const std::string ext = lowerExtension(name);
+  const bool plainName = servableUri(name) && name.find('/') == std::string::npos;
+  if (!plainName || (ext != ".gltf" && ext != ".glb")) {
+    none.missing = "the recording's world file name is not a plain .gltf / .glb file name";
+    return none;
+  }
+  for (const fs::path& dir : storedScenarioDirs(recording)) {
+    const fs::path file = dir / name;
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) continue;
+    auto loaded = io::loadScenarioFile(file.string());
+    if (loaded && loaded.value().text == replay.scenarioText()) return worldModelOf(file.string());
+  }
+  none.missing = "no " + name + " describing the recorded world beside the recording or in the bundled scenarios";
+  return none;
 }
 
 /// The viewer's files: --web, else an installed tree's <prefix>/share/throng/web, else web/dist of
@@ -164,7 +196,7 @@ std::optional<Served> openServed(const ServeOptions& options, const std::string&
     described["replay"] = {{"duration", replay->duration()}, {"fps", replay->fps()}, {"frames", replay->frameCount()}};
     worldJson = dumpJson(described);
   }
-  WorldModel model = replay ? WorldModel{} : worldModelOf(path);
+  WorldModel model = replay ? replayWorldModelOf(*replay, path) : worldModelOf(path);
   return Served{std::move(*live), std::move(replay), tickRate, std::move(worldJson), std::move(model)};
 }
 

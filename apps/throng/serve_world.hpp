@@ -16,11 +16,13 @@
 
 namespace throng::cli::serve {
 
-/// The glTF world file a live world was read from, for the viewer to draw its materials
-/// (GET /api/world/model, serve_api.hpp); empty for a JSON scenario or a recording.
+/// The glTF world file the world was read from, for the viewer to draw its materials
+/// (GET /api/world/model, serve_api.hpp); empty for a JSON scenario, or a recording whose glTF file
+/// is not found again (replayWorldModelOf).
 struct WorldModel {
   std::filesystem::path file;           ///< the .gltf or .glb file; empty: none
   std::vector<std::string> resources;   ///< the external buffers and images it names that may be served
+  std::string missing;                  ///< with no file: why a recording's world file is not served
   /// The name it is served under: "world.gltf" or "world.glb".
   [[nodiscard]] std::string servedName() const;
 };
@@ -30,13 +32,19 @@ struct WorldModel {
 /// letters, digits, '.', '_', '-' and '/' are listed (no data: URIs, no "..", nothing to decode).
 [[nodiscard]] WorldModel worldModelOf(const std::string& path);
 
+/// The model of a recording's world: the glTF / GLB file it names (metadata `throng_world_file`, a
+/// plain file name), looked for where the stored scenario is (beside the recording, then the bundled
+/// scenarios/) and taken only when it describes exactly the world recorded (its scenario text is the
+/// stored one); its resources as worldModelOf's. Else an empty model saying why (`missing`).
+[[nodiscard]] WorldModel replayWorldModelOf(const hub::Replay& replay, const std::string& recording);
+
 /// The scenario served: simulated live, or a recording (`throng run`'s SQLite file) played back.
 struct Served {
   LiveWorld live;
   std::optional<hub::Replay> replay;
   double tickRate = 0.0;  ///< ticks per second in real time
   std::string worldJson;  ///< the world description (Welcome, /api/world)
-  WorldModel model;       ///< the glTF world file served, if it is one (not for a recording)
+  WorldModel model;       ///< the glTF world file served, if it is one (a recording's: replayWorldModelOf)
 };
 
 /// Opens the scenario or the recording at `path` and builds the World; diagnostics printed, nullopt

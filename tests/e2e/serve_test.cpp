@@ -268,6 +268,52 @@ TEST(Serve, AGltfWorldsFileAndTheResourcesItNamesAreServedForItsMaterialsAndNoth
   EXPECT_EQ(get(museum.port, "/api/world/model/world.gltf").first, 404u);
 }
 
+TEST(Serve, ARecordingOfAGltfWorldServesTheFileItNamesWhenFoundAgainAndSaysWhyWhenNot) {
+  // The tiled hall, its texture in a file beside it, recorded by `throng run` (metadata
+  // throng_world_file: "hall.gltf"), then played back from the same directory.
+  ScratchDir dir("replay-model");
+  auto gltf = nlohmann::json::parse(readFile(std::string(THRONG_SOURCE_DIR) + "/scenarios/tiled_hall.gltf"));
+  std::filesystem::create_directories(dir / "tex");
+  dir.write("tex/tiles.png", "not really a png");
+  dir.write("secret.txt", "secret");
+  gltf["images"][0]["uri"] = "tex/tiles.png";
+  const auto world = dir.write("hall.gltf", gltf.dump());
+  const auto recording = dir / "hall.sqlite";
+  const CliResult run = runThrong({"run", world.string(), "--duration", "2", "--out", recording.string(), "--quiet"}, dir.path());
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  {
+    Server replay(recording.string());
+    ASSERT_NE(replay.port, 0);
+    const auto [status, body] = get(replay.port, "/api/world/model");
+    ASSERT_EQ(status, 200u);
+    EXPECT_EQ(nlohmann::json::parse(body)["url"], "/api/world/model/world.gltf") << body;
+    EXPECT_EQ(nlohmann::json::parse(get(replay.port, "/api/world/model/world.gltf").second), gltf);
+    EXPECT_EQ(get(replay.port, "/api/world/model/tex/tiles.png").second, "not really a png");
+    for (const char* refused : {"/api/world/model/secret.txt", "/api/world/model/hall.sqlite", "/api/world/model/tex/../secret.txt"}) {
+      EXPECT_EQ(get(replay.port, refused).first, 404u) << refused;
+    }
+    replay.stop();
+  }
+  // Another world under the same name is not the one recorded: nothing served, and the answer says why.
+  dir.write("hall.gltf", readFile(std::string(THRONG_SOURCE_DIR) + "/scenarios/gallery.gltf"));
+  {
+    Server replay(recording.string());
+    const auto answer = nlohmann::json::parse(get(replay.port, "/api/world/model").second);
+    EXPECT_TRUE(answer["url"].is_null()) << answer.dump();
+    EXPECT_NE(answer.value("missing", "").find("no hall.gltf describing the recorded world"), std::string::npos) << answer.dump();
+    EXPECT_EQ(get(replay.port, "/api/world/model/world.gltf").first, 404u);
+    replay.stop();
+  }
+  // A recording of a scenario JSON names no world file.
+  const auto museum = dir / "museum.sqlite";
+  ASSERT_EQ(runThrong({"run", std::string(THRONG_SOURCE_DIR) + "/scenarios/museum.json", "--duration", "1", "--out",
+                       museum.string(), "--quiet"}, dir.path()).exitCode, 0);
+  Server replay(museum.string());
+  const auto answer = nlohmann::json::parse(get(replay.port, "/api/world/model").second);
+  EXPECT_TRUE(answer["url"].is_null());
+  EXPECT_NE(answer.value("missing", "").find("names no glTF world file"), std::string::npos) << answer.dump();
+}
+
 TEST(Serve, ParticipantsAreAnnouncedToEveryone) {
   Server server;
   auto a = open(server.options("a"));

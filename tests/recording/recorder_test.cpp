@@ -210,6 +210,23 @@ TEST(Recorder, MetadataNamesEachPopulationsModelWithItsValues) {
             "\"late \\\"quoted\\\"\": {\"name\": \"orca\", \"yieldResponsibility\": 0.6, \"lodNeighbours\": 4, \"wallMargin\": 0.01}}");
 }
 
+// Issue 20: a world read from a glTF file is named in the recording (a replay serves its materials
+// when it finds the file again); a scenario JSON's recording has no such key.
+TEST(Recorder, MetadataNamesTheGltfWorldFileOnlyWhenGiven) {
+  TempDir dir;
+  const std::string named = dir.file("hall.sqlite"), plain = dir.file("plain.sqlite");
+  RecordingOptions o = optionsFor(named);
+  o.worldFile = "tiled_hall.gltf";
+  auto rec = openOk(bottleneck(), o);
+  ASSERT_NE(rec, nullptr);
+  ASSERT_TRUE(rec->close(true).ok());
+  EXPECT_EQ(Db(named).one("SELECT value FROM metadata WHERE key = 'throng_world_file'"), "tiled_hall.gltf");
+  auto other = openOk(bottleneck(), optionsFor(plain));
+  ASSERT_NE(other, nullptr);
+  ASSERT_TRUE(other->close(true).ok());
+  EXPECT_EQ(Db(plain).one("SELECT count(*) FROM metadata WHERE key = 'throng_world_file'"), "0");
+}
+
 namespace bg = boost::geometry;
 using BPoint = bg::model::d2::point_xy<double>;
 using BMulti = bg::model::multi_polygon<bg::model::polygon<BPoint, false>>;

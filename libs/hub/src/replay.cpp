@@ -34,6 +34,7 @@ double Replay::duration() const { return data_->recorded.times.back(); }
 double Replay::fps() const { return data_->recorded.fps; }
 std::size_t Replay::frameCount() const { return data_->recorded.frames.size(); }
 const std::string& Replay::scenarioText() const { return data_->recorded.scenarioText; }
+const std::string& Replay::worldFile() const { return data_->recorded.worldFile; }
 bool Replay::hasAnimation() const { return data_->recorded.hasAnimation; }
 
 std::size_t Replay::frameIndexAt(double t) const {

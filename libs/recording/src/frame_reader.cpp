@@ -96,6 +96,7 @@ class FrameReader {
     if (out_.scenarioText.empty()) {
       return diag(path_, "metadata has no 'throng_scenario' (not written by `throng run`)");
     }
+    out_.worldFile = recording::metaValue(db_, recording::kKeyWorldFile);
     const std::string fpsText = recording::metaValue(db_, "fps");
     const auto fps = parseNumber(fpsText);
     if (!fps || !std::isfinite(*fps) || *fps <= 0.0) {

@@ -203,6 +203,7 @@ bool Recorder::Impl::writeScenario(const sim::ScenarioDesc& scenario) {
             putMeta(kKeyCompleted, "0") && putMeta(kKeyFrames, "0") && putMeta(kKeyDuration, "0.0") &&
             putMeta(kKeyAgents, "0") && putMeta(kKeyModels, modelsJson(scenario));
   if (ok && scenario.social.enabled) ok = putMeta(kKeyCommonGround, scenario.social.commonGround ? "on" : "off");
+  if (ok && !options.worldFile.empty()) ok = putMeta(kKeyWorldFile, options.worldFile);
   if (!ok) return false;
 
   {

@@ -43,6 +43,8 @@ inline constexpr const char* kKeyCommonGround = "throng_common_ground";
 /// (the scenario's choice with the model's defaults filled in, so a recording says which model
 /// and values produced it even when the scenario named none).
 inline constexpr const char* kKeyModels = "throng_models";
+/// The glTF / GLB world file's name (no directory) when the scenario was read from one; absent else.
+inline constexpr const char* kKeyWorldFile = "throng_world_file";
 
 inline constexpr const char* kSchemaNote =
     "JuPedSim trajectory format version 2 (trajectory_data, metadata, geometry, frame_data) "

@@ -183,10 +183,16 @@ source.on('world', async (w) => {
   groupList.setGroups(w.groups || []);
   globalThis.__throng = testHooks(w);
 });
-/** A glTF world's own meshes (GET /api/world/model gives the file's URL, null for a scenario JSON or
- * a recording): drawn, with their materials, instead of the flat floors and obstacles. */
+/** A glTF world's own meshes (GET /api/world/model gives the file's URL — a live glTF world's, or the
+ * one a recording names when the server finds it again — null for a scenario JSON, with `missing`
+ * saying why for a recording: shown in the HUD's debug panel): drawn, with their materials, instead
+ * of the flat floors and obstacles. */
 function loadModel() {
-  fetch('/api/world/model').then((r) => (r.ok ? r.json() : null)).then((j) => (j && j.url ? loadWorldModel(j.url) : null))
+  fetch('/api/world/model').then((r) => (r.ok ? r.json() : null))
+    .then((j) => {
+      if (j && j.missing) { hud.modelMissing = j.missing; console.info(`throng: the world's glTF materials are not drawn (${j.missing})`); }
+      return j && j.url ? loadWorldModel(j.url) : null;
+    })
     .then((model) => {
       const root = scene.getObjectByName('world');
       if (!model || !root) return;

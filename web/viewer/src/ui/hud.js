@@ -4,7 +4,8 @@
 // latest one: they left the world — or, for a participant, walked out of the area the server
 // sends it), participants, and frames per second. The engineering figures — kbit/s received,
 // agents drawn at each level of detail (or as plan discs), the adaptive caps and resolution, the
-// round-trip time — are in a debug part folded away by default (click "debug" to open it). Also
+// round-trip time, why a recording's glTF materials are not drawn (modelMissing) — are in a debug
+// part folded away by default (click "debug" to open it). Also
 // publishes the numbers as window.__throngStats for scripts (bench/fps.mjs, the e2e tests).
 
 /** m:ss (or h:mm:ss) of `s` seconds. */
@@ -43,6 +44,7 @@ export class Hud {
     this.lastBytes = 0;
     this.totalFrames = 0;
     this.world = { name: '', dt: 0.1, duration: 0 };
+    this.modelMissing = '';  // set by main.js from GET /api/world/model's `missing`
     this.simTick = 0;
     this.attendance = new Attendance();
   }
@@ -112,6 +114,7 @@ export class Hud {
       `off screen   ${counts.hidden}`,
       `${cap}`,
       source.rttMs ? `rtt          ${source.rttMs.toFixed(0)} ms` : `source       ${source.kind}`,
+      this.modelMissing ? `materials    not drawn: ${this.modelMissing}` : null,
     ].filter((l) => l !== null).join('\n');
   }
 

@@ -35,6 +35,9 @@ class Replay {
   [[nodiscard]] std::size_t frameCount() const;
   /// The scenario JSON stored in the recording (metadata `throng_scenario`), as `throng run` read it.
   [[nodiscard]] const std::string& scenarioText() const;
+  /// The glTF / GLB file the recorded world was read from, by name (metadata `throng_world_file`);
+  /// empty for a scenario JSON and for recordings written before the key existed.
+  [[nodiscard]] const std::string& worldFile() const;
   /// Whether the recording had throng_animation rows; when not, clip and phase are derived (clip 1
   /// walk when the agent moved faster than 0.1 m/s since the previous frame, else 0 idle; walk phase
   /// from the distance walked, 1.4 m per cycle, idle phase from time, 2 s per cycle).

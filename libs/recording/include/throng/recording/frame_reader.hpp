@@ -36,6 +36,7 @@ struct FrameReadOptions {
 /// Every frame of a recording.
 struct RecordedFrames {
   std::string scenarioText;   ///< metadata `throng_scenario`, the scenario JSON `throng run` read
+  std::string worldFile;      ///< metadata `throng_world_file` (the glTF / GLB file's name), empty when absent
   double fps = 0.0;           ///< metadata `fps` [Hz], > 0
   bool hasAnimation = false;  ///< throng_animation had rows (else every clip and phase is derived)
   std::vector<double> times;  ///< per frame, relative to the first (times[0] = 0), non-decreasing [s]

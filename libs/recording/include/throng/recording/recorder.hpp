@@ -21,6 +21,9 @@ struct RecordingOptions {
   double fps = 10.0;               ///< frames per second written (metadata `fps`)
   std::uint64_t seed = 0;          ///< seed actually used
   std::string scenarioText;        ///< the scenario JSON, stored for provenance
+  /// The glTF / GLB world file the scenario came from, by file name (metadata `throng_world_file`,
+  /// written only when set): a replay serves its materials when it finds that file again.
+  std::string worldFile;
   std::size_t framesPerBatch = 50; ///< frames per transaction [Limit: >= 1]
   std::size_t queueFrames = 64;    ///< frames queued before push() blocks [Limit: >= 1]
 };
