@@ -2,7 +2,7 @@
 // ids of successive frames (afresh after a seek back).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { clock, Attendance } from '../src/ui/hud.js';
+import { clock, Attendance, hudWorld } from '../src/ui/hud.js';
 
 test('clock formats seconds as m:ss or h:mm:ss', () => {
   assert.equal(clock(0), '0:00');
@@ -29,4 +29,12 @@ test('a replay seeked back starts the count of agents gone afresh', () => {
   assert.equal(a.gone, 2);
   a.frame(Uint32Array.of(1), 1, 20);
   assert.deepEqual([a.present, a.gone], [1, 0]);
+});
+
+test("the clock counts towards a recording's length when replaying, else the scenario's duration", () => {
+  const scenario = { name: 'bottleneck', duration: 300 };
+  assert.deepEqual(hudWorld({ dt: 0.05, scenario }), { name: 'bottleneck', dt: 0.05, duration: 300 });
+  assert.equal(hudWorld({ dt: 0.05, scenario, replay: { duration: 60, fps: 10 } }).duration, 60);
+  assert.equal(hudWorld({ dt: 0.05, scenario: { name: 'open' } }).duration, 0);
+  assert.equal(hudWorld({ tickRate: 20, scenario: {} }).dt, 0.05);
 });

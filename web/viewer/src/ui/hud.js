@@ -1,5 +1,6 @@
 // Heads-up display (top left), for people first: the scenario's name, the simulated time (the
-// latest crowd frame's tick × the world's dt; of the scenario's duration when it has one), how
+// latest crowd frame's tick × the world's dt; of the recording's length when replaying, else of the
+// scenario's duration when it has one), how
 // many agents are in the world now and how many have gone (seen in an earlier frame, not in the
 // latest one: they left the world — or, for a participant, walked out of the area the server
 // sends it), participants, and frames per second. The engineering figures — kbit/s received,
@@ -28,6 +29,16 @@ export class Attendance {
   get gone() { return Math.max(0, this.seen.size - this.present); }
 }
 
+/** What the HUD shows of a world description: its name, dt and the duration the clock counts
+ * towards — a recording's own length when replaying (the scenario's may be longer: the run ended
+ * early, or everyone left), else the scenario's, 0 when it has none. */
+export function hudWorld(w) {
+  const sc = w.scenario || {};
+  const length = Number(w.replay?.duration) > 0 ? Number(w.replay.duration) : Number(sc.duration);
+  return { name: w.name || sc.name || '', dt: Number(w.dt) > 0 ? Number(w.dt) : 1 / (w.tickRate || 10),
+    duration: length > 0 ? length : 0 };
+}
+
 export class Hud {
   constructor(el) {
     this.el = el;
@@ -54,12 +65,8 @@ export class Hud {
     this.toggle.textContent = on ? 'debug ▾' : 'debug ▸';
   }
 
-  /** The world description: {name, dt, scenario: {name, duration}}. */
-  setWorld(w) {
-    const sc = w.scenario || {};
-    this.world = { name: w.name || sc.name || '', dt: Number(w.dt) > 0 ? Number(w.dt) : 1 / (w.tickRate || 10),
-      duration: Number(sc.duration) > 0 ? Number(sc.duration) : 0 };
-  }
+  /** The world description: {name, dt, scenario: {name, duration}, replay?: {duration}}. */
+  setWorld(w) { this.world = hudWorld(w); }
 
   /** Each crowd frame received. */
   frame(f) {

@@ -14,7 +14,7 @@ export function fixedEntries({ selected, pickedGroup, self, other, trails, heatm
     { colour: selected, shape: 'ring', label: 'selected agent (ringed)' },
     { colour: pickedGroup, shape: 'dot', label: 'group picked in the list' },
     { colour: self, shape: 'pin', label: 'you (ring and pin), once joined' },
-    { colour: other, shape: 'dot', label: 'other participants: named, in their look (this colour if unknown)' },
+    { colour: other, shape: 'dot', label: 'participants: own look, else this' },
     { colour: 0x3070d0, shape: 'ring', label: 'interest point' },
     { colour: 0xe08020, shape: 'disc', label: 'action point (arrow: facing)' },
     { colour: 0x30b050, shape: 'area', label: 'exit' },
