@@ -6,21 +6,28 @@
 // queue counts every tick, re-evaluation once every 2 s per group, re-planning on a change).
 // Counters: agent_steps/s, and the share of the tick spent choosing (choose_%) and planning paths
 // (plan_%, re-planning after a change included). Issue 18 asks the choice to cost at most 10 %.
+// The avoidance model is an argument: ORCA (the in-memory bench scenarios' own, as `throng bench`)
+// or avm (the engine's default model, as a scenario without "model" walks).
 // The "fixed" crowd is laid out per triangle, so its flows (and its avoidance work) differ a little
-// from the choosing crowd's: compare choose_% and plan_% rather than the totals.
+// from the choosing crowd's: compare choose_% and plan_% rather than the totals — or compare
+// "fixed" with "nearest, per quarter": the same four populations, spawns and rows, each choosing
+// among the four exits by walking distance (which gives each its own quarter's exit), the like-for-
+// like control of what the choice costs in agent-steps/s.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <cstdint>
 #include <string>
 
 #include "throng/bench/scenarios.hpp"
+#include "throng/sim/models.hpp"
 #include "throng/sim/world.hpp"
 
 namespace {
 
 using namespace throng;
 
-enum Mode { kFixed = 0, kQuickest = 1, kNearest = 2 };
+enum Mode { kFixed = 0, kQuickest = 1, kNearest = 2, kNearestPerQuarter = 3 };
 
 /// Wall time per phase: exit choice runs in "applyCommands" (nothing spawns after the warm-up), the
 /// re-planning a changed exit asks for in "plan".
@@ -39,8 +46,9 @@ class PhaseClock : public sim::PhaseObserver {
   std::chrono::steady_clock::time_point start_;
 };
 
-sim::ScenarioDesc exitsScenario(std::size_t agents, Mode mode) {
+sim::ScenarioDesc exitsScenario(std::size_t agents, Mode mode, sim::ModelKind model) {
   sim::ScenarioDesc desc = bench::makeScenario(bench::Layout::Random, agents, 1);
+  desc.populations.front().model = sim::ModelDesc(model);
   const float side = bench::squareSide(agents);
   const core::Vec2 centres[] = {{side / 2, 1.5f}, {side - 1.5f, side / 2}, {side / 2, side - 1.5f}, {1.5f, side / 2}};
   for (int k = 0; k < 4; ++k) {
@@ -55,7 +63,7 @@ sim::ScenarioDesc exitsScenario(std::size_t agents, Mode mode) {
   sim::PopulationDesc crowd = desc.populations.front();
   crowd.wander = false;
   desc.populations.clear();
-  if (mode == kFixed) {
+  if (mode == kFixed || mode == kNearestPerQuarter) {
     // The same crowd and the same flows without choosing: the square cut along its diagonals into
     // four triangles, each spawning a quarter of the crowd with the exit on its side as its goal.
     const float r = bench::kRadius, c = side / 2;
@@ -68,7 +76,12 @@ sim::ScenarioDesc exitsScenario(std::size_t agents, Mode mode) {
       p.id = "crowd" + std::to_string(k);
       p.groups = static_cast<std::uint32_t>(agents / 4);
       p.spawn.polygon = triangles[k];
-      p.goals = {k};
+      if (mode == kFixed) {
+        p.goals = {k};
+      } else {
+        p.exits = {0, 1, 2, 3};
+        p.exitChoice.rule = sim::ExitRule::Nearest;
+      }
       desc.populations.push_back(p);
     }
   } else {
@@ -83,7 +96,8 @@ void BM_ExitChoice(benchmark::State& state) {
   const auto agents = static_cast<std::size_t>(state.range(0));
   const auto mode = static_cast<Mode>(state.range(1));
   const int threads = static_cast<int>(state.range(2));
-  const sim::ScenarioDesc desc = exitsScenario(agents, mode);
+  const auto model = static_cast<sim::ModelKind>(state.range(3));
+  const sim::ScenarioDesc desc = exitsScenario(agents, mode, model);
   auto navmesh = bench::buildNavMesh(desc);
   if (!navmesh) {
     state.SkipWithError("navmesh build failed");
@@ -110,11 +124,18 @@ void BM_ExitChoice(benchmark::State& state) {
 
 }  // namespace
 
+constexpr auto kOrca = static_cast<std::int64_t>(sim::ModelKind::Orca);
+constexpr auto kAvm = static_cast<std::int64_t>(sim::ModelKind::AnticipationVelocity);
+
 BENCHMARK(BM_ExitChoice)
-    ->ArgNames({"agents", "mode", "threads"})  // mode: 0 fixed exits, 1 quickest, 2 nearest
-    ->Args({10000, 0, 1})->Args({10000, 1, 1})->Args({10000, 2, 1})
-    ->Args({100000, 0, 1})->Args({100000, 1, 1})->Args({100000, 2, 1})
-    ->Args({100000, 0, 2})->Args({100000, 1, 2})
+    // mode: 0 fixed exits, 1 quickest, 2 nearest, 3 nearest per quarter; model: 0 ORCA, 2 avm (sim::ModelKind)
+    ->ArgNames({"agents", "mode", "threads", "model"})
+    ->Args({10000, 0, 1, kOrca})->Args({10000, 1, 1, kOrca})->Args({10000, 2, 1, kOrca})
+    ->Args({100000, 0, 1, kOrca})->Args({100000, 1, 1, kOrca})->Args({100000, 2, 1, kOrca})
+    ->Args({100000, 0, 2, kOrca})->Args({100000, 1, 2, kOrca})
+    ->Args({100000, 0, 1, kAvm})->Args({100000, 1, 1, kAvm})->Args({100000, 2, 1, kAvm})
+    ->Args({100000, 0, 2, kAvm})->Args({100000, 1, 2, kAvm})
+    ->Args({100000, 3, 1, kAvm})->Args({100000, 3, 2, kAvm})->Args({100000, 3, 1, kOrca})
     ->Iterations(40)  // 2 s of walking after the warm-up: few have reached an exit yet
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

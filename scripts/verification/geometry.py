@@ -490,21 +490,55 @@ def corridor_fd(name, rho):
                     [population("crowd", n, {"polygon": rect(0.2, 0.2, c["fill"], w - 0.2)}, ["end"], SPEED)], 200)
 
 
-# ISO 17: two exits, the west one nearer as the crow flies but behind a long wall, the east one
-# farther but straight ahead; each person chooses by walking distance (the "nearest" rule).
-LAYOUT = {"w": 30.0, "h": 20.0, "door_y": 5.0, "wall_x": (3.0, 3.5), "wall_to": 18.0, "spawn": (11.0, 2.0, 14.0, 8.0),
-          "agents": 20}
+# ISO 17: a building of two floors. The persons are on the upper floor; one exit (below) is on the
+# ground floor just beneath them, nearer than any other as the crow flies, but the only way down is a
+# flight at the far (west) end of the upper floor, and the ground floor leads back east under the
+# room to that exit; the other exit (east) is a door out of the upper floor itself, at its east end
+# (onto a footbridge, as a building on a slope has). Each person chooses by walking distance (the
+# "nearest" rule).
+LAYOUT = {"w": 30.0, "d": 10.0, "steps": 18, "door_y": 5.0, "door_w": 2.0, "stair_y": (4.0, 6.0), "landing": 3.0,
+          "corridor_y": (0.0, 3.5), "below_x": (11.5, 13.5), "spawn": (11.0, 2.0, 14.0, 8.0), "agents": 20}
+
+
+def layout_height():
+    """The upper floor's height: the flight's 18 risers of RiMEA 2's steps [m]."""
+    return round(LAYOUT["steps"] * STAIR["riser"], 6)
+
+
+def layout_exits():
+    """Each exit's centre as [x, y, z] (the measurement compares distances to them)."""
+    g, h = LAYOUT, layout_height()
+    bx0, bx1 = g["below_x"]
+    return {"below": [(bx0 + bx1) / 2, -0.75, 0.0], "east": [g["w"] + 0.75, g["door_y"], h]}
 
 
 def route_layout(name):
-    g = LAYOUT
-    w, h, y = g["w"], g["h"], g["door_y"]
-    walk = [rect(0, 0, w, h), rect(-1.0, y - 0.5, 0, y + 0.5), rect(w, y - 0.5, w + 1.0, y + 0.5)]
-    wx0, wx1 = g["wall_x"]
-    exits = [exit_point("west", rect(-1.0, y - 0.5, -0.5, y + 0.5)),
-             exit_point("east", rect(w + 0.5, y - 0.5, w + 1.0, y + 0.5))]
+    """Upper floor (x 0..w, y 0..d at the flight's height) with a 2 m door and 1 m of footbridge east
+    (exit "east"); at its west end a 2 m wide flight of 18 steps down westward to a ground landing,
+    from which a 3.5 m corridor runs east under the room's south side to a 2 m door in its south
+    wall (exit "below"), beneath the persons. The doors are as wide as the flight, so that what the
+    test sees is the choice, not a queue (in 1 m doors cfsm's persons jam for good)."""
+    g, s, h = LAYOUT, STAIR, layout_height()
+    verts, tris = [], []
+    w, d, y = g["w"], g["d"], g["door_y"]
+    sy0, sy1 = g["stair_y"]
+    run = round(g["steps"] * s["tread"], 6)
+    _quad(verts, tris, [[0, 0, h], [w, 0, h], [w, d, h], [0, d, h]])                      # upper floor
+    dw = g["door_w"] / 2
+    _quad(verts, tris, [[w, y - dw, h], [w + 1, y - dw, h], [w + 1, y + dw, h], [w, y + dw, h]])  # bridge
+    for k in range(g["steps"]):                                                            # the flight
+        x0, x1, z = round(-run + k * s["tread"], 6), round(-run + (k + 1) * s["tread"], 6), round((k + 1) * s["riser"], 6)
+        _quad(verts, tris, [[x0, sy0, z], [x1, sy0, z], [x1, sy1, z], [x0, sy1, z]])
+    cy0, cy1 = g["corridor_y"]
+    lx = round(-run - g["landing"], 6)
+    _quad(verts, tris, [[lx, cy1, 0], [-run, cy1, 0], [-run, sy1, 0], [lx, sy1, 0]])           # ground landing
+    _quad(verts, tris, [[lx, cy0, 0], [w, cy0, 0], [w, cy1, 0], [lx, cy1, 0]])               # ground corridor
+    bx0, bx1 = g["below_x"]
+    _quad(verts, tris, [[bx0, -1, 0], [bx1, -1, 0], [bx1, 0, 0], [bx0, 0, 0]])               # its south door
+    exits = [exit_point("below", rect(bx0, -1.0, bx1, -0.5), height=0.0),
+             exit_point("east", rect(w + 0.5, y - dw, w + 1.0, y + dw), height=h)]
     x0, y0, x1, y1 = g["spawn"]
-    return scenario(name, walk, exits,
-                    [population("crowd", g["agents"], {"polygon": rect(x0, y0, x1, y1)}, [], SPEED,
-                                exits=["west", "east"], exitChoice={"rule": "nearest"})], 200,
-                    obstacles=[rect(wx0, 0, wx1, g["wall_to"])])
+    return scenario(name, [], exits,
+                    [population("crowd", g["agents"], {"polygon": rect(x0, y0, x1, y1), "height": h}, [], SPEED,
+                                exits=["below", "east"], exitChoice={"rule": "nearest"})], 200,
+                    terrain={"vertices": verts, "walkable": tris, "obstacles": []})

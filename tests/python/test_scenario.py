@@ -86,6 +86,13 @@ def test_builder_passes_waypoint_choices_through():
          .population("p", goals=[choice, "out"], spawn=[(0.5, 0.5), (3, 0.5), (3, 5.5), (0.5, 5.5)], groups=4))
     assert b.to_dict()["populations"][0]["goals"] == [choice, "out"]
     assert throng.scenario(b).points == ["a", "b", "out"]
+    # Each group's choice is an event: its leader, the point chosen (a), the goal's slot (b).
+    with throng.Simulation(throng.scenario(b), threads=1) as sim:
+        sim.step(1)
+        chosen = [e for e in sim.events() if e["kind"] == "waypoint_chosen"]
+    assert len(chosen) == 4
+    assert all(e["a"] in (0, 1) and e["b"] == 0 for e in chosen)
+    assert {e["a"] for e in chosen} == {0, 1}, "least targeted: both stands"
 
 
 def test_builder_refuses_bad_coordinates():

@@ -329,6 +329,22 @@ TEST(Recorder, ThrongTablesHoldAgentsEventsPointsAndProvenance) {
   EXPECT_NE(db.one("SELECT value FROM metadata WHERE key = 'throng_version'"), "<none>");
 }
 
+TEST(Recorder, TacticalChoiceEventsAreWrittenByTheirNames) {
+  // Exit choice (a = exit, b = the one before) and waypoint choice (a = point, b = goal slot).
+  TempDir dir;
+  const std::string path = dir.file("out.sqlite");
+  auto rec = openOk(bottleneck(), optionsFor(path));
+  ASSERT_NE(rec, nullptr);
+  using sim::EventKind;
+  rec->push(makeFrame(0, 2, {{0, 0, EventKind::ExitChosen, 0, 0xffffffffu}, {0, 1, EventKind::WaypointChosen, 0, 1}}));
+  ASSERT_TRUE(rec->close(true).ok());
+  Db db(path);
+  EXPECT_EQ(db.rows("SELECT frame, tick, agent, kind, a, b FROM throng_events ORDER BY rowid"),
+            (std::vector<std::vector<std::string>>{{"0", "0", "0", "exit_chosen", "0", "4294967295"},
+                                                   {"0", "0", "1", "waypoint_chosen", "0", "1"}}));
+  EXPECT_STREQ(eventKindName(EventKind::WaypointChosen), "waypoint_chosen");
+}
+
 TEST(Recorder, ExistingFileIsNotOverwrittenWithoutForce) {
   TempDir dir;
   const std::string path = dir.file("out.sqlite");

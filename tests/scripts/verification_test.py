@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Unit test of the verification harness (ctest: verification_unit): the status rule (PASS, FAIL,
 XFAIL, XPASS; reported-only checks ignored), per-model expectations, the measurements verify.py
-adds to scripts/validation/measures.py (RiMEA's detours, ISO's line crossings and zone speeds) on
-hand-made trajectories with known answers, and that the
+adds to scripts/validation/measures.py (RiMEA's detours, ISO's line crossings, zone speeds and
+positions with floor heights) on hand-made trajectories with known answers, ISO 17's two-floor layout
+(the exit below nearer as the crow flies from every start), and that the
 committed scenario files under verification/ are what scripts/verification/make_scenarios.py
 writes."""
 import os
@@ -91,6 +92,43 @@ def test_iso_crossings():
     expect(sorted(v) == [1, 2] and abs(v[1] - 1.0) < 1e-9 and abs(v[2] - 0.5) < 1e-9, f"zone_speeds {v}")
 
 
+def test_iso_positions_3d():
+    # Agent 1 stays on a floor 3 m up; agent 2 walks down from it to the ground (throng_heights).
+    import sqlite3
+    import tempfile
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "r.sqlite")
+        db = sqlite3.connect(path)
+        db.execute("CREATE TABLE trajectory_data (frame INTEGER, id INTEGER, pos_x REAL, pos_y REAL)")
+        db.execute("CREATE TABLE throng_heights (frame INTEGER, id INTEGER, z REAL)")
+        for f in range(4):
+            db.execute("INSERT INTO trajectory_data VALUES (?, 1, ?, 0)", (f, 1.0 + f))
+            db.execute("INSERT INTO throng_heights VALUES (?, 1, 3.0)", (f,))
+            db.execute("INSERT INTO trajectory_data VALUES (?, 2, 5, ?)", (f, 2.0 - f))
+            db.execute("INSERT INTO throng_heights VALUES (?, 2, ?)", (f, 3.0 - f))
+        db.commit()
+        db.close()
+        first, lowest = I.positions_3d(path)
+    expect(first == {1: (1.0, 0.0, 3.0), 2: (5.0, 2.0, 3.0)}, f"positions_3d first {first}")
+    expect(lowest == {1: 3.0, 2: 0.0}, f"positions_3d lowest {lowest}")
+
+
+def test_iso_route_layout():
+    # Every corner of the spawn (on the upper floor) is nearer the exit below than the east one as the
+    # crow flies, and the spawn lies on the upper floor's walkable quad.
+    from verification import geometry as G
+    s = G.route_layout("t")
+    h, at = G.layout_height(), G.layout_exits()
+    spawn = s["populations"][0]["spawn"]
+    expect(spawn["height"] == h, f"spawn height {spawn['height']}")
+    for x, y in spawn["polygon"]:
+        p = (x, y, h)
+        expect(np.linalg.norm(np.subtract(p, at["below"])) < np.linalg.norm(np.subtract(p, at["east"])),
+               f"iso-17: exit below not nearer as the crow flies from {p}")
+    heights = sorted({v[2] for v in s["terrain"]["vertices"]})
+    expect(heights[0] == 0.0 and heights[-1] == h, f"iso-17 floors {heights[0]} .. {heights[-1]}")
+
+
 def test_committed_scenarios():
     res = subprocess.run([sys.executable, os.path.join(SCRIPTS, "verification", "make_scenarios.py"), "--check"],
                          capture_output=True, text=True)
@@ -103,6 +141,8 @@ def main():
     test_motion_measures()
     test_sideways_detours()
     test_iso_crossings()
+    test_iso_positions_3d()
+    test_iso_route_layout()
     test_committed_scenarios()
     for f in FAILURES:
         print("verification_test: FAIL:", f)

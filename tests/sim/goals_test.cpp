@@ -3,13 +3,15 @@
 // agent moves on; pending goal changes are applied in row order; only an exit limits the target to
 // its near side. And World runs: agents in front of one end of a long exit strip leave through
 // it near straight ahead; waypoint choices split a population by shares or least targeted, per
-// group, the same for any thread count.
+// group, the same for any thread count, each group's choice recorded by a WaypointChosen event.
 #include "goals.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <map>
+#include <set>
 #include <vector>
 
 #include "goal_world.hpp"
@@ -239,4 +241,76 @@ TEST(Goals, ALeastTargetedSplitBalancesTheStandsAndKeepsGroupsTogether) {
 TEST(Goals, WaypointChoicesAreTheSameForAnyThreadCount) {
   const ScenarioDesc d = standsHall(200, 1, GoalSplit::Shares, {1, 3, 1});
   EXPECT_EQ(standOfEachAgent(d, 1), standOfEachAgent(d, 4));
+}
+
+TEST(Goals, EachGroupReachingAChoiceRecordsTheWaypointItChoseAndWalksThere) {
+  // Pairs pass a plain waypoint (slot 0) and then choose a stand (slot 1, least targeted): one
+  // WaypointChosen event per pair that reaches the choice, naming its leader, the stand and slot 1,
+  // and both members head for that stand and no other.
+  ScenarioDesc d = standsHall(24, 2, GoalSplit::LeastTargeted, {});
+  PointDesc entry;
+  entry.id = "entry";
+  entry.position = {9, 10};
+  entry.radius = 1.5f;
+  d.points.push_back(entry);
+  PopulationDesc& p = d.populations.front();
+  p.goals = {4, 0, 3};  // entry, a stand (chosen), the exit
+  p.goalChoices.front().slot = 1;
+  auto created = World::create(d);
+  ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
+  World& w = *created.value();
+  const core::TaskSystem tasks(1);
+  std::map<std::uint32_t, std::uint32_t> chosenBy;        // group -> stand its event names
+  std::map<std::uint32_t, std::set<std::uint32_t>> headed;  // agent -> stands it headed for
+  std::map<std::uint32_t, std::uint32_t> groupOf;
+  while (!w.finished() && w.stats().time < 120.0) {
+    w.step(tasks);
+    const auto f = w.takeFrame();
+    for (const Event& e : f->events) {
+      if (e.kind != EventKind::WaypointChosen) continue;
+      const auto leader = w.agentInfo(e.agent);
+      ASSERT_TRUE(leader) << "the leader is present when its group chooses";
+      EXPECT_EQ(e.b, 1u) << "the choice's slot";
+      EXPECT_LT(e.a, 3u) << "a stand";
+      EXPECT_TRUE(chosenBy.emplace(leader->group, e.a).second) << "group " << leader->group << " chose twice";
+    }
+    for (std::uint32_t id = 0; id < w.stats().spawned; ++id) {
+      const auto info = w.agentInfo(id);
+      if (!info) continue;
+      groupOf[id] = info->group;
+      if (info->goalPoint < 3) headed[id].insert(info->goalPoint);
+    }
+  }
+  ASSERT_TRUE(w.finished()) << "everyone left within 120 s";
+  EXPECT_EQ(chosenBy.size(), 24u) << "every pair reached the choice once";
+  EXPECT_EQ(headed.size(), 48u);
+  std::map<std::uint32_t, int> perStand;
+  for (const auto& [id, stands] : headed) {
+    ASSERT_TRUE(chosenBy.contains(groupOf.at(id))) << "agent " << id << " headed for a stand its group never chose";
+    EXPECT_EQ(stands, std::set<std::uint32_t>{chosenBy.at(groupOf.at(id))}) << "agent " << id;
+    ++perStand[*stands.begin()];
+  }
+  for (std::uint32_t stand = 0; stand < 3; ++stand) EXPECT_GT(perStand[stand], 0) << "stand " << stand;
+}
+
+TEST(Goals, WaypointChosenEventsAreTheSameForAnyThreadCount) {
+  const ScenarioDesc d = standsHall(200, 2, GoalSplit::LeastTargeted, {});
+  const auto events = [&](unsigned threads) {
+    auto created = World::create(d);
+    EXPECT_TRUE(created.ok());
+    World& w = *created.value();
+    core::TaskSystem tasks(threads);
+    tasks.setGrainLimit(4);
+    std::vector<std::array<std::uint64_t, 4>> out;
+    while (w.stats().time < 3.0) {
+      w.step(tasks);
+      for (const Event& e : w.takeFrame()->events) {
+        if (e.kind == EventKind::WaypointChosen) out.push_back({e.tick, e.agent, e.a, e.b});
+      }
+    }
+    return out;
+  };
+  const auto one = events(1);
+  EXPECT_EQ(one.size(), 200u);
+  EXPECT_EQ(one, events(4));
 }

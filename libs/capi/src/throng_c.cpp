@@ -481,9 +481,10 @@ throng_status throng_world_remove_crowd(throng_world* world, const char* id) {
 // The C kinds are the engine's (throng/sim/frame.hpp), value for value.
 static_assert(THRONG_EVENT_REUNITED == static_cast<int>(throng::sim::EventKind::Reunited));
 static_assert(THRONG_EVENT_EXIT_CHOSEN == static_cast<int>(throng::sim::EventKind::ExitChosen));
+static_assert(THRONG_EVENT_WAYPOINT_CHOSEN == static_cast<int>(throng::sim::EventKind::WaypointChosen));
 
 const char* throng_event_kind_name(uint32_t kind) {
-  if (kind > THRONG_EVENT_EXIT_CHOSEN) return "unknown";
+  if (kind > THRONG_EVENT_WAYPOINT_CHOSEN) return "unknown";
   return throng::recording::eventKindName(static_cast<sim::EventKind>(kind));
 }
 

@@ -160,6 +160,7 @@ const char* eventKindName(sim::EventKind kind) {
     case sim::EventKind::VisitEnd: return "visit_end";
     case sim::EventKind::Reunited: return "reunited";
     case sim::EventKind::ExitChosen: return "exit_chosen";
+    case sim::EventKind::WaypointChosen: return "waypoint_chosen";
   }
   return "unknown";
 }

@@ -231,6 +231,7 @@ void GoalWriter::chooseWaypoint(std::size_t row, std::uint32_t cursor) {
     }
   }
   goalLists[listIndex][cursor] = chosen;
+  events.push_back({tick, groups[list.group].leader, EventKind::WaypointChosen, chosen, cursor});
 }
 
 void GoalWriter::changeExit(std::uint32_t gid, std::uint32_t exit, std::span<const std::uint32_t> rowOfId,

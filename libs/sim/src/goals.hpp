@@ -59,7 +59,7 @@ struct GoalWriter {
   AgentStore& agents;
   const nav::NavQuery& query; ///< the main (serial) navmesh query
   std::uint64_t tick;
-  std::vector<Event>& events; ///< PathFallback
+  std::vector<Event>& events; ///< PathFallback, ExitChosen, WaypointChosen
 
   [[nodiscard]] GoalView view() const { return {groups, goalLists, agents.group, agents.goalCursor}; }
   /// Chooses a target inside the point's region (on the navmesh) for agent `row`: in a sub-region
@@ -84,7 +84,7 @@ struct GoalWriter {
   void openGoalChoices(std::uint32_t gid);
   /// Fills in the choice at `cursor` of `row`'s active goal list if it is still open: by shares
   /// (one draw from the list owner's stream) or the option fewest agents target now (sub-region
-  /// occupancy), for the whole group.
+  /// occupancy), for the whole group; a WaypointChosen event names the group's leader.
   void chooseWaypoint(std::size_t row, std::uint32_t cursor);
   /// Changes group `gid`'s exit (the last entry of its own list) to `exit`: members walking to the
   /// exit get a target in the new one (standing ones before their pre-movement time ends keep

@@ -44,6 +44,9 @@ enum class EventKind : std::uint8_t {
   Reunited = 23,          ///< the group is whole again after a divide; agent = A, a = group, b = coordination id
   // Exit choice (docs/crowd-model.md "Tactical level: exit choice").
   ExitChosen = 24,  ///< agent = the group's leader; a = the exit it heads for now, b = the one before (kNoPoint: first choice)
+  // Waypoint choices (PopulationDesc::goalChoices; docs/scenario-format.md "Waypoint choices").
+  WaypointChosen = 25,  ///< agent = the group's leader; a = the point chosen, b = the choice's slot (index into the
+                        ///< population's goals); once per group, when its first member reaches the slot
 };
 
 /// Why the goal generator gave an agent a goal.
