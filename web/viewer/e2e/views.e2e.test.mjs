@@ -54,7 +54,9 @@ export function clickable(page, n, gap = 5) {
   }, [n, gap]);
 }
 
-/** Clicks each agent where it is drawn now; returns [{want, got}] (got: the selected id, or null).
+/** Clicks each agent where it is drawn now; returns [{want, got}] (got: the selected id, or null
+ * when no panel opened within 5 s, polled every 100 ms: not per animation frame, which a loaded
+ * software renderer may draw less than once a second).
  * `real`: with the mouse; otherwise pointer events dispatched on the canvas in the same task as
  * the agent's screen position is read (a walker on a busy software renderer moves a body's width
  * between a read and a real click's arrival). */
@@ -80,7 +82,7 @@ export async function clickAgents(page, n, real = false) {
     const got = await page.waitForFunction(() => {
       const p = document.querySelector('#agent-panel');
       return !p.classList.contains('hidden') && document.querySelector('#agent-id').textContent;
-    }, null, { timeout: 1500 }).then((h) => h.jsonValue(), () => null);
+    }, null, { timeout: 5000, polling: 100 }).then((h) => h.jsonValue(), () => null);
     results.push({ want: `#${t.id}`, got });
   }
   return results;

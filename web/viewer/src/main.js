@@ -567,8 +567,10 @@ function frame() {
     if (g && g.send && source.sendJoints) source.sendJoints(g.angles);
     tags.push({ key: 'self', name: joined.name || 'you', at: [a.x, a.y, a.z] });
   }
+  // Every participant present is drawn, however long since it last moved: a viewer in a background
+  // tab sends no moves (no animation frames) but its heartbeats keep it present, and the server
+  // announces whoever leaves or falls silent (Presence, its heartbeat timeout).
   for (const [id, o] of others) {
-    if (nowMs - o.at > 15000) continue;
     o.phase = (o.phase + (o.moving ? dt / 1.12 : dt / 2)) % 1;
     const look = source.looks?.get(id);  // the look they chose (Presence); magenta when the server did not say
     o.drawnLook = look === undefined ? null : lookAt(look).name;
