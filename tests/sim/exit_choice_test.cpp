@@ -3,8 +3,9 @@
 // with each rule: "nearest" sends each person to the door nearest by walking distance, "quickest"
 // spreads the crowd over both doors by their queues and empties the room sooner, "allocation"
 // splits by shares and never re-evaluates; a high hysteresis keeps every first choice; a closed
-// exit is left for the other (and nobody leaves by it after it closed); trajectories are the same
-// for 1 and 4 threads.
+// exit is left for the other (and nobody leaves by it after it closed); a closed door lets nobody
+// through: with every exit closed, or a fixed goal at a closed exit, people wait at the door until
+// it opens; trajectories are the same for 1 and 4 threads.
 #include <gtest/gtest.h>
 
 #include <map>
@@ -185,6 +186,49 @@ TEST(ExitChoice, AClosedExitIsLeftForTheOther) {
   }
   EXPECT_EQ(northAfter, 0) << "people left by the north exit after it closed";
   EXPECT_GT(o.exitsBy[0], 170);
+}
+
+sim::TimelineEntry doorAt(float time, sim::TimelineAction action, std::uint32_t point) {
+  sim::TimelineEntry e;
+  e.time = time;
+  e.action = action;
+  e.point = point;
+  return e;
+}
+
+/// Exit events between `from` and `to` [s].
+int exitsBetween(const Outcome& o, const sim::ScenarioDesc& d, double from, double to) {
+  int n = 0;
+  for (const sim::Event& e : o.events) {
+    const double t = static_cast<double>(e.tick) * d.dt;
+    if (e.kind == sim::EventKind::Exit && t >= from && t < to) ++n;
+  }
+  return n;
+}
+
+TEST(ExitChoice, NobodyLeavesThroughAClosedDoorEvenWithNoOtherOpen) {
+  // Both doors close at 5 s and open again at 40 s: those at a door wait there, nobody leaves in
+  // between (before, a group with no open exit kept going and left through the closed one).
+  sim::ExitChoiceDesc c;
+  c.rule = sim::ExitRule::Nearest;
+  auto d = room(100, c);
+  d.timeline = {doorAt(5, sim::TimelineAction::CloseExit, 0), doorAt(5, sim::TimelineAction::CloseExit, 1),
+                doorAt(40, sim::TimelineAction::OpenExit, 0), doorAt(40, sim::TimelineAction::OpenExit, 1)};
+  const Outcome o = run(d, 1, 200.0);
+  EXPECT_EQ(exitsBetween(o, d, 5.0, 40.0), 0) << "people left through a closed door";
+  EXPECT_EQ(o.exitsBy.at(0) + (o.exitsBy.count(1) != 0 ? o.exitsBy.at(1) : 0), 100);
+  EXPECT_GT(exitsBetween(o, d, 40.0, 200.0), 50) << "the crowd waiting at the doors left once they opened";
+}
+
+TEST(ExitChoice, AFixedGoalAtAClosedExitWaitsForItToOpen) {
+  // No exit choice: the population's goals end at the south door, which is closed from 0 to 30 s.
+  auto d = room(60, {});
+  d.populations[0].exits.clear();
+  d.populations[0].goals = {0};
+  d.timeline = {doorAt(0, sim::TimelineAction::CloseExit, 0), doorAt(30, sim::TimelineAction::OpenExit, 0)};
+  const Outcome o = run(d, 1, 150.0);
+  EXPECT_EQ(exitsBetween(o, d, 0.0, 30.0), 0);
+  EXPECT_EQ(o.exitsBy.at(0), 60);
 }
 
 TEST(ExitChoice, SameTrajectoriesFor1And4Threads) {

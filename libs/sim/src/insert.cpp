@@ -204,7 +204,10 @@ void World::Impl::applyCrowdCommands() {
         insertCrowdNow(insertion.crowds[index]);
       }
     } else if (e.action == TimelineAction::CloseExit || e.action == TimelineAction::OpenExit) {
-      exitChoice.setClosed(e.point, e.action == TimelineAction::CloseExit);
+      const bool close = e.action == TimelineAction::CloseExit;
+      exitChoice.setClosed(e.point, close);
+      if (closedExits.size() <= e.point) closedExits.resize(e.point + 1, 0);
+      closedExits[e.point] = close ? 1 : 0;
     } else {
       for (CrowdState& c : insertion.crowds) {
         if (c.info.id == e.crowdId) removeCrowdNow(c);

@@ -99,6 +99,9 @@ struct World::Impl {
 
   // Exit choice (exit_choice.hpp): distance fields, queues, the groups that choose.
   ExitChoice exitChoice;
+  /// Per point, 1 while the timeline holds that exit closed: nobody leaves through it (decide);
+  /// shorter than the points until a timeline entry closes one.
+  std::vector<std::uint8_t> closedExits;
   /// Re-evaluates exits (after applyCommands, before sense).
   void chooseExits(const core::TaskSystem& tasks);
 
