@@ -5,7 +5,8 @@
 // splits by shares and never re-evaluates; a high hysteresis keeps every first choice; a closed
 // exit is left for the other (and nobody leaves by it after it closed); a closed door lets nobody
 // through: with every exit closed, or a fixed goal at a closed exit, people wait at the door until
-// it opens; trajectories are the same for 1 and 4 threads.
+// it opens; World::setExitOpen closes and opens a door on an event the caller sees; trajectories are
+// the same for 1 and 4 threads.
 #include <gtest/gtest.h>
 
 #include <map>
@@ -229,6 +230,49 @@ TEST(ExitChoice, AFixedGoalAtAClosedExitWaitsForItToOpen) {
   const Outcome o = run(d, 1, 150.0);
   EXPECT_EQ(exitsBetween(o, d, 0.0, 30.0), 0);
   EXPECT_EQ(o.exitsBy.at(0), 60);
+}
+
+TEST(ExitChoice, ADoorClosedOnAnEventSendsTheCrowdToTheOther) {
+  // The caller closes the south door once 20 people have left by it (an event it sees), through
+  // World::setExitOpen: from the next tick nobody leaves by it and everybody else takes the north.
+  sim::ExitChoiceDesc c;
+  c.rule = sim::ExitRule::Nearest;
+  const auto d = room(100, c);
+  auto created = sim::World::create(d);
+  ASSERT_TRUE(created.ok());
+  sim::World& w = *created.value();
+  EXPECT_FALSE(w.setExitOpen("nowhere", false));
+  core::TaskSystem tasks(1);
+  int south = 0, north = 0, southAfterClosing = 0;
+  bool closed = false;
+  while (w.stats().time < 300.0 && !w.finished()) {
+    w.step(tasks);
+    const auto frame = w.takeFrame();  // held: the range below must not outlive it
+    for (const sim::Event& e : frame->events) {
+      if (e.kind != sim::EventKind::Exit) continue;
+      (e.a == 0 ? south : north) += 1;
+      if (e.a == 0 && closed) ++southAfterClosing;
+    }
+    if (!closed && south >= 20) closed = w.setExitOpen("south", false);
+  }
+  EXPECT_TRUE(closed);
+  EXPECT_EQ(southAfterClosing, 0);
+  EXPECT_EQ(south + north, 100);
+  EXPECT_GT(north, 50);
+}
+
+TEST(ExitChoice, SetExitOpenRefusesAPointThatIsNotAnExit) {
+  auto d = room(10, {});
+  sim::PointDesc hall;
+  hall.id = "hall";
+  hall.kind = sim::PointKind::Interest;
+  hall.position = {10, 5};
+  d.points.push_back(hall);
+  auto created = sim::World::create(d);
+  ASSERT_TRUE(created.ok());
+  EXPECT_FALSE(created.value()->setExitOpen("hall", false));
+  EXPECT_FALSE(created.value()->setExitOpen("", true));
+  EXPECT_TRUE(created.value()->setExitOpen("north", true));
 }
 
 TEST(ExitChoice, SameTrajectoriesFor1And4Threads) {

@@ -136,6 +136,8 @@ struct World::Impl {
   /// Optional agent columns populations [firstPopulation, end) need and the world did not have yet.
   void addColumnsFor(std::uint32_t firstPopulation);
   void removeCrowdNow(CrowdState& crowd);
+  /// Closes or opens exit `point` now (the timeline, World::setExitOpen): exit choice and decide.
+  void setExitClosedNow(std::uint32_t point, bool closed);
   /// Agents queued by World::removeAgents, in call order; applied after the crowd commands.
   std::vector<std::uint32_t> agentRemovals;
   void removeAgentsNow();
