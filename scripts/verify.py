@@ -21,6 +21,7 @@ Exit status: 0 when every test is PASS or XFAIL; 1 when one FAILs or XPASSes (or
 import argparse
 import contextlib
 import datetime
+import difflib
 import json
 import os
 import signal
@@ -90,8 +91,11 @@ def parse_args(argv):
         ids = {t.id for t in tests}
         bad = [w for w in wanted if w not in ids]
         if bad:
+            # Suggest the ids nearest the first bad one (its own suite's first), not the first in order.
+            near = difflib.get_close_matches(bad[0], sorted(ids), n=4, cutoff=0.5) or \
+                sorted(i for i in ids if i.split("-")[0] == bad[0].split("-")[0])[:4] or sorted(ids)[:4]
             ap.error(f"--test: unknown test {', '.join(bad)} in suite {args.suite}; expected ids like "
-                     f"{', '.join(sorted(ids)[:4])} (--list shows all)")
+                     f"{', '.join(near)} (--list shows all)")
         tests = [t for t in tests if t.id in wanted]
     args.tests = tests
     args.models = [None]

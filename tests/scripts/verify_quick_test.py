@@ -48,6 +48,10 @@ def check_flags(binary):
         res = run(binary, *bad)
         if res.returncode != 2:
             fail(f"throng verify {' '.join(bad)} exited {res.returncode}, expected 2: {res.stdout}{res.stderr}")
+    # An unknown test id suggests the nearest ids of its suite, not the first ids in order.
+    res = run(binary, "--test", "nist-2.11")
+    if "nist-2.1," not in res.stderr or "iso-12" in res.stderr:
+        fail(f"throng verify --test nist-2.11 does not suggest the nearest ids: {res.stderr}")
 
 
 def check_subset(binary, tmp):

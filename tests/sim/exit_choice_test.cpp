@@ -3,8 +3,10 @@
 // with each rule: "nearest" sends each person to the door nearest by walking distance, "quickest"
 // spreads the crowd over both doors by their queues and empties the room sooner, "allocation"
 // splits by shares and never re-evaluates; a high hysteresis keeps every first choice; a closed
-// exit is left for the other (and nobody leaves by it after it closed); trajectories are the same
-// for 1 and 4 threads.
+// exit is left for the other (and nobody leaves by it after it closed); a closed door lets nobody
+// through: with every exit closed, or a fixed goal at a closed exit, people wait at the door until
+// it opens; World::setExitOpen closes and opens a door on an event the caller sees; trajectories are
+// the same for 1 and 4 threads.
 #include <gtest/gtest.h>
 
 #include <map>
@@ -185,6 +187,92 @@ TEST(ExitChoice, AClosedExitIsLeftForTheOther) {
   }
   EXPECT_EQ(northAfter, 0) << "people left by the north exit after it closed";
   EXPECT_GT(o.exitsBy[0], 170);
+}
+
+sim::TimelineEntry doorAt(float time, sim::TimelineAction action, std::uint32_t point) {
+  sim::TimelineEntry e;
+  e.time = time;
+  e.action = action;
+  e.point = point;
+  return e;
+}
+
+/// Exit events between `from` and `to` [s].
+int exitsBetween(const Outcome& o, const sim::ScenarioDesc& d, double from, double to) {
+  int n = 0;
+  for (const sim::Event& e : o.events) {
+    const double t = static_cast<double>(e.tick) * d.dt;
+    if (e.kind == sim::EventKind::Exit && t >= from && t < to) ++n;
+  }
+  return n;
+}
+
+TEST(ExitChoice, NobodyLeavesThroughAClosedDoorEvenWithNoOtherOpen) {
+  // Both doors close at 5 s and open again at 40 s: those at a door wait there, nobody leaves in
+  // between (before, a group with no open exit kept going and left through the closed one).
+  sim::ExitChoiceDesc c;
+  c.rule = sim::ExitRule::Nearest;
+  auto d = room(100, c);
+  d.timeline = {doorAt(5, sim::TimelineAction::CloseExit, 0), doorAt(5, sim::TimelineAction::CloseExit, 1),
+                doorAt(40, sim::TimelineAction::OpenExit, 0), doorAt(40, sim::TimelineAction::OpenExit, 1)};
+  const Outcome o = run(d, 1, 200.0);
+  EXPECT_EQ(exitsBetween(o, d, 5.0, 40.0), 0) << "people left through a closed door";
+  EXPECT_EQ(o.exitsBy.at(0) + (o.exitsBy.count(1) != 0 ? o.exitsBy.at(1) : 0), 100);
+  EXPECT_GT(exitsBetween(o, d, 40.0, 200.0), 50) << "the crowd waiting at the doors left once they opened";
+}
+
+TEST(ExitChoice, AFixedGoalAtAClosedExitWaitsForItToOpen) {
+  // No exit choice: the population's goals end at the south door, which is closed from 0 to 30 s.
+  auto d = room(60, {});
+  d.populations[0].exits.clear();
+  d.populations[0].goals = {0};
+  d.timeline = {doorAt(0, sim::TimelineAction::CloseExit, 0), doorAt(30, sim::TimelineAction::OpenExit, 0)};
+  const Outcome o = run(d, 1, 150.0);
+  EXPECT_EQ(exitsBetween(o, d, 0.0, 30.0), 0);
+  EXPECT_EQ(o.exitsBy.at(0), 60);
+}
+
+TEST(ExitChoice, ADoorClosedOnAnEventSendsTheCrowdToTheOther) {
+  // The caller closes the south door once 20 people have left by it (an event it sees), through
+  // World::setExitOpen: from the next tick nobody leaves by it and everybody else takes the north.
+  sim::ExitChoiceDesc c;
+  c.rule = sim::ExitRule::Nearest;
+  const auto d = room(100, c);
+  auto created = sim::World::create(d);
+  ASSERT_TRUE(created.ok());
+  sim::World& w = *created.value();
+  EXPECT_FALSE(w.setExitOpen("nowhere", false));
+  core::TaskSystem tasks(1);
+  int south = 0, north = 0, southAfterClosing = 0;
+  bool closed = false;
+  while (w.stats().time < 300.0 && !w.finished()) {
+    w.step(tasks);
+    const auto frame = w.takeFrame();  // held: the range below must not outlive it
+    for (const sim::Event& e : frame->events) {
+      if (e.kind != sim::EventKind::Exit) continue;
+      (e.a == 0 ? south : north) += 1;
+      if (e.a == 0 && closed) ++southAfterClosing;
+    }
+    if (!closed && south >= 20) closed = w.setExitOpen("south", false);
+  }
+  EXPECT_TRUE(closed);
+  EXPECT_EQ(southAfterClosing, 0);
+  EXPECT_EQ(south + north, 100);
+  EXPECT_GT(north, 50);
+}
+
+TEST(ExitChoice, SetExitOpenRefusesAPointThatIsNotAnExit) {
+  auto d = room(10, {});
+  sim::PointDesc hall;
+  hall.id = "hall";
+  hall.kind = sim::PointKind::Interest;
+  hall.position = {10, 5};
+  d.points.push_back(hall);
+  auto created = sim::World::create(d);
+  ASSERT_TRUE(created.ok());
+  EXPECT_FALSE(created.value()->setExitOpen("hall", false));
+  EXPECT_FALSE(created.value()->setExitOpen("", true));
+  EXPECT_TRUE(created.value()->setExitOpen("north", true));
 }
 
 TEST(ExitChoice, SameTrajectoriesFor1And4Threads) {

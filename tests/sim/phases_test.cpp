@@ -189,7 +189,7 @@ ChunkOutput decideOnce(const ScenarioDesc& desc, AgentStore& a, const std::vecto
   std::vector<ChunkOutput> chunks(1);
   core::TaskSystem tasks(1);
   const GoalView goals{groups, goalLists, a.group, a.goalCursor};
-  decide(DecideInput{a, desc, tick, groups, goals, commonGround, workers}, decideOutput(a, chunks), tasks);
+  decide(DecideInput{a, desc, tick, groups, goals, commonGround, workers, {}}, decideOutput(a, chunks), tasks);
   return std::move(chunks[0]);
 }
 

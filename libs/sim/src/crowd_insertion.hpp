@@ -1,10 +1,11 @@
 // CrowdInsertion — crowds inserted and removed at run time (World::insertCrowd, removeCrowd and the
 // scenario's timeline): each crowd's description until it is applied, its ids and what it added,
-// the commands queued for the next tick, the timeline's progress, and the budget of agents all
+// the commands queued for the next tick (exits closed and opened by World::setExitOpen too), the timeline's progress, and the budget of agents all
 // insertions may add. Written by insert.cpp only (serial, at the start of a tick).
 #pragma once
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "throng/sim/world.hpp"
@@ -28,6 +29,8 @@ struct CrowdCommand {
 struct CrowdInsertion {
   std::vector<CrowdState> crowds;
   std::vector<CrowdCommand> commands;       ///< applied in order at the start of the next tick
+  /// World::setExitOpen's (exit point, closed) pairs, applied in order after the crowd commands.
+  std::vector<std::pair<std::uint32_t, bool>> exitCommands;
   std::vector<std::uint64_t> timelineTick;  ///< per ScenarioDesc::timeline entry: the tick it applies at
   std::size_t timelineNext = 0;             ///< first timeline entry not applied yet
   std::uint64_t insertedAgents = 0;         ///< most agents all insertions may add (kMaxInsertedAgents)

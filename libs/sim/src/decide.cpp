@@ -1,7 +1,7 @@
 // decide — the goal state machine of every agent (parallel, each agent writes only its own row and
 // its chunk's output): reaching a goal's region, stopping at action points (or next to one, behind
 // the people already there: inAudience), leaving through
-// exits, asking the group pass for the next goal (goalPending) and `plan` for a path (needPath),
+// exits (not through one the timeline has closed), asking the group pass for the next goal (goalPending) and `plan` for a path (needPath),
 // noticing agents that are stuck, the end of an agent's pre-movement time, the Common Ground goal
 // generator and the sociological model's meetings. Reads DecideInput (positions, targets, groups, goals, neighbours, …); writes
 // DecideOutput (phases.hpp): goal state, mode, target, the flags for plan and the group pass, and
@@ -173,6 +173,9 @@ void RowDecision::seekGoal(const GroupState& g) {
     return;
   }
   if (point.kind == PointKind::Exit) {
+    // A closed door lets nobody through: the agent waits in front of it until it opens (or, with
+    // exit choice, until its group picks an open exit).
+    if (pointIndex < in.closedExits.size() && in.closedExits[pointIndex] != 0) return;
     out.goalState[row] = GoalState::Exited;
     event(EventKind::Exit, pointIndex);
   } else if (point.kind == PointKind::Action && point.stop && point.actionDuration > 0.0f) {

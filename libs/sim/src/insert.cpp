@@ -1,5 +1,6 @@
 // Crowds inserted at run time — World::insertCrowd / removeCrowd and the scenario timeline — and
-// agents removed by id (World::removeAgents).
+// agents removed by id (World::removeAgents); exits closed and opened by the timeline and
+// World::setExitOpen (setExitClosedNow: exit choice and decide's closedExits).
 // A crowd (CrowdDesc: new points and populations) is checked against the world when it is queued
 // (CrowdCheck) and applied at the start of the next tick (applyCommands), before any population
 // spawns that tick: its points and populations are appended to the description, the spawner
@@ -204,7 +205,7 @@ void World::Impl::applyCrowdCommands() {
         insertCrowdNow(insertion.crowds[index]);
       }
     } else if (e.action == TimelineAction::CloseExit || e.action == TimelineAction::OpenExit) {
-      exitChoice.setClosed(e.point, e.action == TimelineAction::CloseExit);
+      setExitClosedNow(e.point, e.action == TimelineAction::CloseExit);
     } else {
       for (CrowdState& c : insertion.crowds) {
         if (c.info.id == e.crowdId) removeCrowdNow(c);
@@ -217,7 +218,15 @@ void World::Impl::applyCrowdCommands() {
     if (c.insert) insertCrowdNow(insertion.crowds[c.crowd]);
     else removeCrowdNow(insertion.crowds[c.crowd]);
   }
+  for (const auto& [point, closed] : insertion.exitCommands) setExitClosedNow(point, closed);
+  insertion.exitCommands.clear();
   removeAgentsNow();
+}
+
+void World::Impl::setExitClosedNow(std::uint32_t point, bool closed) {
+  exitChoice.setClosed(point, closed);
+  if (closedExits.size() <= point) closedExits.resize(point + 1, 0);
+  closedExits[point] = closed ? 1 : 0;
 }
 
 void World::Impl::insertCrowdNow(CrowdState& c) {
@@ -343,6 +352,16 @@ bool World::removeCrowd(std::string_view id) {
       if (!cmd.insert && cmd.crowd == c.info.index) return false;  // already queued
     }
     w.insertion.commands.push_back({c.info.index, false});
+    return true;
+  }
+  return false;
+}
+
+bool World::setExitOpen(std::string_view pointId, bool open) {
+  Impl& w = *impl_;
+  for (std::size_t p = 0; p < w.desc.points.size(); ++p) {
+    if (w.desc.points[p].id != pointId || w.desc.points[p].kind != PointKind::Exit) continue;
+    w.insertion.exitCommands.emplace_back(static_cast<std::uint32_t>(p), !open);
     return true;
   }
   return false;

@@ -128,6 +128,9 @@ struct DecideInput {
   GoalView goals;             ///< the goal point each agent walks to
   const CommonGroundState& commonGround;  ///< categories and places (the goal generator)
   std::span<const WorkerScratch> workers; ///< per-worker navmesh queries (the goal generator's sight)
+  /// Per point, 1 for an exit the timeline has closed: an agent reaching it waits there instead
+  /// of leaving; may be shorter than the points (those beyond are open).
+  std::span<const std::uint8_t> closedExits;
 };
 
 struct DecideOutput {

@@ -141,7 +141,7 @@ void World::Impl::sense(const core::TaskSystem& tasks) {
 void World::Impl::decide(const core::TaskSystem& tasks) {
   const std::size_t n = agents.size();
   chunks.resize(std::max(chunks.size(), core::TaskSystem::chunkCount(n, grainFor(n, tasks))));
-  const DecideInput in{agents, desc, tick, groups, goalView(), commonGround, scratch};
+  const DecideInput in{agents, desc, tick, groups, goalView(), commonGround, scratch, closedExits};
   const DecideOutput out{agents.goalState, agents.mode, agents.targetX, agents.targetY, agents.targetZ,
                          agents.corners, agents.needPath, agents.goalPending, agents.progressDistance,
                          agents.actionEndTick, agents.oriX, agents.oriY, agents.sociologicalEffect,

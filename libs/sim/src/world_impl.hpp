@@ -99,6 +99,9 @@ struct World::Impl {
 
   // Exit choice (exit_choice.hpp): distance fields, queues, the groups that choose.
   ExitChoice exitChoice;
+  /// Per point, 1 while the timeline holds that exit closed: nobody leaves through it (decide);
+  /// shorter than the points until a timeline entry closes one.
+  std::vector<std::uint8_t> closedExits;
   /// Re-evaluates exits (after applyCommands, before sense).
   void chooseExits(const core::TaskSystem& tasks);
 
@@ -133,6 +136,8 @@ struct World::Impl {
   /// Optional agent columns populations [firstPopulation, end) need and the world did not have yet.
   void addColumnsFor(std::uint32_t firstPopulation);
   void removeCrowdNow(CrowdState& crowd);
+  /// Closes or opens exit `point` now (the timeline, World::setExitOpen): exit choice and decide.
+  void setExitClosedNow(std::uint32_t point, bool closed);
   /// Agents queued by World::removeAgents, in call order; applied after the crowd commands.
   std::vector<std::uint32_t> agentRemovals;
   void removeAgentsNow();

@@ -191,6 +191,12 @@ class World {
   /// one diagnostic per bad id (pointer "/<index in ids>"), when an id is not an agent present now,
   /// is listed twice or is already queued.
   core::Status removeAgents(std::span<const std::uint32_t> ids);
+  /// Queues closing (`open` false) or opening exit `pointId` for the start of the next tick, as a
+  /// timeline "close" / "open" entry does — for doors that open and close on events the caller
+  /// sees (a train arriving, an alarm): nobody leaves through a closed exit (whoever reaches it
+  /// waits there), and exit choice sends the groups heading for it to another at once. False when
+  /// no point of kind exit has that id (a queued crowd's points count once it is applied).
+  bool setExitOpen(std::string_view pointId, bool open);
   /// Every crowd inserted or queued, in insertion order (timeline crowds included).
   [[nodiscard]] std::vector<CrowdInfo> crowds() const;
   /// Viewer positions for multiresolution steering (SteeringDesc::lodDistance).
