@@ -109,7 +109,7 @@ struct AvmParams {
 class AvmScratch final : public ModelScratch {
  public:
   std::vector<std::uint32_t> wallIds;
-  std::vector<std::uint32_t> visionWalls;  ///< seeAhead's walls within the vision range
+  std::vector<std::uint32_t> visionWalls;  ///< seeAhead's walls along one ray (roomAlong)
 };
 
 /// Two walkers whose directions are less than this far apart (cos 120°) settle who goes first
@@ -389,11 +389,8 @@ class AnticipationVelocityModel final : public OperationalModel {
     if (f0 >= range) return e0;
     const core::Vec2 toTarget{a.targetX[row] - pos.x, a.targetY[row] - pos.y};
     if (core::length(toTarget) < f0 + kVisionBeyond) return e0;  // the crowd is where i is going
-    // Walls matter only nearer than the crowd along a ray: fetch them that far, further when a ray needs it.
-    float wallsTo = f0;
-    ws.visionWalls.clear();
-    in.walls.query(pos.x, pos.y, wallsTo, ws.visionWalls);
-    f0 = std::min(f0, room(in, ws.visionWalls, pos, e0, f0));
+    // Walls matter only nearer than the crowd along a ray: those in the cells the ray crosses that far.
+    f0 = std::min(f0, roomAlong(in, ws, pos, e0, f0));
     const float h = range;
     float best = h * h + f0 * f0 - 2.0f * h * f0;
     core::Vec2 out = e0;
@@ -407,12 +404,7 @@ class AnticipationVelocityModel final : public OperationalModel {
         const float c = std::cos(angle), sn = std::sin(angle);
         const core::Vec2 ec{e0.x * c - e0.y * sn, e0.x * sn + e0.y * c};
         const float crowd = crowd_.clearAhead(pos, z, ec, e0, range);
-        if (crowd > wallsTo) {
-          wallsTo = range;
-          ws.visionWalls.clear();
-          in.walls.query(pos.x, pos.y, wallsTo, ws.visionWalls);
-        }
-        const float f = std::min(crowd, room(in, ws.visionWalls, pos, ec, crowd));
+        const float f = std::min(crowd, roomAlong(in, ws, pos, ec, crowd));
         const float d2 = h * h + f * f - 2.0f * h * f * c;
         if (d2 < best - 1e-4f) {
           best = d2;
@@ -421,6 +413,14 @@ class AnticipationVelocityModel final : public OperationalModel {
       }
     }
     return out;
+  }
+
+  /// room() against the walls in the cells along the ray (Walls::queryRay): the same as against every
+  /// wall within `reach`, as a wall the ray does not cross within reach leaves room() unchanged.
+  static float roomAlong(const ModelInput& in, AvmScratch& ws, core::Vec2 pos, core::Vec2 dir, float reach) {
+    ws.visionWalls.clear();
+    in.walls.queryRay(pos, dir, reach, ws.visionWalls);
+    return room(in, ws.visionWalls, pos, dir, reach);
   }
 
   /// The desired direction turned aside by the neighbours in front and pushed off the walls.
