@@ -239,10 +239,30 @@ class CrowdGrid {
 
   /// How far along the unit vector dir from pos (at floor height z) before a cell crowded with
   /// people not going e0's way, at most `range` [m] (the walker's own cell is not looked at).
+  /// It looks at the points t = 1, 1.5, 2, … m ≤ range along the ray, each in the cell it falls in.
   [[nodiscard]] float clearAhead(core::Vec2 pos, float z, core::Vec2 dir, core::Vec2 e0, float range) const {
     constexpr float kStep = 0.5f * kCrowdCell;
     range = std::min(range, range_);
     const int floor = storey(z);
+    if (range < kCrowdCell) return range;
+    // The last point (t is exact: a multiple of kStep). A point's cell coordinates are monotone in t
+    // (each float operation is), so when the first and the last point are on the grid, all are, and
+    // the dense index needs no bounds checks.
+    float last = kCrowdCell + kStep * std::floor((range - kCrowdCell) / kStep);
+    while (last + kStep <= range) last += kStep;
+    while (last > range) last -= kStep;
+    if (!dense_.empty() && onGrid(pos, dir, kCrowdCell) && onGrid(pos, dir, last)) {
+      const std::int64_t layer = static_cast<std::int64_t>(floor) * ny_;
+      const std::int32_t* dense = dense_.data();
+      for (float t = kCrowdCell; t <= range; t += kStep) {
+        const core::Vec2 q = pos + dir * t;
+        const float fx = (q.x - x0_) / kCrowdCell, fy = (q.y - y0_) / kCrowdCell;
+        const std::int64_t k = (layer + static_cast<std::int64_t>(fy)) * nx_ + static_cast<std::int64_t>(fx);
+        const std::int32_t i = dense[k];
+        if (i >= 0 && blocks(cells_[static_cast<std::size_t>(i)], e0)) return t;
+      }
+      return range;
+    }
     for (float t = kCrowdCell; t <= range; t += kStep) {
       const core::Vec2 q = pos + dir * t;
       const float fx = (q.x - x0_) / kCrowdCell, fy = (q.y - y0_) / kCrowdCell;
@@ -250,8 +270,7 @@ class CrowdGrid {
       const auto cx = static_cast<std::int64_t>(fx), cy = static_cast<std::int64_t>(fy);
       if (cx >= nx_ || cy >= ny_) return range;
       const Cell* c = find(key(cx, cy, floor));
-      if (c == nullptr || c->kind == kClear) continue;
-      if (c->kind == kKnot || core::dot(c->heading, e0) < kJoinCos * static_cast<float>(c->count)) return t;
+      if (c != nullptr && blocks(*c, e0)) return t;
     }
     return range;
   }
@@ -276,6 +295,20 @@ class CrowdGrid {
   /// The dense index is used while the box holds at most this many cells per agent (plus kDenseCellsMin).
   static constexpr double kDenseCellsPerAgent = 16.0;
   static constexpr double kDenseCellsMin = 65536.0;
+
+  /// Whether the point pos + dir · t falls in a cell of the grid (as clearAhead computes it).
+  [[nodiscard]] bool onGrid(core::Vec2 pos, core::Vec2 dir, float t) const {
+    const core::Vec2 q = pos + dir * t;
+    const float fx = (q.x - x0_) / kCrowdCell, fy = (q.y - y0_) / kCrowdCell;
+    return fx >= 0.0f && fy >= 0.0f && static_cast<std::int64_t>(fx) < nx_ && static_cast<std::int64_t>(fy) < ny_;
+  }
+
+  /// Whether cell c stops the look of a walker whose desired direction is e0: a knot, or a stream
+  /// not going e0's way.
+  static bool blocks(const Cell& c, core::Vec2 e0) {
+    if (c.kind == kClear) return false;
+    return c.kind == kKnot || core::dot(c.heading, e0) < kJoinCos * static_cast<float>(c.count);
+  }
 
   /// The storey bin of height z.
   [[nodiscard]] int storey(float z) const {
