@@ -1,5 +1,5 @@
 // Walls (walls.hpp): the navmesh boundary (nav::NavMesh::boundary) in a uniform grid of cells, the
-// disc query ORCA uses and the floor check on multi-level worlds.
+// disc query ORCA uses, the ray query of avm's look ahead and the floor check on multi-level worlds.
 #include "walls.hpp"
 
 #include "agent_store.hpp"
@@ -43,6 +43,16 @@ void Walls::build(const nav::NavMesh& mesh, float cellSize) {
       }
     }
   }
+  // areaCount_: the segments' cell entries in the cells left of x and below y, at (x, y).
+  areaCount_.assign(static_cast<std::size_t>(nx_ + 1) * static_cast<std::size_t>(ny_ + 1), 0);
+  for (int y = 0; y < ny_; ++y) {
+    for (int x = 0; x < nx_; ++x) {
+      const std::size_t c = static_cast<std::size_t>(y) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(x);
+      const std::size_t w = static_cast<std::size_t>(nx_ + 1);
+      areaCount_[(y + 1) * w + x + 1] = areaCount_[y * w + x + 1] + areaCount_[(y + 1) * w + x] - areaCount_[y * w + x] +
+                                        (cellStart_[c + 1] - cellStart_[c]);
+    }
+  }
 }
 
 bool Walls::onLevel(std::uint32_t s, core::Vec2 p, float z) const {
@@ -68,6 +78,43 @@ void Walls::query(float x, float y, float r, std::vector<std::uint32_t>& out) co
   }
   std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
   out.erase(std::unique(out.begin() + static_cast<std::ptrdiff_t>(first), out.end()), out.end());
+}
+
+void Walls::queryRay(core::Vec2 p, core::Vec2 dir, float len, std::vector<std::uint32_t>& out) const {
+  const std::size_t first = out.size();
+  collectAlong(p, p + dir * std::max(0.0f, len), out);
+  if (out.size() - first > 1) {
+    std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
+    out.erase(std::unique(out.begin() + static_cast<std::ptrdiff_t>(first), out.end()), out.end());
+  }
+}
+
+void Walls::collectAlong(core::Vec2 a, core::Vec2 b, std::vector<std::uint32_t>& out) const {
+  constexpr float kSlack = 0.01f;  // [m] round the piece: far above the rounding of a crossing point
+  // The cell of v, clamped to the grid as build() does (truncation is floor for what is not clamped).
+  const auto cell = [](float v, float origin, float inv, int n) {
+    return static_cast<int>(std::clamp((v - origin) * inv, 0.0f, static_cast<float>(n - 1)));
+  };
+  const int x0 = cell(std::min(a.x, b.x) - kSlack, originX_, invCell_, nx_);
+  const int x1 = cell(std::max(a.x, b.x) + kSlack, originX_, invCell_, nx_);
+  const int y0 = cell(std::min(a.y, b.y) - kSlack, originY_, invCell_, ny_);
+  const int y1 = cell(std::max(a.y, b.y) + kSlack, originY_, invCell_, ny_);
+  const auto corner = [&](int x, int y) {
+    return areaCount_[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx_ + 1) + static_cast<std::size_t>(x)];
+  };
+  if (corner(x1 + 1, y1 + 1) + corner(x0, y0) == corner(x0, y1 + 1) + corner(x1 + 1, y0)) return;  // no wall in the box
+  if ((x1 - x0 + 1) * (y1 - y0 + 1) > 4) {  // a box of more than 2 × 2 cells: halve the piece
+    const core::Vec2 mid = a + (b - a) * 0.5f;
+    collectAlong(a, mid, out);
+    collectAlong(mid, b, out);
+    return;
+  }
+  for (int yy = y0; yy <= y1; ++yy) {
+    for (int xx = x0; xx <= x1; ++xx) {
+      const std::size_t c = static_cast<std::size_t>(yy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(xx);
+      out.insert(out.end(), items_.begin() + cellStart_[c], items_.begin() + cellStart_[c + 1]);
+    }
+  }
 }
 
 }  // namespace throng::sim

@@ -2,6 +2,7 @@
 // Taken from the navigation mesh's outer edges (nav::NavMesh::boundary), so walls are
 // right however walkable polygons touch or overlap and however obstacles cross them. The navmesh is
 // already eroded by the body radius, so the segments bound agent centres. Built once; read-only.
+// Queries: the segments near a disc (query) or along a ray (queryRay).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -18,6 +19,11 @@ class Walls {
   /// Appends to `out` the index of every segment whose cell range overlaps the disc (x, y, r),
   /// ascending and without duplicates.
   void query(float x, float y, float r, std::vector<std::uint32_t>& out) const;
+  /// Appends to `out` the index of every segment whose cell range overlaps the cells the ray from p
+  /// along the unit vector dir, `len` long, passes through (and a centimetre round it), ascending and
+  /// without duplicates: every segment the ray crosses within len is among them, in fewer cells
+  /// than the disc of radius len (query) holds.
+  void queryRay(core::Vec2 p, core::Vec2 dir, float len, std::vector<std::uint32_t>& out) const;
 
   [[nodiscard]] const std::vector<core::Segment>& segments() const { return segments_; }
   /// Multi-level worlds: whether segment `s` bounds the floor at height `z` near ground point p
@@ -32,6 +38,11 @@ class Walls {
   int nx_ = 1, ny_ = 1;
   std::vector<std::uint32_t> cellStart_;
   std::vector<std::uint32_t> items_;
+  std::vector<std::uint32_t> areaCount_;  ///< summed-area table of the cells' entries, (nx + 1) × (ny + 1)
+
+  /// queryRay's walk: the entries of the cells round the piece a–b, halving it while its box holds
+  /// walls and spans more than 2 × 2 cells; unsorted, with repeats.
+  void collectAlong(core::Vec2 a, core::Vec2 b, std::vector<std::uint32_t>& out) const;
 };
 
 }  // namespace throng::sim

@@ -56,6 +56,9 @@
 #include <algorithm>
 #include <cmath>
 #include <vector>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "operational_model.hpp"
 
@@ -109,7 +112,7 @@ struct AvmParams {
 class AvmScratch final : public ModelScratch {
  public:
   std::vector<std::uint32_t> wallIds;
-  std::vector<std::uint32_t> visionWalls;  ///< seeAhead's walls within the vision range
+  std::vector<std::uint32_t> visionWalls;  ///< seeAhead's walls along one ray (roomAlong)
 };
 
 /// Two walkers whose directions are less than this far apart (cos 120°) settle who goes first
@@ -239,10 +242,48 @@ class CrowdGrid {
 
   /// How far along the unit vector dir from pos (at floor height z) before a cell crowded with
   /// people not going e0's way, at most `range` [m] (the walker's own cell is not looked at).
+  /// It looks at the points t = 1, 1.5, 2, … m ≤ range along the ray, each in the cell it falls in.
   [[nodiscard]] float clearAhead(core::Vec2 pos, float z, core::Vec2 dir, core::Vec2 e0, float range) const {
     constexpr float kStep = 0.5f * kCrowdCell;
     range = std::min(range, range_);
     const int floor = storey(z);
+    if (range < kCrowdCell) return range;
+    // The last point (t is exact: a multiple of kStep). A point's cell coordinates are monotone in t
+    // (each float operation is), so when the first and the last point are on the grid, all are, and
+    // the dense index needs no bounds checks.
+    float last = kCrowdCell + kStep * std::floor((range - kCrowdCell) / kStep);
+    while (last + kStep <= range) last += kStep;
+    while (last > range) last -= kStep;
+    if (!dense_.empty() && onGrid(pos, dir, kCrowdCell) && onGrid(pos, dir, last)) {
+      const std::int64_t layer = static_cast<std::int64_t>(floor) * ny_;
+      const std::int32_t* dense = dense_.data();
+      float t = kCrowdCell;
+#if defined(__SSE2__)
+      // Four points at a time: the same IEEE operations on four lanes (exact as one at a time), then
+      // the look-ups in order.
+      static_assert(kCrowdCell == 1.0f, "the lanes leave out the division by the cell size");
+      const __m128 px = _mm_set1_ps(pos.x), py = _mm_set1_ps(pos.y), dx = _mm_set1_ps(dir.x), dy = _mm_set1_ps(dir.y);
+      const __m128 ox = _mm_set1_ps(x0_), oy = _mm_set1_ps(y0_), lanes = _mm_setr_ps(0.0f, kStep, 2.0f * kStep, 3.0f * kStep);
+      alignas(16) std::int32_t cx[4], cy[4];
+      for (; t + 3.0f * kStep <= last; t += 4.0f * kStep) {
+        const __m128 tv = _mm_add_ps(_mm_set1_ps(t), lanes);
+        _mm_store_si128(reinterpret_cast<__m128i*>(cx), _mm_cvttps_epi32(_mm_sub_ps(_mm_add_ps(px, _mm_mul_ps(dx, tv)), ox)));
+        _mm_store_si128(reinterpret_cast<__m128i*>(cy), _mm_cvttps_epi32(_mm_sub_ps(_mm_add_ps(py, _mm_mul_ps(dy, tv)), oy)));
+        for (int j = 0; j < 4; ++j) {
+          const std::int32_t i = dense[(layer + cy[j]) * nx_ + cx[j]];
+          if (i >= 0 && blocks(cells_[static_cast<std::size_t>(i)], e0)) return t + kStep * static_cast<float>(j);
+        }
+      }
+#endif
+      for (; t <= range; t += kStep) {
+        const core::Vec2 q = pos + dir * t;
+        const float fx = (q.x - x0_) / kCrowdCell, fy = (q.y - y0_) / kCrowdCell;
+        const std::int64_t k = (layer + static_cast<std::int64_t>(fy)) * nx_ + static_cast<std::int64_t>(fx);
+        const std::int32_t i = dense[k];
+        if (i >= 0 && blocks(cells_[static_cast<std::size_t>(i)], e0)) return t;
+      }
+      return range;
+    }
     for (float t = kCrowdCell; t <= range; t += kStep) {
       const core::Vec2 q = pos + dir * t;
       const float fx = (q.x - x0_) / kCrowdCell, fy = (q.y - y0_) / kCrowdCell;
@@ -250,8 +291,7 @@ class CrowdGrid {
       const auto cx = static_cast<std::int64_t>(fx), cy = static_cast<std::int64_t>(fy);
       if (cx >= nx_ || cy >= ny_) return range;
       const Cell* c = find(key(cx, cy, floor));
-      if (c == nullptr || c->kind == kClear) continue;
-      if (c->kind == kKnot || core::dot(c->heading, e0) < kJoinCos * static_cast<float>(c->count)) return t;
+      if (c != nullptr && blocks(*c, e0)) return t;
     }
     return range;
   }
@@ -276,6 +316,20 @@ class CrowdGrid {
   /// The dense index is used while the box holds at most this many cells per agent (plus kDenseCellsMin).
   static constexpr double kDenseCellsPerAgent = 16.0;
   static constexpr double kDenseCellsMin = 65536.0;
+
+  /// Whether the point pos + dir · t falls in a cell of the grid (as clearAhead computes it).
+  [[nodiscard]] bool onGrid(core::Vec2 pos, core::Vec2 dir, float t) const {
+    const core::Vec2 q = pos + dir * t;
+    const float fx = (q.x - x0_) / kCrowdCell, fy = (q.y - y0_) / kCrowdCell;
+    return fx >= 0.0f && fy >= 0.0f && static_cast<std::int64_t>(fx) < nx_ && static_cast<std::int64_t>(fy) < ny_;
+  }
+
+  /// Whether cell c stops the look of a walker whose desired direction is e0: a knot, or a stream
+  /// not going e0's way.
+  static bool blocks(const Cell& c, core::Vec2 e0) {
+    if (c.kind == kClear) return false;
+    return c.kind == kKnot || core::dot(c.heading, e0) < kJoinCos * static_cast<float>(c.count);
+  }
 
   /// The storey bin of height z.
   [[nodiscard]] int storey(float z) const {
@@ -389,11 +443,8 @@ class AnticipationVelocityModel final : public OperationalModel {
     if (f0 >= range) return e0;
     const core::Vec2 toTarget{a.targetX[row] - pos.x, a.targetY[row] - pos.y};
     if (core::length(toTarget) < f0 + kVisionBeyond) return e0;  // the crowd is where i is going
-    // Walls matter only nearer than the crowd along a ray: fetch them that far, further when a ray needs it.
-    float wallsTo = f0;
-    ws.visionWalls.clear();
-    in.walls.query(pos.x, pos.y, wallsTo, ws.visionWalls);
-    f0 = std::min(f0, room(in, ws.visionWalls, pos, e0, f0));
+    // Walls matter only nearer than the crowd along a ray: those in the cells the ray crosses that far.
+    f0 = std::min(f0, roomAlong(in, ws, pos, e0, f0));
     const float h = range;
     float best = h * h + f0 * f0 - 2.0f * h * f0;
     core::Vec2 out = e0;
@@ -407,12 +458,7 @@ class AnticipationVelocityModel final : public OperationalModel {
         const float c = std::cos(angle), sn = std::sin(angle);
         const core::Vec2 ec{e0.x * c - e0.y * sn, e0.x * sn + e0.y * c};
         const float crowd = crowd_.clearAhead(pos, z, ec, e0, range);
-        if (crowd > wallsTo) {
-          wallsTo = range;
-          ws.visionWalls.clear();
-          in.walls.query(pos.x, pos.y, wallsTo, ws.visionWalls);
-        }
-        const float f = std::min(crowd, room(in, ws.visionWalls, pos, ec, crowd));
+        const float f = std::min(crowd, roomAlong(in, ws, pos, ec, crowd));
         const float d2 = h * h + f * f - 2.0f * h * f * c;
         if (d2 < best - 1e-4f) {
           best = d2;
@@ -421,6 +467,14 @@ class AnticipationVelocityModel final : public OperationalModel {
       }
     }
     return out;
+  }
+
+  /// room() against the walls in the cells along the ray (Walls::queryRay): the same as against every
+  /// wall within `reach`, as a wall the ray does not cross within reach leaves room() unchanged.
+  static float roomAlong(const ModelInput& in, AvmScratch& ws, core::Vec2 pos, core::Vec2 dir, float reach) {
+    ws.visionWalls.clear();
+    in.walls.queryRay(pos, dir, reach, ws.visionWalls);
+    return room(in, ws.visionWalls, pos, dir, reach);
   }
 
   /// The desired direction turned aside by the neighbours in front and pushed off the walls.
