@@ -1,5 +1,12 @@
 // `throng check SCENARIO.json` — loads and validates a scenario (navmesh built, reachability
-// checked) without simulating; prints every problem, one line each, or a one-line summary.
+// checked) without simulating; prints every problem, one line each, or a one-line summary, and
+// warns (closedExitWarnings) of populations left without a way out by exits the timeline closes
+// for good.
+#include <algorithm>
+#include <map>
+#include <string>
+#include <vector>
+
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -24,6 +31,49 @@ AgentRange agentRange(const sim::ScenarioDesc& desc) {
     r.max += static_cast<std::uint64_t>(p.groups) * p.sizeMax;
   }
   return r;
+}
+
+/// For each exit the timeline closes and never opens again: the index of that last "close" entry.
+std::map<std::uint32_t, std::size_t> exitsClosedForGood(const sim::ScenarioDesc& desc) {
+  std::map<std::uint32_t, std::size_t> last;  // exit → its last timeline entry (entries are in time order)
+  for (std::size_t i = 0; i < desc.timeline.size(); ++i) {
+    const sim::TimelineEntry& e = desc.timeline[i];
+    if (e.action == sim::TimelineAction::CloseExit || e.action == sim::TimelineAction::OpenExit) last[e.point] = i;
+  }
+  std::erase_if(last, [&](const auto& entry) { return desc.timeline[entry.second].action != sim::TimelineAction::CloseExit; });
+  return last;
+}
+
+/// Warnings, not errors (the run is still valid: its agents wait at the door to the end): a
+/// population whose fixed goal is an exit the timeline closes for good, or whose every exit to
+/// choose from closes for good.
+std::vector<std::string> closedExitWarnings(const sim::ScenarioDesc& desc) {
+  const std::map<std::uint32_t, std::size_t> closed = exitsClosedForGood(desc);
+  std::vector<std::string> out;
+  if (closed.empty()) return out;
+  auto exitText = [&](std::uint32_t point) {
+    const std::size_t entry = closed.at(point);
+    return fmt::format("exit \"{}\" closes at {:g} s (/timeline/{}) and never opens again", displayText(desc.points[point].id),
+                       desc.timeline[entry].time, entry);
+  };
+  for (std::size_t p = 0; p < desc.populations.size(); ++p) {
+    const sim::PopulationDesc& pop = desc.populations[p];
+    for (std::size_t g = 0; g < pop.goals.size(); ++g) {
+      if (!closed.contains(pop.goals[g])) continue;
+      out.push_back(fmt::format("/populations/{}/goals/{}: {}; population \"{}\" walks to it and cannot leave after that "
+                                "(give it \"exits\" to choose another, or open the exit again)",
+                                p, g, exitText(pop.goals[g]), displayText(pop.id)));
+    }
+    const bool allClosed = !pop.exits.empty() &&
+                           std::all_of(pop.exits.begin(), pop.exits.end(), [&](std::uint32_t e) { return closed.contains(e); });
+    if (!allClosed) continue;
+    std::string which;
+    for (std::uint32_t e : pop.exits) which += (which.empty() ? "" : "; ") + exitText(e);
+    out.push_back(fmt::format("/populations/{}/exits: every exit of population \"{}\" closes for good ({}); its agents "
+                              "cannot leave after the last closes",
+                              p, displayText(pop.id), which));
+  }
+  return out;
 }
 
 }  // namespace
@@ -58,6 +108,7 @@ int runCheck(const CheckOptions& options) {
 
   const sim::ScenarioDesc& desc = loaded->desc;
   const AgentRange agents = agentRange(desc);
+  const std::vector<std::string> warnings = closedExitWarnings(desc);
   const std::size_t polygons = loaded->navmesh ? loaded->navmesh->polygonCount() : 0;
   if (options.json) {
     nlohmann::json out{{"ok", true},
@@ -68,8 +119,12 @@ int runCheck(const CheckOptions& options) {
                        {"points", desc.points.size()},
                        {"navmesh_polygons", polygons},
                        {"diagnostics", nlohmann::json::array()}};
+    if (!warnings.empty()) out["warnings"] = warnings;  // only then: other answers stay as they were
     printLine(stdout, dumpJson(out));
     return kExitOk;
+  }
+  for (const std::string& w : warnings) {
+    printLine(stderr, fmt::format("throng check: warning: {}: {}", displayText(options.scenario), w));
   }
   const std::string agentText = agents.min == agents.max ? fmt::format("{} agents", agents.min)
                                                          : fmt::format("{}-{} agents", agents.min, agents.max);

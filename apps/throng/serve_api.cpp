@@ -1,5 +1,6 @@
 // `throng serve`'s dynamic HTTP answers (serve_api.hpp): the World's groups, crowds and agents as
-// JSON (groupsJson, crowdsJson, agentJson), WorldQueries' queue of questions, and HttpApi's routes.
+// JSON (groupsJson, crowdsJson, agentJson), WorldQueries' queue of questions and exit commands,
+// percentDecoded (an exit id in a path), and HttpApi's routes.
 #include "serve_api.hpp"
 
 #include <algorithm>
@@ -48,6 +49,29 @@ nlohmann::json crowdsJson(const sim::World& world, const std::map<std::string, s
                       {"owner", owner == owners.end() ? nlohmann::json(nullptr) : nlohmann::json(owner->second)}});
   }
   return crowds;
+}
+
+/// A path segment's %XX escapes decoded; nullopt for a malformed escape.
+std::optional<std::string> percentDecoded(std::string_view text) {
+  auto hex = [](char ch) -> int {
+    if (ch >= '0' && ch <= '9') return ch - '0';
+    if (ch >= 'a' && ch <= 'f') return ch - 'a' + 10;
+    if (ch >= 'A' && ch <= 'F') return ch - 'A' + 10;
+    return -1;
+  };
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '%') {
+      out += text[i];
+      continue;
+    }
+    if (i + 2 >= text.size()) return std::nullopt;
+    const int hi = hex(text[i + 1]), lo = hex(text[i + 2]);
+    if (hi < 0 || lo < 0) return std::nullopt;
+    out += static_cast<char>(hi * 16 + lo);
+    i += 2;
+  }
+  return out;
 }
 
 /// What the simulation thread did not answer within a second.
@@ -103,8 +127,20 @@ std::future<std::optional<sim::AgentInfo>> WorldQueries::askAgent(std::uint32_t 
   return future;
 }
 
-void WorldQueries::answer(const sim::World* world, const hub::Hub& hub) {
+std::future<bool> WorldQueries::askSetExitOpen(std::string id, bool open) {
+  auto command = std::make_shared<ExitCommand>();
+  command->id = std::move(id);
+  command->open = open;
+  auto future = command->found.get_future();
   std::lock_guard lock(mutex_);
+  exits_.push_back(std::move(command));
+  return future;
+}
+
+void WorldQueries::answer(sim::World* world, const hub::Hub& hub) {
+  std::lock_guard lock(mutex_);
+  for (const auto& c : exits_) c->found.set_value(world != nullptr && world->setExitOpen(c->id, c->open));
+  exits_.clear();
   for (const auto& q : agents_) q->answer.set_value(world ? world->agentInfo(q->id) : std::nullopt);
   agents_.clear();
   if (!groups_.empty()) {
@@ -196,6 +232,33 @@ transport::HttpResponse HttpApi::status() const {
                  {"publish_median_ms", window_.publishMedianMs}, {"publish_p99_ms", window_.publishP99Ms}};
   }
   return jsonResponse(200, dumpJson(j));
+}
+
+std::optional<transport::HttpResponse> HttpApi::post(const transport::HttpRequest& request) const {
+  const std::string_view target = request.target;
+  const std::string_view path = target.substr(0, target.find('?'));
+  constexpr std::string_view kExits = "/api/exits/";
+  if (!path.starts_with(kExits)) return std::nullopt;
+  return setExitOpen(path.substr(kExits.size()), request.body);
+}
+
+transport::HttpResponse HttpApi::setExitOpen(std::string_view encodedId, const std::string& body) const {
+  const std::optional<std::string> id = percentDecoded(encodedId);
+  if (!id || id->empty()) {
+    return jsonResponse(400, R"j({"error":"expected /api/exits/<id>, id the exit point's id (percent-encoded)"})j");
+  }
+  const nlohmann::json request = nlohmann::json::parse(body, nullptr, false);
+  if (!request.is_object() || request.size() != 1 || !request.contains("open") || !request["open"].is_boolean()) {
+    return jsonResponse(400, R"({"error":"expected the body {\"open\": true} or {\"open\": false}"})");
+  }
+  if (served_.replay) return jsonResponse(409, R"({"error":"a recording is played: its exits cannot be opened or closed"})");
+  const bool open = request["open"].get<bool>();
+  auto future = queries_.askSetExitOpen(*id, open);
+  if (future.wait_for(std::chrono::milliseconds(1000)) != std::future_status::ready) return simulationTimeout();
+  if (!future.get()) {
+    return jsonResponse(404, dumpJson({{"error", "no exit \"" + *id + "\"; expected the id of a point of kind \"exit\""}}));
+  }
+  return jsonResponse(200, dumpJson({{"id", *id}, {"open", open}}));
 }
 
 transport::HttpResponse HttpApi::motion(std::string_view id) const {

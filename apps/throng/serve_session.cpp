@@ -103,6 +103,10 @@ bool Router::post(transport::HttpRequest request, const transport::HttpResponder
     responder.respond(jsonError(503, "switching recordings; try again"));
     return true;
   }
+  if (auto answer = session_->api.post(request)) {
+    responder.respond(std::move(*answer));
+    return true;
+  }
   return session_->editor.post(std::move(request), responder);
 }
 

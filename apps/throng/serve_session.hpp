@@ -62,7 +62,8 @@ class Router {
   /// GET `target`: the recordings routes, else the editor's, else HttpApi's; 503 while sessions change.
   std::optional<transport::HttpResponse> get(std::string_view target);
 
-  /// POST: the recordings routes (an upload, an open), else the editor's; true when answered.
+  /// POST: the recordings routes (an upload, an open), else HttpApi's (an exit opened or closed), else the
+  /// editor's; true when answered.
   bool post(transport::HttpRequest request, const transport::HttpResponder& responder);
 
  private:

@@ -1,9 +1,10 @@
 // _throng — the native half of `import throng` (docs/python.md): the Python bindings of scenarios
 // loaded and validated by the CLI's own loader (diagnostics raise throng.ScenarioError), the
 // Simulation (simulation.hpp: stepped exactly as `throng run` steps it, events, run-time crowd
-// control), the agent state as numpy arrays without copies (agent_views.hpp: AgentState snapshots,
-// AgentView of the live columns, refused once stale with throng.StaleViewError). The pure-Python
-// half (recordings as pandas frames, PedPy-style analysis) is in python/throng/.
+// control, exits opened and closed), the agent state as numpy arrays without copies
+// (agent_views.hpp: AgentState snapshots, AgentView of the live columns, refused once stale with
+// throng.StaleViewError). The pure-Python half (recordings as pandas frames, PedPy-style analysis)
+// is in python/throng/.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -159,6 +160,10 @@ void bindSimulation(py::module_& m) {
            "Queues a crowd (JSON text of a throng-crowd/1 file; docs/scenario-format.md) for the next tick; "
            "returns its index. ScenarioError lists every problem.")
       .def("remove_crowd", &Simulation::removeCrowd, py::arg("id"), "Its agents leave at the next tick.")
+      .def("set_exit_open", &Simulation::setExitOpen, py::arg("id"), py::arg("open"),
+           "Closes (open=False) or opens an exit from the next tick (a door on an event): nobody leaves by a "
+           "closed exit, groups choosing among exits re-route, a fixed goal waits at the door. KeyError if `id` "
+           "is no exit.")
       .def("remove_agents", &Simulation::removeAgents, py::arg("ids"),
            "These agents (stable ids: an int, a list, a numpy array) leave at the next tick, each with an exit event "
            "(a = b = 4294967295); their groups go on with the others (a removed leader hands over to the lowest id "

@@ -1,7 +1,8 @@
 // The native module's Simulation (python/src/module.cpp binds it): a validated Scenario, the World
 // with its threads and optional Recorder stepped exactly as `throng run` steps it, events, run-time
-// crowd control, and what views of the live columns need (a generation bumped by every step, the
-// column buffers the World retired). Its Python errors: throng.ScenarioError, throng.StaleViewError.
+// crowd control, exits opened and closed on events, and what views of the live columns need (a
+// generation bumped by every step, the column buffers the World retired). Its Python errors:
+// throng.ScenarioError, throng.StaleViewError.
 #pragma once
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -329,6 +330,11 @@ class Simulation {
   void removeCrowd(const std::string& id) {
     usable();
     if (!world_->removeCrowd(id)) throw py::key_error("no crowd '" + id + "' to remove (unknown, or already removed)");
+  }
+
+  void setExitOpen(const std::string& id, bool open) {
+    usable();
+    if (!world_->setExitOpen(id, open)) throw py::key_error("no exit '" + id + "' (no point of kind \"exit\" has this id)");
   }
 
   [[nodiscard]] double time() const { return world_->stats().time; }

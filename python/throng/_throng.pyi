@@ -164,6 +164,8 @@ class Simulation:
         """Queues a throng-crowd/1 document for the next tick; returns its index."""
     def remove_crowd(self, id: str) -> None:
         """The crowd's agents leave at the next tick."""
+    def set_exit_open(self, id: str, open: bool) -> None:
+        """Closes (open=False) or opens the exit `id` from the next tick; KeyError if it is no exit."""
     def remove_agents(self, ids: Iterable[int] | int) -> None:
         """These agents (stable ids; a list, a numpy array or one int) leave at the next tick, each with an
         exit event (a = b = 4294967295); their groups go on without them. ValueError naming every id not

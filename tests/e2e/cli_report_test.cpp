@@ -1,8 +1,9 @@
 // What the CLI reports: the `throng run` summary (evacuation only for evacuations, a "finished"
 // status that agrees with the counts, stalled agents with their spans), `throng bench` (the
 // DetourCrowd row, mean speeds, progress during the baseline), the progress line past 100 s of
-// simulated time and `throng metrics` column headers. The pure helpers (progress.cpp,
-// stall_tracker.cpp) are compiled into this test; the rest runs the built binary (cli_runner.hpp).
+// simulated time, `throng metrics` column headers and `throng check`'s warning of exits closed for
+// good. The pure helpers (progress.cpp, stall_tracker.cpp) are compiled into this test; the rest
+// runs the built binary (cli_runner.hpp).
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
@@ -172,6 +173,47 @@ TEST(CheckCapacity, PopulationsSharingASpawnAreaAreRefusedWithTheirPlace) {
                               "/populations/0/spawn/polygon) and \"b\" (150 at /populations/1/spawn/polygon) overlap and "
                               "start at 0 s: 56 m² of walkable ground is too small for their 300 agents"))
       << r.err;
+}
+
+TEST(CheckWarnings, AnExitTheTimelineClosesForGoodIsAWarningForWhoeverNeedsIt) {
+  // "fixed" walks to "a", closed at 10 s for good; "choosers" may take "a" or "b", both closed for
+  // good; "fine" keeps "c", which closes and opens again, as does "reopened"'s goal.
+  ScratchDir dir("check-doors");
+  dir.write("doors.json", R"({"format": "throng/1", "name": "doors", "duration": 100,
+ "walkable": [[[0,0],[20,0],[20,10],[0,10]]],
+ "points": [{"id": "a", "kind": "exit", "polygon": [[19,1],[20,1],[20,3],[19,3]]},
+            {"id": "b", "kind": "exit", "polygon": [[19,7],[20,7],[20,9],[19,9]]},
+            {"id": "c", "kind": "exit", "polygon": [[0,4],[1,4],[1,6],[0,6]]}],
+ "populations": [
+   {"id": "fixed", "groups": 3, "spawn": {"polygon": [[5,1],[8,1],[8,9],[5,9]]}, "goals": ["a"]},
+   {"id": "choosers", "groups": 3, "spawn": {"polygon": [[5,1],[8,1],[8,9],[5,9]]}, "exits": ["a", "b"]},
+   {"id": "fine", "groups": 3, "spawn": {"polygon": [[5,1],[8,1],[8,9],[5,9]]}, "exits": ["a", "c"]},
+   {"id": "reopened", "groups": 3, "spawn": {"polygon": [[5,1],[8,1],[8,9],[5,9]]}, "goals": ["c"]}],
+ "timeline": [{"time": 10, "close": "a"}, {"time": 20, "close": "b"}, {"time": 30, "close": "c"}, {"time": 40, "open": "c"}]})");
+  const CliResult r = runThrong({"check", "doors.json"}, dir.path());
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "ok: doors: 4 populations")) << r.out;
+  EXPECT_TRUE(contains(r.err, "throng check: warning: doors.json: /populations/0/goals/0: exit \"a\" closes at 10 s "
+                              "(/timeline/0) and never opens again; population \"fixed\" walks to it")) << r.err;
+  EXPECT_TRUE(contains(r.err, "/populations/1/exits: every exit of population \"choosers\" closes for good (exit \"a\" "
+                              "closes at 10 s (/timeline/0) and never opens again; exit \"b\" closes at 20 s (/timeline/1)"))
+      << r.err;
+  EXPECT_FALSE(contains(r.err, "fine") || contains(r.err, "reopened") || contains(r.err, "\"c\"")) << r.err;
+  const CliResult j = runThrong({"check", "--json", "doors.json"}, dir.path());
+  EXPECT_EQ(j.exitCode, 0);
+  const json answer = json::parse(j.out);
+  EXPECT_EQ(answer["ok"], true);
+  ASSERT_EQ(answer["warnings"].size(), 2u) << j.out;
+  EXPECT_TRUE(contains(answer["warnings"][1].get<std::string>(), "/populations/1/exits")) << j.out;
+  // Without a door closed for good: no warning, and the JSON answer has no "warnings" key.
+  dir.write("open.json", R"({"format": "throng/1", "name": "open", "walkable": [[[0,0],[20,0],[20,10],[0,10]]],
+ "points": [{"id": "a", "kind": "exit", "polygon": [[19,1],[20,1],[20,3],[19,3]]}],
+ "populations": [{"id": "p", "groups": 3, "spawn": {"polygon": [[5,1],[8,1],[8,9],[5,9]]}, "goals": ["a"]}],
+ "timeline": [{"time": 10, "close": "a"}, {"time": 20, "open": "a"}]})");
+  const CliResult quiet = runThrong({"check", "open.json"}, dir.path());
+  EXPECT_EQ(quiet.exitCode, 0);
+  EXPECT_EQ(quiet.err, "");
+  EXPECT_FALSE(json::parse(runThrong({"check", "--json", "open.json"}, dir.path()).out).contains("warnings"));
 }
 
 // --- the progress line ----------------------------------------------------------------------------

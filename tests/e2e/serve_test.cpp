@@ -1,6 +1,7 @@
 // `throng serve` as users meet it: the real binary on 127.0.0.1 on free ports, native clients
 // (throng::client::Session) over WebSocket and UDP, `throng loadgen`, HTTP, bad messages,
-// connect/disconnect cycles and Ctrl-C.
+// connect/disconnect cycles, an operator closing and opening an exit (POST /api/exits/<id>) and
+// Ctrl-C.
 #include <gtest/gtest.h>
 
 #include <csignal>
@@ -364,6 +365,10 @@ TEST(Serve, PlaysARecordingBackWithASharedTimeline) {
   pumpFor({viewer.get()}, 300ms);
   ASSERT_FALSE(viewer->guideResults().empty());
   EXPECT_FALSE(viewer->guideResults().front().ok);
+  // So is closing a recorded exit (POST /api/exits/<id>).
+  auto closing = client::httpRequest("127.0.0.1", server.port, "POST", "/api/exits/exit", client::HttpBody{R"({"open": false})"});
+  ASSERT_TRUE(closing.ok());
+  EXPECT_EQ(closing->status, 409u) << closing->body;
   EXPECT_TRUE(viewer->open());
 }
 
@@ -650,6 +655,57 @@ TEST(Serve, OnlyTheParticipantThatInsertedACrowdRemovesIt) {
   EXPECT_EQ(stopped.exitCode, 130) << stopped.err;
 }
 
+
+/// POST /api/exits/<id> with `body`: status and body.
+std::pair<unsigned, std::string> postExit(std::uint16_t port, const std::string& id, const std::string& body) {
+  auto r = client::httpRequest("127.0.0.1", port, "POST", "/api/exits/" + id, client::HttpBody{body});
+  if (!r.ok()) return {0u, ""};
+  return {r->status, r->body};
+}
+
+TEST(Serve, AnOperatorClosesAnExitNobodyLeavesUntilItOpensAndBadRequestsAreRefused) {
+  // Ten people appear 4 s after the start 1 to 2.5 m from the only exit, closed before they come:
+  // they wait at the door (still in the crowd frames 4 s later) and leave once it opens.
+  ScratchDir dir("serve-doors");
+  const auto scenario = dir.write("doors.json", R"({"format": "throng/1", "name": "doors", "seed": 1, "duration": 600,
+    "walkable": [[[0, 0], [6, 0], [6, 4], [0, 4]]],
+    "points": [{"id": "door", "kind": "exit", "polygon": [[5.5, 0], [6, 0], [6, 4], [5.5, 4]]},
+               {"id": "hall", "kind": "interest", "position": [1, 2]}],
+    "populations": [{"id": "p", "groups": 10, "size": 1, "start": 4,
+                     "spawn": {"polygon": [[3, 0.5], [4.5, 0.5], [4.5, 3.5], [3, 3.5]]},
+                     "goals": ["door"], "speed": 1.3, "radius": 0.2}]})");
+  Server server(scenario.string());
+  ASSERT_NE(server.port, 0) << "the server did not print its port";
+  auto [status, body] = postExit(server.port, "door", R"({"open": false})");
+  ASSERT_EQ(status, 200u) << body;
+  EXPECT_EQ(nlohmann::json::parse(body), nlohmann::json({{"id", "door"}, {"open", false}}));
+  // Refused, each with a message: no such exit, a point that is no exit, a bad body, a bad id.
+  std::tie(status, body) = postExit(server.port, "nowhere", R"({"open": false})");
+  EXPECT_EQ(status, 404u);
+  EXPECT_NE(body.find(R"(no exit \"nowhere\")"), std::string::npos) << body;
+  EXPECT_EQ(postExit(server.port, "hall", R"({"open": false})").first, 404u);
+  for (const char* bad : {"", "{}", R"({"open": "no"})", R"({"open": false, "x": 1})", "[false]", "{"}) {
+    std::tie(status, body) = postExit(server.port, "door", bad);
+    EXPECT_EQ(status, 400u) << bad;
+    EXPECT_NE(body.find("expected the body"), std::string::npos) << body;
+  }
+  EXPECT_EQ(postExit(server.port, "d%zzoor", R"({"open": true})").first, 400u);
+  EXPECT_EQ(postExit(server.port, "", R"({"open": true})").first, 400u);
+  EXPECT_EQ(postExit(server.port, "d%6For", R"({"open": false})").first, 200u);  // "door", percent-encoded
+
+  auto watcher = open(server.options("watcher"));
+  ASSERT_TRUE(watcher);
+  auto present = [&] { return watcher->crowd() ? watcher->crowd()->view.agents.size() : 0u; };
+  for (int i = 0; i < 200 && present() < 10; ++i) pumpFor({watcher.get()}, 50ms);
+  ASSERT_EQ(present(), 10u) << "the ten did not appear";
+  pumpFor({watcher.get()}, 4000ms);
+  EXPECT_EQ(present(), 10u) << "someone left by the closed exit";
+  ASSERT_EQ(postExit(server.port, "door", R"({"open": true})").first, 200u);
+  for (int i = 0; i < 200 && present() > 0; ++i) pumpFor({watcher.get()}, 50ms);
+  EXPECT_EQ(present(), 0u) << "nobody left once it opened";
+  const CliResult stopped = server.stop();
+  EXPECT_EQ(stopped.exitCode, 130) << stopped.err;
+}
 
 }  // namespace
 }  // namespace throng::e2e
