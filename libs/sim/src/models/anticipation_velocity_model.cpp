@@ -606,23 +606,30 @@ class AnticipationVelocityModel final : public OperationalModel {
     return best;
   }
 
+  /// Calls f(o, d) for each of i's neighbours o (the rows sense found), d the vector from i to o.
+  template <class F>
+  static void forEachNeighbour(const ModelInput& in, std::size_t row, F&& f) {
+    const AgentStore& a = in.agents;
+    const core::Vec2 pos{a.posX[row], a.posY[row]};
+    const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];
+    for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
+      const std::uint32_t o = nb[n];
+      f(o, core::Vec2{a.posX[o], a.posY[o]} - pos);
+    }
+  }
+
   /// A standing agent (waiting, acting, arrived) is no wall: pressed by someone whose disc overlaps
   /// its own it steps away, at most kMakeRoomSpeed, so people waiting for their group at a busy
   /// spot do not block everyone else's way.
   static core::Vec2 makeRoom(const ModelInput& in, std::size_t row, const AvmParams& p) {
     const AgentStore& a = in.agents;
-    const core::Vec2 pos{a.posX[row], a.posY[row]};
-    const std::size_t k = in.desc.steering.maxNeighbours;
-    const std::uint32_t* nb = &a.neighbours[row * k];
     core::Vec2 push;
-    for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
-      const std::uint32_t o = nb[n];
-      const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
+    forEachNeighbour(in, row, [&](std::uint32_t o, core::Vec2 d) {
       const float dist = core::length(d);
       const float l = a.radius[row] + a.radius[o];
-      if (dist < 1e-6f || dist >= l) continue;
+      if (dist < 1e-6f || dist >= l) return;
       push -= d * (p.neighbourStrength * std::exp((l - dist) / p.neighbourRange) / dist);
-    }
+    });
     const float len = core::length(push);
     if (len < 1e-6f) return {};
     return push * (std::min(kMakeRoomSpeed, kMakeRoomGain * len) / len);
@@ -702,17 +709,12 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// this keeps a crush's overlaps to a few centimetres (docs/crowd-model.md).
   core::Vec2 contact(const ModelInput& in, std::size_t row, const AvmParams& p) const {
     const AgentStore& a = in.agents;
-    const core::Vec2 pos{a.posX[row], a.posY[row]};
     const core::Vec2 oi{a.oriX[row], a.oriY[row]};
-    const std::size_t k = in.desc.steering.maxNeighbours;
-    const std::uint32_t* nb = &a.neighbours[row * k];
     core::Vec2 out;
-    for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
-      const std::uint32_t o = nb[n];
-      const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
+    forEachNeighbour(in, row, [&](std::uint32_t o, core::Vec2 d) {
       const float l = a.radius[row] + a.radius[o];
       const float dist2 = core::lengthSq(d);
-      if (dist2 >= l * l) continue;
+      if (dist2 >= l * l) return;
       const float dist = std::sqrt(dist2);
       const core::Vec2 u = dist > 1e-6f ? d / dist : core::Vec2{a.id[row] < a.id[o] ? 1.0f : -1.0f, 0.0f};
       const float q = p.passageRatio;
@@ -724,7 +726,7 @@ class AnticipationVelocityModel final : public OperationalModel {
       };
       const float depth = 0.5f * (reach(oi, q) + reach({a.oriX[o], a.oriY[o]}, qo)) - dist;
       if (depth > kContactSlack) out -= u * (kContactShare * (depth - kContactSlack) / dt_);
-    }
+    });
     const float len = core::length(out);
     return len > kContactSpeed ? out * (kContactSpeed / len) : out;
   }
