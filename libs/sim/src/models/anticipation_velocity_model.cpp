@@ -210,7 +210,6 @@ class CrowdGrid {
     // Occupied cells are stored once (cells_), found through a dense index over the box while that
     // stays within kDenseCellsPerAgent cells an agent, else through an open-addressed table at most a
     // quarter full: memory and the per-tick reset follow the number of agents, not the world's size.
-    cells_.clear();
     dense_.clear();
     slots_.clear();
     const auto boxCells = static_cast<double>(nx_) * static_cast<double>(ny_) * nz_;
@@ -678,10 +677,10 @@ class AnticipationVelocityModel final : public OperationalModel {
     const float len = core::length(target);
     if (len < 1e-6f) return {};
     target = target / len;
-    // Turn over the reaction time from the direction i meant to walk a tick ago (newVel, this row's
-    // own output of the last tick), not from the displacement the navmesh let it make: pressed into a
-    // wall, the mesh slides it along the wall, and turning from that slide would make the slide its
-    // own cause (a walker beside a door slid 4 m along the wall away from it).
+    // Turn over the reaction time from the direction walked a tick ago, or, when that ran away from
+    // the desired direction, from the one i meant to walk (newVel, this row's own output of the last
+    // tick): pressed into a wall, the navmesh slides a walker along it, and turning from that slide
+    // made the slide its own cause (a walker beside a door slid 4 m along the wall away from it).
     core::Vec2 vel{a.velX[row], a.velY[row]};
     if (core::dot(vel, e0) < 0.0f) vel = {a.newVelX[row], a.newVelY[row]};
     const float speedNow = core::length(vel);
