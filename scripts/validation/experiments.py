@@ -159,7 +159,12 @@ def jam(ctx):
 # back to it (with slabs 5 cm inside the margin, 40-60 % of the agents at 2 /m² walked backwards
 # at some time). Their targets are snapped onto the navmesh (sim/goals.cpp).
 RING = {"r_in": 3.0, "r_out": 5.0, "slabs": 12, "densities": [0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0]}
-SINGLE_FILE = {"r_in": 3.74, "r_out": 4.54, "slabs": 16, "densities": [1.0, 1.5, 2.0]}
+# Single file: passing was prohibited in the experiment and people walked in line along the
+# corridor's middle, so its waypoints span the middle 0.2 m ("pad": 0.3 m from either wall). Spanning
+# the whole width, they drew every agent's next target anywhere across it, 1.6 m ahead: agents wove
+# from wall to wall and walked staggered, half a body aside, which no participant did
+# (docs/validation.md: 0.47 / 0.30 m/s at 1.5 / 2 /m with full-width waypoints, 0.40 / 0.21 with these).
+SINGLE_FILE = {"r_in": 3.74, "r_out": 4.54, "slabs": 16, "densities": [1.0, 1.5, 2.0], "pad": 0.3}
 SLAB_PAD = lambda r: 1.25 * r - 0.03  # noqa: E731  [m]
 RING_SPEED_TOL = 0.15
 BACKWARD_SPEED = -0.05   # a tangential speed below this is a backward sample [m/s]
@@ -183,7 +188,7 @@ def _ring_runs(ctx, label, geo, agents_of, size_of):
     for rho in geo["densities"]:
         n = agents_of(rho)
         scen = S.ring(geo["r_in"], geo["r_out"], n, warm + span, slabs=geo["slabs"], name=f"{label} {rho}",
-                      pad=SLAB_PAD(radius))
+                      pad=geo.get("pad", SLAB_PAD(radius)))
         # Above what `throng check` accepts in one wave, spawn in waves 1 s apart (docs/validation.md).
         per_wave = SPAWN_PACKING * S.ring_area(geo["r_in"], geo["r_out"]) / (math.pi * radius * radius)
         waves = max(1, math.ceil(n / (0.97 * per_wave)))

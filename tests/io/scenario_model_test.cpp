@@ -24,7 +24,7 @@ TEST(ScenarioModel, NoModelMeansTheCalibratedModelWithItsDefaults) {
   ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
   const sim::ModelDesc& m = r->desc.populations[0].model;
   EXPECT_EQ(m.kind, sim::ModelKind::AnticipationVelocity);
-  EXPECT_FLOAT_EQ(m.value("timeGap"), 0.58f);
+  EXPECT_FLOAT_EQ(m.value("timeGap"), 0.9f);
   EXPECT_FLOAT_EQ(m.value("passageRatio"), 0.65f);
 }
 

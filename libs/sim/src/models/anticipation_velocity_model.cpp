@@ -20,7 +20,9 @@
 // to i's right: the keep-right convention that makes counter-flows form lanes), ℓ_ij = r_i + r_j
 // and w_ij = (1 + cos φ_ij) / 2 weighs neighbours by the angle φ between e0 and the direction to j
 // (those behind are ignored); the sum of these sideways pushes is scaled by the room to a wall on
-// that side. Only when two discs already overlap does a push act along the line of centres, and
+// that side, and by the room beside j on that side: nobody swerves to pass someone where there is
+// no body width between them and the wall (a corridor too narrow to overtake is walked in line).
+// Only when two discs already overlap does a push act along the line of centres, and
 // backwards only when the ellipses (below) really interpenetrate or i has been wedged for half the
 // deadlock patience, so a queue does not walk backwards to make room. Walls push along their
 // normal as in the collision-free speed model (strength b, range D_w), never backwards. The walking
@@ -30,9 +32,14 @@
 // back along it (semi-axis passageRatio · r). The gap along the walking direction e to the first
 // body ahead — the distance i can walk before the two touch, s_ij = e·x_ij − q·ℓ_ij·sqrt(1 − (e × x_ij / ℓ_ij)²)
 // for |e × x_ij| < ℓ_ij, q the passage ratio — gives
-//   v_i = min(v0, max(0, s_i / T)),
+//   v_i = min(v0, max(0, min_j (s_ij − s0·f_ij) / (T·f_ij))),   f_ij = (1 − (e × x_ij / ℓ_ij)²)²,
 // the time-gap law of the collision-free speed model (Tordeux et al.'s (s − ℓ)/T, measured along
 // the walking direction, so a neighbour diagonally ahead blocks only as much as it really does).
+// Someone straight ahead (f = 1) is followed at the single-file headway d = ℓ_depth + s0 + T·v
+// (Seyfried et al. 2005: d = 0.36 + 1.06 v; kStandingGap); someone half a body to the side, whose
+// steps do not fall where i's do, is followed closer in time and space (the zipper of Hoogendoorn
+// and Daamen 2005: staggered walkers follow at shorter headways than those in line), which is what
+// lets the same law give the single-file and the two-dimensional corridor data (kStaggerExponent).
 // Cross and oncoming traffic (after Yamamoto et al. 2019 and Moussaïd et al. 2011; see the constants
 // below): two people whose desired directions are more than 60° apart turn their shoulders, so one
 // blocks the other only within passageRatio · ℓ of its walking line; a walker held below
@@ -70,7 +77,8 @@ constexpr std::string_view kCalibrated =
     "(docs/validation.md, scripts/validate.py)";
 constexpr std::string_view kWalls = "Tordeux et al. 2016; JuPedSim's collision-free speed model defaults";
 constexpr ModelParameter kParameters[] = {
-    {"timeGap", "s", 0.0, true, 10.0, false, 0.58f, "time gap T kept to the person ahead", kCalibrated},
+    {"timeGap", "s", 0.0, true, 10.0, false, 0.9f, "time gap T kept to the person straight ahead (shorter to someone half a body aside)",
+     "Seyfried et al. 2005 single file (1.06 s), calibrated with the Juelich corridor uo-145-180-180 (docs/validation.md)"},
     {"anticipationTime", "s", 0.0, false, 10.0, false, 0.5f, "how far ahead t_a neighbours' paths are anticipated", kCalibrated},
     {"reactionTime", "s", 0.0, true, 10.0, false, 0.1f, "time τ over which the walking direction turns", kCalibrated},
     {"neighbourStrength", "1", 0.0, false, 100.0, false, 4.0f, "strength a of the sideways push from neighbours", kCalibrated},
@@ -98,7 +106,7 @@ enum Parameter : std::size_t {
 };
 
 struct AvmParams {
-  float timeGap = 0.58f;           ///< T [s]
+  float timeGap = 0.9f;            ///< T [s]
   float anticipationTime = 0.5f;   ///< t_a [s]
   float reactionTime = 0.1f;       ///< τ [s]
   float neighbourStrength = 4.0f;  ///< a [1]
@@ -179,6 +187,21 @@ constexpr float kOrderedShare = 0.6f;
 constexpr float kContactSlack = 0.01f;
 constexpr float kContactSpeed = 1.0f;
 constexpr float kContactShare = 0.5f;
+/// The time-gap law's weight of a neighbour at lateral offset y (in units of ℓ_ij) ahead:
+/// f = (1 − y²)^kStaggerExponent, 1 straight ahead, falling to 0 at the edge of the shoulder band.
+/// A neighbour half a body aside (y = 0.5) is followed at 0.56 of the headway of one in line: the
+/// zipper (Hoogendoorn, Daamen 2005, "Pedestrian behavior at bottlenecks", Transp. Sci. 39: walkers
+/// in staggered lanes follow closer than in one line). 2 measured on the harness (docs/validation.md):
+/// 1 keeps the corridor's dense classes too slow, 3 the single file too fast.
+constexpr float kStaggerExponent = 2.0f;
+/// The extra distance kept to the person straight ahead, over the two bodies' depth [m]: Seyfried,
+/// Steffen, Klingsch, Boltes 2005 (J. Stat. Mech. P10002) measured people in single file standing
+/// 0.36 m apart (centre to centre), against the ellipses' 0.26 m at the default body.
+constexpr float kStandingGap = 0.1f;
+/// Swerving to pass someone ahead needs this many body widths between them and the wall on that
+/// side (kPassRamp more for the full push): in a corridor too narrow to overtake people walk in line.
+constexpr float kPassWidths = 1.0f;
+constexpr float kPassRamp = 0.1f;  ///< [m]
 /// Floors of a multi-level world are told apart in bins of this height [m] (a storey is 2.5–4 m).
 constexpr float kCrowdStorey = 2.5f;
 
@@ -528,9 +551,23 @@ class AnticipationVelocityModel final : public OperationalModel {
       // unless they are already well to the right; that is how counter-flows form lanes.
       const bool oncoming = core::dot(core::Vec2{a.velX[o], a.velY[o]}, e0) < 0.0f;
       const float threshold = oncoming ? l : 0.0f;
-      sideways += lateral > threshold ? -strength * roomLeft : strength * roomRight;
+      const bool toLeft = lateral > threshold;
+      float push = strength * (toLeft ? -roomLeft : roomRight);
+      if (std::abs(push) > 1e-3f) push *= roomToPass(in, ws, o, toLeft ? -side : side, a.radius[row]);
+      sideways += push;
     }
     return dir + side * sideways;
+  }
+
+  /// Whether there is room to pass neighbour o on its side `dir` (a unit vector across i's desired
+  /// direction): 1 when the wall on that side is at least kPassWidths · 2r_i + kPassRamp beyond o's
+  /// shoulder, 0 when it is within kPassWidths · 2r_i, linear between. Only the walls near i are
+  /// looked at (ws.wallIds, about a metre round i): the push of a neighbour further off is negligible.
+  static float roomToPass(const ModelInput& in, const AvmScratch& ws, std::uint32_t o, core::Vec2 dir, float radius) {
+    const AgentStore& a = in.agents;
+    const float need = kPassWidths * 2.0f * radius;
+    const float beside = room(in, ws, core::Vec2{a.posX[o], a.posY[o]}, dir, a.radius[o] + need + kPassRamp) - a.radius[o];
+    return std::clamp((beside - need) / kPassRamp, 0.0f, 1.0f);
   }
 
   /// How far i can step from pos along the unit vector dir before a wall of ws.wallIds [m], at most `reach`.
@@ -634,7 +671,8 @@ class AnticipationVelocityModel final : public OperationalModel {
     return push * (std::min(kMakeRoomSpeed, kMakeRoomGain * len) / len);
   }
 
-  /// The gap i can walk along e before touching the first body ahead [m] (v0·T when none).
+  /// The gap i can walk along e before touching the first body ahead [m], as the gap to someone
+  /// straight ahead that asks the same speed (kStaggerExponent, kStandingGap), at most `limit` (v0·T).
   float gapAhead(const ModelInput& in, std::size_t row, core::Vec2 e, float limit, float depthRatio,
                         std::int64_t* blocker = nullptr) const {
     const AgentStore& a = in.agents;
@@ -657,8 +695,13 @@ class AnticipationVelocityModel final : public OperationalModel {
       if (a.mode[o] != AgentMode::Walking && nearTarget) continue;  // squeezing in beside someone standing at one's spot
       // Bodies are ellipses, shoulders across the walking direction (semi-axis r) and chest to back
       // along it (depthRatio · r): two touch at this distance along e.
+      // As a gap at the time gap of someone straight ahead: (s − s0·f) / f, f the stagger weight.
       const float y = lateral / l;
-      const float g = std::max(0.0f, ahead - depthRatio * l * std::sqrt(1.0f - y * y));
+      const float across = 1.0f - y * y;
+      static_assert(kStaggerExponent == 2.0f, "f below is (1 - y^2)^2");
+      const float f = across * across;
+      if (f < 1e-6f) continue;
+      const float g = std::max(0.0f, ahead - depthRatio * l * std::sqrt(across) - kStandingGap * f) / f;
       if (g < gap) {
         gap = g;
         if (blocker != nullptr) *blocker = o;
