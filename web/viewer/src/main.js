@@ -144,7 +144,7 @@ source.on('status', (s) => banner.show(s));
 // everything built from the old one goes, so the page starts again.
 source.on('worldChanged', () => globalThis.location.reload());
 const recordings = source.kind === 'live' ? new RecordingsPanel({ row: $('recordings-row'), list: $('rec-list'),
-  open: $('rec-open'), upload: $('rec-upload'), status: $('rec-status') }) : null;
+  open: $('rec-open'), upload: $('rec-upload'), status: $('rec-status'), live: $('rec-live') }) : null;
 if (recordings) recordings.refresh();
 source.on('frame', (f) => {
   state.applyFrame(f, performance.now() / 1000);
