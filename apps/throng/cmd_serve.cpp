@@ -112,8 +112,9 @@ constexpr const char* kServeFooter =
       "recording, at most --max-upload MiB) and opens one (POST /api/recordings/open {\"name\": FILE}). Opening\n"
       "switches what this server plays for every viewer, as the replay timeline is shared: each client is told\n"
       "\"switching to recording FILE\" and closed, and the viewer reconnects and shows the new recording.\n"
-      "Only plain .sqlite names directly in DIR are read (no paths, no links out of DIR). Going back to a\n"
-      "live scenario takes a restart.";
+      "Only plain .sqlite names directly in DIR are read (no paths, no links out of DIR). When the server was\n"
+      "started with a scenario, POST /api/recordings/live (the viewer's Live button) plays it again, from its\n"
+      "start, for every viewer.";
 
 CLI::App* addServeCommand(CLI::App& app, ServeOptions& options) {
   CLI::App* cmd = app.add_subcommand("serve", "Serve a live crowd into a shared world (HTTP, WebSocket, UDP)");
@@ -174,6 +175,8 @@ int runServe(const ServeOptions& options) {
   if (!openRecordings(options, recordings)) return kExitFailure;
   std::optional<Served> served = openServed(options, options.scenario);
   if (!served) return kExitFailure;
+  // A scenario (not a recording) served first is the live world a viewer can go back to.
+  if (recordings && !served->replay) recordings->setLive(fs::path(options.scenario).filename().string());
   Bridge bridge(Clock::now());
   auto session = std::make_unique<Session>(options, std::move(*served), options.scenario, bridge, recordings.get());
   bridge.setHub(&session->hub);

@@ -12,6 +12,7 @@ namespace {
 
 constexpr std::string_view kList = "/api/recordings";
 constexpr std::string_view kOpen = "/api/recordings/open";
+constexpr std::string_view kLive = "/api/recordings/live";
 constexpr auto kUploadLimit = std::chrono::seconds(120);  ///< wall-clock limit of one upload's check
 
 transport::HttpResponse json(unsigned status, const nlohmann::json& body) {
@@ -38,6 +39,7 @@ std::optional<transport::HttpResponse> RecordingRoutes::get(std::string_view tar
   std::lock_guard lock(mutex_);
   return json(200, {{"dir", dir_.path().string()},
                     {"playing", playing_.empty() ? nlohmann::json(nullptr) : nlohmann::json(playing_)},
+                    {"live", live_.empty() ? nlohmann::json(nullptr) : nlohmann::json(live_)},
                     {"maxUploadBytes", maxUpload_},
                     {"recordings", std::move(list)}});
 }
@@ -46,6 +48,10 @@ bool RecordingRoutes::post(transport::HttpRequest& request, const transport::Htt
   const std::string_view path = transport::targetPath(request.target);
   if (path == kOpen) {
     open(request, responder);
+    return true;
+  }
+  if (path == kLive) {
+    live(responder);
     return true;
   }
   if (path == kList) {
@@ -87,14 +93,39 @@ void RecordingRoutes::open(const transport::HttpRequest& request, const transpor
     responder.respond(jsonError(404, path.errors().front().format()));
     return;
   }
+  queue(OpenRequest{name, path.value(), responder});
+}
+
+void RecordingRoutes::live(const transport::HttpResponder& responder) {
+  std::string name;
+  bool playingLive = false;
+  {
+    std::lock_guard lock(mutex_);
+    name = live_;
+    playingLive = playing_.empty();
+  }
+  if (name.empty()) {
+    responder.respond(jsonError(409, "this server was started with a recording: there is no live scenario to go back to "
+                                     "(throng serve SCENARIO --recordings DIR has one)"));
+    return;
+  }
+  if (playingLive) {
+    responder.respond(jsonError(409, "the live scenario " + name + " is already playing"));
+    return;
+  }
+  queue(OpenRequest{name, {}, responder, true});
+}
+
+void RecordingRoutes::queue(OpenRequest request) {
+  const std::string what = request.live ? "the live scenario" : request.name;
   std::optional<OpenRequest> replaced;
   {
     std::lock_guard lock(mutex_);
     replaced = std::move(open_);
-    open_ = OpenRequest{name, path.value(), responder};
+    open_ = std::move(request);
     pending_.store(true, std::memory_order_release);
   }
-  if (replaced) replaced->responder.respond(jsonError(409, "superseded: another viewer opened " + name));
+  if (replaced) replaced->responder.respond(jsonError(409, "superseded: another viewer opened " + what));
 }
 
 std::optional<OpenRequest> RecordingRoutes::takeOpen() {
@@ -108,6 +139,11 @@ std::optional<OpenRequest> RecordingRoutes::takeOpen() {
 void RecordingRoutes::setPlaying(std::string name) {
   std::lock_guard lock(mutex_);
   playing_ = std::move(name);
+}
+
+void RecordingRoutes::setLive(std::string name) {
+  std::lock_guard lock(mutex_);
+  live_ = std::move(name);
 }
 
 void RecordingRoutes::stop() {

@@ -30,11 +30,13 @@ transport::HttpResponse noRecordings() {
   return jsonError(404, "this server has no recordings directory (throng serve --recordings DIR)");
 }
 
-/// Replaces `session` by one playing the recording a viewer asked for; on failure the old one goes
-/// on. Answers the request either way. Every client of the old one is told why and closed: its
-/// viewer reconnects and, finding another world, reloads itself (docs/viewer.md).
+/// Replaces `session` by one playing the recording a viewer asked for, or the live scenario the
+/// server was started with (from its start: the live world that was left is not kept); on failure
+/// the old one goes on. Answers the request either way. Every client of the old one is told why and
+/// closed: its viewer reconnects and, finding another world, reloads itself (docs/viewer.md).
 void switchRecording(const ServeOptions& options, OpenRequest request, std::unique_ptr<Session>& session,
                      Bridge& bridge, Router& router, RecordingRoutes& recordings) {
+  if (request.live) request.path = options.scenario;
   std::optional<Served> next = openServed(options, request.path.string());
   if (!next) {
     request.responder.respond(
@@ -43,15 +45,19 @@ void switchRecording(const ServeOptions& options, OpenRequest request, std::uniq
   }
   bridge.setHub(nullptr);
   router.set(nullptr);
-  session->close("switching to recording " + request.name);
+  session->close(request.live ? "switching to the live scenario " + request.name : "switching to recording " + request.name);
   session.reset();
   session = std::make_unique<Session>(options, std::move(*next), request.path.string(), bridge, &recordings);
   bridge.setHub(&session->hub);
   router.set(session.get());
-  recordings.setPlaying(request.name);
+  recordings.setPlaying(request.live ? std::string() : request.name);
   request.responder.respond(transport::HttpResponse{
-      200, "application/json", dumpJson({{"opened", request.name}, {"server", session->hubOptions.serverName}}), {}});
-  if (!options.quiet) printLine(stdout, "throng serve: now playing " + request.name);
+      200, "application/json",
+      dumpJson({{"opened", request.live ? nlohmann::json(nullptr) : nlohmann::json(request.name)},
+                {"live", request.live},
+                {"server", session->hubOptions.serverName}}),
+      {}});
+  if (!options.quiet) printLine(stdout, request.live ? "throng serve: live again, " + request.name : "throng serve: now playing " + request.name);
 }
 
 }  // namespace

@@ -329,6 +329,36 @@ TEST(Serve, ParticipantsAreAnnouncedToEveryone) {
   EXPECT_TRUE(b->participants().empty());
 }
 
+TEST(Serve, AParticipantsLookIsRelayedToOtherClients) {
+  Server server;
+  auto a = open(server.options("a"));
+  auto b = open(server.options("b"));
+  ASSERT_TRUE(a && b);
+  auto alice = a->join("alice", 3);  // look 3: the browser viewer's "green top"
+  ASSERT_TRUE(alice.ok());
+  pumpFor({a.get(), b.get()}, 300ms);
+  ASSERT_EQ(b->present().size(), 1u);
+  EXPECT_EQ(b->present().front().id, alice.value().participantId);
+  EXPECT_EQ(b->present().front().name, "alice");
+  EXPECT_EQ(b->present().front().avatar, std::optional<std::uint16_t>(3));
+  EXPECT_EQ(b->avatarOf(alice.value().participantId), std::optional<std::uint16_t>(3));
+  // A client that comes later is told the look of those already present; the default look is 0, not "unknown".
+  auto bob = b->join("bob");
+  ASSERT_TRUE(bob.ok());
+  auto c = open(server.options("c"));
+  ASSERT_TRUE(c);
+  pumpFor({a.get(), b.get(), c.get()}, 300ms);
+  EXPECT_EQ(c->avatarOf(alice.value().participantId), std::optional<std::uint16_t>(3));
+  EXPECT_EQ(c->avatarOf(bob.value().participantId), std::optional<std::uint16_t>(0));
+  EXPECT_EQ(a->avatarOf(bob.value().participantId), std::optional<std::uint16_t>(0));
+  EXPECT_EQ(c->present().size(), 2u);
+  // Gone: no look.
+  a->close();
+  pumpFor({b.get(), c.get()}, 300ms);
+  EXPECT_EQ(c->avatarOf(alice.value().participantId), std::nullopt);
+  EXPECT_EQ(c->present().size(), 1u);
+}
+
 TEST(Serve, PlaysARecordingBackWithASharedTimeline) {
   ScratchDir dir("replay");
   const CliResult run = runThrong({"run", std::string(THRONG_SOURCE_DIR) + "/scenarios/museum.json", "--duration", "20",

@@ -102,6 +102,7 @@ struct Session::Impl {
   std::optional<protocol::Joined> joined;
   std::optional<protocol::ReplayStatus> replayStatus;
   std::vector<std::pair<std::uint32_t, std::string>> participants;
+  std::vector<Participant> present;  ///< the same, with their looks
   SessionStats stats;
   bool isOpen = true;
   std::string closeReason;
@@ -173,7 +174,11 @@ struct Session::Impl {
       replayStatus = *rs;
     } else if (auto* p = std::get_if<protocol::Presence>(&m)) {
       std::erase_if(participants, [&](const auto& e) { return e.first == p->participantId; });
-      if (p->present) participants.emplace_back(p->participantId, p->name);
+      std::erase_if(present, [&](const Participant& e) { return e.id == p->participantId; });
+      if (p->present) {
+        participants.emplace_back(p->participantId, p->name);
+        present.push_back(Participant{p->participantId, p->name, p->avatar});
+      }
     } else if (auto* bye = std::get_if<protocol::Bye>(&m)) {
       isOpen = false;
       closeReason = bye->text;
@@ -278,8 +283,8 @@ core::Result<std::unique_ptr<Session>> Session::open(const SessionOptions& optio
 const protocol::Welcome& Session::welcome() const { return impl_->welcome; }
 const std::string& Session::worldJson() const { return impl_->world; }
 
-core::Result<protocol::Joined> Session::join(const std::string& name) {
-  if (auto s = impl_->send(protocol::encode(protocol::Join{name, 0})); !s.ok()) return std::move(s).takeErrors();
+core::Result<protocol::Joined> Session::join(const std::string& name, std::uint16_t avatar) {
+  if (auto s = impl_->send(protocol::encode(protocol::Join{name, avatar})); !s.ok()) return std::move(s).takeErrors();
   const auto deadline = Clock::now() + impl_->options.timeout;
   while (!impl_->joined && impl_->isOpen && Clock::now() < deadline) impl_->pump(std::chrono::milliseconds(20));
   if (!impl_->joined) {
@@ -332,6 +337,13 @@ std::vector<protocol::CrowdResult>& Session::crowdResults() { return impl_->crow
 
 const std::optional<protocol::ReplayStatus>& Session::replayStatus() const { return impl_->replayStatus; }
 const std::vector<std::pair<std::uint32_t, std::string>>& Session::participants() const { return impl_->participants; }
+const std::vector<Participant>& Session::present() const { return impl_->present; }
+std::optional<std::uint16_t> Session::avatarOf(std::uint32_t participantId) const {
+  for (const Participant& p : impl_->present) {
+    if (p.id == participantId) return p.avatar;
+  }
+  return std::nullopt;
+}
 
 bool Session::pump(std::chrono::milliseconds wait) { return impl_->pump(wait); }
 const std::optional<protocol::DecodedCrowdFrame>& Session::crowd() const { return impl_->crowd; }

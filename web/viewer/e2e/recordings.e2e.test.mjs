@@ -83,6 +83,13 @@ test('viewer lists, uploads and opens recordings (throng serve --recordings)', {
     }
     const answer = await (await fetch(`${server.url}api/recordings`)).json();
     assert.equal(answer.playing, 'my_bottleneck.sqlite');
+    // Started with a recording, the server has no live scenario to go back to: no Live button, and
+    // POST /api/recordings/live is refused (live.e2e.test.mjs has one).
+    assert.equal(answer.live, null);
+    assert.ok(await page.$eval('#rec-live', (b) => b.classList.contains('hidden')), 'no Live button');
+    const noLive = await fetch(`${server.url}api/recordings/live`, { method: 'POST' });
+    assert.equal(noLive.status, 409);
+    assert.match((await noLive.json()).error, /started with a recording: there is no live scenario/);
     // The page's list marks it as playing.
     await page.waitForSelector('#recordings-row:not(.hidden)', { timeout: 10000 });
     const marked = await page.$$eval('#rec-list option', (os) => os.map((o) => o.textContent));

@@ -25,9 +25,11 @@ function changedByPart(page, name) {
   return page.evaluate((name) => {
     const t = globalThis.__throng;
     const part = t.worldPart(name);
-    const on = t.pixels(4).grey;
+    // Every second pixel: the plan view's walls are lines a pixel or two wide, which a coarser grid
+    // catches or misses by where they fall (every 4th pixel saw 0.16 % of the museum's, every 2nd 0.59 %).
+    const on = t.pixels(2).grey;
     part.visible = false;
-    const off = t.pixels(4).grey;
+    const off = t.pixels(2).grey;
     part.visible = true;
     let changed = 0;
     for (let i = 0; i < on.length; ++i) if (Math.abs(on[i] - off[i]) > 6) ++changed;

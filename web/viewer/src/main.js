@@ -78,6 +78,26 @@ addEventListener('resize', () => {
   if (cameras) cameras.resize(innerWidth / innerHeight);
   renderer.setSize(innerWidth, innerHeight);
 });
+/** The panels that stay on screen over the canvas (HUD, controls, legend, measurements, timeline):
+ * their screen rectangles [px], those shown. Fit frames the world in the part they leave free
+ * (camera/framing.js); the agent panel and the help come and go, and are left out. */
+const kFramePanels = ['hud', 'controls', 'legend', 'measure', 'timeline'];
+function panelRects() {
+  return kFramePanels.map((id) => $(id).getBoundingClientRect()).filter((r) => r.width > 0 && r.height > 0)
+    .map((r) => ({ left: r.left, top: r.top, right: r.right, bottom: r.bottom }));
+}
+/** The panels grow and shrink after the world arrives (the group list, the recordings row, the
+ * legend folding, the timeline of a replay): checked four times a second, and a camera that still
+ * shows the world as Fit framed it is framed again when they moved. */
+let panelKey = '', panelCheckAt = 0;
+function refitForPanels(nowMs) {
+  if (!cameras || nowMs < panelCheckAt) return;
+  panelCheckAt = nowMs + 250;
+  const key = panelRects().map((r) => [r.left, r.top, r.right, r.bottom].map(Math.round).join(',')).join(';');
+  if (key === panelKey) return;
+  panelKey = key;
+  cameras.refit();
+}
 /** The camera drawing now: the plan view's orthographic one, or the perspective one. */
 const view = () => (cameras ? cameras.camera : camera);
 if (shot) for (const id of ['hud', 'controls']) $(id).classList.add('hidden');
@@ -124,7 +144,7 @@ source.on('status', (s) => banner.show(s));
 // everything built from the old one goes, so the page starts again.
 source.on('worldChanged', () => globalThis.location.reload());
 const recordings = source.kind === 'live' ? new RecordingsPanel({ row: $('recordings-row'), list: $('rec-list'),
-  open: $('rec-open'), upload: $('rec-upload'), status: $('rec-status') }) : null;
+  open: $('rec-open'), upload: $('rec-upload'), status: $('rec-status'), live: $('rec-live') }) : null;
 if (recordings) recordings.refresh();
 source.on('frame', (f) => {
   state.applyFrame(f, performance.now() / 1000);
@@ -177,7 +197,7 @@ source.on('world', async (w) => {
   setColourMode(kColourModes.includes(colourParam) ? colourParam : 'group');
   const camParam = params.get('camera');
   cameras = new Cameras(camera, renderer.domElement, bounds, (w.scenario || {}).terrain || null,
-    ['plan', 'orbit', 'walk'].includes(camParam) ? camParam : null);
+    ['plan', 'orbit', 'walk'].includes(camParam) ? camParam : null, panelRects);
   setMode(cameras.mode);
   $('lod-toggle').checked = lodOn;
   groupList.setGroups(w.groups || []);
@@ -205,7 +225,7 @@ function loadModel() {
 /** What scripts and the tests reach through window.__throng: the parts, and screen helpers. */
 function testHooks(w) {
   return {
-    cameras, crowd, state, get camera() { return view(); }, source, legend, help, hud, setColourMode, recordings,
+    cameras, crowd, state, get camera() { return view(); }, source, panelRects, legend, help, hud, setColourMode, recordings,
     get trails() { return trails; }, get heatmap() { return heatmap; }, setHeatmapMethod, get measurements() { return measurements; }, get speedmap() { return speedmap; }, get markers() { return markers; }, selfColour: kSelfColour,
     renderer, exporter, description: w, others, groupList, remoteJoints, gesture, setLook,
     get look() { return lookIndex; },
@@ -544,6 +564,7 @@ function frame() {
   last = nowMs;
   if (!crowd) { renderer.render(scene, view()); return; }
   const dt = Math.min(frameMs / 1000, 0.1);
+  refitForPanels(nowMs);
   cameras.update(dt);
   showMode();
   state.advance(nowMs / 1000);

@@ -2,7 +2,9 @@
 // pans, the wheel zooms at the pointer); the default for a single-level world wider than
 // kPlanDefaultSpan, where an oblique camera leaves most bodies a few pixels high. Orbit: three's
 // OrbitControls around the world (drag rotate, wheel zoom, right-drag pan). fit() frames the whole
-// world in the plan or orbit camera; follow(fn) keeps the plan or orbit camera centred on what fn
+// world in the plan or orbit camera, in the part of the viewport the panels leave free (framing.js);
+// until the person moves that camera, refit() frames it again when the panels or the window change;
+// follow(fn) keeps the plan or orbit camera centred on what fn
 // returns each frame (a selected agent, a group's centre) until it returns null. Walk: the camera follows behind the local avatar, which W/S or ↑/↓ move forward/back,
 // A/D or ←/→ turn, Q/E strafe (Shift runs); dragging the mouse turns. The avatar is the viewer's
 // own walking position (world x, y [m], yaw [rad]); once joined, main.js sends it as Move.
@@ -12,6 +14,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { terrainHeightAt, stepOnTerrain } from '../world/terrain.js';
+import { freeRect, planFrame } from './framing.js';
 
 export const kPlanDefaultSpan = 40;  // [m] a flat world wider or deeper than this opens in plan view
 export const kModes = ['plan', 'orbit', 'walk'];
@@ -23,17 +26,16 @@ export function defaultMode(bounds, terrain) {
   return !terrain && span > kPlanDefaultSpan ? 'plan' : 'orbit';
 }
 
-/** Orthographic frustum half-sizes {halfW, halfH} [m] that show the box (spanX × spanY) whole in a
- * viewport of `aspect` (width / height), with `margin` (0.06: 6 % on each side). */
-export function planFrustum(spanX, spanY, aspect, margin = 0.06) {
-  const halfH = Math.max(spanY / 2, spanX / 2 / aspect, 2) * (1 + 2 * margin);
-  return { halfW: halfH * aspect, halfH };
-}
+/** Height [m] above the highest floor that the orbit fit keeps in view (bodies, walls, blocks). */
+export const kFitHeadroom = 2;
+const kFitMargin = 0.06;  // of the free rectangle, on each side
 
 export class Cameras {
   /** `camera`: the perspective camera (orbit, walk); `bounds`: worldBounds(scenario); `terrain`:
-   * scenario.terrain, or null in a flat world; `mode`: the first mode (defaultMode when omitted). */
-  constructor(camera, dom, bounds, terrain = null, mode = null) {
+   * scenario.terrain, or null in a flat world; `mode`: the first mode (defaultMode when omitted);
+   * `panels`: returns the screen rectangles [px] ({left, top, right, bottom}) of the panels over
+   * the canvas, which fit() keeps the world clear of. */
+  constructor(camera, dom, bounds, terrain = null, mode = null, panels = () => []) {
     this.perspective = camera;
     this.dom = dom;
     this.orbit = new OrbitControls(camera, dom);
@@ -49,6 +51,11 @@ export class Cameras {
     this.bounds = bounds;
     this.terrain = terrain && Array.isArray(terrain.vertices) && Array.isArray(terrain.walkable) ? terrain : null;
     this.following = null;
+    this.panels = panels;
+    // Which cameras show the world as fit() framed it (until the person moves them): refit() reframes those.
+    this.fitted = { plan: false, orbit: false };
+    this.plan.addEventListener('start', () => { this.fitted.plan = false; });
+    this.orbit.addEventListener('start', () => { this.fitted.orbit = false; });
     this.fit('plan');
     this.fit('orbit');
     this.avatar = { x: cx, y: cy, z: 0, yaw: Math.PI / 2, moving: false, speed: 0, onTerrain: false };
@@ -77,43 +84,119 @@ export class Cameras {
   /** The next mode after the current one (plan → orbit → walk → plan). */
   nextMode() { return kModes[(kModes.indexOf(this.mode) + 1) % kModes.length]; }
 
+  /** Viewport size [px]. */
+  viewport() {
+    return this.dom.clientWidth && this.dom.clientHeight ? { w: this.dom.clientWidth, h: this.dom.clientHeight } : { w: innerWidth, h: innerHeight };
+  }
+
   /** Frames the whole world in the plan camera ('plan') or the orbit camera ('orbit'); the current
-   * mode's camera when `which` is omitted (walk: none). */
+   * mode's camera when `which` is omitted (walk: none). The world is drawn as large as fits in the
+   * part of the viewport the panels leave free (framing.js freeRect), centred there, with 6 % of
+   * that rectangle's size free on each side. */
   fit(which = this.mode) {
     const b = this.bounds;
     const cx = (b.minX + b.maxX) / 2, cy = (b.minY + b.maxY) / 2;
     const minZ = b.minZ ?? 0, maxZ = b.maxZ ?? 0;
-    const aspect = this.dom.clientWidth && this.dom.clientHeight ? this.dom.clientWidth / this.dom.clientHeight : innerWidth / innerHeight;
+    const { w, h } = this.viewport();
     if (which === 'plan') {
-      const { halfW, halfH } = planFrustum(b.maxX - b.minX, b.maxY - b.minY, aspect);
-      Object.assign(this.ortho, { left: -halfW, right: halfW, top: halfH, bottom: -halfH, zoom: 1 });
-      this.ortho.position.set(cx, maxZ + 200, -cy);
-      this.plan.target.set(cx, minZ, -cy);
+      const spanX = b.maxX - b.minX, spanY = b.maxY - b.minY;
+      const rect = freeRect(w, h, this.panels(), Math.max(spanX, 4) / Math.max(spanY, 4));
+      const f = planFrame(spanX, spanY, w, h, rect, kFitMargin);
+      Object.assign(this.ortho, { left: -f.halfW, right: f.halfW, top: f.halfH, bottom: -f.halfH, zoom: 1 });
+      this.ortho.position.set(cx + f.dx, maxZ + 200, -(cy + f.dy));
+      this.plan.target.set(cx + f.dx, minZ, -(cy + f.dy));
       this.ortho.updateProjectionMatrix();
       this.plan.update();
+      this.fitted.plan = true;
     } else if (which === 'orbit') {
-      // From the south, 50° above the horizon, far enough that the world's bounding sphere fits.
-      const r = Math.max(Math.hypot(b.maxX - b.minX, b.maxY - b.minY, maxZ - minZ) / 2, 5);
-      const fov = THREE.MathUtils.degToRad(this.perspective.fov);
-      const d = r / Math.sin(Math.min(fov, fov * aspect) / 2) * 0.8;
-      const el = THREE.MathUtils.degToRad(50);
-      const cz = (minZ + maxZ) / 2;
-      this.orbit.target.set(cx, cz, -cy);
-      this.perspective.position.set(cx, cz + d * Math.sin(el), -cy + d * Math.cos(el));
-      this.orbit.update();
+      this.fitOrbit(w, h);
+      this.fitted.orbit = true;
     }
   }
 
-  /** Viewport resized: the plan camera keeps its height in metres and widens or narrows. */
+  /** The world's bounding box (up to kFitHeadroom above its highest floor) in the orbit camera:
+   * from the south, 50° above the horizon, as large as fits in the free rectangle and centred in
+   * it. A perspective picture's size is not linear in the distance, so the distance and the
+   * sideways shift are found by iteration: project the box's corners, scale the distance by how
+   * much too large or small their screen box is, shift by how far off centre it is. */
+  fitOrbit(w, h) {
+    const b = this.bounds;
+    const minZ = b.minZ ?? 0, maxZ = (b.maxZ ?? 0) + kFitHeadroom;
+    const cam = this.perspective;
+    cam.aspect = w / h;
+    cam.updateProjectionMatrix();
+    const corners = [];
+    for (const x of [b.minX, b.maxX]) for (const y of [b.minY, b.maxY]) for (const z of [minZ, maxZ]) corners.push(new THREE.Vector3(x, z, -y));
+    const el = THREE.MathUtils.degToRad(50);
+    const dir = new THREE.Vector3(0, Math.sin(el), Math.cos(el));
+    const target = new THREE.Vector3((b.minX + b.maxX) / 2, (minZ + maxZ) / 2, -(b.minY + b.maxY) / 2);
+    const r = Math.max(Math.hypot(b.maxX - b.minX, b.maxY - b.minY, maxZ - minZ) / 2, 5);
+    const fov = THREE.MathUtils.degToRad(cam.fov);
+    let d = r / Math.sin(Math.min(fov, 2 * Math.atan(Math.tan(fov / 2) * cam.aspect)) / 2);
+    const v = new THREE.Vector3();
+    const place = () => { cam.position.copy(target).addScaledVector(dir, d); cam.lookAt(target); cam.updateMatrixWorld(); };
+    const screenBox = () => {
+      let l = Infinity, t = Infinity, rr = -Infinity, bb = -Infinity;
+      for (const c of corners) {
+        v.copy(c).applyMatrix4(cam.matrixWorldInverse);
+        if (v.z > -cam.near) return null;  // behind the camera
+        v.applyMatrix4(cam.projectionMatrix);
+        const x = (v.x + 1) / 2 * w, y = (1 - v.y) / 2 * h;
+        l = Math.min(l, x); rr = Math.max(rr, x); t = Math.min(t, y); bb = Math.max(bb, y);
+      }
+      return { left: l, top: t, right: rr, bottom: bb };
+    };
+    place();
+    const first = screenBox();
+    const rect = freeRect(w, h, this.panels(), first ? (first.right - first.left) / Math.max(first.bottom - first.top, 1) : 1);
+    const mx = (rect.right - rect.left) * kFitMargin, my = (rect.bottom - rect.top) * kFitMargin;
+    const inner = { left: rect.left + mx, top: rect.top + my, right: rect.right - mx, bottom: rect.bottom - my };
+    const right = new THREE.Vector3(), up = new THREE.Vector3();
+    for (let k = 0; k < 60; ++k) {
+      const s = screenBox();
+      if (!s) { d *= 1.5; place(); continue; }
+      const grow = Math.max((s.right - s.left) / (inner.right - inner.left), (s.bottom - s.top) / (inner.bottom - inner.top));
+      const dx = (s.left + s.right - inner.left - inner.right) / 2, dy = (s.top + s.bottom - inner.top - inner.bottom) / 2;
+      if (Math.abs(grow - 1) < 0.002 && Math.abs(dx) < 0.5 && Math.abs(dy) < 0.5) break;
+      const mpp = 2 * d * Math.tan(fov / 2) / h;  // metres per pixel at the target's distance
+      right.setFromMatrixColumn(cam.matrixWorld, 0);
+      up.setFromMatrixColumn(cam.matrixWorld, 1);
+      target.addScaledVector(right, dx * mpp).addScaledVector(up, -dy * mpp);
+      d *= 1 + (grow - 1) * 0.8;
+      place();
+    }
+    // Never larger than the rectangle: the last steps may leave it a pixel over.
+    for (let k = 0; k < 50; ++k) {
+      const s = screenBox();
+      if (s && s.left >= rect.left && s.right <= rect.right && s.top >= rect.top && s.bottom <= rect.bottom) break;
+      d *= 1.02;
+      place();
+    }
+    this.orbit.target.copy(target);
+    this.orbit.update();
+  }
+
+  /** Frames again each camera that still shows the world as fit() left it (the panels or the
+   * window changed: the free part of the viewport moved). */
+  refit() {
+    for (const which of ['plan', 'orbit']) if (this.fitted[which]) this.fit(which);
+  }
+
+  /** Viewport resized: the plan camera keeps its height in metres and widens or narrows; a camera
+   * still as fit() framed it is framed again. */
   resize(aspect) {
     const halfH = this.ortho.top;
     Object.assign(this.ortho, { left: -halfH * aspect, right: halfH * aspect });
     this.ortho.updateProjectionMatrix();
+    this.refit();
   }
 
   /** Keeps the plan or orbit camera centred on `fn()` (world {x, y, z} [m]) each frame until it
    * returns null; follow(null) stops. */
-  follow(fn) { this.following = fn; }
+  follow(fn) {
+    this.following = fn;
+    if (fn) this.fitted.plan = this.fitted.orbit = false;
+  }
 
   /** Moves the current controls' target (and the camera with it) onto the followed point. */
   applyFollow() {
@@ -156,6 +239,7 @@ export class Cameras {
     this.applyFollow();
     if (this.mode === 'orbit') { this.orbit.update(); this.avatar.moving = false; return; }
     if (this.mode === 'plan') { this.plan.update(); this.avatar.moving = false; return; }
+    this.fitted.orbit = false;  // the walk camera moves the perspective camera the orbit view shares
     const k = this.keys;
     const run = k.has('ShiftLeft') || k.has('ShiftRight') ? 2.2 : 1;
     const fwd = (k.has('KeyW') || k.has('ArrowUp') ? 1 : 0) - (k.has('KeyS') || k.has('ArrowDown') ? 1 : 0);
@@ -182,6 +266,7 @@ export class Cameras {
    * viewport to the bottom. */
   planAt(x, y, metresHigh) {
     this.setMode('plan');
+    this.fitted.plan = false;
     this.ortho.zoom = (this.ortho.top - this.ortho.bottom) / metresHigh;
     this.ortho.updateProjectionMatrix();
     this.plan.target.set(x, this.plan.target.y, -y);
@@ -192,6 +277,7 @@ export class Cameras {
   /** Looks at world (x, y) from a given distance (used by the benchmark's screenshots). */
   lookAt(x, y, distance, height) {
     this.setMode('orbit');
+    this.fitted.orbit = false;
     this.orbit.target.set(x, 1, -y);
     this.perspective.position.set(x + distance * 0.6, height, -y + distance * 0.8);
     this.orbit.update();

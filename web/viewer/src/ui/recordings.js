@@ -4,7 +4,9 @@
 // switches every viewer to it: each is told and reconnects, and LiveSource, finding another world
 // in the new Welcome, reloads the page — and Upload sends a .sqlite file (POST
 // /api/recordings?name=FILE, the file as the body), which the server stores under a safe unique
-// name once it checks as a throng recording, else answers one message naming what was wrong. The
+// name once it checks as a throng recording, else answers one message naming what was wrong. While
+// a recording plays on a server started with a scenario, Live (POST /api/recordings/live) takes
+// every viewer back to that live scenario, the same way (it starts afresh). The
 // row stays hidden when the server has no --recordings directory ("dir": null) or there is no server.
 // describeRecording and formatBytes are pure (test/recordings.test.js).
 
@@ -30,14 +32,16 @@ export function describeRecording(r) {
 }
 
 export class RecordingsPanel {
-  /** `els`: {row, list, open, upload, status} elements; `fetchImpl` for tests. */
+  /** `els`: {row, list, open, upload, status, live} elements; `fetchImpl` for tests. */
   constructor(els, fetchImpl = globalThis.fetch.bind(globalThis)) {
     this.els = els;
     this.fetch = fetchImpl;
     this.recordings = [];
     this.playing = null;
     this.maxUploadBytes = 0;
+    this.live = null;  // the live scenario's file name, null when the server started with a recording
     els.open.addEventListener('click', () => this.open(els.list.value));
+    if (els.live) els.live.addEventListener('click', () => this.goLive());
     els.upload.addEventListener('change', () => {
       const file = els.upload.files && els.upload.files[0];
       if (file) this.upload(file).finally(() => { els.upload.value = ''; });
@@ -63,7 +67,13 @@ export class RecordingsPanel {
     this.recordings = body.recordings || [];
     this.playing = body.playing || null;
     this.maxUploadBytes = body.maxUploadBytes || 0;
-    const { list, row, open } = this.els;
+    this.live = body.live || null;
+    const { list, row, open, live } = this.els;
+    if (live) {
+      // Shown while a recording plays and there is a live scenario to go back to.
+      live.classList.toggle('hidden', !(this.live && this.playing));
+      live.title = this.live ? `back to the live scenario ${this.live} (for every viewer of this server; it starts afresh)` : '';
+    }
     list.replaceChildren(...this.recordings.map((r) => {
       const o = document.createElement('option');
       o.value = r.name;
@@ -89,6 +99,21 @@ export class RecordingsPanel {
     const body = await answer.json().catch(() => ({}));
     if (!answer.ok) { this.say(body.error || `could not open ${name} (HTTP ${answer.status})`, true); return; }
     this.say(`${name} opened: loading it…`);
+  }
+
+  /** Asks the server to play its live scenario again, for every viewer; the page reloads into it. */
+  async goLive() {
+    this.say(`back to ${this.live || 'the live scenario'}…`);
+    let answer;
+    try {
+      answer = await this.fetch('api/recordings/live', { method: 'POST' });
+    } catch (e) {
+      this.say(`could not go back to the live scenario (${e.message})`, true);
+      return;
+    }
+    const body = await answer.json().catch(() => ({}));
+    if (!answer.ok) { this.say(body.error || `could not go back to the live scenario (HTTP ${answer.status})`, true); return; }
+    this.say(`${this.live || 'the live scenario'}: loading it…`);
   }
 
   /** Uploads `file` (a File or Blob with a name); refreshes the list and picks the stored name. */

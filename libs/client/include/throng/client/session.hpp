@@ -1,7 +1,8 @@
 // throng::client::Session — a native participant of a shared world (docs/server.md): connects over
 // WebSocket or UDP, says Hello, receives the world description, joins with a name, moves its
-// avatar, guides groups, and decodes the crowd frames (acknowledging each, so the server
-// delta-codes against them), answering heartbeats. Blocking calls with timeouts; no threads of its
+// avatar (in a look of its choice), guides groups, and decodes the crowd frames (acknowledging
+// each, so the server delta-codes against them), answering heartbeats; it keeps who else is
+// present, with each participant's name and look (Presence), for the embedding code to draw. Blocking calls with timeouts; no threads of its
 // own, so one thread can drive many sessions (throng loadgen). Reads and writes a socket.
 #pragma once
 #include <array>
@@ -27,6 +28,17 @@ struct SessionOptions {
   std::string name = "native";
   protocol::ClientKind kind = protocol::ClientKind::Native;
   std::chrono::milliseconds timeout{5000};
+};
+
+/// A participant present in the world, as its latest Presence announced it.
+struct Participant {
+  std::uint32_t id = 0;
+  std::string name;
+  /// Its look: the `avatar` it joined with (Join; docs/protocol.md), an index into the looks the
+  /// viewers offer (the browser viewer's: web/viewer/src/crowd/avatar_looks.js; an index past the
+  /// list is drawn in the first look). nullopt when the server speaks protocol version 1, which
+  /// does not relay looks.
+  std::optional<std::uint16_t> avatar;
 };
 
 /// Counters a load generator reports.
@@ -63,8 +75,9 @@ class Session {
   [[nodiscard]] const protocol::Welcome& welcome() const;
   [[nodiscard]] const std::string& worldJson() const;
 
-  /// Joins as a participant; waits for Joined.
-  core::Result<protocol::Joined> join(const std::string& name);
+  /// Joins as a participant in look `avatar` (Join's avatar: what other clients are told in
+  /// Presence, see Participant::avatar); waits for Joined.
+  core::Result<protocol::Joined> join(const std::string& name, std::uint16_t avatar = 0);
   core::Status move(float x, float y, float yaw);
   core::Status guide(std::uint32_t group);
   core::Status release(std::uint32_t group);
@@ -81,6 +94,13 @@ class Session {
   core::Result<std::uint32_t> removeCrowd(const std::string& crowdId);
   /// Participants present, by id, with their names (Presence messages).
   [[nodiscard]] const std::vector<std::pair<std::uint32_t, std::string>>& participants() const;
+  /// The other participants present, with their names and looks, in the order they were announced
+  /// (Presence messages: to a newcomer, those already present; then each that joins or leaves).
+  /// Updated by pump().
+  [[nodiscard]] const std::vector<Participant>& present() const;
+  /// The look of participant `participantId`: nullopt when it is not present, or the server did not
+  /// say (protocol version 1).
+  [[nodiscard]] std::optional<std::uint16_t> avatarOf(std::uint32_t participantId) const;
 
   /// Handles every message waiting (or the next within `wait`): crowd frames are decoded and
   /// acknowledged, heartbeats answered, relays and guide results kept. Returns false once the
