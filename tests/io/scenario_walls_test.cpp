@@ -215,5 +215,45 @@ TEST(ScenarioMeasurements, BadValuesAreLocated) {
   EXPECT_TRUE(contains(d2.hint, "/measurements/0")) << d2.format();
 }
 
+// The scenario key "smoke" (NIST TN 1822 test 2.5): regions of an extinction coefficient that slow
+// walking by Frantzich and Nilsson's relation (sim::smokeSpeedFactor).
+TEST(ScenarioSmoke, RegionsAreParsedAndSlowWalking) {
+  const std::string text = edit(kBottleneck, R"("points": [)", R"("smoke": [
+    {"polygon": [[0,0],[20,0],[20,10],[0,10]], "extinction": 6}
+  ],
+  "points": [)");
+  auto r = load(text);
+  ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
+  ASSERT_EQ(r->desc.smoke.size(), 1u);
+  EXPECT_EQ(r->desc.smoke[0].polygon.size(), 4u);
+  EXPECT_FLOAT_EQ(r->desc.smoke[0].extinction, 6.0f);
+  auto plain = load(kBottleneck);
+  ASSERT_TRUE(plain.ok());
+  EXPECT_NE(runHash(r->desc, 100), runHash(plain->desc, 100)) << "smoke changes how people walk";
+  // The relation: v0 (1 − 0.057 / 0.706 · K), never below 0.1 v0.
+  EXPECT_FLOAT_EQ(sim::smokeSpeedFactor(0.0f), 1.0f);
+  EXPECT_NEAR(sim::smokeSpeedFactor(6.0f), 1.0f - 0.057f / 0.706f * 6.0f, 1e-6f);
+  EXPECT_FLOAT_EQ(sim::smokeSpeedFactor(30.0f), 0.1f);
+}
+
+TEST(ScenarioSmoke, BadValuesAreLocated) {
+  const auto with = [](const std::string& list) { return edit(kBottleneck, R"("points": [)", "\"smoke\": " + list + ",\n  \"points\": ["); };
+  const std::string thick = with(R"([{"polygon": [[0,0],[1,0],[1,1]], "extinction": 40}])");
+  const auto d1 = at(errorsOf(thick), "/smoke/0/extinction");
+  expectAt(d1, thick, "40");
+  EXPECT_TRUE(contains(d1.expected, "30")) << d1.format();
+  const std::string noPolygon = with(R"([{"extinction": 1}])");
+  EXPECT_TRUE(contains(at(errorsOf(noPolygon), "/smoke/0").what, "missing required key \"polygon\""));
+  const std::string noK = with(R"([{"polygon": [[0,0],[1,0],[1,1]]}])");
+  EXPECT_TRUE(contains(at(errorsOf(noK), "/smoke/0").what, "missing required key \"extinction\""));
+  const std::string notList = with(R"({"polygon": [[0,0],[1,0],[1,1]], "extinction": 1})");
+  EXPECT_TRUE(contains(at(errorsOf(notList), "/smoke").what, "wrong type")) << "an object, not an array";
+  const std::string levels = R"({"format": "throng/1",
+ "terrain": {"vertices": [[0,0,0],[10,0,0],[10,0,10],[0,0,10]], "walkable": [0,1,2, 0,2,3]},
+ "smoke": [{"polygon": [[0,0],[1,0],[1,1]], "extinction": 1}],
+ "populations": []})";
+  EXPECT_TRUE(contains(at(errorsOf(levels), "/smoke").what, "multi-level")) << "flat worlds only";
+}
+
 }  // namespace
 }  // namespace throng::io::test

@@ -466,13 +466,14 @@ ParsedScenario ScenarioReader::run() {
   if (!isObject(root, "", "a scenario object {\"format\": \"throng/1\", ...}")) return out;
   checkKeys(root, "",
             {"$schema", "format", "name", "seed", "duration", "dt", "walkable", "obstacles", "terrain", "points",
-             "populations", "steering", "navCellSize", "social", "timeline", "walls", "measurements"},
+             "populations", "steering", "navCellSize", "social", "timeline", "walls", "measurements", "smoke"},
             "the scenario");
   readScenarioHeader(root, out.desc);
   readTiming(root, out.desc);
   readGeometry(root, out);
   readWallList(root, out);
   readMeasurementList(root, out);
+  readSmokeList(root, out.desc);
   readPointList(root, out);
   indexPoints(out.desc);
   readPopulationList(root, out);

@@ -165,6 +165,36 @@ bool ScenarioReader::readMeasurement(const Json& v, const std::string& ptr, sim:
   return ok;
 }
 
+void ScenarioReader::readSmokeList(const Json& root, sim::ScenarioDesc& desc) {
+  const Json* x = optional(root, "smoke");
+  if (x == nullptr) return;
+  const std::string expected = "an array of smoke regions {\"polygon\": [[x, y], ...], \"extinction\": K (1/m, 0 to 30)}";
+  if (multiLevel_) {
+    refuseOnLevels("/smoke", "smoke", "no \"smoke\" next to \"terrain\"", true);
+    return;
+  }
+  if (!x->is_array()) {
+    error("/smoke", "wrong type: " + describeType(*x), expected);
+    return;
+  }
+  if (x->size() > kMaxSmoke) {
+    error("/smoke", std::to_string(x->size()) + " smoke regions", "at most " + std::to_string(kMaxSmoke));
+    return;
+  }
+  desc.smoke.resize(x->size());
+  for (std::size_t i = 0; i < x->size(); ++i) {
+    const std::string ptr = "/smoke/" + std::to_string(i);
+    const Json& v = (*x)[i];
+    sim::SmokeDesc& smoke = desc.smoke[i];
+    if (!isObject(v, ptr, expected)) continue;
+    checkKeys(v, ptr, {"polygon", "extinction"}, "a smoke region");
+    if (auto* p = require(v, ptr, "polygon", "a polygon [[x, y], ...] (metres)")) readPolygon(*p, ptr + "/polygon", smoke.polygon);
+    if (auto* k = require(v, ptr, "extinction", "the extinction coefficient K, a number from 0 to 30 (1/m)")) {
+      readFloat(*k, ptr + "/extinction", {0, 30, false, "1/m"}, smoke.extinction);
+    }
+  }
+}
+
 void ScenarioReader::readMeasurementList(const Json& root, ParsedScenario& out) {
   const Json* x = optional(root, "measurements");
   if (x == nullptr) return;

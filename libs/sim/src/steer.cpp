@@ -9,7 +9,8 @@
 // over steering.arrivalTime before a stop), plus the group's formation correction, turned aside
 // while the agent is stuck (deadlock breaking). On stairs (multi-level worlds: the navmesh's stair
 // area, nav::kStairArea) the desired speed is the population's stair factor, up or down, of the
-// flat one along the slope: horizontally, times cos of the slope walked. How fast an agent takes it up is the model's
+// flat one along the slope: horizontally, times cos of the slope walked. In smoke (scenario key
+// "smoke", flat worlds) it is smokeSpeedFactor of the densest smoke the agent stands in. How fast an agent takes it up is the model's
 // business: ORCA relaxes towards it over steering.accelerationTime, the first-order models turn
 // over their reaction time.
 #include <algorithm>
@@ -79,7 +80,14 @@ void PreferredVelocity::advanceCorner(std::size_t row, core::Vec2 pos) const {
 }
 
 float PreferredVelocity::groundFactor(std::size_t row, core::Vec2 dir) const {
-  if (in.posZ.empty()) return 1.0f;  // a flat world has no stairs
+  if (in.posZ.empty()) {
+    // A flat world has no stairs; smoke slows walking (the densest smoke the agent stands in).
+    float k = 0.0f;
+    for (const SmokeDesc& smoke : in.model.desc.smoke) {
+      if (smoke.extinction > k && core::pointInPolygon(smoke.polygon, {in.posX[row], in.posY[row]})) k = smoke.extinction;
+    }
+    return k > 0.0f ? smokeSpeedFactor(k) : 1.0f;
+  }
   const nav::Surface ground = ws.query->mesh().surface(in.polyRef[row]);
   if (!ground.stair) return 1.0f;
   // RiMEA and the stair data measure speed along the slope; agents move in the plane.

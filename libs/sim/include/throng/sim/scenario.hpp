@@ -371,6 +371,25 @@ struct MeasurementDesc {
   Polygon polygon;         ///< an area: a simple polygon; empty for a line
 };
 
+/// Smoke (scenario key "smoke"; NIST TN 1822 test 2.5): a region where walking is slowed by the
+/// smoke's extinction coefficient K [1/m], after Frantzich and Nilsson (2003) as FDS+Evac applies
+/// it: the desired speed times max(kSmokeMinFactor, 1 + (β/α)·K), α = 0.706 m/s, β = −0.057 m²/s
+/// (smokeSpeedFactor, steer.cpp). Flat worlds only.
+struct SmokeDesc {
+  Polygon polygon;          ///< a simple polygon
+  float extinction = 0.0f;  ///< K [1/m] [Limit: 0 .. 30]
+};
+
+/// Walking speed in smoke of extinction coefficient K [1/m] as a factor of the desired speed:
+/// Frantzich and Nilsson (2003), v = v0 (1 + β/α · K) with α = 0.706 m/s and β = −0.057 m²/s, never
+/// below 0.1 v0 (FDS+Evac's floor, Korhonen's technical reference).
+[[nodiscard]] inline float smokeSpeedFactor(float extinction) {
+  constexpr float kBetaOverAlpha = -0.057f / 0.706f;  // [m]
+  constexpr float kSmokeMinFactor = 0.1f;
+  const float f = 1.0f + kBetaOverAlpha * extinction;
+  return f > kSmokeMinFactor ? f : kSmokeMinFactor;
+}
+
 struct ScenarioDesc {
   std::string format = "throng/1";
   std::string name;
@@ -382,6 +401,7 @@ struct ScenarioDesc {
   std::vector<Polygon> obstacles;
   std::vector<WallDesc> walls;                ///< as written; already part of `obstacles`
   std::vector<MeasurementDesc> measurements;  ///< analysis only
+  std::vector<SmokeDesc> smoke;               ///< regions that slow walking (flat worlds)
   /// Multi-level worlds: 3D walking geometry (floors, stairs, ramps, solid obstacles). When it is
   /// non-empty the navmesh is built from it, `walkable` and `obstacles` are empty, and agents,
   /// points, spawns and guides carry heights. Empty: the flat 2D world of `walkable`/`obstacles`.
