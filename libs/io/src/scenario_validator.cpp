@@ -411,8 +411,7 @@ class Validator {
   /// The navmesh for reachability: the world's (crowd files) or built from the scenario's
   /// polygons or terrain; null after diagnostics (mapped to /walkable, /terrain or /navCellSize).
   std::shared_ptr<const nav::NavMesh> navmeshFor(nav::NavMeshConfig& config) {
-    config.agentRadius = desc_.navRadius();
-    config.cellSize = desc_.navCellSize;
+    config = desc_.navMeshConfig();
     config.cancel = cancel_;
     if (worldNavmesh_) {
       config.agentRadius = worldNavmesh_->config().agentRadius;

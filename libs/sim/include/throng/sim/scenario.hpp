@@ -402,6 +402,13 @@ struct ScenarioDesc {
   [[nodiscard]] float navRadius() const;
   /// True when some point is an exit.
   [[nodiscard]] bool hasExit() const;
+  /// How the navmesh of this scenario is built: eroded by navRadius(), cells of navCellSize, and
+  /// every exit's region cut into polygons of its own (nav::NavMeshConfig::cuts), so that a closed
+  /// exit is a wall (World: timeline `close`, setExitOpen). io, the World and the benches use it.
+  [[nodiscard]] nav::NavMeshConfig navMeshConfig() const;
 };
+
+/// An exit's region (disc or polygon, on its floor) as a navmesh cut.
+[[nodiscard]] nav::CutRegion cutRegion(const PointDesc& point);
 
 }  // namespace throng::sim
