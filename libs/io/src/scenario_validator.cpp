@@ -426,6 +426,7 @@ class Validator {
       // scenario the problem is the walkable geometry (or navCellSize), so point there.
       std::string pointer = terrain ? "/terrain" : "/walkable";
       if (d.pointer == "/cellSize") pointer = "/navCellSize";
+      else if (d.pointer == "/stairSlopeDeg") pointer = "/terrain/stairSlope";
       else if (terrain && d.pointer.rfind("/terrain", 0) == 0) pointer = d.pointer;
       const SourcePos pos = doc_.position(pointer);
       d.source = doc_.source();

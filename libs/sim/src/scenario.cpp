@@ -41,6 +41,7 @@ nav::NavMeshConfig ScenarioDesc::navMeshConfig() const {
   nav::NavMeshConfig config;
   config.agentRadius = navRadius();
   config.cellSize = navCellSize;
+  config.stairSlopeDeg = stairSlopeDeg;
   for (const PointDesc& p : points) {
     if (p.kind == PointKind::Exit) config.cuts.push_back(cutRegion(p));
   }

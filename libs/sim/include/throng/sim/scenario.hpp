@@ -386,6 +386,10 @@ struct ScenarioDesc {
   /// non-empty the navmesh is built from it, `walkable` and `obstacles` are empty, and agents,
   /// points, spawns and guides carry heights. Empty: the flat 2D world of `walkable`/`obstacles`.
   nav::TerrainMesh terrain;
+  /// Multi-level worlds: ground steeper than this (its mean slope over nav::kStairBaseline) is a
+  /// stair (the scenario key terrain.stairSlope; nav::NavMeshConfig::stairSlopeDeg) [deg]
+  /// [Limit: > 0 .. 89]
+  float stairSlopeDeg = nav::NavMeshConfig{}.stairSlopeDeg;
   std::vector<PointDesc> points;
   std::vector<PopulationDesc> populations;
   SteeringDesc steering;
