@@ -9,7 +9,7 @@ THRONG_DEB_PACKAGES=(
   libboost-dev libzstd-dev librapidcheck-dev libgtest-dev libgmock-dev libbenchmark-dev libtinygltf-dev
   libopenmpi-dev openmpi-bin
   python3 python3-dev python3-numpy python3-matplotlib python3-pandas python3-pytest python3-hypothesis pybind11-dev
-  python3-shapely
+  python3-shapely python3-jsonschema
   python3-venv python3-pip python3-setuptools python3-wheel
   universal-ctags
   man-db zsh dpkg-dev lintian

@@ -11,6 +11,7 @@
 
 #include "scenario_test_util.hpp"
 #include "throng/io/crowd_loader.hpp"
+#include "throng/nav/navmesh.hpp"
 
 namespace throng::io::test {
 namespace {
@@ -219,6 +220,40 @@ TEST(ScenarioTerrain, TwoDimensionalFeaturesAreRefused) {
   EXPECT_EQ(social.what, "the \"social\" section (Common Ground) is not supported on multi-level worlds yet");
   EXPECT_EQ(social.expected, "no \"social\" section next to \"terrain\"");
   expectAt(social, text, "\"social\"");
+}
+
+/// Whether the loaded navmesh's ground halfway up the 27° ramp of kLevels is a stair.
+bool rampIsStair(const LoadedScenario& loaded) {
+  nav::NavQuery query(loaded.navmesh);
+  const auto hit = query.snap({6, 11}, 1.5f, 1.0f);
+  EXPECT_TRUE(hit);
+  return hit && loaded.navmesh->surface(hit->ref).stair;
+}
+
+TEST(ScenarioTerrain, StairSlopeSetsWhatCountsAsAStair) {
+  // Default 15°: the 27° ramp is walked as a stair. "stairSlope": 30: as level ground.
+  auto plain = load(kLevels, true);
+  ASSERT_TRUE(plain.ok()) << core::formatAll(plain.errors());
+  EXPECT_FLOAT_EQ(plain.value().desc.stairSlopeDeg, 15.0f);
+  EXPECT_TRUE(rampIsStair(plain.value()));
+  auto gentle = load(change(kLevels, R"("terrain": {)", R"("terrain": {"stairSlope": 30,)"), true);
+  ASSERT_TRUE(gentle.ok()) << core::formatAll(gentle.errors());
+  EXPECT_FLOAT_EQ(gentle.value().desc.stairSlopeDeg, 30.0f);
+  EXPECT_FLOAT_EQ(gentle.value().navmesh->config().stairSlopeDeg, 30.0f);
+  EXPECT_FALSE(rampIsStair(gentle.value()));
+}
+
+TEST(ScenarioTerrain, BadStairSlopeIsLocated) {
+  for (const char* bad : {"0", "-5", "90", "\"steep\""}) {
+    const std::string text = change(kLevels, R"("terrain": {)", std::string(R"("terrain": {"stairSlope": )") + bad + ",");
+    const auto ds = errorsOf(text);
+    ASSERT_EQ(ds.size(), 1u) << bad << ": " << core::formatAll(ds);
+    const auto d = at(ds, "/terrain/stairSlope");
+    EXPECT_EQ(d.expected, "a number > 0 and <= 89 degrees") << bad;
+    expectAt(d, text, std::string(bad) + ",\n    \"vertices\"");
+  }
+  EXPECT_EQ(at(errorsOf(change(kLevels, R"("terrain": {)", R"("terrain": {"stairSlope": 90,)")), "/terrain/stairSlope").what,
+            "value 90 degrees is out of range");
 }
 
 TEST(ScenarioTerrain, ValidatesOnTheNavmeshAcrossFloors) {

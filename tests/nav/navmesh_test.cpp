@@ -169,3 +169,83 @@ TEST(NavMesh, BoundarySegmentsHaveTheWalkableSideOnTheirRight) {
 
 }  // namespace
 }  // namespace throng::nav
+
+// Cut regions (NavMeshConfig::cuts, NavMesh::setClosed): a closed door is a wall. Two rooms joined
+// by two 1 m doors at y 2.5 and 7.5 in a 0.2 m wall at x 10; the south door is cut.
+namespace throng::nav::cut_test {
+using testing::buildOrFail;
+using testing::insideRect;
+using testing::rect;
+
+std::shared_ptr<NavMesh> twoRooms() {
+  NavMeshConfig cfg;
+  CutRegion door;
+  door.polygon = rect(9.7f, 2.0f, 10.5f, 3.0f);
+  cfg.cuts = {door};
+  auto mesh = buildOrFail({rect(0, 0, 10, 10), rect(10.2f, 0, 20, 10), rect(10, 2, 10.2f, 3), rect(10, 7, 10.2f, 8)},
+                          {}, cfg);
+  return mesh ? mesh->clone() : nullptr;
+}
+
+/// The most y of a path's corners (the north door is at y 7..8, the south one at 2..3).
+float highest(const std::vector<Vec2>& corners) {
+  float y = 0.0f;
+  for (Vec2 c : corners) y = std::max(y, c.y);
+  return y;
+}
+
+TEST(NavMeshCut, ACutRegionIsPolygonsOfItsOwnWhichCloseAndOpen) {
+  auto mesh = twoRooms();
+  ASSERT_TRUE(mesh);
+  const auto polys = mesh->cutPolygons(mesh->config().cuts[0]);
+  ASSERT_FALSE(polys.empty());
+  NavQuery query(mesh);
+  std::vector<Vec2> corners;
+  // Open: from the south of the west room to the south of the east room through the south door.
+  ASSERT_EQ(query.findPath({5, 2.5f}, {15, 2.5f}, corners), PathStatus::Complete);
+  EXPECT_LT(highest(corners), 3.5f);
+  mesh->setClosed(polys, true);
+  ASSERT_EQ(query.findPath({5, 2.5f}, {15, 2.5f}, corners), PathStatus::Complete);
+  EXPECT_GT(highest(corners), 6.5f) << "the path ran through the closed south door";
+  // Walking into the closed door stops at its edge; nothing snaps into it.
+  PolyRef ref = 0;
+  Vec2 p{9.0f, 2.5f};
+  for (int i = 0; i < 40; ++i) p = query.moveAlongSurface(p, p + Vec2{0.1f, 0.0f}, ref);
+  EXPECT_LT(p.x, 9.76f);
+  const auto snapped = query.nearest({10.1f, 2.5f}, 2.0f);
+  ASSERT_TRUE(snapped);
+  EXPECT_FALSE(insideRect(snapped->first, 9.76f, 2.06f, 10.44f, 2.94f));  // the door less a cell
+  mesh->setClosed(polys, false);
+  ASSERT_EQ(query.findPath({5, 2.5f}, {15, 2.5f}, corners), PathStatus::Complete);
+  EXPECT_LT(highest(corners), 3.5f);
+}
+
+TEST(NavMeshCut, ACloneClosesItsDoorsAlone) {
+  auto mesh = twoRooms();
+  ASSERT_TRUE(mesh);
+  auto copy = mesh->clone();
+  EXPECT_EQ(copy->polygonCount(), mesh->polygonCount());
+  copy->setClosed(copy->cutPolygons(copy->config().cuts[0]), true);
+  NavQuery original(mesh), closed(copy);
+  std::vector<Vec2> corners;
+  ASSERT_EQ(original.findPath({5, 2.5f}, {15, 2.5f}, corners), PathStatus::Complete);
+  EXPECT_LT(highest(corners), 3.5f);
+  ASSERT_EQ(closed.findPath({5, 2.5f}, {15, 2.5f}, corners), PathStatus::Complete);
+  EXPECT_GT(highest(corners), 6.5f);
+}
+
+TEST(NavMeshCut, WithoutCutsTheMeshIsAsBefore) {
+  NavMeshConfig cfg;
+  auto plain = buildOrFail({rect(0, 0, 20, 10)}, {}, cfg);
+  ASSERT_TRUE(plain);
+  CutRegion far;
+  far.centre = {100, 100};
+  far.radius = 1;
+  cfg.cuts = {far};  // outside the world: marks nothing
+  auto withFar = buildOrFail({rect(0, 0, 20, 10)}, {}, cfg);
+  ASSERT_TRUE(withFar);
+  EXPECT_EQ(plain->polygons(), withFar->polygons());
+  EXPECT_TRUE(withFar->cutPolygons(far).empty());
+}
+
+}  // namespace throng::nav::cut_test

@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <functional>
+
 #include "nav_test_worlds.hpp"
 #include "throng/core/rng.hpp"
 
@@ -108,11 +111,14 @@ struct UpdateTrace {
 
 /// Feeds `queue` the same stream of requests and budgets for every queue (seeded), taking each
 /// finished result; the trace says what happened in each update.
-std::vector<UpdateTrace> drive(PathQueue& queue, const core::TaskSystem* tasks) {
+/// `toggle`, when given, runs before every 23rd update (a door closing or opening under way).
+std::vector<UpdateTrace> drive(PathQueue& queue, const core::TaskSystem* tasks,
+                               const std::function<void(int)>& toggle = nullptr) {
   core::Rng rng(11, 0, core::RngPurpose::Bench);
   std::vector<PathTicket> open;
   std::vector<UpdateTrace> trace;
   for (int u = 0; u < 1000; ++u) {
+    if (toggle && u % 23 == 0) toggle(u / 23);
     const int arrivals = u < 300 ? static_cast<int>(rng.uniform(0, 9)) : 0;
     for (int k = 0; k < arrivals; ++k) {
       Vec2 from{static_cast<float>(rng.uniform(1, 99)), static_cast<float>(rng.uniform(1, 99))};
@@ -139,6 +145,35 @@ std::vector<UpdateTrace> drive(PathQueue& queue, const core::TaskSystem* tasks) 
   return trace;
 }
 
+/// Expects both traces to be the same, update by update; returns (results taken, pending ticket-updates).
+std::pair<std::size_t, std::size_t> expectSameTraces(const std::vector<UpdateTrace>& a, const std::vector<UpdateTrace>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  std::size_t results = 0, sliced = 0;
+  for (std::size_t u = 0; u < std::min(a.size(), b.size()); ++u) {
+    EXPECT_EQ(a[u].completed, b[u].completed) << "update " << u;
+    EXPECT_EQ(a[u].states, b[u].states) << "update " << u;
+    if (a[u].taken.size() != b[u].taken.size()) {
+      ADD_FAILURE() << "update " << u << ": " << a[u].taken.size() << " vs " << b[u].taken.size() << " results";
+      return {results, sliced};
+    }
+    for (std::size_t k = 0; k < a[u].taken.size(); ++k) {
+      EXPECT_EQ(a[u].taken[k].first, b[u].taken[k].first);
+      EXPECT_EQ(a[u].taken[k].second.status, b[u].taken[k].second.status);
+      if (a[u].taken[k].second.corners.size() != b[u].taken[k].second.corners.size()) {
+        ADD_FAILURE() << "update " << u << ", ticket " << a[u].taken[k].first << ": different paths";
+        return {results, sliced};
+      }
+      for (std::size_t c = 0; c < a[u].taken[k].second.corners.size(); ++c) {
+        EXPECT_EQ(a[u].taken[k].second.corners[c].x, b[u].taken[k].second.corners[c].x);
+        EXPECT_EQ(a[u].taken[k].second.corners[c].y, b[u].taken[k].second.corners[c].y);
+      }
+      ++results;
+    }
+    for (TicketState st : a[u].states) sliced += st == TicketState::Pending ? 1 : 0;
+  }
+  return {results, sliced};
+}
+
 TEST(PathQueue, ParallelSearchCompletesTheSameRequestsInTheSameUpdatesAsOneThread) {
   auto mesh = pillarWorld();
   ASSERT_TRUE(mesh);
@@ -146,28 +181,46 @@ TEST(PathQueue, ParallelSearchCompletesTheSameRequestsInTheSameUpdatesAsOneThrea
   const core::TaskSystem one(1), four(4);
   const std::vector<UpdateTrace> a = drive(serial, &one);
   const std::vector<UpdateTrace> b = drive(parallel, &four);
-  ASSERT_EQ(a.size(), b.size());
-  std::size_t results = 0, sliced = 0;
-  for (std::size_t u = 0; u < a.size(); ++u) {
-    ASSERT_EQ(a[u].completed, b[u].completed) << "update " << u;
-    ASSERT_EQ(a[u].states, b[u].states) << "update " << u;
-    ASSERT_EQ(a[u].taken.size(), b[u].taken.size()) << "update " << u;
-    for (std::size_t k = 0; k < a[u].taken.size(); ++k) {
-      EXPECT_EQ(a[u].taken[k].first, b[u].taken[k].first);
-      EXPECT_EQ(a[u].taken[k].second.status, b[u].taken[k].second.status);
-      ASSERT_EQ(a[u].taken[k].second.corners.size(), b[u].taken[k].second.corners.size());
-      for (std::size_t c = 0; c < a[u].taken[k].second.corners.size(); ++c) {
-        EXPECT_EQ(a[u].taken[k].second.corners[c].x, b[u].taken[k].second.corners[c].x);
-        EXPECT_EQ(a[u].taken[k].second.corners[c].y, b[u].taken[k].second.corners[c].y);
-      }
-      ++results;
-    }
-    for (TicketState s : a[u].states) sliced += s == TicketState::Pending ? 1 : 0;
-  }
+  const auto [results, sliced] = expectSameTraces(a, b);
   EXPECT_GT(results, 1000u);  // the stream really ran through both queues
   EXPECT_GT(sliced, 1000u);   // and the budgets really left requests waiting across updates
   EXPECT_EQ(serial.pending(), 0u);
   EXPECT_EQ(parallel.pending(), 0u);
+}
+
+TEST(PathQueue, DoorsClosingUnderWayGiveTheSameResultsOnAnyThreadCount) {
+  // The pillar world with a 2 m band across it at x 49..51 and two discs cut in (NavMeshConfig::cuts);
+  // every 23rd update closes or opens some of them and restarts the searches under way
+  // (PathQueue::restart). One thread and four must still complete the same requests in the same
+  // updates with the same paths: without the restart, a search sliced over the change sees both
+  // meshes on one thread and one of them on four.
+  NavMeshConfig cfg;
+  CutRegion band, a, b;
+  band.polygon = rect(49, 0, 51, 100);
+  a.centre = {25, 30};
+  a.radius = 4;
+  b.centre = {75, 70};
+  b.radius = 4;
+  cfg.cuts = {band, a, b};
+  auto built = buildOrFail({rect(0, 0, 100, 100)}, testing::pillars(100, 6), cfg);
+  ASSERT_TRUE(built);
+  auto meshA = built->clone(), meshB = built->clone();
+  std::vector<std::vector<PolyRef>> polys;
+  for (const CutRegion& r : cfg.cuts) polys.push_back(built->cutPolygons(r));
+  ASSERT_FALSE(polys[0].empty());
+  PathQueue serial(meshA), parallel(meshB);
+  const auto toggler = [&](NavMesh& mesh, PathQueue& queue) {
+    return [&mesh, &queue, &polys](int k) {
+      mesh.setClosed(polys[static_cast<std::size_t>(k) % 3], (k / 3) % 2 == 0);
+      queue.restart();
+    };
+  };
+  const core::TaskSystem one(1), four(4);
+  const std::vector<UpdateTrace> ta = drive(serial, &one, toggler(*meshA, serial));
+  const std::vector<UpdateTrace> tb = drive(parallel, &four, toggler(*meshB, parallel));
+  const auto [results, sliced] = expectSameTraces(ta, tb);
+  EXPECT_GT(results, 1000u);
+  EXPECT_GT(sliced, 1000u);
 }
 
 }  // namespace

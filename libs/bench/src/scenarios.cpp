@@ -103,10 +103,7 @@ sim::ScenarioDesc makeScenario(Layout layout, std::size_t agents, std::uint64_t 
 }
 
 core::Result<std::shared_ptr<const nav::NavMesh>> buildNavMesh(const sim::ScenarioDesc& desc) {
-  nav::NavMeshConfig config;
-  config.agentRadius = desc.navRadius();
-  config.cellSize = desc.navCellSize;
-  return nav::NavMesh::build(desc.walkable, desc.obstacles, config);
+  return nav::NavMesh::build(desc.walkable, desc.obstacles, desc.navMeshConfig());
 }
 
 std::vector<core::Vec2> drawStarts(const std::shared_ptr<const nav::NavMesh>& navmesh, std::size_t count,

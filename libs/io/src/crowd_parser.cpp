@@ -65,6 +65,7 @@ void ScenarioReader::adoptWorld(const sim::ScenarioDesc& world, ParsedScenario& 
   multiLevel_ = !world.terrain.empty();
   desc.social = world.social;
   desc.navCellSize = world.navCellSize;
+  desc.stairSlopeDeg = world.stairSlopeDeg;
   desc.points = world.points;
   out.walkableOk.assign(desc.walkable.size(), true);
   out.obstaclesOk.assign(desc.obstacles.size(), true);

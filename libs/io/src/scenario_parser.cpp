@@ -546,7 +546,7 @@ void ScenarioReader::readGeometry(const Json& root, ParsedScenario& out) {
   }
   // A multi-level world: its geometry is the terrain's triangles, never 2D polygons.
   multiLevel_ = true;
-  out.terrainOk = readTerrain(*terrain, "/terrain", desc.terrain);
+  out.terrainOk = readTerrain(*terrain, "/terrain", desc.terrain, desc.stairSlopeDeg);
   for (const char* key : {"walkable", "obstacles"}) {
     const Json* x = optional(root, key);
     if (x == nullptr || (x->is_array() && x->empty())) continue;

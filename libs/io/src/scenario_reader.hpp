@@ -319,7 +319,7 @@ class ScenarioReader {
   }
 
   /// "terrain" (scenario_terrain_parser.cpp): vertices and walkable/obstacle triangles.
-  bool readTerrain(const Json& v, const std::string& ptr, nav::TerrainMesh& out);
+  bool readTerrain(const Json& v, const std::string& ptr, nav::TerrainMesh& out, float& stairSlopeDeg);
   bool readTriangles(const Json& v, const std::string& ptr, std::size_t vertexCount, std::vector<std::uint32_t>& out);
 
   bool readPolygon(const Json& v, const std::string& ptr, core::Polygon& out);

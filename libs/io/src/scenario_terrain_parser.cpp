@@ -1,6 +1,7 @@
 // throng::io scenario terrain parser — a multi-level world's "terrain": {"vertices": [[x, y, z],
 // ...], "walkable": [[i, j, k], ...], "obstacles": [[i, j, k], ...]} (scenario coordinates: ground
-// x, y and height z, metres) → nav::TerrainMesh. Checks types, finite coordinates within
+// x, y and height z, metres; "stairSlope": the stair threshold in degrees) → nav::TerrainMesh and
+// ScenarioDesc::stairSlopeDeg. Checks types, finite coordinates within
 // ±kMaxCoordinate, indices in range, three different vertices per triangle, at least one walkable
 // triangle and at most kMaxTerrainTriangles in all. Whether the triangles make a walkable navmesh
 // (slope, climb, clearance) is the validator's question (nav::NavMesh::buildFromTerrain).
@@ -16,6 +17,8 @@ namespace {
 /// Bad vertices or triangles reported one by one per array; the rest are counted in one line, so
 /// that a broken exporter's 100 000 bad triangles do not bury the first messages.
 constexpr std::size_t kMaxListedProblems = 20;
+/// The steepest stair threshold a scenario may set (terrain.stairSlope) [deg].
+constexpr double kMaxStairSlopeDeg = 89.0;
 
 }  // namespace
 
@@ -76,12 +79,18 @@ bool ScenarioReader::readTriangles(const Json& v, const std::string& ptr, std::s
   return problems == 0;
 }
 
-bool ScenarioReader::readTerrain(const Json& v, const std::string& ptr, nav::TerrainMesh& out) {
+bool ScenarioReader::readTerrain(const Json& v, const std::string& ptr, nav::TerrainMesh& out, float& stairSlopeDeg) {
   if (!isObject(v, ptr, "a terrain object {\"vertices\": [[x, y, z], ...], \"walkable\": [[i, j, k], ...], \"obstacles\": [...]}")) {
     return false;
   }
-  checkKeys(v, ptr, {"vertices", "walkable", "obstacles"}, "the terrain");
+  checkKeys(v, ptr, {"vertices", "walkable", "obstacles", "stairSlope"}, "the terrain");
   bool ok = true;
+  // The slope above which ground is a stair (nav::NavMeshConfig::stairSlopeDeg): above 0, and at
+  // most 89° (Recast walks nothing steeper than 45°, but a stair's treads are flat, so its mean
+  // slope over kStairBaseline may be steeper than any walkable triangle).
+  if (const Json* x = optional(v, "stairSlope")) {
+    ok = readFloat(*x, ptr + "/stairSlope", {0.0, kMaxStairSlopeDeg, true, "degrees"}, stairSlopeDeg) && ok;
+  }
   std::size_t vertexCount = 0;
   const std::string vexpected = "an array of vertices [x, y, z] (metres: ground x, y and height z, each within ±" +
                                 num(kMaxCoordinate) + ")";

@@ -411,8 +411,7 @@ class Validator {
   /// The navmesh for reachability: the world's (crowd files) or built from the scenario's
   /// polygons or terrain; null after diagnostics (mapped to /walkable, /terrain or /navCellSize).
   std::shared_ptr<const nav::NavMesh> navmeshFor(nav::NavMeshConfig& config) {
-    config.agentRadius = desc_.navRadius();
-    config.cellSize = desc_.navCellSize;
+    config = desc_.navMeshConfig();
     config.cancel = cancel_;
     if (worldNavmesh_) {
       config.agentRadius = worldNavmesh_->config().agentRadius;
@@ -427,6 +426,7 @@ class Validator {
       // scenario the problem is the walkable geometry (or navCellSize), so point there.
       std::string pointer = terrain ? "/terrain" : "/walkable";
       if (d.pointer == "/cellSize") pointer = "/navCellSize";
+      else if (d.pointer == "/stairSlopeDeg") pointer = "/terrain/stairSlope";
       else if (terrain && d.pointer.rfind("/terrain", 0) == 0) pointer = d.pointer;
       const SourcePos pos = doc_.position(pointer);
       d.source = doc_.source();

@@ -199,6 +199,7 @@ NavQuery::NavQuery(std::shared_ptr<const NavMesh> mesh, int maxNodes) : mesh_(st
   query_ = dtAllocNavMeshQuery();
   query_->init(mesh_->detour(), std::clamp(maxNodes, 16, 65535));
   filter_ = new dtQueryFilter();
+  filter_->setIncludeFlags(kWalkFlag);  // not a closed cut polygon (NavMesh::setClosed)
 }
 
 NavQuery::~NavQuery() {

@@ -13,9 +13,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 #include "build_common.hpp"
+#include "throng/core/assert.hpp"
 #include "navmesh_data.hpp"
 #include "tile_builder.hpp"
 
@@ -197,6 +199,7 @@ core::Result<std::shared_ptr<const NavMesh>> NavMesh::build(std::span<const Poly
   settings.borderCells = radiusCells + 3;
   settings.radiusCells = radiusCells;
   settings.agentRadius = cfg.agentRadius;
+  settings.cuts = &cfg.cuts;
   settings.originX = box.min.x;
   settings.originY = box.min.y;
   const float tileWidth = static_cast<float>(settings.tileCells) * cs;
@@ -334,6 +337,69 @@ Surface NavMesh::surface(PolyRef ref) const {
   }
   if (ny > 1e-12) out.gradient = Vec2{static_cast<float>(-nx / ny), static_cast<float>(-nz / ny)};
   return out;
+}
+
+bool CutRegion::contains(Vec2 p, float margin) const {
+  if (polygon.empty()) return core::lengthSq(p - centre) <= (radius + margin) * (radius + margin);
+  return core::pointInPolygon(polygon, p) || (margin > 0.0f && core::distanceToBoundary(polygon, p) <= margin);
+}
+
+std::shared_ptr<NavMesh> NavMesh::clone() const {
+  const dtNavMesh& from = *mesh_;
+  auto* copy = new detail::NavMeshData();
+  copy->areas = detail::data(*this).areas;
+  std::shared_ptr<NavMesh> out(new NavMesh());
+  out->mesh_ = copy;
+  out->config_ = config_;
+  out->bounds_ = bounds_;
+  out->layered_ = layered_;
+  out->minHeight_ = minHeight_;
+  out->maxHeight_ = maxHeight_;
+  [[maybe_unused]] const dtStatus init = copy->init(from.getParams());
+  THRONG_ASSERT(!dtStatusFailed(init));
+  // The tiles in slot order, each at the reference it had (so every PolyRef stays valid).
+  for (int i = 0; i < from.getMaxTiles(); ++i) {
+    const dtMeshTile* tile = from.getTile(i);
+    if (tile == nullptr || tile->header == nullptr || tile->dataSize <= 0) continue;
+    auto* bytes = static_cast<unsigned char*>(dtAlloc(static_cast<std::size_t>(tile->dataSize), DT_ALLOC_PERM));
+    THRONG_ASSERT(bytes != nullptr);
+    std::memcpy(bytes, tile->data, static_cast<std::size_t>(tile->dataSize));
+    const dtTileRef ref = from.getTileRef(tile);
+    [[maybe_unused]] const dtStatus added = copy->addTile(bytes, tile->dataSize, DT_TILE_FREE_DATA, ref, nullptr);
+    THRONG_ASSERT(!dtStatusFailed(added));  // the same slots, free in a new mesh (links are rebuilt)
+  }
+  return out;
+}
+
+std::vector<PolyRef> NavMesh::cutPolygons(const CutRegion& region) const {
+  std::vector<PolyRef> out;
+  const dtNavMesh& mesh = *mesh_;
+  for (int i = 0; i < mesh.getMaxTiles(); ++i) {
+    const dtMeshTile* tile = mesh.getTile(i);
+    if (tile == nullptr || tile->header == nullptr) continue;
+    const dtPolyRef base = mesh.getPolyRefBase(tile);
+    for (int p = 0; p < tile->header->polyCount; ++p) {
+      const dtPoly& poly = tile->polys[p];
+      if (poly.getType() != DT_POLYTYPE_GROUND || (poly.flags & kCutFlag) == 0) continue;
+      double x = 0.0, y = 0.0, z = 0.0;
+      for (int k = 0; k < poly.vertCount; ++k) {
+        const float* v = &tile->verts[poly.verts[k] * 3];
+        x += v[0], y += v[1], z += v[2];
+      }
+      const double n = poly.vertCount;
+      const Vec2 centroid{static_cast<float>(x / n), static_cast<float>(z / n)};
+      if (!region.contains(centroid, kCutMargin * config_.cellSize)) continue;
+      if (layered_ && std::abs(static_cast<float>(y / n) - region.height) > kLevelSearch) continue;
+      out.push_back(base | static_cast<dtPolyRef>(p));
+    }
+  }
+  return out;
+}
+
+void NavMesh::setClosed(std::span<const PolyRef> polys, bool closed) {
+  for (const PolyRef ref : polys) {
+    (void)mesh_->setPolyFlags(static_cast<dtPolyRef>(ref), closed ? kCutFlag : (kWalkFlag | kCutFlag));
+  }
 }
 
 }  // namespace throng::nav

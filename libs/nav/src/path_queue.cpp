@@ -128,6 +128,8 @@ struct PathQueue::Impl {
   std::unique_ptr<Searcher> serial;
   bool active = false;
   PathTicket current = 0;
+  Request currentRequest;  ///< the request in progress (serial or replayed), for restart()
+  Layered currentHeights;
   dtQueryFilter currentFilter;
 
   // Parallel update: results of waiting[0 .. ahead.size()) searched ahead of their turn by the
@@ -157,6 +159,8 @@ struct PathQueue::Impl {
       heights = waitingHeights.front();
       waitingHeights.pop_front();
     }
+    currentRequest = r;
+    currentHeights = heights ? *heights : Layered{};
     currentFilter = filterOf(heights ? &*heights : nullptr);
     if (!serial) serial = std::make_unique<Searcher>(*mesh, maxNodes);
     std::optional<PathResult> now = serial->begin(*mesh, r, heights ? &*heights : nullptr, currentFilter);
@@ -213,8 +217,12 @@ struct PathQueue::Impl {
   /// (finished at once), true when its replay began.
   bool beginReplay() {
     const PathTicket ticket = waiting.front().ticket;
+    currentRequest = waiting.front();
     waiting.pop_front();
-    if (!waitingHeights.empty()) waitingHeights.pop_front();
+    if (!waitingHeights.empty()) {
+      currentHeights = waitingHeights.front();
+      waitingHeights.pop_front();
+    }
     Speculated s = std::move(ahead.front());
     ahead.pop_front();
     if (s.immediate) {
@@ -247,6 +255,7 @@ PathQueue::PathQueue(std::shared_ptr<const NavMesh> mesh, int maxNodes) : impl_(
   impl_->mesh = std::move(mesh);
   impl_->maxNodes = std::clamp(maxNodes, 16, 65535);
   impl_->serial = std::make_unique<Searcher>(*impl_->mesh, impl_->maxNodes);
+  impl_->filters[0].setIncludeFlags(kWalkFlag);  // not a closed cut polygon (NavMesh::setClosed)
 }
 
 PathQueue::~PathQueue() = default;
@@ -269,6 +278,7 @@ void PathQueue::setStairCosts(std::span<const float> stairCost) {
   Impl& q = *impl_;
   bool changed = q.filters.size() < stairCost.size();
   if (q.filters.size() < stairCost.size()) q.filters.resize(stairCost.size());
+  for (dtQueryFilter& f : q.filters) f.setIncludeFlags(kWalkFlag);
   for (std::size_t i = 0; i < stairCost.size(); ++i) {
     THRONG_ASSERT(std::isfinite(stairCost[i]) && stairCost[i] >= 1.0f);
     changed = changed || q.filters[i].getAreaCost(kStairArea) != stairCost[i];
@@ -277,6 +287,18 @@ void PathQueue::setStairCosts(std::span<const float> stairCost) {
   // Searched ahead with the old classes: search them again when their turn comes.
   if (changed) q.ahead.clear();
   q.costClasses = std::max(q.costClasses, stairCost.size());
+}
+
+void PathQueue::restart() {
+  Impl& q = *impl_;
+  q.ahead.clear();  // searched on the mesh as it was
+  if (q.active || q.replaying) {
+    // The search under way starts again from scratch at its turn, on one thread as on several.
+    q.waiting.push_front(q.currentRequest);
+    if (q.mesh->layered()) q.waitingHeights.push_front(q.currentHeights);
+    q.active = false;
+    q.replaying = false;
+  }
 }
 
 std::size_t PathQueue::costClasses() const { return impl_->costClasses; }

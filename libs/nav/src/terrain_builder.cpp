@@ -142,6 +142,8 @@ core::Result<detail::TerrainSettings> terrainSettings(NavMeshConfig& cfg, const 
   settings.tile.borderCells = radiusCells + 3;
   settings.tile.radiusCells = radiusCells;
   settings.tile.agentRadius = cfg.agentRadius;
+  settings.tile.cuts = &cfg.cuts;
+  settings.tile.layered = true;
   settings.tile.originX = box.min.x;
   settings.tile.originY = box.min.y;
   settings.cellHeight = kCellHeight;

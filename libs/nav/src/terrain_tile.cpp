@@ -139,6 +139,7 @@ class TerrainTileBuilder {
     hf_.reset();
     if (!markStairs(ctx_, *chf_, settings_.stairSlopeDeg)) return "could not mark the stairs";
     if (s_.radiusCells > 0 && !rcErodeWalkableArea(&ctx_, s_.radiusCells, *chf_)) return "could not erode the walkable area";
+    markCuts(*chf_, s_);
     // Monotone partitioning as in the flat build (see tile_builder.cpp); it handles spans above
     // each other through the compact heightfield's neighbour links.
     const int minRegion = static_cast<int>(std::ceil(kMinIslandArea / (cs * cs)));
@@ -182,7 +183,8 @@ class TerrainTileBuilder {
     for (int i = 0; i < dmesh_->nverts; ++i) dmesh_->verts[i * 3 + 1] -= lift;
 
     for (int i = 0; i < pmesh_->npolys; ++i) {
-      pmesh_->flags[i] = 1;  // walkable: passes the default query filter
+      // Walkable (passes the default query filter); a cut region's polygons are marked as such.
+      pmesh_->flags[i] = pmesh_->areas[i] >= kCutSpanArea ? (kWalkFlag | kCutFlag) : kWalkFlag;
       pmesh_->areas[i] = pmesh_->areas[i] == kStairSpanArea ? kStairArea : kFloorArea;
     }
     dtNavMeshCreateParams params{};

@@ -6,7 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "throng/nav/navmesh.hpp"
 #include "walkable_raster.hpp"
+
+struct rcCompactHeightfield;
 
 namespace throng::nav::detail {
 
@@ -18,7 +21,20 @@ struct TileSettings {
   int borderCells = 0;  ///< extra cells rasterized around a tile so erosion sees its neighbours
   int radiusCells = 0;  ///< erosion [cells]
   float agentRadius = 0;
+  const std::vector<CutRegion>* cuts = nullptr;  ///< NavMeshConfig::cuts (not owned)
+  bool layered = false;                          ///< cuts match span heights (terrain builds)
 };
+
+/// Compact-heightfield areas of cut regions: region k's spans get kCutSpanArea + k % kCutSpanAreas
+/// (so neighbouring regions stay apart); Recast never merges regions of different areas, so each
+/// cut becomes polygons of its own. Stair spans use area 1 (terrain_tile.cpp).
+inline constexpr unsigned char kCutSpanArea = 2;
+inline constexpr int kCutSpanAreas = 32;
+
+/// Gives every walkable span of `chf` whose cell centre lies in one of `s.cuts` (on a layered build:
+/// whose floor is within kLevelSearch of the region's height) its cut area. After erosion, so the
+/// cuts do not change where the floor ends.
+void markCuts(rcCompactHeightfield& chf, const TileSettings& s);
 
 /// A built tile. `data` is allocated with dtAlloc; whoever takes it frees it (or hands it to
 /// dtNavMesh::addTile with DT_TILE_FREE_DATA).

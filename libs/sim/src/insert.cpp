@@ -226,7 +226,84 @@ void World::Impl::applyCrowdCommands() {
 void World::Impl::setExitClosedNow(std::uint32_t point, bool closed) {
   exitChoice.setClosed(point, closed);
   if (closedExits.size() <= point) closedExits.resize(point + 1, 0);
+  const bool changed = (closedExits[point] != 0) != closed;
   closedExits[point] = closed ? 1 : 0;
+  if (changed) closeDoorFloor(point, closed);
+}
+
+namespace {
+
+/// Whether the segment a → b touches `region`.
+bool segmentTouches(const nav::CutRegion& region, core::Vec2 a, core::Vec2 b) {
+  if (region.polygon.empty()) return core::distanceToSegmentSq(region.centre, a, b) <= region.radius * region.radius;
+  if (region.contains(a) || region.contains(b)) return true;
+  const core::Polygon& poly = region.polygon;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    if (core::segmentsIntersect(a, b, poly[j], poly[i])) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void World::Impl::closeDoorFloor(std::uint32_t point, bool closed) {
+  if (!ownMesh || point >= desc.points.size()) return;
+  const nav::CutRegion region = cutRegion(desc.points[point]);
+  auto it = doorPolys.find(point);
+  if (it == doorPolys.end()) it = doorPolys.emplace(point, ownMesh->cutPolygons(region)).first;
+  if (it->second.empty()) return;  // not cut into the mesh (an exit of an inserted crowd)
+  ownMesh->setClosed(it->second, closed);
+  if (!closed) {
+    // Polygons shared with another exit that is still closed stay closed.
+    for (const auto& [other, polys] : doorPolys) {
+      if (other != point && other < closedExits.size() && closedExits[other] != 0) ownMesh->setClosed(polys, true);
+    }
+  }
+  pathQueue->restart();
+  const bool levels = agents.levels;
+  for (std::size_t row = 0; row < agents.size(); ++row) {
+    const core::Vec2 pos{agents.posX[row], agents.posY[row]};
+    const bool sameFloor = !levels || std::abs(agents.posZ[row] - region.height) <= nav::kLevelSearch;
+    if (!closed) {
+      if (agents.goalState[row] == GoalState::Seeking && currentGoalPoint(row) == point) {
+        // Heading for this exit: its target was drawn on the open floor in front while it was
+        // closed (the waiting place); now it lies in the exit again.
+        const core::Vec2 t = goalWriter().drawTarget(row, desc.points[point]);
+        agents.targetX[row] = t.x;
+        agents.targetY[row] = t.y;
+        agents.needPath[row] = 1;
+      } else if (!agents.corners[row].empty()) {
+        agents.needPath[row] = 1;  // the door may be the shorter way now
+      }
+      continue;
+    }
+    if (!sameFloor) continue;
+    if (region.contains(pos)) {
+      // Caught in the doorway: out to the nearest open floor (within 2 m; a wider region keeps them).
+      const auto out = mainQuery->snap(pos, levels ? agents.posZ[row] : 0.0f, 2.0f);
+      if (out) {
+        agents.posX[row] = out->p.x;
+        agents.posY[row] = out->p.y;
+        agents.polyRef[row] = static_cast<std::uint32_t>(out->ref);
+        if (levels) agents.posZ[row] = out->height;
+      }
+      agents.needPath[row] = 1;
+      continue;
+    }
+    // Re-plan when the way ahead (the path's remaining corners, or straight at the target) enters it.
+    const CornerPath& path = agents.corners[row];
+    core::Vec2 from = pos;
+    bool crosses = false;
+    if (path.empty()) {
+      crosses = segmentTouches(region, pos, {agents.targetX[row], agents.targetY[row]});
+    } else {
+      for (std::size_t i = path.index; i < path.size() && !crosses; ++i) {
+        crosses = segmentTouches(region, from, path[i]);
+        from = path[i];
+      }
+    }
+    if (crosses) agents.needPath[row] = 1;
+  }
 }
 
 void World::Impl::insertCrowdNow(CrowdState& c) {

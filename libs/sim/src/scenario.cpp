@@ -28,4 +28,24 @@ bool ScenarioDesc::hasExit() const {
   return std::any_of(points.begin(), points.end(), [](const PointDesc& p) { return p.kind == PointKind::Exit; });
 }
 
+nav::CutRegion cutRegion(const PointDesc& point) {
+  nav::CutRegion r;
+  r.centre = point.position;
+  r.radius = point.radius;
+  r.polygon = point.polygon;
+  r.height = point.height;
+  return r;
+}
+
+nav::NavMeshConfig ScenarioDesc::navMeshConfig() const {
+  nav::NavMeshConfig config;
+  config.agentRadius = navRadius();
+  config.cellSize = navCellSize;
+  config.stairSlopeDeg = stairSlopeDeg;
+  for (const PointDesc& p : points) {
+    if (p.kind == PointKind::Exit) config.cuts.push_back(cutRegion(p));
+  }
+  return config;
+}
+
 }  // namespace throng::sim

@@ -39,9 +39,7 @@ World::~World() = default;
 core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
                                                     std::shared_ptr<const nav::NavMesh> navmesh) {
   if (!navmesh) {
-    nav::NavMeshConfig config;
-    config.agentRadius = desc.navRadius();
-    config.cellSize = desc.navCellSize;
+    const nav::NavMeshConfig config = desc.navMeshConfig();
     auto built = desc.terrain.empty() ? nav::NavMesh::build(desc.walkable, desc.obstacles, config)
                                       : nav::NavMesh::buildFromTerrain(desc.terrain, config);
     if (!built) return std::move(built).takeErrors();
@@ -49,6 +47,12 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   }
   std::unique_ptr<World> world(new World());
   Impl& w = *world->impl_;
+  // Closing an exit takes its floor out of the navmesh (setExitClosedNow): a world with exits
+  // edits a copy of its own, never the mesh other worlds built from the same scenario share.
+  if (desc.hasExit()) {
+    w.ownMesh = navmesh->clone();
+    navmesh = w.ownMesh;
+  }
   w.desc = desc;
   w.navmesh = navmesh;
   w.pathQueue = std::make_unique<nav::PathQueue>(navmesh);

@@ -102,6 +102,15 @@ struct World::Impl {
   /// Per point, 1 while the timeline holds that exit closed: nobody leaves through it (decide);
   /// shorter than the points until a timeline entry closes one.
   std::vector<std::uint8_t> closedExits;
+  /// The world's own copy of the navmesh when the scenario has exits (World::create): closing an
+  /// exit closes the polygons of its region (nav::NavMesh::setClosed), so a closed door is a wall.
+  std::shared_ptr<nav::NavMesh> ownMesh;
+  /// Per exit point: the navmesh polygons of its region (found when it first closes).
+  std::map<std::uint32_t, std::vector<nav::PolyRef>> doorPolys;
+  /// The exit's floor closes or opens: path searches start again on the mesh as it is, agents
+  /// whose way ran through it (closing) or who walk a path (opening) re-plan, and anyone standing
+  /// in a closing door steps out to the nearest open floor (insert.cpp).
+  void closeDoorFloor(std::uint32_t point, bool closed);
   /// Re-evaluates exits (after applyCommands, before sense).
   void chooseExits(const core::TaskSystem& tasks);
 

@@ -25,8 +25,26 @@ using core::Vec2;
 /// Detour polygon reference (opaque); 0 = none.
 using PolyRef = std::uint64_t;
 
+/// A region of the floor cut into polygons of its own (a door: an exit's disc or polygon), so that
+/// closing it (NavMesh::setClosed) takes exactly its floor out of the walkable surface.
+struct CutRegion {
+  Vec2 centre;
+  float radius = 0.0f;  ///< a disc of this radius around `centre` when `polygon` is empty [m]
+  Polygon polygon;      ///< used when not empty
+  float height = 0.0f;  ///< the floor it is on (layered meshes; within kLevelSearch) [m]
+  /// Whether ground point p lies in the region, or within `margin` of it (in the plane; heights
+  /// are the caller's).
+  [[nodiscard]] bool contains(Vec2 p, float margin = 0.0f) const;
+};
+
 struct NavMeshConfig {
   float agentRadius = 0.2f;  ///< erosion radius [m] [Limit: >= 0]
+  /// Regions whose floor becomes polygons of its own, flagged kCutFlag: the cells whose centre lies
+  /// in the region or within kCutMargin cells of it (cells, and contour simplification by up to
+  /// 1.1 cells, would otherwise leave the polygons' edge up to 1.6 cells inside the region; with
+  /// the margin the whole region is covered, so a closed cut keeps every centre out of it).
+  /// Polygons never straddle a cut's edge. Without cuts the mesh is as before.
+  std::vector<CutRegion> cuts;
   // Terrain meshes only (NavMesh::buildFromTerrain): what a person can walk on and under.
   float maxSlopeDeg = 45.0f;  ///< steepest walkable triangle [deg] (ramps; stairs are climbed step by step)
   float maxClimb = 0.35f;     ///< highest step walked up or down [m]
@@ -49,6 +67,13 @@ struct NavMeshConfig {
 /// stairs and steep ramps (NavMeshConfig::stairSlopeDeg). A flat mesh has floor only.
 inline constexpr unsigned char kFloorArea = 0;
 inline constexpr unsigned char kStairArea = 1;
+/// Detour polygon flags: every open polygon has kWalkFlag, which every query filter of NavQuery and
+/// PathQueue includes; polygons of a NavMeshConfig::cuts region also have kCutFlag. A closed cut
+/// polygon (NavMesh::setClosed) has kCutFlag only: no query, path or move enters it.
+inline constexpr unsigned short kWalkFlag = 1;
+inline constexpr unsigned short kCutFlag = 2;
+/// How far beyond a cut region its polygons reach, at most [cells] (NavMeshConfig::cuts).
+inline constexpr float kCutMargin = 2.0f;
 /// Horizontal length over which a stair's slope is measured [m]: long enough to span two treads
 /// (0.25–0.35 m each), so a stair's flat treads and steep risers average to its pitch.
 inline constexpr float kStairBaseline = 1.0f;
@@ -111,6 +136,17 @@ class NavMesh {
   /// The ground of polygon `ref`: its area and its mean gradient (from its detail triangles).
   /// A stale or null reference gives flat floor.
   [[nodiscard]] Surface surface(PolyRef ref) const;
+
+  /// A copy with the same polygons and references, whose flags the owner may change (setClosed)
+  /// without touching the meshes other worlds share.
+  [[nodiscard]] std::shared_ptr<NavMesh> clone() const;
+  /// The polygons of a cut region (kCutFlag) whose centroid lies in `region` or within kCutMargin
+  /// cells of it (on a layered mesh:
+  /// whose height at the centroid is within kLevelSearch of region.height), in reference order.
+  [[nodiscard]] std::vector<PolyRef> cutPolygons(const CutRegion& region) const;
+  /// Closes (kCutFlag only: nothing enters them) or opens (kWalkFlag | kCutFlag) polygons of
+  /// cutPolygons(). Not thread-safe: call between queries (queries of other threads must not run).
+  void setClosed(std::span<const PolyRef> polys, bool closed);
 
  private:
   NavMesh() = default;

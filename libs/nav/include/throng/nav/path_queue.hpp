@@ -43,6 +43,11 @@ class PathQueue {
   /// class's costs as they were when it began. [Limit: each >= 1, finite, so Detour's A* heuristic
   /// stays admissible]
   void setStairCosts(std::span<const float> stairCost);
+  /// The mesh's polygon flags changed (NavMesh::setClosed): the search under way and those searched
+  /// ahead start again when their turn comes, so every result is searched on the mesh as it is now,
+  /// the same way on any number of threads (the budget already spent stays spent). Tickets keep
+  /// their places in the queue.
+  void restart();
   /// How many cost classes setStairCosts has set (0 before any call).
   [[nodiscard]] std::size_t costClasses() const;
   /// Runs queued searches until `iterationBudget` Detour node expansions are spent (at least one

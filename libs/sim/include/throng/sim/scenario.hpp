@@ -406,6 +406,10 @@ struct ScenarioDesc {
   /// non-empty the navmesh is built from it, `walkable` and `obstacles` are empty, and agents,
   /// points, spawns and guides carry heights. Empty: the flat 2D world of `walkable`/`obstacles`.
   nav::TerrainMesh terrain;
+  /// Multi-level worlds: ground steeper than this (its mean slope over nav::kStairBaseline) is a
+  /// stair (the scenario key terrain.stairSlope; nav::NavMeshConfig::stairSlopeDeg) [deg]
+  /// [Limit: > 0 .. 89]
+  float stairSlopeDeg = nav::NavMeshConfig{}.stairSlopeDeg;
   std::vector<PointDesc> points;
   std::vector<PopulationDesc> populations;
   SteeringDesc steering;
@@ -422,6 +426,13 @@ struct ScenarioDesc {
   [[nodiscard]] float navRadius() const;
   /// True when some point is an exit.
   [[nodiscard]] bool hasExit() const;
+  /// How the navmesh of this scenario is built: eroded by navRadius(), cells of navCellSize, and
+  /// every exit's region cut into polygons of its own (nav::NavMeshConfig::cuts), so that a closed
+  /// exit is a wall (World: timeline `close`, setExitOpen). io, the World and the benches use it.
+  [[nodiscard]] nav::NavMeshConfig navMeshConfig() const;
 };
+
+/// An exit's region (disc or polygon, on its floor) as a navmesh cut.
+[[nodiscard]] nav::CutRegion cutRegion(const PointDesc& point);
 
 }  // namespace throng::sim

@@ -1,0 +1,190 @@
+// Tests for closed doors (libs/sim/src/insert.cpp World::Impl::closeDoorFloor, nav::NavMesh::setClosed;
+// docs/crowd-model.md "Closed exits"): a closed exit is a wall. Two rooms joined by two doors,
+// each an exit point in the wall's opening (a door in the middle of the world, nobody's goal): with
+// the south door closed everyone walks through the north one and nobody's centre is ever in the
+// closed door; those already on their way re-plan; once it opens it is used again. An exit on the
+// boundary that is a population's goal keeps its people waiting in front of it, outside its area.
+// Someone standing in a doorway when it closes steps out. (Path searches under way when a door
+// closes give the same results on any thread count: PathQueue.DoorsClosingUnderWay*.)
+#include <gtest/gtest.h>
+
+#include "sim_test_util.hpp"
+#include "throng/sim/world.hpp"
+
+using namespace throng;
+
+namespace {
+
+core::Polygon rect(float x0, float y0, float x1, float y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
+
+sim::PointDesc exitRect(std::string id, core::Polygon polygon) {
+  sim::PointDesc p;
+  p.id = std::move(id);
+  p.kind = sim::PointKind::Exit;
+  p.position = core::centroid(polygon);
+  p.polygon = std::move(polygon);
+  return p;
+}
+
+// The doors' areas: the 1.2 m openings in the 0.2 m wall at x 10..10.2, 0.4 m deep into each room.
+const core::Polygon kSouthDoor = rect(9.6f, 1.9f, 10.6f, 3.1f);
+const core::Polygon kNorthDoor = rect(9.6f, 6.9f, 10.6f, 8.1f);
+
+sim::TimelineEntry doorAt(float time, sim::TimelineAction action, std::uint32_t point) {
+  sim::TimelineEntry e;
+  e.time = time;
+  e.action = action;
+  e.point = point;
+  return e;
+}
+
+/// Two 10 x 10 m rooms; points: 0 the south door (y 1.9..3.1), 1 the north door (6.9..8.1), 2 the
+/// way out along the east room's east wall (wall to wall). `agents` start in the west room's south (x 1..8,
+/// y 0.5..4): the south door is the nearer for all of them.
+sim::ScenarioDesc twoRooms(std::uint32_t agents) {
+  sim::ScenarioDesc d;
+  d.seed = 3;
+  d.duration = 300.0f;
+  d.walkable = {rect(0, 0, 10, 10), rect(10.2f, 0, 20, 10), rect(10, 1.9f, 10.2f, 3.1f), rect(10, 6.9f, 10.2f, 8.1f)};
+  d.points = {exitRect("south", kSouthDoor), exitRect("north", kNorthDoor), exitRect("out", rect(19, 0, 20, 10))};
+  sim::PopulationDesc p;
+  p.id = "crowd";
+  p.groups = agents;
+  p.spawn.kind = sim::SpawnKind::Polygon;
+  p.spawn.polygon = rect(1, 0.5f, 8, 4);
+  p.goals = {2};
+  d.populations = {p};
+  return d;
+}
+
+bool inside(const core::Polygon& poly, float x, float y) { return core::pointInPolygon(poly, {x, y}); }
+
+struct Crossings {
+  int south = 0, north = 0;          ///< agents whose centre went from the west room into the east one
+  int insideWhileClosed = 0;         ///< agent-ticks with a centre in the watched area while it was closed
+  int left = 0;                      ///< Exit events
+  int mostInFront = 0;               ///< most agents at one tick in the metre in front of the south door, 2 s after it closed
+};
+
+/// Steps until `seconds`; the area `watched` (the south door unless said) is closed over
+/// [closedFrom, closedUntil) [s].
+Crossings walk(sim::World& w, double seconds, double closedFrom, double closedUntil,
+               const core::Polygon& watched = kSouthDoor) {
+  const int threads = 1;
+  core::TaskSystem tasks(threads);
+  Crossings c;
+  std::vector<float> lastX;  // by stable id
+  while (w.stats().time < seconds && !w.finished()) {
+    w.step(tasks);
+    const auto f = w.takeFrame();
+    const double t = w.stats().time;
+    for (const sim::Event& e : f->events) c.left += e.kind == sim::EventKind::Exit ? 1 : 0;
+    int inFront = 0;
+    for (std::size_t i = 0; i < f->size(); ++i) {
+      const std::uint32_t id = f->ids[i];
+      if (lastX.size() <= id) lastX.resize(id + 1, -1.0f);
+      const float x = f->posX[i], y = f->posY[i];
+      if (lastX[id] >= 0.0f && lastX[id] < 10.1f && x >= 10.1f) (y < 5.0f ? c.south : c.north) += 1;
+      lastX[id] = x;
+      // A tick's frame shows the tick's end; a door closed at `closedFrom` is closed from the
+      // tick that ends after it.
+      if (t > closedFrom + 0.01 && t < closedUntil && inside(watched, x, y)) ++c.insideWhileClosed;
+      inFront += x > 8.6f && x < 9.6f && y > 1.6f && y < 3.4f ? 1 : 0;
+    }
+    if (t > closedFrom + 2.0 && t < closedUntil) c.mostInFront = std::max(c.mostInFront, inFront);
+  }
+  return c;
+}
+
+TEST(ClosedDoor, EveryoneWalksThroughTheOtherDoorAndNobodyStandsInTheClosedOne) {
+  // Both doors open, the south one is the way of most (32 of 40); closed from the start, of none.
+  auto open = sim::World::create(twoRooms(40));
+  ASSERT_TRUE(open.ok()) << core::formatAll(open.errors());
+  const Crossings o = walk(*open.value(), 200.0, 0.0, 0.0);
+  EXPECT_GT(o.south, 25);
+  EXPECT_EQ(o.left, 40);
+  auto d = twoRooms(40);
+  d.timeline = {doorAt(0, sim::TimelineAction::CloseExit, 0)};
+  auto created = sim::World::create(d);
+  ASSERT_TRUE(created.ok());
+  const Crossings c = walk(*created.value(), 200.0, 0.0, 1e9);
+  EXPECT_EQ(c.insideWhileClosed, 0) << "agent centres inside the closed door";
+  EXPECT_EQ(c.south, 0) << "people walked through the closed door";
+  EXPECT_EQ(c.north, 40);
+  EXPECT_EQ(c.left, 40);
+}
+
+TEST(ClosedDoor, ThoseOnTheirWayReplanAndTheReopenedDoorIsUsedAgain) {
+  // The south door closes at 3 s, when the crowd is on its way to it, and opens at 40 s; a second
+  // crowd starts from the same place at 45 s. Re-planning at once, few walk on to the closed door
+  // (3 at most in the metre in front of it; 12 when they re-plan only after their progress check).
+  auto d = twoRooms(40);
+  sim::PopulationDesc later = d.populations[0];
+  later.id = "later";
+  later.start = 45.0f;
+  d.populations.push_back(later);
+  d.timeline = {doorAt(3, sim::TimelineAction::CloseExit, 0), doorAt(40, sim::TimelineAction::OpenExit, 0)};
+  auto created = sim::World::create(d);
+  ASSERT_TRUE(created.ok());
+  sim::World& w = *created.value();
+  // Until the door opens: those who had not passed it go north; nobody is inside it.
+  const Crossings before = walk(w, 40.0, 3.0, 40.0);
+  EXPECT_EQ(before.insideWhileClosed, 0);
+  EXPECT_GT(before.north, 20) << "the crowd kept to its old way";
+  EXPECT_LE(before.mostInFront, 5) << "people walked on to the closed door instead of re-planning at once";
+  EXPECT_EQ(before.south + before.north, 40);
+  // After: the second crowd takes the south door again (22 of 40 did, as with the door never closed).
+  const Crossings after = walk(w, 200.0, 0.0, 0.0);
+  EXPECT_GT(after.south, 15) << "the reopened door was not used";
+  EXPECT_EQ(before.left + after.left, 80);
+}
+
+TEST(ClosedDoor, PeopleWhoseGoalIsAClosedExitWaitInFrontOfIt) {
+  // The way out along the east wall is closed from 0 to 30 s: its people wait in front of it,
+  // outside its area, and leave by it once it opens.
+  auto d = twoRooms(8);
+  d.timeline = {doorAt(0, sim::TimelineAction::CloseExit, 2), doorAt(30, sim::TimelineAction::OpenExit, 2)};
+  const core::Polygon out = d.points[2].polygon;
+  auto created = sim::World::create(d);
+  ASSERT_TRUE(created.ok());
+  sim::World& w = *created.value();
+  const Crossings before = walk(w, 29.0, 0.0, 30.0, out);
+  EXPECT_EQ(before.left, 0);
+  EXPECT_EQ(before.insideWhileClosed, 0);
+  const auto f = w.takeFrame();
+  int near = 0;
+  for (std::size_t i = 0; i < f->size(); ++i) near += f->posX[i] > 16.0f && f->posX[i] < 19.0f ? 1 : 0;
+  EXPECT_EQ(near, 8) << "the crowd does not wait in front of the way out";
+  const Crossings after = walk(w, 40.0, 0.0, 0.0);
+  printf("left by 40: %d\n", after.left);
+  EXPECT_EQ(after.left, 8);
+}
+
+TEST(ClosedDoor, SomeoneStandingInTheDoorwayStepsOutWhenItCloses) {
+  // Three people stop in and around the south doorway for 60 s (an action point there); the door
+  // closes at 2 s: those in it step out to the nearest open floor at once, though not walking.
+  auto d = twoRooms(3);
+  sim::PointDesc stand;
+  stand.id = "stand";
+  stand.kind = sim::PointKind::Action;
+  stand.position = {10.1f, 2.5f};
+  stand.radius = 0.3f;
+  stand.stop = true;
+  stand.actionDuration = 60.0f;
+  d.points.push_back(stand);
+  d.populations[0].spawn.polygon = rect(8.5f, 2.0f, 9.5f, 3.0f);
+  d.populations[0].goals = {3};
+  d.timeline = {doorAt(2, sim::TimelineAction::CloseExit, 0)};
+  auto created = sim::World::create(d);
+  ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
+  sim::World& w = *created.value();
+  const Crossings standing = walk(w, 1.9, 0.0, 0.0);
+  const auto f = w.takeFrame();
+  int inDoor = 0;
+  for (std::size_t i = 0; i < f->size(); ++i) inDoor += inside(kSouthDoor, f->posX[i], f->posY[i]) ? 1 : 0;
+  ASSERT_GE(inDoor, 1) << "nobody is standing in the doorway";
+  const Crossings closed = walk(w, 20.0, 2.0, 1e9);
+  EXPECT_EQ(closed.insideWhileClosed, 0) << "agent centres stayed in the closed door";
+}
+
+}  // namespace
