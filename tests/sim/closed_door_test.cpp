@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "sim_test_util.hpp"
+#include "timeline.hpp"
 #include "throng/sim/world.hpp"
 
 using namespace throng;
@@ -29,14 +30,6 @@ sim::PointDesc exitRect(std::string id, core::Polygon polygon) {
 // The doors' areas: the 1.2 m openings in the 0.2 m wall at x 10..10.2, 0.4 m deep into each room.
 const core::Polygon kSouthDoor = rect(9.6f, 1.9f, 10.6f, 3.1f);
 const core::Polygon kNorthDoor = rect(9.6f, 6.9f, 10.6f, 8.1f);
-
-sim::TimelineEntry doorAt(float time, sim::TimelineAction action, std::uint32_t point) {
-  sim::TimelineEntry e;
-  e.time = time;
-  e.action = action;
-  e.point = point;
-  return e;
-}
 
 /// Two 10 x 10 m rooms; points: 0 the south door (y 1.9..3.1), 1 the north door (6.9..8.1), 2 the
 /// way out along the east room's east wall (wall to wall). `agents` start in the west room's south (x 1..8,
@@ -104,7 +97,7 @@ TEST(ClosedDoor, EveryoneWalksThroughTheOtherDoorAndNobodyStandsInTheClosedOne) 
   EXPECT_GT(o.south, 25);
   EXPECT_EQ(o.left, 40);
   auto d = twoRooms(40);
-  d.timeline = {doorAt(0, sim::TimelineAction::CloseExit, 0)};
+  d.timeline = {test::doorAt(0, sim::TimelineAction::CloseExit, 0)};
   auto created = sim::World::create(d);
   ASSERT_TRUE(created.ok());
   const Crossings c = walk(*created.value(), 200.0, 0.0, 1e9);
@@ -123,7 +116,7 @@ TEST(ClosedDoor, ThoseOnTheirWayReplanAndTheReopenedDoorIsUsedAgain) {
   later.id = "later";
   later.start = 45.0f;
   d.populations.push_back(later);
-  d.timeline = {doorAt(3, sim::TimelineAction::CloseExit, 0), doorAt(40, sim::TimelineAction::OpenExit, 0)};
+  d.timeline = {test::doorAt(3, sim::TimelineAction::CloseExit, 0), test::doorAt(40, sim::TimelineAction::OpenExit, 0)};
   auto created = sim::World::create(d);
   ASSERT_TRUE(created.ok());
   sim::World& w = *created.value();
@@ -143,7 +136,7 @@ TEST(ClosedDoor, PeopleWhoseGoalIsAClosedExitWaitInFrontOfIt) {
   // The way out along the east wall is closed from 0 to 30 s: its people wait in front of it,
   // outside its area, and leave by it once it opens.
   auto d = twoRooms(8);
-  d.timeline = {doorAt(0, sim::TimelineAction::CloseExit, 2), doorAt(30, sim::TimelineAction::OpenExit, 2)};
+  d.timeline = {test::doorAt(0, sim::TimelineAction::CloseExit, 2), test::doorAt(30, sim::TimelineAction::OpenExit, 2)};
   const core::Polygon out = d.points[2].polygon;
   auto created = sim::World::create(d);
   ASSERT_TRUE(created.ok());
@@ -174,7 +167,7 @@ TEST(ClosedDoor, SomeoneStandingInTheDoorwayStepsOutWhenItCloses) {
   d.points.push_back(stand);
   d.populations[0].spawn.polygon = rect(8.5f, 2.0f, 9.5f, 3.0f);
   d.populations[0].goals = {3};
-  d.timeline = {doorAt(2, sim::TimelineAction::CloseExit, 0)};
+  d.timeline = {test::doorAt(2, sim::TimelineAction::CloseExit, 0)};
   auto created = sim::World::create(d);
   ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
   sim::World& w = *created.value();

@@ -12,6 +12,7 @@
 #include <map>
 
 #include "sim_test_util.hpp"
+#include "timeline.hpp"
 #include "throng/sim/world.hpp"
 
 using namespace throng;
@@ -189,14 +190,6 @@ TEST(ExitChoice, AClosedExitIsLeftForTheOther) {
   EXPECT_GT(o.exitsBy[0], 170);
 }
 
-sim::TimelineEntry doorAt(float time, sim::TimelineAction action, std::uint32_t point) {
-  sim::TimelineEntry e;
-  e.time = time;
-  e.action = action;
-  e.point = point;
-  return e;
-}
-
 /// Exit events between `from` and `to` [s].
 int exitsBetween(const Outcome& o, const sim::ScenarioDesc& d, double from, double to) {
   int n = 0;
@@ -213,8 +206,8 @@ TEST(ExitChoice, NobodyLeavesThroughAClosedDoorEvenWithNoOtherOpen) {
   sim::ExitChoiceDesc c;
   c.rule = sim::ExitRule::Nearest;
   auto d = room(100, c);
-  d.timeline = {doorAt(5, sim::TimelineAction::CloseExit, 0), doorAt(5, sim::TimelineAction::CloseExit, 1),
-                doorAt(40, sim::TimelineAction::OpenExit, 0), doorAt(40, sim::TimelineAction::OpenExit, 1)};
+  d.timeline = {test::doorAt(5, sim::TimelineAction::CloseExit, 0), test::doorAt(5, sim::TimelineAction::CloseExit, 1),
+                test::doorAt(40, sim::TimelineAction::OpenExit, 0), test::doorAt(40, sim::TimelineAction::OpenExit, 1)};
   const Outcome o = run(d, 1, 200.0);
   EXPECT_EQ(exitsBetween(o, d, 5.0, 40.0), 0) << "people left through a closed door";
   EXPECT_EQ(o.exitsBy.at(0) + (o.exitsBy.count(1) != 0 ? o.exitsBy.at(1) : 0), 100);
@@ -226,7 +219,7 @@ TEST(ExitChoice, AFixedGoalAtAClosedExitWaitsForItToOpen) {
   auto d = room(60, {});
   d.populations[0].exits.clear();
   d.populations[0].goals = {0};
-  d.timeline = {doorAt(0, sim::TimelineAction::CloseExit, 0), doorAt(30, sim::TimelineAction::OpenExit, 0)};
+  d.timeline = {test::doorAt(0, sim::TimelineAction::CloseExit, 0), test::doorAt(30, sim::TimelineAction::OpenExit, 0)};
   const Outcome o = run(d, 1, 150.0);
   EXPECT_EQ(exitsBetween(o, d, 0.0, 30.0), 0);
   EXPECT_EQ(o.exitsBy.at(0), 60);

@@ -19,15 +19,6 @@ constexpr std::uint32_t kQueueRebuilds = 8;
 /// Buckets of the herding index (cells hashed into them; a power of two).
 constexpr std::uint32_t kHerdBuckets = 4096;
 
-nav::FieldTarget targetOf(const PointDesc& p) {
-  nav::FieldTarget t;
-  t.centre = p.position;
-  t.radius = p.radius;
-  t.polygon = p.polygon;
-  t.height = p.height;
-  return t;
-}
-
 }  // namespace
 
 std::size_t ExitChoice::Queue::bin(float d) const {
@@ -61,7 +52,7 @@ void ExitChoice::prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, std
     for (const std::uint32_t point : pop.exits) {
       if (exitOfPoint_[point] >= 0) continue;
       Exit e;
-      e.field = nav::DistanceField::build(mesh, targetOf(desc.points[point]), config);
+      e.field = nav::DistanceField::build(mesh, cutRegion(desc.points[point]), config);
       e.capacity = kExitSpecificFlow * desc.points[point].width;
       e.queue.reset(static_cast<std::size_t>(e.field.maxDistance() / kBin) + 2);
       exitOfPoint_[point] = static_cast<std::int32_t>(exits_.size());

@@ -25,13 +25,9 @@
 
 namespace throng::nav {
 
-/// Where the distances are measured to: a disc (`radius` > 0 around `centre`) or a polygon.
-struct FieldTarget {
-  Vec2 centre;
-  float radius = 0.0f;
-  Polygon polygon;       ///< used when not empty
-  float height = 0.0f;   ///< the floor it is on (layered meshes) [m]
-};
+/// Where the distances are measured to: a disc (`radius` > 0 around `centre`) or a polygon on the
+/// floor at `height` — the same region a door cut takes out of the mesh (CutRegion, navmesh.hpp).
+using FieldTarget = CutRegion;
 
 struct DistanceFieldConfig {
   float spacing = 1.0f;    ///< most distance between two nodes on a portal [m] [Limit: > 0]
