@@ -69,6 +69,14 @@ class Runner:
         first = text[0] if text else ""
         return res.returncode == 0, first.split(": ", 1)[-1] if res.returncode else first
 
+    def nav_margin(self, label, scenario):
+        """How far the navmesh keeps agents' centres from walls in `scenario` [m] (`throng check --json`:
+        the body radius times the model's passageRatio)."""
+        res = subprocess.run([self.binary, "check", "--json", self.write(label, scenario)], capture_output=True, text=True)
+        if res.returncode != 0:
+            raise RuntimeError(f"throng check {label}: {(res.stdout + res.stderr).strip()}")
+        return float(json.loads(res.stdout)["nav_margin_m"])
+
     def _one(self, task):
         label, scenario, seed, duration = task
         progress(f"run {label} seed {seed}")

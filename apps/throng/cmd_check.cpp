@@ -118,6 +118,7 @@ int runCheck(const CheckOptions& options) {
                        {"agents_max", agents.max},
                        {"points", desc.points.size()},
                        {"navmesh_polygons", polygons},
+                       {"nav_margin_m", desc.navRadius()},
                        {"diagnostics", nlohmann::json::array()}};
     if (!warnings.empty()) out["warnings"] = warnings;  // only then: other answers stay as they were
     printLine(stdout, dumpJson(out));
@@ -128,8 +129,9 @@ int runCheck(const CheckOptions& options) {
   }
   const std::string agentText = agents.min == agents.max ? fmt::format("{} agents", agents.min)
                                                          : fmt::format("{}-{} agents", agents.min, agents.max);
-  printLine(stdout, fmt::format("ok: {}: {} populations, {}, {} points, navmesh {} polygons", displayText(desc.name),
-                                desc.populations.size(), agentText, desc.points.size(), polygons));
+  printLine(stdout, fmt::format("ok: {}: {} populations, {}, {} points, navmesh {} polygons (centres kept {:.3g} m from walls)",
+                                displayText(desc.name), desc.populations.size(), agentText, desc.points.size(), polygons,
+                                desc.navRadius()));
   return kExitOk;
 }
 

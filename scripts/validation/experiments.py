@@ -154,10 +154,12 @@ def jam(ctx):
 
 
 # --- Rings ----------------------------------------------------------------------------------------
-# The slabs (interest points) reach 3 cm into the navmesh's eroded margin (1.25 r from the walls)
-# so that they span every place an agent can be: an agent that passes beside a slab has to walk
-# back to it (with slabs 5 cm inside the margin, 40-60 % of the agents at 2 /m² walked backwards
-# at some time). Their targets are snapped onto the navmesh (sim/goals.cpp).
+# The slabs (interest points) reach 3 cm into the navmesh's eroded margin (the model's: radius x
+# passageRatio from the walls, 0.13 m for avm's default body; `throng check --json` nav_margin_m) so
+# that they span every place an agent can be: an agent that passes beside a slab has to walk back
+# to it (with slabs 5 cm inside the margin, 40-60 % of the agents at 2 /m² walked backwards at some
+# time; with slabs at ORCA's margin, 1.25 r, avm's agents along the walls passed beside them and 2 %
+# of the samples at 4-5 /m² were backward). Their targets are snapped onto the navmesh (sim/goals.cpp).
 RING = {"r_in": 3.0, "r_out": 5.0, "slabs": 12, "densities": [0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0]}
 # Single file: passing was prohibited in the experiment and people walked in line along the
 # corridor's middle, so its waypoints span the middle 0.2 m ("pad": 0.3 m from either wall). Spanning
@@ -165,7 +167,7 @@ RING = {"r_in": 3.0, "r_out": 5.0, "slabs": 12, "densities": [0.5, 1.0, 1.5, 2.0
 # from wall to wall and walked staggered, half a body aside, which no participant did
 # (docs/validation.md: 0.47 / 0.30 m/s at 1.5 / 2 /m with full-width waypoints, 0.40 / 0.21 with these).
 SINGLE_FILE = {"r_in": 3.74, "r_out": 4.54, "slabs": 16, "densities": [1.0, 1.5, 2.0], "pad": 0.3}
-SLAB_PAD = lambda r: 1.25 * r - 0.03  # noqa: E731  [m]
+SLAB_PAD = lambda margin: margin - 0.03  # noqa: E731  [m], margin: the navmesh's (nav_margin_m)
 RING_SPEED_TOL = 0.15
 BACKWARD_SPEED = -0.05   # a tangential speed below this is a backward sample [m/s]
 BACKWARD_MAX = 0.02
@@ -184,11 +186,12 @@ def _ring_runs(ctx, label, geo, agents_of, size_of):
     """Simulates a ring per density and seed; returns per density the runs' ring_measures."""
     warm, span = _ring_windows(ctx)
     radius = ctx.radius
+    margin = ctx.runner.nav_margin(f"{label}-margin", S.ring(geo["r_in"], geo["r_out"], 1, warm + span, slabs=geo["slabs"]))
     tasks, meta = [], []
     for rho in geo["densities"]:
         n = agents_of(rho)
         scen = S.ring(geo["r_in"], geo["r_out"], n, warm + span, slabs=geo["slabs"], name=f"{label} {rho}",
-                      pad=geo.get("pad", SLAB_PAD(radius)))
+                      pad=geo.get("pad", SLAB_PAD(margin)))
         # Above what `throng check` accepts in one wave, spawn in waves 1 s apart (docs/validation.md).
         per_wave = SPAWN_PACKING * S.ring_area(geo["r_in"], geo["r_out"]) / (math.pi * radius * radius)
         waves = max(1, math.ceil(n / (0.97 * per_wave)))

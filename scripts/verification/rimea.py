@@ -29,8 +29,8 @@ def _first_cross(traj, line, direction):
 # cfsm is JuPedSim's collision-free speed model with its defaults, not calibrated: with no rule for
 # who goes first, head-on walkers in the 2 m corridor wedge each other (session 33: since exits are
 # cut out of the navmesh, issue 18, trajectories changed and 2 of the 4 runs deadlock).
-CFSM_COUNTER_XFAIL = ("cfsm (not calibrated) deadlocks head-on: with 10 and 25 walking against, not everybody "
-                      "arrives (2 of 4 runs)")
+CFSM_COUNTER_XFAIL = ("cfsm (not calibrated) deadlocks head-on: with 25 walking against, not everybody arrives "
+                      "(1 of 4 runs; 2 of 4 before session 34)")
 
 
 # --- 1 ---------------------------------------------------------------------------------------------

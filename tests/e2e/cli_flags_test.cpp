@@ -218,6 +218,9 @@ TEST(CliRun, CheckSummarisesAValidScenario) {
   EXPECT_TRUE(doc.at("ok").get<bool>());
   EXPECT_EQ(doc.at("agents_max").get<int>(), 3);
   EXPECT_GT(doc.at("navmesh_polygons").get<int>(), 0);
+  // The default model (avm) keeps centres passageRatio x radius from walls: 0.65 x 0.2 m.
+  EXPECT_NEAR(doc.at("nav_margin_m").get<double>(), 0.13, 1e-6);
+  EXPECT_TRUE(contains(r.out, "centres kept 0.13 m from walls")) << r.out;
 }
 
 TEST(CliRun, TinyEvacuationThenInfo) {

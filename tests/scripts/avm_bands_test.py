@@ -6,10 +6,13 @@ no external data and asserts the bands of issue 17 that avm meets (docs/validati
 the pedestrian model avm"): the ring's fundamental diagram from 1 to 5 /m² against Weidmann,
 every bottleneck width 0.5-1.2 m accepted by `throng check` for the default body, its flow within
 ±25 % of the trend and no gap between passings over 5 s in this seed, the 1 m door's flow, and
-lanes in counter-flow without deadlock. Not asserted, because avm does not meet them yet (the same
-page says why): the ring at 0.5 /m² and backward samples above 2 /m², single file, the dense
-room's overlaps and walk-back; and the 0.6 m flow, which this one-seed run may put just above its
-band (five seeds: 1.40 /s, band 0.86-1.42).
+lanes in counter-flow without deadlock, no more than 2 % of the ring's speed samples backward up to
+3 /m² and of the single file's at every density, and nobody in the dense room's queue more than
+0.5 m back from the door. Not asserted, because avm does not meet them yet or only on average (the
+same page says why): the ring at 0.5 /m², its backward samples at 4-5 /m² (five seeds: 1.8-1.9 %,
+this one-seed short run: 2.0-2.2 %), the single file's speed at 1 /m, the dense room's overlaps; and
+the 0.6 m flow, which this one-seed run may put just above its band (five seeds: 1.41 /s, band
+0.86-1.42).
 With `--model orca` this test fails (the 0.5 m door is refused; speed does not fall with density).
 
 usage: avm_bands_test.py THRONG_BINARY [MODEL]"""
@@ -27,6 +30,9 @@ ASSERTED = (
     + [f"{w} m flow" for w in ("0.5", "0.7", "0.8", "1.0", "1.2")]
     + [f"{w} m longest gap" for w in ("0.5", "0.6", "0.7", "0.8", "1.0", "1.2")]
     + ["1 m door flow", "lane order", "no deadlock"]
+    + [f"backward samples at {d} /m²" for d in ("0.5", "1", "1.5", "2", "3")]
+    + [f"backward samples at {d} /m" for d in ("1", "1.5", "2")]
+    + ["max walk-back from the door"]
 )
 
 
@@ -36,7 +42,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix="throng-avm-bands-") as tmp:
         out = os.path.join(tmp, "v.json")
         res = subprocess.run([sys.executable, SCRIPT, "--throng", binary, "--quick", "--model", model, "--only",
-                              "ring,bottleneck,door,counterflow", "--no-plots", "--json", out],
+                              "ring,single-file,room,bottleneck,door,counterflow", "--no-plots", "--json", out],
                              capture_output=True, text=True, timeout=600)
         if res.returncode != 0:
             print(res.stdout + res.stderr)
@@ -44,7 +50,7 @@ def main():
         targets = json.load(open(out))["targets"]
     failed = []
     for prefix in ASSERTED:
-        rows = [t for t in targets if t["target"].startswith(prefix)]
+        rows = [t for t in targets if t["target"] == prefix or t["target"].startswith(prefix + " ")]
         if len(rows) != 1:
             failed.append(f"{prefix}: {len(rows)} rows (expected 1)")
         elif rows[0]["status"] != "PASS":

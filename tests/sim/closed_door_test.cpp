@@ -66,7 +66,8 @@ Crossings walk(sim::World& w, double seconds, double closedFrom, double closedUn
   const int threads = 1;
   core::TaskSystem tasks(threads);
   Crossings c;
-  std::vector<float> lastX;  // by stable id
+  std::vector<float> lastX;       // by stable id
+  std::vector<std::uint8_t> over;  // by stable id: crossed already (each agent counts once)
   while (w.stats().time < seconds && !w.finished()) {
     w.step(tasks);
     const auto f = w.takeFrame();
@@ -75,9 +76,15 @@ Crossings walk(sim::World& w, double seconds, double closedFrom, double closedUn
     int inFront = 0;
     for (std::size_t i = 0; i < f->size(); ++i) {
       const std::uint32_t id = f->ids[i];
-      if (lastX.size() <= id) lastX.resize(id + 1, -1.0f);
+      if (lastX.size() <= id) {
+        lastX.resize(id + 1, -1.0f);
+        over.resize(id + 1, 0);
+      }
       const float x = f->posX[i], y = f->posY[i];
-      if (lastX[id] >= 0.0f && lastX[id] < 10.1f && x >= 10.1f) (y < 5.0f ? c.south : c.north) += 1;
+      if (lastX[id] >= 0.0f && lastX[id] < 10.1f && x >= 10.1f && over[id] == 0) {
+        (y < 5.0f ? c.south : c.north) += 1;
+        over[id] = 1;
+      }
       lastX[id] = x;
       // A tick's frame shows the tick's end; a door closed at `closedFrom` is closed from the
       // tick that ends after it.

@@ -129,10 +129,11 @@ TEST(ExitChoice, HerdingFollowsWhereThePeopleAroundAreGoing) {
   // 40 choosers nearer the south door among 20 who all walk to the north one (few enough that
   // walking, not the queues, decides): with herding the choosers go where those around them go;
   // the "leaders" population has no choice (goals only).
-  auto scenario = [](float herding) {
+  auto scenario = [](float herding, std::uint64_t seed) {
     sim::ExitChoiceDesc c;
     c.herding = herding;
     sim::ScenarioDesc d = room(40, c);
+    d.seed = seed;
     sim::PopulationDesc leaders = d.populations[0];
     leaders.id = "leaders";
     leaders.groups = 20;
@@ -147,10 +148,16 @@ TEST(ExitChoice, HerdingFollowsWhereThePeopleAroundAreGoing) {
     for (const sim::Event& e : o.events) north += e.kind == sim::EventKind::Exit && e.a == 1 && e.agent < 40 ? 1 : 0;
     return north;
   };
-  Outcome none = run(scenario(0.0f)), some = run(scenario(0.8f));
-  EXPECT_EQ(none.exitsBy[0] + none.exitsBy[1], 60);
-  EXPECT_EQ(some.exitsBy[0] + some.exitsBy[1], 60);
-  EXPECT_GT(choosersNorth(some), choosersNorth(none) + 8) << choosersNorth(some) << " vs " << choosersNorth(none);
+  // Over three seeds (one alone is noisy: 40 choosers): measured 48 with herding against 28 without.
+  int withHerding = 0, without = 0;
+  for (const std::uint64_t seed : {5u, 6u, 7u}) {
+    Outcome none = run(scenario(0.0f, seed)), some = run(scenario(0.8f, seed));
+    EXPECT_EQ(none.exitsBy[0] + none.exitsBy[1], 60);
+    EXPECT_EQ(some.exitsBy[0] + some.exitsBy[1], 60);
+    withHerding += choosersNorth(some);
+    without += choosersNorth(none);
+  }
+  EXPECT_GT(withHerding, without + 15) << withHerding << " vs " << without;
 }
 
 TEST(ExitChoice, AllocationSplitsBySharesAndNeverReconsiders) {

@@ -123,6 +123,30 @@ TEST(Spawn, InsertedCrowdInACrowdedRingIsPlacedInside) {
   expectWellPlaced(*w.value()->takeFrame(), 0.2f, 40 + more);
 }
 
+TEST(Spawn, ALaterWaveTheCrowdedRingCannotHoldStandsInItNotMetresAway) {
+  // 3 /m² stand in the ring; a second population brings it to 5 /m² a second later, more than free
+  // spots can hold. Those left over take the roomiest spots inside the ring (the bodies step apart
+  // in the first ticks), not free spots of the hall metres away (up to 15 m before: people in the
+  // validation's 5 /m² ring walked back to their first waypoint for seconds).
+  const double m2 = std::fabs(core::signedArea(ring()));
+  PopulationDesc later = standing("later", static_cast<std::uint32_t>(std::floor(2.0 * m2)), 1, 0.2f);
+  later.start = 1.0f;
+  auto w = World::create(hall({standing("first", static_cast<std::uint32_t>(std::floor(3.0 * m2)), 1, 0.2f), later}));
+  ASSERT_TRUE(w.ok()) << core::formatAll(w.errors());
+  core::TaskSystem tasks(1);
+  while (w.value()->stats().time < 1.1) w.value()->step(tasks);
+  const auto f = w.value()->takeFrame();
+  ASSERT_EQ(f->size(), static_cast<std::size_t>(std::floor(3.0 * m2) + std::floor(2.0 * m2)));
+  int stacked = 0;
+  for (std::size_t i = 0; i < f->size(); ++i) {
+    const core::Vec2 p{f->posX[i], f->posY[i]};
+    const float r = core::length(p - kCentre);
+    EXPECT_TRUE(r > kInner - 0.05f && r < kOuter + 0.05f) << "agent " << f->ids[i] << " at (" << p.x << ", " << p.y << "), " << r << " m from the centre";
+    for (std::size_t j = i + 1; j < f->size(); ++j) stacked += core::length(p - core::Vec2{f->posX[j], f->posY[j]}) < 0.1f ? 1 : 0;
+  }
+  EXPECT_EQ(stacked, 0) << "pairs of bodies less than 0.1 m apart: not the roomiest spots";
+}
+
 TEST(Spawn, CrowdedLayoutIsTheSameForAnyThreadCount) {
   const Polygon area = ring();
   const auto agents = static_cast<std::uint32_t>(std::floor(4.0 * std::fabs(core::signedArea(area))));

@@ -68,6 +68,7 @@ struct RowDecision {
   void seekWanderTarget(const GroupState& g);
   void reachGoal(const GroupState& g);
   void checkProgress(float minDistance);
+  void checkSight();
   void meetOthers(const SociologicalDesc& social);
 };
 
@@ -138,6 +139,25 @@ void RowDecision::checkProgress(float minDistance) {
   out.progressDistance[row] = d;
 }
 
+void RowDecision::checkSight() {
+  // Pushed out of sight of the corner it walks to — someone who had seen past a door's jamb, pushed
+  // back behind the wall by the crowd at the door — an agent walks into the wall and the navmesh
+  // slides it along, away from the door, until the progress check. So an agent whose last step did
+  // not head for its corner (within about 30°) looks for it, every kSightCheckPeriod, and re-plans
+  // from where it stands if it cannot see it (flat worlds; docs/crowd-model.md, the dense room).
+  const AgentStore& a = in.agents;
+  if (a.levels || a.ticket[row] != 0 || out.needPath[row] != 0) return;
+  const auto every = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(kSightCheckPeriod / in.desc.dt));
+  if ((in.tick + a.id[row]) % every != 0) return;
+  const CornerPath& corners = a.corners[row];
+  const core::Vec2 pos{a.posX[row], a.posY[row]};
+  const core::Vec2 aim = corners.index < corners.size() ? corners[corners.index] : core::Vec2{a.targetX[row], a.targetY[row]};
+  const core::Vec2 toAim = aim - pos, vel{a.velX[row], a.velY[row]};
+  const float toward = core::dot(vel, toAim);
+  if (toward > 0.0f && toward * toward >= 0.75f * core::lengthSq(vel) * core::lengthSq(toAim)) return;  // on course
+  if (!query.visible(pos, aim)) out.needPath[row] = 1;
+}
+
 void RowDecision::seekWanderTarget(const GroupState& g) {
   const PopulationDesc& pop = in.desc.populations[g.population];
   // A flocking group wanders to one shared point: close enough is within the group's width.
@@ -169,6 +189,7 @@ void RowDecision::seekGoal(const GroupState& g) {
     arrived = insideRegion(point, in.agents.posX[row], in.agents.posY[row]) && in.agents.sameLevel(row, point.height);
   }
   if (!arrived) {
+    checkSight();
     checkProgress(-1e30f);
     return;
   }

@@ -153,6 +153,8 @@ struct DecideOutput {
 
 /// Period of the progress check that triggers a re-plan for an agent that is stuck [s].
 inline constexpr float kProgressCheckPeriod = 4.0f;
+/// Seconds between an off-course walker's looks for the corner it walks to (decide.cpp, checkSight).
+inline constexpr float kSightCheckPeriod = 0.25f;
 
 /// The per-agent part of decide: arrivals, actions, exits, progress checks, the Common Ground goal
 /// generator, sociological meetings.

@@ -59,6 +59,21 @@ class SpawnOccupancy {
     }
     return true;
   }
+  /// How much room a disc of radius `r` at `p` (height `z`) has: the smallest gap to a disc within
+  /// a cell of it [m], negative when it overlaps one, `cell` when none is that near.
+  [[nodiscard]] float room(core::Vec2 p, float r, float z = 0.0f) const {
+    const int cx = static_cast<int>(std::floor(p.x / cell_)), cy = static_cast<int>(std::floor(p.y / cell_));
+    float best = cell_;
+    for (int y = cy - 1; y <= cy + 1; ++y) {
+      for (int x = cx - 1; x <= cx + 1; ++x) {
+        for (std::uint32_t i = heads_[find(pack(x, y))]; i != kNone; i = entries_[i].next) {
+          if (std::fabs(z - entries_[i].z) > kFloorGap) continue;
+          best = std::min(best, core::length(p - entries_[i].p) - r - entries_[i].r);
+        }
+      }
+    }
+    return best;
+  }
 
  private:
   static constexpr std::uint32_t kNone = 0xffffffffu;

@@ -35,6 +35,9 @@ core::Vec2 unstick(core::Vec2 desired, const SteeringDesc& s, std::uint64_t seed
   return core::Vec2{desired.x * kCos[k] - desired.y * kSin[k], desired.x * kSin[k] + desired.y * kCos[k]} * 0.5f;
 }
 
+/// A step within acos(sqrt(kOnCourseCos2)) (about 30°) of the corner aimed at is on course.
+constexpr float kOnCourseCos2 = 0.75f;
+
 /// One row's preferred velocity (writes its prefVel and corner index only).
 struct PreferredVelocity {
   const SteerInput& in;
@@ -57,6 +60,20 @@ void PreferredVelocity::advanceCorner(std::size_t row, core::Vec2 pos) const {
   // Move on to the next corner once near this one — but only if the next is in line of sight:
   // skipping a corner of a wall before rounding it walks straight into the wall.
   if (in.posZ.empty()) {
+    // Pushed back out of sight of the corner it walks to — someone who had seen past a door's jamb
+    // is pushed back behind the wall by the crowd at the door — a walker turns back to the corner
+    // before, if it sees that one: else it walks into the wall and the navmesh slides it along,
+    // away from the door (the dense room's walk-back, docs/validation.md). Looked at only near the
+    // corner passed, and when last tick's step did not head for the aim (cheap: no sight line for
+    // those walking on).
+    if (ci > 0 && ci < corners.size() && core::lengthSq(corners[ci - 1] - pos) < 4.0f * reach2) {
+      const core::Vec2 toAim = corners[ci] - pos;
+      const core::Vec2 vel{in.model.agents.velX[row], in.model.agents.velY[row]};
+      const float toward = core::dot(vel, toAim);
+      if (toward * toward < kOnCourseCos2 * core::lengthSq(vel) * core::lengthSq(toAim) || toward <= 0.0f) {
+        if (!ws.query->visible(pos, corners[ci]) && ws.query->visible(pos, corners[ci - 1])) --ci;
+      }
+    }
     while (ci + 1 < corners.size() && core::lengthSq(corners[ci] - pos) < reach2 && ws.query->visible(pos, corners[ci + 1])) {
       ++ci;
     }

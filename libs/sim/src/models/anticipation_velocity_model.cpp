@@ -734,6 +734,16 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float m = core::length(mixed);
       e = m > 1e-6f ? mixed / m : target;
     }
+    // Never backwards: pushed aside hard (or turning from a step the crowd forced), a walker steps
+    // sideways at most. Walking on in a direction that had turned more than 90° from the desired one
+    // let a relaxing heading carry walkers deep in a queue backwards at full speed, the time-gap law
+    // finding the space behind them free (the dense room's walk-back, the dense rings' backward
+    // samples: docs/validation.md).
+    if (const float back = core::dot(e, e0); back < 0.0f) {
+      const core::Vec2 across = e - e0 * back;
+      const float m = core::length(across);
+      e = m > 1e-3f ? across / m : e0;
+    }
     std::int64_t blocker = -1;
     const float gap = gapAhead(in, row, e, v0 * p.timeGap, p.passageRatio, &blocker);
     const float speed = std::min(v0, gap / p.timeGap);
