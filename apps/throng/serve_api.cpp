@@ -1,6 +1,6 @@
 // `throng serve`'s dynamic HTTP answers (serve_api.hpp): the World's groups, crowds and agents as
 // JSON (groupsJson, crowdsJson, agentJson), WorldQueries' queue of questions and exit commands,
-// percentDecoded (an exit id in a path), and HttpApi's routes.
+// and HttpApi's routes.
 #include "serve_api.hpp"
 
 #include <algorithm>
@@ -49,29 +49,6 @@ nlohmann::json crowdsJson(const sim::World& world, const std::map<std::string, s
                       {"owner", owner == owners.end() ? nlohmann::json(nullptr) : nlohmann::json(owner->second)}});
   }
   return crowds;
-}
-
-/// A path segment's %XX escapes decoded; nullopt for a malformed escape.
-std::optional<std::string> percentDecoded(std::string_view text) {
-  auto hex = [](char ch) -> int {
-    if (ch >= '0' && ch <= '9') return ch - '0';
-    if (ch >= 'a' && ch <= 'f') return ch - 'a' + 10;
-    if (ch >= 'A' && ch <= 'F') return ch - 'A' + 10;
-    return -1;
-  };
-  std::string out;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    if (text[i] != '%') {
-      out += text[i];
-      continue;
-    }
-    if (i + 2 >= text.size()) return std::nullopt;
-    const int hi = hex(text[i + 1]), lo = hex(text[i + 2]);
-    if (hi < 0 || lo < 0) return std::nullopt;
-    out += static_cast<char>(hi * 16 + lo);
-    i += 2;
-  }
-  return out;
 }
 
 /// What the simulation thread did not answer within a second.
@@ -243,7 +220,7 @@ std::optional<transport::HttpResponse> HttpApi::post(const transport::HttpReques
 }
 
 transport::HttpResponse HttpApi::setExitOpen(std::string_view encodedId, const std::string& body) const {
-  const std::optional<std::string> id = percentDecoded(encodedId);
+  const std::optional<std::string> id = transport::percentDecode(encodedId);
   if (!id || id->empty()) {
     return jsonResponse(400, R"j({"error":"expected /api/exits/<id>, id the exit point's id (percent-encoded)"})j");
   }

@@ -24,18 +24,13 @@ std::optional<std::string> queryValue(std::string_view target, std::string_view 
     const std::string_view pair = rest.substr(0, amp);
     const std::size_t eq = pair.find('=');
     if (pair.substr(0, eq) == key) {
-      return eq == std::string_view::npos ? std::string() : detail::percentDecode(pair.substr(eq + 1), true);
+      return eq == std::string_view::npos ? std::string() : percentDecode(pair.substr(eq + 1), true);
     }
     if (amp == std::string_view::npos) break;
     rest.remove_prefix(amp + 1);
   }
   return std::nullopt;
 }
-
-}  // namespace throng::transport
-
-namespace throng::transport::detail {
-namespace fs = std::filesystem;
 
 namespace {
 int hexValue(char c) {
@@ -66,6 +61,11 @@ std::optional<std::string> percentDecode(std::string_view text, bool plusIsSpace
   }
   return out;
 }
+
+}  // namespace throng::transport
+
+namespace throng::transport::detail {
+namespace fs = std::filesystem;
 
 std::optional<fs::path> safeRelativePath(std::string_view target) {
   const std::string_view raw = targetPath(target);

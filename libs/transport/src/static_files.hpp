@@ -11,10 +11,6 @@
 
 namespace throng::transport::detail {
 
-/// Decodes %XX escapes (and '+' as a space in a query value). nullopt for a malformed escape or a
-/// decoded NUL byte.
-[[nodiscard]] std::optional<std::string> percentDecode(std::string_view text, bool plusIsSpace = false);
-
 /// The relative path a target names ("" for "/"), or nullopt when the target is malformed
 /// (not starting with '/', bad escape, NUL, backslash) or has a ".." segment.
 [[nodiscard]] std::optional<std::filesystem::path> safeRelativePath(std::string_view target);

@@ -70,6 +70,10 @@ struct HttpRequest {
   std::string body;         ///< at most TransportOptions::maxPostBytes
 };
 
+/// Decodes %XX escapes (and '+' as a space in a query value): a path segment or query value of a
+/// request target. nullopt for a malformed escape or a decoded NUL byte.
+[[nodiscard]] std::optional<std::string> percentDecode(std::string_view text, bool plusIsSpace = false);
+
 namespace detail {
 struct PostState;
 }
