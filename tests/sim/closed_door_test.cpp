@@ -6,6 +6,11 @@
 // boundary that is a population's goal keeps its people waiting in front of it, outside its area.
 // Someone standing in a doorway when it closes steps out. (Path searches under way when a door
 // closes give the same results on any thread count: PathQueue.DoorsClosingUnderWay*.)
+// Exit choice measures round closed doors (ExitChoice::refresh): with the inner door between a
+// crowd and the exit nearest it closed, that exit is the long way round (or out of reach) and the
+// groups take the other; when the door opens they come back.
+#include <map>
+
 #include <gtest/gtest.h>
 
 #include "sim_test_util.hpp"
@@ -185,6 +190,89 @@ TEST(ClosedDoor, SomeoneStandingInTheDoorwayStepsOutWhenItCloses) {
   ASSERT_GE(inDoor, 1) << "nobody is standing in the doorway";
   const Crossings closed = walk(w, 20.0, 2.0, 1e9);
   EXPECT_EQ(closed.insideWhileClosed, 0) << "agent centres stayed in the closed door";
+}
+
+/// ExitChosen's b for a first choice (no exit before).
+constexpr std::uint32_t kFirstChoice = 0xffffffffu;
+
+/// A 20 x 20 m west room and a 10 x 20 m east room joined by an inner door in the south (point 0,
+/// y 1.9..3.1) and, when `northDoor`, a door in the north (point 1, y 16.9..18.1; without it
+/// point 1 marks the wall there). Exits: "near" (point 2) in the east room just behind the inner
+/// door, "far" (point 3) on the west room's west wall. `groups` single people start in x 18..19.4,
+/// y 1.5..3.5, in front of the inner door: "near" is 2-3 m away through it, about 28 m round by the
+/// north door; "far" about 18 m.
+sim::ScenarioDesc innerDoor(std::uint32_t groups, bool northDoor, sim::ExitChoiceDesc choice) {
+  sim::ScenarioDesc d;
+  d.seed = 7;
+  d.duration = 300.0f;
+  d.walkable = {rect(0, 0, 20, 20), rect(20.2f, 0, 30, 20), rect(20, 1.9f, 20.2f, 3.1f)};
+  if (northDoor) d.walkable.push_back(rect(20, 16.9f, 20.2f, 18.1f));
+  d.points = {exitRect("inner", rect(19.6f, 1.9f, 20.6f, 3.1f)), exitRect("north", rect(19.6f, 16.9f, 20.6f, 18.1f)),
+              exitRect("near", rect(21, 1.5f, 22, 3.5f)), exitRect("far", rect(0, 1, 0.8f, 4))};
+  sim::PopulationDesc p;
+  p.id = "crowd";
+  p.groups = groups;
+  p.spawn.kind = sim::SpawnKind::Polygon;
+  p.spawn.polygon = rect(18, 1.5f, 19.4f, 3.5f);
+  p.exits = {2, 3};
+  p.exitChoice = std::move(choice);
+  d.populations = {p};
+  return d;
+}
+
+struct Choices {
+  std::map<std::uint32_t, int> firstBy, changedTo, leftBy;  // exit point → groups / agents
+};
+
+Choices choices(const sim::ScenarioDesc& d, double seconds) {
+  auto created = sim::World::create(d);
+  EXPECT_TRUE(created.ok()) << (created.ok() ? "" : core::formatAll(created.errors()));
+  Choices c;
+  if (!created.ok()) return c;
+  for (const sim::Event& e : sim::test::runEvents(*created.value(), seconds)) {
+    if (e.kind == sim::EventKind::ExitChosen) ++(e.b == kFirstChoice ? c.firstBy : c.changedTo)[e.a];
+    if (e.kind == sim::EventKind::Exit) ++c.leftBy[e.a];
+  }
+  return c;
+}
+
+TEST(ClosedDoor, ExitChoiceMeasuresRoundAClosedInnerDoorAndComesBackWhenItOpens) {
+  // Both doors open: everybody takes "near", 2-3 m away through the inner door.
+  sim::ExitChoiceDesc nearest;
+  nearest.rule = sim::ExitRule::Nearest;
+  Choices open = choices(innerDoor(12, true, nearest), 60.0);
+  EXPECT_EQ(open.firstBy[2], 12);
+  EXPECT_EQ(open.leftBy[2], 12);
+  // The inner door closed from the start: "near" is ~28 m round by the north door, "far" ~18 m,
+  // so everybody first heads west; the door opens at 2 s, a couple of metres on, and every group
+  // turns back to "near" (then 4-5 m against ~16 m) and leaves by it.
+  sim::ScenarioDesc d = innerDoor(12, true, nearest);
+  d.timeline = {test::doorAt(0, sim::TimelineAction::CloseExit, 0), test::doorAt(2, sim::TimelineAction::OpenExit, 0)};
+  Choices c = choices(d, 60.0);
+  EXPECT_EQ(c.firstBy[3], 12) << "groups chose the exit behind the closed door (measured with it open)";
+  EXPECT_EQ(c.firstBy[2], 0);
+  EXPECT_EQ(c.changedTo[2], 12) << "groups did not come back when the door opened";
+  EXPECT_EQ(c.leftBy[2], 12);
+}
+
+TEST(ClosedDoor, AnExitOutOfReachBehindClosedDoorsIsNeverChosen) {
+  // Both doors between the rooms closed from the start: "near" cannot be reached at all. The
+  // quickest rule and an allocation that sends everybody to "near" both take "far" instead, and
+  // everybody leaves by it.
+  sim::ExitChoiceDesc quickest, allocation;
+  allocation.rule = sim::ExitRule::Allocation;
+  allocation.shares = {1.0f, 0.0f};
+  sim::ScenarioDesc d = innerDoor(8, true, quickest);
+  sim::PopulationDesc allocated = d.populations[0];
+  allocated.id = "allocated";
+  allocated.exitChoice = allocation;
+  d.populations.push_back(allocated);
+  d.timeline = {test::doorAt(0, sim::TimelineAction::CloseExit, 0), test::doorAt(0, sim::TimelineAction::CloseExit, 1)};
+  Choices c = choices(d, 90.0);
+  EXPECT_EQ(c.firstBy[3], 8) << "the quickest groups chose an exit they cannot reach";
+  EXPECT_EQ(c.changedTo[3], 8) << "the allocated groups kept an exit they cannot reach";
+  EXPECT_EQ(c.leftBy[3], 16);
+  EXPECT_EQ(c.leftBy[2], 0);
 }
 
 }  // namespace
