@@ -275,4 +275,44 @@ TEST(ClosedDoor, AnExitOutOfReachBehindClosedDoorsIsNeverChosen) {
   EXPECT_EQ(c.leftBy[2], 0);
 }
 
+TEST(ClosedDoor, TheExitOfACrowdTheTimelineInsertsIsCutAndClosesAsAWall) {
+  // The south door is no point of the scenario: a crowd the timeline inserts at 0 s brings it as
+  // an exit, closed at once. Known when the mesh is built, it is cut: nobody walks through it. The
+  // same exit brought by World::insertCrowd is not cut (exitIsWall says so; before plain floor lost
+  // its kCutFlag, any polygon near the region counted as cut).
+  sim::ScenarioDesc d = twoRooms(40);
+  d.points.erase(d.points.begin(), d.points.begin() + 2);  // "out" is point 0 now
+  d.populations[0].goals = {0};
+  sim::TimelineEntry insert;
+  insert.action = sim::TimelineAction::Insert;
+  insert.crowd.id = "doors";
+  insert.crowd.points = {exitRect("south", kSouthDoor)};
+  insert.crowd.basePoints = 1;
+  insert.crowd.basePopulations = 1;
+  d.timeline = {insert, test::doorAt(0, sim::TimelineAction::CloseExit, 1)};
+  auto created = sim::World::create(d);
+  ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
+  sim::World& w = *created.value();
+  ASSERT_EQ(w.crowds().size(), 1u);
+  EXPECT_TRUE(w.crowds()[0].applied);
+  EXPECT_TRUE(w.exitIsWall("south"));
+  const Crossings c = walk(w, 200.0, 0.0, 1e9);
+  EXPECT_EQ(c.insideWhileClosed, 0) << "agent centres inside the closed door of the inserted crowd";
+  EXPECT_EQ(c.south, 0) << "people walked through the closed door of the inserted crowd";
+  EXPECT_EQ(c.left, 40);
+
+  sim::ScenarioDesc plain = twoRooms(1);
+  plain.points.erase(plain.points.begin(), plain.points.begin() + 2);
+  plain.populations[0].goals = {0};
+  auto api = sim::World::create(plain);
+  ASSERT_TRUE(api.ok());
+  sim::CrowdDesc late = insert.crowd;
+  ASSERT_TRUE(api.value()->insertCrowd(late).ok());
+  core::TaskSystem tasks(1);
+  api.value()->step(tasks);
+  EXPECT_TRUE(api.value()->exitIsWall("out"));
+  EXPECT_FALSE(api.value()->exitIsWall("south")) << "an exit inserted at run time is cut";
+  EXPECT_FALSE(api.value()->exitIsWall("nothing"));
+}
+
 }  // namespace

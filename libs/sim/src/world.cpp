@@ -49,7 +49,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   Impl& w = *world->impl_;
   // Closing an exit takes its floor out of the navmesh (setExitClosedNow): a world with exits
   // edits a copy of its own, never the mesh other worlds built from the same scenario share.
-  if (desc.hasExit()) {
+  if (desc.hasExit() || !navmesh->config().cuts.empty()) {  // its own exits or its timeline crowds'
     w.ownMesh = navmesh->clone();
     navmesh = w.ownMesh;
   }
