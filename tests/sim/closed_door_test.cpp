@@ -253,6 +253,16 @@ TEST(ClosedDoor, ExitChoiceMeasuresRoundAClosedInnerDoorAndComesBackWhenItOpens)
   EXPECT_EQ(c.firstBy[2], 0);
   EXPECT_EQ(c.changedTo[2], 12) << "groups did not come back when the door opened";
   EXPECT_EQ(c.leftBy[2], 12);
+  // The fields are rebuilt one exit per task: the same events on 1 and 4 threads.
+  auto one = sim::World::create(d), four = sim::World::create(d);
+  ASSERT_TRUE(one.ok() && four.ok());
+  const std::vector<sim::Event> e1 = sim::test::runEvents(*one.value(), 20.0, 1);
+  const std::vector<sim::Event> e4 = sim::test::runEvents(*four.value(), 20.0, 4);
+  ASSERT_EQ(e1.size(), e4.size());
+  for (std::size_t i = 0; i < e1.size(); ++i) {
+    EXPECT_TRUE(e1[i].tick == e4[i].tick && e1[i].agent == e4[i].agent && e1[i].kind == e4[i].kind && e1[i].a == e4[i].a &&
+                e1[i].b == e4[i].b) << "event " << i << " differs between 1 and 4 threads";
+  }
 }
 
 TEST(ClosedDoor, AnExitOutOfReachBehindClosedDoorsIsNeverChosen) {
