@@ -6,6 +6,11 @@
 // boundary that is a population's goal keeps its people waiting in front of it, outside its area.
 // Someone standing in a doorway when it closes steps out. (Path searches under way when a door
 // closes give the same results on any thread count: PathQueue.DoorsClosingUnderWay*.)
+// Exit choice measures round closed doors (ExitChoice::refresh): with the inner door between a
+// crowd and the exit nearest it closed, that exit is the long way round (or out of reach) and the
+// groups take the other; when the door opens they come back.
+#include <map>
+
 #include <gtest/gtest.h>
 
 #include "sim_test_util.hpp"
@@ -185,6 +190,139 @@ TEST(ClosedDoor, SomeoneStandingInTheDoorwayStepsOutWhenItCloses) {
   ASSERT_GE(inDoor, 1) << "nobody is standing in the doorway";
   const Crossings closed = walk(w, 20.0, 2.0, 1e9);
   EXPECT_EQ(closed.insideWhileClosed, 0) << "agent centres stayed in the closed door";
+}
+
+/// ExitChosen's b for a first choice (no exit before).
+constexpr std::uint32_t kFirstChoice = 0xffffffffu;
+
+/// A 20 x 20 m west room and a 10 x 20 m east room joined by an inner door in the south (point 0,
+/// y 1.9..3.1) and, when `northDoor`, a door in the north (point 1, y 16.9..18.1; without it
+/// point 1 marks the wall there). Exits: "near" (point 2) in the east room just behind the inner
+/// door, "far" (point 3) on the west room's west wall. `groups` single people start in x 18..19.4,
+/// y 1.5..3.5, in front of the inner door: "near" is 2-3 m away through it, about 28 m round by the
+/// north door; "far" about 18 m.
+sim::ScenarioDesc innerDoor(std::uint32_t groups, bool northDoor, sim::ExitChoiceDesc choice) {
+  sim::ScenarioDesc d;
+  d.seed = 7;
+  d.duration = 300.0f;
+  d.walkable = {rect(0, 0, 20, 20), rect(20.2f, 0, 30, 20), rect(20, 1.9f, 20.2f, 3.1f)};
+  if (northDoor) d.walkable.push_back(rect(20, 16.9f, 20.2f, 18.1f));
+  d.points = {exitRect("inner", rect(19.6f, 1.9f, 20.6f, 3.1f)), exitRect("north", rect(19.6f, 16.9f, 20.6f, 18.1f)),
+              exitRect("near", rect(21, 1.5f, 22, 3.5f)), exitRect("far", rect(0, 1, 0.8f, 4))};
+  sim::PopulationDesc p;
+  p.id = "crowd";
+  p.groups = groups;
+  p.spawn.kind = sim::SpawnKind::Polygon;
+  p.spawn.polygon = rect(18, 1.5f, 19.4f, 3.5f);
+  p.exits = {2, 3};
+  p.exitChoice = std::move(choice);
+  d.populations = {p};
+  return d;
+}
+
+struct Choices {
+  std::map<std::uint32_t, int> firstBy, changedTo, leftBy;  // exit point → groups / agents
+};
+
+Choices choices(const sim::ScenarioDesc& d, double seconds) {
+  auto created = sim::World::create(d);
+  EXPECT_TRUE(created.ok()) << (created.ok() ? "" : core::formatAll(created.errors()));
+  Choices c;
+  if (!created.ok()) return c;
+  for (const sim::Event& e : sim::test::runEvents(*created.value(), seconds)) {
+    if (e.kind == sim::EventKind::ExitChosen) ++(e.b == kFirstChoice ? c.firstBy : c.changedTo)[e.a];
+    if (e.kind == sim::EventKind::Exit) ++c.leftBy[e.a];
+  }
+  return c;
+}
+
+TEST(ClosedDoor, ExitChoiceMeasuresRoundAClosedInnerDoorAndComesBackWhenItOpens) {
+  // Both doors open: everybody takes "near", 2-3 m away through the inner door.
+  sim::ExitChoiceDesc nearest;
+  nearest.rule = sim::ExitRule::Nearest;
+  Choices open = choices(innerDoor(12, true, nearest), 60.0);
+  EXPECT_EQ(open.firstBy[2], 12);
+  EXPECT_EQ(open.leftBy[2], 12);
+  // The inner door closed from the start: "near" is ~28 m round by the north door, "far" ~18 m,
+  // so everybody first heads west; the door opens at 2 s, a couple of metres on, and every group
+  // turns back to "near" (then 4-5 m against ~16 m) and leaves by it.
+  sim::ScenarioDesc d = innerDoor(12, true, nearest);
+  d.timeline = {test::doorAt(0, sim::TimelineAction::CloseExit, 0), test::doorAt(2, sim::TimelineAction::OpenExit, 0)};
+  Choices c = choices(d, 60.0);
+  EXPECT_EQ(c.firstBy[3], 12) << "groups chose the exit behind the closed door (measured with it open)";
+  EXPECT_EQ(c.firstBy[2], 0);
+  EXPECT_EQ(c.changedTo[2], 12) << "groups did not come back when the door opened";
+  EXPECT_EQ(c.leftBy[2], 12);
+  // The fields are rebuilt one exit per task: the same events on 1 and 4 threads.
+  auto one = sim::World::create(d), four = sim::World::create(d);
+  ASSERT_TRUE(one.ok() && four.ok());
+  const std::vector<sim::Event> e1 = sim::test::runEvents(*one.value(), 20.0, 1);
+  const std::vector<sim::Event> e4 = sim::test::runEvents(*four.value(), 20.0, 4);
+  ASSERT_EQ(e1.size(), e4.size());
+  for (std::size_t i = 0; i < e1.size(); ++i) {
+    EXPECT_TRUE(e1[i].tick == e4[i].tick && e1[i].agent == e4[i].agent && e1[i].kind == e4[i].kind && e1[i].a == e4[i].a &&
+                e1[i].b == e4[i].b) << "event " << i << " differs between 1 and 4 threads";
+  }
+}
+
+TEST(ClosedDoor, AnExitOutOfReachBehindClosedDoorsIsNeverChosen) {
+  // Both doors between the rooms closed from the start: "near" cannot be reached at all. The
+  // quickest rule and an allocation that sends everybody to "near" both take "far" instead, and
+  // everybody leaves by it.
+  sim::ExitChoiceDesc quickest, allocation;
+  allocation.rule = sim::ExitRule::Allocation;
+  allocation.shares = {1.0f, 0.0f};
+  sim::ScenarioDesc d = innerDoor(8, true, quickest);
+  sim::PopulationDesc allocated = d.populations[0];
+  allocated.id = "allocated";
+  allocated.exitChoice = allocation;
+  d.populations.push_back(allocated);
+  d.timeline = {test::doorAt(0, sim::TimelineAction::CloseExit, 0), test::doorAt(0, sim::TimelineAction::CloseExit, 1)};
+  Choices c = choices(d, 90.0);
+  EXPECT_EQ(c.firstBy[3], 8) << "the quickest groups chose an exit they cannot reach";
+  EXPECT_EQ(c.changedTo[3], 8) << "the allocated groups kept an exit they cannot reach";
+  EXPECT_EQ(c.leftBy[3], 16);
+  EXPECT_EQ(c.leftBy[2], 0);
+}
+
+TEST(ClosedDoor, TheExitOfACrowdTheTimelineInsertsIsCutAndClosesAsAWall) {
+  // The south door is no point of the scenario: a crowd the timeline inserts at 0 s brings it as
+  // an exit, closed at once. Known when the mesh is built, it is cut: nobody walks through it. The
+  // same exit brought by World::insertCrowd is not cut (exitIsWall says so; before plain floor lost
+  // its kCutFlag, any polygon near the region counted as cut).
+  sim::ScenarioDesc d = twoRooms(40);
+  d.points.erase(d.points.begin(), d.points.begin() + 2);  // "out" is point 0 now
+  d.populations[0].goals = {0};
+  sim::TimelineEntry insert;
+  insert.action = sim::TimelineAction::Insert;
+  insert.crowd.id = "doors";
+  insert.crowd.points = {exitRect("south", kSouthDoor)};
+  insert.crowd.basePoints = 1;
+  insert.crowd.basePopulations = 1;
+  d.timeline = {insert, test::doorAt(0, sim::TimelineAction::CloseExit, 1)};
+  auto created = sim::World::create(d);
+  ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
+  sim::World& w = *created.value();
+  ASSERT_EQ(w.crowds().size(), 1u);
+  EXPECT_TRUE(w.crowds()[0].applied);
+  EXPECT_TRUE(w.exitIsWall("south"));
+  const Crossings c = walk(w, 200.0, 0.0, 1e9);
+  EXPECT_EQ(c.insideWhileClosed, 0) << "agent centres inside the closed door of the inserted crowd";
+  EXPECT_EQ(c.south, 0) << "people walked through the closed door of the inserted crowd";
+  EXPECT_EQ(c.left, 40);
+
+  sim::ScenarioDesc plain = twoRooms(1);
+  plain.points.erase(plain.points.begin(), plain.points.begin() + 2);
+  plain.populations[0].goals = {0};
+  auto api = sim::World::create(plain);
+  ASSERT_TRUE(api.ok());
+  sim::CrowdDesc late = insert.crowd;
+  ASSERT_TRUE(api.value()->insertCrowd(late).ok());
+  core::TaskSystem tasks(1);
+  api.value()->step(tasks);
+  EXPECT_TRUE(api.value()->exitIsWall("out"));
+  EXPECT_FALSE(api.value()->exitIsWall("south")) << "an exit inserted at run time is cut";
+  EXPECT_FALSE(api.value()->exitIsWall("nothing"));
 }
 
 }  // namespace

@@ -94,6 +94,8 @@ struct Builder {
   [[nodiscard]] std::int64_t indexOf(dtPolyRef ref) const { return flatIndex(mesh, tileBase, polys.size(), ref); }
 
   [[nodiscard]] bool ground(std::size_t i) const { return polys[i].poly->getType() == DT_POLYTYPE_GROUND; }
+  /// Ground one may walk on: not a closed door's polygon (NavMesh::setClosed takes kWalkFlag away).
+  [[nodiscard]] bool open(std::size_t i) const { return ground(i) && (polys[i].poly->flags & kWalkFlag) != 0; }
 
   [[nodiscard]] Polygon outline(std::size_t i) const {
     const MeshPolygon& m = polys[i];
@@ -133,13 +135,13 @@ struct Builder {
 
   void addPortals(float spacing) {
     for (std::size_t a = 0; a < polys.size(); ++a) {
-      if (!ground(a)) continue;
+      if (!open(a)) continue;
       const MeshPolygon& m = polys[a];
       for (unsigned int k = m.poly->firstLink; k != DT_NULL_LINK; k = m.tile->links[k].next) {
         const dtLink& l = m.tile->links[k];
         const std::int64_t b = indexOf(l.ref);
         // Each portal once, from the polygon with the lower index (links come in pairs).
-        if (b < 0 || static_cast<std::size_t>(b) <= a || !ground(static_cast<std::size_t>(b))) continue;
+        if (b < 0 || static_cast<std::size_t>(b) <= a || !open(static_cast<std::size_t>(b))) continue;
         addPortal(a, static_cast<std::size_t>(b), l, spacing);
       }
     }
@@ -169,7 +171,7 @@ DistanceField DistanceField::build(const NavMesh& navMesh, const FieldTarget& ta
   std::vector<float> gap(polyCount, 1e30f);
   float nearest = 1e30f;
   for (std::size_t i = 0; i < polyCount; ++i) {
-    if (!b.ground(i)) continue;
+    if (!b.open(i)) continue;
     const MeshPolygon& m = b.polys[i];
     if (navMesh.layered()) {
       float lo = 1e30f, hi = -1e30f;

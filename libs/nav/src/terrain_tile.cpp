@@ -184,7 +184,7 @@ class TerrainTileBuilder {
 
     for (int i = 0; i < pmesh_->npolys; ++i) {
       // Walkable (passes the default query filter); a cut region's polygons are marked as such.
-      pmesh_->flags[i] = pmesh_->areas[i] >= kCutSpanArea ? (kWalkFlag | kCutFlag) : kWalkFlag;
+      pmesh_->flags[i] = isCutArea(pmesh_->areas[i]) ? (kWalkFlag | kCutFlag) : kWalkFlag;
       pmesh_->areas[i] = pmesh_->areas[i] == kStairSpanArea ? kStairArea : kFloorArea;
     }
     dtNavMeshCreateParams params{};

@@ -125,7 +125,7 @@ TileOutput buildTile(const TileSettings& s, int tileX, int tileY, const std::vec
 
   for (int i = 0; i < pmesh->npolys; ++i) {
     // Walkable (passes the default query filter); a cut region's polygons are marked as such.
-    pmesh->flags[i] = pmesh->areas[i] >= kCutSpanArea ? (kWalkFlag | kCutFlag) : kWalkFlag;
+    pmesh->flags[i] = isCutArea(pmesh->areas[i]) ? (kWalkFlag | kCutFlag) : kWalkFlag;
     pmesh->areas[i] = kFloorArea;
   }
   dtNavMeshCreateParams params{};

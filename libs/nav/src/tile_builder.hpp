@@ -30,6 +30,9 @@ struct TileSettings {
 /// cut becomes polygons of its own. Stair spans use area 1 (terrain_tile.cpp).
 inline constexpr unsigned char kCutSpanArea = 2;
 inline constexpr int kCutSpanAreas = 32;
+/// Whether a polygon of compact-heightfield area `area` lies in a cut region (not plain floor,
+/// RC_WALKABLE_AREA, nor a stair).
+inline constexpr bool isCutArea(unsigned char area) { return area >= kCutSpanArea && area < kCutSpanArea + kCutSpanAreas; }
 
 /// Gives every walkable span of `chf` whose cell centre lies in one of `s.cuts` (on a layered build:
 /// whose floor is within kLevelSearch of the region's height) its cut area. After erosion, so the

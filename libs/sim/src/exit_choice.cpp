@@ -39,6 +39,7 @@ std::int32_t ExitChoice::Queue::nearer(float d) const {
 }
 
 void ExitChoice::prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, std::uint32_t firstPopulation) {
+  mesh_ = &mesh;
   exitOfPoint_.resize(desc.points.size(), -1);
   for (std::size_t p = firstPopulation; p < desc.populations.size(); ++p) {
     const PopulationDesc& pop = desc.populations[p];
@@ -52,7 +53,10 @@ void ExitChoice::prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, std
     for (const std::uint32_t point : pop.exits) {
       if (exitOfPoint_[point] >= 0) continue;
       Exit e;
-      e.field = nav::DistanceField::build(mesh, cutRegion(desc.points[point]), config);
+      e.region = cutRegion(desc.points[point]);
+      e.config = config;
+      e.version = meshVersion_;  // built on the mesh as it is now (doors closed so far are walls)
+      e.field = nav::DistanceField::build(mesh, e.region, config);
       e.capacity = kExitSpecificFlow * desc.points[point].width;
       e.queue.reset(static_cast<std::size_t>(e.field.maxDistance() / kBin) + 2);
       exitOfPoint_[point] = static_cast<std::int32_t>(exits_.size());
@@ -61,10 +65,42 @@ void ExitChoice::prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, std
   }
 }
 
+void ExitChoice::meshChanged() {
+  if (exits_.empty()) return;  // an exit a crowd brings later is built on the mesh as it is then
+  ++meshVersion_;
+  stale_ = true;
+}
+
+void ExitChoice::refresh(const GoalWriter& goals, const core::TaskSystem* tasks) {
+  if (!stale_) return;
+  stale_ = false;
+  std::vector<std::size_t> due;  // exit indices, ascending
+  for (std::size_t k = 0; k < exits_.size(); ++k) {
+    if (!exits_[k].closed && exits_[k].version != meshVersion_) due.push_back(k);
+  }
+  const core::TaskSystem serial(1);
+  const core::TaskSystem& run = tasks != nullptr ? *tasks : serial;
+  // Each task builds whole fields of its own: the same fields for any thread count.
+  run.parallelFor(due.size(), 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      Exit& e = exits_[due[i]];
+      e.field = nav::DistanceField::build(*mesh_, e.region, e.config);
+      e.version = meshVersion_;
+    }
+  });
+  // The bins follow the longest distance, which a detour lengthens; everyone is measured anew.
+  for (const std::size_t k : due) exits_[k].queue.reset(static_cast<std::size_t>(exits_[k].field.maxDistance() / kBin) + 2);
+  countQueues(0, goals, run, true);
+  remeasured_ = true;
+}
+
 void ExitChoice::setClosed(std::uint32_t point, bool closed) {
   if (point >= exitOfPoint_.size() || exitOfPoint_[point] < 0) return;
-  exits_[static_cast<std::size_t>(exitOfPoint_[point])].closed = closed;
+  Exit& e = exits_[static_cast<std::size_t>(exitOfPoint_[point])];
+  e.closed = closed;
   availabilityChanged_ = true;
+  // Doors changed while it was closed (its field was left as it was): measured anew on opening.
+  if (!closed && e.version != meshVersion_) stale_ = true;
 }
 
 bool ExitChoice::closed(std::uint32_t point) const {
@@ -139,12 +175,13 @@ std::uint32_t ExitChoice::firstChoice(const ScenarioDesc& desc, const Population
   return pop.exits.back();
 }
 
-void ExitChoice::countQueues(std::uint64_t tick, const GoalWriter& goals, const core::TaskSystem& tasks) {
+void ExitChoice::countQueues(std::uint64_t tick, const GoalWriter& goals, const core::TaskSystem& tasks, bool all) {
   // Every few ticks each exit counts who is heading there by distance (the queue ahead of any
-  // distance); each agent re-measures its distance once a period, spread by its id. The
-  // measurements are pure lookups, made in parallel; the counting is serial, in row order.
+  // distance); each agent re-measures its distance once a period, spread by its id (`all`: every
+  // agent, now). The measurements are pure lookups, made in parallel; the counting is serial, in
+  // row order.
   const std::uint32_t every = std::max(1u, periodTicks_ / kQueueRebuilds);
-  if (tick % every != 0) return;
+  if (tick % every != 0 && !all) return;
   const std::uint64_t round = tick / every;
   const std::uint32_t rounds = std::max(1u, periodTicks_ / every);
   const AgentStore& agents = goals.agents;
@@ -159,7 +196,7 @@ void ExitChoice::countQueues(std::uint64_t tick, const GoalWriter& goals, const 
     const std::uint32_t id = agents.id[row];
     if (id >= distanceOfId_.size()) distanceOfId_.resize(std::max<std::size_t>(id + 1, distanceOfId_.size() * 2), -1.0f);
     heading_.push_back({static_cast<std::uint32_t>(row), static_cast<std::uint32_t>(exitOfPoint_[point])});
-    if (distanceOfId_[id] < 0.0f || (round + id) % rounds == 0) measure_.push_back(heading_.back());
+    if (all || distanceOfId_[id] < 0.0f || (round + id) % rounds == 0) measure_.push_back(heading_.back());
   }
   tasks.parallelFor(measure_.size(), 512, [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
@@ -228,9 +265,13 @@ void ExitChoice::sharesNear(const PopulationDesc& pop, core::Vec2 p, std::uint32
 
 void ExitChoice::reconsider(std::uint64_t tick, std::span<const std::uint32_t> rowOfId, GoalWriter& goals) {
   // The groups due this tick — those whose id + tick is a multiple of their population's period:
-  // every period-th id of each range — and, on the tick after an exit closed or opened, all.
-  const bool all = availabilityChanged_;
+  // every period-th id of each range — and, on the tick after an exit closed or opened, all:
+  // those heading for a closed exit choose again, and after the fields were rebuilt round closed
+  // or opened doors every group does (an allocated one only when its exit is out of reach).
+  const bool all = availabilityChanged_ || remeasured_;
+  const bool lookAgain = remeasured_;
   availabilityChanged_ = false;
+  remeasured_ = false;
   for (const Range& r : ranges_) {
     const PopulationDesc& pop = goals.desc.populations[r.population];
     if (pop.exitChoice.rule == ExitRule::Allocation && !all) continue;
@@ -240,7 +281,7 @@ void ExitChoice::reconsider(std::uint64_t tick, std::span<const std::uint32_t> r
     for (std::uint32_t gid = r.first + offset; gid < r.first + r.count; gid += step) {
       const std::uint32_t current = goals.goalLists[goals.groups[gid].goalList].back();
       const bool due = (tick + gid) % period == 0 && pop.exitChoice.rule != ExitRule::Allocation;
-      if (due || closed(current)) reconsiderGroup(gid, pop, rowOfId, goals);
+      if (due || closed(current) || lookAgain) reconsiderGroup(gid, pop, rowOfId, goals);
     }
   }
 }
@@ -258,8 +299,10 @@ void ExitChoice::reconsiderGroup(std::uint32_t gid, const PopulationDesc& pop, s
   }
   if (row == kNoRow || agents.goalState[row] == GoalState::Exited) return;
   const core::Vec2 p{agents.posX[row], agents.posY[row]};
-  // An allocated group whose exit closed takes the nearest open one.
-  const ExitRule rule = pop.exitChoice.rule == ExitRule::Allocation ? ExitRule::Nearest : pop.exitChoice.rule;
+  // An allocated group whose exit closed, or can no longer be reached, takes the nearest open one.
+  const bool allocated = pop.exitChoice.rule == ExitRule::Allocation;
+  if (allocated && !closed(current) && std::isfinite(exitAt(current).field.at(p, agents.polyRef[row]))) return;
+  const ExitRule rule = allocated ? ExitRule::Nearest : pop.exitChoice.rule;
   const std::uint32_t next = better(pop, rule, current, p, agents.polyRef[row], agents.speed[row], gid);
   if (next == current) return;
   // The others deciding this tick see the move at once.

@@ -5,7 +5,8 @@
 // or a fixed allocation by shares — and to another one when its exit closes (the timeline's
 // "close"). World::Impl owns one ExitChoice; its parts:
 //   - a nav::DistanceField per exit some population chooses among (built at creation and when a
-//     crowd brings new ones), so every distance is a constant-time lookup;
+//     crowd brings new ones, rebuilt round the closed doors when a door closes or opens), so every
+//     distance is a constant-time lookup;
 //   - each agent's last measured distance to the exit it heads for, refreshed time-sliced, and per
 //     exit the count of agents heading there by distance (the queue ahead of a given distance),
 //     rebuilt 8 times a period and updated by every decision in between;
@@ -38,6 +39,19 @@ class ExitChoice {
   void prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, std::uint32_t firstPopulation);
   /// Some population chooses exits.
   [[nodiscard]] bool active() const { return !exits_.empty(); }
+
+  /// A door's polygons closed or opened on the mesh prepare() was given (World: closeDoorFloor):
+  /// the open exits' fields are stale until refresh().
+  void meshChanged();
+  /// Whether refresh() has fields to rebuild.
+  [[nodiscard]] bool stale() const { return stale_; }
+  /// After meshChanged(): rebuilds the field of every open exit built before the change (a closed
+  /// exit's when it opens) on the mesh as it is now — closed doors are walls, an exit behind them
+  /// is measured the way round or not at all — one exit per task (each field the same on any
+  /// thread count); then every agent heading for an exit re-measures its distance and the queues
+  /// are counted anew, and at the next step every group chooses again. Serial callers pass
+  /// tasks = nullptr.
+  void refresh(const GoalWriter& goals, const core::TaskSystem* tasks);
 
   /// The exit group `gid` of population `pop` (`members` agents) heads for when it spawns with its
   /// first member at `p` on polygon `ref` (desired speed `speed`); remembers the group for
@@ -75,6 +89,9 @@ class ExitChoice {
   };
   struct Exit {
     nav::DistanceField field;
+    nav::CutRegion region;               ///< where the field measures to (the exit's region)
+    nav::DistanceFieldConfig config;     ///< how (stairs priced by the first population naming it)
+    std::uint64_t version = 0;           ///< meshVersion_ when the field was built
     float capacity = 1.0f;               ///< persons/s (kExitSpecificFlow × the point's width)
     bool closed = false;
     Queue queue;                         ///< who is heading here, by distance
@@ -99,7 +116,8 @@ class ExitChoice {
   [[nodiscard]] Exit& exitAt(std::uint32_t point) { return exits_[static_cast<std::size_t>(exitOfPoint_[point])]; }
   [[nodiscard]] std::uint32_t firstChoice(const ScenarioDesc& desc, const PopulationDesc& pop, std::uint32_t gid, core::Vec2 p,
                                           nav::PolyRef ref, float speed) const;
-  void countQueues(std::uint64_t tick, const GoalWriter& goals, const core::TaskSystem& tasks);
+  /// Every few ticks (or now, with `all`: every agent re-measured) the queues are counted.
+  void countQueues(std::uint64_t tick, const GoalWriter& goals, const core::TaskSystem& tasks, bool all = false);
   void reconsider(std::uint64_t tick, std::span<const std::uint32_t> rowOfId, GoalWriter& goals);
   void reconsiderGroup(std::uint32_t gid, const PopulationDesc& pop, std::span<const std::uint32_t> rowOfId, GoalWriter& goals);
 
@@ -124,6 +142,10 @@ class ExitChoice {
   void indexHerders(const AgentStore& agents);
   std::uint32_t periodTicks_ = 40;          ///< the shortest population period in ticks (distance refresh)
   bool availabilityChanged_ = false;        ///< an exit closed or opened: every group looks again
+  const nav::NavMesh* mesh_ = nullptr;      ///< the mesh the fields measure (the world's own copy)
+  std::uint64_t meshVersion_ = 0;           ///< doors closed or opened so far (meshChanged)
+  bool stale_ = false;                      ///< some open exit's field predates meshVersion_
+  bool remeasured_ = false;                 ///< fields rebuilt: every group looks again at the next step
 };
 
 }  // namespace throng::sim

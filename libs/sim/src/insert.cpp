@@ -251,7 +251,7 @@ void World::Impl::closeDoorFloor(std::uint32_t point, bool closed) {
   const nav::CutRegion region = cutRegion(desc.points[point]);
   auto it = doorPolys.find(point);
   if (it == doorPolys.end()) it = doorPolys.emplace(point, ownMesh->cutPolygons(region)).first;
-  if (it->second.empty()) return;  // not cut into the mesh (an exit of an inserted crowd)
+  if (it->second.empty()) return;  // not cut into the mesh (an exit World::insertCrowd brought: exitIsWall)
   ownMesh->setClosed(it->second, closed);
   if (!closed) {
     // Polygons shared with another exit that is still closed stay closed.
@@ -260,6 +260,7 @@ void World::Impl::closeDoorFloor(std::uint32_t point, bool closed) {
     }
   }
   pathQueue->restart();
+  exitChoice.meshChanged();  // exit choice measures round the closed doors (ExitChoice::refresh)
   const bool levels = agents.levels;
   for (std::size_t row = 0; row < agents.size(); ++row) {
     const core::Vec2 pos{agents.posX[row], agents.posY[row]};
@@ -430,6 +431,15 @@ bool World::removeCrowd(std::string_view id) {
     }
     w.insertion.commands.push_back({c.info.index, false});
     return true;
+  }
+  return false;
+}
+
+bool World::exitIsWall(std::string_view pointId) const {
+  const Impl& w = *impl_;
+  if (!w.ownMesh) return false;
+  for (const PointDesc& p : w.desc.points) {
+    if (p.id == pointId && p.kind == PointKind::Exit) return !w.ownMesh->cutPolygons(cutRegion(p)).empty();
   }
   return false;
 }

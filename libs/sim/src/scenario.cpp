@@ -45,6 +45,14 @@ nav::NavMeshConfig ScenarioDesc::navMeshConfig() const {
   for (const PointDesc& p : points) {
     if (p.kind == PointKind::Exit) config.cuts.push_back(cutRegion(p));
   }
+  // The exits of the timeline's crowds too: known now, inserted later (World::insertCrowd's
+  // crowds are not known when the mesh is built; theirs are not cut).
+  for (const TimelineEntry& e : timeline) {
+    if (e.action != TimelineAction::Insert) continue;
+    for (const PointDesc& p : e.crowd.points) {
+      if (p.kind == PointKind::Exit) config.cuts.push_back(cutRegion(p));
+    }
+  }
   return config;
 }
 

@@ -49,7 +49,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   Impl& w = *world->impl_;
   // Closing an exit takes its floor out of the navmesh (setExitClosedNow): a world with exits
   // edits a copy of its own, never the mesh other worlds built from the same scenario share.
-  if (desc.hasExit()) {
+  if (desc.hasExit() || !navmesh->config().cuts.empty()) {  // its own exits or its timeline crowds'
     w.ownMesh = navmesh->clone();
     navmesh = w.ownMesh;
   }
@@ -92,7 +92,7 @@ void World::step(const core::TaskSystem& tasks, PhaseObserver* observer) {
   };
   {
     Scope s(observer, "applyCommands");
-    if (w.tick > 0 || w.crowdsPending()) w.applyCommands();
+    if (w.tick > 0 || w.crowdsPending()) w.applyCommands(&tasks);
     w.chooseExits(tasks);
   }
   { Scope s(observer, "sense"); w.sense(tasks); }
@@ -120,8 +120,10 @@ void World::Impl::planPopulations() {
 // The phases' contexts (spawner.hpp, phases.hpp): what each phase reads and what it may write,
 // taken from the world's state.
 
-void World::Impl::applyCommands() {
+void World::Impl::applyCommands(const core::TaskSystem* tasks) {
   applyCrowdCommands();  // inserted crowds' populations starting now spawn below
+  // Doors closed or opened just now: exit choice measures round them before anyone chooses.
+  if (exitChoice.stale()) exitChoice.refresh(goalWriter(), tasks);
   const std::vector<std::size_t> due = spawner.due(tick);
   if (due.empty()) return;
   GoalWriter goals = goalWriter();

@@ -157,9 +157,10 @@ struct World::Impl {
   // Phases.
   /// Groups of the scenario's populations, their sizes and the agent columns they need (creation).
   void planPopulations();
-  /// The timeline's and the API's crowd commands due this tick (insert.cpp), then the
-  /// populations due (spawnDue, spawner.hpp).
-  void applyCommands();
+  /// The timeline's and the API's crowd commands due this tick (insert.cpp), exit choice's
+  /// distance fields rebuilt when doors closed or opened (ExitChoice::refresh; tasks = nullptr:
+  /// serially), then the populations due (spawnDue, spawner.hpp).
+  void applyCommands(const core::TaskSystem* tasks = nullptr);
   void sense(const core::TaskSystem& tasks);
   /// decide (decide.cpp, phases.hpp), then the group pass.
   void decide(const core::TaskSystem& tasks);

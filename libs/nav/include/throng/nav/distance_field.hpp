@@ -11,7 +11,10 @@
 // only at corners and crosses portals at sampled points; otherwise longer by the detour to the
 // nearest sample (a few centimetres per crossing at the default 1 m spacing; more right next to a
 // portal longer than 11 m, whose nodes lie further apart). Works on flat and on
-// layered (multi-level) meshes alike. Immutable after build; safe to read from any thread.
+// layered (multi-level) meshes alike. Closed polygons (a closed door: no kWalkFlag, NavMesh::setClosed)
+// are left out, so the way goes round them or does not exist; a field reflects the flags as they
+// were when it was built (rebuild it after doors close or open). Immutable after build; safe to
+// read from any thread.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -42,8 +45,9 @@ class DistanceField {
   static constexpr float kUnreachable = std::numeric_limits<float>::infinity();
 
   DistanceField() = default;
-  /// Builds the field of `target` over `mesh`. Deterministic: the same mesh and target give the
-  /// same distances. An empty field (no polygon near the target) answers kUnreachable everywhere.
+  /// Builds the field of `target` over the open polygons of `mesh` (those with kWalkFlag).
+  /// Deterministic: the same mesh, flags and target give the same distances. An empty field (no
+  /// open polygon near the target) answers kUnreachable everywhere.
   static DistanceField build(const NavMesh& mesh, const FieldTarget& target, const DistanceFieldConfig& config = {});
 
   /// Walking distance [m] from `p` on polygon `ref` to the target; kUnreachable when `ref` is not a

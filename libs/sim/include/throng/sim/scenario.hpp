@@ -427,8 +427,9 @@ struct ScenarioDesc {
   /// True when some point is an exit.
   [[nodiscard]] bool hasExit() const;
   /// How the navmesh of this scenario is built: eroded by navRadius(), cells of navCellSize, and
-  /// every exit's region cut into polygons of its own (nav::NavMeshConfig::cuts), so that a closed
-  /// exit is a wall (World: timeline `close`, setExitOpen). io, the World and the benches use it.
+  /// every exit's region — the scenario's and those of the crowds its timeline inserts — cut into
+  /// polygons of its own (nav::NavMeshConfig::cuts), so that a closed exit is a wall (World:
+  /// timeline `close`, setExitOpen). io, the World and the benches use it.
   [[nodiscard]] nav::NavMeshConfig navMeshConfig() const;
 };
 

@@ -197,6 +197,14 @@ class World {
   /// waits there), and exit choice sends the groups heading for it to another at once. False when
   /// no point of kind exit has that id (a queued crowd's points count once it is applied).
   bool setExitOpen(std::string_view pointId, bool open);
+  /// Whether closing exit `pointId` makes its floor a wall (docs/crowd-model.md "A closed exit is a
+  /// wall"): true for the exits the navmesh was cut for when it was built — the scenario's and
+  /// those of the crowds its timeline inserts. False for an exit of a crowd insertCrowd brought
+  /// (the mesh is built once: cutting a new region would rebuild its tiles, and with them every
+  /// polygon reference agents, paths, walls and distance fields hold), which closing only stops
+  /// people leaving through, its floor stays walkable; false too when no point of kind exit has
+  /// that id. To make such an exit closable as a wall, put its crowd in the scenario's timeline.
+  [[nodiscard]] bool exitIsWall(std::string_view pointId) const;
   /// Every crowd inserted or queued, in insertion order (timeline crowds included).
   [[nodiscard]] std::vector<CrowdInfo> crowds() const;
   /// Viewer positions for multiresolution steering (SteeringDesc::lodDistance).
