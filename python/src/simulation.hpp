@@ -337,6 +337,11 @@ class Simulation {
     if (!world_->setExitOpen(id, open)) throw py::key_error("no exit '" + id + "' (no point of kind \"exit\" has this id)");
   }
 
+  [[nodiscard]] bool exitIsWall(const std::string& id) const {
+    usable();
+    return world_->exitIsWall(id);
+  }
+
   [[nodiscard]] double time() const { return world_->stats().time; }
   [[nodiscard]] std::uint64_t tickCount() const { return world_->stats().tick; }
   [[nodiscard]] bool finished() const { return world_->finished(); }

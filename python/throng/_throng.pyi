@@ -166,6 +166,9 @@ class Simulation:
         """The crowd's agents leave at the next tick."""
     def set_exit_open(self, id: str, open: bool) -> None:
         """Closes (open=False) or opens the exit `id` from the next tick; KeyError if it is no exit."""
+    def exit_is_wall(self, id: str) -> bool:
+        """Whether closing the exit `id` makes its floor a wall (False for an exit of a crowd inserted at run
+        time, and for an id that is no exit)."""
     def remove_agents(self, ids: Iterable[int] | int) -> None:
         """These agents (stable ids; a list, a numpy array or one int) leave at the next tick, each with an
         exit event (a = b = 4294967295); their groups go on without them. ValueError naming every id not

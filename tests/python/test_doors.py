@@ -64,3 +64,10 @@ def test_ids_that_are_no_exit_are_refused_by_name():
     sim.close()
     with pytest.raises(ValueError, match="closed"):
         sim.set_exit_open("south", False)
+
+
+def test_the_scenarios_exits_close_as_walls_and_other_ids_do_not():
+    sim = throng.Simulation(throng.scenario(room(n=5)), threads=1)
+    assert sim.exit_is_wall("south") and sim.exit_is_wall("north")
+    assert not sim.exit_is_wall("hall"), "an interest point is no exit"
+    assert not sim.exit_is_wall("nowhere")
