@@ -48,8 +48,10 @@ void switchRecording(const ServeOptions& options, OpenRequest request, std::uniq
   session->close(request.live ? "switching to the live scenario " + request.name : "switching to recording " + request.name);
   session.reset();
   session = std::make_unique<Session>(options, std::move(*next), request.path.string(), bridge, &recordings);
-  bridge.setHub(&session->hub);
+  // The HTTP routes first: a viewer reloads on the new hub's Welcome and at once asks for the world;
+  // the other way round, that request could come before the routes and get 503 (seen in CI).
   router.set(session.get());
+  bridge.setHub(&session->hub);
   recordings.setPlaying(request.live ? std::string() : request.name);
   request.responder.respond(transport::HttpResponse{
       200, "application/json",

@@ -96,6 +96,24 @@ TEST(RegionConstrainedWalkable, OnlyInsideTheCorridor) {
   EXPECT_TRUE(open.pointInside({10, 8}));
 }
 
+TEST(RegionConstrainedWalkable, ASegmentThroughOverlappingRegionsIsInsideTheCorridor) {
+  // The straight line from (1, 3) to (9, 3) lies in the union of three overlapping regions, in none
+  // alone: a path may run through a corridor of several (the straight-line fallback of buildPath
+  // was refused there, a rare failure of BuildPath.EveryCurveLiesInsideItsRegionCorridor).
+  const crowd::PolygonWalkable base({rect(0, 0, 20, 10)}, {});
+  const std::vector<crowd::Region> corridor{crowd::Region::disc({1, 3}, 2.0f), crowd::Region::poly(rect(2.5f, 2, 6.5f, 4)),
+                                            crowd::Region::disc({8.5f, 3}, 2.5f)};
+  const crowd::RegionConstrainedWalkable w(base, corridor);
+  EXPECT_TRUE(w.segmentInside({1, 3}, {9, 3}));
+  EXPECT_TRUE(w.segmentInside({9, 3}, {1, 3}));
+  EXPECT_FALSE(w.segmentInside({1, 3}, {8.5f, 5.2f}));  // leaves the rectangle through its top side, between the discs
+  // A gap between the regions: not inside.
+  const std::vector<crowd::Region> gap{crowd::Region::disc({1, 3}, 1.0f), crowd::Region::disc({4, 3}, 1.0f)};
+  const crowd::RegionConstrainedWalkable gapped(base, gap);
+  EXPECT_FALSE(gapped.segmentInside({1, 3}, {4, 3}));
+  EXPECT_TRUE(gapped.segmentInside({0.5f, 3}, {1.5f, 3}));
+}
+
 namespace {
 
 std::shared_ptr<const nav::NavMesh> buildMesh(const std::vector<core::Polygon>& walkable,

@@ -2,6 +2,7 @@
 // region corridor. Read-only queries; answers are conservative (inside is a guarantee).
 #include "throng/crowd/walkable.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "polygon_tests.hpp"
@@ -118,15 +119,54 @@ bool RegionConstrainedWalkable::boxInside(const Aabb& box) const {
   return inRegion && base_->boxInside(box);
 }
 
-bool RegionConstrainedWalkable::segmentInside(Vec2 a, Vec2 b) const {
-  bool inRegion = regions_.empty();
-  for (const Region& r : regions_) {
-    if (regionContainsSegment(r, a, b)) {
-      inRegion = true;
-      break;
-    }
+namespace {
+
+/// Where segment a + t (b − a), walked from t (a point inside `region`), leaves it: the parameter
+/// of its first exit after t, at most 1 (for a disc the far root of |p(t) − c| = r; for a polygon
+/// the first crossing of an edge beyond t).
+float exitAlong(const Region& region, Vec2 a, Vec2 d, float t) {
+  if (region.isDisc()) {
+    const Vec2 f = a - region.centre;
+    const float qa = core::dot(d, d), qb = 2.0f * core::dot(f, d), qc = core::dot(f, f) - region.radius * region.radius;
+    if (qa < 1e-12f) return 1.0f;
+    const float disc = qb * qb - 4.0f * qa * qc;
+    if (disc < 0.0f) return t;
+    return std::min(1.0f, (-qb + std::sqrt(disc)) / (2.0f * qa));
   }
-  return inRegion && base_->segmentInside(a, b);
+  float exit = 1.0f;
+  const auto& poly = region.polygon;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const Vec2 e0 = poly[i], e = poly[(i + 1) % poly.size()] - e0;
+    const float den = core::cross(d, e);
+    if (std::abs(den) < 1e-12f) continue;  // parallel
+    const Vec2 q = e0 - a;
+    const float s = core::cross(q, e) / den;  // along the segment
+    const float u = core::cross(q, d) / den;  // along the edge
+    if (u >= 0.0f && u <= 1.0f && s > t + 1e-6f) exit = std::min(exit, s);
+  }
+  return exit;
+}
+
+}  // namespace
+
+bool RegionConstrainedWalkable::segmentInside(Vec2 a, Vec2 b) const {
+  if (!base_->segmentInside(a, b)) return false;
+  if (regions_.empty()) return true;
+  // Inside the corridor: covered by the union of the regions, not necessarily by one (a straight
+  // line through three overlapping discs). Walk from a, each step to the farthest exit of a region
+  // holding the point reached.
+  const Vec2 d = b - a;
+  float t = 0.0f;
+  while (t < 1.0f) {
+    const Vec2 p = a + d * t;
+    float farthest = t;
+    for (const Region& r : regions_) {
+      if (regionContains(r, p)) farthest = std::max(farthest, exitAlong(r, a, d, t));
+    }
+    if (farthest <= t + 1e-6f) return false;  // p lies in no region, or on the rim of all that hold it
+    t = farthest;
+  }
+  return true;
 }
 
 bool RegionConstrainedWalkable::pointInside(Vec2 p) const {
