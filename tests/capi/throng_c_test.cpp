@@ -308,6 +308,26 @@ TEST(CApi, CrowdsAreInsertedAndRemoved) {
   EXPECT_EQ(throng_world_remove_crowd(w.get(), nullptr), THRONG_ERROR_NULL_ARGUMENT);
 }
 
+TEST(CApi, AClosedExitLetsNobodyOutUntilItOpens) {
+  auto s = loadJson(corridor(6, 120));
+  auto w = makeWorld(s.get());
+  int32_t wall = -1;
+  ASSERT_EQ(throng_world_exit_is_wall(w.get(), "exit", &wall), THRONG_OK);
+  EXPECT_EQ(wall, 1);
+  ASSERT_EQ(throng_world_exit_is_wall(w.get(), "nowhere", &wall), THRONG_OK);
+  EXPECT_EQ(wall, 0);
+  EXPECT_EQ(throng_world_exit_is_wall(w.get(), "exit", nullptr), THRONG_ERROR_NULL_ARGUMENT);
+  ASSERT_EQ(throng_world_set_exit_open(w.get(), "exit", 0), THRONG_OK);
+  ASSERT_EQ(throng_world_run(w.get(), 40.0), THRONG_OK);  // 20 m at 1.3 m/s: everyone at the door
+  EXPECT_EQ(stats(w.get()).exited, 0u) << "nobody leaves by a closed exit";
+  ASSERT_EQ(throng_world_set_exit_open(w.get(), "exit", 1), THRONG_OK);
+  ASSERT_EQ(throng_world_run(w.get(), 100.0), THRONG_OK);
+  EXPECT_EQ(stats(w.get()).exited, 6u) << "opened, it lets everyone out";
+  EXPECT_EQ(throng_world_set_exit_open(w.get(), "nowhere", 0), THRONG_ERROR_NOT_FOUND);
+  EXPECT_NE(std::string(throng_last_error()).find("nowhere"), std::string::npos);
+  EXPECT_EQ(throng_world_set_exit_open(w.get(), nullptr, 0), THRONG_ERROR_NULL_ARGUMENT);
+}
+
 TEST(CApi, CrowdFromAFile) {
   test::TempDir dir("capi");
   std::string crowd = kCrowd;

@@ -478,6 +478,30 @@ throng_status throng_world_remove_crowd(throng_world* world, const char* id) {
   });
 }
 
+throng_status throng_world_set_exit_open(throng_world* world, const char* id, int32_t open) {
+  return guarded([&] {
+    const WorldLease lease(world);
+    if (lease.status() != THRONG_OK) return leaseFailed("throng_world_set_exit_open", lease);
+    if (id == nullptr) return nullArgument("throng_world_set_exit_open", "id");
+    if (!lease.session().world().setExitOpen(id, open != 0)) {
+      return fail(THRONG_ERROR_NOT_FOUND, std::string("throng_world_set_exit_open: no exit '") + id +
+                                              "' (no point of kind \"exit\" has this id)");
+    }
+    return THRONG_OK;
+  });
+}
+
+throng_status throng_world_exit_is_wall(throng_world* world, const char* id, int32_t* out_is_wall) {
+  return guarded([&] {
+    const WorldLease lease(world);
+    if (lease.status() != THRONG_OK) return leaseFailed("throng_world_exit_is_wall", lease);
+    if (id == nullptr) return nullArgument("throng_world_exit_is_wall", "id");
+    if (out_is_wall == nullptr) return nullArgument("throng_world_exit_is_wall", "out_is_wall");
+    *out_is_wall = lease.session().world().exitIsWall(id) ? 1 : 0;
+    return THRONG_OK;
+  });
+}
+
 // The C kinds are the engine's (throng/sim/frame.hpp), value for value.
 static_assert(THRONG_EVENT_REUNITED == static_cast<int>(throng::sim::EventKind::Reunited));
 static_assert(THRONG_EVENT_EXIT_CHOSEN == static_cast<int>(throng::sim::EventKind::ExitChosen));

@@ -284,6 +284,18 @@ THRONG_API throng_status throng_world_insert_crowd_file(throng_world* world, con
  * nobody more. THRONG_ERROR_NOT_FOUND when no crowd has that id or it is already removed. */
 THRONG_API throng_status throng_world_remove_crowd(throng_world* world, const char* id);
 
+/* Closes (open = 0) or opens (open != 0) the exit point `id` from the next tick — a door on an
+ * event the host sees, as the timeline's "close" / "open": nobody leaves through a closed exit,
+ * groups choosing among exits re-route, a fixed goal at it waits at the door.
+ * THRONG_ERROR_NOT_FOUND when no point of kind exit has that id. One thread at a time. */
+THRONG_API throng_status throng_world_set_exit_open(throng_world* world, const char* id, int32_t open);
+
+/* *out_is_wall receives 1 when closing the exit `id` makes its floor a wall (the scenario's exits
+ * and those of crowds its timeline inserts), 0 for an exit a crowd throng_world_insert_crowd
+ * brought (closing it only stops people leaving by it: the navmesh is cut once, when it is built)
+ * and for an id that is no exit. */
+THRONG_API throng_status throng_world_exit_is_wall(throng_world* world, const char* id, int32_t* out_is_wall);
+
 /* ---------------------------------------------------------------------------------------------
  * Events
  * ------------------------------------------------------------------------------------------- */
