@@ -3,7 +3,9 @@
 // recording: a new Session, the old one's clients told and closed) run by runSessions.
 #include "serve_session.hpp"
 
+#include <chrono>
 #include <filesystem>
+#include <future>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -30,6 +32,9 @@ transport::HttpResponse noRecordings() {
   return jsonError(404, "this server has no recordings directory (throng serve --recordings DIR)");
 }
 
+/// How often the old session's questions are answered while the next world loads.
+constexpr auto kAnswerWhileLoading = std::chrono::milliseconds(20);
+
 /// Replaces `session` by one playing the recording a viewer asked for, or the live scenario the
 /// server was started with (from its start: the live world that was left is not kept); on failure
 /// the old one goes on. Answers the request either way. Every client of the old one is told why and
@@ -37,7 +42,14 @@ transport::HttpResponse noRecordings() {
 void switchRecording(const ServeOptions& options, OpenRequest request, std::unique_ptr<Session>& session,
                      Bridge& bridge, Router& router, RecordingRoutes& recordings) {
   if (request.live) request.path = options.scenario;
-  std::optional<Served> next = openServed(options, request.path.string());
+  // Loading may take seconds (a live world's navmesh): meanwhile the old session's questions
+  // (/api/groups, which live viewers poll) are answered from its world as it stands, not left to
+  // time out with 503 (seen in the viewer's e2e test on the 2-core CI machine).
+  auto loading = std::async(std::launch::async, [&options, path = request.path.string()] { return openServed(options, path); });
+  sim::World* standing = session->served.replay ? nullptr : session->served.live.world.get();
+  while (loading.wait_for(kAnswerWhileLoading) != std::future_status::ready) session->queries.answer(standing, session->hub);
+  std::optional<Served> next = loading.get();
+  session->queries.answer(standing, session->hub);
   if (!next) {
     request.responder.respond(
         jsonError(422, fmt::format("{}: cannot be played (the server's log says why)", request.name)));
