@@ -34,6 +34,7 @@ struct RowDecision {
   const DecideInput& in;
   const DecideOutput& out;
   std::uint64_t checkEvery;  ///< ticks between progress checks
+  std::uint64_t sightEvery;  ///< ticks between an off-course agent's looks for its corner (kSightCheckPeriod)
   ChunkOutput& chunk;
   const nav::NavQuery& query;  ///< this worker's (the goal generator's line of sight)
   std::size_t row;
@@ -147,15 +148,11 @@ void RowDecision::checkSight() {
   // from where it stands if it cannot see it (flat worlds; docs/crowd-model.md, the dense room).
   const AgentStore& a = in.agents;
   if (a.levels || a.ticket[row] != 0 || out.needPath[row] != 0) return;
-  const auto every = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(kSightCheckPeriod / in.desc.dt));
-  if ((in.tick + a.id[row]) % every != 0) return;
+  if ((in.tick + a.id[row]) % sightEvery != 0) return;
   const CornerPath& corners = a.corners[row];
   const core::Vec2 pos{a.posX[row], a.posY[row]};
   const core::Vec2 aim = corners.index < corners.size() ? corners[corners.index] : core::Vec2{a.targetX[row], a.targetY[row]};
-  const core::Vec2 toAim = aim - pos, vel{a.velX[row], a.velY[row]};
-  const float toward = core::dot(vel, toAim);
-  if (toward > 0.0f && toward * toward >= 0.75f * core::lengthSq(vel) * core::lengthSq(toAim)) return;  // on course
-  if (!query.visible(pos, aim)) out.needPath[row] = 1;
+  if (!onCourse({a.velX[row], a.velY[row]}, aim - pos) && !query.visible(pos, aim)) out.needPath[row] = 1;
 }
 
 void RowDecision::seekWanderTarget(const GroupState& g) {
@@ -267,12 +264,13 @@ void decide(const DecideInput& in, const DecideOutput& out, const core::TaskSyst
   const std::size_t n = in.agents.size();
   const std::size_t grain = phaseGrain(n, tasks);
   const std::uint64_t checkEvery = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(kProgressCheckPeriod / in.desc.dt));
+  const std::uint64_t sightEvery = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(kSightCheckPeriod / in.desc.dt));
   tasks.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
     ChunkOutput& chunk = out.chunks[begin / grain];
     const auto worker = static_cast<std::size_t>(tasks.workerIndex());
     THRONG_ASSERT(worker < in.workers.size());
     const nav::NavQuery& query = *in.workers[worker].query;
-    for (std::size_t row = begin; row < end; ++row) RowDecision{in, out, checkEvery, chunk, query, row}.decideRow();
+    for (std::size_t row = begin; row < end; ++row) RowDecision{in, out, checkEvery, sightEvery, chunk, query, row}.decideRow();
     measureOverlaps(in.agents, in.desc.steering.maxNeighbours, begin, end, chunk);
   });
 }

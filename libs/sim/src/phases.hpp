@@ -156,6 +156,14 @@ inline constexpr float kProgressCheckPeriod = 4.0f;
 /// Seconds between an off-course walker's looks for the corner it walks to (decide.cpp, checkSight).
 inline constexpr float kSightCheckPeriod = 0.25f;
 
+/// Whether a step `vel` heads for the corner `toAim` away, within about 30° (cos² 0.75): a walker
+/// off course may have been pushed out of sight of it (steer.cpp advanceCorner, decide.cpp checkSight).
+[[nodiscard]] inline bool onCourse(core::Vec2 vel, core::Vec2 toAim) {
+  constexpr float kOnCourseCos2 = 0.75f;
+  const float toward = core::dot(vel, toAim);
+  return toward > 0.0f && toward * toward >= kOnCourseCos2 * core::lengthSq(vel) * core::lengthSq(toAim);
+}
+
 /// The per-agent part of decide: arrivals, actions, exits, progress checks, the Common Ground goal
 /// generator, sociological meetings.
 void decide(const DecideInput& in, const DecideOutput& out, const core::TaskSystem& tasks);

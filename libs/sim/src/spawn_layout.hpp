@@ -48,30 +48,19 @@ class SpawnOccupancy {
   /// Whether a disc of radius `r` at `p` on the floor at height `z` touches none (discs on other
   /// floors, more than kFloorGap above or below, do not count).
   [[nodiscard]] bool free(core::Vec2 p, float r, float z = 0.0f) const {
-    const int cx = static_cast<int>(std::floor(p.x / cell_)), cy = static_cast<int>(std::floor(p.y / cell_));
-    for (int y = cy - 1; y <= cy + 1; ++y) {
-      for (int x = cx - 1; x <= cx + 1; ++x) {
-        for (std::uint32_t i = heads_[find(pack(x, y))]; i != kNone; i = entries_[i].next) {
-          const float d = r + entries_[i].r + kSpawnGap;
-          if (core::lengthSq(p - entries_[i].p) < d * d && std::fabs(z - entries_[i].z) <= kFloorGap) return false;
-        }
-      }
-    }
-    return true;
+    return !anyNear(p, z, [&](const Entry& e) {
+      const float d = r + e.r + kSpawnGap;
+      return core::lengthSq(p - e.p) < d * d;
+    });
   }
   /// How much room a disc of radius `r` at `p` (height `z`) has: the smallest gap to a disc within
   /// a cell of it [m], negative when it overlaps one, `cell` when none is that near.
   [[nodiscard]] float room(core::Vec2 p, float r, float z = 0.0f) const {
-    const int cx = static_cast<int>(std::floor(p.x / cell_)), cy = static_cast<int>(std::floor(p.y / cell_));
     float best = cell_;
-    for (int y = cy - 1; y <= cy + 1; ++y) {
-      for (int x = cx - 1; x <= cx + 1; ++x) {
-        for (std::uint32_t i = heads_[find(pack(x, y))]; i != kNone; i = entries_[i].next) {
-          if (std::fabs(z - entries_[i].z) > kFloorGap) continue;
-          best = std::min(best, core::length(p - entries_[i].p) - r - entries_[i].r);
-        }
-      }
-    }
+    anyNear(p, z, [&](const Entry& e) {
+      best = std::min(best, core::length(p - e.p) - r - e.r);
+      return false;
+    });
     return best;
   }
 
@@ -83,6 +72,20 @@ class SpawnOccupancy {
     float z;
     std::uint32_t next;  ///< previous disc of the same cell, kNone at the end
   };
+  /// Calls f(entry) for the discs on p's floor (within kFloorGap of z) in the 3 × 3 cells round p,
+  /// until it returns true; whether one did.
+  template <class F>
+  bool anyNear(core::Vec2 p, float z, F&& f) const {
+    const int cx = static_cast<int>(std::floor(p.x / cell_)), cy = static_cast<int>(std::floor(p.y / cell_));
+    for (int y = cy - 1; y <= cy + 1; ++y) {
+      for (int x = cx - 1; x <= cx + 1; ++x) {
+        for (std::uint32_t i = heads_[find(pack(x, y))]; i != kNone; i = entries_[i].next) {
+          if (std::fabs(z - entries_[i].z) <= kFloorGap && f(entries_[i])) return true;
+        }
+      }
+    }
+    return false;
+  }
   static std::uint64_t pack(int x, int y) {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) << 32) | static_cast<std::uint32_t>(y);
   }

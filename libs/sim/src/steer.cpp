@@ -35,9 +35,6 @@ core::Vec2 unstick(core::Vec2 desired, const SteeringDesc& s, std::uint64_t seed
   return core::Vec2{desired.x * kCos[k] - desired.y * kSin[k], desired.x * kSin[k] + desired.y * kCos[k]} * 0.5f;
 }
 
-/// A step within acos(sqrt(kOnCourseCos2)) (about 30°) of the corner aimed at is on course.
-constexpr float kOnCourseCos2 = 0.75f;
-
 /// One row's preferred velocity (writes its prefVel and corner index only).
 struct PreferredVelocity {
   const SteerInput& in;
@@ -67,12 +64,8 @@ void PreferredVelocity::advanceCorner(std::size_t row, core::Vec2 pos) const {
     // corner passed, and when last tick's step did not head for the aim (cheap: no sight line for
     // those walking on).
     if (ci > 0 && ci < corners.size() && core::lengthSq(corners[ci - 1] - pos) < 4.0f * reach2) {
-      const core::Vec2 toAim = corners[ci] - pos;
       const core::Vec2 vel{in.model.agents.velX[row], in.model.agents.velY[row]};
-      const float toward = core::dot(vel, toAim);
-      if (toward * toward < kOnCourseCos2 * core::lengthSq(vel) * core::lengthSq(toAim) || toward <= 0.0f) {
-        if (!ws.query->visible(pos, corners[ci]) && ws.query->visible(pos, corners[ci - 1])) --ci;
-      }
+      if (!onCourse(vel, corners[ci] - pos) && !ws.query->visible(pos, corners[ci]) && ws.query->visible(pos, corners[ci - 1])) --ci;
     }
     while (ci + 1 < corners.size() && core::lengthSq(corners[ci] - pos) < reach2 && ws.query->visible(pos, corners[ci + 1])) {
       ++ci;
