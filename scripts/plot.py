@@ -3,13 +3,14 @@
 and a speed heatmap, the passings and flow at measurement lines and a fundamental diagram.
 
 usage: /usr/bin/python3 scripts/plot.py RECORDING.sqlite [--out DIR] [--what LIST] [--line X0,Y0,X1,Y1]
-           [--area X0,Y0,X1,Y1] [--cell METRES] [--json]
+           [--area X0,Y0,X1,Y1] [--cell METRES] [--density DEF] [--speed DEF] [--json]
 
 Figures (--what, a comma list; default all):
   trajectories  every agent's path over the walkable area, the exits, the line(s) and the area
   density       classic density per grid cell, averaged over every recorded frame [1/m²]; with
                 --density voronoi PedPy's Voronoi density per cell (plotting/voronoi.py)
-  speed         mean individual speed of the agents seen in each grid cell [m/s]
+  speed         mean individual speed of the agents seen in each grid cell [m/s]; with --speed
+                voronoi Steffen and Seyfried's Voronoi speed per cell (plotting/voronoi.py)
   flow          cumulative passings N(t) at each measurement line and the flow in 5 s windows
   fd            fundamental diagram: classic density and mean speed in the measurement area per
                 frame, with Weidmann's (1993) curve
@@ -82,6 +83,9 @@ def parse_args(argv):
     ap.add_argument("--cell", type=float, default=0.5, metavar="METRES", help="heatmap cell size [m] (default 0.5)")
     ap.add_argument("--density", default="classic", metavar="DEF",
                     help="the density heatmap's definition: classic (default) or voronoi (cells cut to 2 m)")
+    ap.add_argument("--speed", default="classic", metavar="DEF",
+                    help="the speed heatmap's definition: classic (default: the mean speed of those in the cell) or "
+                         "voronoi (each one's speed over their Voronoi cell, cut to 2 m, averaged by area)")
     ap.add_argument("--json", action="store_true", help="print the written files and the numbers as one JSON object")
     ap.add_argument("--prog", default="plot.py", help=argparse.SUPPRESS)  # the name errors start with (throng plot)
     args = ap.parse_args(argv)
@@ -89,8 +93,9 @@ def parse_args(argv):
     bad = [w for w in args.what if w not in FIGURES]
     if bad or not args.what:
         raise UsageError(f"--what: unknown figure {', '.join(bad) or '(none)'}; expected some of {', '.join(FIGURES)}")
-    if args.density not in ("classic", "voronoi"):
-        raise UsageError(f"--density {args.density}: expected classic or voronoi")
+    for flag, value in (("--density", args.density), ("--speed", args.speed)):
+        if value not in ("classic", "voronoi"):
+            raise UsageError(f"{flag} {value}: expected classic or voronoi")
     if not 0.05 <= args.cell <= 100:
         raise UsageError(f"--cell {args.cell:g}: expected a cell size from 0.05 to 100 m")
     args.line = _numbers("--line", args.line, 4) if args.line else None
@@ -167,10 +172,11 @@ def frame_step(fps):
     return max(1, int(round(SPEED_HALF_WINDOW_S * fps)))
 
 
-def cell_grids(inp, cell, A, G, definition="classic"):
+def cell_grids(inp, cell, A, G, definition="classic", speed_definition="classic"):
     """Per cell: mean classic (or Voronoi) density over every recorded frame (Voronoi: at most
     voronoi.MAX_FRAMES of them) [1/m²] and mean individual speed [m/s] (NaN where nobody was seen,
-    or the cell's centre is not walkable); the cell edges."""
+    or the cell's centre is not walkable; Voronoi: the area-weighted speed of the Voronoi cells over
+    the same frames as the density); the cell edges."""
     import numpy as np
     xs, ys = G.grid(inp.world, cell)
     t = inp.traj
@@ -184,8 +190,13 @@ def cell_grids(inp, cell, A, G, definition="classic"):
     speeds = A.individual_speed(t, inp.fps, frame_step(inp.fps)).merge(t[["id", "frame", "x", "y"]], on=["id", "frame"])
     n, _, _ = np.histogram2d(speeds["x"], speeds["y"], bins=(xs, ys))
     total, _, _ = np.histogram2d(speeds["x"], speeds["y"], bins=(xs, ys), weights=speeds["speed"])
-    with np.errstate(invalid="ignore", divide="ignore"):
-        speed = np.where(n > 0, total / n, np.nan)
+    if speed_definition == "voronoi":
+        from plotting import voronoi as V
+        speed, used = V.voronoi_speed(t, speeds, xs, ys, inp.rings, G.inside_walkable)
+        progress(f"Voronoi speed over {used} frames")
+    else:
+        with np.errstate(invalid="ignore", divide="ignore"):
+            speed = np.where(n > 0, total / n, np.nan)
     cx, cy = np.meshgrid((xs[:-1] + xs[1:]) / 2, (ys[:-1] + ys[1:]) / 2, indexing="ij")
     walkable = G.inside_walkable(cx.ravel(), cy.ravel(), inp.rings).reshape(cx.shape) if inp.rings else np.ones(cx.shape, bool)
     density = np.where(walkable, density, np.nan)
@@ -245,15 +256,15 @@ def draw(args, inp, plt, A, M, G, F):
                            inp.lines, inp.area, inp.name)
         elif what in ("density", "speed"):
             if "_grids" not in numbers:
-                numbers["_grids"] = cell_grids(inp, args.cell, A, G, args.density)
+                numbers["_grids"] = cell_grids(inp, args.cell, A, G, args.density, args.speed)
             density, speed, xs, ys, samples = numbers["_grids"]
             values = density if what == "density" else speed
-            label = f"mean {args.density} density [1/m²]".replace("voronoi", "Voronoi") if what == "density" else "mean speed [m/s]"
+            label = (f"mean {args.density} density [1/m²]" if what == "density"
+                     else f"mean {args.speed} speed [m/s]").replace("voronoi", "Voronoi").replace("classic speed", "speed")
             F.heatmap(plt, path(what), values, xs, ys, inp.rec.walkable_area, inp.world, label,
                       f"{inp.name}: {label} ({args.cell:g} m cells)", "magma_r" if what == "density" else "viridis")
             numbers[what] = grid_numbers(values, samples, args.cell, what)
-            if what == "density":
-                numbers[what]["definition"] = args.density
+            numbers[what]["definition"] = args.density if what == "density" else args.speed
         elif what == "flow":
             series, numbers["lines"] = measure_lines(inp, A, M)
             F.passings(plt, path(what), series, FLOW_WINDOW_S, f"{inp.name}: passings at the measurement line(s)")
@@ -268,7 +279,7 @@ def draw(args, inp, plt, A, M, G, F):
 def grid_numbers(values, samples, cell, what):
     import numpy as np
     finite = values[np.isfinite(values)]
-    out = {"cell_m": cell, "max": float(finite.max()) if len(finite) else 0.0}
+    out = {"cell_m": cell, "max": float(finite.max()) if len(finite) else 0.0, "cells": int(len(finite))}
     if what == "density":
         out["mean"] = float(finite.mean()) if len(finite) else 0.0
     else:

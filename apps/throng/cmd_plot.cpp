@@ -39,6 +39,7 @@ std::vector<std::string> scriptArguments(const PlotOptions& o) {
   if (!o.area.empty()) args.insert(args.end(), {"--area", joinNumbers(o.area)});
   args.insert(args.end(), {"--cell", fmt::format("{}", o.cell)});
   if (o.density != "classic") args.insert(args.end(), {"--density", o.density});
+  if (o.speed != "classic") args.insert(args.end(), {"--speed", o.speed});
   if (o.json) args.emplace_back("--json");
   args.insert(args.end(), {"--prog", "throng plot"});
   return args;
@@ -75,6 +76,10 @@ CLI::App* addPlotCommand(CLI::App& app, PlotOptions& options) {
   cmd->add_option("--cell", options.cell, "Heatmap cell size [m]")->check(CLI::Range(0.05, 100.0))->default_str("0.5");
   cmd->add_option("--density", options.density, "The density heatmap's definition (PedPy's): classic (persons in the "
                                                 "cell / its area) or voronoi (Voronoi cells cut to 2 m, shared by area)")
+      ->check(CLI::IsMember({"classic", "voronoi"}))
+      ->capture_default_str();
+  cmd->add_option("--speed", options.speed, "The speed heatmap's definition: classic (mean speed of those in the cell) "
+                                            "or voronoi (each one's speed over their Voronoi cell, cut to 2 m, by area)")
       ->check(CLI::IsMember({"classic", "voronoi"}))
       ->capture_default_str();
   cmd->add_flag("--json", options.json, "Print the written files and the measured numbers as one JSON object");

@@ -153,6 +153,7 @@ struct PlotOptions {
   std::vector<double> area;             ///< rectangle corners x0, y0, x1, y1 [m]; empty = behind the first exit's line
   double cell = 0.5;                    ///< heatmap cell size [m]
   std::string density = "classic";      ///< the density heatmap's definition: classic or voronoi
+  std::string speed = "classic";        ///< the speed heatmap's definition: classic or voronoi
   bool json = false;                    ///< files and numbers as one JSON object
 };
 

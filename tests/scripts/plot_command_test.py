@@ -15,7 +15,7 @@ import subprocess
 import sys
 import tempfile
 
-FLAGS = ["--out", "--what", "--line", "--area", "--cell", "--density", "--json"]
+FLAGS = ["--out", "--what", "--line", "--area", "--cell", "--density", "--speed", "--json"]
 FIGURES = ["trajectories", "density", "speed", "flow", "fd"]
 
 
@@ -93,7 +93,7 @@ def check_defaults(binary, rec, tmp):
 
 def check_voronoi(binary, rec, tmp, classic):
     """--density voronoi: a real figure, the same persons spread by Voronoi shares (mean within 15 %
-    of the classic mean over the same cells), still a queue at the door."""
+    of the classic mean over the same cells), still a queue at the door; --speed voronoi."""
     res = plot(binary, rec, "--what", "density", "--density", "voronoi", "--out", os.path.join(tmp, "voronoi"), "--json")
     if res.returncode != 0:
         fail(f"throng plot --density voronoi exited {res.returncode}: {res.stderr}")
@@ -104,6 +104,18 @@ def check_voronoi(binary, rec, tmp, classic):
         fail(f"definitions {d.get('definition')}, {classic['density'].get('definition')}: expected voronoi, classic")
     if abs(d["mean"] - classic["density"]["mean"]) > 0.15 * classic["density"]["mean"] or d["max"] < 1.0:
         fail(f"Voronoi density {d} against classic {classic['density']}: expected about the same mean, a queue (max >= 1/m²)")
+    # --speed voronoi: each agent's speed spread over its Voronoi cell gives speeds to more cells than
+    # the agents stood in, within walking speeds.
+    res = plot(binary, rec, "--what", "speed", "--speed", "voronoi", "--out", os.path.join(tmp, "voronoi"), "--json")
+    if res.returncode != 0:
+        fail(f"throng plot --speed voronoi exited {res.returncode}: {res.stderr}")
+    s = json.loads(res.stdout)
+    check_png(s["files"]["speed"])
+    v, c = s["speed"], classic["speed"]
+    if v.get("definition") != "voronoi" or c.get("definition") != "classic":
+        fail(f"speed definitions {v.get('definition')}, {c.get('definition')}: expected voronoi, classic")
+    if not c["cells"] < v["cells"] or not 0.2 < v["max"] <= 3.0:
+        fail(f"Voronoi speed {v} against classic {c}: expected more cells with a speed, walking speeds")
 
 
 def check_door(binary, rec, tmp):
@@ -172,6 +184,7 @@ def check_errors(binary, rec, tmp):
              ([rec, "--what", "heat"], 2, "--what"),
              ([rec, "--cell", "0"], 2, "--cell"),
              ([rec, "--density", "kde"], 2, "--density"),
+             ([rec, "--speed", "fast"], 2, "--speed"),
              ([rec, "--bogus"], 2, "--bogus")]
     for args, code, text in cases:
         res = plot(binary, *args, "--out", os.path.join(tmp, "bad"))

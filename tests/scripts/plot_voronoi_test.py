@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Unit tests of scripts/plotting/voronoi.py (`throng plot --density voronoi`, docs/plot.md) on
 hand-made frames whose Voronoi densities are known (ctest: plot_voronoi): two agents sharing a room,
-a lone agent's cut-off circle, a lattice, non-walkable ground left out, the mean over frames. Needs
+a lone agent's cut-off circle, a lattice, non-walkable ground left out, the mean over frames; and
+the Voronoi speed (`--speed voronoi`) on cells whose shares are known. Needs
 numpy and pandas (Debian's python3-numpy, python3-pandas): /usr/bin/python3."""
 import importlib.util
 import math
@@ -72,6 +73,37 @@ class VoronoiDensity(unittest.TestCase):
         xs, ys = G.grid((0.0, 0.0, 4.0, 2.0), 1.0)
         _, used = V.voronoi_density(frames(*[[(1, 1)]] * 30), xs, ys, room(4, 2), G.inside_walkable, max_frames=7)
         self.assertEqual(used, 7)
+
+
+class VoronoiSpeed(unittest.TestCase):
+    """voronoi_speed: sum_i v_i |V_i & M| / sum_i |V_i & M| per cell, on hand-computed cells."""
+
+    def speed(self, positions, speeds, w, h, cutoff=10.0):
+        traj = frames(positions)
+        sp = pd.DataFrame([(i, 0, v) for i, v in enumerate(speeds) if v is not None], columns=["id", "frame", "speed"])
+        xs, ys = G.grid((0.0, 0.0, float(w), float(h)), 1.0)
+        v, used = V.voronoi_speed(traj, sp, xs, ys, room(w, h), G.inside_walkable, cutoff=cutoff, per_cell=4)
+        self.assertEqual(used, 1)
+        return v
+
+    def test_each_speed_fills_its_voronoi_cell(self):
+        v = self.speed([(0.5, 1), (3.5, 1)], [1.0, 2.0], 4, 2)
+        np.testing.assert_allclose(v[:2], 1.0, atol=1e-9)
+        np.testing.assert_allclose(v[2:], 2.0, atol=1e-9)
+
+    def test_a_shared_cell_is_the_area_weighted_mean(self):
+        # Agents at x 0.25 and 1.25 split at x 0.75: cell 0 is 3/4 the first's (1 m/s), 1/4 the second's (3 m/s).
+        v = self.speed([(0.25, 0.5), (1.25, 0.5)], [1.0, 3.0], 2, 1)
+        self.assertAlmostEqual(v[0, 0], 1.5, places=9)
+        self.assertAlmostEqual(v[1, 0], 3.0, places=9)
+
+    def test_an_agent_without_a_speed_owns_ground_that_counts_for_neither(self):
+        v = self.speed([(0.5, 1), (3.5, 1)], [1.0, None], 4, 2)
+        np.testing.assert_allclose(v[:2], 1.0, atol=1e-9)
+        self.assertTrue(np.isnan(v[2:]).all())
+        far = self.speed([(10, 10)], [1.0], 20, 20, cutoff=2.0)
+        self.assertEqual(far[10, 10], 1.0)
+        self.assertTrue(np.isnan(far[0, 0]))
 
 
 if __name__ == "__main__":

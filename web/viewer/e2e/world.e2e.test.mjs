@@ -133,6 +133,35 @@ async function checkSpeedmap(page) {
   assert.equal(await page.evaluate(() => globalThis.__throng.speedmap.enabled), false);
 }
 
+/** The speed map's Voronoi definition (the menu beside Speed): every cell someone's Voronoi cell
+ * covers has a speed (0–3 m/s), so more cells than agents occupy; the legend says
+ * "speed map (Voronoi)"; back to classic. */
+async function checkVoronoiSpeedmap(page) {
+  await page.selectOption('#speedmap-method', 'voronoi');
+  await page.keyboard.press('g');
+  await page.waitForFunction(() => globalThis.__throng.speedmap.grid.frames.length >= 10, null, { timeout: 20000 });
+  const r = await page.evaluate(() => {
+    const t = globalThis.__throng, g = t.speedmap.grid;
+    let cells = 0, lo = Infinity, hi = -Infinity;
+    for (let j = 0; j < g.ny; ++j) for (let i = 0; i < g.nx; ++i) {
+      const v = g.speed(i, j);
+      if (v === null) continue;
+      ++cells; lo = Math.min(lo, v); hi = Math.max(hi, v);
+    }
+    const occupied = new Set();
+    for (let k = 0; k < t.state.count; ++k) occupied.add(`${Math.floor((t.state.x[k] - g.minX) / g.cell)},${Math.floor((t.state.y[k] - g.minY) / g.cell)}`);
+    return { cells, lo, hi, occupied: occupied.size, definition: g.definition, legend: document.querySelector('#legend').textContent };
+  });
+  assert.equal(r.definition, 'voronoi');
+  assert.ok(r.lo >= 0 && r.hi <= 3, `Voronoi speeds: ${JSON.stringify(r)}`);
+  assert.ok(r.cells > r.occupied, `Voronoi cells give speeds to more grid cells (${r.cells}) than agents occupy (${r.occupied})`);
+  assert.ok(r.legend.includes('speed map (Voronoi)'), r.legend);
+  await shot(page, 'viewer_speed_voronoi.png');
+  await page.keyboard.press('g');
+  await page.selectOption('#speedmap-method', 'classic');
+  assert.equal(await page.evaluate(() => globalThis.__throng.speedmap.grid.definition), 'classic');
+}
+
 /** Opens `input` served by throng at 1280×720 (`query`: extra URL options); {server, browser, page, errors}. */
 async function open(input, query = '') {
   const server = await startServer(path.join(repo, input));
@@ -174,6 +203,7 @@ for (const [input, name, minSegments] of [['scenarios/museum.json', 'museum', 8]
       if (name === 'museum') await checkHeatmap(s.page);
       if (name === 'museum') await checkVoronoiMap(s.page);
       if (name === 'museum') await checkSpeedmap(s.page);
+      if (name === 'museum') await checkVoronoiSpeedmap(s.page);
       assert.deepEqual(s.errors, []);
     } finally {
       await close(s);

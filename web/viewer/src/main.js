@@ -30,8 +30,8 @@ import { Legend } from './ui/legend.js';
 import { Help } from './ui/help.js';
 import { Markers, kSelfColour } from './crowd/markers.js';
 import { Trails } from './crowd/trails.js';
-import { Heatmap, DensityGrid } from './crowd/heatmap.js';
-import { VoronoiDensityGrid } from './crowd/voronoi.js';
+import { Heatmap, DensityGrid, SpeedGrid } from './crowd/heatmap.js';
+import { VoronoiDensityGrid, VoronoiSpeedGrid } from './crowd/voronoi.js';
 import { Measurements } from './crowd/measure.js';
 import { MeasurePanel } from './ui/measure_panel.js';
 import { Exporter } from './ui/export.js';
@@ -120,10 +120,12 @@ let lookIndex = loadLookChoice(globalThis.localStorage);  // your avatar's look 
 let worldModel = null;  // a glTF world's meshes with their materials, drawn instead of the flat floors
 let markers = null;
 let heatmap = null;  // density heatmap overlay (key M)
-let heatmapMethod = 'classic', heatmapScenario = {}, heatmapBounds = null;  // its definition (the menu beside it)
+// The maps' definitions (the menus beside them): the URL's at first, then the person's, kept across worlds.
+let heatmapMethod = params.get('heatmap') === 'voronoi' ? 'voronoi' : 'classic', heatmapScenario = {}, heatmapBounds = null;
 let measurements = null;  // the scenario's measurement lines and areas, measured live
 let measurePanel = null;
 let speedmap = null;  // speed heatmap overlay (key G)
+let speedmapMethod = params.get('speedmap') === 'voronoi' ? 'voronoi' : 'classic';
 let trails = null, trailsStale = false;  // trajectory trails (key R), rebuilt after a frame added samples
 const legend = new Legend($('legend'), { selected: kSelectedColour, pickedGroup: kPickedGroupColour, self: kSelfColour, other: kOtherColour },
   (m) => setColourMode(m));
@@ -186,12 +188,13 @@ source.on('world', async (w) => {
   heatmap = new Heatmap(scene, bounds);
   heatmapScenario = w.scenario || {};
   heatmapBounds = bounds;
-  if (params.get('heatmap') === 'voronoi') setHeatmapMethod('voronoi');
+  setHeatmapMethod(heatmapMethod);
   if (params.get('heatmap') === '1' || params.get('heatmap') === 'voronoi') toggleHeatmap(true);
   measurements = new Measurements((w.scenario || {}).measurements || []);
   measurePanel = new MeasurePanel($('measure'), measurements);
   speedmap = new Heatmap(scene, bounds, 'speed');
-  if (params.get('speedmap') === '1') toggleSpeedmap(true);
+  setSpeedmapMethod(speedmapMethod);
+  if (params.get('speedmap') === '1' || params.get('speedmap') === 'voronoi') toggleSpeedmap(true);
   if (params.get('trails') === '1') toggleTrails(true);
   const colourParam = params.get('colour');
   setColourMode(kColourModes.includes(colourParam) ? colourParam : 'group');
@@ -226,7 +229,7 @@ function loadModel() {
 function testHooks(w) {
   return {
     cameras, crowd, state, get camera() { return view(); }, source, panelRects, legend, help, hud, setColourMode, recordings,
-    get trails() { return trails; }, get heatmap() { return heatmap; }, setHeatmapMethod, get measurements() { return measurements; }, get speedmap() { return speedmap; }, get markers() { return markers; }, selfColour: kSelfColour,
+    get trails() { return trails; }, get heatmap() { return heatmap; }, setHeatmapMethod, get measurements() { return measurements; }, get speedmap() { return speedmap; }, setSpeedmapMethod, get markers() { return markers; }, selfColour: kSelfColour,
     renderer, exporter, description: w, others, groupList, remoteJoints, gesture, setLook,
     get look() { return lookIndex; },
     /** Other participants as drawn last frame: name → the name of their look, null when drawn plainly. */
@@ -546,10 +549,19 @@ function toggleSpeedmap(on = !(speedmap && speedmap.enabled)) {
   if (!speedmap) return;
   speedmap.enabled = on;
   $('speedmap-toggle').checked = on;
-  legend.speedmap = on;
+  legend.speedmap = on && speedmapMethod;
   refreshLegend();
 }
 $('speedmap-toggle').onchange = (e) => toggleSpeedmap(e.target.checked);
+/** The speed map's definition: 'classic' (SpeedGrid) or 'voronoi' (VoronoiSpeedGrid). */
+function setSpeedmapMethod(method) {
+  if (!speedmap || (method !== 'classic' && method !== 'voronoi')) return;
+  speedmapMethod = method;
+  $('speedmap-method').value = method;
+  speedmap.setGrid(method === 'voronoi' ? new VoronoiSpeedGrid(heatmapBounds, heatmapScenario) : new SpeedGrid(heatmapBounds));
+  if (speedmap.enabled) { legend.speedmap = method; refreshLegend(); }
+}
+$('speedmap-method').onchange = (e) => setSpeedmapMethod(e.target.value);
 // Export (ui/export.js): the view as PNG (K) or WebM (V starts / stops; the indicator shows meanwhile).
 const exporter = new Exporter(renderer.domElement, () => renderer.render(scene, view()), () => hud.world?.name || '',
   $('rec-indicator'), (on) => { $('export-rec').classList.toggle('active', on); $('export-rec').textContent = on ? 'Stop' : 'Rec'; });

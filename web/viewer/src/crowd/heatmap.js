@@ -9,7 +9,8 @@
 // cells transparent. SpeedGrid (pure): per cell, the mean ground speed of the agents in it over the
 // same window — each agent's speed between two successive frames (distance / time; a jump over
 // kSpeedJump metres, or an agent new in the frame, gives no sample), counted in the cell where it
-// is now; drawn on the same ramp over 0 … kSpeedMax, cells nobody crossed transparent.
+// is now; drawn on the same ramp over 0 … kSpeedMax, cells nobody crossed transparent (voronoi.js:
+// the same map by Voronoi cells).
 // Scene coordinates: (x, z, −y).
 import * as THREE from 'three';
 import { kDensityMax, kSpeedMax, rampColour } from './colour_by.js';
@@ -85,26 +86,37 @@ export class SpeedGrid extends DensityGrid {
     const lastFrame = this.frames[this.frames.length - 1];
     if (lastFrame && t < lastFrame.t) this.clear();
     else if (lastFrame && t === lastFrame.t) return;
-    const counts = new Uint16Array(this.nx * this.ny), sums = new Float32Array(this.nx * this.ny);
+    const v = new Float32Array(count).fill(NaN);  // each agent's speed since the last frame, NaN: none
     const now = new Map();
     for (let i = 0; i < count; ++i) {
       now.set(ids[i], [x[i], y[i], t]);
       const p = this.last.get(ids[i]);
       if (!p || t <= p[2]) continue;
       const d = Math.hypot(x[i] - p[0], y[i] - p[1]);
-      if (d > kSpeedJump) continue;
-      const ci = Math.floor((x[i] - this.minX) / this.cell), cj = Math.floor((y[i] - this.minY) / this.cell);
-      if (ci < 0 || ci >= this.nx || cj < 0 || cj >= this.ny) continue;
-      counts[cj * this.nx + ci] += 1;
-      sums[cj * this.nx + ci] += d / (t - p[2]);
+      if (d <= kSpeedJump) v[i] = d / (t - p[2]);
     }
     this.last = now;
+    const { counts, sums } = this.frameSums(x, y, v, count);
     this.frames.push({ t, counts, sums });
     for (let k = 0; k < counts.length; ++k) { this.sum[k] += counts[k]; this.speedSum[k] += sums[k]; }
     while (this.frames.length > 1 && this.frames[0].t < t - this.seconds) {
       const old = this.frames.shift();
       for (let k = 0; k < old.counts.length; ++k) { this.sum[k] -= old.counts[k]; this.speedSum[k] -= old.sums[k]; }
     }
+  }
+
+  /** One frame's weights and weighted speeds per cell: here (classic) each agent with a speed
+   * sample counts once, with its speed, in the cell where it is (voronoi.js: by Voronoi area). */
+  frameSums(x, y, v, count) {
+    const counts = new Uint16Array(this.nx * this.ny), sums = new Float32Array(this.nx * this.ny);
+    for (let i = 0; i < count; ++i) {
+      if (Number.isNaN(v[i])) continue;
+      const ci = Math.floor((x[i] - this.minX) / this.cell), cj = Math.floor((y[i] - this.minY) / this.cell);
+      if (ci < 0 || ci >= this.nx || cj < 0 || cj >= this.ny) continue;
+      counts[cj * this.nx + ci] += 1;
+      sums[cj * this.nx + ci] += v[i];
+    }
+    return { counts, sums };
   }
 
   /** Mean speed [m/s] of the samples in cell (i, j) over the window, or null when it has none. */

@@ -8,7 +8,14 @@
 // cut-off (found through a hash grid of cut-off-sized buckets), |V_i| is its samples' count and
 // |V_i ∩ M| the count of those in M, so each frame gives per cell Σ_i n_i,M / n_i persons.
 // VoronoiDensityGrid averages these over the last seconds exactly as DensityGrid averages counts.
-import { DensityGrid, kHeatCell, kHeatSeconds } from './heatmap.js';
+// The speed map's Voronoi definition (VoronoiSpeedGrid) is Steffen & Seyfried's (2010; PedPy's
+// Voronoi speed): the speed field v(x) = v_i on V_i, averaged over the cell — Σ_i v_i |V_i ∩ M|
+// over Σ_i |V_i ∩ M|, i.e. over the part of the cell someone's (cut) Voronoi cell covers. PedPy
+// divides by |M| instead, which reads a cell half beyond everyone's cut-off as half the speed;
+// where the cells cover M the two agree. v_i is the agent's speed since the previous frame
+// (SpeedGrid); an agent without one (new in the frame, or a jump) still owns its Voronoi cell
+// but that area counts for neither sum.
+import { DensityGrid, SpeedGrid, kHeatCell, kHeatSeconds } from './heatmap.js';
 import { insidePolygon, wallRectangles } from '../world/walls.js';
 
 export const kVoronoiCutoff = 2.0;  // [m] radius a Voronoi cell is cut to
@@ -38,13 +45,14 @@ export function walkableSamples(grid, scenario, perSide = kVoronoiSamples) {
 }
 
 /**
- * Persons per grid cell by Voronoi shares for one frame: out[cell] = Σ_i n_i,cell / n_i, the
- * samples (walkableSamples) owned by agent i — nearest within `cutoff` — in the cell over all of
- * agent i's samples. An agent owning no sample (off the sampled area) adds nothing.
+ * Which agent owns each sample (walkableSamples): the nearest within `cutoff` (ties: the lower
+ * row), -1 for none; {owner: Int32Array per sample, owned: Int32Array per agent (its samples)}.
  */
-export function voronoiShares(samples, x, y, count, cutoff, cells, out = new Float32Array(cells)) {
-  out.fill(0);
-  if (count === 0) return out;
+export function voronoiOwners(samples, x, y, count, cutoff) {
+  const n = samples.x.length;
+  const owner = new Int32Array(n).fill(-1);
+  const owned = new Int32Array(count);
+  if (count === 0) return { owner, owned };
   const buckets = new Map();
   const key = (bx, by) => bx * 73856093 ^ by * 19349663;
   for (let i = 0; i < count; ++i) {
@@ -53,9 +61,6 @@ export function voronoiShares(samples, x, y, count, cutoff, cells, out = new Flo
     if (!list) { list = []; buckets.set(k, list); }
     list.push(i);
   }
-  const n = samples.x.length;
-  const owner = new Int32Array(n).fill(-1);
-  const owned = new Int32Array(count);
   const r2 = cutoff * cutoff;
   for (let s = 0; s < n; ++s) {
     const sx = samples.x[s], sy = samples.y[s];
@@ -73,7 +78,18 @@ export function voronoiShares(samples, x, y, count, cutoff, cells, out = new Flo
     }
     if (best >= 0 && bestD <= r2) { owner[s] = best; owned[best]++; }
   }
-  for (let s = 0; s < n; ++s) if (owner[s] >= 0) out[samples.cell[s]] += 1 / owned[owner[s]];
+  return { owner, owned };
+}
+
+/**
+ * Persons per grid cell by Voronoi shares for one frame: out[cell] = Σ_i n_i,cell / n_i, the
+ * samples (walkableSamples) owned by agent i — nearest within `cutoff` — in the cell over all of
+ * agent i's samples. An agent owning no sample (off the sampled area) adds nothing.
+ */
+export function voronoiShares(samples, x, y, count, cutoff, cells, out = new Float32Array(cells)) {
+  out.fill(0);
+  const { owner, owned } = voronoiOwners(samples, x, y, count, cutoff);
+  for (let s = 0; s < owner.length; ++s) if (owner[s] >= 0) out[samples.cell[s]] += 1 / owned[owner[s]];
   return out;
 }
 
@@ -98,5 +114,28 @@ export class VoronoiDensityGrid extends DensityGrid {
       const old = this.frames.shift().counts;
       for (let k = 0; k < old.length; ++k) this.sum[k] -= old[k];
     }
+  }
+}
+
+/** The speed map's Voronoi variant: SpeedGrid's speeds and window, weighted by Voronoi area. */
+export class VoronoiSpeedGrid extends SpeedGrid {
+  constructor(bounds, scenario = {}, cell = kHeatCell, seconds = kHeatSeconds, cutoff = kVoronoiCutoff) {
+    super(bounds, cell, seconds);
+    this.definition = 'voronoi';
+    this.cutoff = cutoff;
+    this.samples = walkableSamples(this, scenario);
+  }
+
+  /** Per cell: samples covered by agents with a speed, and the sum of those agents' speeds over them. */
+  frameSums(x, y, v, count) {
+    const counts = new Uint16Array(this.nx * this.ny), sums = new Float32Array(this.nx * this.ny);
+    const { owner } = voronoiOwners(this.samples, x, y, count, this.cutoff);
+    for (let s = 0; s < owner.length; ++s) {
+      const o = owner[s];
+      if (o < 0 || Number.isNaN(v[o])) continue;
+      counts[this.samples.cell[s]] += 1;
+      sums[this.samples.cell[s]] += v[o];
+    }
+    return { counts, sums };
   }
 }

@@ -25,7 +25,7 @@ export function fixedEntries({ selected, pickedGroup, self, other, trails, heatm
     ...(trails ? [{ colour: 0x555555, shape: 'line', label: 'trail: where each walked lately' }] : []),
     ...(heatmap ? legendOf('density').map((e) => ({ colour: e.colour, shape: 'area',
       label: `density map${heatmap === 'voronoi' ? ' (Voronoi)' : ''}: ${e.label}` })) : []),
-    ...(speedmap ? legendOf('speed').map((e) => ({ colour: e.colour, shape: 'area', label: `speed map: ${e.label}` })) : []),
+    ...(speedmap ? legendOf('speed').map((e) => ({ colour: e.colour, shape: 'area', label: `speed map${speedmap === 'voronoi' ? ' (Voronoi)' : ''}: ${e.label}` })) : []),
   ];
 }
 
