@@ -352,6 +352,15 @@ TEST(Serve, AParticipantsLookIsRelayedToOtherClients) {
   EXPECT_EQ(c->avatarOf(bob.value().participantId), std::optional<std::uint16_t>(0));
   EXPECT_EQ(a->avatarOf(bob.value().participantId), std::optional<std::uint16_t>(0));
   EXPECT_EQ(c->present().size(), 2u);
+  // Alice changes her look while joined: everyone sees the new one, and she is still herself.
+  auto again = a->join("alice", 1);
+  ASSERT_TRUE(again.ok());
+  EXPECT_EQ(again.value().participantId, alice.value().participantId);
+  EXPECT_EQ(again.value().token, alice.value().token);
+  pumpFor({a.get(), b.get(), c.get()}, 300ms);
+  EXPECT_EQ(b->avatarOf(alice.value().participantId), std::optional<std::uint16_t>(1));
+  EXPECT_EQ(c->avatarOf(alice.value().participantId), std::optional<std::uint16_t>(1));
+  EXPECT_EQ(c->present().size(), 2u);
   // Gone: no look.
   a->close();
   pumpFor({b.get(), c.get()}, 300ms);

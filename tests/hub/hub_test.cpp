@@ -388,6 +388,61 @@ TEST_F(HubFixture, VersionTwoClientsHearEachParticipantsLookVersionOneClientsGet
   EXPECT_EQ(find<Welcome>(late)->protocolVersion, kProtocolVersion);
 }
 
+TEST_F(HubFixture, JoiningAgainChangesTheParticipantsNameAndLookForEveryoneKeepingItsIdAndToken) {
+  connect(1);
+  connect(2);
+  say(1, encode(Join{"alice", 2}));
+  const auto first = outbox.drain(1);
+  const Joined* joined = find<Joined>(first);
+  ASSERT_NE(joined, nullptr);
+  const Joined a = *joined;
+  outbox.drain(2);
+  say(1, encode(Join{"alice in green", 3}));  // a new look (and name) while joined
+  const auto again = outbox.drain(1);
+  const Joined* same = find<Joined>(again);
+  ASSERT_NE(same, nullptr) << "a second Join is answered, not refused";
+  EXPECT_EQ(same->participantId, a.participantId);
+  EXPECT_EQ(same->token, a.token);
+  EXPECT_EQ(find<Bye>(again), nullptr);
+  const auto heard = outbox.drain(2);
+  const Presence* changed = find<Presence>(heard);
+  ASSERT_NE(changed, nullptr);
+  EXPECT_EQ(changed->participantId, a.participantId);
+  EXPECT_TRUE(changed->present);
+  EXPECT_EQ(changed->name, "alice in green");
+  EXPECT_EQ(changed->avatar, std::optional<std::uint16_t>(3));
+  // An empty name keeps the name; the look still changes. A newcomer learns the latest.
+  say(1, encode(Join{"", 4}));
+  outbox.drain(1);
+  outbox.drain(2);
+  hub->onClose(2, "done");
+  hub->onOpen(3, "late", now);
+  say(3, encode(Hello{kProtocolVersion, ClientKind::Browser, "late"}));
+  const auto late = outbox.drain(3);
+  const Presence* there = find<Presence>(late);
+  ASSERT_NE(there, nullptr);
+  EXPECT_EQ(there->name, "alice in green");
+  EXPECT_EQ(there->avatar, std::optional<std::uint16_t>(4));
+  // A bad name is still refused, joined or not.
+  say(1, encode(Join{"\xc3\x28", 0}));
+  const auto bad = outbox.drain(1);
+  ASSERT_NE(find<Bye>(bad), nullptr);
+  EXPECT_EQ(find<Bye>(bad)->reason, ReasonCode::BadMessage);
+}
+
+TEST_F(HubFixture, JoiningAgainAndAgainIsRateLimitedLikeOtherParticipantMessages) {
+  connect(1);
+  const Joined a = join(1, "flood");
+  ASSERT_NE(a.token, 0u);
+  bool limited = false;
+  for (int i = 0; i < 1000 && !limited; ++i) {
+    say(1, encode(Join{"flood", static_cast<std::uint16_t>(i % 5)}));
+    const auto got = outbox.drain(1);
+    if (const Bye* bye = find<Bye>(got)) limited = bye->reason == ReasonCode::RateLimited;
+  }
+  EXPECT_TRUE(limited) << "a thousand Joins within the same instant are cut off";
+}
+
 TEST_F(HubFixture, ReplayControlIsRefusedByALiveWorldAndQueuedByAReplay) {
   connect(1);
   say(1, encode(ReplayControl{0, ReplayCommand::Pause, 0.0}));

@@ -284,6 +284,7 @@ const protocol::Welcome& Session::welcome() const { return impl_->welcome; }
 const std::string& Session::worldJson() const { return impl_->world; }
 
 core::Result<protocol::Joined> Session::join(const std::string& name, std::uint16_t avatar) {
+  impl_->joined.reset();  // joined already: wait for the answer to this Join (same id and token)
   if (auto s = impl_->send(protocol::encode(protocol::Join{name, avatar})); !s.ok()) return std::move(s).takeErrors();
   const auto deadline = Clock::now() + impl_->options.timeout;
   while (!impl_->joined && impl_->isOpen && Clock::now() < deadline) impl_->pump(std::chrono::milliseconds(20));

@@ -466,13 +466,19 @@ void Hub::Impl::greet(Client& c, const protocol::Message& message) {
   }
 }
 
-void Hub::Impl::on(Client& c, const protocol::Join& m, double) {
-  if (c.participant) {
-    fail(c, ReasonCode::UnexpectedMessage, "Join: this client already is participant " + std::to_string(c.participantId));
-    return;
-  }
+void Hub::Impl::on(Client& c, const protocol::Join& m, double now) {
   if (const auto bad = invalidUtf8At(m.name)) {
     fail(c, ReasonCode::BadMessage, "Join: name is not UTF-8 at " + describeByte(m.name, *bad) + "; expected a UTF-8 name");
+    return;
+  }
+  if (c.participant) {
+    // Joined already: a new name or look for the same participant (same id and token), told to
+    // everyone as a Presence, within the participant messages' rate (each one reaches every client).
+    if (!allowState(c, now)) return;
+    if (!m.name.empty()) c.name = m.name;
+    c.look = m.avatar;
+    outbox.send(c.peer, protocol::encode(protocol::Joined{c.participantId, c.token}), false, 0);
+    announce(c, true, 0);
     return;
   }
   c.participant = true;

@@ -2,8 +2,9 @@
 // scenarios/museum.json` in Debian's headless chromium: the join form offers the looks of
 // src/crowd/avatar_looks.js; the look picked before joining goes to the server as Join's avatar
 // index (the WebSocket frame is decoded with web/protocol/decode.js); the avatar's chest is drawn in
-// the chosen shirt colour, and changing the look while joined recolours it at once; the red ring and
-// pin that mark your own avatar stay whatever the look; the choice is remembered after a reload.
+// the chosen shirt colour, and changing the look while joined recolours it at once — for the other
+// participants too (Join again, a new Presence); the red ring and pin that mark your own avatar stay
+// whatever the look; the choice is remembered after a reload.
 // Run: THRONG_EXE=build/apps/throng/throng node --test web/viewer/e2e/avatar.e2e.test.mjs
 // (THRONG_E2E_SHOTS=DIR keeps a screenshot). Fails, like the other e2e tests, when something it needs is missing.
 import { test } from 'node:test';
@@ -163,6 +164,13 @@ test('two participants with different looks each see the other in theirs (Presen
       assert.equal(dominant(rgb), channel, `${other} seen with the chest ${rgb}`);
     }
     await shot(blue, 'viewer_avatar_looks_shared.png');
+
+    // A look changed while joined reaches the others (Join again: the same participant, a new Presence).
+    const id = await green.evaluate(() => globalThis.__throng.joined.participantId);
+    await green.selectOption('#join-look', '0');  // red jacket
+    await blue.waitForFunction(() => globalThis.__throng.otherLooks()['e2e-green'] === 'red jacket', null, { timeout: 15000 });
+    assert.equal(await green.evaluate(() => globalThis.__throng.joined.participantId), id, 'still the same participant');
+    assert.equal(await blue.evaluate(() => globalThis.__throng.source.present.size), 2, 'nobody joined or left');
     assert.deepEqual(errors, []);
   } finally {
     await browser.close();

@@ -360,6 +360,7 @@ function setLook(i) {
   lookIndex = kAvatarLooks.indexOf(lookAt(i));
   $('join-look').value = String(lookIndex);
   saveLookChoice(globalThis.localStorage, lookIndex);
+  if (joined) source.changeLook?.(lookIndex);  // others see it too (Join again: same participant)
 }
 setLook(lookIndex);
 $('join-look').onchange = (e) => setLook(e.target.value);

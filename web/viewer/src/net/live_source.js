@@ -223,6 +223,13 @@ export class LiveSource extends Emitter {
     this.send(encodeJoin({ name, avatar }));
   }
 
+  /** A new look while joined: Join again (same name; the server keeps the id and token and tells
+   * everyone in Presence). Before joining it only changes what join() will send. */
+  changeLook(avatar) {
+    this.joinAvatar = avatar;
+    if (this.token && this.joinName) this.send(encodeJoin({ name: this.joinName, avatar }));
+  }
+
   leave() {
     if (this.token) this.send(encodeLeave({ token: this.token }));
     this.joinName = null;

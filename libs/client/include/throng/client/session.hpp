@@ -76,7 +76,8 @@ class Session {
   [[nodiscard]] const std::string& worldJson() const;
 
   /// Joins as a participant in look `avatar` (Join's avatar: what other clients are told in
-  /// Presence, see Participant::avatar); waits for Joined.
+  /// Presence, see Participant::avatar); waits for Joined. Called again while joined, it changes
+  /// the participant's name (unless empty) and look for everyone, keeping its id and token.
   core::Result<protocol::Joined> join(const std::string& name, std::uint16_t avatar = 0);
   core::Status move(float x, float y, float yaw);
   core::Status guide(std::uint32_t group);
