@@ -100,7 +100,11 @@ void World::step(const core::TaskSystem& tasks, PhaseObserver* observer) {
   { Scope s(observer, "plan"); w.plan(tasks); }
   { Scope s(observer, "steer"); w.steer(tasks); }
   if (w.partition.exchange != nullptr) { Scope s(observer, "exchange"); w.exchangeSteer(); }
-  { Scope s(observer, "integrate"); w.integrate(tasks); }
+  {
+    Scope s(observer, "integrate");
+    w.integrate(tasks);
+    w.separate(tasks);
+  }
   { Scope s(observer, "emit"); w.emit(); }
 }
 
@@ -194,6 +198,11 @@ void World::Impl::configureModels() {
   for (auto& model : models) {
     if (model) model->configure(desc);
   }
+  separationPasses = 0;
+  for (std::size_t p = 0; p < desc.populations.size(); ++p) {
+    const OperationalModel& m = *models[static_cast<std::size_t>(desc.populations[p].model.kind)];
+    separationPasses = std::max(separationPasses, m.separationPasses(static_cast<std::uint16_t>(p)));
+  }
   for (WorkerScratch& ws : scratch) addModelScratch(ws);
 }
 
@@ -210,6 +219,44 @@ void World::Impl::integrate(const core::TaskSystem& tasks) {
   const IntegrateOutput out{agents.posX, agents.posY, agents.posZ, agents.polyRef, agents.velX, agents.velY,
                             agents.stuckTime, agents.animClip, agents.animPhase, agents.oriX, agents.oriY, chunks};
   sim::integrate(in, out, tasks);
+}
+
+void World::Impl::separate(const core::TaskSystem& tasks) {
+  if (separationPasses <= 0) return;
+  const std::size_t n = agents.size();
+  sepX.assign(n, 0.0f);
+  sepY.assign(n, 0.0f);
+  const ModelInput model{agents, walls, desc, viewers};
+  const std::size_t grain = phaseGrain(n, tasks);
+  const auto modelOf = [&](std::size_t row) {
+    return models[static_cast<std::size_t>(desc.populations[agents.population[row]].model.kind)].get();
+  };
+  for (int pass = 0; pass < separationPasses; ++pass) {
+    // Every row's share from the same positions (Jacobi): the same for any thread or rank count.
+    tasks.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t row = begin; row < end; ++row) {
+        const OperationalModel* m = modelOf(row);
+        const bool corrects = agents.goalState[row] != GoalState::Exited && m->separationPasses(agents.population[row]) > pass;
+        const core::Vec2 d = corrects ? m->separation(model, row) : core::Vec2{};
+        sepX[row] = d.x;
+        sepY[row] = d.y;
+      }
+    });
+    tasks.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
+      const nav::NavQuery& query = *scratch[static_cast<std::size_t>(tasks.workerIndex())].query;
+      for (std::size_t row = begin; row < end; ++row) {
+        const core::Vec2 d{sepX[row], sepY[row]};
+        if (core::lengthSq(d) < 1e-12f) continue;
+        const core::Vec2 pos{agents.posX[row], agents.posY[row]};
+        nav::PolyRef ref = agents.polyRef[row];
+        const core::Vec2 next = query.moveAlongSurface(pos, pos + d, ref);  // nobody through a wall
+        agents.polyRef[row] = static_cast<std::uint32_t>(ref);
+        if (!agents.posZ.empty() && ref != 0) agents.posZ[row] = query.heightAt(ref, next);
+        agents.posX[row] = next.x;
+        agents.posY[row] = next.y;
+      }
+    });
+  }
 }
 
 void World::Impl::ensureScratch(const core::TaskSystem& tasks) {

@@ -168,6 +168,11 @@ struct World::Impl {
   void plan(const core::TaskSystem& tasks);
   void steer(const core::TaskSystem& tasks);
   void integrate(const core::TaskSystem& tasks);
+  /// After integrate, for the populations whose model corrects positions (OperationalModel::
+  /// separationPasses): that many Jacobi passes, each row's step apart slid along the navmesh.
+  void separate(const core::TaskSystem& tasks);
+  std::vector<float> sepX, sepY;  ///< separate's displacements of the current pass [m]
+  int separationPasses = 0;       ///< the most passes any population asks for (configureModels)
   void emit();
 
   // Helpers shared by phases.

@@ -77,6 +77,13 @@ class OperationalModel {
   /// velocities, bodies, neighbours and the walls. Writes out.x/out.y of those rows only.
   virtual void computeVelocities(const ModelInput& in, RowRange rows, ModelScratch& scratch,
                                  VelocityOutput out) const = 0;
+  /// How many position corrections (separation) the population's rows get after each move; 0 (the
+  /// default): none.
+  [[nodiscard]] virtual int separationPasses(std::uint16_t population) const { return 0; }
+  /// After the move (integrate: positions and headings as moved this tick): the displacement [m]
+  /// that takes the row's body out of the bodies it still overlaps — its share of each pair's
+  /// depth — or zero. Every row of a pass reads the same positions (Jacobi).
+  [[nodiscard]] virtual core::Vec2 separation(const ModelInput& in, std::size_t row) const { return {}; }
 };
 
 /// The walls' push of the collision-free speed model (Tordeux et al. 2016), shared by the first-order
