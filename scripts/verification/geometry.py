@@ -542,3 +542,24 @@ def route_layout(name):
                     [population("crowd", g["agents"], {"polygon": rect(x0, y0, x1, y1), "height": h}, [], SPEED,
                                 exits=["below", "east"], exitChoice={"rule": "nearest"})], 200,
                     terrain={"vertices": verts, "walkable": tris, "obstacles": []})
+
+
+# NIST 2.6: a 20 x 8 m room whose left half is full of smoke with carbon monoxide (a fractional
+# effective dose of 1 a minute, ISO 13571); ten persons of each kind (pre-movement time, limit).
+INCAPACITATION = {"co": 35000.0, "extinction": 1.0, "smoke_x": 10.0, "per_population": 10,
+                  "kinds": {  # id: (spawn rectangle, pre-movement [s], incapacitation dose)
+                      "stay": ((1.0, 0.5, 9.0, 3.5), 90.0, 1.0),
+                      "susceptible": ((1.0, 0.5, 9.0, 3.5), 90.0, 0.3),
+                      "leave": ((1.0, 5.0, 9.0, 7.5), 20.0, 1.0),
+                      "clear": ((11.0, 5.0, 18.0, 7.5), 90.0, 1.0)}}
+
+
+def incapacitation(name):
+    c = INCAPACITATION
+    pops = []
+    for pid, (box, wait, dose) in c["kinds"].items():
+        pops.append(population(pid, c["per_population"], {"polygon": rect(*box)}, ["exit"],
+                               preMovement={"distribution": "uniform", "min": wait, "max": wait},
+                               incapacitationDose=dose))
+    return scenario(name, [rect(0, 0, 20, 8)], [exit_point("exit", rect(19.5, 4.5, 20, 8))], pops, 150,
+                    smoke=[{"polygon": rect(0, 0, c["smoke_x"], 8), "extinction": c["extinction"], "co": c["co"]}])

@@ -69,6 +69,8 @@ def scenarios():
                                          G.RAMP["steep_factors"]),
         "nist/2.4-ramp-steep-down": G.ramp("NIST 2.4: one person down a 20° ramp, factor 0.9", False, G.RAMP["steep"],
                                            G.RAMP["steep_factors"]),
+        "nist/2.6-incapacitation": G.incapacitation("NIST 2.6: persons in carbon monoxide, 35000 ppm, incapacitated at "
+                                                    "a dose of 1 (0.3 for the susceptible)"),
         "nist/2.9-groups": G.groups("NIST 2.9: groups of 2 to 4 walking together"),
         "nist/2.10-impaired": impaired("NIST 2.10: persons with reduced mobility among others"),
         "nist/3.2-social-influence": G.social_influence("NIST 3.2: 30 choosers among 15 walking to the far exit", True),

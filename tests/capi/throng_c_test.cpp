@@ -387,7 +387,8 @@ TEST(CApi, EventKindNamesAreTheRecordings) {
   EXPECT_STREQ(throng_event_kind_name(THRONG_EVENT_REUNITED), "reunited");
   EXPECT_STREQ(throng_event_kind_name(THRONG_EVENT_EXIT_CHOSEN), "exit_chosen");
   EXPECT_STREQ(throng_event_kind_name(THRONG_EVENT_WAYPOINT_CHOSEN), "waypoint_chosen");
-  EXPECT_STREQ(throng_event_kind_name(THRONG_EVENT_WAYPOINT_CHOSEN + 1), "unknown");
+  EXPECT_STREQ(throng_event_kind_name(THRONG_EVENT_INCAPACITATED), "incapacitated");
+  EXPECT_STREQ(throng_event_kind_name(THRONG_EVENT_INCAPACITATED + 1), "unknown");
   EXPECT_STREQ(throng_event_kind_name(0xffffffffu), "unknown");
 }
 

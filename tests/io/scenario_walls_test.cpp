@@ -253,6 +253,35 @@ TEST(ScenarioSmoke, BadValuesAreLocated) {
  "smoke": [{"polygon": [[0,0],[1,0],[1,1]], "extinction": 1}],
  "populations": []})";
   EXPECT_TRUE(contains(at(errorsOf(levels), "/smoke").what, "multi-level")) << "flat worlds only";
+  const std::string deadly = with(R"([{"polygon": [[0,0],[1,0],[1,1]], "extinction": 1, "co": 200000}])");
+  const auto d2 = at(errorsOf(deadly), "/smoke/0/co");
+  expectAt(d2, deadly, "200000");
+  EXPECT_TRUE(contains(d2.expected, "100000")) << d2.format();
+  const std::string negative = with(R"([{"polygon": [[0,0],[1,0],[1,1]], "extinction": 1, "co": -5}])");
+  EXPECT_TRUE(contains(at(errorsOf(negative), "/smoke/0/co").expected, "0")) << "no negative concentration";
+}
+
+// Smoke's carbon monoxide (NIST TN 1822 test 2.6): "co" in ppm, a population's "incapacitationDose"
+// (the fractional effective dose at which its people stop, ISO 13571: 1 by default).
+TEST(ScenarioSmoke, CarbonMonoxideAndTheIncapacitationDoseAreParsed) {
+  std::string text = edit(kBottleneck, R"("points": [)", R"("smoke": [
+    {"polygon": [[0,0],[20,0],[20,10],[0,10]], "extinction": 2, "co": 7000}
+  ],
+  "points": [)");
+  auto plain = load(text);
+  ASSERT_TRUE(plain.ok()) << core::formatAll(plain.errors());
+  EXPECT_FLOAT_EQ(plain->desc.smoke[0].co, 7000.0f);
+  EXPECT_FLOAT_EQ(plain->desc.populations[0].incapacitationDose, 1.0f);
+  text = edit(text, R"("groups")", R"("incapacitationDose": 0.3, "groups")");
+  auto sensitive = load(text);
+  ASSERT_TRUE(sensitive.ok()) << core::formatAll(sensitive.errors());
+  EXPECT_FLOAT_EQ(sensitive->desc.populations[0].incapacitationDose, 0.3f);
+  // ISO 13571: 35 000 ppm for a minute is a dose of 1.
+  EXPECT_NEAR(sim::coDosePerSecond(35000.0f) * 60.0f, 1.0f, 1e-6f);
+  const std::string zero = edit(text, R"("incapacitationDose": 0.3)", R"("incapacitationDose": 0)");
+  const auto d = at(errorsOf(zero), "/populations/0/incapacitationDose");
+  expectAt(d, zero, R"(0, "groups")");
+  EXPECT_TRUE(contains(d.expected, "10")) << d.format();
 }
 
 }  // namespace

@@ -506,9 +506,10 @@ throng_status throng_world_exit_is_wall(throng_world* world, const char* id, int
 static_assert(THRONG_EVENT_REUNITED == static_cast<int>(throng::sim::EventKind::Reunited));
 static_assert(THRONG_EVENT_EXIT_CHOSEN == static_cast<int>(throng::sim::EventKind::ExitChosen));
 static_assert(THRONG_EVENT_WAYPOINT_CHOSEN == static_cast<int>(throng::sim::EventKind::WaypointChosen));
+static_assert(THRONG_EVENT_INCAPACITATED == static_cast<int>(throng::sim::EventKind::Incapacitated));
 
 const char* throng_event_kind_name(uint32_t kind) {
-  if (kind > THRONG_EVENT_WAYPOINT_CHOSEN) return "unknown";
+  if (kind > THRONG_EVENT_INCAPACITATED) return "unknown";
   return throng::recording::eventKindName(static_cast<sim::EventKind>(kind));
 }
 

@@ -168,7 +168,9 @@ bool ScenarioReader::readMeasurement(const Json& v, const std::string& ptr, sim:
 void ScenarioReader::readSmokeList(const Json& root, sim::ScenarioDesc& desc) {
   const Json* x = optional(root, "smoke");
   if (x == nullptr) return;
-  const std::string expected = "an array of smoke regions {\"polygon\": [[x, y], ...], \"extinction\": K (1/m, 0 to 30)}";
+  const std::string expected =
+      "an array of smoke regions {\"polygon\": [[x, y], ...], \"extinction\": K (1/m, 0 to 30), \"co\": ppm (optional, 0 to "
+      "100000)}";
   if (multiLevel_) {
     refuseOnLevels("/smoke", "smoke", "no \"smoke\" next to \"terrain\"", true);
     return;
@@ -187,11 +189,12 @@ void ScenarioReader::readSmokeList(const Json& root, sim::ScenarioDesc& desc) {
     const Json& v = (*x)[i];
     sim::SmokeDesc& smoke = desc.smoke[i];
     if (!isObject(v, ptr, expected)) continue;
-    checkKeys(v, ptr, {"polygon", "extinction"}, "a smoke region");
+    checkKeys(v, ptr, {"polygon", "extinction", "co"}, "a smoke region");
     if (auto* p = require(v, ptr, "polygon", "a polygon [[x, y], ...] (metres)")) readPolygon(*p, ptr + "/polygon", smoke.polygon);
     if (auto* k = require(v, ptr, "extinction", "the extinction coefficient K, a number from 0 to 30 (1/m)")) {
       readFloat(*k, ptr + "/extinction", {0, 30, false, "1/m"}, smoke.extinction);
     }
+    if (auto* c = optional(v, "co")) readFloat(*c, ptr + "/co", {0, 100000, false, "ppm"}, smoke.co);
   }
 }
 

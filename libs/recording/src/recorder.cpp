@@ -161,6 +161,7 @@ const char* eventKindName(sim::EventKind kind) {
     case sim::EventKind::Reunited: return "reunited";
     case sim::EventKind::ExitChosen: return "exit_chosen";
     case sim::EventKind::WaypointChosen: return "waypoint_chosen";
+    case sim::EventKind::Incapacitated: return "incapacitated";
   }
   return "unknown";
 }

@@ -28,6 +28,7 @@ enum class GoalState : std::uint8_t {
   WaitingForGroup = 4,  ///< at its group's goal, waiting until the others arrive (flocking rule 4)
   Scripted = 5,  ///< playing its action script of a Common Ground coordination (common_ground_play.cpp)
   PreMovement = 6,  ///< present and standing until its pre-movement time ends at actionEndTick (spawn.cpp)
+  Incapacitated = 7,  ///< its toxic dose reached its population's limit: stands where it fell for good (decide.cpp)
 };
 
 inline constexpr std::uint16_t kNoClip = 0xffff;
@@ -36,7 +37,7 @@ inline constexpr std::uint16_t kNoClip = 0xffff;
 /// yet (pre-movement): group-level retargeting (guidance, following) leaves the agent alone; it
 /// rejoins its group when done.
 [[nodiscard]] inline bool holdsOwnTarget(GoalState s) {
-  return s == GoalState::Acting || s == GoalState::Scripted || s == GoalState::PreMovement;
+  return s == GoalState::Acting || s == GoalState::Scripted || s == GoalState::PreMovement || s == GoalState::Incapacitated;
 }
 
 /// "None" for a stable agent id.
@@ -103,6 +104,9 @@ struct AgentStore {
   std::vector<std::int32_t> targetSub;    ///< sub-region holding the target (index into pointSubOffset space), -1 none
   std::vector<std::uint16_t> animClip;    ///< motion clip playing (animation.hpp)
   std::vector<float> animPhase;           ///< its phase in [0, 1)
+  // Toxicity (only when some smoke region has carbon monoxide: SmokeDesc::co).
+  bool toxic = false;
+  std::vector<float> dose;  ///< fractional effective dose taken up so far (coDosePerSecond) [1]
   // Levels (only on a multi-level world: ScenarioDesc::terrain, a layered navmesh).
   bool levels = false;
   std::vector<float> posZ;     ///< height of the floor under the agent [m] (from its navmesh polygon)
@@ -176,6 +180,7 @@ struct AgentStore {
     f(corners); f(actionEndTick); f(progressDistance); f(stuckTime);
     f(animClip); f(animPhase); f(goalPending); f(targetSub); f(dynamicTarget);
     if (levels) { f(posZ); f(targetZ); }
+    if (toxic) f(dose);
     if (formation) { f(formVelX); f(formVelY); }
     if (sociological) { f(followAgent); f(followUntil); f(sociologicalEffect); f(sociologicalOther); }
     if (commonGround) {

@@ -65,6 +65,8 @@ struct RowDecision {
   void event(EventKind kind, std::uint32_t point) { chunk.events.push_back({in.tick, in.agents.id[row], kind, point, 0}); }
 
   void decideRow();
+  void breathe();
+  void incapacitate();
   void seekGoal(const GroupState& g);
   void seekWanderTarget(const GroupState& g);
   void reachGoal(const GroupState& g);
@@ -75,11 +77,17 @@ struct RowDecision {
 
 void RowDecision::decideRow() {
   const AgentStore& a = in.agents;
+  breathe();
   if (a.coordinationOf(row) != kNoIndex) return;  // playing an action script (common_ground_play.cpp)
   const GroupState& g = in.groups[a.group[row]];
+  if (!out.dose.empty() && out.goalState[row] != GoalState::Exited && out.goalState[row] != GoalState::Incapacitated &&
+      out.dose[row] >= in.desc.populations[a.population[row]].incapacitationDose) {
+    incapacitate();
+  }
   switch (out.goalState[row]) {
     case GoalState::Exited:
     case GoalState::Done:
+    case GoalState::Incapacitated:
     case GoalState::WaitingForGroup:
     case GoalState::Scripted:  // skipped above (coordination set); listed for completeness
       break;
@@ -116,6 +124,32 @@ void RowDecision::decideRow() {
       !g.guided) {
     meetOthers(pop.sociological);
   }
+}
+
+void RowDecision::breathe() {
+  // Smoke's carbon monoxide (SmokeDesc::co): the dose taken up over this tick, from the most toxic
+  // region the agent stands in (ISO 13571's FED: coDosePerSecond), whatever it is doing — walking,
+  // acting, waiting, in a script, incapacitated — until it is out.
+  if (out.dose.empty() || out.goalState[row] == GoalState::Exited) return;
+  float ppm = 0.0f;
+  const core::Vec2 pos{in.agents.posX[row], in.agents.posY[row]};
+  for (const SmokeDesc& smoke : in.desc.smoke) {
+    if (smoke.co > ppm && core::pointInPolygon(smoke.polygon, pos)) ppm = smoke.co;
+  }
+  if (ppm > 0.0f) out.dose[row] += coDosePerSecond(ppm) * in.desc.dt;
+}
+
+void RowDecision::incapacitate() {
+  // Its dose reached its population's incapacitationDose: it stops where it is, for good (groups,
+  // guides, exit choice and Common Ground leave it alone: holdsOwnTarget), an obstacle to others.
+  out.goalState[row] = GoalState::Incapacitated;
+  out.mode[row] = AgentMode::Waiting;
+  out.targetX[row] = in.agents.posX[row];
+  out.targetY[row] = in.agents.posY[row];
+  if (!out.targetZ.empty()) out.targetZ[row] = in.agents.posZ[row];
+  out.corners[row].clear();
+  out.needPath[row] = 0;
+  event(EventKind::Incapacitated, static_cast<std::uint32_t>(std::lround(std::min(out.dose[row], 4.0e6f) * 1000.0f)));
 }
 
 void RowDecision::reachGoal(const GroupState& g) {

@@ -190,7 +190,7 @@ void ExitChoice::countQueues(std::uint64_t tick, const GoalWriter& goals, const 
   measure_.clear();
   for (std::size_t row = 0; row < agents.size(); ++row) {
     const GoalState state = agents.goalState[row];
-    if (state == GoalState::Exited || state == GoalState::Done) continue;
+    if (state == GoalState::Exited || state == GoalState::Done || state == GoalState::Incapacitated) continue;
     const std::uint32_t point = view.currentGoalPoint(row);
     if (point == kNoPoint || point >= exitOfPoint_.size() || exitOfPoint_[point] < 0) continue;
     const std::uint32_t id = agents.id[row];

@@ -108,6 +108,7 @@ core::Vec2 GoalWriter::drawTarget(std::size_t row, const PointDesc& point) {
 }
 
 void GoalWriter::setGoal(std::size_t row, std::uint32_t cursor) {
+  if (agents.goalState[row] == GoalState::Incapacitated) return;  // stays where it fell (decide.cpp)
   const GroupState& g = groups[agents.group[row]];
   const PopulationDesc& pop = desc.populations[g.population];
   const std::vector<std::uint32_t>& goals = view().activeGoals(g);

@@ -149,6 +149,7 @@ struct DecideOutput {
   std::span<std::uint32_t> desirePoint;       ///< → the group pass; empty without Common Ground
   std::span<std::uint8_t> desireTrigger;      ///< its GoalTrigger; empty without Common Ground
   std::span<ChunkOutput> chunks;              ///< events, meetings, flagged rows; chunkCount(n, phaseGrain) of them
+  std::span<float> dose;                      ///< carbon monoxide dose taken up (FED); empty without toxic smoke
 };
 
 /// Period of the progress check that triggers a re-plan for an agent that is stuck [s].

@@ -117,6 +117,7 @@ void World::Impl::planPopulations() {
     agents.sociological = agents.sociological || pop.sociological.enabled;
   }
   agents.commonGround = desc.social.enabled;
+  for (const SmokeDesc& smoke : desc.smoke) agents.toxic = agents.toxic || smoke.co > 0.0f;
   // Every agent that will ever exist is known: exact capacity, no doubling slack on the columns.
   agents.forEachColumn([&](auto& column) { column.reserve(scheduled); });
 }
@@ -155,7 +156,7 @@ void World::Impl::decide(const core::TaskSystem& tasks) {
   const DecideOutput out{agents.goalState, agents.mode, agents.targetX, agents.targetY, agents.targetZ,
                          agents.corners, agents.needPath, agents.goalPending, agents.progressDistance,
                          agents.actionEndTick, agents.oriX, agents.oriY, agents.sociologicalEffect,
-                         agents.sociologicalOther, agents.desirePoint, agents.desireTrigger, chunks};
+                         agents.sociologicalOther, agents.desirePoint, agents.desireTrigger, chunks, agents.dose};
   sim::decide(in, out, tasks);
   decideGroups(tasks);
 }
@@ -298,7 +299,8 @@ bool World::finished() const {
   if (w.stats.scheduled > 0 || w.crowdsPending()) return false;
   if (!w.spawner.allSpawned()) return false;
   for (std::size_t r = 0; r < w.agents.size(); ++r) {
-    if (w.agents.goalState[r] != GoalState::Done) return false;
+    // Done, or incapacitated (nothing more will happen to it).
+    if (w.agents.goalState[r] != GoalState::Done && w.agents.goalState[r] != GoalState::Incapacitated) return false;
   }
   return true;
 }
@@ -388,6 +390,7 @@ std::optional<AgentInfo> World::agentInfo(std::uint32_t id) const {
     case GoalState::WaitingForGroup: info.state = "waiting for its group"; break;
     case GoalState::Scripted: info.state = "playing a Common Ground script"; break;
     case GoalState::PreMovement: info.state = "waiting to leave (pre-movement time)"; break;
+    case GoalState::Incapacitated: info.state = "incapacitated (its carbon monoxide dose)"; break;
   }
   return info;
 }

@@ -328,7 +328,8 @@ typedef enum throng_event_kind {
   THRONG_EVENT_VISIT_END = 22,         /* a = point, b = coordination id */
   THRONG_EVENT_REUNITED = 23,          /* a = group, b = coordination id */
   THRONG_EVENT_EXIT_CHOSEN = 24,       /* exit choice; agent = the group's leader; a = exit point, b = the exit before (0xffffffff: first choice) */
-  THRONG_EVENT_WAYPOINT_CHOSEN = 25    /* waypoint choice; agent = the group's leader; a = the point chosen, b = the choice's slot in the population's goals */
+  THRONG_EVENT_WAYPOINT_CHOSEN = 25,   /* waypoint choice; agent = the group's leader; a = the point chosen, b = the choice's slot in the population's goals */
+  THRONG_EVENT_INCAPACITATED = 26      /* the agent's carbon monoxide dose reached its population's incapacitationDose: it stops for good; a = the dose (FED) in thousandths */
 } throng_event_kind;
 
 /* One thing that happened to an agent. */

@@ -724,7 +724,9 @@ class AnticipationVelocityModel final : public OperationalModel {
     const AgentStore& a = in.agents;
     const core::Vec2 pref{a.prefVelX[row], a.prefVelY[row]};
     const float v0 = core::length(pref);
-    if (v0 < 1e-6f) return makeRoom(in, row, p);  // nowhere to go: stand, but let others by
+    if (v0 < 1e-6f) {  // nowhere to go: stand, but let others by — unless incapacitated (it cannot)
+      return a.goalState[row] == GoalState::Incapacitated ? core::Vec2{} : makeRoom(in, row, p);
+    }
     const core::Vec2 e0 = seeAhead(in, row, pref / v0, p.visionRange, ws);
     core::Vec2 target = pushes(in, row, e0, v0, p, ws);
     const float len = core::length(target);

@@ -47,6 +47,9 @@ enum class EventKind : std::uint8_t {
   // Waypoint choices (PopulationDesc::goalChoices; docs/scenario-format.md "Waypoint choices").
   WaypointChosen = 25,  ///< agent = the group's leader; a = the point chosen, b = the choice's slot (index into the
                         ///< population's goals); once per group, when its first member reaches the slot
+  // Toxicity (smoke's carbon monoxide; docs/scenario-format.md "Smoke").
+  Incapacitated = 26,   ///< the agent's dose reached its population's incapacitationDose: it stops for good;
+                        ///< a = the dose in thousandths (FED × 1000, rounded)
 };
 
 /// Why the goal generator gave an agent a goal.

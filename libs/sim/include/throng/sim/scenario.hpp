@@ -233,6 +233,10 @@ struct PopulationDesc {
   /// Route choice prices stairs at the mean of 1/up and 1/down per metre. [Limit: (0, 1]]
   float stairUp = 0.53f;
   float stairDown = 0.60f;
+  /// The fractional effective dose (smoke's carbon monoxide, coDosePerSecond) at which its people
+  /// are incapacitated: they stop where they are and stay, an obstacle to the others. ISO 13571:2012
+  /// takes FED 1 for the median person and 0.3 to protect susceptible people. [Limit: (0, 10]]
+  float incapacitationDose = 1.0f;
   // The Musse crowd model.
   /// Paths between goals: navmesh corners (straight segments), or Bézier curves (Musse et al.
   /// §3.2.2) checked inside the walkable surface, falling back to the navmesh where none fits.
@@ -374,11 +378,20 @@ struct MeasurementDesc {
 /// Smoke (scenario key "smoke"; NIST TN 1822 test 2.5): a region where walking is slowed by the
 /// smoke's extinction coefficient K [1/m], after Frantzich and Nilsson (2003) as FDS+Evac applies
 /// it: the desired speed times max(kSmokeMinFactor, 1 + (β/α)·K), α = 0.706 m/s, β = −0.057 m²/s
-/// (smokeSpeedFactor, steer.cpp). Flat worlds only.
+/// (smokeSpeedFactor, steer.cpp). Flat worlds only. Its carbon monoxide, when given, is breathed:
+/// each person in it takes up a fractional effective dose (coDosePerSecond) and is incapacitated
+/// when the dose reaches its population's incapacitationDose (NIST TN 1822 test 2.6).
 struct SmokeDesc {
   Polygon polygon;          ///< a simple polygon
   float extinction = 0.0f;  ///< K [1/m] [Limit: 0 .. 30]
+  float co = 0.0f;          ///< carbon monoxide volume fraction [ppm] [Limit: 0 .. 100000]
 };
+
+/// The fractional effective dose of carbon monoxide taken up per second at `ppm` [1/s]: ISO
+/// 13571:2012's asphyxiant FED for CO, Σ φ_CO Δt / 35 000 ppm·min (after Purser, SFPE Handbook),
+/// so 1 after a minute at 35 000 ppm, after an hour at 583 ppm. Other gases (HCN, CO2, O2
+/// depletion), heat and irritants are not modelled.
+[[nodiscard]] inline float coDosePerSecond(float ppm) { return ppm / (35000.0f * 60.0f); }
 
 /// Walking speed in smoke of extinction coefficient K [1/m] as a factor of the desired speed:
 /// Frantzich and Nilsson (2003), v = v0 (1 + β/α · K) with α = 0.706 m/s and β = −0.057 m²/s, never
