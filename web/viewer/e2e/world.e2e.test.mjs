@@ -103,6 +103,13 @@ async function checkVoronoiMap(page) {
  * sample-weighted mean 0.2–2 m/s: the museum's visitors walk and stop), it is drawn (the picture
  * changes with it hidden), the legend and the checkbox follow, G hides it. */
 async function checkSpeedmap(page) {
+  // From 14 m above the crowd's middle: the whole museum's few walking cells are a handful of pixels.
+  await page.evaluate(() => {
+    const { state, cameras } = globalThis.__throng;
+    let cx = 0, cy = 0;
+    for (let i = 0; i < state.count; ++i) { cx += state.x[i]; cy += state.y[i]; }
+    if (state.count > 0) cameras.planAt(cx / state.count, cy / state.count, 14);
+  });
   await page.keyboard.press('g');
   await page.waitForFunction(() => globalThis.__throng.speedmap.grid.frames.length >= 10, null, { timeout: 15000 });
   const r = await page.evaluate(() => {
@@ -133,11 +140,11 @@ async function checkSpeedmap(page) {
   assert.equal(await page.evaluate(() => globalThis.__throng.speedmap.enabled), false);
 }
 
-/** The speed map's Voronoi definition (the menu beside Speed): every cell someone's Voronoi cell
+/** The speed map's Voronoi definition (the maps' menu after Density and Speed): every cell someone's Voronoi cell
  * covers has a speed (0–3 m/s), so more cells than agents occupy; the legend says
  * "speed map (Voronoi)"; back to classic. */
 async function checkVoronoiSpeedmap(page) {
-  await page.selectOption('#speedmap-method', 'voronoi');
+  await page.selectOption('#heatmap-method', 'voronoi');
   await page.keyboard.press('g');
   await page.waitForFunction(() => globalThis.__throng.speedmap.grid.frames.length >= 10, null, { timeout: 20000 });
   const r = await page.evaluate(() => {
@@ -158,7 +165,7 @@ async function checkVoronoiSpeedmap(page) {
   assert.ok(r.legend.includes('speed map (Voronoi)'), r.legend);
   await shot(page, 'viewer_speed_voronoi.png');
   await page.keyboard.press('g');
-  await page.selectOption('#speedmap-method', 'classic');
+  await page.selectOption('#heatmap-method', 'classic');
   assert.equal(await page.evaluate(() => globalThis.__throng.speedmap.grid.definition), 'classic');
 }
 

@@ -72,9 +72,13 @@ export class CrowdState {
     return { duration: info && info.duration > 0 ? info.duration : 1, loops: info ? info.loops !== false : true };
   }
 
-  /** Takes a new frame received at local time `now` [s]. */
+  /** Takes a new frame received at local time `now` [s]. A frame of the same simulated tick as the
+   * one before (a paused replay sends the same moment again) keeps every agent's speed estimate:
+   * no simulated time passed, so standing still says nothing about how fast anyone walks. */
   applyFrame(frame, now) {
     this.advance(now);
+    const sameMoment = this.frames > 0 && frame.simTick === this.lastSimTick;
+    this.lastSimTick = frame.simTick;
     if (this.lastFrameAt >= 0) {
       const gap = now - this.lastFrameAt;
       if (gap > 0.005 && gap < 2) this.interval = this.frames < 2 ? gap : this.interval * 0.8 + gap * 0.2;
@@ -105,7 +109,8 @@ export class CrowdState {
         this.phase[i] = np; this.rate[i] = 1 / duration; this.recvPhase[i] = np; this.recvAt[i] = now;
       } else {
         this.fromX[i] = old.x[j]; this.fromY[i] = old.y[j]; this.fromZ[i] = old.z[j]; this.fromYaw[i] = old.yaw[j];
-        this.speed[i] = old.speed[j] * 0.7 + 0.3 * (Math.hypot(nx - old.toX[j], ny - old.toY[j]) / this.interval);
+        this.speed[i] = sameMoment ? old.speed[j]
+          : old.speed[j] * 0.7 + 0.3 * (Math.hypot(nx - old.toX[j], ny - old.toY[j]) / this.interval);
         if (old.clip[j] !== c) {
           this.phase[i] = np; this.rate[i] = 1 / duration; this.recvPhase[i] = np; this.recvAt[i] = now;
         } else if (np !== old.recvPhase[j]) {

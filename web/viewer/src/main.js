@@ -37,7 +37,7 @@ import { MeasurePanel } from './ui/measure_panel.js';
 import { Exporter } from './ui/export.js';
 import { RecordingsPanel } from './ui/recordings.js';
 import { kSelectedColour, kPickedGroupColour } from './crowd/crowd_view.js';
-import { kColourModes } from './crowd/colour_by.js';
+import { kColourModes, defaultColourMode } from './crowd/colour_by.js';
 import { kAvatarLooks, lookAt, loadLookChoice, saveLookChoice } from './crowd/avatar_looks.js';
 import { loadWorldModel, showWorldModel } from './world/gltf_materials.js';
 
@@ -121,11 +121,13 @@ let worldModel = null;  // a glTF world's meshes with their materials, drawn ins
 let markers = null;
 let heatmap = null;  // density heatmap overlay (key M)
 // The maps' definitions (the menus beside them): the URL's at first, then the person's, kept across worlds.
-let heatmapMethod = params.get('heatmap') === 'voronoi' ? 'voronoi' : 'classic', heatmapScenario = {}, heatmapBounds = null;
+// One menu sets both maps' definition (the controls have room for one).
+const initialMapMethod = params.get('heatmap') === 'voronoi' || params.get('speedmap') === 'voronoi' ? 'voronoi' : 'classic';
+let heatmapMethod = initialMapMethod, heatmapScenario = {}, heatmapBounds = null;
 let measurements = null;  // the scenario's measurement lines and areas, measured live
 let measurePanel = null;
 let speedmap = null;  // speed heatmap overlay (key G)
-let speedmapMethod = params.get('speedmap') === 'voronoi' ? 'voronoi' : 'classic';
+let speedmapMethod = initialMapMethod;
 let trails = null, trailsStale = false;  // trajectory trails (key R), rebuilt after a frame added samples
 const legend = new Legend($('legend'), { selected: kSelectedColour, pickedGroup: kPickedGroupColour, self: kSelfColour, other: kOtherColour },
   (m) => setColourMode(m));
@@ -197,7 +199,8 @@ source.on('world', async (w) => {
   if (params.get('speedmap') === '1' || params.get('speedmap') === 'voronoi') toggleSpeedmap(true);
   if (params.get('trails') === '1') toggleTrails(true);
   const colourParam = params.get('colour');
-  setColourMode(kColourModes.includes(colourParam) ? colourParam : 'group');
+  setColourMode(kColourModes.includes(colourParam) ? colourParam
+    : defaultColourMode(w.groups, crowd.populations.length));
   const camParam = params.get('camera');
   cameras = new Cameras(camera, renderer.domElement, bounds, (w.scenario || {}).terrain || null,
     ['plan', 'orbit', 'walk'].includes(camParam) ? camParam : null, panelRects);
@@ -544,7 +547,7 @@ function setHeatmapMethod(method) {
   heatmap.setGrid(method === 'voronoi' ? new VoronoiDensityGrid(heatmapBounds, heatmapScenario) : new DensityGrid(heatmapBounds));
   if (heatmap.enabled) { legend.heatmap = method; refreshLegend(); }
 }
-$('heatmap-method').onchange = (e) => setHeatmapMethod(e.target.value);
+$('heatmap-method').onchange = (e) => { setHeatmapMethod(e.target.value); setSpeedmapMethod(e.target.value); };
 $('heatmap-toggle').onchange = (e) => toggleHeatmap(e.target.checked);
 function toggleSpeedmap(on = !(speedmap && speedmap.enabled)) {
   if (!speedmap) return;
@@ -558,11 +561,10 @@ $('speedmap-toggle').onchange = (e) => toggleSpeedmap(e.target.checked);
 function setSpeedmapMethod(method) {
   if (!speedmap || (method !== 'classic' && method !== 'voronoi')) return;
   speedmapMethod = method;
-  $('speedmap-method').value = method;
   speedmap.setGrid(method === 'voronoi' ? new VoronoiSpeedGrid(heatmapBounds, heatmapScenario) : new SpeedGrid(heatmapBounds));
   if (speedmap.enabled) { legend.speedmap = method; refreshLegend(); }
 }
-$('speedmap-method').onchange = (e) => setSpeedmapMethod(e.target.value);
+
 // Export (ui/export.js): the view as PNG (K) or WebM (V starts / stops; the indicator shows meanwhile).
 const exporter = new Exporter(renderer.domElement, () => renderer.render(scene, view()), () => hud.world?.name || '',
   $('rec-indicator'), (on) => { $('export-rec').classList.toggle('active', on); $('export-rec').textContent = on ? 'Stop' : 'Rec'; });

@@ -3,7 +3,7 @@
 // group waiting; every mode has a legend (the ramp's labels up to its maximum).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { localDensity, rampColour, kRamp, stateOf, legendOf, kColourModes, kSpeedMax } from '../src/crowd/colour_by.js';
+import { localDensity, rampColour, kRamp, stateOf, legendOf, kColourModes, kSpeedMax, defaultColourMode } from '../src/crowd/colour_by.js';
 
 test('local density on the grid equals a brute-force count', () => {
   let s = 12345;
@@ -45,4 +45,13 @@ test('every mode has a legend', () => {
   }
   assert.match(legendOf('speed').at(-1).label, new RegExp(`${kSpeedMax.toFixed(1)} m/s`));
   assert.deepEqual(legendOf('population', { populations: ['a', 'b'] }).map((e) => e.label), ['a', 'b', 'no population known']);
+});
+
+test('a world opens coloured by group, unless every group is one person', () => {
+  const g = (...sizes) => sizes.map((n, id) => ({ id, members: Array.from({ length: n }, (_, k) => k) }));
+  assert.equal(defaultColourMode(g(1, 3, 2), 1), 'group');
+  assert.equal(defaultColourMode(g(1, 1, 1), 1), 'speed', 'loners, one population: speed shows the jam');
+  assert.equal(defaultColourMode(g(1, 1, 1), 3), 'population');
+  assert.equal(defaultColourMode([], 2), 'group', 'no groups known yet');
+  assert.equal(defaultColourMode(undefined, 1), 'group');
 });

@@ -84,13 +84,25 @@ test('phase holds when the server skips animation (granularity X > 1) and snaps 
 
 test('far-tier agents (no clip or phase on the wire) step at the rate their speed gives', () => {
   const s = new CrowdState(clips, 0.1);
-  for (let k = 0; k <= 20; ++k) s.applyFrame(frameFromAgents([{ id: 7, tier: 2, x: 0.12 * k, y: 0 }]), 0.1 * k);
+  for (let k = 0; k <= 20; ++k) s.applyFrame(frameFromAgents([{ id: 7, tier: 2, x: 0.12 * k, y: 0 }], k), 0.1 * k);
   near(s.speed[0], 1.2, 1e-3);  // 0.12 m per 0.1 s
   near(s.rate[0], 1.2 / kStrideCycle, 1e-3);
   const before = s.phase[0];
   s.advance(2.0 + 0.5);
   near(phaseForward(before, s.phase[0]), (0.5 * 1.2) / kStrideCycle, 1e-3);
   // Standing: the rate falls to zero.
-  for (let k = 21; k <= 60; ++k) s.applyFrame(frameFromAgents([{ id: 7, tier: 2, x: 2.4, y: 0 }]), 0.1 * k);
+  for (let k = 21; k <= 60; ++k) s.applyFrame(frameFromAgents([{ id: 7, tier: 2, x: 2.4, y: 0 }], k), 0.1 * k);
   assert.ok(s.rate[0] < 0.01, `rate ${s.rate[0]}`);
+});
+
+test('a paused replay (the same simulated tick again) keeps the speeds; time moving on updates them', () => {
+  const s = new CrowdState(clips, 0.1);
+  for (let k = 0; k <= 20; ++k) s.applyFrame(frameFromAgents([{ id: 7, x: 0.12 * k, y: 0, clip: 1 }], k), 0.1 * k);
+  near(s.speed[0], 1.2, 1e-3);
+  // Paused at tick 20: the server keeps sending that moment; the walker still reads 1.2 m/s.
+  for (let k = 21; k <= 60; ++k) s.applyFrame(frameFromAgents([{ id: 7, x: 2.4, y: 0, clip: 1 }], 20), 0.1 * k);
+  near(s.speed[0], 1.2, 1e-3);
+  // Playing on while it stands: the estimate falls.
+  for (let k = 61; k <= 80; ++k) s.applyFrame(frameFromAgents([{ id: 7, x: 2.4, y: 0, clip: 1 }], k - 40), 0.1 * k);
+  assert.ok(s.speed[0] < 0.01, `speed ${s.speed[0]}`);
 });

@@ -19,6 +19,19 @@ export const kStates = ['walking', 'waiting', 'acting', 'coordinating'];
 export const kStateColours = { walking: 0x3f7fbf, waiting: 0x9a9a9a, acting: 0x8e44ad, coordinating: 0x16a085 };
 export const kNoGroup = 0x8a8a8a;
 
+/**
+ * The colour mode a world opens in: by group, unless every group is one person (a bottleneck's
+ * crowd, an evacuation), where ten colours repeating over a hundred loners tell nothing — then by
+ * population when there are several, else by speed (a jam shows). `groups`: [{members: [...]}];
+ * `populations`: how many.
+ */
+export function defaultColourMode(groups, populations) {
+  const list = Array.isArray(groups) ? groups : [];
+  const loners = list.length > 0 && list.every((g) => !Array.isArray(g.members) || g.members.length <= 1);
+  if (!loners) return 'group';
+  return populations > 1 ? 'population' : 'speed';
+}
+
 /** Colour at t ∈ [0, 1] on kRamp (linear between its stops). */
 export function rampColour(t) {
   const u = Math.min(Math.max(Number.isFinite(t) ? t : 0, 0), 1) * (kRamp.length - 1);
