@@ -72,6 +72,9 @@ XC0 = 12.4  # west court: x XC0 .. XC0 + COURT_W (the east court mirrors it)
 YMID = (HB0 + HA1) / 2  # the courts' and the west/east entrances' centre line
 
 
+
+DESCRIPTION = ('A shopping mall: 1,000 shoppers in groups of one to six come in by the four entrances (green: they leave there too), walk the two halls and courts to shops and restrooms and stay inside a while. When one of a group wants to go somewhere, the group first agrees on a plan (Common Ground): they split up and meet again, or all go along.')
+
 def r2(v):
     return round(v + 0.0, 2)
 
@@ -431,7 +434,7 @@ def build_scenario(seed, core_only=False, probe=False):
                             "goals": [p["id"] for p in points if p["kind"] != "exit"] + ["entrance-east"],
                             "radius": 0.22})
 
-    scenario = {"format": "throng/1", "name": "mall", "seed": seed, "duration": 1800,
+    scenario = {"format": "throng/1", "name": "mall", "description": DESCRIPTION, "seed": seed, "duration": 1800,
                 "walkable": mall.walkable, "obstacles": mall.obstacles, "points": points, "populations": populations}
     if not core_only:
         scenario["social"] = {

@@ -73,7 +73,8 @@ populations = [
                       "followDuration": 12, "leaderChangeRate": 0.02},
      "speed": speed(1.25, 0.2), "radius": 0.2},
 ]
-museum = {"format": "throng/1", "name": "museum", "seed": 1997, "duration": 300,
+DESCRIPTION = ('A museum of three rooms joined by doors. Visitors in groups (a school class, a family, couples, friends, a guided tour, people alone) come in at the hall, stand in front of the paintings (orange discs), pass the doors (blue rings) and leave by the green exit on the right. Groups wait for their members; the tour follows its guide.')
+museum = {"format": "throng/1", "name": "museum", "description": DESCRIPTION, "seed": 1997, "duration": 300,
           "walkable": [rect(0, 0, 48, 24), rect(48, 10, 51, 14)],
           "obstacles": obstacles, "points": points, "populations": populations}
 

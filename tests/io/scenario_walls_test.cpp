@@ -284,5 +284,21 @@ TEST(ScenarioSmoke, CarbonMonoxideAndTheIncapacitationDoseAreParsed) {
   EXPECT_TRUE(contains(d.expected, "10")) << d.format();
 }
 
+// The scenario's "description" (for people: what the world is, what to watch; the viewer's HUD shows
+// it): a string of at most 1000 bytes.
+TEST(ScenarioDescription, IsReadAndBadOnesAreLocated) {
+  const std::string text = edit(kBottleneck, R"("seed": 7,)", R"("description": "100 people, one gap.", "seed": 7,)");
+  auto r = load(text);
+  ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
+  EXPECT_EQ(r->desc.description, "100 people, one gap.");
+  EXPECT_EQ(load(kBottleneck)->desc.description, "");
+  const std::string number = edit(kBottleneck, R"("seed": 7,)", R"("description": 5, "seed": 7,)");
+  const auto d = at(errorsOf(number), "/description");
+  EXPECT_TRUE(contains(d.what, "wrong type")) << d.format();
+  const std::string longer = edit(kBottleneck, R"("seed": 7,)", "\"description\": \"" + std::string(1001, 'a') + "\", \"seed\": 7,");
+  const auto d2 = at(errorsOf(longer), "/description");
+  EXPECT_TRUE(contains(d2.expected, "1000 bytes")) << d2.format();
+}
+
 }  // namespace
 }  // namespace throng::io::test

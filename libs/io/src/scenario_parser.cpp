@@ -468,7 +468,7 @@ ParsedScenario ScenarioReader::run() {
   const Json& root = doc_.root();
   if (!isObject(root, "", "a scenario object {\"format\": \"throng/1\", ...}")) return out;
   checkKeys(root, "",
-            {"$schema", "format", "name", "seed", "duration", "dt", "walkable", "obstacles", "terrain", "points",
+            {"$schema", "format", "name", "description", "seed", "duration", "dt", "walkable", "obstacles", "terrain", "points",
              "populations", "steering", "navCellSize", "social", "timeline", "walls", "measurements", "smoke"},
             "the scenario");
   readScenarioHeader(root, out.desc);
@@ -504,6 +504,13 @@ void ScenarioReader::readScenarioHeader(const Json& root, sim::ScenarioDesc& des
     readString(*x, "/$schema", "a schema URI (a string)", ignored);
   }
   if (auto* x = optional(root, "name")) readString(*x, "/name", "a string", desc.name);
+  if (auto* x = optional(root, "description")) {
+    const std::string expected = "a string of at most " + std::to_string(sim::kMaxDescription) + " bytes";
+    if (readString(*x, "/description", expected, desc.description) && desc.description.size() > sim::kMaxDescription) {
+      error("/description", std::to_string(desc.description.size()) + " bytes", expected);
+      desc.description.clear();
+    }
+  }
   if (auto* x = optional(root, "seed")) {
     if (!x->is_number_integer()) {
       error("/seed", x->is_number() ? "value " + num(x->get<double>()) + " is not an integer" : "wrong type: " + describeType(*x),

@@ -207,6 +207,11 @@ for (const [input, name, minSegments] of [['scenarios/museum.json', 'museum', 8]
       const orbit = await changedByPart(s.page, 'boundary-walls');
       assert.ok(orbit > 0.01, `the walls show in the orbit view (${(orbit * 100).toFixed(2)} % of pixels)`);
       await shot(s.page, `viewer_walls_${name}_orbit.png`);
+      if (name === 'museum') {
+        // The scenario's description, for someone new to the world, under the HUD's name.
+        const about = await s.page.evaluate(() => document.querySelector('#hud .hud-about').textContent);
+        assert.ok(about.startsWith('A museum of three rooms'), `HUD description: ${about}`);
+      }
       if (name === 'museum') await checkHeatmap(s.page);
       if (name === 'museum') await checkVoronoiMap(s.page);
       if (name === 'museum') await checkSpeedmap(s.page);

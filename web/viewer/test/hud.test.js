@@ -33,8 +33,14 @@ test('a replay seeked back starts the count of agents gone afresh', () => {
 
 test("the clock counts towards a recording's length when replaying, else the scenario's duration", () => {
   const scenario = { name: 'bottleneck', duration: 300 };
-  assert.deepEqual(hudWorld({ dt: 0.05, scenario }), { name: 'bottleneck', dt: 0.05, duration: 300 });
+  assert.deepEqual(hudWorld({ dt: 0.05, scenario }), { name: 'bottleneck', dt: 0.05, duration: 300, about: '' });
   assert.equal(hudWorld({ dt: 0.05, scenario, replay: { duration: 60, fps: 10 } }).duration, 60);
   assert.equal(hudWorld({ dt: 0.05, scenario: { name: 'open' } }).duration, 0);
   assert.equal(hudWorld({ tickRate: 20, scenario: {} }).dt, 0.05);
+});
+
+test("the scenario's description is what the HUD says the world is about", () => {
+  const about = '100 people leave a room by a 1 m door: watch the jam.';
+  assert.equal(hudWorld({ dt: 0.05, scenario: { name: 'bottleneck', description: about } }).about, about);
+  assert.equal(hudWorld({ dt: 0.05, scenario: { name: 'x', description: 42 } }).about, '', 'only a string');
 });

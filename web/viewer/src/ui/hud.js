@@ -36,15 +36,16 @@ export function hudWorld(w) {
   const sc = w.scenario || {};
   const length = Number(w.replay?.duration) > 0 ? Number(w.replay.duration) : Number(sc.duration);
   return { name: w.name || sc.name || '', dt: Number(w.dt) > 0 ? Number(w.dt) : 1 / (w.tickRate || 10),
-    duration: length > 0 ? length : 0 };
+    duration: length > 0 ? length : 0, about: typeof sc.description === 'string' ? sc.description : '' };
 }
 
 export class Hud {
   constructor(el) {
     this.el = el;
-    el.innerHTML = '<div class="hud-main"></div><button class="hud-debug-toggle" title="engineering figures">debug ▸</button>'
-      + '<div class="hud-debug hidden"></div>';
+    el.innerHTML = '<div class="hud-main"></div><div class="hud-about hidden"></div>'
+      + '<button class="hud-debug-toggle" title="engineering figures">debug ▸</button><div class="hud-debug hidden"></div>';
     this.main = el.querySelector('.hud-main');
+    this.about = el.querySelector('.hud-about');
     this.debug = el.querySelector('.hud-debug');
     this.toggle = el.querySelector('.hud-debug-toggle');
     this.toggle.onclick = () => this.showDebug(this.debug.classList.contains('hidden'));
@@ -54,7 +55,7 @@ export class Hud {
     this.kbps = 0;
     this.lastBytes = 0;
     this.totalFrames = 0;
-    this.world = { name: '', dt: 0.1, duration: 0 };
+    this.world = { name: '', dt: 0.1, duration: 0, about: '' };
     this.modelMissing = '';  // set by main.js from GET /api/world/model's `missing`
     this.simTick = 0;
     this.attendance = new Attendance();
@@ -66,7 +67,12 @@ export class Hud {
   }
 
   /** The world description: {name, dt, scenario: {name, duration}, replay?: {duration}}. */
-  setWorld(w) { this.world = hudWorld(w); }
+  setWorld(w) {
+    this.world = hudWorld(w);
+    // The scenario's "description": what the world is and what to watch, for someone new to it.
+    this.about.textContent = this.world.about;
+    this.about.classList.toggle('hidden', !this.world.about);
+  }
 
   /** Each crowd frame received. */
   frame(f) {

@@ -393,6 +393,9 @@ struct SmokeDesc {
 /// depletion), heat and irritants are not modelled.
 [[nodiscard]] inline float coDosePerSecond(float ppm) { return ppm / (35000.0f * 60.0f); }
 
+/// The longest scenario "description" [bytes].
+inline constexpr std::size_t kMaxDescription = 1000;
+
 /// Walking speed in smoke of extinction coefficient K [1/m] as a factor of the desired speed:
 /// Frantzich and Nilsson (2003), v = v0 (1 + β/α · K) with α = 0.706 m/s and β = −0.057 m²/s, never
 /// below 0.1 v0 (FDS+Evac's floor, Korhonen's technical reference).
@@ -406,6 +409,9 @@ struct SmokeDesc {
 struct ScenarioDesc {
   std::string format = "throng/1";
   std::string name;
+  /// For people: what the world is and what to watch in it, a sentence or two (the viewer shows
+  /// it under the name). [Limit: at most kMaxDescription bytes of UTF-8]
+  std::string description;
   std::uint64_t seed = 1;
   float duration = 300.0f;   ///< [s]; a run also ends once every agent has exited
   float dt = 0.05f;          ///< simulation time step [s] [Limit: 0.001 .. 0.5]
