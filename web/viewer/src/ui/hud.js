@@ -46,6 +46,9 @@ export class Hud {
       + '<button class="hud-debug-toggle" title="engineering figures">debug ▸</button><div class="hud-debug hidden"></div>';
     this.main = el.querySelector('.hud-main');
     this.about = el.querySelector('.hud-about');
+    // Two lines at first (it must not hide the world on a small screen); a click shows it all.
+    this.about.title = 'what this world is: click to read it all';
+    this.about.onclick = () => this.about.classList.toggle('open');
     this.debug = el.querySelector('.hud-debug');
     this.toggle = el.querySelector('.hud-debug-toggle');
     this.toggle.onclick = () => this.showDebug(this.debug.classList.contains('hidden'));
