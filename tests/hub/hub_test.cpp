@@ -94,6 +94,12 @@ struct HubFixture : ::testing::Test {
     auto json = worldJson(*w);
     return json.ok() ? json.value() : std::string();
   }
+  /// A browser of this protocol version connecting now as `peer`: what it hears first.
+  auto arrive(PeerKey peer) {
+    hub->onOpen(peer, "late", now);
+    say(peer, encode(Hello{kProtocolVersion, ClientKind::Browser, "late"}));
+    return outbox.drain(peer);
+  }
   Joined join(PeerKey peer, const std::string& name) {
     say(peer, encode(Join{name, 0}));
     auto got = outbox.drain(peer);
@@ -340,9 +346,7 @@ TEST_F(HubFixture, EveryoneHearsWhoJoinsAndWhoLeaves) {
   EXPECT_EQ(came->name, "alice");
   // A newcomer learns who is already there (client 2 leaves first: the fixture serves two).
   hub->onClose(2, "done");
-  hub->onOpen(3, "late", now);
-  say(3, encode(Hello{kProtocolVersion, ClientKind::Browser, "late"}));
-  const auto late = outbox.drain(3);
+  const auto late = arrive(3);
   const Presence* there = find<Presence>(late);
   ASSERT_NE(there, nullptr);
   EXPECT_EQ(there->name, "alice");
@@ -378,9 +382,7 @@ TEST_F(HubFixture, VersionTwoClientsHearEachParticipantsLookVersionOneClientsGet
   EXPECT_EQ(bob->avatar, std::optional<std::uint16_t>(3));
   // A version-2 newcomer learns the look of each participant already there.
   hub->onClose(2, "done");
-  hub->onOpen(3, "late", now);
-  say(3, encode(Hello{kProtocolVersion, ClientKind::Browser, "late"}));
-  auto late = outbox.drain(3);
+  auto late = arrive(3);
   const Presence* there = find<Presence>(late);
   ASSERT_NE(there, nullptr);
   EXPECT_EQ(there->name, "alice");
@@ -416,9 +418,7 @@ TEST_F(HubFixture, JoiningAgainChangesTheParticipantsNameAndLookForEveryoneKeepi
   outbox.drain(1);
   outbox.drain(2);
   hub->onClose(2, "done");
-  hub->onOpen(3, "late", now);
-  say(3, encode(Hello{kProtocolVersion, ClientKind::Browser, "late"}));
-  const auto late = outbox.drain(3);
+  const auto late = arrive(3);
   const Presence* there = find<Presence>(late);
   ASSERT_NE(there, nullptr);
   EXPECT_EQ(there->name, "alice in green");
