@@ -20,7 +20,7 @@ import { NearBodies } from './crowd/near_bodies.js';
 import { Cameras } from './camera/cameras.js';
 import { Hud } from './ui/hud.js';
 import { Banner } from './ui/banner.js';
-import { AgentPanel } from './ui/agent_panel.js';
+import { AgentPanel, stateWords } from './ui/agent_panel.js';
 import { Timeline } from './ui/timeline.js';
 import { GroupList } from './ui/group_list.js';
 import { ScreenLabels } from './ui/screen_labels.js';
@@ -466,7 +466,8 @@ function fetchAgentInfo(id) {
   fetch(`/api/agent/${id}`).then((r) => (r.ok ? r.json() : null)).then((j) => {
     if (id !== selectedId) return;
     agentInfo = j && {
-      goal: j.goal ? `${j.goal.point}${j.guided ? ' (guided)' : ''} — ${j.state || ''}`.trim() : (j.guided ? 'guided' : j.state || '—'),
+      goal: j.goal ? `${j.goal.point}${j.guided ? ' (guided)' : ''} — ${stateWords(j.state)}`.trim()
+        : (j.guided ? 'guided' : stateWords(j.state) || '—'),
       script: describeScript(j.script),
     };
     agentInfoTimer = setTimeout(() => fetchAgentInfo(id), 1000);
@@ -634,7 +635,7 @@ function frame() {
   if (selectedId >= 0) {
     const i = state.index.get(selectedId);
     if (i !== undefined) {
-      panel.update({ clipName: clips.name(state.clip[i]), x: state.x[i], y: state.y[i], tier: state.tier[i],
+      panel.update({ clipName: clips.name(state.clip[i]), x: state.x[i], y: state.y[i], z: state.z[i], tier: state.tier[i],
         goal: agentInfo ? agentInfo.goal : undefined, script: agentInfo ? agentInfo.script : undefined });
     }
   }

@@ -3,6 +3,31 @@
 // group once the viewer has joined as a participant.
 const kTier = ['near (joints)', 'middle (clip + phase)', 'far (position)'];
 
+/** What an agent is doing, in a visitor's words: the walk and idle clips are walking and standing;
+ * other clips (an action, a gesture) keep their names. */
+export function behaviourWords(clipName) {
+  if (!clipName) return '—';
+  if (clipName === 'walk') return 'walking';
+  if (clipName === 'idle') return 'standing';
+  return clipName.replaceAll('_', ' ');
+}
+
+// The server's words for an agent's state (GET /api/agent/<id>: sim::AgentInfo::state), said so
+// that someone new to throng follows them; a state not listed is shown as the server says it.
+const kStateWords = {
+  'done': 'done: every goal visited, it stays where it is',
+  'at an action point': 'at a place of interest, doing what it came for',
+  'playing a Common Ground script': 'doing something with its group (a plan they agreed on: Common Ground)',
+  'left': 'gone: it left the world',
+};
+export function stateWords(state) { return kStateWords[state] || state || ''; }
+
+/** The position row: metres, and the floor height on a multi-level world (z ≠ 0). */
+export function positionWords(x, y, z = 0) {
+  const xy = `(${x.toFixed(2)}, ${y.toFixed(2)}) m`;
+  return Math.abs(z) > 0.05 ? `${xy}, ${z.toFixed(1)} m up` : xy;
+}
+
 export class AgentPanel {
   constructor(root, { onGuide, onRelease, onClose }) {
     this.root = root;
@@ -27,9 +52,9 @@ export class AgentPanel {
   hide() { this.root.classList.add('hidden'); this.id = undefined; }
 
   /** Live fields, every frame while shown. */
-  update({ clipName, x, y, tier, goal, script }) {
-    this.$('agent-clip').textContent = clipName;
-    this.$('agent-pos').textContent = `(${x.toFixed(2)}, ${y.toFixed(2)}) m`;
+  update({ clipName, x, y, z = 0, tier, goal, script }) {
+    this.$('agent-clip').textContent = behaviourWords(clipName);
+    this.$('agent-pos').textContent = positionWords(x, y, z);
     this.$('agent-tier').textContent = kTier[tier] || '—';
     if (goal !== undefined) this.$('agent-goal').textContent = goal;
     if (script !== undefined) this.$('agent-script').textContent = script;
