@@ -55,3 +55,11 @@ test('a world opens coloured by group, unless every group is one person', () => 
   assert.equal(defaultColourMode([], 2), 'group', 'no groups known yet');
   assert.equal(defaultColourMode(undefined, 1), 'group');
 });
+
+test('the group legend lists groups with someone in them and says how colours are shared', () => {
+  const groups = Array.from({ length: 23 }, (_, id) => ({ id, population: 'p', members: id === 2 ? [] : [id] }));
+  const rows = legendOf('group', { groups });
+  assert.deepEqual(rows.slice(0, 5).map((r) => r.label.split(' ')[1]), ['0', '1', '3', '4', '5'], 'group 2 has left');
+  assert.match(rows[5].label, /22 groups in 10 colours: groups 10 apart share one/);
+  assert.equal(legendOf('group', { groups: groups.slice(0, 3) }).length, 2, 'no "more" row when all are listed');
+});

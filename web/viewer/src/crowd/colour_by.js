@@ -81,7 +81,8 @@ export function localDensity(x, y, n, radius = kDensityRadius, out = new Float32
 }
 
 /** Legend entries of a mode: [{colour, label}]. `populations`: names in order; `groups`:
- * [{id, population}] (the first few are listed in group mode). */
+ * [{id, population, members?}] (in group mode the first few with someone in them are listed — a
+ * group whose members have all gone is not, as its colour now marks another group). */
 export function legendOf(mode, { populations = [], groups = [] } = {}) {
   if (mode === 'population') {
     return [...populations.map((p, k) => ({ colour: kGroupPalette[k % kGroupPalette.length], label: p })),
@@ -95,8 +96,11 @@ export function legendOf(mode, { populations = [], groups = [] } = {}) {
     });
   }
   if (mode === 'state') return kStates.map((s) => ({ colour: kStateColours[s], label: s }));
-  const shown = groups.slice(0, 5).map((g) => ({ colour: kGroupPalette[g.id % kGroupPalette.length],
+  const present = groups.filter((g) => !Array.isArray(g.members) || g.members.length > 0);
+  const shown = present.slice(0, 5).map((g) => ({ colour: kGroupPalette[g.id % kGroupPalette.length],
     label: `group ${g.id}${g.population ? ` (${g.population})` : ''}` }));
-  const more = groups.length > shown.length ? [{ colour: null, label: `… ${groups.length} groups, ${kGroupPalette.length} colours repeating` }] : [];
+  const n = kGroupPalette.length;
+  const more = present.length > shown.length
+    ? [{ colour: null, label: `… ${present.length} groups in ${n} colours: groups ${n} apart share one` }] : [];
   return [...shown, ...more];
 }
