@@ -50,6 +50,20 @@ test('viewer shows a two-floor world with agents at their heights', { timeout: 9
     }, null, { timeout: 40000 }).then(() => true, () => false);
     assert.ok(upstairs, 'an agent on the gallery (3 m)');
 
+    // The plan view flattens the floors: those upstairs get a white rim, and the legend says so.
+    await page.click('#cam-plan');
+    await sleep(400);
+    const plan = await page.evaluate(() => {
+      const { crowd, state } = globalThis.__throng;
+      const up = Array.from(state.z.subarray(0, state.count)).filter((h) => h > 1.2).length;
+      return { marked: crowd.discs.upperCount, up, drawn: crowd.discs.count, legend: document.querySelector('#legend').textContent };
+    });
+    assert.ok(plan.drawn > 0 && plan.marked > 0, `upper-floor discs in the plan view: ${JSON.stringify(plan)}`);
+    assert.ok(Math.abs(plan.marked - plan.up) <= 2, `those marked are those upstairs: ${JSON.stringify(plan)}`);
+    assert.ok(plan.legend.includes('white rim = on an upper floor'), plan.legend);
+    await page.click('#cam-orbit');  // back to the view the page opened in (the avatar is placed where it looks)
+    await sleep(300);
+
     const { grey } = await page.evaluate(() => globalThis.__throng.pixels(8));
     const mean = grey.reduce((a, b) => a + b, 0) / grey.length;
     const spread = grey.reduce((a, b) => a + (b - mean) ** 2, 0) / grey.length;

@@ -184,6 +184,8 @@ source.on('world', async (w) => {
   state.setClips(w.clips || []);
   state.interval = 1 / (w.tickRate || 10);
   crowd = new CrowdView(scene, renderer, w, clips, { adaptive: lodOn, targetFrameMs: 1000 / Number(params.get('target') || 30) });
+  crowd.setGround(bounds.minZ || 0);
+  legend.multiLevel = crowd.multiLevel;
   avatars = new NearBodies(scene, w.skeleton.joints, clips);
   markers = new Markers(scene, kSelectedColour);
   trails = new Trails(scene, undefined, bounds);

@@ -12,7 +12,7 @@ import { NearBodies } from './near_bodies.js';
 import { MiddleBodies } from './middle_bodies.js';
 import { Billboards, renderAtlas, kWalkFrames } from './billboards.js';
 import { Dots } from './dots.js';
-import { PlanDiscs } from './plan_discs.js';
+import { PlanDiscs, kUpperFloor } from './plan_discs.js';
 import { pickAgent } from '../camera/pick.js';
 import { sceneYaw } from '../coords.js';
 import { kGroupPalette, kNoGroup, kSpeedMax, kDensityMax, kStateColours, rampColour, stateOf, localDensity } from './colour_by.js';
@@ -31,6 +31,9 @@ export class CrowdView {
     this.far = new Billboards(scene, this.atlas.texture);
     this.dots = new Dots(scene);
     this.discs = new PlanDiscs(scene);
+    // A multi-level world (terrain): the plan marks who is on an upper floor (plan_discs.js).
+    this.multiLevel = !!(description.scenario && description.scenario.terrain);
+    this.groundZ = 0;  // the lowest floor's height [m] (setGround)
     this.populations = ((description.scenario || {}).populations || []).map((p) => p.id).filter(Boolean);
     this.setGroups(description.groups || []);
     this.colourMode = 'group';
@@ -172,6 +175,9 @@ export class CrowdView {
     return this.counts;
   }
 
+  /** The lowest floor's height [m]: agents kUpperFloor above it are on an upper floor. */
+  setGround(z) { this.groundZ = Number.isFinite(z) ? z : 0; }
+
   /** Plan view: every agent in the orthographic camera's view as a disc; no levels of detail. */
   updatePlan(state, camera, bufferHeight) {
     const n = state.count;
@@ -182,7 +188,8 @@ export class CrowdView {
     const pxPerMetre = bufferHeight * camera.zoom / (camera.top - camera.bottom);
     this.discs.begin(n, pxPerMetre);
     for (let i = 0; i < n; ++i) {
-      this.discs.add(state.x[i], state.z[i], -state.y[i], state.yaw[i], this.colourAt(i, state));
+      const upper = this.multiLevel && state.z[i] > this.groundZ + kUpperFloor;
+      this.discs.add(state.x[i], state.z[i], -state.y[i], state.yaw[i], this.colourAt(i, state), upper);
     }
     this.discs.end();
     this.prevIds = new Uint32Array(0);  // the next perspective frame chooses its levels afresh

@@ -9,7 +9,7 @@ import { kColourModes, kModeNames, legendOf } from '../crowd/colour_by.js';
 const hex = (c) => `#${c.toString(16).padStart(6, '0')}`;
 
 /** Entries shown in every mode: [{colour, shape, label}]; shape: dot, ring, pin, disc, area, line. */
-export function fixedEntries({ selected, pickedGroup, self, other, trails, heatmap, speedmap }) {
+export function fixedEntries({ selected, pickedGroup, self, other, trails, heatmap, speedmap, multiLevel }) {
   return [
     { colour: selected, shape: 'ring', label: 'selected agent (ringed)' },
     { colour: pickedGroup, shape: 'dot', label: 'group picked in the list' },
@@ -22,6 +22,7 @@ export function fixedEntries({ selected, pickedGroup, self, other, trails, heatm
     { colour: 0x5a5145, shape: 'line', label: 'wall, railing (1.2 m, see-through)' },
     { colour: 0xa8a296, shape: 'area', label: 'stair riser' },
     { colour: 0xd8d4cc, shape: 'area', label: 'walkable floor' },
+    ...(multiLevel ? [{ colour: 0xffffff, shape: 'ring', label: 'plan view: white rim = on an upper floor' }] : []),
     ...(trails ? [{ colour: 0x555555, shape: 'line', label: 'trail: where each walked lately' }] : []),
     ...(heatmap ? legendOf('density').map((e) => ({ colour: e.colour, shape: 'area',
       label: `density map${heatmap === 'voronoi' ? ' (Voronoi)' : ''}: ${e.label}` })) : []),
@@ -37,6 +38,7 @@ export class Legend {
     this.trails = false;
     this.heatmap = false;
     this.speedmap = false;
+    this.multiLevel = false;  // a multi-level world: the plan view's upper-floor rim is explained
     root.innerHTML = '<div class="legend-head"><button class="fold" title="fold the legend">▾</button> Colour by '
       + '<select id="colour-by" title="what the agents\' colours say (B)"></select></div><div class="legend-body"></div>';
     this.select = root.querySelector('#colour-by');
@@ -57,12 +59,15 @@ export class Legend {
 
   /** Redraws when the mode, the populations or the groups changed. */
   update(mode, context) {
-    const key = JSON.stringify([mode, context.populations, (context.groups || []).length, this.trails, this.heatmap, this.speedmap]);
+    const present = (context.groups || []).filter((g) => !Array.isArray(g.members) || g.members.length > 0).length;
+    const key = JSON.stringify([mode, context.populations, (context.groups || []).length, present, this.trails, this.heatmap,
+      this.speedmap, this.multiLevel]);
     if (key === this.key) return;
     this.key = key;
     this.select.value = mode;
     const rows = [...legendOf(mode, context).map((e) => ({ ...e, shape: 'dot' })), { separator: true },
-      ...fixedEntries({ ...this.marks, trails: this.trails, heatmap: this.heatmap, speedmap: this.speedmap })];
+      ...fixedEntries({ ...this.marks, trails: this.trails, heatmap: this.heatmap, speedmap: this.speedmap,
+        multiLevel: this.multiLevel })];
     this.body.innerHTML = '';
     for (const r of rows) {
       const row = document.createElement('div');
