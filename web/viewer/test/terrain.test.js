@@ -3,7 +3,7 @@
 // index against an analytic slope, and worldBounds of terrain and flat scenarios.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { terrainHeightAt, terrainBounds, buildTerrainIndex, stepOnTerrain, kMaxStep } from '../src/world/terrain.js';
+import { terrainHeightAt, terrainBounds, buildTerrainIndex, stepOnTerrain, kMaxStep, nearestOnTerrain } from '../src/world/terrain.js';
 import { worldBounds, pointHeight } from '../src/world/world_view.js';
 
 // Ground 0..20 × 0..10 at z 0; upper floor 10..20 × 0..10 at z 3 (above the ground's right half);
@@ -145,4 +145,13 @@ test('points stand at their height', () => {
   assert.equal(pointHeight({ polygon: [[0, 0], [1, 0], [1, 1]], height: 6 }), 6);
   assert.equal(pointHeight({ polygon: [[0, 0, 3], [1, 0, 3], [1, 1, 3]] }), 3);
   assert.equal(pointHeight({ polygon: [[0, 0], [1, 0], [1, 1]] }), 0);
+});
+
+test('nearestOnTerrain: the point itself over a floor, else the nearest floor found on rings around it', () => {
+  const t = twoFloors();
+  assert.deepEqual(nearestOnTerrain(t, 15, 5, 3.5), { x: 15, y: 5, z: 3 });
+  const p = nearestOnTerrain(t, 22, 5, 0);  // 2 m east of the building
+  assert.ok(p && Math.abs(p.x - 20) <= 0.01 + 1e-9 && Math.abs(p.y - 5) < 1e-9, JSON.stringify(p));
+  assert.ok(terrainHeightAt(t, p.x, p.y, 0) !== null);
+  assert.equal(nearestOnTerrain(t, 100, 100, 0), null, 'no floor within reach');
 });

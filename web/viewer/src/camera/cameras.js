@@ -13,7 +13,7 @@
 // both cameras take the heights into account (orbit: frames bounds.minZ … maxZ; walk: above z).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import { terrainHeightAt, stepOnTerrain } from '../world/terrain.js';
+import { stepOnTerrain, nearestOnTerrain } from '../world/terrain.js';
 import { freeRect, planFrame } from './framing.js';
 
 export const kPlanDefaultSpan = 40;  // [m] a flat world wider or deeper than this opens in plan view
@@ -219,8 +219,11 @@ export class Cameras {
   /** Places the avatar (e.g. where the camera looks) before walking; in a multi-level world on the
    * walkable surface under (x, y) nearest height `nearZ` [m] (at nearZ when there is none). */
   placeAvatar(x, y, yaw, nearZ = 0) {
-    const z = this.terrain ? terrainHeightAt(this.terrain, x, y, nearZ) : null;
-    Object.assign(this.avatar, { x, y, yaw, z: z ?? (this.terrain ? nearZ : 0), onTerrain: z !== null });
+    // On a multi-level world, on the floor nearest the point asked for (the view's centre may lie
+    // over a stairwell or outside the building).
+    const p = this.terrain ? nearestOnTerrain(this.terrain, x, y, nearZ) : null;
+    if (p) { Object.assign(this.avatar, { x: p.x, y: p.y, yaw, z: p.z, onTerrain: true }); return; }
+    Object.assign(this.avatar, { x, y, yaw, z: this.terrain ? nearZ : 0, onTerrain: false });
   }
 
   /** Moves the avatar to ground point (nx, ny): freely on a flat world; over the terrain by

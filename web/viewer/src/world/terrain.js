@@ -125,3 +125,23 @@ export function stepOnTerrain(terrain, x, y, z, nx, ny, onTerrain = true) {
   if (onTerrain && Math.abs(h - z) > kMaxStep) return null;
   return { x: nx, y: ny, z: h, onTerrain: true };
 }
+
+/**
+ * The walkable point nearest ground point (x, y) [m] at about height `nearZ`: (x, y) itself when
+ * a floor is under it, else the first found on rings 0.5 m apart (24 directions each, east first,
+ * counter-clockwise) out to `reach` [m]; {x, y, z} or null. Where a person is placed when the
+ * view's centre is over no floor (a stairwell, outside the building).
+ */
+export function nearestOnTerrain(terrain, x, y, nearZ = 0, reach = 15) {
+  const z0 = terrainHeightAt(terrain, x, y, nearZ);
+  if (z0 !== null) return { x, y, z: z0 };
+  for (let r = 0.5; r <= reach + 1e-9; r += 0.5) {
+    for (let k = 0; k < 24; ++k) {
+      const a = (k * Math.PI) / 12;
+      const px = x + r * Math.cos(a), py = y + r * Math.sin(a);
+      const z = terrainHeightAt(terrain, px, py, nearZ);
+      if (z !== null) return { x: px, y: py, z };
+    }
+  }
+  return null;
+}
