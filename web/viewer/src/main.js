@@ -26,7 +26,7 @@ import { GroupList } from './ui/group_list.js';
 import { ScreenLabels } from './ui/screen_labels.js';
 import { GesturePlayer, RemoteJoints, gestureClip, kGestures } from './crowd/gestures.js';
 import { bindKeys } from './ui/keys.js';
-import { Legend } from './ui/legend.js';
+import { Legend, exitsAreEntrances } from './ui/legend.js';
 import { Help } from './ui/help.js';
 import { Markers, kSelfColour } from './crowd/markers.js';
 import { Trails } from './crowd/trails.js';
@@ -186,6 +186,7 @@ source.on('world', async (w) => {
   crowd = new CrowdView(scene, renderer, w, clips, { adaptive: lodOn, targetFrameMs: 1000 / Number(params.get('target') || 30) });
   crowd.setGround(bounds.minZ || 0);
   legend.multiLevel = crowd.multiLevel;
+  legend.entrances = exitsAreEntrances(w.scenario);
   avatars = new NearBodies(scene, w.skeleton.joints, clips);
   markers = new Markers(scene, kSelectedColour);
   trails = new Trails(scene, undefined, bounds);

@@ -8,8 +8,22 @@ import { kColourModes, kModeNames, legendOf } from '../crowd/colour_by.js';
 
 const hex = (c) => `#${c.toString(16).padStart(6, '0')}`;
 
+/** Whether people also arrive in an exit of `scenario` (a population's spawn polygon overlaps an
+ * exit's box — the mall's entrances): the legend then calls exits entrances too. */
+export function exitsAreEntrances(scenario) {
+  const box = (poly) => poly.reduce((b, [x, y]) => [Math.min(b[0], x), Math.min(b[1], y), Math.max(b[2], x), Math.max(b[3], y)],
+    [Infinity, Infinity, -Infinity, -Infinity]);
+  const overlap = (a, b) => a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+  const exits = ((scenario || {}).points || []).filter((p) => p.kind === 'exit').map((p) => (Array.isArray(p.polygon)
+    ? box(p.polygon) : Array.isArray(p.position) ? [p.position[0] - (p.radius || 0), p.position[1] - (p.radius || 0),
+      p.position[0] + (p.radius || 0), p.position[1] + (p.radius || 0)] : null)).filter(Boolean);
+  const spawns = ((scenario || {}).populations || []).map((p) => p.spawn && Array.isArray(p.spawn.polygon) ? box(p.spawn.polygon) : null)
+    .filter(Boolean);
+  return exits.some((e) => spawns.some((s) => overlap(e, s)));
+}
+
 /** Entries shown in every mode: [{colour, shape, label}]; shape: dot, ring, pin, disc, area, line. */
-export function fixedEntries({ selected, pickedGroup, self, other, trails, heatmap, speedmap, multiLevel }) {
+export function fixedEntries({ selected, pickedGroup, self, other, trails, heatmap, speedmap, multiLevel, entrances }) {
   return [
     { colour: selected, shape: 'ring', label: 'selected agent (ringed)' },
     { colour: pickedGroup, shape: 'dot', label: 'group picked in the list' },
@@ -17,7 +31,7 @@ export function fixedEntries({ selected, pickedGroup, self, other, trails, heatm
     { colour: other, shape: 'dot', label: 'participants: own look, else this' },
     { colour: 0x3070d0, shape: 'ring', label: 'interest point' },
     { colour: 0xe08020, shape: 'disc', label: 'action point (arrow: facing)' },
-    { colour: 0x30b050, shape: 'area', label: 'exit' },
+    { colour: 0x30b050, shape: 'area', label: entrances ? 'exit (and entrance: people arrive there too)' : 'exit' },
     { colour: 0xb9a98f, shape: 'area', label: 'obstacle (solid block)' },
     { colour: 0x5a5145, shape: 'line', label: 'wall, railing (1.2 m, see-through)' },
     { colour: 0xa8a296, shape: 'area', label: 'stair riser' },
@@ -39,6 +53,7 @@ export class Legend {
     this.heatmap = false;
     this.speedmap = false;
     this.multiLevel = false;  // a multi-level world: the plan view's upper-floor rim is explained
+    this.entrances = false;   // people also arrive in the exits (exitsAreEntrances)
     root.innerHTML = '<div class="legend-head"><button class="fold" title="fold the legend">▾</button> Colour by '
       + '<select id="colour-by" title="what the agents\' colours say (B)"></select></div><div class="legend-body"></div>';
     this.select = root.querySelector('#colour-by');
@@ -61,13 +76,13 @@ export class Legend {
   update(mode, context) {
     const present = (context.groups || []).filter((g) => !Array.isArray(g.members) || g.members.length > 0).length;
     const key = JSON.stringify([mode, context.populations, (context.groups || []).length, present, this.trails, this.heatmap,
-      this.speedmap, this.multiLevel]);
+      this.speedmap, this.multiLevel, this.entrances]);
     if (key === this.key) return;
     this.key = key;
     this.select.value = mode;
     const rows = [...legendOf(mode, context).map((e) => ({ ...e, shape: 'dot' })), { separator: true },
       ...fixedEntries({ ...this.marks, trails: this.trails, heatmap: this.heatmap, speedmap: this.speedmap,
-        multiLevel: this.multiLevel })];
+        multiLevel: this.multiLevel, entrances: this.entrances })];
     this.body.innerHTML = '';
     for (const r of rows) {
       const row = document.createElement('div');
