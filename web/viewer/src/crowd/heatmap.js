@@ -42,17 +42,24 @@ export class DensityGrid {
     const last = this.frames[this.frames.length - 1];
     if (last && t < last.t) this.clear();
     else if (last && t === last.t) return;  // the same frame again
-    const counts = new Uint16Array(this.nx * this.ny);
-    for (let i = 0; i < count; ++i) {
-      const ci = Math.floor((x[i] - this.minX) / this.cell), cj = Math.floor((y[i] - this.minY) / this.cell);
-      if (ci >= 0 && ci < this.nx && cj >= 0 && cj < this.ny) counts[cj * this.nx + ci] += 1;
-    }
+    const counts = this.frameCounts(x, y, count);
     this.frames.push({ t, counts });
     for (let k = 0; k < counts.length; ++k) this.sum[k] += counts[k];
     while (this.frames.length > 1 && this.frames[0].t < t - this.seconds) {
       const old = this.frames.shift().counts;
       for (let k = 0; k < old.length; ++k) this.sum[k] -= old[k];
     }
+  }
+
+  /** One frame's persons per cell: here (classic) each agent counts once in the cell where it is
+   * (voronoi.js: shared by Voronoi area). */
+  frameCounts(x, y, count) {
+    const counts = new Uint16Array(this.nx * this.ny);
+    for (let i = 0; i < count; ++i) {
+      const ci = Math.floor((x[i] - this.minX) / this.cell), cj = Math.floor((y[i] - this.minY) / this.cell);
+      if (ci >= 0 && ci < this.nx && cj >= 0 && cj < this.ny) counts[cj * this.nx + ci] += 1;
+    }
+    return counts;
   }
 
   /** Classic density of cell (i, j) [persons/m²]: its count averaged over the window's frames / cell². */

@@ -103,18 +103,8 @@ export class VoronoiDensityGrid extends DensityGrid {
     this.samples = walkableSamples(this, scenario);
   }
 
-  record(x, y, count, t) {
-    const last = this.frames[this.frames.length - 1];
-    if (last && t < last.t) this.clear();
-    else if (last && t === last.t) return;
-    const counts = voronoiShares(this.samples, x, y, count, this.cutoff, this.nx * this.ny);
-    this.frames.push({ t, counts });
-    for (let k = 0; k < counts.length; ++k) this.sum[k] += counts[k];
-    while (this.frames.length > 1 && this.frames[0].t < t - this.seconds) {
-      const old = this.frames.shift().counts;
-      for (let k = 0; k < old.length; ++k) this.sum[k] -= old[k];
-    }
-  }
+  /** One frame's persons per cell by Voronoi shares (DensityGrid.record keeps the window). */
+  frameCounts(x, y, count) { return voronoiShares(this.samples, x, y, count, this.cutoff, this.nx * this.ny); }
 }
 
 /** The speed map's Voronoi variant: SpeedGrid's speeds and window, weighted by Voronoi area. */
