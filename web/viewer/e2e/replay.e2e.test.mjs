@@ -4,7 +4,7 @@
 // recording's duration (ReplayStatus); playing, the time advances and crowd frames arrive with
 // agents drawn; Pause stops the time (and the crowd); scrubbing to a time jumps there (status time,
 // frame ticks and positions — the same positions each time that moment is sought); a faster speed
-// makes the time run faster. Run: THRONG_EXE=build/apps/throng/throng node --test web/viewer/e2e/replay.e2e.test.mjs
+// makes the time run faster; Join, Edit and Guide say what they do on a recording. Run: THRONG_EXE=build/apps/throng/throng node --test web/viewer/e2e/replay.e2e.test.mjs
 // Fails (never skips) without THRONG_EXE, web/node_modules, web/dist or chromium, saying which.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -89,6 +89,18 @@ test('viewer replays a recording from throng serve FILE.sqlite', { timeout: 6000
     let p = await probe(page);
     assert.ok(Math.abs(p.status.duration - 20) < 1, `duration ${p.status.duration} s (world: ${JSON.stringify(info.replay)})`);
     assert.match(p.label, /\/ 0:2[01]$/, `timeline label "${p.label}"`);
+
+    // The controls say what they do on a recording: Join walks among a crowd that does not react,
+    // Edit opens the scenario it was made from, its groups cannot be guided.
+    const controls = await page.evaluate(() => ({
+      join: { disabled: document.querySelector('#join-button').disabled, title: document.querySelector('#join-button').title },
+      status: document.querySelector('#join-status').textContent, edit: document.querySelector('#edit-link').title,
+      guide: { disabled: document.querySelector('#guide-button').disabled, title: document.querySelector('#guide-button').title },
+    }));
+    assert.ok(!controls.join.disabled && /do not react/.test(controls.join.title), JSON.stringify(controls));
+    assert.match(controls.status, /a recording/);
+    assert.match(controls.edit, /scenario this recording was made from/);
+    assert.ok(controls.guide.disabled && /recording cannot be guided/.test(controls.guide.title), JSON.stringify(controls));
 
     // Play (if it does not already): the time advances, frames arrive, agents are drawn.
     if (!p.status.playing) await page.click('#tl-play');

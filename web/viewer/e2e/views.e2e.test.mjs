@@ -194,6 +194,35 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
     await sleep(300);
     assertAllSelected(await clickAgents(page, 4), 'close plan', 2);
 
+    // The agent panel never covers the agent clicked: with the view moved so that the selected agent
+    // is drawn where the panel stands (right), the panel moves to the left; centred again, it returns.
+    const placeUnderPanel = (where) => page.evaluate((where) => {
+      const { state, cameras } = globalThis.__throng;
+      const id = Number(document.querySelector('#agent-id').textContent.slice(1));
+      const i = state.index.get(id);
+      const r = document.querySelector('#agent-panel').getBoundingClientRect();
+      const high = 20, mpp = high / innerHeight;
+      const c = where === 'panel' ? { x: (r.left + r.right) / 2, y: Math.min((r.top + r.bottom) / 2, innerHeight - 30) }
+        : { x: innerWidth / 2, y: innerHeight / 2 };
+      cameras.planAt(state.x[i] - (c.x - innerWidth / 2) * mpp, state.y[i] + (c.y - innerHeight / 2) * mpp, high);
+      return id;
+    }, where);
+    const selected = await placeUnderPanel('panel');
+    await page.waitForFunction(() => document.querySelector('#agent-panel').classList.contains('left'), null, { timeout: 5000, polling: 100 })
+      .catch(() => assert.fail('the agent panel stayed over the agent clicked'));
+    const cover = await page.evaluate((id) => {
+      const { state, toScreen } = globalThis.__throng;
+      const i = state.index.get(id);
+      const p = toScreen(state.x[i], state.y[i], state.z[i] + 0.9), r = document.querySelector('#agent-panel').getBoundingClientRect();
+      return { p, r: { left: r.left, right: r.right, top: r.top, bottom: r.bottom } };
+    }, selected);
+    assert.ok(!(cover.p.x >= cover.r.left && cover.p.x <= cover.r.right && cover.p.y >= cover.r.top && cover.p.y <= cover.r.bottom),
+      `moved aside, the panel is clear of the agent: ${JSON.stringify(cover)}`);
+    await shot(page, 'views-panel-aside.png');
+    await placeUnderPanel('centre');
+    await page.waitForFunction(() => !document.querySelector('#agent-panel').classList.contains('left'), null, { timeout: 5000, polling: 100 })
+      .catch(() => assert.fail('the agent panel did not come back to the right'));
+
     // F fits the world again.
     await page.mouse.click(5, 355);
     await page.keyboard.press('KeyF');

@@ -201,11 +201,22 @@ for (const [input, name, minSegments] of [['scenarios/museum.json', 'museum', 8]
       }
       const plan = await changedByPart(s.page, 'boundary-walls');
       assert.ok(plan > 0.004, `the walls show in plan view (${(plan * 100).toFixed(2)} % of pixels)`);
+      if (name === 'museum') {
+        // Its eight paintings hang on the walls their visitors face, seen from above as strips.
+        assert.equal(parts.exhibits, 8, `paintings: ${JSON.stringify(parts)}`);
+        assert.match(await s.page.evaluate(() => document.querySelector('#legend').textContent), /painting: what visitors/);
+        const seen = await changedByPart(s.page, 'exhibits');
+        assert.ok(seen > 0.0005, `the paintings show in plan view (${(seen * 100).toFixed(3)} % of pixels)`);
+      }
       await shot(s.page, `viewer_walls_${name}_plan.png`);
       await s.page.keyboard.press('o');
       await s.page.waitForTimeout(500);
       const orbit = await changedByPart(s.page, 'boundary-walls');
       assert.ok(orbit > 0.01, `the walls show in the orbit view (${(orbit * 100).toFixed(2)} % of pixels)`);
+      if (name === 'museum') {
+        const seen = await changedByPart(s.page, 'exhibits');
+        assert.ok(seen > 0.001, `the paintings show in the orbit view (${(seen * 100).toFixed(3)} % of pixels)`);
+      }
       await shot(s.page, `viewer_walls_${name}_orbit.png`);
       if (name === 'museum') {
         // The scenario's description, for someone new to the world, under the HUD's name.

@@ -139,7 +139,10 @@ function setColourMode(m) {
   refreshLegend();
 }
 function refreshLegend() {
-  if (crowd) legend.update(crowd.colourMode, { populations: crowd.populations, groups: description.groups || [] });
+  if (crowd) {
+    legend.update(crowd.colourMode, { populations: crowd.populations, groups: description.groups || [],
+      groupColour: (g) => crowd.groupColours.index(g) });
+  }
 }
 globalThis.__throngStats = globalThis.__throngStats || {};
 
@@ -175,7 +178,9 @@ source.on('world', async (w) => {
   description = w;
   hud.setWorld(w);
   const bounds = worldBounds(w.scenario || {});
-  scene.add(buildWorld(w.scenario || {}));
+  const world = buildWorld(w.scenario || {});
+  scene.add(world);
+  legend.exhibits = !!world.getObjectByName('exhibits');
   if (source.kind === 'live') loadModel();
   worldLabels = pointLabels(w.scenario || {});
   addLights(scene, bounds);
@@ -185,6 +190,7 @@ source.on('world', async (w) => {
   state.interval = 1 / (w.tickRate || 10);
   crowd = new CrowdView(scene, renderer, w, clips, { adaptive: lodOn, targetFrameMs: 1000 / Number(params.get('target') || 30) });
   crowd.setGround(bounds.minZ || 0);
+  crowd.onGroupColours = () => { refreshLegend(); trailsStale = true; };
   legend.multiLevel = crowd.multiLevel;
   legend.entrances = exitsAreEntrances(w.scenario);
   avatars = new NearBodies(scene, w.skeleton.joints, clips);
@@ -452,7 +458,29 @@ $('agent-follow').onclick = () => { if (cameras) cameras.follow(null); toggleFol
 $('lod-toggle').onchange = (e) => { if (crowd) crowd.adaptive = e.target.checked; };
 // Replay: the in-memory demo recording, or a server replaying a recording (its first ReplayStatus).
 let timeline = source.kind === 'replay' ? new Timeline($('timeline'), source) : null;
-source.on('timeline', (s) => { if (!timeline) { timeline = new Timeline($('timeline'), source); timeline.update(s); } });
+source.on('timeline', (s) => {
+  if (!timeline) { timeline = new Timeline($('timeline'), source); timeline.update(s); }
+  markRecording();
+});
+if (timeline) markRecording();
+/** A recording plays: the controls say what joining, editing and guiding do on one (a stand-in
+ * newcomer took Join and Edit for ways to change what the crowd does). Served (throng serve), one
+ * may join to walk among the recorded crowd with others watching it — the recorded people do not
+ * react; played in the page alone there is nobody to join. Edit opens the scenario the recording
+ * was made from. No group of a recording can be guided. */
+function markRecording() {
+  const served = source instanceof LiveSource;  // a recording throng serve plays (kind 'replay' once it says so)
+  $('join-button').disabled = !served;
+  $('join-button').title = served ? 'walk among the recorded crowd, seen by others watching it (the recorded people do not react to you)'
+    : 'nothing to join: this recording plays in this page alone (throng serve RECORDING lets others watch it with you)';
+  if (!joined) {
+    $('join-status').textContent = served ? 'a recording: joining lets you walk among it; the crowd does not react'
+      : 'a recording played in this page: nobody to join';
+  }
+  $('edit-link').title = 'open the scenario this recording was made from in the editor (a new tab): change it, check it, preview it';
+  panel.setRecording(true);
+  groupList.setRecording(true);
+}
 
 // The selected agent's goal, state and Common Ground script: GET /api/agent/<id> (live server),
 // once a second while its panel is open.
@@ -640,8 +668,15 @@ function frame() {
     if (i !== undefined) {
       panel.update({ clipName: clips.name(state.clip[i]), x: state.x[i], y: state.y[i], z: state.z[i], tier: state.tier[i],
         goal: agentInfo ? agentInfo.goal : undefined, script: agentInfo ? agentInfo.script : undefined });
+      panel.keepClear(screenPoint(state.x[i], state.y[i], state.z[i] + 0.9), $('hud').getBoundingClientRect().bottom, innerWidth);
     }
   }
+}
+/** Screen position [px] of world point (x, y, z) in the current view, or null behind the camera. */
+const screenScratch = new THREE.Vector3();
+function screenPoint(x, y, z) {
+  const v = screenScratch.set(x, z, -y).project(view());
+  return v.z > 1 ? null : { x: (v.x + 1) / 2 * innerWidth, y: (1 - v.y) / 2 * innerHeight };
 }
 requestAnimationFrame(frame);
 source.start();

@@ -17,10 +17,12 @@ test('exits are entrances when a population appears inside one', () => {
   assert.equal(exitsAreEntrances({}), false);
 });
 
-test('the exit row and the upper-floor row follow the world', () => {
+test('the exit row, the upper-floor row and the paintings row follow the world', () => {
   const labels = (o) => fixedEntries({ selected: 1, pickedGroup: 2, self: 3, other: 4, ...o }).map((e) => e.label);
   assert.ok(labels({}).includes('exit'));
   assert.ok(labels({ entrances: true }).some((l) => l.startsWith('exit (and entrance')));
   assert.ok(!labels({}).some((l) => l.includes('upper floor')));
   assert.ok(labels({ multiLevel: true }).some((l) => l.includes('white rim = on an upper floor')));
+  assert.ok(!labels({}).some((l) => l.startsWith('painting')));
+  assert.ok(labels({ exhibits: true }).some((l) => l.startsWith('painting: what visitors')));
 });

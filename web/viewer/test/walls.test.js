@@ -102,3 +102,27 @@ test('a scenario wall is drawn as the rectangles the engine cuts out: thickness 
   assert.ok(near(Math.max(...thick[0].map((p) => p[0])), 0.25));
   assert.deepEqual(wallRectangles({}), []);
 });
+
+test('what visitors look at hangs on the wall they face; a look at nothing near gets no picture', async () => {
+  const fs = await import('node:fs');
+  const { exhibitsOnWalls, polygonEdges, walkableWalls, kExhibitReach } = await import('../src/world/walls.js');
+  const museum = JSON.parse(fs.readFileSync(new URL('../../../scenarios/museum.json', import.meta.url), 'utf8'));
+  const segments = [...walkableWalls(museum.walkable), ...polygonEdges(museum.obstacles)];
+  const looks = museum.points.filter((p) => p.kind === 'action' && p.action === 'look');
+  const exhibits = exhibitsOnWalls(museum.points, segments);
+  assert.equal(exhibits.length, looks.length, 'every painting of the museum is on a wall');
+  for (const e of exhibits) {
+    const p = e.point, d = Math.hypot(e.x - p.position[0], e.y - p.position[1]);
+    assert.ok(d > 0.5 && d <= kExhibitReach, `${p.id}: ${d.toFixed(2)} m in front`);
+    const o = p.orientation, l = Math.hypot(o[0], o[1]);
+    assert.ok(Math.abs(e.nx + o[0] / l) < 1e-9 && Math.abs(e.ny + o[1] / l) < 1e-9, `${p.id} faces its visitors`);
+  }
+  // A square with nothing to look at within reach, and a point that is not a look.
+  const square = [[0, 0], [20, 0], [20, 20], [0, 20]];
+  const points = [{ id: 'statue', kind: 'action', action: 'look', position: [10, 10], orientation: [1, 0] },
+    { id: 'kiosk', kind: 'action', action: 'buy', position: [19, 10], orientation: [1, 0] },
+    { id: 'notice', kind: 'action', action: 'look', position: [18.5, 10], orientation: [1, 0], radius: 1 }];
+  const got = exhibitsOnWalls(points, walkableWalls([square]));
+  assert.deepEqual(got.map((e) => e.point.id), ['notice']);
+  assert.ok(Math.abs(got[0].x - 19.98) < 1e-9 && Math.abs(got[0].y - 10) < 1e-9 && got[0].width === 1.6);
+});

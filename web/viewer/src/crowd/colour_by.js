@@ -1,5 +1,6 @@
 // What an agent's colour says — pure, no three.js. Five modes (the legend, ui/legend.js, shows the
-// colours of the one in use): group (each group one of kGroupPalette's ten colours, repeating),
+// colours of the one in use): group (each group one of kGroupPalette's twelve colours, handed out
+// by GroupColours so that groups near each other get different ones),
 // population (the scenario's populations in order), speed (ground speed from successive positions,
 // interpolate.js, 0 … kSpeedMax on kRamp), local density (persons per m² within kDensityRadius of
 // the agent, counted on a grid of that cell size, 0 … kDensityMax on kRamp) and state, from what
@@ -10,7 +11,11 @@
 
 export const kColourModes = ['group', 'population', 'speed', 'density', 'state'];
 export const kModeNames = { group: 'group', population: 'population', speed: 'speed', density: 'local density', state: 'state' };
-export const kGroupPalette = [0x3f7fbf, 0xbf5f3f, 0x4f9f5f, 0x9f4fa0, 0xc0a040, 0x40a0a8, 0x8f6f4f, 0x707fa0, 0xb0607a, 0x6a8f30];
+export const kGroupPalette = [0x3f7fbf, 0xbf5f3f, 0x4f9f5f, 0x9f4fa0, 0xc0a040, 0x40a0a8, 0x8f6f4f, 0x707fa0, 0xb0607a, 0x6a8f30,
+  0x2f4f8f, 0xd08080];
+/** Groups whose centres are nearer than this [m] get different colours when the palette allows
+ * (GroupColours): about what one sees of a crowd at once from a person's height. */
+export const kGroupColourRadius = 12;
 export const kRamp = [0x2b59c3, 0x2bb0c3, 0x5dbb63, 0xf08a24, 0x9e1030];  // low → high (no yellow: the selection's colour)
 export const kSpeedMax = 2.0;       // [m/s] top of the speed ramp (a brisk walk is 1.3–1.6 m/s)
 export const kDensityMax = 4.0;     // [persons/m²] top of the density ramp (Weidmann's walking limit is ~5)
@@ -30,6 +35,83 @@ export function defaultColourMode(groups, populations) {
   const loners = list.length > 0 && list.every((g) => !Array.isArray(g.members) || g.members.length <= 1);
   if (!loners) return 'group';
   return populations > 1 ? 'population' : 'speed';
+}
+
+/**
+ * Which of kGroupPalette's colours each group wears: with hundreds of groups colours must repeat, so
+ * a group takes the colour whose nearest wearer is farthest from it (of the groups with centres within
+ * `radius` metres), and keeps it while no group within half that radius wears the same — so the
+ * groups one looks at side by side differ, and a colour changes only when two groups wearing it come
+ * close (and another colour is worn a metre farther off).
+ * Pure (no three.js): `update(ids, x, y, n, groupOf)` from the agents' stable ids and world
+ * positions, `index(g)` the palette index of group g (its id modulo the palette before the first
+ * update, or for a group not seen yet).
+ */
+export class GroupColours {
+  constructor(paletteSize = kGroupPalette.length, radius = kGroupColourRadius) {
+    this.n = paletteSize;
+    this.radius = radius;
+    this.of = new Map();  // group id → palette index
+  }
+
+  index(g) {
+    const k = this.of.get(g);
+    return k === undefined ? ((g % this.n) + this.n) % this.n : k;
+  }
+
+  /** Recomputes the groups' centres from the n agents (ids[i], x[i], y[i]; groupOf: id → group) and
+   * gives a colour to every group new or near another group of the same colour, lowest id first.
+   * Returns how many groups changed colour or got one. */
+  update(ids, x, y, n, groupOf) {
+    const sum = new Map();  // group → [sx, sy, count]
+    for (let i = 0; i < n; ++i) {
+      const g = groupOf.get(ids[i]);
+      if (g === undefined) continue;
+      const s = sum.get(g);
+      if (s) { s[0] += x[i]; s[1] += y[i]; s[2]++; } else sum.set(g, [x[i], y[i], 1]);
+    }
+    const groups = [...sum.keys()].sort((a, b) => a - b);
+    const cx = new Map(), cy = new Map(), cells = new Map();
+    const r = this.radius, key = (a, b) => `${a},${b}`;
+    for (const g of groups) {
+      const [sx, sy, c] = sum.get(g);
+      cx.set(g, sx / c); cy.set(g, sy / c);
+      const k = key(Math.floor(sx / c / r), Math.floor(sy / c / r));
+      const list = cells.get(k);
+      if (list) list.push(g); else cells.set(k, [g]);
+    }
+    const near = (g, f) => {  // f(h, d²) for every other group h within r of g
+      const gx = cx.get(g), gy = cy.get(g), ix = Math.floor(gx / r), iy = Math.floor(gy / r);
+      for (let dx = -1; dx <= 1; ++dx) {
+        for (let dy = -1; dy <= 1; ++dy) {
+          for (const h of cells.get(key(ix + dx, iy + dy)) || []) {
+            const d2 = (cx.get(h) - gx) ** 2 + (cy.get(h) - gy) ** 2;
+            if (h !== g && d2 < r * r) f(h, d2);
+          }
+        }
+      }
+    };
+    let changed = 0;
+    for (const g of groups) {
+      // How near the nearest other group wearing each colour is (Infinity: none within r).
+      const nearest = new Float64Array(this.n).fill(Infinity);
+      near(g, (h, d2) => {
+        const k = this.of.get(h);
+        if (k !== undefined) nearest[k] = Math.min(nearest[k], Math.sqrt(d2));
+      });
+      const own = this.of.get(g);
+      if (own !== undefined && nearest[own] >= r / 2) continue;  // nobody near wears it: kept (no flicker)
+      let best = own === undefined ? this.index(g) : own;
+      for (let j = 0; j < this.n; ++j) {
+        const k = (this.index(g) + j) % this.n;  // from the group's own default on: the same input, the same colours
+        if (nearest[k] > nearest[best]) best = k;
+      }
+      // A colour already worn changes only for one whose nearest wearer is a metre farther.
+      if (own !== undefined && !(nearest[best] > nearest[own] + 1)) best = own;
+      if (best !== own) { this.of.set(g, best); changed++; }
+    }
+    return changed;
+  }
 }
 
 /** Colour at t ∈ [0, 1] on kRamp (linear between its stops). */
@@ -82,8 +164,9 @@ export function localDensity(x, y, n, radius = kDensityRadius, out = new Float32
 
 /** Legend entries of a mode: [{colour, label}]. `populations`: names in order; `groups`:
  * [{id, population, members?}] (in group mode the first few with someone in them are listed — a
- * group whose members have all gone is not, as its colour now marks another group). */
-export function legendOf(mode, { populations = [], groups = [] } = {}) {
+ * group whose members have all gone is not, as its colour now marks another group); `groupColour`:
+ * a group id's palette index (GroupColours.index; the id modulo the palette when not given). */
+export function legendOf(mode, { populations = [], groups = [], groupColour } = {}) {
   if (mode === 'population') {
     return [...populations.map((p, k) => ({ colour: kGroupPalette[k % kGroupPalette.length], label: p })),
       { colour: kNoGroup, label: 'no population known' }];
@@ -97,10 +180,11 @@ export function legendOf(mode, { populations = [], groups = [] } = {}) {
   }
   if (mode === 'state') return kStates.map((s) => ({ colour: kStateColours[s], label: s }));
   const present = groups.filter((g) => !Array.isArray(g.members) || g.members.length > 0);
-  const shown = present.slice(0, 5).map((g) => ({ colour: kGroupPalette[g.id % kGroupPalette.length],
-    label: `group ${g.id}${g.population ? ` (${g.population})` : ''}` }));
   const n = kGroupPalette.length;
+  const indexOf = groupColour || ((g) => g % n);
+  const shown = present.slice(0, 5).map((g) => ({ colour: kGroupPalette[indexOf(g.id)],
+    label: `group ${g.id}${g.population ? ` (${g.population})` : ''}` }));
   const more = present.length > shown.length
-    ? [{ colour: null, label: `… ${present.length} groups in ${n} colours: groups ${n} apart share one` }] : [];
+    ? [{ colour: null, label: `… ${present.length} groups in ${n} colours: groups side by side differ, far apart ones may share one` }] : [];
   return [...shown, ...more];
 }

@@ -15,7 +15,7 @@ import { Dots } from './dots.js';
 import { PlanDiscs, kUpperFloor } from './plan_discs.js';
 import { pickAgent } from '../camera/pick.js';
 import { sceneYaw } from '../coords.js';
-import { kGroupPalette, kNoGroup, kSpeedMax, kDensityMax, kStateColours, rampColour, stateOf, localDensity } from './colour_by.js';
+import { kGroupPalette, kNoGroup, kSpeedMax, kDensityMax, kStateColours, rampColour, stateOf, localDensity, GroupColours } from './colour_by.js';
 
 export const kSelectedColour = 0xffe040;  // the clicked agent (and its ring)
 export const kPickedGroupColour = 0xb4f000;  // the members of the group picked in the list
@@ -35,6 +35,9 @@ export class CrowdView {
     this.multiLevel = !!(description.scenario && description.scenario.terrain);
     this.groundZ = 0;  // the lowest floor's height [m] (setGround)
     this.populations = ((description.scenario || {}).populations || []).map((p) => p.id).filter(Boolean);
+    this.groupColours = new GroupColours();  // groups side by side wear different colours (colour_by.js)
+    this.groupColoursAt = -Infinity;  // when they were last handed out [ms]
+    this.onGroupColours = null;  // called when a group's colour changed (the legend, the trails)
     this.setGroups(description.groups || []);
     this.colourMode = 'group';
     this.colourCache = new Map();  // 0xRRGGBB → THREE.Color
@@ -99,12 +102,19 @@ export class CrowdView {
         const clip = state.tier[i] === 2 ? '' : this.clips.name(state.clip[i]);
         return this.colour(kStateColours[stateOf(clip, state.speed[i], g !== undefined && this.waitingGroups.has(g))]);
       }
-      default: return this.colour(kGroupPalette[(g === undefined ? id : g) % kGroupPalette.length]);
+      default: return this.colour(g === undefined ? kGroupPalette[id % kGroupPalette.length] : kGroupPalette[this.groupColours.index(g)]);
     }
   }
 
   /** Per frame, before colourAt: local densities once per received crowd frame (density mode). */
-  prepareColours(state) {
+  prepareColours(state, nowMs = performance.now()) {
+    // Group colours are handed out again at most once a second, from the positions received.
+    if (this.colourMode === 'group' && state.count > 0 && nowMs - this.groupColoursAt >= 1000) {
+      this.groupColoursAt = nowMs;
+      if (this.groupColours.update(state.ids, state.toX, state.toY, state.count, this.groupOf) > 0 && this.onGroupColours) {
+        this.onGroupColours();
+      }
+    }
     if (this.colourMode !== 'density' || this.densityFrame === state.frames) return;
     this.densityFrame = state.frames;
     this.density = localDensity(state.toX, state.toY, state.count);

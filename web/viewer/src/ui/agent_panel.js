@@ -28,6 +28,22 @@ export function positionWords(x, y, z = 0) {
   return Math.abs(z) > 0.05 ? `${xy}, ${z.toFixed(1)} m up` : xy;
 }
 
+/** Which side of the view the agent panel goes: 'right' (its place) unless the clicked agent's
+ * screen point (x, y) [px] lies under it there, or within `margin` px of it, and not under it on the
+ * left; then 'left'. Back to the right only once the point is twice the margin clear of the
+ * right-hand place (a panel does not jump to and fro while the agent walks along its edge). `right`, `left`: the
+ * panel's rectangle {left, top, right, bottom} [px] on each side; point null: stays. */
+export function panelSide(point, right, left, current = 'right', margin = 24) {
+  if (!point) return current;
+  const under = (r, m = margin) => point.x >= r.left - m && point.x <= r.right + m && point.y >= r.top - m
+    && point.y <= r.bottom + m;
+  if (current === 'left') return under(right, 2 * margin) ? 'left' : 'right';
+  return under(right) && !under(left) ? 'left' : 'right';
+}
+
+/** Why a recording's groups cannot be guided (the Guide buttons' title). */
+export const kRecordingNoGuide = 'a recording cannot be guided: its people replay what they did';
+
 export class AgentPanel {
   constructor(root, { onGuide, onRelease, onClose }) {
     this.root = root;
@@ -51,6 +67,26 @@ export class AgentPanel {
 
   hide() { this.root.classList.add('hidden'); this.id = undefined; }
 
+  /** Moves the panel to the other side of the view when it would cover the agent at screen point
+   * `point` ({x, y} px, null when off screen): to the left under the HUD, whose bottom is `hudBottom`
+   * [px] (panelSide). Returns the side. */
+  keepClear(point, hudBottom, viewWidth) {
+    if (this.root.classList.contains('hidden')) return this.side || 'right';
+    const r = this.root.getBoundingClientRect();
+    const w = r.width, h = r.height;
+    if (!this.side || this.side === 'right') this.rightTop = r.top;
+    const top = this.rightTop ?? r.top;
+    const leftTop = hudBottom + 10;
+    const side = panelSide(point, { left: viewWidth - 10 - w, top, right: viewWidth - 10, bottom: top + h },
+      { left: 10, top: leftTop, right: 10 + w, bottom: leftTop + h }, this.side || 'right');
+    if (side !== (this.side || 'right')) {
+      this.root.classList.toggle('left', side === 'left');
+      this.root.style.top = side === 'left' ? `${leftTop}px` : '';
+    }
+    this.side = side;
+    return side;
+  }
+
   /** Live fields, every frame while shown. */
   update({ clipName, x, y, z = 0, tier, goal, script }) {
     this.$('agent-clip').textContent = behaviourWords(clipName);
@@ -62,6 +98,9 @@ export class AgentPanel {
 
   setJoined(joined) { this.joined = joined; this.refreshButtons(); }
 
+  /** A recording plays: its groups cannot be guided (the buttons say so). */
+  setRecording(on) { this.recording = on; this.refreshButtons(); }
+
   guideResult(r, text) {
     if (r.ok) { if (r.guiding) this.guiding.add(r.groupId); else this.guiding.delete(r.groupId); }
     this.$('guide-status').textContent = text;
@@ -69,8 +108,9 @@ export class AgentPanel {
   }
 
   refreshButtons() {
-    const can = this.joined && this.group !== undefined;
+    const can = this.joined && this.group !== undefined && !this.recording;
     this.$('guide-button').disabled = !can || this.guiding.has(this.group);
     this.$('release-button').disabled = !can || !this.guiding.has(this.group);
+    this.$('guide-button').title = this.recording ? kRecordingNoGuide : 'join first, then the group follows your avatar';
   }
 }

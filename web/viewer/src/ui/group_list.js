@@ -4,6 +4,8 @@
 // follow the participant's avatar, Release gives it back. Shows which groups this viewer guides
 // (from GuideResult) and how many of a group's members are in view. Writes nothing but the DOM;
 // onSelect / onGuide / onRelease go to main.js.
+import { kRecordingNoGuide } from './agent_panel.js';
+
 /** The groups matching `query`: words separated by spaces, all of which must match — a number or
  * #number: the group's id; >=n, <=n, >n, <n, =n: its size (members); any other word: part of its
  * population's name (case-insensitive). An empty query keeps every group. */
@@ -88,6 +90,9 @@ export class GroupList {
     this.refresh();
   }
 
+  /** A recording plays: its groups cannot be guided (the buttons say so). */
+  setRecording(on) { this.recording = on; this.refresh(); }
+
   guideResult(r, text) {
     if (r.ok) { if (r.guiding) this.guiding.add(r.groupId); else this.guiding.delete(r.groupId); }
     const list = [...this.guiding].map((x) => `#${x}`).join(', ');
@@ -97,9 +102,10 @@ export class GroupList {
 
   refresh() {
     const g = this.selected();
-    const can = this.joined && g >= 0;
+    const can = this.joined && g >= 0 && !this.recording;
     this.guideButton.disabled = !can || this.guiding.has(g);
     this.releaseButton.disabled = !can || !this.guiding.has(g);
-    this.guideButton.title = this.joined ? 'the group follows your avatar' : 'join first: the group follows your avatar';
+    this.guideButton.title = this.recording ? kRecordingNoGuide
+      : this.joined ? 'the group follows your avatar' : 'join first: the group follows your avatar';
   }
 }

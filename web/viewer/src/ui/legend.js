@@ -23,7 +23,7 @@ export function exitsAreEntrances(scenario) {
 }
 
 /** Entries shown in every mode: [{colour, shape, label}]; shape: dot, ring, pin, disc, area, line. */
-export function fixedEntries({ selected, pickedGroup, self, other, trails, heatmap, speedmap, multiLevel, entrances }) {
+export function fixedEntries({ selected, pickedGroup, self, other, trails, heatmap, speedmap, multiLevel, entrances, exhibits }) {
   return [
     { colour: selected, shape: 'ring', label: 'selected agent (ringed)' },
     { colour: pickedGroup, shape: 'dot', label: 'group picked in the list' },
@@ -33,6 +33,7 @@ export function fixedEntries({ selected, pickedGroup, self, other, trails, heatm
     { colour: 0xe08020, shape: 'disc', label: 'action point (arrow: facing)' },
     { colour: 0x30b050, shape: 'area', label: entrances ? 'exit (and entrance: people arrive there too)' : 'exit' },
     { colour: 0xb9a98f, shape: 'area', label: 'obstacle (solid block)' },
+    ...(exhibits ? [{ colour: 0x4a3520, shape: 'area', label: 'painting: what visitors at an action point look at (a strip along the wall from above)' }] : []),
     { colour: 0x5a5145, shape: 'line', label: 'wall, railing (1.2 m, see-through)' },
     { colour: 0xa8a296, shape: 'area', label: 'stair riser' },
     { colour: 0xd8d4cc, shape: 'area', label: 'walkable floor' },
@@ -54,6 +55,7 @@ export class Legend {
     this.speedmap = false;
     this.multiLevel = false;  // a multi-level world: the plan view's upper-floor rim is explained
     this.entrances = false;   // people also arrive in the exits (exitsAreEntrances)
+    this.exhibits = false;    // the world hangs paintings where visitors look (world_view.js, exhibits)
     root.innerHTML = '<div class="legend-head"><button class="fold" title="fold the legend">▾</button> Colour by '
       + '<select id="colour-by" title="what the agents\' colours say (B)"></select></div><div class="legend-body"></div>';
     this.select = root.querySelector('#colour-by');
@@ -74,15 +76,13 @@ export class Legend {
 
   /** Redraws when the mode, the populations or the groups changed. */
   update(mode, context) {
-    const present = (context.groups || []).filter((g) => !Array.isArray(g.members) || g.members.length > 0).length;
-    const key = JSON.stringify([mode, context.populations, (context.groups || []).length, present, this.trails, this.heatmap,
-      this.speedmap, this.multiLevel, this.entrances]);
+    const rows = [...legendOf(mode, context).map((e) => ({ ...e, shape: 'dot' })), { separator: true },
+      ...fixedEntries({ ...this.marks, trails: this.trails, heatmap: this.heatmap, speedmap: this.speedmap,
+        multiLevel: this.multiLevel, entrances: this.entrances, exhibits: this.exhibits })];
+    const key = JSON.stringify([mode, rows]);  // the groups listed and their colours included
     if (key === this.key) return;
     this.key = key;
     this.select.value = mode;
-    const rows = [...legendOf(mode, context).map((e) => ({ ...e, shape: 'dot' })), { separator: true },
-      ...fixedEntries({ ...this.marks, trails: this.trails, heatmap: this.heatmap, speedmap: this.speedmap,
-        multiLevel: this.multiLevel, entrances: this.entrances })];
     this.body.innerHTML = '';
     for (const r of rows) {
       const row = document.createElement('div');

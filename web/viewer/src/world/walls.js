@@ -155,3 +155,50 @@ export function wallRectangles(wall) {
   }
   return out;
 }
+
+/** How far in front of a looking point its wall may be [m] (the museum's paintings are 1.7 m off). */
+export const kExhibitReach = 2.5;
+
+/**
+ * What visitors look at: for every action point whose action (or clip) is a look and that faces a
+ * wall — a segment of `segments` ([{x0, y0, x1, y1}]: the walkable area's boundary and the
+ * obstacles' edges) within kExhibitReach along its orientation — an exhibit on that wall:
+ * [{point, x, y, nx, ny, width}] (the point itself, the spot on the wall 2 cm in front of it, the
+ * unit normal towards the point, a width of 1.6 × its radius clamped to 0.6–1.6 m).
+ * Points facing no wall within reach (a statue in a square) get none.
+ */
+export function exhibitsOnWalls(points, segments) {
+  const out = [];
+  for (const p of points || []) {
+    if (p.kind !== 'action' || !Array.isArray(p.position) || !/look/i.test(`${p.action || ''} ${p.clip || ''}`)) continue;
+    const o = p.orientation || [1, 0];
+    const l = Math.hypot(o[0], o[1]);
+    if (!(l > 1e-9)) continue;
+    const dx = o[0] / l, dy = o[1] / l, [px, py] = p.position;
+    let best = Infinity;
+    for (const s of segments) {
+      const ex = s.x1 - s.x0, ey = s.y1 - s.y0;
+      const den = dx * ey - dy * ex;
+      if (Math.abs(den) < 1e-12) continue;
+      const qx = s.x0 - px, qy = s.y0 - py;
+      const t = (qx * ey - qy * ex) / den, u = (qx * dy - qy * dx) / den;
+      if (t > 0 && t < best && u >= 0 && u <= 1) best = t;
+    }
+    if (!(best <= kExhibitReach)) continue;
+    const at = best - 0.02;
+    out.push({ point: p, x: px + dx * at, y: py + dy * at, nx: -dx, ny: -dy, width: Math.min(1.6, Math.max(0.6, 1.6 * (p.radius ?? 0.5))) });
+  }
+  return out;
+}
+
+/** The edges of polygons [[x, y], ...] as segments [{x0, y0, x1, y1}]. */
+export function polygonEdges(polys) {
+  const out = [];
+  for (const poly of polys || []) {
+    for (let i = 0; i < poly.length; ++i) {
+      const a = poly[i], b = poly[(i + 1) % poly.length];
+      out.push({ x0: a[0], y0: a[1], x1: b[0], y1: b[1] });
+    }
+  }
+  return out;
+}

@@ -14,7 +14,7 @@
 // them (gltf_materials.js).
 import * as THREE from 'three';
 import { terrainBounds } from './terrain.js';
-import { terrainWalls, walkableWalls, wallRectangles } from './walls.js';
+import { exhibitsOnWalls, polygonEdges, terrainWalls, walkableWalls, wallRectangles } from './walls.js';
 
 const kWallHeight = 2.4;  // [m] obstacles (shops' blocks, pillars, kiosks)
 /** Height [m] of the walls along the walkable boundary and of railings: waist to chest high, so
@@ -162,6 +162,64 @@ function measurementObject(measurements) {
   return lines;
 }
 
+/** A string's 32-bit FNV-1a hash (an exhibit's colours from its point's id: the same every time). */
+function hashOf(text) {
+  let h = 0x811c9dc5;
+  for (let i = 0; i < text.length; ++i) h = Math.imul(h ^ text.charCodeAt(i), 0x01000193) >>> 0;
+  return h;
+}
+
+/** An abstract picture for exhibit `id` on a 2D canvas context (w × h px): a ground and a few
+ * shapes in colours drawn from the id's hash. Returns the ground's colour (the plan view's mark). */
+function paintPicture(ctx, id, w, h) {
+  let s = hashOf(id) || 1;
+  const next = () => { s ^= s << 13; s >>>= 0; s ^= s >>> 17; s ^= s << 5; s >>>= 0; return s / 4294967296; };
+  const hsl = (l) => `hsl(${Math.floor(next() * 360)}, ${45 + Math.floor(next() * 35)}%, ${l}%)`;
+  const ground = hsl(35 + Math.floor(next() * 25));
+  ctx.fillStyle = ground;
+  ctx.fillRect(0, 0, w, h);
+  for (let k = 0; k < 5; ++k) {
+    ctx.fillStyle = hsl(25 + Math.floor(next() * 50));
+    const x = next() * w, y = next() * h, r = (0.1 + 0.25 * next()) * h;
+    ctx.beginPath();
+    if (next() < 0.5) ctx.arc(x, y, r, 0, 2 * Math.PI); else ctx.rect(x - r, y - r * 0.6, 2 * r, 1.2 * r);
+    ctx.fill();
+  }
+  return ground;
+}
+
+/** What visitors look at (walls.js exhibitsOnWalls): a framed picture on the wall, its bottom
+ * kExhibitBottom above the floor, and under it on the floor a strip in the picture's ground colour
+ * (a plan view sees the wall edge-on). One group named 'exhibits' (userData.segments: how many). */
+const kExhibitBottom = 0.45;  // [m]
+function exhibitObject(exhibits) {
+  const group = new THREE.Group();
+  group.name = 'exhibits';
+  group.userData.segments = exhibits.length;  // how many (worldParts)
+  const frameMat = new THREE.MeshLambertMaterial({ color: 0x4a3520, side: THREE.DoubleSide });
+  for (const e of exhibits) {
+    const w = e.width, h = 0.7 * w, z = pointHeight(e.point);
+    const canvas = document.createElement('canvas');
+    canvas.width = 96; canvas.height = 68;
+    const ground = paintPicture(canvas.getContext('2d'), String(e.point.id ?? ''), canvas.width, canvas.height);
+    const yaw = Math.atan2(e.nx, -e.ny);  // about Y: a plane's +Z normal onto the scene's (nx, 0, −ny)
+    const place = (mesh, out, up) => {
+      mesh.position.set(e.x + e.nx * out, z + up, -(e.y + e.ny * out));
+      mesh.rotation.y = yaw;
+      group.add(mesh);
+    };
+    place(new THREE.Mesh(new THREE.PlaneGeometry(w + 0.12, h + 0.12), frameMat), 0, kExhibitBottom + h / 2);
+    const picture = new THREE.Mesh(new THREE.PlaneGeometry(w, h), new THREE.MeshBasicMaterial({ map: new THREE.CanvasTexture(canvas) }));
+    picture.userData.point = e.point.id;
+    place(picture, 0.01, kExhibitBottom + h / 2);
+    const strip = new THREE.Mesh(new THREE.PlaneGeometry(w, 0.14), new THREE.MeshBasicMaterial({ color: new THREE.Color(ground) }));
+    strip.rotation.order = 'YXZ';
+    place(strip, 0.07, 0.03);
+    strip.rotation.x = -Math.PI / 2;  // lying on the floor along the wall
+  }
+  return group;
+}
+
 /** Stair risers [{x0, y0, x1, y1, zLow, zHigh}] as one opaque mesh named 'stair-risers'. */
 function riserObject(risers) {
   const mesh = new THREE.Mesh(quadGeometry(risers.map((r) => [r.x0, r.y0, r.x1, r.y1, r.zLow, r.zLow, r.zHigh, r.zHigh])),
@@ -241,6 +299,8 @@ export function buildWorld(scenario) {
     root.add(m);
   }
   if (scenario.measurements?.length) root.add(measurementObject(scenario.measurements));
+  const exhibits = exhibitsOnWalls(scenario.points, [...walls, ...polygonEdges(solids)]);
+  if (exhibits.length) root.add(exhibitObject(exhibits));
   if (scenario.terrain) addTerrain(root, scenario.terrain, 0xd8d4cc, wallMat);
 
   const mats = {
