@@ -23,9 +23,10 @@ ten store kinds spread over the mall), "restroom-1".."restroom-6" ("category": "
 concourse waypoints "hall-a-1..", "hall-b-1..", "cross-1..3", "court-west", "court-east", and the
 four entrance exits.
 
-Populations: one per social group ("group-001".."group-200", sizes drawn in [2, 6] and rebalanced
+Populations: one per social group ("party-001".."party-200", sizes drawn in [2, 6] and rebalanced
 to sum to 800) and individuals in populations of 1..5 ("solo-01".., 200 agents in all). Each
-spawns at an entrance, starts within the first 120 s, and walks a tour of 3..6 concourse
+spawns at an entrance ("party", not "group": the viewer numbers groups by the engine's group ids,
+and "group 0 (group-001)" read as off by one), starts within the first 120 s, and walks a tour of 3..6 concourse
 waypoints (an arc around the ring of halls in one direction, possibly cutting through one cross
 corridor: never back and forth) ending at an entrance exit; tours are 250..460 m long, spawn to exit
 (about 3.5..6 minutes at 1.27 m/s; with group waits and congestion the core run ends by ~12 min). "interests" (2..4 categories) and "interestsPerAgent" feed the Common
@@ -425,7 +426,7 @@ def build_scenario(seed, core_only=False, probe=False):
 
     sizes = group_sizes(rng)
     for i, n in enumerate(sizes):
-        population("group-%03d" % (i + 1), 1, n)
+        population("party-%03d" % (i + 1), 1, n)
     solos = solo_sizes(rng)
     for i, n in enumerate(solos):
         population("solo-%02d" % (i + 1), n, 1)

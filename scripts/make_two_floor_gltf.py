@@ -87,7 +87,10 @@ def main():
                                "speed": {"mean": 1.2, "sd": 0.15}}}},
         {"name": "Lamp", "translation": [12, 2.8, -5]},
     ]
-    write_gltf(out, b, nodes, "two floors", {"name": "two floors", "seed": 5, "duration": 120},
+    about = ("A two-storey hall: visitors come in on the ground floor, go up the stairs or the ramp to the "
+             "gallery to look at its two paintings, come back down past the mosaic and leave by the door. "
+             "In the plan view those upstairs have a white rim; the orbit view shows both floors.")
+    write_gltf(out, b, nodes, "two floors", {"name": "two floors", "seed": 5, "duration": 120, "description": about},
                "scripts/make_two_floor_gltf.py")
 
 

@@ -357,10 +357,11 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
       null, { timeout: 3000 }).then(() => true, () => false);
     assert.ok(back, 'L again shows them');
 
-    // T follows the selected agent: after it walks, the plan view is still centred on it.
+    // T follows the selected agent: the view closes in on it (from 40 m to 24 m high) and, after
+    // it walks, is still centred on it.
     await page.evaluate(() => {
       const { state, cameras } = globalThis.__throng;
-      cameras.planAt(state.x[0], state.y[0], 14);
+      cameras.planAt(state.x[0], state.y[0], 40);
     });
     await sleep(300);
     const [t] = await clickable(page, 1);
@@ -374,9 +375,11 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
       const i = state.index.get(id);
       const tg = cameras.plan.target;
       return { following: !!cameras.following, off: i === undefined ? null : Math.hypot(tg.x - state.x[i], -tg.z - state.y[i]),
-        status: document.querySelector('#camera-status').textContent };
+        status: document.querySelector('#camera-status').textContent,
+        high: (cameras.ortho.top - cameras.ortho.bottom) / cameras.ortho.zoom };
     }, t.id);
     assert.ok(follow.following && follow.off !== null && follow.off < 0.6, `the camera follows agent ${t.id}: ${JSON.stringify(follow)}`);
+    assert.ok(follow.high <= 24.5, `following closes in: the plan view is ${follow.high.toFixed(1)} m high`);
     await page.keyboard.press('KeyT');
     assert.equal(await page.evaluate(() => !!globalThis.__throng.cameras.following), false, 'T again stops following');
 

@@ -246,6 +246,9 @@ test('two floors: risers on the stairs and railings along the gallery', { timeou
     assert.ok(risers > 0.001, `the risers show (${(risers * 100).toFixed(2)} % of pixels)`);
     assert.ok(railings > 0.01, `the railings show (${(railings * 100).toFixed(2)} % of pixels)`);
     await shot(s.page, 'viewer_walls_two_floors.png');
+    // A glTF world says what it is too (its scene's extras carry the description).
+    const about = await s.page.evaluate(() => document.querySelector('#hud .hud-about').textContent);
+    assert.ok(about.startsWith('A two-storey hall'), `HUD description: ${about}`);
     assert.deepEqual(s.errors, []);
   } finally {
     await close(s);

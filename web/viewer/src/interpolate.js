@@ -11,6 +11,7 @@
 
 const kTwoPi = Math.PI * 2;
 const kTeleport = 5;  // [m] farther than this between frames: snap instead of gliding
+const kJumpSeconds = 2;  // [s] of simulated time between two frames: a replay's seek, not walking
 export const kStrideCycle = 1.4;  // [m] ground covered by one walk cycle (two steps) of the bundled walk
 
 /** Signed smallest difference b − a of two angles [rad], in [−π, π). */
@@ -44,6 +45,7 @@ export class CrowdState {
     this.lastFrameAt = -1;
     this.lastAdvance = 0;
     this.frames = 0;
+    this.dt = 0;  // simulated seconds a tick (the world description's dt; 0: unknown, speeds by wall time)
     this.alloc(0);
   }
 
@@ -78,6 +80,12 @@ export class CrowdState {
   applyFrame(frame, now) {
     this.advance(now);
     const sameMoment = this.frames > 0 && frame.simTick === this.lastSimTick;
+    // Simulated seconds since the last frame, when the world's dt is known (a replay played faster
+    // or slower, or frames late, then still give walking speeds); a replay's jump (back, or more than
+    // kJumpSeconds on) says nothing about anyone's speed: they start again from 0.
+    const simGap = this.frames > 0 && this.dt > 0 && Number.isFinite(frame.simTick) && Number.isFinite(this.lastSimTick)
+      ? (frame.simTick - this.lastSimTick) * this.dt : NaN;
+    const jumped = simGap < 0 || simGap > kJumpSeconds;
     this.lastSimTick = frame.simTick;
     if (this.lastFrameAt >= 0) {
       const gap = now - this.lastFrameAt;
@@ -105,12 +113,13 @@ export class CrowdState {
       const j = old.index.get(id);
       const { duration } = this.clipInfo(c);
       if (j === undefined || Math.hypot(nx - old.x[j], ny - old.y[j]) > kTeleport) {
+        this.speed[i] = j === undefined || jumped ? 0 : old.speed[j];  // a newcomer: not the speed of whoever had this slot
         this.fromX[i] = nx; this.fromY[i] = ny; this.fromZ[i] = nz; this.fromYaw[i] = nyaw;
         this.phase[i] = np; this.rate[i] = 1 / duration; this.recvPhase[i] = np; this.recvAt[i] = now;
       } else {
         this.fromX[i] = old.x[j]; this.fromY[i] = old.y[j]; this.fromZ[i] = old.z[j]; this.fromYaw[i] = old.yaw[j];
-        this.speed[i] = sameMoment ? old.speed[j]
-          : old.speed[j] * 0.7 + 0.3 * (Math.hypot(nx - old.toX[j], ny - old.toY[j]) / this.interval);
+        this.speed[i] = sameMoment ? old.speed[j] : jumped ? 0
+          : old.speed[j] * 0.7 + 0.3 * (Math.hypot(nx - old.toX[j], ny - old.toY[j]) / (simGap > 0 ? simGap : this.interval));
         if (old.clip[j] !== c) {
           this.phase[i] = np; this.rate[i] = 1 / duration; this.recvPhase[i] = np; this.recvAt[i] = now;
         } else if (np !== old.recvPhase[j]) {

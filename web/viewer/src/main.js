@@ -188,6 +188,7 @@ source.on('world', async (w) => {
   await clips.load('');
   state.setClips(w.clips || []);
   state.interval = 1 / (w.tickRate || 10);
+  state.dt = Number(w.dt) > 0 ? Number(w.dt) : 0;  // speeds from simulated time (replays at any speed, seeks)
   crowd = new CrowdView(scene, renderer, w, clips, { adaptive: lodOn, targetFrameMs: 1000 / Number(params.get('target') || 30) });
   crowd.setGround(bounds.minZ || 0);
   crowd.onGroupColours = () => { refreshLegend(); trailsStale = true; };
@@ -214,6 +215,7 @@ source.on('world', async (w) => {
   cameras = new Cameras(camera, renderer.domElement, bounds, (w.scenario || {}).terrain || null,
     ['plan', 'orbit', 'walk'].includes(camParam) ? camParam : null, panelRects);
   setMode(cameras.mode);
+  cameras.onFollowEnd = () => followNote('stopped following: it is no longer in the world');
   $('lod-toggle').checked = lodOn;
   groupList.setGroups(w.groups || []);
   globalThis.__throng = testHooks(w);
@@ -400,10 +402,12 @@ function toggleFollow() {
       const i = state.index.get(id);
       return i === undefined ? null : { x: state.x[i], y: state.y[i], z: state.z[i] };
     });
+    cameras.closeIn();
     followNote(`following agent #${id} (T stops)`);
   } else if (crowd && crowd.selectedGroup >= 0) {
     const g = crowd.selectedGroup;
     cameras.follow(() => groupCentre(g));
+    cameras.closeIn();
     followNote(`following group ${g} (T stops)`);
   } else {
     followNote('select an agent (click) or a group first, then T follows it');
@@ -442,7 +446,7 @@ bindKeys({
   speedmap: () => toggleSpeedmap(),
   screenshot: () => exporter.screenshot(),
   record: () => exporter.toggleRecording(),
-  escape: () => { help.show(false); if (cameras) cameras.follow(null); select(-1); },
+  escape: () => { help.show(false); if (cameras && cameras.following) { cameras.follow(null); followNote('stopped following'); } select(-1); },
 });
 function fitView() {
   if (!cameras) return;
@@ -494,8 +498,9 @@ function fetchAgentInfo(id) {
   clearTimeout(agentInfoTimer);
   agentInfo = null;
   if (source.kind !== 'live' || id < 0) return;
-  fetch(`/api/agent/${id}`).then((r) => (r.ok ? r.json() : null)).then((j) => {
+  fetch(`/api/agent/${id}`).then((r) => (r.ok ? r.json() : r.status === 404 ? { gone: true } : null)).then((j) => {
     if (id !== selectedId) return;
+    if (j && j.gone) { agentInfo = { goal: stateWords('left'), script: '—' }; return; }  // no more asking
     agentInfo = j && {
       goal: j.goal ? `${j.goal.point}${j.guided ? ' (guided)' : ''} — ${stateWords(j.state)}`.trim()
         : (j.guided ? 'guided' : stateWords(j.state) || '—'),
@@ -663,14 +668,20 @@ function frame() {
   globalThis.__throngStats.crowdFrames = state.frames;
   globalThis.__throngStats.others = others.size;
   globalThis.__throngStats.jointsReceived = remoteJoints.received;
+  let legendRoom = '';
   if (selectedId >= 0) {
     const i = state.index.get(selectedId);
     if (i !== undefined) {
       panel.update({ clipName: clips.name(state.clip[i]), x: state.x[i], y: state.y[i], z: state.z[i], tier: state.tier[i],
         goal: agentInfo ? agentInfo.goal : undefined, script: agentInfo ? agentInfo.script : undefined });
-      panel.keepClear(screenPoint(state.x[i], state.y[i], state.z[i] + 0.9), $('hud').getBoundingClientRect().bottom, innerWidth);
+      const side = panel.keepClear(screenPoint(state.x[i], state.y[i], state.z[i] + 0.9), $('hud').getBoundingClientRect().bottom, innerWidth);
+      // Moved to the left, the panel stands over the legend's corner: the legend keeps to the room below it.
+      if (side === 'left') legendRoom = `${Math.max(60, innerHeight - $('agent-panel').getBoundingClientRect().bottom - 20)}px`;
+    } else {
+      panel.gone();
     }
   }
+  if ($('legend').style.maxHeight !== legendRoom) $('legend').style.maxHeight = legendRoom;
 }
 /** Screen position [px] of world point (x, y, z) in the current view, or null behind the camera. */
 const screenScratch = new THREE.Vector3();

@@ -15,7 +15,8 @@ test('walk and idle read as walking and standing; other clips keep their names',
 test("the server's states in plain words; unknown ones as the server says them", () => {
   assert.match(stateWords('done'), /every goal visited/);
   assert.match(stateWords('playing a Common Ground script'), /with its group/);
-  assert.equal(stateWords('walking to its goal'), 'walking to its goal');
+  assert.match(stateWords('walking to its goal'), /standing in a queue on the way/, 'not "walking" beside "standing"');
+  assert.equal(stateWords('waiting for its group'), 'waiting for its group');
   assert.equal(stateWords(undefined), '');
 });
 

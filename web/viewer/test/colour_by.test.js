@@ -46,6 +46,9 @@ test('every mode has a legend', () => {
   }
   assert.match(legendOf('speed').at(-1).label, new RegExp(`${kSpeedMax.toFixed(1)} m/s`));
   assert.deepEqual(legendOf('population', { populations: ['a', 'b'] }).map((e) => e.label), ['a', 'b', 'no population known']);
+  const many = legendOf('population', { populations: Array.from({ length: 266 }, (_, k) => `p${k}`) }).map((e) => e.label);
+  assert.equal(many.length, 10, 'eight listed, then how many in all');
+  assert.match(many[8], /266 populations/);
 });
 
 test('a world opens coloured by group, unless every group is one person', () => {
@@ -116,14 +119,16 @@ test('groups side by side wear different colours, however many groups there are'
   assert.equal(colours.update(c.ids, c.x, c.y, c.n, c.groupOf), 0);
 });
 
-test('a group keeps its colour until one wearing the same comes close, then one of them changes', () => {
+test('a group keeps its colour for good; one arriving beside it takes another', () => {
   const colours = new GroupColours(12, 10);
   const groupOf = new Map([[0, 0], [1, 12]]);  // groups 0 and 12: the same default colour (12 colours)
-  colours.update([0, 1], [0, 100], [0, 0], 2, groupOf);
-  assert.equal(colours.index(0), colours.index(12), 'far apart they may share');
-  const before = colours.index(0);
-  assert.equal(colours.update([0, 1], [0, 3], [0, 0], 2, groupOf), 1, 'close: one changes');
-  assert.notEqual(colours.index(0), colours.index(12));
-  assert.ok(colours.index(0) === before || colours.index(12) === before, 'only one changed');
-  assert.equal(colours.update([0, 1], [0, 3], [0, 0], 2, groupOf), 0, 'then both keep theirs');
+  colours.update([0], [0], [0], 1, groupOf);
+  const first = colours.index(0);
+  assert.equal(colours.update([0, 1], [0, 3], [0, 0], 2, groupOf), 1, 'group 12 arrives 3 m away');
+  assert.notEqual(colours.index(12), first, 'it does not take the colour of the group beside it');
+  assert.equal(colours.index(0), first);
+  const second = colours.index(12);
+  assert.equal(colours.update([0, 1], [0, 50], [0, 0], 2, groupOf), 0, 'moving apart changes nothing');
+  assert.equal(colours.update([0, 1], [0, 0.5], [0, 0], 2, groupOf), 0, 'nor coming closer');
+  assert.deepEqual([colours.index(0), colours.index(12)], [first, second]);
 });

@@ -2,7 +2,7 @@
 // ids of successive frames (afresh after a seek back).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { clock, Attendance, hudWorld } from '../src/ui/hud.js';
+import { clock, Attendance, hudWorld, timeWords, goneWords } from '../src/ui/hud.js';
 
 test('clock formats seconds as m:ss or h:mm:ss', () => {
   assert.equal(clock(0), '0:00');
@@ -29,6 +29,23 @@ test('a replay seeked back starts the count of agents gone afresh', () => {
   assert.equal(a.gone, 2);
   a.frame(Uint32Array.of(1), 1, 20);
   assert.deepEqual([a.present, a.gone], [1, 0]);
+});
+
+test('a replay seeked forward counts those gone since the jump, and says so', () => {
+  const a = new Attendance();
+  a.frame(Uint32Array.of(1, 2, 3), 3, 0, 40);
+  a.frame(Uint32Array.of(2, 3), 2, 2, 40);
+  assert.equal(goneWords(a, 0.05), '  (1 gone)');
+  a.frame(Uint32Array.of(7, 8, 9), 3, 300, 40);  // 15 s on: a seek (more than 40 ticks)
+  assert.deepEqual([a.present, a.gone, a.since], [3, 0, 300], 'those jumped over were never seen');
+  a.frame(Uint32Array.of(9), 1, 302, 40);
+  assert.equal(goneWords(a, 0.05), '  (2 gone since 0:15)');
+});
+
+test('past the scenario\'s duration the clock says it runs on', () => {
+  assert.equal(timeWords(65, 300), '1:05 of 5:00');
+  assert.equal(timeWords(331, 300), '5:31 (its 5:00 are over; it runs on)');
+  assert.equal(timeWords(331, 0), '5:31');
 });
 
 test("the clock counts towards a recording's length when replaying, else the scenario's duration", () => {

@@ -106,3 +106,16 @@ test('a paused replay (the same simulated tick again) keeps the speeds; time mov
   for (let k = 61; k <= 80; ++k) s.applyFrame(frameFromAgents([{ id: 7, x: 2.4, y: 0, clip: 1 }], k - 40), 0.1 * k);
   assert.ok(s.speed[0] < 0.01, `speed ${s.speed[0]}`);
 });
+
+test('speeds come from simulated time: a replay at 4x reads the walking speed, a seek reads nobody as fast', () => {
+  const s = new CrowdState(clips, 0.1);
+  s.dt = 0.05;
+  // Played at 4x: each frame, 0.1 s apart on the wall clock, is 8 ticks (0.4 s) on, the walker 0.48 m on.
+  for (let k = 0; k <= 20; ++k) s.applyFrame(frameFromAgents([{ id: 7, x: 0.48 * k, y: 0, clip: 1 }], 8 * k), 0.1 * k);
+  near(s.speed[0], 1.2, 1e-3);
+  // A seek back to the start: a standing agent 3 m from where the walker was is not read at 30 m/s.
+  s.applyFrame(frameFromAgents([{ id: 7, x: 6.6, y: 0, clip: 1 }], 0), 2.2);
+  assert.equal(s.speed[0], 0, 'after the jump its speed starts again from 0');
+  s.applyFrame(frameFromAgents([{ id: 7, x: 6.6, y: 0, clip: 1 }], 2), 2.3);
+  assert.equal(s.speed[0], 0, 'standing: 0');
+});

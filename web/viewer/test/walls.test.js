@@ -124,5 +124,5 @@ test('what visitors look at hangs on the wall they face; a look at nothing near 
     { id: 'notice', kind: 'action', action: 'look', position: [18.5, 10], orientation: [1, 0], radius: 1 }];
   const got = exhibitsOnWalls(points, walkableWalls([square]));
   assert.deepEqual(got.map((e) => e.point.id), ['notice']);
-  assert.ok(Math.abs(got[0].x - 19.98) < 1e-9 && Math.abs(got[0].y - 10) < 1e-9 && got[0].width === 1.6);
+  assert.ok(Math.abs(got[0].x - 19.98) < 1e-9 && Math.abs(got[0].y - 10) < 1e-9 && got[0].width === 1.3);
 });

@@ -198,11 +198,29 @@ export class Cameras {
     if (fn) this.fitted.plan = this.fitted.orbit = false;
   }
 
+  /** Brings the plan or orbit camera within `metres` of what it looks at (the plan view `metres`
+   * high, the orbit camera `metres` from its target) when it is farther: following someone from a
+   * view of the whole world would show nothing move. */
+  closeIn(metres = 24) {
+    if (this.mode === 'plan') {
+      const high = (this.ortho.top - this.ortho.bottom) / this.ortho.zoom;
+      if (high > metres) {
+        this.ortho.zoom = (this.ortho.top - this.ortho.bottom) / metres;
+        this.ortho.updateProjectionMatrix();
+        this.plan.update();
+      }
+    } else if (this.mode === 'orbit') {
+      const c = this.perspective.position, t = this.orbit.target;
+      const d = c.distanceTo(t);
+      if (d > metres) { c.sub(t).multiplyScalar(metres / d).add(t); this.orbit.update(); }
+    }
+  }
+
   /** Moves the current controls' target (and the camera with it) onto the followed point. */
   applyFollow() {
     if (!this.following || this.mode === 'walk') return;
     const p = this.following();
-    if (!p) { this.following = null; return; }
+    if (!p) { this.following = null; if (this.onFollowEnd) this.onFollowEnd(); return; }  // it left
     const controls = this.mode === 'plan' ? this.plan : this.orbit;
     const cam = this.camera;
     const dx = p.x - controls.target.x, dz = -p.y - controls.target.z;

@@ -1,6 +1,6 @@
 // What an agent's colour says — pure, no three.js. Five modes (the legend, ui/legend.js, shows the
 // colours of the one in use): group (each group one of kGroupPalette's twelve colours, handed out
-// by GroupColours so that groups near each other get different ones),
+// by GroupColours so that groups arriving near each other get different ones, then kept),
 // population (the scenario's populations in order), speed (ground speed from successive positions,
 // interpolate.js, 0 … kSpeedMax on kRamp), local density (persons per m² within kDensityRadius of
 // the agent, counted on a grid of that cell size, 0 … kDensityMax on kRamp) and state, from what
@@ -39,13 +39,12 @@ export function defaultColourMode(groups, populations) {
 
 /**
  * Which of kGroupPalette's colours each group wears: with hundreds of groups colours must repeat, so
- * a group takes the colour whose nearest wearer is farthest from it (of the groups with centres within
- * `radius` metres), and keeps it while no group within half that radius wears the same — so the
- * groups one looks at side by side differ, and a colour changes only when two groups wearing it come
- * close (and another colour is worn a metre farther off).
+ * a group, when first seen, takes the colour whose nearest wearer is farthest from it (of the groups
+ * with centres within `radius` metres), and keeps it for good — a colour that changed would read as
+ * another group (a stand-in newcomer's check). So groups that arrive side by side differ.
  * Pure (no three.js): `update(ids, x, y, n, groupOf)` from the agents' stable ids and world
- * positions, `index(g)` the palette index of group g (its id modulo the palette before the first
- * update, or for a group not seen yet).
+ * positions, `index(g)` the palette index of group g (its id modulo the palette for a group not
+ * seen yet).
  */
 export class GroupColours {
   constructor(paletteSize = kGroupPalette.length, radius = kGroupColourRadius) {
@@ -59,10 +58,12 @@ export class GroupColours {
     return k === undefined ? ((g % this.n) + this.n) % this.n : k;
   }
 
-  /** Recomputes the groups' centres from the n agents (ids[i], x[i], y[i]; groupOf: id → group) and
-   * gives a colour to every group new or near another group of the same colour, lowest id first.
-   * Returns how many groups changed colour or got one. */
+  /** Gives every group first seen among the n agents (ids[i], x[i], y[i]; groupOf: id → group) a
+   * colour, lowest id first, from the groups' centres now. Returns how many got one. */
   update(ids, x, y, n, groupOf) {
+    let fresh = false;  // a group without a colour among those present (else nothing to do)
+    for (let i = 0; i < n && !fresh; ++i) { const g = groupOf.get(ids[i]); fresh = g !== undefined && !this.of.has(g); }
+    if (!fresh) return 0;
     const sum = new Map();  // group → [sx, sy, count]
     for (let i = 0; i < n; ++i) {
       const g = groupOf.get(ids[i]);
@@ -93,22 +94,20 @@ export class GroupColours {
     };
     let changed = 0;
     for (const g of groups) {
+      if (this.of.has(g)) continue;  // kept for good
       // How near the nearest other group wearing each colour is (Infinity: none within r).
       const nearest = new Float64Array(this.n).fill(Infinity);
       near(g, (h, d2) => {
         const k = this.of.get(h);
         if (k !== undefined) nearest[k] = Math.min(nearest[k], Math.sqrt(d2));
       });
-      const own = this.of.get(g);
-      if (own !== undefined && nearest[own] >= r / 2) continue;  // nobody near wears it: kept (no flicker)
-      let best = own === undefined ? this.index(g) : own;
+      let best = this.index(g);
       for (let j = 0; j < this.n; ++j) {
         const k = (this.index(g) + j) % this.n;  // from the group's own default on: the same input, the same colours
         if (nearest[k] > nearest[best]) best = k;
       }
-      // A colour already worn changes only for one whose nearest wearer is a metre farther.
-      if (own !== undefined && !(nearest[best] > nearest[own] + 1)) best = own;
-      if (best !== own) { this.of.set(g, best); changed++; }
+      this.of.set(g, best);
+      changed++;
     }
     return changed;
   }
@@ -168,8 +167,11 @@ export function localDensity(x, y, n, radius = kDensityRadius, out = new Float32
  * a group id's palette index (GroupColours.index; the id modulo the palette when not given). */
 export function legendOf(mode, { populations = [], groups = [], groupColour } = {}) {
   if (mode === 'population') {
-    return [...populations.map((p, k) => ({ colour: kGroupPalette[k % kGroupPalette.length], label: p })),
-      { colour: kNoGroup, label: 'no population known' }];
+    // At most eight listed (the mall has 266 populations): a list that runs off the screen hides the rest.
+    const shown = populations.slice(0, 8).map((p, k) => ({ colour: kGroupPalette[k % kGroupPalette.length], label: p }));
+    const more = populations.length > shown.length
+      ? [{ colour: null, label: `… ${populations.length} populations in ${kGroupPalette.length} colours` }] : [];
+    return [...shown, ...more, { colour: kNoGroup, label: 'no population known' }];
   }
   if (mode === 'speed' || mode === 'density') {
     const max = mode === 'speed' ? kSpeedMax : kDensityMax, unit = mode === 'speed' ? 'm/s' : 'persons/m²';

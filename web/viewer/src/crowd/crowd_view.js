@@ -36,7 +36,7 @@ export class CrowdView {
     this.groundZ = 0;  // the lowest floor's height [m] (setGround)
     this.populations = ((description.scenario || {}).populations || []).map((p) => p.id).filter(Boolean);
     this.groupColours = new GroupColours();  // groups side by side wear different colours (colour_by.js)
-    this.groupColoursAt = -Infinity;  // when they were last handed out [ms]
+    this.groupColoursAt = -1;  // the crowd frame they were last handed out at
     this.onGroupColours = null;  // called when a group's colour changed (the legend, the trails)
     this.setGroups(description.groups || []);
     this.colourMode = 'group';
@@ -107,10 +107,10 @@ export class CrowdView {
   }
 
   /** Per frame, before colourAt: local densities once per received crowd frame (density mode). */
-  prepareColours(state, nowMs = performance.now()) {
-    // Group colours are handed out again at most once a second, from the positions received.
-    if (this.colourMode === 'group' && state.count > 0 && nowMs - this.groupColoursAt >= 1000) {
-      this.groupColoursAt = nowMs;
+  prepareColours(state) {
+    // Groups first seen get their colours with each crowd frame received (kept for good after).
+    if (state.count > 0 && state.frames !== this.groupColoursAt) {
+      this.groupColoursAt = state.frames;
       if (this.groupColours.update(state.ids, state.toX, state.toY, state.count, this.groupOf) > 0 && this.onGroupColours) {
         this.onGroupColours();
       }

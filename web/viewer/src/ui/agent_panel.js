@@ -1,7 +1,8 @@
 // Agent panel: what the clicked agent is — id, group, behaviour (its clip), position, detail tier;
 // goal and action script fields for when the server sends them; Guide / Release buttons for its
 // group once the viewer has joined as a participant.
-const kTier = ['near (joints)', 'middle (clip + phase)', 'far (position)'];
+// How much of the body the server sends for it (its detail tier), said plainly.
+const kTier = ['full (every joint)', 'walk or pose only', 'position only (far away)'];
 
 /** What an agent is doing, in a visitor's words: the walk and idle clips are walking and standing;
  * other clips (an action, a gesture) keep their names. */
@@ -15,6 +16,7 @@ export function behaviourWords(clipName) {
 // The server's words for an agent's state (GET /api/agent/<id>: sim::AgentInfo::state), said so
 // that someone new to throng follows them; a state not listed is shown as the server says it.
 const kStateWords = {
+  'walking to its goal': 'heading there (walking, or standing in a queue on the way)',
   'done': 'done: every goal visited, it stays where it is',
   'at an action point': 'at a place of interest, doing what it came for',
   'playing a Common Ground script': 'doing something with its group (a plan they agreed on: Common Ground)',
@@ -67,6 +69,15 @@ export class AgentPanel {
 
   hide() { this.root.classList.add('hidden'); this.id = undefined; }
 
+  /** The agent shown is no longer in the world (it left, or a replay went back before it came). */
+  gone() {
+    if (this.goneId === this.id) return;
+    this.goneId = this.id;
+    this.$('agent-clip').textContent = 'gone: not in the world now';
+    this.$('agent-goal').textContent = '—';
+    this.$('agent-script').textContent = '—';
+  }
+
   /** Moves the panel to the other side of the view when it would cover the agent at screen point
    * `point` ({x, y} px, null when off screen): to the left under the HUD, whose bottom is `hudBottom`
    * [px] (panelSide). Returns the side. */
@@ -89,6 +100,7 @@ export class AgentPanel {
 
   /** Live fields, every frame while shown. */
   update({ clipName, x, y, z = 0, tier, goal, script }) {
+    this.goneId = undefined;
     this.$('agent-clip').textContent = behaviourWords(clipName);
     this.$('agent-pos').textContent = positionWords(x, y, z);
     this.$('agent-tier').textContent = kTier[tier] || '—';

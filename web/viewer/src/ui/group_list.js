@@ -105,6 +105,9 @@ export class GroupList {
     const can = this.joined && g >= 0 && !this.recording;
     this.guideButton.disabled = !can || this.guiding.has(g);
     this.releaseButton.disabled = !can || !this.guiding.has(g);
+    // One place for both (the row is too narrow for the filter, the list and two buttons).
+    this.guideButton.classList.toggle('hidden', this.guiding.has(g));
+    this.releaseButton.classList.toggle('hidden', !this.guiding.has(g));
     this.guideButton.title = this.recording ? kRecordingNoGuide
       : this.joined ? 'the group follows your avatar' : 'join first: the group follows your avatar';
   }

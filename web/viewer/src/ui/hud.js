@@ -16,12 +16,30 @@ export function clock(s) {
   return h ? `${h}:${String(m).padStart(2, '0')}:${sec}` : `${m}:${sec}`;
 }
 
-/** Agents present and gone: remembers every id seen; `ids` the latest frame's. A frame of an
- * earlier tick (a replay seeked back) starts the count afresh. */
+/** The HUD's clock: "1:05 of 5:00"; past the scenario's duration (a live world runs on) it says
+ * so instead of "5:31 of 5:00". */
+export function timeWords(t, duration) {
+  if (!duration) return clock(t);
+  return t > duration + 0.5 ? `${clock(t)} (its ${clock(duration)} are over; it runs on)` : `${clock(t)} of ${clock(duration)}`;
+}
+
+/** "  (12 gone)", "  (12 gone since 0:15)" after a replay's jump, or nothing. */
+export function goneWords(attendance, dt) {
+  if (!attendance.gone) return '';
+  return attendance.since > 0 ? `  (${attendance.gone} gone since ${clock(attendance.since * (dt || 0))})` : `  (${attendance.gone} gone)`;
+}
+
+/** Agents present and gone: remembers every id seen; `ids` the latest frame's. A replay's jump —
+ * a frame of an earlier tick, or more than `jumpTicks` later — starts the count afresh and
+ * remembers where (`since`, the tick; 0 when counted from the start): those who came and went
+ * in the part jumped over were never seen, so "gone" counts from there. */
 export class Attendance {
-  constructor() { this.seen = new Set(); this.present = 0; this.tick = -Infinity; }
-  frame(ids, count, tick = 0) {
-    if (tick < this.tick) this.seen.clear();
+  constructor() { this.seen = new Set(); this.present = 0; this.tick = -Infinity; this.since = 0; }
+  frame(ids, count, tick = 0, jumpTicks = Infinity) {
+    if (tick < this.tick || (Number.isFinite(this.tick) && tick - this.tick > jumpTicks)) {
+      this.seen.clear();
+      this.since = tick;
+    }
     this.tick = tick;
     for (let i = 0; i < count; ++i) this.seen.add(ids[i]);
     this.present = count;
@@ -80,7 +98,7 @@ export class Hud {
   /** Each crowd frame received. */
   frame(f) {
     this.simTick = f.simTick || 0;
-    this.attendance.frame(f.ids, f.count, this.simTick);
+    this.attendance.frame(f.ids, f.count, this.simTick, this.world.dt > 0 ? 2 / this.world.dt : Infinity);  // 2 s: a seek
   }
 
   /** Simulated time [s] of the latest frame. */
@@ -111,11 +129,10 @@ export class Hud {
 
   draw(source, counts, agents, lod) {
     const w = this.world;
-    const time = `${clock(this.simTime)}${w.duration ? ` of ${clock(w.duration)}` : ''}`;
     this.main.textContent = [
       w.name || 'throng',
-      `time         ${time}`,
-      `agents       ${agents}${this.attendance.gone ? `  (${this.attendance.gone} gone)` : ''}`,
+      `time         ${timeWords(this.simTime, w.duration)}`,
+      `agents       ${agents}${goneWords(this.attendance, w.dt)}`,
       `participants ${source.participants}`,
       `fps          ${this.fps.toFixed(0)}`,
     ].join('\n');

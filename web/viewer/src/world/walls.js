@@ -164,7 +164,7 @@ export const kExhibitReach = 2.5;
  * wall — a segment of `segments` ([{x0, y0, x1, y1}]: the walkable area's boundary and the
  * obstacles' edges) within kExhibitReach along its orientation — an exhibit on that wall:
  * [{point, x, y, nx, ny, width}] (the point itself, the spot on the wall 2 cm in front of it, the
- * unit normal towards the point, a width of 1.6 × its radius clamped to 0.6–1.6 m).
+ * unit normal towards the point, a width of 1.6 × its radius clamped to 0.6–1.3 m).
  * Points facing no wall within reach (a statue in a square) get none.
  */
 export function exhibitsOnWalls(points, segments) {
@@ -186,7 +186,7 @@ export function exhibitsOnWalls(points, segments) {
     }
     if (!(best <= kExhibitReach)) continue;
     const at = best - 0.02;
-    out.push({ point: p, x: px + dx * at, y: py + dy * at, nx: -dx, ny: -dy, width: Math.min(1.6, Math.max(0.6, 1.6 * (p.radius ?? 0.5))) });
+    out.push({ point: p, x: px + dx * at, y: py + dy * at, nx: -dx, ny: -dy, width: Math.min(1.3, Math.max(0.6, 1.6 * (p.radius ?? 0.5))) });
   }
   return out;
 }

@@ -191,7 +191,7 @@ function paintPicture(ctx, id, w, h) {
 /** What visitors look at (walls.js exhibitsOnWalls): a framed picture on the wall, its bottom
  * kExhibitBottom above the floor, and under it on the floor a strip in the picture's ground colour
  * (a plan view sees the wall edge-on). One group named 'exhibits' (userData.segments: how many). */
-const kExhibitBottom = 0.45;  // [m]
+const kExhibitBottom = 0.2;  // [m] low enough that the picture's top stays under the 1.2 m wall's
 function exhibitObject(exhibits) {
   const group = new THREE.Group();
   group.name = 'exhibits';
