@@ -134,7 +134,7 @@ TEST(Phases, IntegrateMovesEachRowByItsNewVelocityAlongTheMesh) {
   std::vector<ChunkOutput> chunks(1);
   const OneGroup goals(3);
   core::TaskSystem tasks(1);
-  integrate(IntegrateInput{dt, 0, nvx, nvy, goalState, mode, speed, actionEnd, {}, {}, goals.view(), {}, {}, {}, workers},
+  integrate(IntegrateInput{dt, 0, nvx, nvy, nvx, nvy, goalState, mode, speed, actionEnd, {}, {}, goals.view(), {}, {}, {}, workers},
             IntegrateOutput{px, py, {}, poly, vx, vy, stuck, clip, phase, ox, oy, chunks}, tasks);
   EXPECT_NEAR(px[0], 5.1f, 1e-5f);
   EXPECT_NEAR(py[0], 5.05f, 1e-5f);
@@ -151,6 +151,34 @@ TEST(Phases, IntegrateMovesEachRowByItsNewVelocityAlongTheMesh) {
   EXPECT_EQ(stuck[0], 0.0f) << "walking freely is not being stuck";
   EXPECT_NEAR(chunks[0].walkingTime, 3.0 * dt, 1e-6) << "three agents in walking mode";
   EXPECT_NEAR(chunks[0].walkedDistance, std::hypot(0.1, 0.05) + (px[2] - 19.5), 1e-5);
+}
+
+TEST(Phases, IntegrateTurnsASlowBodyTowardWhereItWantsToGoNotWhereItIsShoved) {
+  // Two agents facing +x and wanting to go +x, both moved along +y: row 0 at 0.3 m/s (shoved
+  // sideways in a queue) keeps turning toward +x; row 1 at 1.0 m/s (walking that way) turns to +y.
+  auto mesh = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)}, {}, nav::NavMeshConfig{});
+  ASSERT_TRUE(mesh.ok());
+  std::vector<WorkerScratch> workers(1);
+  workers[0].query = std::make_unique<nav::NavQuery>(mesh.value());
+  const float dt = 0.1f;
+  std::vector<float> px{5, 10}, py{5, 5}, vx(2, 0), vy(2, 0), stuck(2, 0), phase(2, 0);
+  const float c = std::cos(0.5f), s = std::sin(0.5f);  // both heading 0.5 rad left of +x
+  std::vector<float> ox(2, c), oy(2, s);
+  std::vector<std::uint32_t> poly(2);
+  for (std::size_t r = 0; r < 2; ++r) poly[r] = static_cast<std::uint32_t>(workers[0].query->nearest({px[r], py[r]})->second);
+  std::vector<std::uint16_t> clip(2, kClipIdle);
+  const std::vector<float> nvx{0.0f, 0.0f}, nvy{0.3f, 1.0f}, pvx{1.3f, 1.3f}, pvy{0.0f, 0.0f}, speed(2, 1.3f);
+  const std::vector<GoalState> goalState(2, GoalState::Seeking);
+  const std::vector<AgentMode> mode(2, AgentMode::Walking);
+  const std::vector<std::uint32_t> actionEnd(2, 0);
+  std::vector<ChunkOutput> chunks(1);
+  const OneGroup goals(2);
+  core::TaskSystem tasks(1);
+  integrate(IntegrateInput{dt, 0, nvx, nvy, pvx, pvy, goalState, mode, speed, actionEnd, {}, {}, goals.view(), {}, {}, {}, workers},
+            IntegrateOutput{px, py, {}, poly, vx, vy, stuck, clip, phase, ox, oy, chunks}, tasks);
+  EXPECT_NEAR(py[0], 5.03f, 1e-4f) << "it is moved sideways";
+  EXPECT_LT(oy[0], s) << "but its body turns toward where it wants to go (+x)";
+  EXPECT_GT(oy[1], s) << "walking at 1 m/s, the body turns toward the motion (+y)";
 }
 
 namespace {

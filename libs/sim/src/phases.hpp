@@ -289,6 +289,7 @@ struct IntegrateInput {
   float dt;                                   ///< [s]
   std::uint64_t tick;
   std::span<const float> newVelX, newVelY;    ///< the models' velocities from steer [m/s]
+  std::span<const float> prefVelX, prefVelY;  ///< the preferred (desired) velocities from steer [m/s]
   std::span<const GoalState> goalState;
   std::span<const AgentMode> mode;
   std::span<const float> speed;               ///< desired walking speed [m/s] (stuck detection)
