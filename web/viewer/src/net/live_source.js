@@ -234,6 +234,8 @@ export class LiveSource extends Emitter {
     if (this.token) this.send(encodeLeave({ token: this.token }));
     this.joinName = null;
     this.token = 0n;
+    this.present.delete(this.participantId);  // gone at once from our own count (the HUD's participants)
+    this.countParticipants();
   }
 
   /** The avatar's pose, world metres and radians; sent at most every 100 ms. */
