@@ -64,7 +64,7 @@ test('the group legend lists groups with someone in them and says how colours ar
   const groups = Array.from({ length: 23 }, (_, id) => ({ id, population: 'p', members: id === 2 ? [] : [id] }));
   const rows = legendOf('group', { groups });
   assert.deepEqual(rows.slice(0, 5).map((r) => r.label.split(' ')[1]), ['0', '1', '3', '4', '5'], 'group 2 has left');
-  assert.match(rows[5].label, new RegExp(`22 groups in ${kGroupPalette.length} colours: groups side by side differ`));
+  assert.match(rows[5].label, new RegExp(`22 groups in ${kGroupPalette.length} colours: groups that came side by side differ`));
   const shifted = legendOf('group', { groups, groupColour: (g) => (g + 1) % kGroupPalette.length });
   assert.equal(shifted[0].colour, kGroupPalette[1], 'the legend shows the colour the group wears');
   assert.equal(legendOf('group', { groups: groups.slice(0, 3) }).length, 2, 'no "more" row when all are listed');

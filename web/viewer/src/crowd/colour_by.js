@@ -187,6 +187,6 @@ export function legendOf(mode, { populations = [], groups = [], groupColour } = 
   const shown = present.slice(0, 5).map((g) => ({ colour: kGroupPalette[indexOf(g.id)],
     label: `group ${g.id}${g.population ? ` (${g.population})` : ''}` }));
   const more = present.length > shown.length
-    ? [{ colour: null, label: `… ${present.length} groups in ${n} colours: groups side by side differ, far apart ones may share one` }] : [];
+    ? [{ colour: null, label: `… ${present.length} groups in ${n} colours: groups that came side by side differ, far apart ones may share one` }] : [];
   return [...shown, ...more];
 }
