@@ -115,17 +115,35 @@ TEST(Phases, PlanGivesAPathOnlyToRowsThatAskedForOne) {
   EXPECT_TRUE(events.empty()) << "a complete path raises no PathPartial";
 }
 
+namespace {
+
+/// One worker whose navmesh query covers a 20 × 10 m room (integrate's moveAlongSurface); no query
+/// when the mesh could not be built.
+std::vector<WorkerScratch> roomWorkers() {
+  std::vector<WorkerScratch> workers(1);
+  auto mesh = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)}, {}, nav::NavMeshConfig{});
+  if (mesh.ok()) workers[0].query = std::make_unique<nav::NavQuery>(mesh.value());
+  return workers;
+}
+
+/// The navmesh polygon under each (px[r], py[r]).
+std::vector<std::uint32_t> polysUnder(const std::vector<WorkerScratch>& workers, const std::vector<float>& px,
+                                      const std::vector<float>& py) {
+  std::vector<std::uint32_t> poly(px.size());
+  for (std::size_t r = 0; r < px.size(); ++r) poly[r] = static_cast<std::uint32_t>(workers[0].query->nearest({px[r], py[r]})->second);
+  return poly;
+}
+
+}  // namespace
+
 TEST(Phases, IntegrateMovesEachRowByItsNewVelocityAlongTheMesh) {
   // Three walkers in a 20 × 10 m room, dt = 0.1 s: row 0 free (moves by newVel·dt), row 1 exited
   // (stays), row 2 half a metre from the east wall at 10 m/s (stops at the wall, on the mesh).
-  auto mesh = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)}, {}, nav::NavMeshConfig{});
-  ASSERT_TRUE(mesh.ok());
-  std::vector<WorkerScratch> workers(1);
-  workers[0].query = std::make_unique<nav::NavQuery>(mesh.value());
+  std::vector<WorkerScratch> workers = roomWorkers();
+  ASSERT_TRUE(workers[0].query);
   const float dt = 0.1f;
   std::vector<float> px{5, 8, 19.5f}, py{5, 5, 5}, vx(3, 0), vy(3, 0), stuck(3, 0), phase(3, 0), ox(3, 1), oy(3, 0);
-  std::vector<std::uint32_t> poly(3);
-  for (std::size_t r = 0; r < 3; ++r) poly[r] = static_cast<std::uint32_t>(workers[0].query->nearest({px[r], py[r]})->second);
+  std::vector<std::uint32_t> poly = polysUnder(workers, px, py);
   std::vector<std::uint16_t> clip(3, kClipIdle);
   const std::vector<float> nvx{1.0f, 1.0f, 10.0f}, nvy{0.5f, 0.0f, 0.0f}, speed(3, 1.3f);
   const std::vector<GoalState> goalState{GoalState::Seeking, GoalState::Exited, GoalState::Seeking};
@@ -156,16 +174,13 @@ TEST(Phases, IntegrateMovesEachRowByItsNewVelocityAlongTheMesh) {
 TEST(Phases, IntegrateTurnsASlowBodyTowardWhereItWantsToGoNotWhereItIsShoved) {
   // Two agents facing +x and wanting to go +x, both moved along +y: row 0 at 0.3 m/s (shoved
   // sideways in a queue) keeps turning toward +x; row 1 at 1.0 m/s (walking that way) turns to +y.
-  auto mesh = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)}, {}, nav::NavMeshConfig{});
-  ASSERT_TRUE(mesh.ok());
-  std::vector<WorkerScratch> workers(1);
-  workers[0].query = std::make_unique<nav::NavQuery>(mesh.value());
+  std::vector<WorkerScratch> workers = roomWorkers();
+  ASSERT_TRUE(workers[0].query);
   const float dt = 0.1f;
   std::vector<float> px{5, 10}, py{5, 5}, vx(2, 0), vy(2, 0), stuck(2, 0), phase(2, 0);
   const float c = std::cos(0.5f), s = std::sin(0.5f);  // both heading 0.5 rad left of +x
   std::vector<float> ox(2, c), oy(2, s);
-  std::vector<std::uint32_t> poly(2);
-  for (std::size_t r = 0; r < 2; ++r) poly[r] = static_cast<std::uint32_t>(workers[0].query->nearest({px[r], py[r]})->second);
+  std::vector<std::uint32_t> poly = polysUnder(workers, px, py);
   std::vector<std::uint16_t> clip(2, kClipIdle);
   const std::vector<float> nvx{0.0f, 0.0f}, nvy{0.3f, 1.0f}, pvx{1.3f, 1.3f}, pvy{0.0f, 0.0f}, speed(2, 1.3f);
   const std::vector<GoalState> goalState(2, GoalState::Seeking);
