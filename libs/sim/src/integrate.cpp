@@ -1,8 +1,9 @@
 // integrate — commits the avoidance models' velocities: each agent moves by v·dt along the navmesh
 // surface (Detour's moveAlongSurface: nobody crosses a wall, whatever the model decided), its
 // velocity becomes the displacement actually made, its heading turns toward its motion (toward
-// where it wants to go while slower than 0.5 m/s), its animation advances, and walking distance and time are summed per chunk (combined in chunk order
-// by emit). Reads IntegrateInput; writes IntegrateOutput (phases.hpp), each row only its own.
+// where it wants to go while slower than 0.5 m/s), its animation advances, and walking distance
+// and time are summed per chunk (combined in chunk order by emit). Reads IntegrateInput; writes
+// IntegrateOutput (phases.hpp), each row only its own.
 #include <algorithm>
 #include <cmath>
 

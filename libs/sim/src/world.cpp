@@ -214,8 +214,8 @@ void World::Impl::addModelScratch(WorkerScratch& ws) const {
 }
 
 void World::Impl::integrate(const core::TaskSystem& tasks) {
-  const IntegrateInput in{desc.dt, tick, agents.newVelX, agents.newVelY, agents.prefVelX, agents.prefVelY, agents.goalState, agents.mode, agents.speed,
-                          agents.actionEndTick, agents.scriptWalk, agents.scriptClip, goalView(), desc.points,
+  const IntegrateInput in{desc.dt, tick, agents.newVelX, agents.newVelY, agents.prefVelX, agents.prefVelY,
+                          agents.goalState, agents.mode, agents.speed, agents.actionEndTick, agents.scriptWalk, agents.scriptClip, goalView(), desc.points,
                           pointClip, commonGround.clipDuration, scratch};
   const IntegrateOutput out{agents.posX, agents.posY, agents.posZ, agents.polyRef, agents.velX, agents.velY,
                             agents.stuckTime, agents.animClip, agents.animPhase, agents.oriX, agents.oriY, chunks};

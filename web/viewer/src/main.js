@@ -292,11 +292,8 @@ function testHooks(w) {
     },
     /** Screen position [px] of world point (x, y, z) in the current camera, or null behind it. */
     toScreen(x, y, z = 0.9) {
-      const cam = view();
-      cam.updateMatrixWorld();  // a camera moved since the last frame projects where it is now
-      const v = new THREE.Vector3(x, z, -y).project(cam);
-      if (v.z > 1) return null;
-      return { x: (v.x + 1) / 2 * innerWidth, y: (1 - v.y) / 2 * innerHeight };
+      view().updateMatrixWorld();  // a camera moved since the last frame projects where it is now
+      return screenPoint(x, y, z);
     },
   };
 }
@@ -462,6 +459,7 @@ $('agent-follow').onclick = () => { if (cameras) cameras.follow(null); toggleFol
 $('lod-toggle').onchange = (e) => { if (crowd) crowd.adaptive = e.target.checked; };
 // Replay: the in-memory demo recording, or a server replaying a recording (its first ReplayStatus).
 let timeline = source.kind === 'replay' ? new Timeline($('timeline'), source) : null;
+let recordingMarked = false;  // markRecording ran
 source.on('timeline', (s) => {
   if (!timeline) { timeline = new Timeline($('timeline'), source); timeline.update(s); }
   markRecording();
@@ -473,6 +471,8 @@ if (timeline) markRecording();
  * react; played in the page alone there is nobody to join. Edit opens the scenario the recording
  * was made from. No group of a recording can be guided. */
 function markRecording() {
+  if (recordingMarked) return;  // ReplayStatus comes once a second: the controls are set once
+  recordingMarked = true;
   const served = source instanceof LiveSource;  // a recording throng serve plays (kind 'replay' once it says so)
   $('join-button').disabled = !served;
   $('join-button').title = served ? 'walk among the recorded crowd, seen by others watching it (the recorded people do not react to you)'

@@ -801,21 +801,33 @@ class AnticipationVelocityModel final : public OperationalModel {
     const float q = params_[a.population[row]].passageRatio;
     core::Vec2 out;
     forEachNeighbour(in, row, [&](std::uint32_t o, core::Vec2 d) {
-      const float l = a.radius[row] + a.radius[o];
-      const float dist2 = core::lengthSq(d);
-      if (dist2 >= l * l || a.goalState[o] == GoalState::Exited) return;
-      const float dist = std::sqrt(dist2);
-      const core::Vec2 u = dist > 1e-6f ? d / dist : core::Vec2{a.id[row] < a.id[o] ? 1.0f : -1.0f, 0.0f};
-      const core::Vec2 oo{a.oriX[o], a.oriY[o]};
-      const float depth = 0.5f * (ellipseReach(oi, u, l, q) + ellipseReach(oo, u, l, params_[a.population[o]].passageRatio)) - dist;
-      if (depth <= 0.0f) return;
-      const float share = kSeparationShare * depth;
+      if (a.goalState[o] == GoalState::Exited) return;
+      const Overlap ov = overlap(a, row, o, d, oi, q);
+      if (ov.depth <= 0.0f) return;
+      const core::Vec2 u = ov.u, oo{a.oriX[o], a.oriY[o]};
+      const float share = kSeparationShare * ov.depth;
       core::Vec2 mine = -u * share;
       if (const float back = core::dot(mine, oi); back < 0.0f) mine -= oi * back;         // i behind o: not back
       if (const float back = core::dot(u * share, oo); back < 0.0f) mine -= oo * back;    // o behind i: i steps on
       out += mine;
     });
     return out;
+  }
+
+  /// How deep i's ellipse (heading oi, depth ratio qi) and neighbour o's (d from i to o) overlap along
+  /// their line of centres u (pointing from i to o; ids break the tie of two bodies on one spot) [m];
+  /// depth 0 when their discs do not overlap (contact and separation share it).
+  struct Overlap {
+    core::Vec2 u;
+    float depth = 0.0f;
+  };
+  Overlap overlap(const AgentStore& a, std::size_t row, std::uint32_t o, core::Vec2 d, core::Vec2 oi, float qi) const {
+    const float l = a.radius[row] + a.radius[o];
+    const float dist2 = core::lengthSq(d);
+    if (dist2 >= l * l) return {};
+    const float dist = std::sqrt(dist2);
+    const core::Vec2 u = dist > 1e-6f ? d / dist : core::Vec2{a.id[row] < a.id[o] ? 1.0f : -1.0f, 0.0f};
+    return {u, 0.5f * (ellipseReach(oi, u, l, qi) + ellipseReach({a.oriX[o], a.oriY[o]}, u, l, params_[a.population[o]].passageRatio)) - dist};
   }
 
   /// How far along the unit vector u an ellipse of shoulder semi-axis l (across its heading `ori`)
@@ -837,14 +849,8 @@ class AnticipationVelocityModel final : public OperationalModel {
     const core::Vec2 oi{a.oriX[row], a.oriY[row]};
     core::Vec2 out;
     forEachNeighbour(in, row, [&](std::uint32_t o, core::Vec2 d) {
-      const float l = a.radius[row] + a.radius[o];
-      const float dist2 = core::lengthSq(d);
-      if (dist2 >= l * l) return;
-      const float dist = std::sqrt(dist2);
-      const core::Vec2 u = dist > 1e-6f ? d / dist : core::Vec2{a.id[row] < a.id[o] ? 1.0f : -1.0f, 0.0f};
-      const float depth = 0.5f * (ellipseReach(oi, u, l, p.passageRatio) +
-                                  ellipseReach({a.oriX[o], a.oriY[o]}, u, l, params_[a.population[o]].passageRatio)) - dist;
-      if (depth > kContactSlack) out -= u * (kContactShare * (depth - kContactSlack) / dt_);
+      const Overlap ov = overlap(a, row, o, d, oi, p.passageRatio);
+      if (ov.depth > kContactSlack) out -= ov.u * (kContactShare * (ov.depth - kContactSlack) / dt_);
     });
     const float len = core::length(out);
     return len > kContactSpeed ? out * (kContactSpeed / len) : out;
