@@ -4,7 +4,8 @@
 // recording's duration (ReplayStatus); playing, the time advances and crowd frames arrive with
 // agents drawn; Pause stops the time (and the crowd); scrubbing to a time jumps there (status time,
 // frame ticks and positions — the same positions each time that moment is sought); a faster speed
-// makes the time run faster; Join, Edit and Guide say what they do on a recording. Run: THRONG_EXE=build/apps/throng/throng node --test web/viewer/e2e/replay.e2e.test.mjs
+// makes the time run faster; Join, Edit and Guide say what they do on a recording; the in-page
+// demo replay (?demo&replay) offers nobody to join. Run: THRONG_EXE=build/apps/throng/throng node --test web/viewer/e2e/replay.e2e.test.mjs
 // Fails (never skips) without THRONG_EXE, web/node_modules, web/dist or chromium, saying which.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -166,5 +167,26 @@ test('viewer replays a recording from throng serve FILE.sqlite', { timeout: 6000
     if (browser) await browser.close();
     await stopServer(server);
     fs.rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+test('the in-page demo replay (?demo&replay) offers nobody to join and raises no page error', { timeout: 60000 }, async () => {
+  requirePrerequisites('replay e2e');
+  const server = await startServer(path.join(repo, 'scenarios/museum.json'));
+  let browser;
+  const errors = [];
+  try {
+    browser = await launchBrowser();
+    const page = await openViewer(browser, `${server.url}?demo&replay`, errors);
+    await page.waitForFunction(() => globalThis.__throng && globalThis.__throng.source
+      && !document.querySelector('#timeline').classList.contains('hidden'), null, { timeout: 20000 });
+    const join = await page.evaluate(() => ({ disabled: document.querySelector('#join-button').disabled,
+      status: document.querySelector('#join-status').textContent }));
+    assert.ok(join.disabled, `Join is off: ${JSON.stringify(join)}`);
+    assert.match(join.status, /nobody to join/);
+    assert.deepEqual(errors, []);
+  } finally {
+    if (browser) await browser.close();
+    await stopServer(server);
   }
 });
