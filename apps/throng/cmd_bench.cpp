@@ -355,6 +355,7 @@ void BenchRunner::print(const Measurement& m) {
     }
     if (fileMode_) line["scenario_file"] = filePath_;
     if (m.engine != kDetourCrowdEngine) line["model"] = options_.model.empty() ? (fileMode_ ? "scenario" : "orca") : options_.model;
+    if (m.engine != kDetourCrowdEngine) line["row_order"] = options_.rowOrder;
     if (m.recordedFps) {
       line["recording"] = {{"fps", *m.recordedFps}, {"frames", m.frames}, {"close_s", m.closeSeconds}};
     }
@@ -430,6 +431,7 @@ int BenchRunner::runLayouts() {
   for (const std::size_t n : counts) {
     sim::ScenarioDesc desc = bench::makeScenario(layout_, n, options_.seed);
     applyModel(desc, options_.model);
+    applyRowOrder(desc, options_.rowOrder);
     duration_ = desc.duration;
     status(fmt::format("{} N={}: building navmesh", label_, n), true);
     auto navmesh = bench::buildNavMesh(desc);
@@ -559,6 +561,13 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
                   "\"Models\"); default: in-memory scenarios ORCA, a scenario file its own")
       ->type_name("NAME")
       ->check(CLI::IsMember(models));
+  cmd->add_option("--row-order", options.rowOrder,
+                  "How the world keeps its agent rows: auto (spatially from 20,000 agents), id (ascending id) or "
+                  "spatial (sorted along a Hilbert curve every 2 simulated seconds); the same trajectories for any "
+                  "thread count either way (docs/performance.md, \"Row order\")")
+      ->type_name("ORDER")
+      ->check(CLI::IsMember({"auto", "id", "spatial"}))
+      ->capture_default_str();
   cmd->add_flag("--no-baseline", options.noBaseline, "Skip the DetourCrowd baseline");
   cmd->add_option("--baseline-max", options.baselineMax,
                   "Largest agent count DetourCrowd is run at (it is slow)")

@@ -72,6 +72,7 @@ int BenchRunner::runFile() {
   }
   sim::ScenarioDesc& desc = loaded->desc;
   applyModel(desc, options_.model);
+  applyRowOrder(desc, options_.rowOrder);
   if (options_.duration) desc.duration = std::min(desc.duration, static_cast<float>(*options_.duration));
   dt_ = desc.dt;
   duration_ = desc.duration;

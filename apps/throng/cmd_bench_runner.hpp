@@ -33,6 +33,11 @@ inline void applyModel(sim::ScenarioDesc& desc, const std::string& name) {
   for (sim::PopulationDesc& pop : desc.populations) pop.model = sim::ModelDesc(model->kind);
 }
 
+/// `--row-order auto|id|spatial` (sim::RowOrder; CLI11 checked the name).
+inline void applyRowOrder(sim::ScenarioDesc& desc, const std::string& name) {
+  desc.rowOrder = name == "id" ? sim::RowOrder::Id : name == "spatial" ? sim::RowOrder::Spatial : sim::RowOrder::Auto;
+}
+
 /// The engine name DetourCrowd's rows carry (bench::BaselineResult::engine).
 inline constexpr const char* kDetourCrowdEngine = "detourcrowd";
 

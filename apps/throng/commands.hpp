@@ -72,6 +72,7 @@ struct BenchOptions {
   std::size_t baselineMax = 20000;      ///< largest agent count DetourCrowd runs at
   bool phaseTimes = false;              ///< also time every phase of the timed ticks
   std::string model;                    ///< every population walks with this model (its defaults); empty = as given
+  std::string rowOrder = "auto";        ///< "auto", "id" or "spatial" (sim::RowOrder)
 };
 
 struct ServeOptions {

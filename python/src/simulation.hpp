@@ -124,6 +124,8 @@ class Simulation {
     const double ratio = 1.0 / (options.fps * desc_.dt);
     stride_ = static_cast<std::uint64_t>(std::max(1.0, std::round(ratio)));
     if (options.record) openRecording(*options.record, options);
+    // AgentView promises ascending ids (docs/python.md): rows stay in id order (sim::RowOrder).
+    desc_.rowOrder = sim::RowOrder::Id;
     auto world = sim::World::create(desc_, loaded_->navmesh);
     if (!world) raiseScenarioError(world.errors());
     world_ = std::move(world).value();

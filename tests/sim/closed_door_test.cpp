@@ -183,7 +183,7 @@ TEST(ClosedDoor, SomeoneStandingInTheDoorwayStepsOutWhenItCloses) {
   auto created = sim::World::create(d);
   ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
   sim::World& w = *created.value();
-  const Crossings standing = walk(w, 1.9, 0.0, 0.0);
+  walk(w, 1.9, 0.0, 0.0);
   const auto f = w.takeFrame();
   int inDoor = 0;
   for (std::size_t i = 0; i < f->size(); ++i) inDoor += inside(kSouthDoor, f->posX[i], f->posY[i]) ? 1 : 0;

@@ -202,7 +202,7 @@ namespace {
 DecideOutput decideOutput(AgentStore& a, std::span<ChunkOutput> chunks) {
   return {a.goalState, a.mode, a.targetX, a.targetY, a.targetZ, a.corners, a.needPath, a.goalPending,
           a.progressDistance, a.actionEndTick, a.oriX, a.oriY, a.sociologicalEffect, a.sociologicalOther,
-          a.desirePoint, a.desireTrigger, chunks};
+          a.desirePoint, a.desireTrigger, chunks, a.dose};
 }
 
 /// A stopping action point at `position` of `radius`, 2 s long, facing +y.
@@ -503,7 +503,7 @@ TEST(Phases, TakeFrameHandsOverAgentsEventsSpawnsAndCommonGround) {
   commonGround.pendingScript.push_back(ScriptRecord{});
   commonGround.pendingCoordinations.push_back(CoordinationRecord{});
   const FrameOutput out{spawner, pending, commonGround};
-  const FramePtr frame = takeFrame(FrameInput{w.agents, 5, 0.5f}, out);
+  const FramePtr frame = takeFrame(FrameInput{w.agents, 5, 0.5f, {}}, out);
   EXPECT_EQ(frame->tick, 5u);
   EXPECT_DOUBLE_EQ(frame->time, 2.5);
   EXPECT_EQ(frame->ids, (std::vector<std::uint32_t>{0, 1}));
@@ -518,5 +518,38 @@ TEST(Phases, TakeFrameHandsOverAgentsEventsSpawnsAndCommonGround) {
   EXPECT_TRUE(pending.empty());
   EXPECT_TRUE(commonGround.pendingScript.empty());
   EXPECT_TRUE(commonGround.pendingCoordinations.empty());
-  EXPECT_TRUE(takeFrame(FrameInput{w.agents, 6, 0.5f}, out)->events.empty()) << "handed over once";
+  EXPECT_TRUE(takeFrame(FrameInput{w.agents, 6, 0.5f, {}}, out)->events.empty()) << "handed over once";
+}
+
+TEST(Phases, PlanServesPathRequestsInIdOrderWhateverTheRowOrder) {
+  // 6000 agents ask at once for the way round the block; one tick's budget serves only the first
+  // requests. Rows hold the ids in reverse (rows sorted spatially, row_order.cpp): the lowest ids
+  // must still come first.
+  auto mesh = nav::NavMesh::build(std::vector<core::Polygon>{rect(0, 0, 20, 10)},
+                                  std::vector<core::Polygon>{rect(8, 0, 12, 7)}, nav::NavMeshConfig{});
+  ASSERT_TRUE(mesh.ok());
+  nav::PathQueue queue(mesh.value());
+  constexpr std::size_t n = 6000;
+  std::vector<std::uint32_t> ids(n);
+  for (std::size_t r = 0; r < n; ++r) ids[r] = static_cast<std::uint32_t>(n - 1 - r);
+  const std::vector<float> xs(n, 2.0f), ys(n, 2.0f), tx(n, 18.0f), ty(n, 2.0f);
+  std::vector<std::uint8_t> needPath(n, 1);
+  std::vector<nav::PathTicket> tickets(n, 0);
+  std::vector<CornerPath> corners(n);
+  std::vector<Event> events;
+  const OneGroup goals(n);
+  plan(PlanInput{7, ids, {}, xs, ys, tx, ty, {}, {}, goals.view()}, PlanOutput{needPath, tickets, corners, queue, events});
+  std::uint32_t servedMax = 0, waitingMin = UINT32_MAX;
+  std::size_t served = 0;
+  for (std::size_t r = 0; r < n; ++r) {
+    if (!corners[r].empty()) {
+      ++served;
+      servedMax = std::max(servedMax, ids[r]);
+    } else {
+      waitingMin = std::min(waitingMin, ids[r]);
+    }
+  }
+  ASSERT_GT(served, 0u);
+  ASSERT_LT(served, n) << "the premise: one tick's budget does not serve everyone";
+  EXPECT_LT(servedMax, waitingMin) << served << " served";
 }

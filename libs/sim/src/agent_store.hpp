@@ -1,13 +1,15 @@
-// AgentStore — the agents' hot data as structure of arrays: one dense row per agent present,
-// rows always in ascending stable-id order (new agents get the next id and are appended; removal
-// is a stable compaction in the emit phase). Phases read columns and write only their own row.
+// AgentStore — the agents' hot data as structure of arrays: one dense row per agent present, in
+// ascending stable-id order until the World sorts them spatially (ScenarioDesc::rowOrder, permute;
+// new agents get the next id and are appended; removal is a stable compaction in the emit phase). Phases read columns and write only their own row.
 // The published columns (World::agentColumns) can be kept from being freed while zero-copy readers
 // hold them (keepRetired).
 #pragma once
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <memory>
+#include <span>
 #include <type_traits>
 #include <vector>
 
@@ -225,6 +227,39 @@ struct AgentStore {
       column.reserve(capacity);
       column.assign(old->begin(), old->end());
       retired.push_back(std::move(old));
+    });
+  }
+
+  /// Puts the rows in the order `order` gives (new row i is old row order[i]; a permutation of
+  /// [0, size())). Every column keeps its buffer (the published ones too). Columns of plain values
+  /// of up to 8 bytes are copied into `scratch` (at least size() entries) and gathered back; the
+  /// others (paths, visited lists) are moved in place, one cycle of the permutation at a time.
+  void permute(std::span<const std::uint32_t> order, std::span<std::uint64_t> scratch) {
+    const std::size_t n = order.size();
+    auto* bytes = reinterpret_cast<unsigned char*>(scratch.data());
+    std::vector<bool> done;
+    forEachColumn([&](auto& column) {
+      using T = typename std::decay_t<decltype(column)>::value_type;
+      if constexpr (std::is_trivially_copyable_v<T> && sizeof(T) <= sizeof(std::uint64_t)) {
+        std::memcpy(bytes, column.data(), n * sizeof(T));
+        for (std::size_t i = 0; i < n; ++i) std::memcpy(&column[i], bytes + order[i] * sizeof(T), sizeof(T));
+      } else {
+        done.assign(n, false);
+        for (std::size_t start = 0; start < n; ++start) {
+          if (done[start]) continue;
+          // The cycle start ← order[start] ← order[order[start]] ← …: each row takes its source's value.
+          T held = std::move(column[start]);
+          std::size_t i = start;
+          for (;;) {
+            done[i] = true;
+            const std::size_t from = order[i];
+            if (from == start) break;
+            column[i] = std::move(column[from]);
+            i = from;
+          }
+          column[i] = std::move(held);
+        }
+      }
     });
   }
 

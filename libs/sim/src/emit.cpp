@@ -77,17 +77,26 @@ FramePtr takeFrame(const FrameInput& in, const FrameOutput& out) {
   const AgentStore& a = in.agents;
   frame->tick = in.tick;
   frame->time = static_cast<double>(in.tick) * in.dt;
-  frame->ids = a.id;
-  frame->posX = a.posX;
-  frame->posY = a.posY;
-  if (a.levels) frame->posZ = a.posZ;
-  frame->velX = a.velX;
-  frame->velY = a.velY;
-  frame->oriX = a.oriX;
-  frame->oriY = a.oriY;
-  frame->mode = a.mode;
-  frame->clip = a.animClip;
-  frame->phase = a.animPhase;
+  // Agents by ascending id: the columns as they are, or gathered when the rows are sorted spatially.
+  const auto take = [&](auto& to, const auto& column) {
+    if (in.idOrder.empty()) {
+      to.assign(column.begin(), column.end());
+      return;
+    }
+    to.resize(in.idOrder.size());
+    for (std::size_t i = 0; i < in.idOrder.size(); ++i) to[i] = column[in.idOrder[i]];
+  };
+  take(frame->ids, a.id);
+  take(frame->posX, a.posX);
+  take(frame->posY, a.posY);
+  if (a.levels) take(frame->posZ, a.posZ);
+  take(frame->velX, a.velX);
+  take(frame->velY, a.velY);
+  take(frame->oriX, a.oriX);
+  take(frame->oriY, a.oriY);
+  take(frame->mode, a.mode);
+  take(frame->clip, a.animClip);
+  take(frame->phase, a.animPhase);
   frame->events = out.spawner.takeEvents(out.events);
   frame->script = std::move(out.commonGround.pendingScript);
   out.commonGround.pendingScript.clear();

@@ -162,18 +162,23 @@ void GoalWriter::setGoal(std::size_t row, std::uint32_t cursor) {
 }
 
 void GoalWriter::applyPendingGoals(std::span<ChunkOutput> chunks) {
-  // Rows flagged by decide, chunk by chunk: ascending row order, whatever the threads.
+  // Rows flagged by decide, in ascending id order, whatever the threads and the order of the rows
+  // (row_order.cpp): targets drawn one after another share the free spots of a region.
+  std::vector<std::uint32_t> rows;
   for (ChunkOutput& c : chunks) {
-    for (const std::uint32_t r : c.pendingRows) {
-      const GoalPending pending = agents.goalPending[r];
-      agents.goalPending[r] = GoalPending::None;
-      if (pending == GoalPending::NextGoal) {
-        advanceGoal(r);
-      } else if (pending == GoalPending::NextWanderTarget) {
-        setGoal(r, static_cast<std::uint32_t>(view().activeGoals(groups[agents.group[r]]).size()));
-      }
-    }
+    rows.insert(rows.end(), c.pendingRows.begin(), c.pendingRows.end());
     c.pendingRows.clear();
+  }
+  const auto byId = [&](std::uint32_t a, std::uint32_t b) { return agents.id[a] < agents.id[b]; };
+  if (!std::is_sorted(rows.begin(), rows.end(), byId)) std::sort(rows.begin(), rows.end(), byId);
+  for (const std::uint32_t r : rows) {
+    const GoalPending pending = agents.goalPending[r];
+    agents.goalPending[r] = GoalPending::None;
+    if (pending == GoalPending::NextGoal) {
+      advanceGoal(r);
+    } else if (pending == GoalPending::NextWanderTarget) {
+      setGoal(r, static_cast<std::uint32_t>(view().activeGoals(groups[agents.group[r]]).size()));
+    }
   }
 }
 

@@ -372,10 +372,11 @@ void World::Impl::removeAgentsNow() {
   std::vector<std::uint8_t> keep(agents.size(), 1);
   bool any = false;
   GoalWriter goals = goalWriter();
+  refreshRowOfId();
   for (const std::uint32_t id : agentRemovals) {
-    const auto it = std::lower_bound(agents.id.begin(), agents.id.end(), id);
-    if (it == agents.id.end() || *it != id) continue;  // gone with a crowd removed this tick
-    const auto r = static_cast<std::size_t>(it - agents.id.begin());
+    const std::uint32_t found = id < rowOfId.size() ? rowOfId[id] : kNoRow;
+    if (found == kNoRow) continue;  // gone with a crowd removed this tick
+    const std::size_t r = found;
     if (!keep[r]) continue;
     keep[r] = 0;
     any = true;
@@ -392,14 +393,13 @@ void World::Impl::removeAgentsNow() {
 
 core::Status World::removeAgents(std::span<const std::uint32_t> ids) {
   Impl& w = *impl_;
-  const std::vector<std::uint32_t>& present = w.agents.id;  // ascending
   core::Diagnostics problems;
   std::set<std::uint32_t> listed;
   const std::set<std::uint32_t> queued(w.agentRemovals.begin(), w.agentRemovals.end());
   for (std::size_t i = 0; i < ids.size(); ++i) {
     const std::uint32_t id = ids[i];
     std::string what;
-    if (!std::binary_search(present.begin(), present.end(), id)) {
+    if (w.rowOf(id) == kNoRow) {
       what = "no agent with id " + std::to_string(id) + " in the world (not spawned yet, or left)";
     } else if (!listed.insert(id).second) {
       what = "agent " + std::to_string(id) + " is listed twice";

@@ -352,6 +352,9 @@ struct FrameInput {
   const AgentStore& agents;  ///< ids, positions (floor heights on multi-level worlds), velocities, headings, modes, animation
   std::uint64_t tick;
   float dt;                  ///< [s]
+  /// The rows in ascending id order when the rows are not in that order themselves (spatial row
+  /// order, row_order.cpp); empty: row order is id order.
+  std::span<const std::uint32_t> idOrder;
 };
 
 struct FrameOutput {

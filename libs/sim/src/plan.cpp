@@ -1,4 +1,4 @@
-// plan — budgeted path planning (requests in row = stable id order, so deterministic): agents that
+// plan — budgeted path planning (requests in stable id order, so deterministic): agents that
 // asked for a path submit a request to the nav::PathQueue; the queue spends at most
 // kPathIterationsPerTick node expansions, searching on the workers ahead of the requests' turn
 // (the same results and completion ticks on any number of threads); finished paths are handed to
@@ -8,6 +8,7 @@
 // targets, floor heights, ids, populations, goals for events); writes PlanOutput (needPath, tickets, corners,
 // the queue, PathPartial events) — phases.hpp.
 #include <algorithm>
+#include <vector>
 
 #include "phases.hpp"
 
@@ -17,8 +18,15 @@ void plan(const PlanInput& in, const PlanOutput& out) {
   const std::size_t n = in.id.size();
   const bool levels = !in.posZ.empty();
   nav::PathQueue& queue = out.pathQueue;
+  // Requests in ascending id order, whatever the order of the rows (row_order.cpp): who is served
+  // first under the budget must not depend on where an agent's row is.
+  std::vector<std::uint32_t> asking;
   for (std::size_t row = 0; row < n; ++row) {
-    if (!out.needPath[row]) continue;
+    if (out.needPath[row]) asking.push_back(static_cast<std::uint32_t>(row));
+  }
+  const auto byId = [&](std::uint32_t a, std::uint32_t b) { return in.id[a] < in.id[b]; };
+  if (!std::is_sorted(asking.begin(), asking.end(), byId)) std::sort(asking.begin(), asking.end(), byId);
+  for (const std::uint32_t row : asking) {
     out.needPath[row] = 0;
     const core::Vec2 from{in.posX[row], in.posY[row]}, to{in.targetX[row], in.targetY[row]};
     out.ticket[row] = levels ? queue.request(from, in.posZ[row], to, in.targetZ[row], in.population[row])

@@ -1,8 +1,8 @@
 // sense — rebuilds the spatial grid and finds each agent's k nearest neighbours within
 // steering.neighbourDistance (parallel; each agent writes only its own neighbour slots). Agents are
 // visited in the grid's cell order, so consecutive searches read the same cells from cache; ties
-// in distance break by row, which is stable-id order, so the lists never depend on threads or on
-// the visiting order. Reads SenseInput (positions, floor heights, steering); writes SenseOutput
+// in distance break by row (stable-id order unless the rows are sorted spatially, row_order.cpp),
+// so the lists never depend on threads or on the visiting order. Reads SenseInput (positions, floor heights, steering); writes SenseOutput
 // (the grid, the neighbour lists and counts) — phases.hpp.
 #include <algorithm>
 #include <cmath>

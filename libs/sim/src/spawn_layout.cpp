@@ -11,6 +11,7 @@
 #include <limits>
 #include <unordered_map>
 
+#include "hilbert.hpp"
 #include "throng/core/assert.hpp"
 
 namespace throng::sim {
@@ -81,24 +82,6 @@ std::optional<std::pair<core::Vec2, nav::PolyRef>> onMesh(const nav::NavQuery& q
   auto hit = nearestAt(query, levels, area, p, 0.5f);
   if (!hit || core::lengthSq(hit->first - p) > 1e-4f) return std::nullopt;
   return hit;
-}
-
-/// Position of cell (x, y) along the Hilbert curve over a 65536 x 65536 grid.
-std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y) {
-  constexpr std::uint32_t n = 1u << 16;
-  std::uint64_t d = 0;
-  for (std::uint32_t s = n / 2; s > 0; s /= 2) {
-    const std::uint32_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
-    d += static_cast<std::uint64_t>(s) * s * ((3 * rx) ^ ry);
-    if (ry == 0) {  // rotate the quadrant
-      if (rx == 1) {
-        x = n - 1 - x;
-        y = n - 1 - y;
-      }
-      std::swap(x, y);
-    }
-  }
-  return d;
 }
 
 /// Spots handed out once each (and given back): the first free one in their order, or the one

@@ -106,6 +106,11 @@ void World::step(const core::TaskSystem& tasks, PhaseObserver* observer) {
     w.separate(tasks);
   }
   { Scope s(observer, "emit"); w.emit(); }
+  {
+    Scope s(observer, "order");
+    w.sortRows(tasks);
+    w.refreshRowOfId();  // current between ticks (agentInfo, removeAgents)
+  }
 }
 
 void World::Impl::planPopulations() {
@@ -278,7 +283,7 @@ void World::Impl::emit() {
 
 FramePtr World::takeFrame() {
   Impl& w = *impl_;
-  return sim::takeFrame(FrameInput{w.agents, w.tick, w.desc.dt}, FrameOutput{w.spawner, w.pendingEvents, w.commonGround});
+  return sim::takeFrame(FrameInput{w.agents, w.tick, w.desc.dt, w.rowsInIdOrder()}, FrameOutput{w.spawner, w.pendingEvents, w.commonGround});
 }
 
 AgentColumns World::agentColumns() const {
@@ -362,10 +367,9 @@ bool World::release(GroupId handle) {
 std::optional<AgentInfo> World::agentInfo(std::uint32_t id) const {
   const Impl& w = *impl_;
   const AgentStore& a = w.agents;
-  // Rows are in ascending id order; rowOfId may be a tick old here (agents that exited in emit).
-  const auto it = std::lower_bound(a.id.begin(), a.id.end(), id);
-  if (it == a.id.end() || *it != id) return std::nullopt;
-  const auto row = static_cast<std::size_t>(it - a.id.begin());
+  const std::uint32_t found = w.rowOf(id);
+  if (found == kNoRow) return std::nullopt;
+  const std::size_t row = found;
   AgentInfo info;
   info.id = id;
   info.group = a.group[row];
@@ -408,7 +412,15 @@ std::uint64_t World::stateHash() const {
     const auto* b = static_cast<const unsigned char*>(p);
     for (std::size_t i = 0; i < n; ++i) { h ^= b[i]; h *= 1099511628211ull; }
   };
-  for (std::size_t r = 0; r < a.size(); ++r) {
+  // By ascending id, whatever the row order (ScenarioDesc::rowOrder).
+  std::vector<std::uint32_t> rows;
+  if (!impl_->rowsById) {
+    rows.resize(a.size());
+    for (std::size_t r = 0; r < a.size(); ++r) rows[r] = static_cast<std::uint32_t>(r);
+    std::sort(rows.begin(), rows.end(), [&](std::uint32_t x, std::uint32_t y) { return a.id[x] < a.id[y]; });
+  }
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const std::size_t r = rows.empty() ? i : rows[i];
     mix(&a.id[r], sizeof(std::uint32_t));
     mix(&a.posX[r], sizeof(float));
     mix(&a.posY[r], sizeof(float));

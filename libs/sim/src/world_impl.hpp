@@ -94,8 +94,18 @@ struct World::Impl {
     for (std::size_t r = 0; r < agents.size(); ++r) rowOfId[agents.id[r]] = static_cast<std::uint32_t>(r);
     rowsChanged = false;
   }
+  // Row order (row_order.cpp): rows in ascending id order until sortRows first sorts them spatially.
+  bool rowsById = true;
+  std::vector<std::uint32_t> idOrder;         ///< rowsInIdOrder's answer
+  /// Whether this world keeps its rows in spatial order now (desc.rowOrder, the agents present).
+  [[nodiscard]] bool keepsRowsSpatially() const;
+  /// After emit: every kRowSortPeriod, rows sorted along the Hilbert curve of the grid's cells.
+  void sortRows(const core::TaskSystem& tasks);
+  /// The rows in ascending id order (for frames); empty while the rows are in id order themselves.
+  [[nodiscard]] std::span<const std::uint32_t> rowsInIdOrder();
+  /// The row of agent `id`, kNoRow if absent (rowOfId when it is current, else a search).
+  [[nodiscard]] std::uint32_t rowOf(std::uint32_t id) const;
   bool anySociological = false;                   ///< some population has the sociological model on
-  std::vector<std::uint32_t> followingRows; ///< rows following another agent (sociological), ascending
 
   // Exit choice (exit_choice.hpp): distance fields, queues, the groups that choose.
   ExitChoice exitChoice;

@@ -261,9 +261,13 @@ class CrowdGrid {
       ++c.count;
       const core::Vec2 want{a.prefVelX[i], a.prefVelY[i]};
       const float len = core::length(want);
-      if (len > 1e-6f) c.heading += want / len;
+      if (len > 1e-6f) {
+        c.sumX += fixedPoint(want.x / len);
+        c.sumY += fixedPoint(want.y / len);
+      }
     }
     for (Cell& c : cells_) {
+      c.heading = core::Vec2{static_cast<float>(c.sumX), static_cast<float>(c.sumY)} / kHeadingScale;
       if (c.count >= kCrowdedCount) {
         c.kind = core::length(c.heading) < kOrderedShare * static_cast<float>(c.count) ? kKnot : kStream;
       } else if (!dense_.empty()) {
@@ -335,8 +339,15 @@ class CrowdGrid {
   /// it is not within kJoinCos of) or a knot (they go every which way: blocks everyone).
   enum : std::uint8_t { kClear, kStream, kKnot };
 
+  /// A cell's directions are summed in fixed point (units of 1 / kHeadingScale; at most 65535 of
+  /// them fit in 32 bits): integer sums do not depend on the order of the rows (row_order.cpp).
+  static constexpr float kHeadingScale = 16384.0f;
+  static std::int32_t fixedPoint(float unit) {
+    return static_cast<std::int32_t>(unit * kHeadingScale + (unit >= 0.0f ? 0.5f : -0.5f));
+  }
   struct Cell {
     std::int64_t key = 0;
+    std::int32_t sumX = 0, sumY = 0;  ///< the cell's agents' unit desired directions, summed in fixed point
     core::Vec2 heading;  ///< sum of the unit desired directions of the cell's agents
     std::uint16_t count = 0;
     std::uint8_t kind = kClear;
@@ -393,7 +404,7 @@ class CrowdGrid {
     std::int32_t& i = indexOf(k);
     if (i < 0) {
       i = static_cast<std::int32_t>(cells_.size());
-      cells_.push_back(Cell{k, {}, 0, kClear});
+      cells_.push_back(Cell{k, 0, 0, {}, 0, kClear});
     }
     return cells_[static_cast<std::size_t>(i)];
   }

@@ -406,6 +406,18 @@ inline constexpr std::size_t kMaxDescription = 1000;
   return f > kSmokeMinFactor ? f : kSmokeMinFactor;
 }
 
+/// The order of the World's agent rows. Id: ascending stable id, always. Spatial: every
+/// kRowSortPeriod of simulated time the rows are re-sorted along a Hilbert curve over the
+/// neighbour grid's cells, so that neighbours' rows lie near each other in memory (a million
+/// agents step 1.6× faster). Auto: Spatial from kSpatialRowsMinAgents agents present, Id below.
+/// Frames (World::takeFrame) list agents by ascending id in every order; agentColumns are the rows
+/// as they are.
+enum class RowOrder : std::uint8_t { Auto = 0, Id = 1, Spatial = 2 };
+/// RowOrder::Auto sorts rows spatially from this many agents present.
+inline constexpr std::size_t kSpatialRowsMinAgents = 20000;
+/// Simulated time between two spatial sorts of the rows [s] (walkers move about 2.7 m).
+inline constexpr float kRowSortPeriod = 2.0f;
+
 struct ScenarioDesc {
   std::string format = "throng/1";
   std::string name;
@@ -433,6 +445,9 @@ struct ScenarioDesc {
   std::vector<PopulationDesc> populations;
   SteeringDesc steering;
   float navCellSize = 0.0f;  ///< navmesh voxel size [m]; 0 = chosen from the geometry
+  /// How the World keeps its agent rows (docs/performance.md, "Row order"): results are the same
+  /// for any thread count either way. Not a scenario key (hosts and `throng bench` set it).
+  RowOrder rowOrder = RowOrder::Auto;
   CommonGroundDesc social;  ///< the Common Ground model: the scenario key "social" (not the sociological model, PopulationDesc::sociological)
   /// Crowds inserted and removed at given times, ascending (stable for equal times). The World
   /// applies them at the start of the tick at or after each time (io loads the crowd files).

@@ -1,6 +1,7 @@
 // SpatialGrid — uniform grid over agent positions, rebuilt every tick by counting sort (the
 // `sense` phase). Within a cell, rows keep ascending order, so neighbour candidates come out in a
-// fixed order and ties break by row (= stable id order). Agents outside the bounds are clamped into
+// fixed order and ties break by row (stable id order, unless the World sorts its rows spatially:
+// ScenarioDesc::rowOrder). Agents outside the bounds are clamped into
 // the border cells, so nobody is ever lost.
 #pragma once
 #include <algorithm>

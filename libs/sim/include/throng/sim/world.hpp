@@ -110,7 +110,7 @@ struct CrowdInfo {
 /// next step(), which spawns, moves and removes agents; commands wait for it); see
 /// World::keepRetiredColumns for how long the memory itself lives.
 struct AgentColumns {
-  std::span<const std::uint32_t> id;     ///< stable spawn-order ids, ascending
+  std::span<const std::uint32_t> id;     ///< stable spawn-order ids: ascending, unless the world sorts its rows spatially (ScenarioDesc::rowOrder)
   std::span<const std::uint32_t> group;  ///< stable group id
   std::span<const float> posX, posY;     ///< [m]
   std::span<const float> posZ;           ///< height [m] on a multi-level world; empty on a flat one
