@@ -164,14 +164,14 @@ void GoalWriter::setGoal(std::size_t row, std::uint32_t cursor) {
 void GoalWriter::applyPendingGoals(std::span<ChunkOutput> chunks) {
   // Rows flagged by decide, in ascending id order, whatever the threads and the order of the rows
   // (row_order.cpp): targets drawn one after another share the free spots of a region.
-  std::vector<std::uint32_t> rows;
+  std::vector<std::uint64_t> rows;  // (id << 32) | row: sorted without reading ids again
   for (ChunkOutput& c : chunks) {
-    rows.insert(rows.end(), c.pendingRows.begin(), c.pendingRows.end());
+    for (const std::uint32_t r : c.pendingRows) rows.push_back(static_cast<std::uint64_t>(agents.id[r]) << 32 | r);
     c.pendingRows.clear();
   }
-  const auto byId = [&](std::uint32_t a, std::uint32_t b) { return agents.id[a] < agents.id[b]; };
-  if (!std::is_sorted(rows.begin(), rows.end(), byId)) std::sort(rows.begin(), rows.end(), byId);
-  for (const std::uint32_t r : rows) {
+  if (!std::is_sorted(rows.begin(), rows.end())) std::sort(rows.begin(), rows.end());
+  for (const std::uint64_t entry : rows) {
+    const auto r = static_cast<std::uint32_t>(entry);
     const GoalPending pending = agents.goalPending[r];
     agents.goalPending[r] = GoalPending::None;
     if (pending == GoalPending::NextGoal) {

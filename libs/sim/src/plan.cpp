@@ -20,13 +20,13 @@ void plan(const PlanInput& in, const PlanOutput& out) {
   nav::PathQueue& queue = out.pathQueue;
   // Requests in ascending id order, whatever the order of the rows (row_order.cpp): who is served
   // first under the budget must not depend on where an agent's row is.
-  std::vector<std::uint32_t> asking;
+  std::vector<std::uint64_t> asking;  // (id << 32) | row: sorted without reading ids again
   for (std::size_t row = 0; row < n; ++row) {
-    if (out.needPath[row]) asking.push_back(static_cast<std::uint32_t>(row));
+    if (out.needPath[row]) asking.push_back(static_cast<std::uint64_t>(in.id[row]) << 32 | row);
   }
-  const auto byId = [&](std::uint32_t a, std::uint32_t b) { return in.id[a] < in.id[b]; };
-  if (!std::is_sorted(asking.begin(), asking.end(), byId)) std::sort(asking.begin(), asking.end(), byId);
-  for (const std::uint32_t row : asking) {
+  if (!std::is_sorted(asking.begin(), asking.end())) std::sort(asking.begin(), asking.end());
+  for (const std::uint64_t entry : asking) {
+    const auto row = static_cast<std::uint32_t>(entry);
     out.needPath[row] = 0;
     const core::Vec2 from{in.posX[row], in.posY[row]}, to{in.targetX[row], in.targetY[row]};
     out.ticket[row] = levels ? queue.request(from, in.posZ[row], to, in.targetZ[row], in.population[row])

@@ -141,6 +141,9 @@ void PreferredVelocity::compute(std::size_t row) const {
 
 }  // namespace
 
+/// How many rows ahead steer fetches a row's group record (stopsAtGoal reads it).
+constexpr std::size_t kGroupPrefetch = 8;
+
 void steer(const SteerInput& in, const SteerOutput& out, const core::TaskSystem& tasks) {
   const RowRange all = in.rows;
   const std::size_t n = all.end;
@@ -151,7 +154,10 @@ void steer(const SteerInput& in, const SteerOutput& out, const core::TaskSystem&
     WorkerScratch& ws = out.workers[worker];
     const RowRange rows{all.list, begin, end};
     const PreferredVelocity preferred{in, out, ws};
-    for (std::size_t i = begin; i < end; ++i) preferred.compute(rows.row(i));
+    for (std::size_t i = begin; i < end; ++i) {
+      if (i + kGroupPrefetch < end) in.goals.prefetch(rows.row(i + kGroupPrefetch));
+      preferred.compute(rows.row(i));
+    }
     // Runs of consecutive rows whose populations walk with the same model: one call each.
     for (std::size_t i = begin; i < end;) {
       const ModelKind kind = modelOf(rows.row(i));
