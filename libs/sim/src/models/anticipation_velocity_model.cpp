@@ -267,9 +267,8 @@ class CrowdGrid {
       }
     }
     for (Cell& c : cells_) {
-      c.heading = core::Vec2{static_cast<float>(c.sumX), static_cast<float>(c.sumY)} / kHeadingScale;
       if (c.count >= kCrowdedCount) {
-        c.kind = core::length(c.heading) < kOrderedShare * static_cast<float>(c.count) ? kKnot : kStream;
+        c.kind = core::length(c.heading()) < kOrderedShare * static_cast<float>(c.count) ? kKnot : kStream;
       } else if (!dense_.empty()) {
         dense_[static_cast<std::size_t>(c.key)] = -1;  // not a crowd: the look along a ray skips it unread
       }
@@ -348,10 +347,14 @@ class CrowdGrid {
   struct Cell {
     std::int64_t key = 0;
     std::int32_t sumX = 0, sumY = 0;  ///< the cell's agents' unit desired directions, summed in fixed point
-    core::Vec2 heading;  ///< sum of the unit desired directions of the cell's agents
     std::uint16_t count = 0;
     std::uint8_t kind = kClear;
+    /// The sum of the unit desired directions of the cell's agents.
+    [[nodiscard]] core::Vec2 heading() const {
+      return core::Vec2{static_cast<float>(sumX), static_cast<float>(sumY)} / kHeadingScale;
+    }
   };
+  static_assert(sizeof(Cell) <= 24);
   struct Slot {
     std::int64_t key = -1;  ///< -1: free
     std::int32_t cell = -1;
@@ -371,7 +374,7 @@ class CrowdGrid {
   /// not going e0's way.
   static bool blocks(const Cell& c, core::Vec2 e0) {
     if (c.kind == kClear) return false;
-    return c.kind == kKnot || core::dot(c.heading, e0) < kJoinCos * static_cast<float>(c.count);
+    return c.kind == kKnot || core::dot(c.heading(), e0) < kJoinCos * static_cast<float>(c.count);
   }
 
   /// The storey bin of height z.
@@ -404,7 +407,7 @@ class CrowdGrid {
     std::int32_t& i = indexOf(k);
     if (i < 0) {
       i = static_cast<std::int32_t>(cells_.size());
-      cells_.push_back(Cell{k, 0, 0, {}, 0, kClear});
+      cells_.push_back(Cell{k, 0, 0, 0, kClear});
     }
     return cells_[static_cast<std::size_t>(i)];
   }

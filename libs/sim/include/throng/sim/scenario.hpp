@@ -409,7 +409,7 @@ inline constexpr std::size_t kMaxDescription = 1000;
 /// The order of the World's agent rows. Id: ascending stable id, always. Spatial: every
 /// kRowSortPeriod of simulated time the rows are re-sorted along a Hilbert curve over the
 /// neighbour grid's cells, so that neighbours' rows lie near each other in memory (a million
-/// agents step 1.6× faster). Auto: Spatial from kSpatialRowsMinAgents agents present, Id below.
+/// agents step 1.4–1.8× faster). Auto: Spatial from kSpatialRowsMinAgents agents present, Id below.
 /// Frames (World::takeFrame) list agents by ascending id in every order; agentColumns are the rows
 /// as they are.
 enum class RowOrder : std::uint8_t { Auto = 0, Id = 1, Spatial = 2 };
