@@ -1,6 +1,7 @@
 // AgentStore — the agents' hot data as structure of arrays: one dense row per agent present, in
 // ascending stable-id order until the World sorts them spatially (ScenarioDesc::rowOrder, permute;
-// new agents get the next id and are appended; removal is a stable compaction in the emit phase). Phases read columns and write only their own row.
+// new agents get the next id and are appended; removal is a stable compaction in the emit phase).
+// Phases read columns and write only their own row.
 // The published columns (World::agentColumns) can be kept from being freed while zero-copy readers
 // hold them (keepRetired).
 #pragma once
