@@ -172,6 +172,29 @@ TEST(BenchScenarioFile, ModelChoosesTheAvoidanceModelOfEveryPopulation) {
   EXPECT_EQ(jsonLines(own.out).at(0).at("model"), "scenario");
 }
 
+// --row-order: rows sorted spatially give the same crowd as rows in id order (the same mean speed
+// to the last digit), the rows say which order ran, and the sort shows as its own phase.
+TEST(BenchScenarioFile, RowOrderSortsRowsAndChangesNoTrajectory) {
+  ScratchDir dir("bench-row-order");
+  std::map<std::string, double> speed;
+  for (const char* order : {"id", "spatial"}) {
+    const CliResult r = runThrong({"bench", "--agents", "400", "--threads", "2", "--ticks", "45", "--warmup", "0",
+                                   "--no-baseline", "--json", "--phase-times", "--row-order", order},
+                                  dir.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto rows = jsonLines(r.out);
+    ASSERT_EQ(rows.size(), 1u) << r.out;
+    EXPECT_EQ(rows[0].at("row_order"), order);
+    EXPECT_TRUE(rows[0].at("phase_ms_per_tick").contains("order")) << r.out;
+    speed[order] = rows[0].at("mean_speed_mps").get<double>();
+  }
+  EXPECT_GT(speed["id"], 0.1);
+  EXPECT_EQ(speed["id"], speed["spatial"]);
+  const CliResult bad = runThrong({"bench", "--row-order", "hilbert"}, dir.path());
+  EXPECT_EQ(bad.exitCode, 2) << bad.err;
+  for (const char* value : {"hilbert", "auto", "id", "spatial"}) EXPECT_TRUE(contains(bad.err, value)) << value << "\n" << bad.err;
+}
+
 TEST(BenchScenarioFile, PhaseTimesSplitTheTick) {
   ScratchDir dir("bench-phases");
   const CliResult r = runThrong({"bench", "--agents", "200", "--threads", "1", "--ticks", "5", "--warmup", "1",
