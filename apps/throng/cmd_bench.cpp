@@ -562,9 +562,10 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
       ->type_name("NAME")
       ->check(CLI::IsMember(models));
   cmd->add_option("--row-order", options.rowOrder,
-                  "How the world keeps its agent rows: auto (spatially from 20,000 agents), id (ascending id) or "
-                  "spatial (sorted along a Hilbert curve every 2 simulated seconds); the same trajectories for any "
-                  "thread count either way (docs/performance.md, \"Row order\")")
+                  fmt::format("How the world keeps its agent rows: auto (spatially from {} agents), id (ascending id) or "
+                              "spatial (sorted along a Hilbert curve every {:g} simulated seconds); the same trajectories for "
+                              "any thread count either way (docs/performance.md, \"Row order\")",
+                              sim::kSpatialRowsMinAgents, sim::kRowSortPeriod))
       ->type_name("ORDER")
       ->check(CLI::IsMember({"auto", "id", "spatial"}))
       ->capture_default_str();

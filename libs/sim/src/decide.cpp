@@ -294,9 +294,6 @@ void measureOverlaps(const AgentStore& a, std::size_t k, std::size_t begin, std:
 
 }  // namespace
 
-/// How many rows ahead decide fetches a row's group into the cache.
-constexpr std::size_t kGroupPrefetch = 8;
-
 void decide(const DecideInput& in, const DecideOutput& out, const core::TaskSystem& tasks) {
   const std::size_t n = in.agents.size();
   const std::size_t grain = phaseGrain(n, tasks);
@@ -309,7 +306,7 @@ void decide(const DecideInput& in, const DecideOutput& out, const core::TaskSyst
     const nav::NavQuery& query = *in.workers[worker].query;
     for (std::size_t row = begin; row < end; ++row) {
       // Rows sorted spatially (row_order.cpp) read their groups in no particular order: fetch ahead.
-      if (row + kGroupPrefetch < end) __builtin_prefetch(&in.groups[in.agents.group[row + kGroupPrefetch]]);
+      if (row + kGroupPrefetch < end) in.goals.prefetch(row + kGroupPrefetch);
       RowDecision{in, out, checkEvery, sightEvery, chunk, query, row}.decideRow();
     }
     measureOverlaps(in.agents, in.desc.steering.maxNeighbours, begin, end, chunk);

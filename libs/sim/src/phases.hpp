@@ -88,9 +88,12 @@ struct GoalView {
   /// The point `row` is heading for (from its group's active goal list), kNoPoint past the last.
   [[nodiscard]] std::uint32_t currentGoalPoint(std::size_t row) const;
   /// Starts fetching `row`'s group record into the cache (rows sorted spatially read their groups
-  /// in no particular order: row_order.cpp).
+  /// in no particular order: row_order.cpp). Phases call it kGroupPrefetch rows ahead.
   void prefetch(std::size_t row) const { __builtin_prefetch(&groups[group[row]]); }
 };
+
+/// How many rows ahead decide and steer fetch a row's group record (GoalView::prefetch).
+inline constexpr std::size_t kGroupPrefetch = 8;
 
 /// Whether `row` (of population `pop`) stops at the end of its current path — an action point's
 /// stop, or its last goal when it does not wander —, so it slows down on the last leg (goals.cpp).

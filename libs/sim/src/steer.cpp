@@ -141,9 +141,6 @@ void PreferredVelocity::compute(std::size_t row) const {
 
 }  // namespace
 
-/// How many rows ahead steer fetches a row's group record (stopsAtGoal reads it).
-constexpr std::size_t kGroupPrefetch = 8;
-
 void steer(const SteerInput& in, const SteerOutput& out, const core::TaskSystem& tasks) {
   const RowRange all = in.rows;
   const std::size_t n = all.end;

@@ -55,6 +55,14 @@ void Walls::build(const nav::NavMesh& mesh, float cellSize) {
   }
 }
 
+bool Walls::boxEmpty(int x0, int y0, int x1, int y1) const {
+  // Four reads of the summed-area table: the cells' entries in the box, compared with zero.
+  const auto corner = [&](int x, int y) {
+    return areaCount_[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx_ + 1) + static_cast<std::size_t>(x)];
+  };
+  return corner(x1 + 1, y1 + 1) + corner(x0, y0) == corner(x0, y1 + 1) + corner(x1 + 1, y0);
+}
+
 bool Walls::onLevel(std::uint32_t s, core::Vec2 p, float z) const {
   if (heights_.empty()) return true;
   const core::Segment& seg = segments_[s];
@@ -70,11 +78,7 @@ void Walls::query(float x, float y, float r, std::vector<std::uint32_t>& out) co
   auto cx = [&](float v) { return std::clamp(static_cast<int>(std::floor((v - originX_) * invCell_)), 0, nx_ - 1); };
   auto cy = [&](float v) { return std::clamp(static_cast<int>(std::floor((v - originY_) * invCell_)), 0, ny_ - 1); };
   const int x0 = cx(x - r), x1 = cx(x + r), y0 = cy(y - r), y1 = cy(y + r);
-  const auto corner = [&](int cxx, int cyy) {
-    return areaCount_[static_cast<std::size_t>(cyy) * static_cast<std::size_t>(nx_ + 1) + static_cast<std::size_t>(cxx)];
-  };
-  // No wall in the box (most of an open crowd): four reads of the summed-area table, no cell visited.
-  if (corner(x1 + 1, y1 + 1) + corner(x0, y0) == corner(x0, y1 + 1) + corner(x1 + 1, y0)) return;
+  if (boxEmpty(x0, y0, x1, y1)) return;  // most of an open crowd: no cell visited
   for (int yy = y0; yy <= y1; ++yy) {
     for (int xx = x0; xx <= x1; ++xx) {
       const std::size_t c = static_cast<std::size_t>(yy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(xx);
@@ -104,10 +108,7 @@ void Walls::collectAlong(core::Vec2 a, core::Vec2 b, std::vector<std::uint32_t>&
   const int x1 = cell(std::max(a.x, b.x) + kSlack, originX_, invCell_, nx_);
   const int y0 = cell(std::min(a.y, b.y) - kSlack, originY_, invCell_, ny_);
   const int y1 = cell(std::max(a.y, b.y) + kSlack, originY_, invCell_, ny_);
-  const auto corner = [&](int x, int y) {
-    return areaCount_[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx_ + 1) + static_cast<std::size_t>(x)];
-  };
-  if (corner(x1 + 1, y1 + 1) + corner(x0, y0) == corner(x0, y1 + 1) + corner(x1 + 1, y0)) return;  // no wall in the box
+  if (boxEmpty(x0, y0, x1, y1)) return;
   if ((x1 - x0 + 1) * (y1 - y0 + 1) > 4) {  // a box of more than 2 × 2 cells: halve the piece
     const core::Vec2 mid = a + (b - a) * 0.5f;
     collectAlong(a, mid, out);

@@ -43,6 +43,8 @@ class Walls {
   /// queryRay's walk: the entries of the cells round the piece a–b, halving it while its box holds
   /// walls and spans more than 2 × 2 cells; unsorted, with repeats.
   void collectAlong(core::Vec2 a, core::Vec2 b, std::vector<std::uint32_t>& out) const;
+  /// Whether no wall lies in the cells x0..x1 × y0..y1 (inclusive, on the grid).
+  [[nodiscard]] bool boxEmpty(int x0, int y0, int x1, int y1) const;
 };
 
 }  // namespace throng::sim

@@ -412,20 +412,23 @@ std::uint64_t World::stateHash() const {
     const auto* b = static_cast<const unsigned char*>(p);
     for (std::size_t i = 0; i < n; ++i) { h ^= b[i]; h *= 1099511628211ull; }
   };
-  // By ascending id, whatever the row order (ScenarioDesc::rowOrder).
-  std::vector<std::uint32_t> rows;
-  if (!impl_->rowsById) {
-    rows.resize(a.size());
-    for (std::size_t r = 0; r < a.size(); ++r) rows[r] = static_cast<std::uint32_t>(r);
-    std::sort(rows.begin(), rows.end(), [&](std::uint32_t x, std::uint32_t y) { return a.id[x] < a.id[y]; });
-  }
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const std::size_t r = rows.empty() ? i : rows[i];
+  // By ascending id, whatever the row order (ScenarioDesc::rowOrder): sorted rows are walked
+  // through rowOfId, current between ticks (step ends by refreshing it).
+  const Impl& w = *impl_;
+  THRONG_ASSERT(w.rowsById || !w.rowsChanged);
+  const auto hashRow = [&](std::size_t r) {
     mix(&a.id[r], sizeof(std::uint32_t));
     mix(&a.posX[r], sizeof(float));
     mix(&a.posY[r], sizeof(float));
     mix(&a.velX[r], sizeof(float));
     mix(&a.velY[r], sizeof(float));
+  };
+  if (w.rowsById) {
+    for (std::size_t r = 0; r < a.size(); ++r) hashRow(r);
+  } else {
+    for (const std::uint32_t r : w.rowOfId) {
+      if (r != kNoRow) hashRow(r);
+    }
   }
   return h;
 }
