@@ -318,9 +318,10 @@ struct PressedRun {
   std::uint32_t exited = 0;
   std::uint64_t hash = 0;
 };
-PressedRun pressedAtTheDoor(int passes, int threads) {
+PressedRun pressedAtTheDoor(int passes, int threads, bool noPressing = false) {
   sim::ScenarioDesc d = roomWithDoor(1.0f, 100, sim::ModelKind::AnticipationVelocity);
   EXPECT_TRUE(d.populations[0].model.set("separationPasses", static_cast<float>(passes)));
+  EXPECT_TRUE(d.populations[0].model.set("noPressing", noPressing ? 1.0f : 0.0f));
   auto created = sim::World::create(d);
   EXPECT_TRUE(created.ok()) << (created.ok() ? "" : core::formatAll(created.errors()));
   if (!created.ok()) return {};
@@ -373,6 +374,27 @@ TEST(Models, AnticipationSeparationPushesOverlappingBodiesApartOnAnyThreadCount)
   EXPECT_LT(on.deepest, off.deepest);
   EXPECT_LT(on.over1cm * 5, off.over1cm) << on.over1cm << " pair-frames over 1 cm against " << off.over1cm;
   EXPECT_EQ(pressedAtTheDoor(2, 4).hash, on.hash);
+}
+
+// Issue 17: with noPressing, no step takes a body deeper into another (the anticipation model's
+// clampToBodies and turnDeepens; docs/crowd-model.md, "No step into a body"). The time-gap law
+// checks only the walking direction; the contact step, the sideways steps, the merge rule and the
+// navmesh sliding walkers along the walls beside the door pressed them into the bodies beside them.
+// At the 1 m door (100 people, as above) the deepest overlap from the second second on is 0.026 m
+// and 17 pair-frames overlap by more than 1 cm; with noPressing 0 (the default) 0.07 m and 900 or
+// so; with walkers stepping wherever the rules say (clampToBodies returning v unchanged) 0.082 m and
+// 857; with slow bodies turning freely (turnDeepens false) 0.043 m and 107. Everyone leaves either
+// way, and the result is the same on 1 and 4 threads.
+TEST(Models, AnticipationNoStepPressesABodyDeeperIntoAnother) {
+  const PressedRun off = pressedAtTheDoor(0, 2);
+  const PressedRun r = pressedAtTheDoor(0, 2, true);
+  EXPECT_EQ(r.exited, 100u);
+  EXPECT_EQ(off.exited, 100u);
+  EXPECT_GT(r.pressed, 1000) << "a crowd pressed together at the door";
+  EXPECT_LT(r.deepest, 0.035) << "deepest overlap of two bodies [m]; with noPressing 0: " << off.deepest;
+  EXPECT_LT(r.over1cm, 60) << "pair-frames overlapping by more than 1 cm; with noPressing 0: " << off.over1cm;
+  EXPECT_GT(off.over1cm, 5 * r.over1cm);
+  EXPECT_EQ(pressedAtTheDoor(0, 1, true).hash, pressedAtTheDoor(0, 4, true).hash);
 }
 
 // Issue 17: the default body (r = 0.2 m) passes a 0.5 m door, as people do by turning their

@@ -152,7 +152,7 @@ TEST(Phases, IntegrateMovesEachRowByItsNewVelocityAlongTheMesh) {
   std::vector<ChunkOutput> chunks(1);
   const OneGroup goals(3);
   core::TaskSystem tasks(1);
-  integrate(IntegrateInput{dt, 0, nvx, nvy, nvx, nvy, goalState, mode, speed, actionEnd, {}, {}, goals.view(), {}, {}, {}, workers},
+  integrate(IntegrateInput{dt, 0, nvx, nvy, {}, nvx, nvy, goalState, mode, speed, actionEnd, {}, {}, goals.view(), {}, {}, {}, workers},
             IntegrateOutput{px, py, {}, poly, vx, vy, stuck, clip, phase, ox, oy, chunks}, tasks);
   EXPECT_NEAR(px[0], 5.1f, 1e-5f);
   EXPECT_NEAR(py[0], 5.05f, 1e-5f);
@@ -172,28 +172,34 @@ TEST(Phases, IntegrateMovesEachRowByItsNewVelocityAlongTheMesh) {
 }
 
 TEST(Phases, IntegrateTurnsASlowBodyTowardWhereItWantsToGoNotWhereItIsShoved) {
-  // Two agents facing +x and wanting to go +x, both moved along +y: row 0 at 0.3 m/s (shoved
-  // sideways in a queue) keeps turning toward +x; row 1 at 1.0 m/s (walking that way) turns to +y.
+  // Three agents facing 0.5 rad left of +x and wanting to go +x, all moved along +y: row 0 at
+  // 0.3 m/s (shoved sideways in a queue) keeps turning toward +x; row 1 at 1.0 m/s (walking that
+  // way) turns to +y; row 2, as row 0 but held by its model (holdHeading: turning would press its
+  // body into a neighbour's), keeps its heading.
   std::vector<WorkerScratch> workers = roomWorkers();
   ASSERT_TRUE(workers[0].query);
   const float dt = 0.1f;
-  std::vector<float> px{5, 10}, py{5, 5}, vx(2, 0), vy(2, 0), stuck(2, 0), phase(2, 0);
-  const float c = std::cos(0.5f), s = std::sin(0.5f);  // both heading 0.5 rad left of +x
-  std::vector<float> ox(2, c), oy(2, s);
+  std::vector<float> px{5, 10, 15}, py{5, 5, 5}, vx(3, 0), vy(3, 0), stuck(3, 0), phase(3, 0);
+  const float c = std::cos(0.5f), s = std::sin(0.5f);
+  std::vector<float> ox(3, c), oy(3, s);
   std::vector<std::uint32_t> poly = polysUnder(workers, px, py);
-  std::vector<std::uint16_t> clip(2, kClipIdle);
-  const std::vector<float> nvx{0.0f, 0.0f}, nvy{0.3f, 1.0f}, pvx{1.3f, 1.3f}, pvy{0.0f, 0.0f}, speed(2, 1.3f);
-  const std::vector<GoalState> goalState(2, GoalState::Seeking);
-  const std::vector<AgentMode> mode(2, AgentMode::Walking);
-  const std::vector<std::uint32_t> actionEnd(2, 0);
+  std::vector<std::uint16_t> clip(3, kClipIdle);
+  const std::vector<float> nvx{0.0f, 0.0f, 0.0f}, nvy{0.3f, 1.0f, 0.3f}, pvx(3, 1.3f), pvy(3, 0.0f), speed(3, 1.3f);
+  const std::vector<std::uint8_t> hold{0, 0, 1};
+  const std::vector<GoalState> goalState(3, GoalState::Seeking);
+  const std::vector<AgentMode> mode(3, AgentMode::Walking);
+  const std::vector<std::uint32_t> actionEnd(3, 0);
   std::vector<ChunkOutput> chunks(1);
-  const OneGroup goals(2);
+  const OneGroup goals(3);
   core::TaskSystem tasks(1);
-  integrate(IntegrateInput{dt, 0, nvx, nvy, pvx, pvy, goalState, mode, speed, actionEnd, {}, {}, goals.view(), {}, {}, {}, workers},
+  integrate(IntegrateInput{dt, 0, nvx, nvy, hold, pvx, pvy, goalState, mode, speed, actionEnd, {}, {}, goals.view(), {}, {}, {}, workers},
             IntegrateOutput{px, py, {}, poly, vx, vy, stuck, clip, phase, ox, oy, chunks}, tasks);
   EXPECT_NEAR(py[0], 5.03f, 1e-4f) << "it is moved sideways";
   EXPECT_LT(oy[0], s) << "but its body turns toward where it wants to go (+x)";
   EXPECT_GT(oy[1], s) << "walking at 1 m/s, the body turns toward the motion (+y)";
+  EXPECT_NEAR(py[2], 5.03f, 1e-4f) << "held, it still moves";
+  EXPECT_EQ(oy[2], s) << "but its body does not turn";
+  EXPECT_EQ(ox[2], c);
 }
 
 namespace {
@@ -417,7 +423,7 @@ TEST(Phases, SteerWalksToTheTargetSlowsBeforeAStopAndLeavesOtherRowsAlone) {
     const SteerInput in{desc.steering, desc.seed, desc.populations, desc.points, a.id, a.population, a.posX, a.posY, {},
                         {}, a.speed, a.targetX, a.targetY, a.goalState, {}, a.dynamicTarget, {}, {}, a.stuckTime,
                         goals.view(), rows, models, model};
-    steer(in, SteerOutput{a.prefVelX, a.prefVelY, a.corners, {a.newVelX, a.newVelY}, workers}, tasks);
+    steer(in, SteerOutput{a.prefVelX, a.prefVelY, a.corners, {a.newVelX, a.newVelY, a.holdHeading}, workers}, tasks);
   };
   // Partitioned: only row 1 is steered; the others keep what they had.
   a.prefVelX[0] = a.newVelX[0] = 9.0f;

@@ -82,6 +82,7 @@ struct AgentStore {
   std::vector<float> posX, posY, velX, velY;
   std::vector<float> prefVelX, prefVelY;  ///< written by steer: the preferred (desired) velocity, not yet relaxed
   std::vector<float> newVelX, newVelY;    ///< written by steer (ORCA result), committed by integrate
+  std::vector<std::uint8_t> holdHeading;  ///< written by steer (the model): 1 keeps the heading this tick
   std::vector<float> oriX, oriY;          ///< unit heading
   std::vector<float> radius;              ///< body radius [m]
   std::vector<float> speed;               ///< desired walking speed [m/s]
@@ -177,7 +178,7 @@ struct AgentStore {
   template <class F>
   void forEachColumn(F&& f) {
     f(id); f(group); f(population); f(groupSize);
-    f(posX); f(posY); f(velX); f(velY); f(prefVelX); f(prefVelY); f(newVelX); f(newVelY);
+    f(posX); f(posY); f(velX); f(velY); f(prefVelX); f(prefVelY); f(newVelX); f(newVelY); f(holdHeading);
     f(oriX); f(oriY); f(radius); f(speed); f(mode);
     f(goalState); f(goalCursor); f(targetX); f(targetY); f(targetDraws); f(needPath); f(ticket); f(polyRef);
     f(corners); f(actionEndTick); f(progressDistance); f(stuckTime);

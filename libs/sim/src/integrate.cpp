@@ -14,16 +14,8 @@
 namespace throng::sim {
 namespace {
 
-/// Time constant of heading changes [s]: bodies do not snap to their velocity direction.
-constexpr float kTurnTime = 0.25f;
 /// Below this speed the heading stays as it is [m/s] (when the agent wants to go nowhere).
 constexpr float kTurnMinSpeed = 0.1f;
-/// Below this speed a body turns toward where it wants to go (its preferred velocity), not toward
-/// its motion [m/s]: pressed sideways or back in a queue, people keep facing the door. Measured on
-/// the dense room of scripts/validate.py (200 people, a 1 m door, seed 1): of the samples of people
-/// standing (< 0.2 m/s) in the room, 37 % faced more than 45° away from the door when the body
-/// turned toward any motion over 0.1 m/s, 0.8 % with this rule (docs/crowd-model.md).
-constexpr float kFaceDesiredBelow = 0.5f;
 
 // The optional Common Ground columns read as their defaults when absent (as AgentStore's accessors).
 bool scriptWalking(const IntegrateInput& in, std::size_t row) { return !in.scriptWalk.empty() && in.scriptWalk[row] != 0; }
@@ -108,6 +100,8 @@ void turnHeading(const IntegrateInput& in, const IntegrateOutput& out, std::size
   const bool holdsHeading = in.goalState[row] == GoalState::Acting ||
                             (in.goalState[row] == GoalState::Scripted && !scriptWalking(in, row));
   if (holdsHeading) return;
+  // The model found that turning would press the body into a neighbour's (avm: turnDeepens).
+  if (!in.holdHeading.empty() && in.holdHeading[row] != 0) return;
   const float h = in.dt;
   const float turn = std::min(1.0f, h / kTurnTime);
   const float speed = core::length(moved) / h;

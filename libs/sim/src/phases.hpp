@@ -295,6 +295,7 @@ struct IntegrateInput {
   float dt;                                   ///< [s]
   std::uint64_t tick;
   std::span<const float> newVelX, newVelY;    ///< the models' velocities from steer [m/s]
+  std::span<const std::uint8_t> holdHeading;  ///< 1: the model keeps the body from turning this tick
   std::span<const float> prefVelX, prefVelY;  ///< the preferred (desired) velocities from steer [m/s]
   std::span<const GoalState> goalState;
   std::span<const AgentMode> mode;

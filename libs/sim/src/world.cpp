@@ -192,7 +192,7 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
                       agents.posX, agents.posY, agents.posZ, agents.polyRef, agents.speed, agents.targetX, agents.targetY,
                       agents.goalState, agents.scriptWalk, agents.dynamicTarget, agents.formVelX, agents.formVelY,
                       agents.stuckTime, goalView(), RowRange{list, 0, n}, inUse, model};
-  const SteerOutput out{agents.prefVelX, agents.prefVelY, agents.corners, {agents.newVelX, agents.newVelY}, scratch};
+  const SteerOutput out{agents.prefVelX, agents.prefVelY, agents.corners, {agents.newVelX, agents.newVelY, agents.holdHeading}, scratch};
   sim::steer(in, out, tasks);
 }
 
@@ -219,7 +219,7 @@ void World::Impl::addModelScratch(WorkerScratch& ws) const {
 }
 
 void World::Impl::integrate(const core::TaskSystem& tasks) {
-  const IntegrateInput in{desc.dt, tick, agents.newVelX, agents.newVelY, agents.prefVelX, agents.prefVelY,
+  const IntegrateInput in{desc.dt, tick, agents.newVelX, agents.newVelY, agents.holdHeading, agents.prefVelX, agents.prefVelY,
                           agents.goalState, agents.mode, agents.speed, agents.actionEndTick, agents.scriptWalk, agents.scriptClip, goalView(), desc.points,
                           pointClip, commonGround.clipDuration, scratch};
   const IntegrateOutput out{agents.posX, agents.posY, agents.posZ, agents.polyRef, agents.velX, agents.velY,

@@ -97,6 +97,11 @@ constexpr ModelParameter kParameters[] = {
      "dense crowd's overlaps to about 3-4 cm for about 8 % more computation",
      "measured on the dense room of scripts/validate.py (docs/crowd-model.md, Overlaps): 0.089 m deepest overlap and "
      "175-186 agents over 1 cm with 0, 0.030-0.041 m and 12-51 with 2"},
+    {"noPressing", "", 0.0, false, 1.0, true, 0.0f,
+     "1: no step and no turn takes a body deeper into another (a merging walker squeezes by, slowly; two passing head "
+     "on turn their shoulders); 0: off. Dense crowds stay within a few centimetres, crowds crossing every way knot more",
+     "measured on the dense room, the bottlenecks and the bundled plaza (docs/crowd-model.md, No step into a body): "
+     "deepest overlap 0.110 -> 0.044 m, agents over 1 cm 180 -> 33; plaza 952-1091 of 1592 out against 1017-1227"},
 };
 enum Parameter : std::size_t {
   kTimeGap,
@@ -108,7 +113,8 @@ enum Parameter : std::size_t {
   kWallRange,
   kPassageRatio,
   kVisionRange,
-  kSeparationPasses
+  kSeparationPasses,
+  kNoPressing
 };
 
 struct AvmParams {
@@ -122,6 +128,7 @@ struct AvmParams {
   float passageRatio = 0.65f;      ///< body depth / shoulder breadth [1]
   float visionRange = 20.0f;       ///< H of seeAhead [m]; 0: off
   int separationPasses = 0;        ///< position corrections after the move (separation); 0: off
+  bool noPressing = false;         ///< clampToBodies and turnDeepens (and kOnWall in pushes); false: off
 };
 
 class AvmScratch final : public ModelScratch {
@@ -195,6 +202,18 @@ constexpr float kOrderedShare = 0.6f;
 constexpr float kContactSlack = 0.01f;
 constexpr float kContactSpeed = 1.0f;
 constexpr float kContactShare = 0.5f;
+/// noPressing: in room(), a walker this close to a wall line, or past it, has
+/// no room that way [m]. Without it a walker pressed onto the navmesh's edge at a narrow door's
+/// mouth saw room to swerve into the wall, and with clampToBodies two of them stood side by side at
+/// the 0.5 m door for 5-9 s (docs/crowd-model.md).
+constexpr float kOnWall = 0.02f;
+/// noPressing, no step deeper into a body (clampToBodies): of two merging walkers the one further along may
+/// still squeeze by the other, at most this fast [m/s] and this deep [m], and so may two coming
+/// head on offset enough to pass with shoulders turned. Chosen on the harness (docs/validation.md):
+/// with 0.3 m/s the corridor's densest class fell to 0.77 m/s (band from 0.79), with 0.03 m two
+/// people wedged side by side at the 0.5 m door for 28 s.
+constexpr float kSqueezeSpeed = 0.6f;
+constexpr float kSqueezeDepth = 0.05f;
 /// Separation (separationPasses): each of two overlapping bodies moves this share of the depth.
 constexpr float kSeparationShare = 0.5f;
 /// The time-gap law's weight of a neighbour at lateral offset y (in units of ℓ_ij) ahead:
@@ -450,7 +469,7 @@ class AnticipationVelocityModel final : public OperationalModel {
         const auto& v = pop.model.values;
         p = {v[kTimeGap],        v[kAnticipationTime], v[kReactionTime], v[kNeighbourStrength],
              v[kNeighbourRange], v[kWallStrength],     v[kWallRange],    v[kPassageRatio], v[kVisionRange],
-             static_cast<int>(v[kSeparationPasses])};
+             static_cast<int>(v[kSeparationPasses]), v[kNoPressing] != 0.0f};
       } else {
         p.passageRatio = 1.0f;  // another model's bodies are discs (contact)
       }
@@ -471,9 +490,11 @@ class AnticipationVelocityModel final : public OperationalModel {
     auto& ws = static_cast<AvmScratch&>(scratch);
     for (std::size_t i = rows.begin; i < rows.end; ++i) {
       const std::size_t row = rows.row(i);
-      const core::Vec2 v = velocity(in, row, params_[in.agents.population[row]], ws);
+      const AvmParams& p = params_[in.agents.population[row]];
+      const core::Vec2 v = velocity(in, row, p, ws);
       out.x[row] = v.x;
       out.y[row] = v.y;
+      if (!out.holdHeading.empty()) out.holdHeading[row] = p.noPressing && turnDeepens(in, row, v, p) ? 1 : 0;
     }
   }
 
@@ -481,7 +502,7 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// The desired direction after looking ahead (visionRange, CrowdGrid): e0 itself unless a crowd
   /// closer than the vision range stands between i and its target, else the direction within ±90°
   /// that brings i nearest its destination, walls and crowded cells limiting the view.
-  core::Vec2 seeAhead(const ModelInput& in, std::size_t row, core::Vec2 e0, float range, AvmScratch& ws) const {
+  core::Vec2 seeAhead(const ModelInput& in, std::size_t row, core::Vec2 e0, float range, float onWall, AvmScratch& ws) const {
     const AgentStore& a = in.agents;
     if (range <= 0.0f || crowd_.empty()) return e0;
     const core::Vec2 pos{a.posX[row], a.posY[row]};
@@ -491,7 +512,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     const core::Vec2 toTarget{a.targetX[row] - pos.x, a.targetY[row] - pos.y};
     if (core::length(toTarget) < f0 + kVisionBeyond) return e0;  // the crowd is where i is going
     // Walls matter only nearer than the crowd along a ray: those in the cells the ray crosses that far.
-    f0 = std::min(f0, roomAlong(in, ws, pos, e0, f0));
+    f0 = std::min(f0, roomAlong(in, ws, pos, e0, f0, onWall));
     const float h = range;
     float best = h * h + f0 * f0 - 2.0f * h * f0;
     core::Vec2 out = e0;
@@ -505,7 +526,7 @@ class AnticipationVelocityModel final : public OperationalModel {
         const float c = std::cos(angle), sn = std::sin(angle);
         const core::Vec2 ec{e0.x * c - e0.y * sn, e0.x * sn + e0.y * c};
         const float crowd = crowd_.clearAhead(pos, z, ec, e0, range);
-        const float f = std::min(crowd, roomAlong(in, ws, pos, ec, crowd));
+        const float f = std::min(crowd, roomAlong(in, ws, pos, ec, crowd, onWall));
         const float d2 = h * h + f * f - 2.0f * h * f * c;
         if (d2 < best - 1e-4f) {
           best = d2;
@@ -518,10 +539,10 @@ class AnticipationVelocityModel final : public OperationalModel {
 
   /// room() against the walls in the cells along the ray (Walls::queryRay): the same as against every
   /// wall within `reach`, as a wall the ray does not cross within reach leaves room() unchanged.
-  static float roomAlong(const ModelInput& in, AvmScratch& ws, core::Vec2 pos, core::Vec2 dir, float reach) {
+  static float roomAlong(const ModelInput& in, AvmScratch& ws, core::Vec2 pos, core::Vec2 dir, float reach, float onWall) {
     ws.visionWalls.clear();
     in.walls.queryRay(pos, dir, reach, ws.visionWalls);
-    return room(in, ws.visionWalls, pos, dir, reach);
+    return room(in, ws.visionWalls, pos, dir, reach, onWall);
   }
 
   /// The desired direction turned aside by the neighbours in front and pushed off the walls.
@@ -538,8 +559,9 @@ class AnticipationVelocityModel final : public OperationalModel {
     // Room to step aside (to the walls on either side, up to a body width): nobody swerves into a
     // wall to pass someone, they follow.
     const float reach = 2.0f * a.radius[row];
-    const float roomRight = room(in, ws, pos, side, reach) / reach;
-    const float roomLeft = room(in, ws, pos, -side, reach) / reach;
+    const float onWall = p.noPressing ? kOnWall : 0.0f;
+    const float roomRight = room(in, ws.wallIds, pos, side, reach, onWall) / reach;
+    const float roomLeft = room(in, ws.wallIds, pos, -side, reach, onWall) / reach;
     const core::Vec2 u = e0 * v0;
     const std::size_t k = in.desc.steering.maxNeighbours;
     const std::uint32_t* nb = &a.neighbours[row * k];
@@ -578,7 +600,7 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float threshold = oncoming ? l : 0.0f;
       const bool toLeft = lateral > threshold;
       float push = strength * (toLeft ? -roomLeft : roomRight);
-      if (std::abs(push) > 1e-3f) push *= roomToPass(in, ws, o, toLeft ? -side : side, a.radius[row]);
+      if (std::abs(push) > 1e-3f) push *= roomToPass(in, ws, o, toLeft ? -side : side, a.radius[row], onWall);
       sideways += push;
     }
     return dir + side * sideways;
@@ -588,20 +610,50 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// direction): 1 when the wall on that side is at least kPassWidths · 2r_i + kPassRamp beyond o's
   /// shoulder, 0 when it is within kPassWidths · 2r_i, linear between. Only the walls near i are
   /// looked at (ws.wallIds, about a metre round i): the push of a neighbour further off is negligible.
-  static float roomToPass(const ModelInput& in, const AvmScratch& ws, std::uint32_t o, core::Vec2 dir, float radius) {
+  static float roomToPass(const ModelInput& in, const AvmScratch& ws, std::uint32_t o, core::Vec2 dir, float radius, float onWall) {
     const AgentStore& a = in.agents;
     const float need = kPassWidths * 2.0f * radius;
-    const float beside = room(in, ws, core::Vec2{a.posX[o], a.posY[o]}, dir, a.radius[o] + need + kPassRamp) - a.radius[o];
+    const float beside = room(in, ws.wallIds, core::Vec2{a.posX[o], a.posY[o]}, dir, a.radius[o] + need + kPassRamp, onWall) - a.radius[o];
     return std::clamp((beside - need) / kPassRamp, 0.0f, 1.0f);
   }
 
+  /// Where the navmesh takes a step `move` from pos, as the displacement: the target pushed back
+  /// out of every wall of wallIds whose line the step crosses (Detour's moveAlongSurface ends at the
+  /// walkable point nearest the target).
+  static core::Vec2 slideAlongWalls(const ModelInput& in, const std::vector<std::uint32_t>& wallIds, core::Vec2 pos,
+                                    core::Vec2 move) {
+    core::Vec2 target = pos + move;
+    for (int k = 0; k < 3; ++k) {
+      float deepest = 0.0f;
+      core::Vec2 out;
+      for (std::uint32_t wid : wallIds) {
+        const core::Segment& seg = in.walls.segments()[wid];
+        const core::Vec2 e = seg.b - seg.a;
+        const float len2 = core::lengthSq(e);
+        if (len2 < 1e-12f) continue;
+        const core::Vec2 n = rightOf(e) / std::sqrt(len2);  // towards the walkable side
+        const float behind = -core::dot(target - seg.a, n);
+        if (behind <= deepest || core::dot(pos - seg.a, n) < -0.01f) continue;
+        const float t = core::dot(target - seg.a, e) / len2;
+        if (t < 0.0f || t > 1.0f) continue;
+        deepest = behind;
+        out = n * behind;
+      }
+      if (deepest <= 0.0f) break;
+      target += out;
+    }
+    return target - pos;
+  }
+
   /// How far i can step from pos along the unit vector dir before a wall of ws.wallIds [m], at most `reach`.
-  static float room(const ModelInput& in, const AvmScratch& ws, core::Vec2 pos, core::Vec2 dir, float reach) {
-    return room(in, ws.wallIds, pos, dir, reach);
+  static float room(const ModelInput& in, const AvmScratch& ws, core::Vec2 pos, core::Vec2 dir, float reach, float onWall) {
+    return room(in, ws.wallIds, pos, dir, reach, onWall);
   }
   /// The same against the walls `wallIds`.
+  /// `onWall` > 0 (noPressing): a walker that close to a wall line, or past it, or at the corner
+  /// between two segments, has no room that way.
   static float room(const ModelInput& in, const std::vector<std::uint32_t>& wallIds, core::Vec2 pos, core::Vec2 dir,
-                    float reach) {
+                    float reach, float onWall = 0.0f) {
     float best = reach;
     for (std::uint32_t wid : wallIds) {
       const core::Segment& seg = in.walls.segments()[wid];
@@ -615,7 +667,8 @@ class AnticipationVelocityModel final : public OperationalModel {
       const core::Vec2 q = seg.a - pos;
       const float t = core::cross(q, e) / den;    // along dir
       const float s = core::cross(q, dir) / den;  // along the segment
-      if (t >= 0.0f && s >= 0.0f && s <= 1.0f) best = std::min(best, t);
+      const float slack = onWall / std::sqrt(core::lengthSq(e));
+      if (t >= -onWall && s >= -slack && s <= 1.0f + slack) best = std::min(best, std::max(0.0f, t));
     }
     return best;
   }
@@ -671,7 +724,7 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float c = std::cos(static_cast<float>(k) * kSlipStep), s = std::sin(static_cast<float>(k) * kSlipStep);
       const core::Vec2 ec{e0.x * c - e0.y * s, e0.x * s + e0.y * c};
       const float g = std::min(gapAhead(in, row, ws.near.data(), ws.near.size(), ec, limit, p.passageRatio),
-                               room(in, ws, pos, ec, limit));
+                               room(in, ws, pos, ec, limit, p.noPressing ? kOnWall : 0.0f));
       const float v = std::min(v0, g / p.timeGap);
       if (v * c > progress + 1e-4f || (progress < 1e-3f && v * c > -1e-3f && v > kSidestepSpeed && v > core::length(best) + 1e-4f)) {
         progress = v * c;
@@ -761,7 +814,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     if (v0 < 1e-6f) {  // nowhere to go: stand, but let others by — unless incapacitated (it cannot)
       return a.goalState[row] == GoalState::Incapacitated ? core::Vec2{} : makeRoom(in, row, p);
     }
-    const core::Vec2 e0 = seeAhead(in, row, pref / v0, p.visionRange, ws);
+    const core::Vec2 e0 = seeAhead(in, row, pref / v0, p.visionRange, p.noPressing ? kOnWall : 0.0f, ws);
     core::Vec2 target = pushes(in, row, e0, v0, p, ws);
     const float len = core::length(target);
     if (len < 1e-6f) return {};
@@ -794,9 +847,122 @@ class AnticipationVelocityModel final : public OperationalModel {
     const float gap = gapAhead(in, row, e, v0 * p.timeGap, p.passageRatio, &blocker);
     const float speed = std::min(v0, gap / p.timeGap);
     const auto bo = static_cast<std::uint32_t>(blocker);
-    if (blocker >= 0 && speed < kSlipSpeed * v0 && (opposed(a, row, bo, kSlipCos) || a.mode[bo] != AgentMode::Walking))
-      return slip(in, row, e0, v0, p, ws, e, speed) + contact(in, row, p);
-    return e * speed + contact(in, row, p);
+    const bool slips = blocker >= 0 && speed < kSlipSpeed * v0 && (opposed(a, row, bo, kSlipCos) || a.mode[bo] != AgentMode::Walking);
+    const core::Vec2 walk = slips ? slip(in, row, e0, v0, p, ws, e, speed) : e * speed;
+    const core::Vec2 v = walk + contact(in, row, p);
+    return p.noPressing ? clampToBodies(in, row, v, p, ws) : v;
+  }
+
+  /// v, changed so that i's step this tick takes its body no deeper into any neighbour's (ellipses
+  /// along their headings, as the overlaps are measured; docs/crowd-model.md, "No step into a
+  /// body"). The time-gap law checks the walking direction only; the contact step, the slip's
+  /// sideways steps, the merge rule (givesWay) and the navmesh sliding a walker along a wall all
+  /// moved people into bodies beside them, which put the dense room's deepest overlap at 0.11 m.
+  core::Vec2 clampToBodies(const ModelInput& in, std::size_t row, core::Vec2 v, const AvmParams& p, const AvmScratch& ws) const {
+    const AgentStore& a = in.agents;
+    const float step = core::length(v) * dt_;
+    if (step < 1e-6f) return v;
+    const core::Vec2 oi{a.oriX[row], a.oriY[row]};
+    // Pressed against a wall, the navmesh slides the step along it: that is the move to check.
+    core::Vec2 move = slideAlongWalls(in, ws.wallIds, {a.posX[row], a.posY[row]}, v * dt_);
+    const core::Vec2 planned = move;
+    // How deep the step may take i into o's body: a body not touched closes at most half the gap
+    // (o, seeing the same, the other half); one already overlapping gets no deeper. Except when i
+    // squeezes by o (kSqueezeDepth): of two merging walkers the one further along goes first (ties:
+    // the lower id; `leads`, also capped at kSqueezeSpeed), and two coming head on (desired
+    // directions and bodies more than 120° apart) pass each other when they would be offset enough
+    // to pass with shoulders turned, as the gap law lets them (gapAhead).
+    // First the step loses what presses (the part along the line of centres towards o; a leader is
+    // slowed to kSqueezeSpeed) unless it passes o head on; then it is shortened until it presses no
+    // body beyond its limit, squeezing by allowed to leaders and passers alike.
+    struct Limit {
+      float strict, squeeze;  ///< the depth allowed: to anyone, and to one squeezing by [m]
+      bool leads, passing;
+    };
+    auto limit = [&](std::uint32_t o, core::Vec2 d) {
+      const float before = depthAt(a, row, o, d, oi, p.passageRatio);
+      const float allowed = before < 0.0f ? 0.5f * before : before;
+      const core::Vec2 ei{a.prefVelX[row], a.prefVelY[row]}, eo{lastDesiredX_[o], lastDesiredY_[o]};
+      const float lead = -core::dot(d, core::normalize(ei) + core::normalize(eo));
+      const bool leads = core::dot(ei, eo) > 0.0f && (lead > 1e-4f || (lead > -1e-4f && a.id[row] < a.id[o]));
+      const core::Vec2 w = eo - ei;  // how o moves relative to i, both walking as they want
+      const float ww = core::lengthSq(w);
+      const float t = ww > 1e-8f ? std::max(0.0f, -core::dot(d, w) / ww) : 0.0f;
+      const bool passing = opposed(a, row, o, kGiveWayCos) && core::dot(oi, core::Vec2{a.oriX[o], a.oriY[o]}) < kGiveWayCos &&
+                           core::length(d + w * t) >= p.passageRatio * (a.radius[row] + a.radius[o]);
+      return Limit{allowed, std::max(allowed, kSqueezeDepth), leads, passing};
+    };
+    auto near = [&](core::Vec2 d, std::uint32_t o) {
+      const float l = a.radius[row] + a.radius[o];
+      return core::lengthSq(d) < (l + step) * (l + step);
+    };
+    // First: no step towards a body it would press into (the part along the line of centres goes).
+    bool pressed = false;
+    forEachNeighbour(in, row, [&](std::uint32_t o, core::Vec2 d) {
+      if (!near(d, o)) return;
+      const Limit lim = limit(o, d);
+      if (depthAt(a, row, o, d - move, oi, p.passageRatio) <= (lim.passing ? lim.squeeze : lim.strict)) return;
+      pressed = true;
+      const float dist = core::length(d);
+      const core::Vec2 u = dist > 1e-6f ? d / dist : core::Vec2{1.0f, 0.0f};
+      const float radial = core::dot(move, u);
+      if (radial > 0.0f) move -= u * radial;
+      if (lim.leads) {
+        const float tl = core::length(move), cap = kSqueezeSpeed * dt_;
+        if (tl > cap) move = move * (cap / tl);
+      }
+    });
+    if (!pressed) return v;
+    // Then: the step shortened until it presses no body beyond its limit.
+    float s = 1.0f;
+    forEachNeighbour(in, row, [&](std::uint32_t o, core::Vec2 d) {
+      if (s <= 0.0f || !near(d, o)) return;
+      const Limit lim = limit(o, d);
+      const float allowed = lim.leads || lim.passing ? lim.squeeze : lim.strict;
+      if (depthAt(a, row, o, d - move * s, oi, p.passageRatio) <= allowed) return;
+      float lo = 0.0f, hi = s;
+      for (int it = 0; it < 6; ++it) {
+        const float mid = 0.5f * (lo + hi);
+        (depthAt(a, row, o, d - move * mid, oi, p.passageRatio) <= allowed ? lo : hi) = mid;
+      }
+      s = lo;
+    });
+    move = move * s;
+    if (move.x == planned.x && move.y == planned.y) return v;
+    return move / dt_;
+  }
+
+  /// Whether a slow walker's turn this tick (integrate's rule: below kFaceDesiredBelow a body turns
+  /// toward where it wants to go, over kTurnTime) would press its body deeper into a neighbour's it
+  /// touches: then it keeps its heading (VelocityOutput::holdHeading). People wedged in a crowd cannot
+  /// turn their shoulders into the person beside them; the turning ellipses pressed bodies up to
+  /// 6 cm into each other in the dense room (docs/crowd-model.md). Walkers going faster turn toward
+  /// their motion as before: held sideways at speed, their bodies met others worse (0.28 m).
+  bool turnDeepens(const ModelInput& in, std::size_t row, core::Vec2 v, const AvmParams& p) const {
+    const AgentStore& a = in.agents;
+    const core::Vec2 pref{a.prefVelX[row], a.prefVelY[row]};
+    if (core::length(v) >= kFaceDesiredBelow || core::length(pref) <= 1e-3f) return false;
+    const core::Vec2 oi{a.oriX[row], a.oriY[row]};
+    const core::Vec2 next = core::normalize(oi + (core::normalize(pref) - oi) * std::min(1.0f, dt_ / kTurnTime));
+    bool deepens = false;
+    forEachNeighbour(in, row, [&](std::uint32_t o, core::Vec2 d) {
+      if (deepens) return;
+      const float l = a.radius[row] + a.radius[o];
+      if (core::lengthSq(d) >= l * l) return;
+      const float now = depthAt(a, row, o, d, oi, p.passageRatio);
+      const float then = depthAt(a, row, o, d, next, p.passageRatio);
+      if (then > std::max(now, 0.0f) + 1e-4f) deepens = true;
+    });
+    return deepens;
+  }
+
+  /// Signed overlap depth of i's and o's ellipses along their line of centres (negative: the gap) [m].
+  float depthAt(const AgentStore& a, std::size_t row, std::uint32_t o, core::Vec2 d, core::Vec2 oi, float qi) const {
+    const float l = a.radius[row] + a.radius[o];
+    const float dist = core::length(d);
+    if (dist < 1e-6f) return l;
+    const core::Vec2 u = d / dist;
+    return 0.5f * (ellipseReach(oi, u, l, qi) + ellipseReach({a.oriX[o], a.oriY[o]}, u, l, params_[a.population[o]].passageRatio)) - dist;
   }
 
   [[nodiscard]] int separationPasses(std::uint16_t population) const override {

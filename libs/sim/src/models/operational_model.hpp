@@ -51,8 +51,21 @@ struct RowRange {
 };
 
 /// Where a model writes: the new velocity column [m/s]; only the rows it was given.
+/// How bodies turn (integrate applies it; a model that holds headings predicts it): the time constant
+/// of heading changes [s] — bodies do not snap to their velocity direction —
+inline constexpr float kTurnTime = 0.25f;
+/// and the speed below which a body turns toward where it wants to go (its preferred velocity), not
+/// toward its motion [m/s]: pressed sideways or back in a queue, people keep facing the door.
+/// Measured on the dense room of scripts/validate.py (200 people, a 1 m door, seed 1): of the
+/// samples of people standing (< 0.2 m/s) in the room, 37 % faced more than 45° away from the door
+/// when the body turned toward any motion over 0.1 m/s, 0.8 % with this rule (docs/crowd-model.md).
+inline constexpr float kFaceDesiredBelow = 0.5f;
+
 struct VelocityOutput {
   std::span<float> x, y;
+  /// 1: the body keeps its heading this tick (integrate does not turn it); a model that never
+  /// holds headings leaves the column alone (0).
+  std::span<std::uint8_t> holdHeading;
 };
 
 /// A model's per-thread working memory (half-planes, wall ids, …), made by the model.

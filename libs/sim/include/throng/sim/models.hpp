@@ -41,7 +41,7 @@ struct ModelParameter {
   }
 };
 
-inline constexpr std::size_t kMaxModelParameters = 10;
+inline constexpr std::size_t kMaxModelParameters = 12;
 
 /// A model as the scenario names it.
 struct ModelInfo {
