@@ -136,6 +136,15 @@ class AvmScratch final : public ModelScratch {
   std::vector<std::uint32_t> wallIds;
   std::vector<std::uint32_t> visionWalls;  ///< seeAhead's walls along one ray (roomAlong)
   std::vector<std::uint32_t> near;         ///< slip's neighbours near enough to block some direction
+  /// clampToBodies: a neighbour the step may reach, and how deep it may press into it [m] while the
+  /// step loses what presses (`first`) and while it is shortened (`then`).
+  struct NearBody {
+    std::uint32_t o;
+    core::Vec2 d;
+    float first, then;
+    bool leads;
+  };
+  std::vector<NearBody> nearBodies;
 };
 
 /// Two walkers whose directions are less than this far apart (cos 120°) settle who goes first
@@ -858,7 +867,7 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// body"). The time-gap law checks the walking direction only; the contact step, the slip's
   /// sideways steps, the merge rule (givesWay) and the navmesh sliding a walker along a wall all
   /// moved people into bodies beside them, which put the dense room's deepest overlap at 0.11 m.
-  core::Vec2 clampToBodies(const ModelInput& in, std::size_t row, core::Vec2 v, const AvmParams& p, const AvmScratch& ws) const {
+  core::Vec2 clampToBodies(const ModelInput& in, std::size_t row, core::Vec2 v, const AvmParams& p, AvmScratch& ws) const {
     const AgentStore& a = in.agents;
     const float step = core::length(v) * dt_;
     if (step < 1e-6f) return v;
@@ -875,13 +884,13 @@ class AnticipationVelocityModel final : public OperationalModel {
     // First the step loses what presses (the part along the line of centres towards o; a leader is
     // slowed to kSqueezeSpeed) unless it passes o head on; then it is shortened until it presses no
     // body beyond its limit, squeezing by allowed to leaders and passers alike.
-    struct Limit {
-      float strict, squeeze;  ///< the depth allowed: to anyone, and to one squeezing by [m]
-      bool leads, passing;
-    };
-    auto limit = [&](std::uint32_t o, core::Vec2 d) {
+    ws.nearBodies.clear();
+    forEachNeighbour(in, row, [&](std::uint32_t o, core::Vec2 d) {
+      const float l = a.radius[row] + a.radius[o];
+      if (core::lengthSq(d) >= (l + step) * (l + step)) return;
       const float before = depthAt(a, row, o, d, oi, p.passageRatio);
-      const float allowed = before < 0.0f ? 0.5f * before : before;
+      const float strict = before < 0.0f ? 0.5f * before : before;
+      const float squeeze = std::max(strict, kSqueezeDepth);
       const core::Vec2 ei{a.prefVelX[row], a.prefVelY[row]}, eo{lastDesiredX_[o], lastDesiredY_[o]};
       const float lead = -core::dot(d, core::normalize(ei) + core::normalize(eo));
       const bool leads = core::dot(ei, eo) > 0.0f && (lead > 1e-4f || (lead > -1e-4f && a.id[row] < a.id[o]));
@@ -889,44 +898,36 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float ww = core::lengthSq(w);
       const float t = ww > 1e-8f ? std::max(0.0f, -core::dot(d, w) / ww) : 0.0f;
       const bool passing = opposed(a, row, o, kGiveWayCos) && core::dot(oi, core::Vec2{a.oriX[o], a.oriY[o]}) < kGiveWayCos &&
-                           core::length(d + w * t) >= p.passageRatio * (a.radius[row] + a.radius[o]);
-      return Limit{allowed, std::max(allowed, kSqueezeDepth), leads, passing};
-    };
-    auto near = [&](core::Vec2 d, std::uint32_t o) {
-      const float l = a.radius[row] + a.radius[o];
-      return core::lengthSq(d) < (l + step) * (l + step);
-    };
+                           core::length(d + w * t) >= p.passageRatio * l;
+      ws.nearBodies.push_back({o, d, passing ? squeeze : strict, leads || passing ? squeeze : strict, leads});
+    });
     // First: no step towards a body it would press into (the part along the line of centres goes).
     bool pressed = false;
-    forEachNeighbour(in, row, [&](std::uint32_t o, core::Vec2 d) {
-      if (!near(d, o)) return;
-      const Limit lim = limit(o, d);
-      if (depthAt(a, row, o, d - move, oi, p.passageRatio) <= (lim.passing ? lim.squeeze : lim.strict)) return;
+    for (const AvmScratch::NearBody& b : ws.nearBodies) {
+      if (depthAt(a, row, b.o, b.d - move, oi, p.passageRatio) <= b.first) continue;
       pressed = true;
-      const float dist = core::length(d);
-      const core::Vec2 u = dist > 1e-6f ? d / dist : core::Vec2{1.0f, 0.0f};
+      const float dist = core::length(b.d);
+      const core::Vec2 u = dist > 1e-6f ? b.d / dist : core::Vec2{1.0f, 0.0f};
       const float radial = core::dot(move, u);
       if (radial > 0.0f) move -= u * radial;
-      if (lim.leads) {
+      if (b.leads) {
         const float tl = core::length(move), cap = kSqueezeSpeed * dt_;
         if (tl > cap) move = move * (cap / tl);
       }
-    });
+    }
     if (!pressed) return v;
     // Then: the step shortened until it presses no body beyond its limit.
     float s = 1.0f;
-    forEachNeighbour(in, row, [&](std::uint32_t o, core::Vec2 d) {
-      if (s <= 0.0f || !near(d, o)) return;
-      const Limit lim = limit(o, d);
-      const float allowed = lim.leads || lim.passing ? lim.squeeze : lim.strict;
-      if (depthAt(a, row, o, d - move * s, oi, p.passageRatio) <= allowed) return;
+    for (const AvmScratch::NearBody& b : ws.nearBodies) {
+      if (s <= 0.0f) break;
+      if (depthAt(a, row, b.o, b.d - move * s, oi, p.passageRatio) <= b.then) continue;
       float lo = 0.0f, hi = s;
       for (int it = 0; it < 6; ++it) {
         const float mid = 0.5f * (lo + hi);
-        (depthAt(a, row, o, d - move * mid, oi, p.passageRatio) <= allowed ? lo : hi) = mid;
+        (depthAt(a, row, b.o, b.d - move * mid, oi, p.passageRatio) <= b.then ? lo : hi) = mid;
       }
       s = lo;
-    });
+    }
     move = move * s;
     if (move.x == planned.x && move.y == planned.y) return v;
     return move / dt_;
@@ -961,7 +962,12 @@ class AnticipationVelocityModel final : public OperationalModel {
     const float l = a.radius[row] + a.radius[o];
     const float dist = core::length(d);
     if (dist < 1e-6f) return l;
-    const core::Vec2 u = d / dist;
+    return depthAlong(a, o, d / dist, dist, l, oi, qi);
+  }
+
+  /// The overlap of i's ellipse (heading oi, depth ratio qi) and o's along the unit vector u from i to
+  /// o, their centres dist apart and their shoulders summing to l [m]; negative: the gap.
+  float depthAlong(const AgentStore& a, std::uint32_t o, core::Vec2 u, float dist, float l, core::Vec2 oi, float qi) const {
     return 0.5f * (ellipseReach(oi, u, l, qi) + ellipseReach({a.oriX[o], a.oriY[o]}, u, l, params_[a.population[o]].passageRatio)) - dist;
   }
 
@@ -1007,7 +1013,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     if (dist2 >= l * l) return {};
     const float dist = std::sqrt(dist2);
     const core::Vec2 u = dist > 1e-6f ? d / dist : core::Vec2{a.id[row] < a.id[o] ? 1.0f : -1.0f, 0.0f};
-    return {u, 0.5f * (ellipseReach(oi, u, l, qi) + ellipseReach({a.oriX[o], a.oriY[o]}, u, l, params_[a.population[o]].passageRatio)) - dist};
+    return {u, depthAlong(a, o, u, dist, l, oi, qi)};
   }
 
   /// How far along the unit vector u an ellipse of shoulder semi-axis l (across its heading `ori`)
