@@ -412,8 +412,10 @@ TEST(Models, TheDefaultBodyPassesAHalfMetreDoorWithTheAnticipationModel) {
 // Issue 17: an avm walker (the default visionRange, 20 m) sees a knot of people standing between it
 // and its exit and walks round it (Moussaïd et al. 2011's heuristic in seeAhead): it reaches its exit
 // and keeps its body clear of theirs. With visionRange 0 (off) it walks into the knot, overlaps the
-// first people and is still stuck there after a minute.
-TEST(Models, AnticipationWalkersGoRoundAKnotOfPeopleTheySeeAhead) {
+// first people and is still stuck there after a minute. `farAway`: one more person stands on an
+// island 600 m off, so the crowd's box holds far more cells than agents and the crowd grid finds its
+// cells through its hash table instead of the dense index (the same walk round the knot).
+static void walkRoundAKnot(bool farAway) {
   sim::ScenarioDesc d;
   d.name = "knot";
   d.seed = 9;
@@ -450,6 +452,22 @@ TEST(Models, AnticipationWalkersGoRoundAKnotOfPeopleTheySeeAhead) {
   walker.speedMean = 1.3f;
   walker.start = 6.0f;  // once the knot stands
   d.populations = {knot, walker};
+  if (farAway) {
+    d.walkable.push_back({{600, 600}, {604, 600}, {604, 604}, {600, 604}});
+    sim::PointDesc far = spot;
+    far.id = "far";
+    far.position = {602, 602};
+    far.radius = 0.5f;
+    d.points.push_back(far);
+    sim::PopulationDesc loner = knot;
+    loner.id = "loner";
+    loner.groups = 1;
+    loner.spawn.kind = sim::SpawnKind::Position;
+    loner.spawn.position = {602, 602};
+    loner.goals = {2};
+    loner.start = 7.0f;  // after the walker: the walker keeps id 30
+    d.populations.push_back(loner);
+  }
   auto created = sim::World::create(d);
   ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
   sim::World& w = *created.value();
@@ -471,4 +489,15 @@ TEST(Models, AnticipationWalkersGoRoundAKnotOfPeopleTheySeeAhead) {
   }
   EXPECT_TRUE(out) << "the walker reaches the exit beyond the knot";
   EXPECT_GT(nearest, 0.25f) << "closest approach to the knot's people (gap between bodies) [m]";
+}
+
+TEST(Models, AnticipationWalkersGoRoundAKnotOfPeopleTheySeeAhead) {
+  {
+    SCOPED_TRACE("the crowd grid's dense index");
+    walkRoundAKnot(false);
+  }
+  {
+    SCOPED_TRACE("the crowd grid's hash table (a world of 600 m with 32 people)");
+    walkRoundAKnot(true);
+  }
 }

@@ -33,10 +33,11 @@ namespace {
 /// Updates an unread result survives before it expires.
 constexpr std::uint64_t kResultLifetimeUpdates = 64;
 
-/// 24 bytes: a path request for every agent of a million-agent world can wait in the queue at once,
-/// so the heights of layered meshes wait in a queue of their own (Impl::waitingHeights).
+/// 16 bytes: a path request for every agent of a million-agent world can wait in the queue at once,
+/// so the heights of layered meshes wait in a queue of their own (Impl::waitingHeights), and the
+/// tickets are not stored: they are issued in order and served in order, so the waiting ones are
+/// the last waiting.size() issued (Impl::frontTicket).
 struct Request {
-  PathTicket ticket = 0;
   Vec2 from;
   Vec2 to;
 };
@@ -149,9 +150,14 @@ struct PathQueue::Impl {
     return filters[heights != nullptr && heights->costClass < filters.size() ? heights->costClass : 0];
   }
 
+  /// The ticket of waiting.front(): the waiting requests hold the last tickets issued, in order (the
+  /// one restart() puts back at the front is the one taken from there last).
+  [[nodiscard]] PathTicket frontTicket() const { return nextTicket - waiting.size(); }
+
   /// Starts the oldest waiting request on the serial searcher. Returns false when it finished at
   /// once (not on the mesh).
   bool begin() {
+    const PathTicket ticket = frontTicket();
     const Request r = waiting.front();
     waiting.pop_front();
     std::optional<Layered> heights;
@@ -165,10 +171,10 @@ struct PathQueue::Impl {
     if (!serial) serial = std::make_unique<Searcher>(*mesh, maxNodes);
     std::optional<PathResult> now = serial->begin(*mesh, r, heights ? &*heights : nullptr, currentFilter);
     if (now) {
-      finish(r.ticket, std::move(*now));
+      finish(ticket, std::move(*now));
       return false;
     }
-    current = r.ticket;
+    current = ticket;
     active = true;
     return true;
   }
@@ -216,7 +222,7 @@ struct PathQueue::Impl {
   /// Takes the oldest waiting request, already searched; returns false when it costs no budget
   /// (finished at once), true when its replay began.
   bool beginReplay() {
-    const PathTicket ticket = waiting.front().ticket;
+    const PathTicket ticket = frontTicket();
     currentRequest = waiting.front();
     waiting.pop_front();
     if (!waitingHeights.empty()) {
@@ -262,14 +268,14 @@ PathQueue::~PathQueue() = default;
 
 PathTicket PathQueue::request(Vec2 from, Vec2 to) {
   const PathTicket ticket = impl_->nextTicket++;
-  impl_->waiting.push_back(Request{ticket, from, to});
+  impl_->waiting.push_back(Request{from, to});
   if (impl_->mesh->layered()) impl_->waitingHeights.push_back({});
   return ticket;
 }
 
 PathTicket PathQueue::request(Vec2 from, float fromHeight, Vec2 to, float toHeight, std::uint32_t costClass) {
   const PathTicket ticket = impl_->nextTicket++;
-  impl_->waiting.push_back(Request{ticket, from, to});
+  impl_->waiting.push_back(Request{from, to});
   if (impl_->mesh->layered()) impl_->waitingHeights.push_back({fromHeight, toHeight, costClass});
   return ticket;
 }
@@ -342,9 +348,7 @@ TicketState PathQueue::state(PathTicket ticket) const {
   const Impl& q = *impl_;
   if (q.finished.count(ticket)) return TicketState::Done;
   if ((q.active && q.current == ticket) || (q.replaying && q.replayTicket == ticket)) return TicketState::Pending;
-  // Waiting tickets are increasing from front to back.
-  if (!q.waiting.empty() && ticket >= q.waiting.front().ticket && ticket <= q.waiting.back().ticket)
-    return TicketState::Pending;
+  if (ticket >= q.frontTicket() && ticket < q.nextTicket) return TicketState::Pending;  // waiting
   return TicketState::Unknown;
 }
 

@@ -268,11 +268,15 @@ class CrowdGrid {
     nx_ = static_cast<std::int64_t>((x1 - x0 + 2.0f * range) / kCrowdCell) + 1;
     ny_ = static_cast<std::int64_t>((y1 - y0 + 2.0f * range) / kCrowdCell) + 1;
     nz_ = std::min(64, static_cast<int>((z1 - z0) / kCrowdStorey) + 1);
-    // Occupied cells are stored once (cells_), found through a dense index over the box while that
-    // stays within kDenseCellsPerAgent cells an agent, else through an open-addressed table at most a
-    // quarter full: memory and the per-tick reset follow the number of agents, not the world's size.
+    // Only crowded cells are stored (cells_, 12 bytes each): at 1 agent/m² about 8 % of the cells
+    // hold kCrowdedCount people or more, and the look ahead skips every other cell. They are found
+    // through a dense index over the box while that stays within kDenseCellsPerAgent cells an agent,
+    // else through an open-addressed table at most a quarter full: memory and the per-tick reset
+    // follow the number of agents, not the world's size. An index entry is a cell's place in cells_
+    // (>= 0) or, below 0, no crowd: while counting, -1 - (the people in it).
     dense_.clear();
     slots_.clear();
+    cells_.clear();
     const auto boxCells = static_cast<double>(nx_) * static_cast<double>(ny_) * nz_;
     if (boxCells <= kDenseCellsPerAgent * static_cast<double>(n) + kDenseCellsMin) {
       dense_.assign(static_cast<std::size_t>(boxCells), -1);
@@ -282,9 +286,22 @@ class CrowdGrid {
       mask_ = size - 1;
       slots_.assign(size, Slot{});
     }
-    for (std::size_t i = 0; i < n; ++i) {
+    const auto cellOf = [&](std::size_t i) {
       const float fx = (a.posX[i] - x0_) / kCrowdCell, fy = (a.posY[i] - y0_) / kCrowdCell;
-      Cell& c = slot(key(static_cast<std::int64_t>(std::floor(fx)), static_cast<std::int64_t>(std::floor(fy)), storey(a.height(i))));
+      return key(static_cast<std::int64_t>(std::floor(fx)), static_cast<std::int64_t>(std::floor(fy)), storey(a.height(i)));
+    };
+    for (std::size_t i = 0; i < n; ++i) {  // count
+      std::int32_t& v = indexOf(cellOf(i));
+      if (v > -1 - 0xffff) --v;
+    }
+    for (std::size_t i = 0; i < n; ++i) {  // the crowded cells: their people's directions
+      std::int32_t& v = indexOf(cellOf(i));
+      if (v < 0) {
+        if (-1 - v < kCrowdedCount) continue;
+        v = static_cast<std::int32_t>(cells_.size());
+        cells_.push_back(Cell{});
+      }
+      Cell& c = cells_[static_cast<std::size_t>(v)];
       if (c.count == 0xffff) continue;
       ++c.count;
       const core::Vec2 want{a.prefVelX[i], a.prefVelY[i]};
@@ -295,11 +312,7 @@ class CrowdGrid {
       }
     }
     for (Cell& c : cells_) {
-      if (c.count >= kCrowdedCount) {
-        c.kind = core::length(c.heading()) < kOrderedShare * static_cast<float>(c.count) ? kKnot : kStream;
-      } else if (!dense_.empty()) {
-        dense_[static_cast<std::size_t>(c.key)] = -1;  // not a crowd: the look along a ray skips it unread
-      }
+      c.kind = core::length(c.heading()) < kOrderedShare * static_cast<float>(c.count) ? kKnot : kStream;
     }
   }
 
@@ -373,7 +386,6 @@ class CrowdGrid {
     return static_cast<std::int32_t>(unit * kHeadingScale + (unit >= 0.0f ? 0.5f : -0.5f));
   }
   struct Cell {
-    std::int64_t key = 0;
     std::int32_t sumX = 0, sumY = 0;  ///< the cell's agents' unit desired directions, summed in fixed point
     std::uint16_t count = 0;
     std::uint8_t kind = kClear;
@@ -382,7 +394,7 @@ class CrowdGrid {
       return core::Vec2{static_cast<float>(sumX), static_cast<float>(sumY)} / kHeadingScale;
     }
   };
-  static_assert(sizeof(Cell) <= 24);
+  static_assert(sizeof(Cell) <= 12);
   struct Slot {
     std::int64_t key = -1;  ///< -1: free
     std::int32_t cell = -1;
@@ -418,7 +430,7 @@ class CrowdGrid {
     return static_cast<std::size_t>((static_cast<std::uint64_t>(k) * 0x9e3779b97f4a7c15ull) >> 20) & mask_;
   }
 
-  /// Where cell k's index into cells_ is kept (-1 until someone is in it).
+  /// Where cell k's index entry is kept (-1 until someone is in it).
   std::int32_t& indexOf(std::int64_t k) {
     if (!dense_.empty()) return dense_[static_cast<std::size_t>(k)];
     for (std::size_t i = home(k);; i = (i + 1) & mask_) {
@@ -430,30 +442,20 @@ class CrowdGrid {
     }
   }
 
-  /// Cell k, taken if nobody was in it yet.
-  Cell& slot(std::int64_t k) {
-    std::int32_t& i = indexOf(k);
-    if (i < 0) {
-      i = static_cast<std::int32_t>(cells_.size());
-      cells_.push_back(Cell{k, 0, 0, 0, kClear});
-    }
-    return cells_[static_cast<std::size_t>(i)];
-  }
-
-  /// Cell k, or null when nobody is in it.
+  /// Cell k when it is crowded, else null.
   [[nodiscard]] const Cell* find(std::int64_t k) const {
     if (!dense_.empty()) {
       const std::int32_t i = dense_[static_cast<std::size_t>(k)];
       return i < 0 ? nullptr : &cells_[static_cast<std::size_t>(i)];
     }
     for (std::size_t i = home(k);; i = (i + 1) & mask_) {
-      if (slots_[i].key == k) return &cells_[static_cast<std::size_t>(slots_[i].cell)];
+      if (slots_[i].key == k) return slots_[i].cell < 0 ? nullptr : &cells_[static_cast<std::size_t>(slots_[i].cell)];
       if (slots_[i].key < 0) return nullptr;
     }
   }
 
-  std::vector<Cell> cells_;          ///< the occupied cells, in the order they were first met
-  std::vector<std::int32_t> dense_;  ///< index into cells_ per cell of the box, or empty
+  std::vector<Cell> cells_;          ///< the crowded cells, in the order they were first met
+  std::vector<std::int32_t> dense_;  ///< index entry per cell of the box (see build), or empty
   std::vector<Slot> slots_;          ///< open-addressed cell → index, when the box is too large
   std::size_t mask_ = 0;
   float x0_ = 0, y0_ = 0, z0_ = 0, range_ = 0;
