@@ -135,7 +135,18 @@ class AvmScratch final : public ModelScratch {
  public:
   std::vector<std::uint32_t> wallIds;
   std::vector<std::uint32_t> visionWalls;  ///< seeAhead's walls along one ray (roomAlong)
-  std::vector<std::uint32_t> near;         ///< slip's neighbours near enough to block some direction
+  /// slip's neighbours near enough to block some direction, with what gapAhead asks of each that
+  /// does not depend on the direction tried (worked out once for the twelve).
+  struct NearBlocker {
+    core::Vec2 d;      ///< from i to o
+    core::Vec2 eo;     ///< o's walking direction (givesWay)
+    float l;           ///< r_i + r_o
+    float aheadOfO;    ///< how far i is ahead of o along eo
+    bool turned;       ///< the two turn their shoulders to pass (opposed beyond kRotateCos)
+    bool walking;      ///< o walks (givesWay; otherwise an obstacle)
+    bool lowerId;      ///< i's id is below o's (givesWay's tie)
+  };
+  std::vector<NearBlocker> near;
   /// clampToBodies: a neighbour the step may reach, and how deep it may press into it [m] while the
   /// step loses what presses (`first`) and while it is shortened (`then`).
   struct NearBody {
@@ -684,16 +695,20 @@ class AnticipationVelocityModel final : public OperationalModel {
     return best;
   }
 
+  /// o's walking direction: its velocity, or where it faces while it stands in a queue.
+  static core::Vec2 walkingDirection(const AgentStore& a, std::uint32_t o) {
+    const core::Vec2 vo{a.velX[o], a.velY[o]};
+    const float so = core::length(vo);
+    return so > 0.05f ? vo / so : core::Vec2{a.oriX[o], a.oriY[o]};
+  }
+
   /// Merging (two people walking into the same space from the side, less than 90° apart): the one
   /// nearer that space goes first — j does not block i when i is further ahead of j, along j's
   /// walking direction, than j is of i along i's (ties: the lower id goes). Without this rule both
   /// see the other ahead and both stop, which clogs every door and corridor mouth.
   static bool givesWay(const AgentStore& a, std::size_t row, std::uint32_t o, core::Vec2 d, float ahead, core::Vec2 e) {
     if (a.mode[o] != AgentMode::Walking) return false;  // waiting, acting, talking: an obstacle
-    // o's walking direction: its velocity, or where it faces while it stands in a queue.
-    const core::Vec2 vo{a.velX[o], a.velY[o]};
-    const float so = core::length(vo);
-    const core::Vec2 eo = so > 0.05f ? vo / so : core::Vec2{a.oriX[o], a.oriY[o]};
+    const core::Vec2 eo = walkingDirection(a, o);
     if (core::dot(e, eo) <= kGiveWayCos) return false;  // head on: both slow (and step aside)
     const float aheadOfO = -core::dot(d, eo);    // how far i is ahead of o, along o's direction
     if (aheadOfO <= 0.0f) return false;          // o does not see i ahead: o leads
@@ -723,18 +738,25 @@ class AnticipationVelocityModel final : public OperationalModel {
     // twelve directions are tried against those alone: the same result for fewer reads.
     ws.near.clear();
     const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];
+    const float tx = a.targetX[row] - pos.x, ty = a.targetY[row] - pos.y;
+    const bool nearTarget = tx * tx + ty * ty < kSqueezeIn * kSqueezeIn;
     for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
       const std::uint32_t o = nb[n];
       const float l = a.radius[row] + a.radius[o];
       const float reach = limit + l + kStandingGap + 0.01f;
       const float dx = a.posX[o] - pos.x, dy = a.posY[o] - pos.y;
-      if (dx * dx + dy * dy < reach * reach + l * l) ws.near.push_back(o);
+      if (dx * dx + dy * dy >= reach * reach + l * l) continue;
+      const bool walking = a.mode[o] == AgentMode::Walking;
+      if (!walking && nearTarget) continue;  // squeezing in beside someone standing at one's spot
+      const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
+      const core::Vec2 eo = walkingDirection(a, o);
+      ws.near.push_back({d, eo, l, -core::dot(d, eo), opposed(a, row, o, kRotateCos), walking, a.id[row] < a.id[o]});
     }
     for (int k = -kSlipSteps; k <= kSlipSteps; ++k) {
       if (k == 0) continue;
       const float c = std::cos(static_cast<float>(k) * kSlipStep), s = std::sin(static_cast<float>(k) * kSlipStep);
       const core::Vec2 ec{e0.x * c - e0.y * s, e0.x * s + e0.y * c};
-      const float g = std::min(gapAhead(in, row, ws.near.data(), ws.near.size(), ec, limit, p.passageRatio),
+      const float g = std::min(gapAhead(ws.near, ec, limit, p.passageRatio),
                                room(in, ws, pos, ec, limit, p.noPressing ? kOnWall : 0.0f));
       const float v = std::min(v0, g / p.timeGap);
       if (v * c > progress + 1e-4f || (progress < 1e-3f && v * c > -1e-3f && v > kSidestepSpeed && v > core::length(best) + 1e-4f)) {
@@ -814,6 +836,30 @@ class AnticipationVelocityModel final : public OperationalModel {
         gap = g / f;
         if (blocker != nullptr) *blocker = o;
       }
+    }
+    return gap;
+  }
+
+  /// The same against slip's near neighbours (AvmScratch::near), whose direction-free parts are
+  /// worked out: the same arithmetic as above, so the same gap.
+  static float gapAhead(const std::vector<AvmScratch::NearBlocker>& near, core::Vec2 e, float limit, float depthRatio) {
+    float gap = limit;
+    for (const AvmScratch::NearBlocker& b : near) {
+      const float ahead = core::dot(b.d, e);
+      if (ahead <= 0.0f) continue;
+      const float lateral = core::cross(e, b.d);
+      if (std::abs(lateral) >= b.l) continue;
+      if (std::abs(lateral) >= depthRatio * b.l && b.turned) continue;  // shoulders turned
+      if (b.walking && core::dot(e, b.eo) > kGiveWayCos && b.aheadOfO > 0.0f &&
+          (b.aheadOfO > ahead || (b.aheadOfO == ahead && b.lowerId))) {
+        continue;  // o gives way (givesWay)
+      }
+      const float y = lateral / b.l;
+      const float across = 1.0f - y * y;
+      const float f = across * across;
+      if (f < 1e-6f) continue;
+      const float g = std::max(0.0f, ahead - depthRatio * b.l * std::sqrt(across) - kStandingGap * f);
+      if (g < gap * f) gap = g / f;
     }
     return gap;
   }
