@@ -28,7 +28,10 @@ void checkResult(const throng::core::Result<throng::io::LoadedScenario>& r) {
     return;
   }
   const auto& desc = r->desc;
-  check(!desc.walkable.empty());
+  check(!desc.walkable.empty() || !desc.terrain.empty());  // a flat world, or a multi-level one
+  for (const auto& t : desc.transports) {
+    check(t.stops[0] < desc.points.size() && t.stops[1] < desc.points.size() && t.stops[0] != t.stops[1]);
+  }
   for (const auto& poly : desc.walkable) check(poly.size() >= 3 && !throng::core::findSelfIntersection(poly));
   for (const auto& pop : desc.populations) {
     for (const auto goal : pop.goals) check(goal < desc.points.size());

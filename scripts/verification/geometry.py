@@ -563,3 +563,54 @@ def incapacitation(name):
                                incapacitationDose=dose))
     return scenario(name, [rect(0, 0, 20, 8)], [exit_point("exit", rect(19.5, 4.5, 20, 8))], pops, 150,
                     smoke=[{"polygon": rect(0, 0, c["smoke_x"], 8), "extinction": c["extinction"], "co": c["co"]}])
+
+
+# NIST 2.7 (ISO 20414 test 20) and ISO 20414 test 21: two 12 x 10 m floors 4 m apart, joined by
+# nothing walkable. The lift's stops, its lobbies (where people queue: room for all 28), stand one
+# over the other at x 0.5..3, y 2..8; the escalator runs from
+# the ground floor's stop at x 0.5..2 to the upper floor's at x 7.5..9 (7 m across, 4 m up). The
+# lift carries 28 persons down from the upper floor, the escalator 20 up from the ground floor;
+# each then leaves by its floor's exit at x 10.5..12.
+TRANSPORT_FLOORS = {"size": (12.0, 10.0), "heights": (0.0, 4.0), "exit_x": (10.5, 12.0), "exit_y": (3.0, 7.0)}
+LIFT = {"agents": 28, "spawn": (4.0, 1.0, 9.0, 9.0), "stop": (0.5, 2.0, 3.0, 8.0),  # the stop: the lift lobby
+        "capacity": 8, "speed": 1.0, "acceleration": 1.0, "door_open": 2.0, "door_close": 3.0, "transfer": 1.2}
+ESCALATOR = {"agents": 20, "spawn": (3.0, 2.0, 7.0, 8.0), "low": (0.5, 4.0, 2.0, 6.0), "high": (7.5, 4.0, 9.0, 6.0),
+             "speed": 0.5, "headway": 0.8}
+
+
+def _two_floors():
+    w, d = TRANSPORT_FLOORS["size"]
+    verts, tris = [], []
+    for z in TRANSPORT_FLOORS["heights"]:
+        _quad(verts, tris, [[0, 0, z], [w, 0, z], [w, d, z], [0, d, z]])
+    return {"vertices": verts, "walkable": tris, "obstacles": []}
+
+
+def _floor_exit(pid, z):
+    x0, x1 = TRANSPORT_FLOORS["exit_x"]
+    y0, y1 = TRANSPORT_FLOORS["exit_y"]
+    return exit_point(pid, rect(x0, y0, x1, y1), height=z)
+
+
+def _stop(pid, box, z):
+    return {"id": pid, "kind": "interest", "polygon": rect(*box), "height": z}
+
+
+def lift(name):
+    g, (low, high) = LIFT, TRANSPORT_FLOORS["heights"]
+    points = [_stop("lift-low", g["stop"], low), _stop("lift-high", g["stop"], high), _floor_exit("exit", low)]
+    transports = [{"id": "lift", "kind": "elevator", "stops": ["lift-low", "lift-high"], "capacity": g["capacity"],
+                   "speed": g["speed"], "acceleration": g["acceleration"], "doorOpenTime": g["door_open"],
+                   "doorCloseTime": g["door_close"], "transferTime": g["transfer"]}]
+    pops = [population("upstairs", g["agents"], {"polygon": rect(*g["spawn"]), "height": high}, ["lift-high", "exit"], SPEED)]
+    return scenario(name, [], points, pops, 400, terrain=_two_floors(), transports=transports)
+
+
+def escalator(name):
+    g, (low, high) = ESCALATOR, TRANSPORT_FLOORS["heights"]
+    points = [_stop("escalator-low", g["low"], low), _stop("escalator-high", g["high"], high), _floor_exit("exit", high)]
+    transports = [{"id": "escalator", "kind": "escalator", "stops": ["escalator-low", "escalator-high"],
+                   "speed": g["speed"], "headway": g["headway"]}]
+    pops = [population("downstairs", g["agents"], {"polygon": rect(*g["spawn"]), "height": low}, ["escalator-low", "exit"],
+                       SPEED)]
+    return scenario(name, [], points, pops, 200, terrain=_two_floors(), transports=transports)

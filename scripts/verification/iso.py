@@ -175,6 +175,53 @@ def measure_route_layout(results, ctx):
                   all(a["exit_s"] is not None for a in agents.values()) and n == g["agents"])], {}
 
 
+def measure_escalators(results, ctx):
+    """The escalator's own rules (docs/crowd-model.md, "Tactical level: lifts and escalators"): each
+    person rides the belt's length over its speed, to the tick (from the last tick at the bottom,
+    bracketed by the recorded frames, to the `goal_reached` at the top stop); people step off the top
+    at least one headway apart, and exactly one while a queue waits; everybody leaves upstairs."""
+    from .nist import stop_events, _ticks
+    g, (low, high) = G.ESCALATOR, G.TRANSPORT_FLOORS["heights"]
+    res = results["run"]
+    path = res["recording"]
+    top, dt = stop_events(path, "escalator-high")
+    agents = M.load_agents(path)
+    db = sqlite3.connect(path)
+    try:
+        fps = float(dict(db.execute("SELECT key, value FROM metadata").fetchall())["fps"])
+        first_up = dict(db.execute("SELECT id, MIN(frame) FROM throng_heights WHERE z > ? GROUP BY id", (low + 1e-3,)))
+    finally:
+        db.close()
+    (lx0, ly0, lx1, ly1), (hx0, hy0, hx1, hy1) = g["low"], g["high"]
+    across = math.hypot((hx0 + hx1) / 2 - (lx0 + lx1) / 2, (hy0 + hy1) / 2 - (ly0 + ly1) / 2)
+    length = math.hypot(across, high - low)
+    ride = _ticks(length / g["speed"], dt)
+    per_frame = int(round(1.0 / (fps * dt)))
+    # Frame f shows the state after tick per_frame * f - 1: the last tick at the bottom lies in
+    # [per_frame * (F - 1) - 1, per_frame * F - 2] for the first frame F above it.
+    bad, spans = [], []
+    for a, tick in top.items():
+        if a not in first_up:
+            bad.append(a)
+            continue
+        f = first_up[a]
+        lo, hi = tick - (per_frame * f - 2), tick - (per_frame * (f - 1) - 1)
+        spans.append((lo, hi))
+        if not lo <= ride <= hi:
+            bad.append(a)
+    gaps = [b - a for a, b in zip(sorted(top.values()), sorted(top.values())[1:])]
+    headway = _ticks(g["headway"], dt)
+    out = sum(1 for i in agents.values() if i["exit_s"] is not None)
+    checks = [Check(f"all {g['agents']} carried up", f"{len(top)} of {len(agents)}", len(top) == len(agents) == g["agents"]),
+              Check(f"each rides {length:.2f} m / {g['speed']} m/s = {ride * dt:.2f} s",
+                    f"{len(spans) - len([b for b in bad if b in first_up])} of {len(top)} within their frames" +
+                    (f"; off: {sorted(bad)[:5]}" if bad else ""), not bad and len(spans) == len(top) > 0),
+              Check(f"one person a headway ({g['headway']} s) at most, exactly one while the queue waits",
+                    f"closest {min(gaps) * dt:.2f} s" if gaps else "—", bool(gaps) and min(gaps) == headway),
+              Check("everybody leaves by the upper floor's exit", f"{out} of {len(agents)}", out == len(agents) > 0)]
+    return checks, {"ride_s": ride * dt, "top_s": sorted(t * dt for t in top.values())}
+
+
 def tests():
     from . import plots as P
     i = lambda tid, title, crit, doc, runs=(), measure=None, xfail=None, plot=None: Test(  # noqa: E731
@@ -202,7 +249,6 @@ def tests():
                         "maximum of 2.08 /s (Weidmann's peak, 1.22 /(s·m), would give 2.45 /s)"}),
         i("17", "Route choice based on geometric layout", "on two floors, persons take the exit nearer by walking, "
           "not the one below them, nearer as the crow flies", "17-route-layout", [Run("run", "iso/17-route-layout.json")], measure_route_layout),
-        i("21", "Escalator usage", "escalator use and its timing", "21-escalators",
-          xfail="not measured: throng has no escalators: floors are joined only by walkable stairs and ramps, with "
-                "no moving surface, its speed or capacity"),
+        i("21", "Escalator usage", "escalator use and its timing follow the escalator's speed and headway",
+          "21-escalators", [Run("run", "iso/21-escalators.json")], measure_escalators),
     ]

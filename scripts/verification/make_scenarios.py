@@ -79,6 +79,7 @@ def scenarios():
         "nist/3.3-affiliation-control": G.affiliation("NIST 3.3 control: 40 persons who know both exits", False),
         "nist/4.1-dynamic-exits": G.dynamic_exits("NIST 4.1: the far exit closes at 15 s"),
         "nist/5.2-door-flow": G.door_room("NIST 5.2: 200 persons through a 1 m door"),
+        "nist/2.7-elevators": G.lift(f"NIST 2.7: {G.LIFT['agents']} persons down by a lift for {G.LIFT['capacity']}"),
     }
     for rho in RING["densities"]:
         r[f"rimea/04-ring-{rho:g}"] = ring(rho)
@@ -93,7 +94,8 @@ def iso_scenarios():
     r = {"iso/07-overtaking": G.overtaking("ISO 20414 test 7: ten persons overtake one with reduced mobility"),
          "iso/12-stair-flow": G.stair_flow(f"ISO 20414 test 12: {G.STAIR_FLOW['agents']} persons down a 2 m wide "
                                            "flight"),
-         "iso/17-route-layout": G.route_layout("ISO 20414 test 17: the exit nearer by walking, not as the crow flies")}
+         "iso/17-route-layout": G.route_layout("ISO 20414 test 17: the exit nearer by walking, not as the crow flies"),
+         "iso/21-escalators": G.escalator(f"ISO 20414 test 21: {G.ESCALATOR['agents']} persons up an escalator")}
     for rho in G.CORRIDOR_FD["densities"]:
         r[f"iso/13-corridor-{rho:g}"] = G.corridor_fd(f"ISO 20414 test 13: a 2 m corridor, crowd at {rho:g} /m^2", rho)
     return r

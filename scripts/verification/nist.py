@@ -2,11 +2,15 @@
 scripts/verify.py. Where a NIST test sets up what a RiMEA test
 already does, it runs the RiMEA scenario (the run is simulated once) with the NIST criterion; the
 texts are verification/nist/*.md."""
+import math
+
 from validation import measures as M
 
 from . import geometry as G
 from . import rimea as R
 from .core import Check, Run, Test, band
+
+TRANSPORT_RISE = G.TRANSPORT_FLOORS["heights"][1] - G.TRANSPORT_FLOORS["heights"][0]  # [m]
 
 SOURCE = "NIST TN 1822 (Ronchi et al. 2013) test {}"
 
@@ -145,6 +149,71 @@ def measure_incapacitation(results, ctx):
     return checks, {"rows": rows, "moved_m": moved}
 
 
+def stop_events(path, point_id):
+    """Per agent, the tick at which it reached point `point_id` (its `goal_reached` events; the
+    first), and the recording's dt [s]."""
+    import sqlite3
+    db = sqlite3.connect(path)
+    try:
+        dt = float(dict(db.execute("SELECT key, value FROM metadata").fetchall())["throng_dt"])
+        idx = dict((pid, i) for i, pid in db.execute("SELECT idx, id FROM throng_points").fetchall())[point_id]
+        ticks = {}
+        for agent, tick in db.execute("SELECT agent, tick FROM throng_events WHERE kind = 'goal_reached' AND a = ? "
+                                      "ORDER BY tick", (idx,)):
+            ticks.setdefault(agent, tick)
+    finally:
+        db.close()
+    return ticks, dt
+
+
+def _ticks(seconds, dt):
+    return int(round(seconds / dt))
+
+
+def lift_trip_s(distance, speed, acceleration):
+    """A lift trip: accelerate to `speed`, cruise, brake (too short to reach it: accelerate, brake) [s]."""
+    if distance >= speed * speed / acceleration:
+        return distance / speed + speed / acceleration
+    return 2.0 * math.sqrt(distance / acceleration)
+
+
+def measure_elevators(results, ctx):
+    """The lift's own rules (docs/crowd-model.md, "Tactical level: lifts and escalators"), checked
+    from when each person steps off on the ground floor (`goal_reached` at lift-low): people step off
+    one transfer time apart in batches of at most the car's capacity; once everyone waits upstairs,
+    one batch's first steps off exactly one cycle after the last one's — the last batch stepping off,
+    doors closing, the trip up, doors opening, the next batch boarding, doors closing, the trip down,
+    doors opening (each time rounded to whole ticks) — and everybody leaves by the ground floor's exit."""
+    g = G.LIFT
+    res = results["run"]
+    off, dt = stop_events(res["recording"], "lift-low")
+    agents = M.load_agents(res["recording"])
+    times = sorted(off.values())
+    batches = []
+    for t in times:
+        if batches and t - batches[-1][-1] == _ticks(g["transfer"], dt):
+            batches[-1].append(t)
+        else:
+            batches.append([t])
+    trip = _ticks(lift_trip_s(TRANSPORT_RISE, g["speed"], g["acceleration"]), dt)
+    cycles = []
+    for i in range(2, len(batches)):  # from the third batch on everyone is waiting upstairs
+        want = (len(batches[i - 1]) + len(batches[i])) * _ticks(g["transfer"], dt) + \
+            2 * (_ticks(g["door_close"], dt) + trip + _ticks(g["door_open"], dt))
+        cycles.append({"batch": i, "measured_s": (batches[i][0] - batches[i - 1][0]) * dt, "expected_s": want * dt,
+                       "ok": batches[i][0] - batches[i - 1][0] == want})
+    out = sum(1 for i in agents.values() if i["exit_s"] is not None)
+    checks = [Check(f"all {g['agents']} carried down", f"{len(off)} of {len(agents)}", len(off) == len(agents) == g["agents"]),
+              Check(f"batches of at most {g['capacity']}, one transfer ({g['transfer']} s) apart within",
+                    " + ".join(str(len(b)) for b in batches),
+                    bool(batches) and all(len(b) <= g["capacity"] for b in batches) and len(batches) >= 3),
+              Check("one cycle between batches (alight, close, trip, open, board, close, trip, open)",
+                    ", ".join(f"{c['measured_s']:.2f} s (rules {c['expected_s']:.2f})" for c in cycles) or "—",
+                    bool(cycles) and all(c["ok"] for c in cycles)),
+              Check("everybody leaves by the ground floor's exit", f"{out} of {len(agents)}", out == len(agents) > 0)]
+    return checks, {"batches_s": [[t * dt for t in b] for b in batches], "cycles": cycles}
+
+
 def measure_groups(results, ctx):
     res = results["run"]
     traj = M.load_recording(res["recording"])
@@ -248,9 +317,8 @@ def tests():
           [Run("run", "nist/2.5-visibility.json")], measure_visibility),
         n("2.6", "Occupant incapacitation", "incapacitated persons stop", "2.6-incapacitation",
           [Run("run", "nist/2.6-incapacitation.json")], measure_incapacitation),
-        n("2.7", "Elevators", "elevator use and its timing", "2.7-elevators",
-          xfail="not measured: throng has no elevators: floors are joined only by walkable stairs and ramps "
-                "(no cars, capacities, call or travel times)"),
+        n("2.7", "Elevators", "elevator use and its timing follow the lift's rules", "2.7-elevators",
+          [Run("run", "nist/2.7-elevators.json")], measure_elevators),
         n("2.8", "Horizontal counter-flow", "travel time grows with the counter-flow", "2.8-counterflow", counter_runs,
           R.measure_counter, xfail={"cfsm": R.CFSM_COUNTER_XFAIL}, plot=P.counter),
         n("2.9", "Group behaviour", "group members walk together", "2.9-groups", [Run("run", "nist/2.9-groups.json")],

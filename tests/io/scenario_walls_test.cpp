@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 
 #include "scenario_parser.hpp"
 #include "scenario_test_util.hpp"
@@ -301,4 +303,84 @@ TEST(ScenarioDescription, IsReadAndBadOnesAreLocated) {
 }
 
 }  // namespace
+// Lifts and escalators ("transports"): the verification scenarios load, with their parameters, and
+// the goals beyond a stop count as reached from the other stop (the floors are joined by nothing
+// else: without the transport the exit is unreachable and the check says so).
+namespace {
+std::string fileText(const std::string& rel) {
+  std::ifstream in(std::string(THRONG_SOURCE_DIR) + "/" + rel);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+}  // namespace
+
+TEST(ScenarioTransports, LiftsAndEscalatorsAreParsedAndCarryPeopleToReachableGoals) {
+  const std::string lift = fileText("verification/nist/2.7-elevators.json");
+  auto r = load(lift, true);
+  ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
+  ASSERT_EQ(r->desc.transports.size(), 1u);
+  const sim::TransportDesc& t = r->desc.transports[0];
+  EXPECT_EQ(t.kind, sim::TransportKind::Elevator);
+  EXPECT_EQ(r->desc.points[t.stops[0]].id, "lift-low");
+  EXPECT_EQ(r->desc.points[t.stops[1]].id, "lift-high");
+  EXPECT_EQ(t.capacity, 8u);
+  EXPECT_FLOAT_EQ(t.speed, 1.0f);
+  EXPECT_FLOAT_EQ(t.transferTime, 1.2f);
+  const std::string escalator = fileText("verification/iso/21-escalators.json");
+  auto e = load(escalator, true);
+  ASSERT_TRUE(e.ok()) << core::formatAll(e.errors());
+  EXPECT_EQ(e->desc.transports[0].kind, sim::TransportKind::Escalator);
+  EXPECT_FLOAT_EQ(e->desc.transports[0].headway, 0.8f);
+  // An elevator without "speed" gets a lift's default, 1 m/s (an escalator's is 0.5).
+  const std::string noSpeed = edit(lift, R"("speed": 1.0,)", "");
+  ASSERT_NE(noSpeed, lift);
+  EXPECT_FLOAT_EQ(load(noSpeed)->desc.transports[0].speed, 1.0f);
+  // Without the lift the ground floor's exit cannot be reached from the upper floor.
+  const auto cut = lift.find(R"("transports")");
+  ASSERT_NE(cut, std::string::npos);
+  std::string noLift = lift.substr(0, cut);
+  noLift.erase(noLift.find_last_of(','));
+  noLift += "\n}\n";
+  const auto unreachable = errorsOf(noLift, true);
+  EXPECT_TRUE(contains(at(unreachable, "/populations/0/goals/1").what, "cannot be reached")) << core::formatAll(unreachable);
+}
+
+TEST(ScenarioTransports, BadTransportsAreLocated) {
+  const std::string lift = fileText("verification/nist/2.7-elevators.json");
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string s = edit(lift, from, to);
+    EXPECT_NE(s, lift) << from;
+    return s;
+  };
+  const std::string kind = with(R"("kind": "elevator")", R"("kind": "elevater")");
+  const auto dk = at(errorsOf(kind), "/transports/0/kind");
+  expectAt(dk, kind, "\"elevater\"");
+  EXPECT_TRUE(contains(dk.hint, "elevator")) << dk.format();
+  const std::string same = with(R"("stops": [
+    "lift-low",
+    "lift-high"
+   ])", R"("stops": ["lift-low", "lift-low"])");
+  EXPECT_TRUE(contains(at(errorsOf(same), "/transports/0/stops/1").what, "same point")) << same;
+  const std::string typo = with(R"("stops": [
+    "lift-low",
+    "lift-high"
+   ])", R"("stops": ["lift-low", "lift-hihg"])");
+  EXPECT_TRUE(contains(at(errorsOf(typo), "/transports/0/stops/1").hint, "lift-high"));
+  const std::string exitStop = with(R"("stops": [
+    "lift-low",
+    "lift-high"
+   ])", R"("stops": ["lift-low", "exit"])");
+  EXPECT_TRUE(contains(at(errorsOf(exitStop), "/transports/0/stops/1").what, "no interest point"));
+  const std::string wrongKey = with(R"("capacity": 8,)", R"("capacity": 8, "headway": 1,)");
+  EXPECT_TRUE(contains(at(errorsOf(wrongKey), "/transports/0/headway").what, "escalator"));
+  const std::string big = with(R"("capacity": 8,)", R"("capacity": 1000,)");
+  expectAt(at(errorsOf(big), "/transports/0/capacity"), big, "1000");
+  const std::string slow = with(R"("speed": 1.0,)", R"("speed": 0,)");
+  EXPECT_TRUE(contains(at(errorsOf(slow), "/transports/0/speed").expected, "0.1"));
+  const std::string twice = with(R"("transports": [)", R"("transports": [
+  {"id": "lift", "kind": "escalator", "stops": ["lift-high", "lift-low"]},)");
+  const auto dd = errorsOf(twice);
+  EXPECT_TRUE(contains(at(dd, "/transports/1/id").what, "duplicate")) << core::formatAll(dd);
+  EXPECT_TRUE(contains(at(dd, "/transports/1/stops/0").what, "already a stop")) << core::formatAll(dd);
+}
+
 }  // namespace throng::io::test

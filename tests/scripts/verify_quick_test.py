@@ -21,7 +21,7 @@ import tempfile
 # doors, with ORCA nor with avm, the default), an ISO 20414 test (17: exit choice by walking
 # distance, not as the crow flies) and the counter-flow (RiMEA 16: avm's walkers pressed against a
 # wall must be able to step away from it, or the time stops growing with the counter-flow).
-SUBSET = "rimea-1,rimea-2,rimea-5,rimea-6,rimea-7,rimea-10,rimea-16,nist-2.1,nist-2.9,nist-5.2,iso-17"
+SUBSET = "rimea-1,rimea-2,rimea-5,rimea-6,rimea-7,rimea-10,rimea-16,nist-2.1,nist-2.7,nist-2.9,nist-5.2,iso-17,iso-21"
 FLAGS = ["--suite", "--test", "--model", "--threads", "--json", "--report", "--keep", "--list", "--throng"]
 
 

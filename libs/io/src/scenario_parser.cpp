@@ -469,7 +469,7 @@ ParsedScenario ScenarioReader::run() {
   if (!isObject(root, "", "a scenario object {\"format\": \"throng/1\", ...}")) return out;
   checkKeys(root, "",
             {"$schema", "format", "name", "description", "seed", "duration", "dt", "walkable", "obstacles", "terrain", "points",
-             "populations", "steering", "navCellSize", "social", "timeline", "walls", "measurements", "smoke"},
+             "populations", "steering", "navCellSize", "social", "timeline", "walls", "measurements", "smoke", "transports"},
             "the scenario");
   readScenarioHeader(root, out.desc);
   readTiming(root, out.desc);
@@ -479,6 +479,7 @@ ParsedScenario ScenarioReader::run() {
   readSmokeList(root, out.desc);
   readPointList(root, out);
   indexPoints(out.desc);
+  readTransportList(root, out.desc);
   readPopulationList(root, out);
   if (auto* x = optional(root, "social")) {
     if (multiLevel_) {

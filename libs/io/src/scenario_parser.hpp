@@ -55,6 +55,7 @@ inline constexpr std::size_t kMaxWallSegments = 100000;
 /// Most measurement lines and areas a file may list.
 inline constexpr std::size_t kMaxMeasurements = 10000;
 inline constexpr std::size_t kMaxSmoke = 1000;
+inline constexpr std::size_t kMaxTransports = 10000;
 
 [[nodiscard]] ParsedScenario parseScenarioJson(const JsonDocument& doc, core::Diagnostics& diagnostics);
 

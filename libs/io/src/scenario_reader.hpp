@@ -80,6 +80,8 @@ class ScenarioReader {
   void readMeasurementList(const Json& root, ParsedScenario& out);
   bool readMeasurement(const Json& v, const std::string& ptr, sim::MeasurementDesc& m);
   void readSmokeList(const Json& root, sim::ScenarioDesc& desc);
+  /// "transports" (scenario_walls_parser.cpp): lifts and escalators between points (after indexPoints).
+  void readTransportList(const Json& root, sim::ScenarioDesc& desc);
   /// The point ids and heights that goals and spawns resolve against (run and runCrowd).
   void indexPoints(const sim::ScenarioDesc& desc);
   void readPopulationList(const Json& root, ParsedScenario& out);

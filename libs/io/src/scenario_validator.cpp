@@ -509,12 +509,19 @@ class Validator {
     for (std::size_t i = 0; i < desc_.populations.size(); ++i) {
       if (!starts[i]) continue;
       const sim::PopulationDesc& pop = desc_.populations[i];
-      for (const auto& [point, pointer] : destinations(i)) {
+      for (const auto& [point, pointer, from] : destinations(i)) {
         const sim::PointDesc& goal = desc_.points[point];
         const auto target = snapAt(query, goalTarget(goal), goal.height, regionReach(goal) + 1.0f);
-        if (!target || !query.reachable(starts[i]->p, starts[i]->height, target->p, target->height)) {
+        std::optional<nav::MeshPoint> source = starts[i];
+        if (from != kFromSpawn) {
+          const sim::PointDesc& stop = desc_.points[from];
+          source = snapAt(query, goalTarget(stop), stop.height, regionReach(stop) + 1.0f);
+        }
+        if (!target || !source || !query.reachable(source->p, source->height, target->p, target->height)) {
           error(pointer,
-                "point \"" + goal.id + "\" cannot be reached from the spawn area of population \"" + pop.id + "\"",
+                "point \"" + goal.id + "\" cannot be reached from " +
+                    (from == kFromSpawn ? "the spawn area of population \"" + pop.id + "\""
+                                        : "transport stop \"" + desc_.points[from].id + "\" (population \"" + pop.id + "\")"),
                 "a goal connected to the spawn by floors, stairs or ramps at least " + num(width) +
                     " m wide" + clearanceText(width) + ", steps at most " + num(config.maxClimb) + " m high, slopes at most " +
                     num(config.maxSlopeDeg) + "°",
@@ -526,18 +533,35 @@ class Validator {
 
   /// The points population i walks to, with their JSON pointers: its goals (every option of a
   /// waypoint choice), then its exits.
-  [[nodiscard]] std::vector<std::pair<std::uint32_t, std::string>> destinations(std::size_t i) const {
+  /// Each also with the point it is walked from: kFromSpawn, or the stop a lift or escalator took
+  /// the population to (a goal that is a transport's boarding stop is followed by a ride).
+  struct Destination {
+    std::uint32_t point;
+    std::string pointer;
+    std::uint32_t from;
+  };
+  static constexpr std::uint32_t kFromSpawn = 0xffffffffu;
+  [[nodiscard]] std::vector<Destination> destinations(std::size_t i) const {
     const sim::PopulationDesc& pop = desc_.populations[i];
     const std::string ptr = "/populations/" + std::to_string(i);
-    std::vector<std::pair<std::uint32_t, std::string>> out;
-    for (std::size_t g = 0; g < pop.goals.size(); ++g) out.emplace_back(pop.goals[g], ptr + "/goals/" + std::to_string(g));
-    for (const sim::GoalChoiceDesc& c : pop.goalChoices) {
-      out[c.slot].second += "/choose/0";
-      for (std::size_t k = 1; k < c.options.size(); ++k) {
-        out.emplace_back(c.options[k], ptr + "/goals/" + std::to_string(c.slot) + "/choose/" + std::to_string(k));
+    std::vector<Destination> out;
+    std::vector<std::uint32_t> fromAt(pop.goals.size());
+    std::uint32_t from = kFromSpawn;
+    for (std::size_t g = 0; g < pop.goals.size(); ++g) {
+      fromAt[g] = from;
+      out.push_back({pop.goals[g], ptr + "/goals/" + std::to_string(g), from});
+      for (const sim::TransportDesc& t : desc_.transports) {  // ridden from there to the other stop
+        if (t.stops[0] == pop.goals[g]) from = t.stops[1];
+        if (t.kind == sim::TransportKind::Elevator && t.stops[1] == pop.goals[g]) from = t.stops[0];
       }
     }
-    for (std::size_t e = 0; e < pop.exits.size(); ++e) out.emplace_back(pop.exits[e], ptr + "/exits/" + std::to_string(e));
+    for (const sim::GoalChoiceDesc& c : pop.goalChoices) {
+      out[c.slot].pointer += "/choose/0";
+      for (std::size_t k = 1; k < c.options.size(); ++k) {
+        out.push_back({c.options[k], ptr + "/goals/" + std::to_string(c.slot) + "/choose/" + std::to_string(k), fromAt[c.slot]});
+      }
+    }
+    for (std::size_t e = 0; e < pop.exits.size(); ++e) out.push_back({pop.exits[e], ptr + "/exits/" + std::to_string(e), from});
     return out;
   }
 
@@ -713,7 +737,7 @@ class Validator {
               "a spawn on or next to walkable area wide enough for the agents");
         continue;
       }
-      for (const auto& [point, gptr] : destinations(i)) {
+      for (const auto& [point, gptr, from] : destinations(i)) {
         const sim::PointDesc& goal = desc_.points[point];
         // Search around the goal as far as its region extends, plus a margin for the erosion.
         float reach = goal.radius;
@@ -722,9 +746,13 @@ class Validator {
           reach = 0.5f * core::length(box.max - box.min);
         }
         const auto target = query.nearest(goalTarget(goal), reach + 1.0f);
-        if (!target || !query.reachable(start->first, target->first)) {
+        auto source = start;
+        if (from != kFromSpawn) source = query.nearest(goalTarget(desc_.points[from]), regionReach(desc_.points[from]) + 1.0f);
+        if (!target || !source || !query.reachable(source->first, target->first)) {
           error(gptr,
-                "point \"" + goal.id + "\" cannot be reached from the spawn area of population \"" + pop.id + "\"",
+                "point \"" + goal.id + "\" cannot be reached from " +
+                    (from == kFromSpawn ? "the spawn area of population \"" + pop.id + "\""
+                                        : "transport stop \"" + desc_.points[from].id + "\" (population \"" + pop.id + "\")"),
                 "a goal connected to the spawn by walkable area at least " + num(width) + " m wide" + clearanceText(width),
                 "check /obstacles for walls closing the way");
         }

@@ -198,6 +198,105 @@ void ScenarioReader::readSmokeList(const Json& root, sim::ScenarioDesc& desc) {
   }
 }
 
+void ScenarioReader::readTransportList(const Json& root, sim::ScenarioDesc& desc) {
+  const Json* x = optional(root, "transports");
+  if (x == nullptr) return;
+  const std::string expected =
+      "an array of lifts and escalators {\"id\", \"kind\": \"elevator\" or \"escalator\", \"stops\": [point id, point id], ...}";
+  if (!x->is_array()) {
+    error("/transports", "wrong type: " + describeType(*x), expected);
+    return;
+  }
+  if (x->size() > kMaxTransports) {
+    error("/transports", std::to_string(x->size()) + " transports", "at most " + std::to_string(kMaxTransports));
+    return;
+  }
+  desc.transports.resize(x->size());
+  IdRegistry ids;
+  std::map<std::uint32_t, std::size_t> stopOf;  // point -> the transport it is a stop of
+  for (std::size_t i = 0; i < x->size(); ++i) {
+    const std::string ptr = "/transports/" + std::to_string(i);
+    const Json& v = (*x)[i];
+    sim::TransportDesc& t = desc.transports[i];
+    if (!isObject(v, ptr, expected)) continue;
+    checkKeys(v, ptr,
+              {"id", "kind", "stops", "speed", "headway", "capacity", "acceleration", "doorOpenTime", "doorCloseTime",
+               "transferTime"},
+              "a transport");
+    if (auto* id = require(v, ptr, "id", "a non-empty string id, unique among the transports")) {
+      if (readString(*id, ptr + "/id", "a non-empty string id, unique among the transports", t.id) && t.id.empty()) {
+        error(ptr + "/id", "empty id", "a non-empty string id, unique among the transports");
+      } else if (!t.id.empty()) {
+        if (const std::size_t first = ids.claim(t.id, i); first != i) {
+          error(ptr + "/id", "duplicate transport id " + quote(t.id), "ids unique within /transports",
+                "first used at /transports/" + std::to_string(first));
+        }
+      }
+    }
+    bool elevator = false;
+    if (auto* k = require(v, ptr, "kind", "\"elevator\" or \"escalator\"")) {
+      std::string kind;
+      if (readString(*k, ptr + "/kind", "\"elevator\" or \"escalator\"", kind)) {
+        if (kind == "elevator") {
+          t.kind = sim::TransportKind::Elevator;
+          elevator = true;
+          t.speed = 1.0f;  // a lift's default rated speed (sim::TransportDesc::speed)
+        } else if (kind == "escalator") {
+          t.kind = sim::TransportKind::Escalator;
+        } else {
+          error(ptr + "/kind", "unknown transport kind " + quote(kind), "\"elevator\" or \"escalator\"",
+                core::closestMatch(kind, {"elevator", "escalator"}).empty() ? ""
+                                                                            : "did you mean " + quote(core::closestMatch(kind, {"elevator", "escalator"})) + "?");
+        }
+      }
+    }
+    const std::string stopsExpected = "two different point ids [from, to] from /points (an escalator carries from the first to the second)";
+    if (auto* st = require(v, ptr, "stops", stopsExpected)) {
+      if (!st->is_array() || st->size() != 2) {
+        error(ptr + "/stops", st->is_array() ? std::to_string(st->size()) + " stops" : "wrong type: " + describeType(*st), stopsExpected);
+      } else {
+        bool ok = resolvePoint((*st)[0], ptr + "/stops/0", t.stops[0]);
+        ok = resolvePoint((*st)[1], ptr + "/stops/1", t.stops[1]) && ok;
+        if (ok && t.stops[0] == t.stops[1]) error(ptr + "/stops/1", "the same point as the first stop", stopsExpected);
+        for (int k = 0; ok && k < 2; ++k) {
+          if (desc.points[t.stops[k]].kind != sim::PointKind::Interest) {
+            error(ptr + "/stops/" + std::to_string(k), "point " + quote(desc.points[t.stops[k]].id) + " is no interest point",
+                  "a point of kind \"interest\" (where people board and alight)");
+            ok = false;
+          }
+        }
+        for (int k = 0; ok && k < 2; ++k) {
+          if (auto [it, fresh] = stopOf.emplace(t.stops[k], i); !fresh && it->second != i) {
+            error(ptr + "/stops/" + std::to_string(k), "point " + quote(desc.points[t.stops[k]].id) + " is already a stop of /transports/" +
+                  std::to_string(it->second), "each point the stop of one transport at most");
+          }
+        }
+      }
+    }
+    if (auto* y = optional(v, "speed")) {
+      readFloat(*y, ptr + "/speed", elevator ? Range{0.1, 10, false, "m/s"} : Range{0.1, 2, false, "m/s"}, t.speed);
+    }
+    const auto only = [&](const char* key, bool forElevator) -> const Json* {
+      const Json* y = optional(v, key);
+      if (y != nullptr && forElevator != elevator) {
+        error(ptr + "/" + key, std::string("\"") + key + "\" is for " + (forElevator ? "an elevator" : "an escalator"),
+              forElevator ? "no \"" + std::string(key) + "\" on an escalator" : "no \"" + std::string(key) + "\" on an elevator", "", true);
+        return nullptr;
+      }
+      return y;
+    };
+    if (auto* y = only("headway", false)) readFloat(*y, ptr + "/headway", {0.2, 60, false, "s"}, t.headway);
+    if (auto* y = only("capacity", true)) {
+      double c = 0;
+      if (readInteger(*y, ptr + "/capacity", 1, 100, "persons", c)) t.capacity = static_cast<std::uint32_t>(c);
+    }
+    if (auto* y = only("acceleration", true)) readFloat(*y, ptr + "/acceleration", {0.1, 5, false, "m/s²"}, t.acceleration);
+    if (auto* y = only("doorOpenTime", true)) readFloat(*y, ptr + "/doorOpenTime", {0, 60, false, "s"}, t.doorOpenTime);
+    if (auto* y = only("doorCloseTime", true)) readFloat(*y, ptr + "/doorCloseTime", {0, 60, false, "s"}, t.doorCloseTime);
+    if (auto* y = only("transferTime", true)) readFloat(*y, ptr + "/transferTime", {0, 60, false, "s"}, t.transferTime);
+  }
+}
+
 void ScenarioReader::readMeasurementList(const Json& root, ParsedScenario& out) {
   const Json* x = optional(root, "measurements");
   if (x == nullptr) return;

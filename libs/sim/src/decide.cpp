@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "phases.hpp"
+#include "transport.hpp"
 #include "throng/core/assert.hpp"
 
 namespace throng::sim {
@@ -81,6 +82,7 @@ void RowDecision::decideRow() {
   if (a.coordinationOf(row) != kNoIndex) return;  // playing an action script (common_ground_play.cpp)
   const GroupState& g = in.groups[a.group[row]];
   if (!out.dose.empty() && out.goalState[row] != GoalState::Exited && out.goalState[row] != GoalState::Incapacitated &&
+      out.goalState[row] != GoalState::Riding &&
       out.dose[row] >= in.desc.populations[a.population[row]].incapacitationDose) {
     incapacitate();
   }
@@ -90,6 +92,7 @@ void RowDecision::decideRow() {
     case GoalState::Incapacitated:
     case GoalState::WaitingForGroup:
     case GoalState::Scripted:  // skipped above (coordination set); listed for completeness
+    case GoalState::Riding:    // queuing at or carried by a lift or escalator (transport.cpp)
       break;
     case GoalState::Acting:
       if (in.tick >= out.actionEndTick[row]) {
@@ -224,7 +227,14 @@ void RowDecision::seekGoal(const GroupState& g) {
     checkProgress(-1e30f);
     return;
   }
-  if (point.kind == PointKind::Exit) {
+  if (!in.desc.transports.empty() && Transports::boardingAt(in.desc, pointIndex) != kNoIndex) {
+    // A lift's or escalator's stop: it queues there and is carried (transport.cpp).
+    out.goalState[row] = GoalState::Riding;
+    out.mode[row] = AgentMode::Waiting;
+    out.corners[row].clear();
+    out.needPath[row] = 0;
+    event(EventKind::GoalReached, pointIndex);
+  } else if (point.kind == PointKind::Exit) {
     // A closed door lets nobody through: the agent waits in front of it until it opens (or, with
     // exit choice, until its group picks an open exit).
     if (pointIndex < in.closedExits.size() && in.closedExits[pointIndex] != 0) return;

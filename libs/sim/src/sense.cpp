@@ -31,6 +31,16 @@ void sense(const SenseInput& in, const SenseOutput& out, const core::TaskSystem&
       if (dense > 0.0f && grid.density(x, y) >= denseThreshold) r = dense;
       std::uint32_t* list = &out.neighbours[static_cast<std::size_t>(row) * k];
       std::size_t count = grid.nearest(x, y, r, k, row, list);
+      if (!in.goalState.empty()) {
+        const auto carried = [&](std::uint32_t r) { return in.goalState[r] == GoalState::Riding && in.mode[r] == AgentMode::Acting; };
+        std::size_t kept = 0;
+        if (!carried(row)) {
+          for (std::size_t j = 0; j < count; ++j) {
+            if (!carried(list[j])) list[kept++] = list[j];
+          }
+        }
+        count = kept;
+      }
       if (levels) {
         // Multi-level worlds: agents on another floor (above or below) are no neighbours.
         std::size_t kept = 0;

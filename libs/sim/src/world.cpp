@@ -38,6 +38,23 @@ World::~World() = default;
 
 core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
                                                     std::shared_ptr<const nav::NavMesh> navmesh) {
+  // Lifts and escalators: two different points, neither the stop of another transport (io
+  // reports these with the file's location; a host building a ScenarioDesc gets this).
+  for (std::size_t t = 0; t < desc.transports.size(); ++t) {
+    const TransportDesc& d = desc.transports[t];
+    const std::string at = "/transports/" + std::to_string(t);
+    if (d.stops[0] >= desc.points.size() || d.stops[1] >= desc.points.size() || d.stops[0] == d.stops[1]) {
+      return core::Diagnostic{"", 0, 0, at + "/stops", "not two different points", "indices into /points", ""};
+    }
+    for (std::size_t u = 0; u < t; ++u) {
+      for (const std::uint32_t p : d.stops) {
+        if (p == desc.transports[u].stops[0] || p == desc.transports[u].stops[1]) {
+          return core::Diagnostic{"", 0, 0, at + "/stops", "point \"" + desc.points[p].id + "\" is a stop of another transport",
+                                  "each point the stop of one transport at most", ""};
+        }
+      }
+    }
+  }
   if (!navmesh) {
     const nav::NavMeshConfig config = desc.navMeshConfig();
     auto built = desc.terrain.empty() ? nav::NavMesh::build(desc.walkable, desc.obstacles, config)
@@ -76,6 +93,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   for (const PopulationDesc& pop : desc.populations) w.anySociological = w.anySociological || pop.sociological.enabled;
   w.insertion.navRadius = desc.navRadius();
   w.configureModels();
+  w.transports.configure(desc);
   w.initTimeline();
   w.applyCommands();  // populations starting at t = 0 are present in the first frame
   return world;
@@ -104,6 +122,7 @@ void World::step(const core::TaskSystem& tasks, PhaseObserver* observer) {
     Scope s(observer, "integrate");
     w.integrate(tasks);
     w.separate(tasks);
+    w.transports.step(w.desc, w.tick, *w.mainQuery, w.goalWriter());
   }
   { Scope s(observer, "emit"); w.emit(); }
   {
@@ -150,7 +169,10 @@ void World::Impl::chooseExits(const core::TaskSystem& tasks) {
 }
 
 void World::Impl::sense(const core::TaskSystem& tasks) {
-  sim::sense(SenseInput{agents.posX, agents.posY, agents.posZ, desc.steering},
+  const bool carrying = !transports.empty();
+  sim::sense(SenseInput{agents.posX, agents.posY, agents.posZ, desc.steering,
+                        carrying ? std::span<const GoalState>(agents.goalState) : std::span<const GoalState>(),
+                        carrying ? std::span<const AgentMode>(agents.mode) : std::span<const AgentMode>()},
              SenseOutput{grid, agents.neighbours, agents.neighbourCount}, tasks);
 }
 
@@ -242,7 +264,9 @@ void World::Impl::separate(const core::TaskSystem& tasks) {
     tasks.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
       for (std::size_t row = begin; row < end; ++row) {
         const OperationalModel* m = modelOf(row);
-        const bool corrects = agents.goalState[row] != GoalState::Exited && m->separationPasses(agents.population[row]) > pass;
+        const bool carried = agents.goalState[row] == GoalState::Riding && agents.mode[row] == AgentMode::Acting;
+        const bool corrects = agents.goalState[row] != GoalState::Exited && !carried &&
+                              m->separationPasses(agents.population[row]) > pass;
         const core::Vec2 d = corrects ? m->separation(model, row) : core::Vec2{};
         sepX[row] = d.x;
         sepY[row] = d.y;
@@ -395,6 +419,7 @@ std::optional<AgentInfo> World::agentInfo(std::uint32_t id) const {
     case GoalState::Scripted: info.state = "playing a Common Ground script"; break;
     case GoalState::PreMovement: info.state = "waiting to leave (pre-movement time)"; break;
     case GoalState::Incapacitated: info.state = "incapacitated (its carbon monoxide dose)"; break;
+    case GoalState::Riding: info.state = "at or on a lift or escalator"; break;
   }
   return info;
 }

@@ -393,6 +393,48 @@ struct SmokeDesc {
 /// depletion), heat and irritants are not modelled.
 [[nodiscard]] inline float coDosePerSecond(float ppm) { return ppm / (35000.0f * 60.0f); }
 
+/// What carries people between two points of the scenario without their walking (the scenario key
+/// "transports"; docs/crowd-model.md, "Tactical level: lifts and escalators").
+enum class TransportKind : std::uint8_t {
+  /// A moving stair from stops[0] to stops[1], one way: one person steps on every `headway` seconds
+  /// and rides the straight line between the two points at `speed`, standing.
+  Escalator = 0,
+  /// A lift car between stops[0] and stops[1]: it takes up to `capacity` people waiting at one
+  /// stop to the other (doors open, each boards in `transferTime`, doors close, it travels at
+  /// `speed` with `acceleration`, doors open, each alights in `transferTime`), and goes where
+  /// people wait.
+  Elevator = 1,
+};
+
+/// A lift or an escalator. People use it by having its boarding stop as a goal: arrived there they
+/// queue, ride, and go on from the other stop with their next goal.
+struct TransportDesc {
+  std::string id;
+  TransportKind kind = TransportKind::Escalator;
+  /// Indices into ScenarioDesc::points: where people board and alight (an escalator boards at the
+  /// first only); two different points, each the stop of no other transport.
+  std::uint32_t stops[2] = {0, 0};
+  /// Escalator: the belt's speed [m/s] [Limit: 0.1 .. 2]; 0.5 by default (EN 115-1: at most 0.75
+  /// m/s up to 30°; 0.5 is the usual rate). Elevator: the car's rated speed [m/s] [Limit: 0.1 ..
+  /// 10]; 1.0 by default (the usual rate of low-rise passenger lifts, CIBSE Guide D).
+  float speed = 0.5f;
+  /// Escalator: seconds between two people stepping on [s] [Limit: 0.2 .. 60]; 0.8 by default
+  /// (1.25 persons/s, three quarters of the 1.67/s a 1 m wide step band carries at 0.5 m/s with
+  /// two people on every other step, EN 115-1's theoretical capacity; people leave gaps).
+  float headway = 0.8f;
+  /// Elevator: the most people in the car [Limit: 1 .. 100]; 8 by default (a 630 kg car, EN 81-20).
+  std::uint32_t capacity = 8;
+  /// Elevator: acceleration and deceleration [m/s²] [Limit: 0.1 .. 5]; 1.0 by default (CIBSE Guide D).
+  float acceleration = 1.0f;
+  /// Elevator: door opening and closing times [s] [Limit: 0 .. 60]; 2 and 3 by default (CIBSE Guide D's
+  /// typical centre-opening doors).
+  float doorOpenTime = 2.0f;
+  float doorCloseTime = 3.0f;
+  /// Elevator: one person boarding or alighting [s] [Limit: 0 .. 60]; 1.2 by default (CIBSE Guide D's
+  /// passenger transfer time).
+  float transferTime = 1.2f;
+};
+
 /// The longest scenario "description" [bytes].
 inline constexpr std::size_t kMaxDescription = 1000;
 
@@ -442,6 +484,7 @@ struct ScenarioDesc {
   /// [Limit: > 0 .. 89]
   float stairSlopeDeg = nav::NavMeshConfig{}.stairSlopeDeg;
   std::vector<PointDesc> points;
+  std::vector<TransportDesc> transports;  ///< lifts and escalators between points
   std::vector<PopulationDesc> populations;
   SteeringDesc steering;
   float navCellSize = 0.0f;  ///< navmesh voxel size [m]; 0 = chosen from the geometry

@@ -1,0 +1,76 @@
+// Transports — lifts and escalators (ScenarioDesc::transports; docs/crowd-model.md, "Tactical level:
+// lifts and escalators"). decide puts someone who reaches a transport's boarding stop (its current
+// goal) in GoalState::Riding; from then on this pass, run once a tick after integrate, queues them
+// at that stop, carries them and lets them off at the other stop, where they go on with their next
+// goal (GoalWriter::advanceGoal). Serial and in ascending id order, in whole ticks: the same for
+// any thread or rank count. People queuing stand (AgentMode::Waiting) and step aside when pressed,
+// as anyone standing does; people carried are AgentMode::Acting: no model or navmesh moves them
+// (integrate), they are nobody's neighbours (sense), and their position, height and velocity are the
+// car's or the belt's.
+#pragma once
+#include <cstdint>
+#include <deque>
+#include <vector>
+
+#include "agent_store.hpp"
+#include "goals.hpp"
+#include "throng/nav/navmesh.hpp"
+#include "throng/sim/scenario.hpp"
+
+namespace throng::sim {
+
+class Transports {
+ public:
+  /// One state per transport of `desc` (all idle, nobody queuing).
+  void configure(const ScenarioDesc& desc);
+  [[nodiscard]] bool empty() const { return states_.empty(); }
+
+  /// One tick at `tick`: queues those who started riding, runs every lift and escalator, moves the
+  /// people aboard and lets off those who arrived (GoalReached at the stop, then their next goal).
+  void step(const ScenarioDesc& desc, std::uint64_t tick, const nav::NavQuery& query, GoalWriter goals);
+
+  /// The transport whose boarding stop point `point` is, or kNoIndex.
+  [[nodiscard]] static std::uint32_t boardingAt(const ScenarioDesc& desc, std::uint32_t point);
+
+ private:
+  enum class Phase : std::uint8_t { Idle, Opening, Transfer, Closing, Moving };
+  struct State {
+    std::deque<std::uint32_t> queue[2];  ///< ids waiting at each stop, first come first
+    std::vector<std::uint32_t> aboard;   ///< ids carried, in boarding order
+    std::vector<std::uint64_t> boarded;  ///< escalator: the tick each of `aboard` stepped on
+    std::uint64_t nextBoard = 0;         ///< escalator: the first tick the next may step on
+    int at = 0;                          ///< elevator: the stop the car is at (or travels to)
+    Phase phase = Phase::Idle;           ///< elevator
+    std::uint64_t until = 0;             ///< elevator: the tick the phase's current step ends
+    std::uint64_t moveStart = 0;         ///< elevator: the tick the car left
+    std::uint64_t moveTicks = 1;         ///< elevator: how long this trip takes
+    std::uint32_t toLetOff = 0;          ///< elevator: of `aboard`, the first this many get off here
+  };
+  struct Place {
+    core::Vec2 p;
+    float z = 0.0f;
+  };
+
+  void runEscalator(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick);
+  void runElevator(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick);
+  void startMove(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick);
+  /// Puts `id` off at stop `stop` of t (the k-th let off there this tick).
+  void alight(const ScenarioDesc& desc, const TransportDesc& t, int stop, std::uint32_t id, int k);
+  [[nodiscard]] static Place stopPlace(const ScenarioDesc& desc, const TransportDesc& t, int stop);
+
+  std::vector<State> states_;
+  // Valid during step():
+  std::vector<std::uint32_t> rowOfId_;  ///< riders' rows by id (kNoRow for others), this tick
+  std::vector<std::uint32_t> riders_;   ///< riders' ids this tick, ascending
+  struct Off {
+    std::uint32_t row;
+    std::uint32_t point;
+    Place place;
+  };
+  std::vector<Off> off_;  ///< let off this tick: placed and sent on after every transport ran
+  const AgentStore* agents_ = nullptr;
+  AgentStore* write_ = nullptr;
+  float dt_ = 0.05f;
+};
+
+}  // namespace throng::sim

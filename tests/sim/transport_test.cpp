@@ -1,0 +1,217 @@
+// Tests for lifts and escalators (ScenarioDesc::transports, libs/sim/src/transport.cpp): people
+// who reach a transport's boarding stop queue, are carried to the other stop in the times its
+// parameters give, to the tick, and go on to their next goal; two floors joined by nothing else.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include "throng/sim/world.hpp"
+
+using namespace throng;
+
+namespace {
+
+void quad(nav::TerrainMesh& t, std::initializer_list<std::array<float, 3>> corners) {
+  const auto base = static_cast<std::uint32_t>(t.vertices.size() / 3);
+  for (const auto& c : corners) t.vertices.insert(t.vertices.end(), c.begin(), c.end());
+  for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) t.walkable.push_back(base + i);
+}
+
+sim::PointDesc region(std::string id, sim::PointKind kind, float x0, float x1, float y0, float y1, float height) {
+  sim::PointDesc p;
+  p.id = std::move(id);
+  p.kind = kind;
+  p.polygon = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  p.position = {(x0 + x1) / 2, (y0 + y1) / 2};
+  p.height = height;
+  return p;
+}
+
+/// Two 12 × 10 m floors, z 0 and z 4, joined by nothing walkable. Points: 0 "low" stop (ground,
+/// x 0.5–2), 1 "high" stop (upper floor; over "low" for a lift, at the far end for an escalator),
+/// 2 the exit on the ground floor (x 10.5–12), 3 the exit on the upper floor (x 10.5–12).
+sim::ScenarioDesc twoFloors(bool escalator) {
+  sim::ScenarioDesc d;
+  d.name = escalator ? "escalator" : "lift";
+  d.seed = 3;
+  d.duration = 400;
+  quad(d.terrain, {{0, 0, 0}, {12, 0, 0}, {12, 10, 0}, {0, 10, 0}});
+  quad(d.terrain, {{0, 0, 4}, {12, 0, 4}, {12, 10, 4}, {0, 10, 4}});
+  d.points.push_back(region("low", sim::PointKind::Interest, 0.5f, 2.0f, 4.0f, 6.0f, 0.0f));
+  if (escalator) {
+    d.points.push_back(region("high", sim::PointKind::Interest, 7.5f, 9.0f, 4.0f, 6.0f, 4.0f));
+  } else {
+    d.points.push_back(region("high", sim::PointKind::Interest, 0.5f, 2.0f, 4.0f, 6.0f, 4.0f));
+  }
+  d.points.push_back(region("exit-low", sim::PointKind::Exit, 10.5f, 12.0f, 3.0f, 7.0f, 0.0f));
+  d.points.push_back(region("exit-high", sim::PointKind::Exit, 10.5f, 12.0f, 3.0f, 7.0f, 4.0f));
+  sim::TransportDesc t;
+  t.id = escalator ? "escalator" : "lift";
+  t.kind = escalator ? sim::TransportKind::Escalator : sim::TransportKind::Elevator;
+  t.stops[0] = 0;
+  t.stops[1] = 1;
+  t.speed = escalator ? 0.5f : 1.0f;
+  d.transports.push_back(t);
+  sim::PopulationDesc p;
+  p.id = "people";
+  p.groups = escalator ? 15 : 28;
+  p.radius = 0.2f;
+  p.spawn.kind = sim::SpawnKind::Polygon;
+  if (escalator) {  // on the ground floor, up the escalator, out on the upper floor
+    p.spawn.polygon = {{3, 2}, {7, 2}, {7, 8}, {3, 8}};
+    p.spawn.height = 0.0f;
+    p.goals = {0, 3};
+  } else {  // on the upper floor, down by lift, out on the ground floor
+    p.spawn.polygon = {{3, 1}, {9, 1}, {9, 9}, {3, 9}};
+    p.spawn.height = 4.0f;
+    p.goals = {1, 2};
+  }
+  d.populations.push_back(p);
+  return d;
+}
+
+struct Ride {
+  std::uint64_t board = 0;   ///< the last tick at the boarding stop's height before leaving it
+  std::uint64_t alight = 0;  ///< the tick of the GoalReached at the other stop
+  float minZ = 1e9f, maxZ = -1e9f;
+  bool monotone = true;
+  float lastZ = 0.0f;
+  bool seen = false;
+  bool exited = false;
+};
+
+struct RideRun {
+  std::map<std::uint32_t, Ride> rides;
+  std::uint64_t hash = 0;
+};
+
+RideRun simulate(const sim::ScenarioDesc& d, int threads, float startZ, float endZ, std::uint32_t arrivalPoint) {
+  auto created = sim::World::create(d);
+  EXPECT_TRUE(created.ok()) << (created.ok() ? "" : core::formatAll(created.errors()));
+  RideRun run;
+  if (!created.ok()) return run;
+  sim::World& w = *created.value();
+  core::TaskSystem tasks(threads);
+  std::uint64_t tick = 0;
+  while (!w.finished() && w.stats().time < d.duration) {
+    w.step(tasks);
+    ++tick;
+    const auto f = w.takeFrame();
+    for (std::size_t i = 0; i < f->size(); ++i) {
+      Ride& r = run.rides[f->ids[i]];
+      const float z = f->height(i);
+      if (r.seen && (endZ > startZ ? z < r.lastZ - 1e-4f : z > r.lastZ + 1e-4f)) r.monotone = false;
+      if (std::abs(z - startZ) < 1e-3f) r.board = tick;
+      r.minZ = std::min(r.minZ, z);
+      r.maxZ = std::max(r.maxZ, z);
+      r.lastZ = z;
+      r.seen = true;
+    }
+    for (const sim::Event& e : f->events) {
+      if (e.kind == sim::EventKind::GoalReached && e.a == arrivalPoint) run.rides[e.agent].alight = tick;  // this step's
+      if (e.kind == sim::EventKind::Exit) run.rides[e.agent].exited = true;
+    }
+  }
+  run.hash = w.stateHash();
+  return run;
+}
+
+std::uint64_t ticks(float seconds) { return static_cast<std::uint64_t>(std::lround(seconds / 0.05f)); }
+
+}  // namespace
+
+// An escalator from the ground floor to the upper one, 7 m across and 4 m up (8.06 m) at 0.5 m/s:
+// everyone rides it, each for 8.06 / 0.5 s to the tick, stepping on at least a headway (0.8 s)
+// after the one before, exactly a headway while a queue waits; they rise steadily, and then
+// leave by the upper floor's exit.
+TEST(Transport, EscalatorRidesTakeLengthOverSpeedAndBoardAHeadwayApart) {
+  const sim::ScenarioDesc d = twoFloors(true);
+  const RideRun run = simulate(d, 1, 0.0f, 4.0f, 1);
+  ASSERT_EQ(run.rides.size(), 15u);
+  const float length = std::sqrt(7.0f * 7.0f + 4.0f * 4.0f);
+  std::vector<std::uint64_t> boards;
+  for (const auto& [id, r] : run.rides) {
+    SCOPED_TRACE("agent " + std::to_string(id));
+    EXPECT_TRUE(r.exited) << "out by the upper floor's exit";
+    ASSERT_GT(r.alight, 0u) << "reached the top stop";
+    EXPECT_EQ(r.alight - r.board, ticks(length / 0.5f)) << "ride time in ticks";
+    EXPECT_TRUE(r.monotone) << "rises steadily";
+    EXPECT_NEAR(r.maxZ, 4.0f, 0.05f);
+    boards.push_back(r.board);
+  }
+  std::sort(boards.begin(), boards.end());
+  std::uint64_t closest = UINT64_MAX;
+  for (std::size_t i = 1; i < boards.size(); ++i) closest = std::min(closest, boards[i] - boards[i - 1]);
+  EXPECT_EQ(closest, ticks(0.8f)) << "one person every headway while the queue waits, never closer";
+}
+
+// A lift between the two floors (4 m, 1 m/s, 1 m/s², 8 people, doors 2 s / 3 s, transfer 1.2 s):
+// 28 people on the upper floor go down in batches of at most 8. Once everyone waits, one batch's
+// first arrival follows the last batch's by exactly what the rules add up to: the last batch
+// alighting (k × 1.2 s), doors closing, the trip up (4 / 1 + 1 / 1 s), doors opening, the next k
+// boarding, doors closing, the trip down, doors opening. And the lift is the only way down.
+TEST(Transport, LiftCarriesBatchesInTheTimesItsRulesGive) {
+  const sim::ScenarioDesc d = twoFloors(false);
+  const RideRun run = simulate(d, 1, 4.0f, 0.0f, 0);
+  ASSERT_EQ(run.rides.size(), 28u);
+  std::map<std::uint64_t, int> perTick;
+  std::vector<std::uint64_t> alights;
+  for (const auto& [id, r] : run.rides) {
+    SCOPED_TRACE("agent " + std::to_string(id));
+    EXPECT_TRUE(r.exited) << "out by the ground floor's exit";
+    ASSERT_GT(r.alight, 0u) << "reached the ground stop";
+    EXPECT_TRUE(r.monotone) << "goes down only";
+    alights.push_back(r.alight);
+  }
+  std::sort(alights.begin(), alights.end());
+  // Batches: alights one transfer apart belong together.
+  std::vector<std::vector<std::uint64_t>> batches{{alights[0]}};
+  for (std::size_t i = 1; i < alights.size(); ++i) {
+    if (alights[i] - alights[i - 1] == ticks(1.2f)) {
+      batches.back().push_back(alights[i]);
+    } else {
+      batches.push_back({alights[i]});
+    }
+  }
+  ASSERT_GE(batches.size(), 4u);
+  for (const auto& b : batches) EXPECT_LE(b.size(), 8u) << "the car's capacity";
+  const std::uint64_t trip = ticks(4.0f / 1.0f + 1.0f / 1.0f);
+  for (std::size_t i = 2; i < batches.size(); ++i) {  // from the third batch on, everyone is waiting
+    SCOPED_TRACE("batch " + std::to_string(i));
+    const std::uint64_t expected = batches[i - 1].size() * ticks(1.2f) + ticks(3.0f) + trip + ticks(2.0f) +
+                                   batches[i].size() * ticks(1.2f) + ticks(3.0f) + trip + ticks(2.0f);
+    EXPECT_EQ(batches[i].front() - batches[i - 1].front(), expected);
+  }
+}
+
+// The same lift run on 1 and 4 threads gives the same world.
+TEST(Transport, LiftAndEscalatorRunsAreTheSameOnAnyThreadCount) {
+  for (const bool escalator : {false, true}) {
+    SCOPED_TRACE(escalator ? "escalator" : "lift");
+    const sim::ScenarioDesc d = twoFloors(escalator);
+    const RideRun one = simulate(d, 1, escalator ? 0.0f : 4.0f, escalator ? 4.0f : 0.0f, escalator ? 1 : 0);
+    const RideRun four = simulate(d, 4, escalator ? 0.0f : 4.0f, escalator ? 4.0f : 0.0f, escalator ? 1 : 0);
+    EXPECT_EQ(one.hash, four.hash);
+  }
+}
+
+// Stops must be two different points, each of one transport only.
+TEST(Transport, StopsThatAreNotTwoPointsAreRefused) {
+  sim::ScenarioDesc d = twoFloors(true);
+  d.transports[0].stops[1] = 0;
+  auto same = sim::World::create(d);
+  ASSERT_FALSE(same.ok());
+  EXPECT_NE(core::formatAll(same.errors()).find("/transports/0/stops"), std::string::npos);
+  d = twoFloors(true);
+  d.transports[0].stops[1] = 9;
+  EXPECT_FALSE(sim::World::create(d).ok());
+  d = twoFloors(true);
+  d.transports.push_back(d.transports[0]);
+  d.transports[1].stops[0] = 2;
+  auto shared = sim::World::create(d);
+  ASSERT_FALSE(shared.ok());
+  EXPECT_NE(core::formatAll(shared.errors()).find("another transport"), std::string::npos);
+}
