@@ -99,11 +99,11 @@ struct LoopResult {
 
 /// What agent `id` is doing (AgentInfo::state; "done" says where), or nullopt while standing is
 /// its task: at an action point, in a Common Ground script (a visit, a wait its group agreed on), or
-/// queuing for a lift or an escalator.
+/// queuing for a lift or an escalator (also before its stop, where the queue reaches out that far).
 std::optional<std::string> stallState(const sim::World& world, std::uint32_t id) {
   const auto info = world.agentInfo(id);
   if (!info || info->state == "at an action point" || info->state == "playing a Common Ground script" ||
-      info->state == "at or on a lift or escalator") {
+      info->state == "at or on a lift or escalator" || info->state == "walking to a lift or escalator") {
     return std::nullopt;
   }
   if (info->state == "done") return std::string("done: stays at its last goal");

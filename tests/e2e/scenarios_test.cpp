@@ -182,6 +182,46 @@ TEST(Scenarios, ExitChoiceUsesEveryExitAndLeavesTheClosedOne) {
   EXPECT_GT(moved[0][0], 10.0);
 }
 
+TEST(Scenarios, AtriumPeopleChangeFloorsOnlyByEscalatorsAndTheLift) {
+  // scenarios/atrium.json: two floors joined by nothing walkable; 150 go up by escalator to the
+  // cinema, 150 come down by the other to the street, 16 take the lift down (docs/crowd-model.md,
+  // "Tactical level: lifts and escalators").
+  ScratchDir dir("atrium");
+  const fs::path db = dir / "atrium.sqlite";
+  const auto s = runScenario("atrium", db);
+  ASSERT_FALSE(s.is_null());
+  EXPECT_EQ(s["agents_exited"], 316);
+  EXPECT_TRUE(s["stalled_agents"].empty()) << "queuing for a transport is no stall";
+  const auto byExit = query(db, "SELECT p.id, COUNT(*) FROM throng_events e JOIN throng_points p ON p.idx = e.a "
+                                "WHERE e.kind = 'exit' GROUP BY p.id ORDER BY p.id");
+  ASSERT_EQ(byExit.size(), 2u);
+  EXPECT_EQ(byExit[0][1], 150.0) << "up to the cinema";
+  EXPECT_EQ(byExit[1][1], 166.0) << "down to the street, by escalator or lift";
+  // Each escalator lets one person on every 0.8 s: 150 reach its head over at least 149 x 0.8 s
+  // (119.2 s; exactly that while its queue lasts).
+  for (const char* head : {"up-head", "down-foot"}) {
+    const auto span = query(db, std::string("SELECT COUNT(*), (MAX(e.tick) - MIN(e.tick)) * 0.05 FROM throng_events e JOIN "
+                                            "throng_points p ON p.idx = e.a WHERE e.kind = 'goal_reached' AND p.id = '") +
+                                    head + "'");
+    ASSERT_EQ(span.size(), 1u);
+    EXPECT_EQ(span[0][0], 150.0) << head;
+    EXPECT_NEAR(span[0][1], 119.2, 0.06) << head;
+  }
+  // Lift riders arrive downstairs in batches of at most 8.
+  const auto lift = query(db, "SELECT e.tick FROM throng_events e JOIN throng_points p ON p.idx = e.a "
+                              "WHERE e.kind = 'goal_reached' AND p.id = 'lift-ground' ORDER BY e.tick");
+  ASSERT_EQ(lift.size(), 16u);
+  int batch = 1, largest = 1;
+  for (std::size_t i = 1; i < lift.size(); ++i) {
+    batch = lift[i][0] - lift[i - 1][0] <= 24.0 ? batch + 1 : 1;  // 1.2 s transfers
+    largest = std::max(largest, batch);
+  }
+  EXPECT_LE(largest, 8);
+  // Everyone was carried between the floors (heights between 0 and 4.5 only on a car or a belt).
+  const auto between = query(db, "SELECT COUNT(DISTINCT id) FROM throng_heights WHERE z > 0.01 AND z < 4.49");
+  EXPECT_EQ(between[0][0], 316.0);
+}
+
 TEST(Scenarios, PlazaFlagshipRuns) {
   ScratchDir dir("plaza");
   const fs::path db = dir / "plaza.sqlite";

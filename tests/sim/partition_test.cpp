@@ -181,6 +181,12 @@ TEST(Partition, ExitChoiceThreeRanksTwoThreadsMatchesOneProcess) {
   expectSame("exit_choice", 700, 3, 2, 5);
 }
 
+TEST(Partition, AtriumLiftsAndEscalatorsTwoRanksTwoThreadsMatchesOneProcess) {
+  // Lifts and escalators (transport.cpp) run serially on every rank; 316 people, so two threads
+  // each get rows. 2400 ticks: through the queues, the lift's trips and most rides.
+  expectSame("atrium", 2400, 2, 2, 7);
+}
+
 TEST(Partition, MallCommonGroundTwoRanksMatchesOneProcess) {
   // Common Ground coordinations and action scripts (social.cpp) on top of groups.
   expectSame("mall", 120, 2, 1);

@@ -227,12 +227,19 @@ void RowDecision::seekGoal(const GroupState& g) {
     checkProgress(-1e30f);
     return;
   }
-  if (!in.desc.transports.empty() && Transports::boardingAt(in.desc, pointIndex) != kNoIndex) {
-    // A lift's or escalator's stop: it queues there and is carried (transport.cpp).
+  if (const std::uint32_t t = in.desc.transports.empty() ? kNoIndex : Transports::boardingAt(in.desc, pointIndex);
+      t != kNoIndex) {
+    // A lift's or escalator's stop: it queues there and is carried (transport.cpp). For a lift it
+    // waits in the lobby where it stands; for an escalator it creeps on toward where people step on
+    // (the point's position; steer.cpp, kQueueSpeed).
+    const bool creeps = in.desc.transports[t].kind == TransportKind::Escalator;
     out.goalState[row] = GoalState::Riding;
-    out.mode[row] = AgentMode::Waiting;
+    out.mode[row] = creeps ? AgentMode::Walking : AgentMode::Waiting;
+    out.targetX[row] = creeps ? point.position.x : in.agents.posX[row];
+    out.targetY[row] = creeps ? point.position.y : in.agents.posY[row];
+    if (!out.targetZ.empty()) out.targetZ[row] = creeps ? point.height : in.agents.posZ[row];
     out.corners[row].clear();
-    out.needPath[row] = 0;
+    out.needPath[row] = creeps ? 1 : 0;
     event(EventKind::GoalReached, pointIndex);
   } else if (point.kind == PointKind::Exit) {
     // A closed door lets nobody through: the agent waits in front of it until it opens (or, with

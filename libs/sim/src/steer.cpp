@@ -106,13 +106,19 @@ float PreferredVelocity::groundFactor(std::size_t row, core::Vec2 dir) const {
   return (rise > 0.0f ? pop.stairUp : pop.stairDown) / std::sqrt(1.0f + rise * rise);
 }
 
+/// People queuing for a lift or an escalator shuffle toward where people step on no faster than
+/// this [m/s] (transport.cpp): the queue creeps, it does not rush the comb plate.
+constexpr float kQueueSpeed = 0.5f;
+
 void PreferredVelocity::compute(std::size_t row) const {
   const SteeringDesc& s = in.steering;
   const core::Vec2 pos{in.posX[row], in.posY[row]};
   const float maxSpeed = in.speed[row];
   const bool scriptWalking = !in.scriptWalk.empty() && in.scriptWalk[row] != 0;
+  // Queuing for a lift or an escalator (transport.cpp): pressing on toward where people step on.
+  const bool queuing = in.goalState[row] == GoalState::Riding && in.model.agents.mode[row] == AgentMode::Walking;
   core::Vec2 desired;
-  if (in.goalState[row] == GoalState::Seeking || (in.goalState[row] == GoalState::Scripted && scriptWalking)) {
+  if (in.goalState[row] == GoalState::Seeking || (in.goalState[row] == GoalState::Scripted && scriptWalking) || queuing) {
     advanceCorner(row, pos);
     const CornerPath& corners = out.corners[row];
     const std::uint32_t ci = corners.index;
@@ -124,9 +130,10 @@ void PreferredVelocity::compute(std::size_t row) const {
       const float walk = maxSpeed * groundFactor(row, toAim / dist);
       float v = walk;
       const bool lastLeg = ci + 1 >= corners.size();
-      const bool stops = lastLeg && (stopsAtGoal(in.goals, in.points, in.populations[in.population[row]], row) ||
+      const bool stops = lastLeg && (queuing || stopsAtGoal(in.goals, in.points, in.populations[in.population[row]], row) ||
                                      in.dynamicTarget[row]);
       if (stops) v = std::min(v, dist / s.arrivalTime);
+      if (queuing) v = std::min(v, kQueueSpeed);
       desired = toAim * (v / dist);
       // Flocking: the group pass's correction toward the member's slot beside the others.
       if (!in.formVelX.empty()) desired += core::Vec2{in.formVelX[row], in.formVelY[row]};

@@ -8,9 +8,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace throng::sim {
 namespace {
+
+/// An escalator lets on whoever queuing is within this of where people step on [m] (a body's
+/// depth: they stand at the comb plate) ...
+constexpr float kBoardReach = 0.5f;
+/// ... or, this long after the step came with nobody there, the nearest [s].
+constexpr float kBoardPatience = 5.0f;
 
 std::uint64_t ticksOf(float seconds, float dt) {
   return static_cast<std::uint64_t>(std::max(0L, std::lround(seconds / dt)));
@@ -123,6 +130,20 @@ void Transports::step(const ScenarioDesc& desc, std::uint64_t tick, const nav::N
   for (const std::uint32_t id : riders_) rowOfId_[id] = kNoRow;
 }
 
+std::size_t Transports::nearest(const std::deque<std::uint32_t>& queue, core::Vec2 p) const {
+  std::size_t best = 0;
+  float bestD2 = std::numeric_limits<float>::max();
+  for (std::size_t i = 0; i < queue.size(); ++i) {  // ties: the first to come
+    const std::uint32_t row = rowOfId_[queue[i]];
+    const float d2 = core::lengthSq(core::Vec2{agents_->posX[row], agents_->posY[row]} - p);
+    if (d2 < bestD2) {
+      bestD2 = d2;
+      best = i;
+    }
+  }
+  return best;
+}
+
 void Transports::alight(const ScenarioDesc& desc, const TransportDesc& t, int stop, std::uint32_t id, int k) {
   Place place = stopPlace(desc, t, stop);
   place.p += slot(k);
@@ -144,12 +165,19 @@ void Transports::runEscalator(const ScenarioDesc& desc, const TransportDesc& t, 
   }
   s.aboard.erase(s.aboard.begin(), s.aboard.begin() + static_cast<std::ptrdiff_t>(done));
   s.boarded.erase(s.boarded.begin(), s.boarded.begin() + static_cast<std::ptrdiff_t>(done));
-  // On at the bottom: the first in the queue, once the one before is a headway ahead.
+  // On at the bottom, once the one before is a headway ahead: whoever of those queuing has come
+  // nearest where people step on, when within kBoardReach of it (or, kBoardPatience after the step
+  // came, whoever is nearest: nobody waits for ever behind a knot).
   if (!s.queue[0].empty() && tick >= s.nextBoard) {
-    s.aboard.push_back(s.queue[0].front());
-    s.boarded.push_back(tick);
-    s.queue[0].pop_front();
-    s.nextBoard = tick + headway;
+    const std::size_t k = nearest(s.queue[0], from.p);
+    const std::uint32_t row = rowOfId_[s.queue[0][k]];
+    const float d2 = core::lengthSq(core::Vec2{a.posX[row], a.posY[row]} - from.p);
+    if (d2 <= kBoardReach * kBoardReach || tick >= s.nextBoard + ticksOf(kBoardPatience, dt_)) {
+      s.aboard.push_back(s.queue[0][k]);
+      s.boarded.push_back(tick);
+      s.queue[0].erase(s.queue[0].begin() + static_cast<std::ptrdiff_t>(k));
+      s.nextBoard = tick + headway;
+    }
   }
   // The belt carries them: the straight line between the stops.
   for (std::size_t i = 0; i < s.aboard.size(); ++i) {
@@ -210,9 +238,10 @@ void Transports::runElevator(const ScenarioDesc& desc, const TransportDesc& t, S
         s.aboard.erase(s.aboard.begin());
         --s.toLetOff;
         s.until = tick + transfer;
-      } else if (!s.queue[s.at].empty() && s.aboard.size() < t.capacity) {
-        s.aboard.push_back(s.queue[s.at].front());
-        s.queue[s.at].pop_front();
+      } else if (!s.queue[s.at].empty() && s.aboard.size() < t.capacity) {  // the nearest the car first
+        const std::size_t k = nearest(s.queue[s.at], stopPlace(desc, t, s.at).p);
+        s.aboard.push_back(s.queue[s.at][k]);
+        s.queue[s.at].erase(s.queue[s.at].begin() + static_cast<std::ptrdiff_t>(k));
         s.until = tick + transfer;
       } else {
         s.phase = Phase::Closing;

@@ -3,8 +3,9 @@
 // goal) in GoalState::Riding; from then on this pass, run once a tick after integrate, queues them
 // at that stop, carries them and lets them off at the other stop, where they go on with their next
 // goal (GoalWriter::advanceGoal). Serial and in ascending id order, in whole ticks: the same for
-// any thread or rank count. People queuing stand (AgentMode::Waiting) and step aside when pressed,
-// as anyone standing does; people carried are AgentMode::Acting: no model or navmesh moves them
+// any thread or rank count. People queuing for a lift stand (AgentMode::Waiting) and step aside
+// when pressed, as anyone standing does; for an escalator they creep toward where people step on
+// (AgentMode::Walking; steer.cpp). People carried are AgentMode::Acting: no model or navmesh moves them
 // (integrate), they are nobody's neighbours (sense), and their position, height and velocity are the
 // car's or the belt's.
 #pragma once
@@ -35,7 +36,7 @@ class Transports {
  private:
   enum class Phase : std::uint8_t { Idle, Opening, Transfer, Closing, Moving };
   struct State {
-    std::deque<std::uint32_t> queue[2];  ///< ids waiting at each stop, first come first
+    std::deque<std::uint32_t> queue[2];  ///< ids waiting at each stop, in the order they came
     std::vector<std::uint32_t> aboard;   ///< ids carried, in boarding order
     std::vector<std::uint64_t> boarded;  ///< escalator: the tick each of `aboard` stepped on
     std::uint64_t nextBoard = 0;         ///< escalator: the first tick the next may step on
@@ -54,6 +55,8 @@ class Transports {
   void runEscalator(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick);
   void runElevator(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick);
   void startMove(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick);
+  /// Of `queue`, the index of the person nearest p (ties: the first to come).
+  [[nodiscard]] std::size_t nearest(const std::deque<std::uint32_t>& queue, core::Vec2 p) const;
   /// Puts `id` off at stop `stop` of t (the k-th let off there this tick).
   void alight(const ScenarioDesc& desc, const TransportDesc& t, int stop, std::uint32_t id, int k);
   [[nodiscard]] static Place stopPlace(const ScenarioDesc& desc, const TransportDesc& t, int stop);

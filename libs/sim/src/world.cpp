@@ -411,7 +411,12 @@ std::optional<AgentInfo> World::agentInfo(std::uint32_t id) const {
   info.guided = g.guided;
   if (const std::uint32_t goal = w.currentGoalPoint(row); goal != kNoPoint) info.goalPoint = goal;
   switch (a.goalState[row]) {
-    case GoalState::Seeking: info.state = "walking to its goal"; break;
+    case GoalState::Seeking:
+      // Heading for a lift's or escalator's stop: in its queue, when that reaches out this far.
+      info.state = info.goalPoint != kNoPoint && !w.desc.transports.empty() && Transports::boardingAt(w.desc, info.goalPoint) != kNoIndex
+                       ? "walking to a lift or escalator"
+                       : "walking to its goal";
+      break;
     case GoalState::Acting: info.state = "at an action point"; break;
     case GoalState::Done: info.state = "done"; break;
     case GoalState::Exited: info.state = "left"; break;
