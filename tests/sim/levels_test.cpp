@@ -7,18 +7,14 @@
 #include <cmath>
 #include <map>
 
+#include "terrain_quads.hpp"
 #include "throng/sim/world.hpp"
 
 using namespace throng;
 
 namespace {
 
-/// Adds the quad a, b, c, d (x, y, z each) to the terrain as two walkable triangles.
-void quad(nav::TerrainMesh& t, std::initializer_list<std::array<float, 3>> corners) {
-  const auto base = static_cast<std::uint32_t>(t.vertices.size() / 3);
-  for (const auto& c : corners) t.vertices.insert(t.vertices.end(), c.begin(), c.end());
-  for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) t.walkable.push_back(base + i);
-}
+using test::quad;
 
 /// A ground floor (0..20 × 0..10 at z 0), an upper floor right above it (z 3) and, beside them
 /// (y 10..12), a ramp from z 0 at x 2 to z 3 at x 18 with landings on each floor level: the only

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "throng/core/geometry.hpp"
+#include "terrain_quads.hpp"
 #include "throng/sim/world.hpp"
 
 namespace throng::sim {
@@ -169,12 +170,7 @@ TEST(Spawn, CrowdedLayoutIsTheSameForAnyThreadCount) {
   }
 }
 
-/// Adds the quad a, b, c, d (x, y, z each) to the terrain as two walkable triangles.
-void quad(nav::TerrainMesh& t, std::initializer_list<std::array<float, 3>> corners) {
-  const auto base = static_cast<std::uint32_t>(t.vertices.size() / 3);
-  for (const auto& c : corners) t.vertices.insert(t.vertices.end(), c.begin(), c.end());
-  for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) t.walkable.push_back(base + i);
-}
+using test::quad;
 
 TEST(Spawn, CrowdedFloorsOfAMultiLevelWorldEachKeepTheirOwn) {
   // A ground floor and an upper floor 3 m above it, joined by a ramp; one crowd on each floor over

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <optional>
 
+#include "terrain_quads.hpp"
 #include "throng/sim/world.hpp"
 
 using namespace throng;
@@ -17,12 +18,7 @@ namespace {
 
 constexpr float kSpeed = 1.34f;  // [m/s]
 
-/// Adds the quad a, b, c, d (x, y, z each) to the terrain as two walkable triangles.
-void quad(nav::TerrainMesh& t, std::initializer_list<std::array<float, 3>> corners) {
-  const auto base = static_cast<std::uint32_t>(t.vertices.size() / 3);
-  for (const auto& c : corners) t.vertices.insert(t.vertices.end(), c.begin(), c.end());
-  for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) t.walkable.push_back(base + i);
-}
+using test::quad;
 
 void level(nav::TerrainMesh& t, float x0, float y0, float x1, float y1, float z) {
   quad(t, {{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}});

@@ -8,17 +8,14 @@
 #include <map>
 #include <vector>
 
+#include "terrain_quads.hpp"
 #include "throng/sim/world.hpp"
 
 using namespace throng;
 
 namespace {
 
-void quad(nav::TerrainMesh& t, std::initializer_list<std::array<float, 3>> corners) {
-  const auto base = static_cast<std::uint32_t>(t.vertices.size() / 3);
-  for (const auto& c : corners) t.vertices.insert(t.vertices.end(), c.begin(), c.end());
-  for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) t.walkable.push_back(base + i);
-}
+using test::quad;
 
 sim::PointDesc region(std::string id, sim::PointKind kind, float x0, float x1, float y0, float y1, float height) {
   sim::PointDesc p;
