@@ -182,7 +182,7 @@ TEST(Partition, ExitChoiceThreeRanksTwoThreadsMatchesOneProcess) {
 }
 
 TEST(Partition, AtriumLiftsAndEscalatorsTwoRanksTwoThreadsMatchesOneProcess) {
-  // Lifts and escalators (transport.cpp) run serially on every rank; 316 people, so two threads
+  // Lifts and escalators (vertical_transport.cpp) run serially on every rank; 316 people, so two threads
   // each get rows. 2400 ticks: through the queues, the lift's trips and most rides.
   expectSame("atrium", 2400, 2, 2, 7);
 }

@@ -32,7 +32,7 @@ enum class GoalState : std::uint8_t {
   Scripted = 5,  ///< playing its action script of a Common Ground coordination (common_ground_play.cpp)
   PreMovement = 6,  ///< present and standing until its pre-movement time ends at actionEndTick (spawn.cpp)
   Incapacitated = 7,  ///< its toxic dose reached its population's limit: stands where it fell for good (decide.cpp)
-  Riding = 8,  ///< at a lift's or escalator's stop: queuing or carried (transport.cpp), not walking
+  Riding = 8,  ///< at a lift's or escalator's stop: queuing or carried (vertical_transport.cpp), not walking
 };
 
 inline constexpr std::uint16_t kNoClip = 0xffff;

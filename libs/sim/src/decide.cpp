@@ -11,7 +11,7 @@
 #include <cmath>
 
 #include "phases.hpp"
-#include "transport.hpp"
+#include "vertical_transport.hpp"
 #include "throng/core/assert.hpp"
 
 namespace throng::sim {
@@ -92,7 +92,7 @@ void RowDecision::decideRow() {
     case GoalState::Incapacitated:
     case GoalState::WaitingForGroup:
     case GoalState::Scripted:  // skipped above (coordination set); listed for completeness
-    case GoalState::Riding:    // queuing at or carried by a lift or escalator (transport.cpp)
+    case GoalState::Riding:    // queuing at or carried by a lift or escalator (vertical_transport.cpp)
       break;
     case GoalState::Acting:
       if (in.tick >= out.actionEndTick[row]) {
@@ -227,9 +227,9 @@ void RowDecision::seekGoal(const GroupState& g) {
     checkProgress(-1e30f);
     return;
   }
-  if (const std::uint32_t t = in.desc.transports.empty() ? kNoIndex : Transports::boardingAt(in.desc, pointIndex);
+  if (const std::uint32_t t = in.desc.transports.empty() ? kNoIndex : VerticalTransports::boardingAt(in.desc, pointIndex);
       t != kNoIndex) {
-    // A lift's or escalator's stop: it queues there and is carried (transport.cpp). For a lift it
+    // A lift's or escalator's stop: it queues there and is carried (vertical_transport.cpp). For a lift it
     // waits in the lobby where it stands; for an escalator it creeps on toward where people step on
     // (the point's position; steer.cpp, kQueueSpeed).
     const bool creeps = in.desc.transports[t].kind == TransportKind::Escalator;

@@ -30,7 +30,7 @@ core::Vec2 moveAlongMesh(const IntegrateInput& in, const IntegrateOutput& out, s
   const float h = in.dt;
   const core::Vec2 pos{out.posX[row], out.posY[row]};
   core::Vec2 v{in.newVelX[row], in.newVelY[row]};
-  // Gone, or carried by a lift or escalator (transport.cpp places those; people queuing for one
+  // Gone, or carried by a lift or escalator (vertical_transport.cpp places those; people queuing for one
   // stand, and step aside when pressed, as anyone standing does).
   if (in.goalState[row] == GoalState::Exited || (in.goalState[row] == GoalState::Riding && in.mode[row] == AgentMode::Acting)) v = {};
   core::Vec2 next = pos;

@@ -110,7 +110,7 @@ struct SenseInput {
   std::span<const float> posZ;   ///< floor heights; empty on a flat world (one level)
   const SteeringDesc& steering;  ///< maxNeighbours, neighbourDistance, denseNeighbourDistance, denseThreshold
   /// With lifts or escalators (else empty): people carried (GoalState::Riding and AgentMode::Acting,
-  /// transport.cpp) are nobody's neighbours and have none: in a car or on a belt, not on the floor.
+  /// vertical_transport.cpp) are nobody's neighbours and have none: in a car or on a belt, not on the floor.
   std::span<const GoalState> goalState;
   std::span<const AgentMode> mode;
 };

@@ -107,7 +107,7 @@ float PreferredVelocity::groundFactor(std::size_t row, core::Vec2 dir) const {
 }
 
 /// People queuing for a lift or an escalator shuffle toward where people step on no faster than
-/// this [m/s] (transport.cpp): the queue creeps, it does not rush the comb plate.
+/// this [m/s] (vertical_transport.cpp): the queue creeps, it does not rush the comb plate.
 constexpr float kQueueSpeed = 0.5f;
 
 void PreferredVelocity::compute(std::size_t row) const {
@@ -115,7 +115,7 @@ void PreferredVelocity::compute(std::size_t row) const {
   const core::Vec2 pos{in.posX[row], in.posY[row]};
   const float maxSpeed = in.speed[row];
   const bool scriptWalking = !in.scriptWalk.empty() && in.scriptWalk[row] != 0;
-  // Queuing for a lift or an escalator (transport.cpp): pressing on toward where people step on.
+  // Queuing for a lift or an escalator (vertical_transport.cpp): pressing on toward where people step on.
   const bool queuing = in.goalState[row] == GoalState::Riding && in.model.agents.mode[row] == AgentMode::Walking;
   core::Vec2 desired;
   if (in.goalState[row] == GoalState::Seeking || (in.goalState[row] == GoalState::Scripted && scriptWalking) || queuing) {

@@ -413,7 +413,7 @@ std::optional<AgentInfo> World::agentInfo(std::uint32_t id) const {
   switch (a.goalState[row]) {
     case GoalState::Seeking:
       // Heading for a lift's or escalator's stop: in its queue, when that reaches out this far.
-      info.state = info.goalPoint != kNoPoint && !w.desc.transports.empty() && Transports::boardingAt(w.desc, info.goalPoint) != kNoIndex
+      info.state = info.goalPoint != kNoPoint && !w.desc.transports.empty() && VerticalTransports::boardingAt(w.desc, info.goalPoint) != kNoIndex
                        ? "walking to a lift or escalator"
                        : "walking to its goal";
       break;

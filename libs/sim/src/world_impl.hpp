@@ -21,7 +21,7 @@
 //   steer.cpp      preferred velocity along the path, then the population's avoidance model
 //   models/        the avoidance models behind OperationalModel (ORCA, collision-free speed, …)
 //   integrate.cpp  commit velocities, move along the navmesh, headings, statistics
-//   transport.cpp  lifts and escalators: queues, cars and belts, people let off (after integrate)
+//   vertical_transport.cpp  lifts and escalators: queues, cars and belts, people let off (after integrate)
 //   emit.cpp       emit (chunks merged, agents that exited removed, the clock) and takeFrame
 //   world.cpp      creation, the tick, the phases' contexts, the models in use, the World API
 #pragma once
@@ -39,7 +39,7 @@
 #include "group_pass.hpp"
 #include "group_table.hpp"
 #include "spawner.hpp"
-#include "transport.hpp"
+#include "vertical_transport.hpp"
 #include "throng/core/assert.hpp"
 #include "throng/sim/spatial_grid.hpp"
 #include "walls.hpp"
@@ -184,7 +184,7 @@ struct World::Impl {
   /// separationPasses): that many Jacobi passes, each row's step apart slid along the navmesh.
   void separate(const core::TaskSystem& tasks);
   std::vector<float> sepX, sepY;  ///< separate's displacements of the current pass [m]
-  Transports transports;          ///< lifts and escalators (transport.hpp): after separate
+  VerticalTransports transports;          ///< lifts and escalators (vertical_transport.hpp): after separate
   int separationPasses = 0;       ///< the most passes any population asks for (configureModels)
   void emit();
 

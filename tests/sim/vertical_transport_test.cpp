@@ -1,4 +1,4 @@
-// Tests for lifts and escalators (ScenarioDesc::transports, libs/sim/src/transport.cpp): people
+// Tests for lifts and escalators (ScenarioDesc::transports, libs/sim/src/vertical_transport.cpp): people
 // who reach a transport's boarding stop queue, are carried to the other stop in the times its
 // parameters give, to the tick, and go on to their next goal; two floors joined by nothing else.
 #include <gtest/gtest.h>
@@ -124,7 +124,7 @@ std::uint64_t ticks(float seconds) { return static_cast<std::uint64_t>(std::lrou
 // everyone rides it, each for 8.06 / 0.5 s to the tick, stepping on at least a headway (0.8 s)
 // after the one before, exactly a headway while a queue waits; they rise steadily, and then
 // leave by the upper floor's exit.
-TEST(Transport, EscalatorRidesTakeLengthOverSpeedAndBoardAHeadwayApart) {
+TEST(VerticalTransport, EscalatorRidesTakeLengthOverSpeedAndBoardAHeadwayApart) {
   const sim::ScenarioDesc d = twoFloors(true);
   const RideRun run = simulate(d, 1, 0.0f, 4.0f, 1);
   ASSERT_EQ(run.rides.size(), 15u);
@@ -150,7 +150,7 @@ TEST(Transport, EscalatorRidesTakeLengthOverSpeedAndBoardAHeadwayApart) {
 // first arrival follows the last batch's by exactly what the rules add up to: the last batch
 // alighting (k × 1.2 s), doors closing, the trip up (4 / 1 + 1 / 1 s), doors opening, the next k
 // boarding, doors closing, the trip down, doors opening. And the lift is the only way down.
-TEST(Transport, LiftCarriesBatchesInTheTimesItsRulesGive) {
+TEST(VerticalTransport, LiftCarriesBatchesInTheTimesItsRulesGive) {
   const sim::ScenarioDesc d = twoFloors(false);
   const RideRun run = simulate(d, 1, 4.0f, 0.0f, 0);
   ASSERT_EQ(run.rides.size(), 28u);
@@ -185,7 +185,7 @@ TEST(Transport, LiftCarriesBatchesInTheTimesItsRulesGive) {
 }
 
 // The same lift run on 1 and 4 threads gives the same world.
-TEST(Transport, LiftAndEscalatorRunsAreTheSameOnAnyThreadCount) {
+TEST(VerticalTransport, LiftAndEscalatorRunsAreTheSameOnAnyThreadCount) {
   for (const bool escalator : {false, true}) {
     SCOPED_TRACE(escalator ? "escalator" : "lift");
     const sim::ScenarioDesc d = twoFloors(escalator);
@@ -196,7 +196,7 @@ TEST(Transport, LiftAndEscalatorRunsAreTheSameOnAnyThreadCount) {
 }
 
 // Stops must be two different points, each of one transport only.
-TEST(Transport, StopsThatAreNotTwoPointsAreRefused) {
+TEST(VerticalTransport, StopsThatAreNotTwoPointsAreRefused) {
   sim::ScenarioDesc d = twoFloors(true);
   d.transports[0].stops[1] = 0;
   auto same = sim::World::create(d);

@@ -1,4 +1,4 @@
-// Transports — lifts and escalators (ScenarioDesc::transports; docs/crowd-model.md, "Tactical level:
+// VerticalTransports — lifts and escalators (ScenarioDesc::transports; docs/crowd-model.md, "Tactical level:
 // lifts and escalators"). decide puts someone who reaches a transport's boarding stop (its current
 // goal) in GoalState::Riding; from then on this pass, run once a tick after integrate, queues them
 // at that stop, carries them and lets them off at the other stop, where they go on with their next
@@ -20,7 +20,7 @@
 
 namespace throng::sim {
 
-class Transports {
+class VerticalTransports {
  public:
   /// One state per transport of `desc` (all idle, nobody queuing).
   void configure(const ScenarioDesc& desc);

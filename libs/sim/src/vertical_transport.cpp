@@ -1,10 +1,10 @@
-// Lifts and escalators (transport.hpp). Everything happens in whole ticks: an escalator lets one
+// Lifts and escalators (vertical_transport.hpp). Everything happens in whole ticks: an escalator lets one
 // person on every round(headway / dt) ticks and carries each for round(length / speed / dt); a lift
 // takes round(t / dt) for each door movement and each transfer, and its trips the time to travel the
 // distance between its stops at `speed` with `acceleration` (a trapezoidal or, when too short to
 // reach the speed, triangular velocity profile), so what a test computes from the parameters is
 // what happens, to a tick.
-#include "transport.hpp"
+#include "vertical_transport.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -34,9 +34,9 @@ core::Vec2 slot(int k) {
 
 }  // namespace
 
-void Transports::configure(const ScenarioDesc& desc) { states_.assign(desc.transports.size(), State{}); }
+void VerticalTransports::configure(const ScenarioDesc& desc) { states_.assign(desc.transports.size(), State{}); }
 
-std::uint32_t Transports::boardingAt(const ScenarioDesc& desc, std::uint32_t point) {
+std::uint32_t VerticalTransports::boardingAt(const ScenarioDesc& desc, std::uint32_t point) {
   for (std::size_t t = 0; t < desc.transports.size(); ++t) {
     const TransportDesc& d = desc.transports[t];
     if (d.stops[0] == point || (d.kind == TransportKind::Elevator && d.stops[1] == point)) {
@@ -46,12 +46,12 @@ std::uint32_t Transports::boardingAt(const ScenarioDesc& desc, std::uint32_t poi
   return kNoIndex;
 }
 
-Transports::Place Transports::stopPlace(const ScenarioDesc& desc, const TransportDesc& t, int stop) {
+VerticalTransports::Place VerticalTransports::stopPlace(const ScenarioDesc& desc, const TransportDesc& t, int stop) {
   const PointDesc& p = desc.points[t.stops[stop]];
   return {p.position, p.height};
 }
 
-void Transports::step(const ScenarioDesc& desc, std::uint64_t tick, const nav::NavQuery& query, GoalWriter goals) {
+void VerticalTransports::step(const ScenarioDesc& desc, std::uint64_t tick, const nav::NavQuery& query, GoalWriter goals) {
   if (states_.empty()) return;
   AgentStore& a = goals.agents;
   agents_ = &a;
@@ -130,7 +130,7 @@ void Transports::step(const ScenarioDesc& desc, std::uint64_t tick, const nav::N
   for (const std::uint32_t id : riders_) rowOfId_[id] = kNoRow;
 }
 
-std::size_t Transports::nearest(const std::deque<std::uint32_t>& queue, core::Vec2 p) const {
+std::size_t VerticalTransports::nearest(const std::deque<std::uint32_t>& queue, core::Vec2 p) const {
   std::size_t best = 0;
   float bestD2 = std::numeric_limits<float>::max();
   for (std::size_t i = 0; i < queue.size(); ++i) {  // ties: the first to come
@@ -144,13 +144,13 @@ std::size_t Transports::nearest(const std::deque<std::uint32_t>& queue, core::Ve
   return best;
 }
 
-void Transports::alight(const ScenarioDesc& desc, const TransportDesc& t, int stop, std::uint32_t id, int k) {
+void VerticalTransports::alight(const ScenarioDesc& desc, const TransportDesc& t, int stop, std::uint32_t id, int k) {
   Place place = stopPlace(desc, t, stop);
   place.p += slot(k);
   off_.push_back({rowOfId_[id], t.stops[stop], place});
 }
 
-void Transports::runEscalator(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick) {
+void VerticalTransports::runEscalator(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick) {
   AgentStore& a = *write_;
   const Place from = stopPlace(desc, t, 0), to = stopPlace(desc, t, 1);
   const float dz = to.z - from.z;
@@ -193,7 +193,7 @@ void Transports::runEscalator(const ScenarioDesc& desc, const TransportDesc& t, 
   }
 }
 
-void Transports::startMove(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick) {
+void VerticalTransports::startMove(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick) {
   const Place here = stopPlace(desc, t, s.at), there = stopPlace(desc, t, 1 - s.at);
   const float dz = there.z - here.z;
   const float distance = std::sqrt(core::lengthSq(there.p - here.p) + dz * dz);
@@ -207,7 +207,7 @@ void Transports::startMove(const ScenarioDesc& desc, const TransportDesc& t, Sta
   s.phase = Phase::Moving;
 }
 
-void Transports::runElevator(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick) {
+void VerticalTransports::runElevator(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick) {
   AgentStore& a = *write_;
   const std::uint64_t open = ticksOf(t.doorOpenTime, dt_), close = ticksOf(t.doorCloseTime, dt_);
   const std::uint64_t transfer = ticksOf(t.transferTime, dt_);
