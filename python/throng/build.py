@@ -57,15 +57,37 @@ class ScenarioBuilder:
         self._doc["points"].append(point)
         return self
 
-    def exit(self, id, polygon=None, position=None, radius=None, width=None):
+    def exit(self, id, polygon=None, position=None, radius=None, width=None, height=None):
         """An exit: reaching it, an agent leaves the simulation. `width` [m]: the opening it stands for
         (exit choice's capacity estimate; populations choose among exits with exits=[...] and
-        exitChoice={"rule": "quickest"})."""
-        return self._point(id, "exit", position, radius, polygon, width=None if width is None else float(width))
+        exitChoice={"rule": "quickest"}). `height` [m]: its floor's, on a multi-level world."""
+        return self._point(id, "exit", position, radius, polygon, width=None if width is None else float(width),
+                           height=None if height is None else float(height))
 
-    def interest(self, id, polygon=None, position=None, radius=None):
-        """A place agents pass through (a waypoint)."""
-        return self._point(id, "interest", position, radius, polygon)
+    def interest(self, id, polygon=None, position=None, radius=None, height=None):
+        """A place agents pass through (a waypoint; also a lift's or escalator's stop). `height` [m]: its
+        floor's, on a multi-level world."""
+        return self._point(id, "interest", position, radius, polygon, height=None if height is None else float(height))
+
+    def escalator(self, id, start, end, speed=None, headway=None):
+        """An escalator from interest point `start` to interest point `end` (one way): people whose
+        goals name `start` queue there, ride at `speed` [m/s] (0.5), one every `headway` [s] (0.8),
+        and go on from `end` (docs/scenario-format.md, "Lifts and escalators")."""
+        return self._transport(id, "escalator", [start, end], speed=speed, headway=headway)
+
+    def elevator(self, id, stops, capacity=None, speed=None, acceleration=None, door_open_time=None,
+                 door_close_time=None, transfer_time=None):
+        """A lift between two interest points `stops` (both ways): a car for `capacity` people (8) at
+        `speed` [m/s] (1.0) with `acceleration` [m/s²] (1.0), doors opening and closing in
+        `door_open_time` and `door_close_time` [s] (2, 3), `transfer_time` [s] per person (1.2)."""
+        return self._transport(id, "elevator", list(stops), capacity=capacity, speed=speed, acceleration=acceleration,
+                               doorOpenTime=door_open_time, doorCloseTime=door_close_time, transferTime=transfer_time)
+
+    def _transport(self, id, kind, stops, **keys):
+        t = {"id": str(id), "kind": kind, "stops": [str(s) for s in stops]}
+        t.update({k: v for k, v in keys.items() if v is not None})
+        self._doc.setdefault("transports", []).append(t)
+        return self
 
     def action(self, id, position=None, radius=None, polygon=None, duration=None, action=None, orientation=None,
                stop=None):

@@ -122,3 +122,32 @@ def test_builder_takes_shapely_polygons_and_recordings_give_them_back(tmp_path):
     assert area.area == pytest.approx(12 * 6 - 2 * 2, rel=0.02)  # the hole is cut out
     assert not area.contains(Polygon([(5.5, 2.5), (6.5, 2.5), (6.5, 3.5), (5.5, 3.5)]))
     assert area.contains(Polygon([(1, 1), (2, 1), (2, 2), (1, 2)]))
+
+
+def test_builder_adds_escalators_and_lifts_that_carry_people():
+    # Two rooms 4 m apart with nothing walkable between them: a moving walkway (an escalator on one
+    # floor) carries five people from the west room to the east one, 8 m at 0.5 m/s; a lift would be
+    # built the same way (.elevator).
+    b = (throng.ScenarioBuilder("walkway", seed=3, duration=120)
+         .walkable([(0, 0), (6, 0), (6, 6), (0, 6)])
+         .walkable([(10, 0), (16, 0), (16, 6), (10, 6)])
+         .interest("west", polygon=[(4, 2), (6, 2), (6, 4), (4, 4)])
+         .interest("east", polygon=[(10, 2), (12, 2), (12, 4), (10, 4)])
+         .exit("out", polygon=[(15, 0), (16, 0), (16, 6), (15, 6)])
+         .escalator("walkway", "west", "east", speed=0.5, headway=1.0)
+         .population("p", goals=["west", "out"], spawn=[(0.5, 0.5), (3, 0.5), (3, 5.5), (0.5, 5.5)], groups=5))
+    assert b.to_dict()["transports"] == [{"id": "walkway", "kind": "escalator", "stops": ["west", "east"],
+                                          "speed": 0.5, "headway": 1.0}]
+    lift = throng.ScenarioBuilder().elevator("lift", ["a", "b"], capacity=4, transfer_time=1.0).to_dict()
+    assert lift["transports"] == [{"id": "lift", "kind": "elevator", "stops": ["a", "b"], "capacity": 4,
+                                   "transferTime": 1.0}]
+    with throng.Simulation(throng.scenario(b), threads=1) as sim:
+        events = []
+        while not sim.finished and sim.time < 120:
+            sim.step(10)
+            events += sim.events()
+    east = throng.scenario(b).points.index("east")
+    arrived = sorted(e["tick"] for e in events if e["kind"] == "goal_reached" and e["a"] == east)
+    assert len(arrived) == 5, "all five carried across"
+    assert min(y - x for x, y in zip(arrived, arrived[1:])) >= 20, "one a headway (1 s = 20 ticks) at most"
+    assert sum(1 for e in events if e["kind"] == "exit") == 5
