@@ -77,7 +77,7 @@ class ScenarioBuilder:
 
     def elevator(self, id, stops, capacity=None, speed=None, acceleration=None, door_open_time=None,
                  door_close_time=None, transfer_time=None):
-        """A lift between two interest points `stops` (both ways): a car for `capacity` people (8) at
+        """A lift serving interest points `stops` (2 to 64 floors, both ways): a car for `capacity` people (8) at
         `speed` [m/s] (1.0) with `acceleration` [m/s²] (1.0), doors opening and closing in
         `door_open_time` and `door_close_time` [s] (2, 3), `transfer_time` [s] per person (1.2)."""
         return self._transport(id, "elevator", list(stops), capacity=capacity, speed=speed, acceleration=acceleration,

@@ -381,6 +381,21 @@ TEST(ScenarioTransports, BadTransportsAreLocated) {
   const auto dd = errorsOf(twice);
   EXPECT_TRUE(contains(at(dd, "/transports/1/id").what, "duplicate")) << core::formatAll(dd);
   EXPECT_TRUE(contains(at(dd, "/transports/1/stops/0").what, "already a stop")) << core::formatAll(dd);
+  // An escalator has two stops; a lift may serve more floors (here the exit is no interest point).
+  const std::string escalator = fileText("verification/iso/21-escalators.json");
+  const std::string three = edit(escalator, R"("escalator-high"
+   ],)", R"("escalator-high",
+    "exit"
+   ],)");
+  ASSERT_NE(three, escalator);
+  const auto d3 = at(errorsOf(three), "/transports/0/stops");
+  EXPECT_TRUE(contains(d3.what, "3 stops")) << d3.format();
+  EXPECT_TRUE(contains(d3.expected, "two")) << d3.format();
+  const std::string liftThree = with(R"("lift-high"
+   ],)", R"("lift-high",
+    "exit"
+   ],)");
+  EXPECT_TRUE(contains(at(errorsOf(liftThree), "/transports/0/stops/2").what, "no interest point"));
 }
 
 }  // namespace throng::io::test

@@ -304,7 +304,10 @@ TEST(Goals, WaypointChosenEventsAreTheSameForAnyThreadCount) {
     std::vector<std::array<std::uint64_t, 4>> out;
     while (w.stats().time < 3.0) {
       w.step(tasks);
-      for (const Event& e : w.takeFrame()->events) {
+      // The frame held while its events are read (a range-for over takeFrame()->events would read
+      // them after the frame is freed: the temporary dies before the loop body runs).
+      const auto frame = w.takeFrame();
+      for (const Event& e : frame->events) {
         if (e.kind == EventKind::WaypointChosen) out.push_back({e.tick, e.agent, e.a, e.b});
       }
     }

@@ -212,3 +212,80 @@ TEST(VerticalTransport, StopsThatAreNotTwoPointsAreRefused) {
   ASSERT_FALSE(shared.ok());
   EXPECT_NE(core::formatAll(shared.errors()).find("another transport"), std::string::npos);
 }
+
+// A lift serving three floors (z 0, 4, 8): ten people on the top floor ride down to the ground
+// floor's exit, ten on the middle floor up to the top floor's; each is let off only at the floor of
+// its next goal, rides one way only (a landing's up and down buttons: nobody rides down to come up),
+// and everybody leaves. The same on 1 and 4 threads.
+TEST(VerticalTransport, ALiftServesThreeFloorsEachRiderOneWayToTheFloorOfItsNextGoal) {
+  sim::ScenarioDesc d;
+  d.name = "three floors";
+  d.seed = 5;
+  d.duration = 400;
+  const float floors[3] = {0.0f, 4.0f, 8.0f};
+  for (const float z : floors) quad(d.terrain, {{0, 0, z}, {12, 0, z}, {12, 10, z}, {0, 10, z}});
+  sim::TransportDesc lift;
+  lift.id = "lift";
+  lift.kind = sim::TransportKind::Elevator;
+  lift.speed = 1.0f;
+  lift.stops.clear();
+  for (int f = 0; f < 3; ++f) {
+    lift.stops.push_back(static_cast<std::uint32_t>(d.points.size()));
+    d.points.push_back(region("lift-" + std::to_string(f), sim::PointKind::Interest, 0.5f, 3.0f, 2.0f, 8.0f, floors[f]));
+  }
+  d.points.push_back(region("exit-0", sim::PointKind::Exit, 10.5f, 12.0f, 3.0f, 7.0f, 0.0f));  // 3
+  d.points.push_back(region("exit-2", sim::PointKind::Exit, 10.5f, 12.0f, 3.0f, 7.0f, 8.0f));  // 4
+  d.transports.push_back(lift);
+  sim::PopulationDesc down;
+  down.id = "down";
+  down.groups = 10;
+  down.radius = 0.2f;
+  down.spawn.kind = sim::SpawnKind::Polygon;
+  down.spawn.polygon = {{4, 1}, {9, 1}, {9, 9}, {4, 9}};
+  down.spawn.height = 8.0f;
+  down.goals = {2, 3};
+  sim::PopulationDesc up = down;
+  up.id = "up";
+  up.spawn.height = 4.0f;
+  up.goals = {1, 4};
+  d.populations = {down, up};
+  std::uint64_t hashes[2] = {0, 0};
+  for (const int threads : {1, 4}) {
+    auto created = sim::World::create(d);
+    ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
+    sim::World& w = *created.value();
+    core::TaskSystem tasks(threads);
+    std::map<std::uint32_t, std::vector<std::uint32_t>> stopsReached;  // id -> lift stops, in order
+    std::map<std::uint32_t, float> firstZ, lastZ;
+    std::map<std::uint32_t, bool> oneWay;
+    std::size_t exited = 0;
+    while (!w.finished() && w.stats().time < d.duration) {
+      w.step(tasks);
+      const auto f = w.takeFrame();
+      for (std::size_t i = 0; i < f->size(); ++i) {
+        const std::uint32_t id = f->ids[i];
+        const float z = f->height(i);
+        if (!firstZ.count(id)) firstZ[id] = z, oneWay[id] = true;
+        const bool goingUp = firstZ[id] < 6.0f && firstZ[id] > 2.0f;  // the middle floor's people
+        if (lastZ.count(id) && (goingUp ? z < lastZ[id] - 1e-4f : z > lastZ[id] + 1e-4f)) oneWay[id] = false;
+        lastZ[id] = z;
+      }
+      for (const sim::Event& e : f->events) {
+        if (e.kind == sim::EventKind::GoalReached && e.a <= 2) stopsReached[e.agent].push_back(e.a);
+        if (e.kind == sim::EventKind::Exit) ++exited;
+      }
+    }
+    SCOPED_TRACE(std::to_string(threads) + " threads");
+    EXPECT_EQ(exited, 20u);
+    ASSERT_EQ(stopsReached.size(), 20u);
+    for (const auto& [id, stops] : stopsReached) {
+      SCOPED_TRACE("agent " + std::to_string(id));
+      const bool goingUp = firstZ[id] < 6.0f;
+      EXPECT_EQ(stops, goingUp ? (std::vector<std::uint32_t>{1, 2}) : (std::vector<std::uint32_t>{2, 0}))
+          << "boarded at its floor, let off only at its next goal's";
+      EXPECT_TRUE(oneWay[id]) << "rode one way";
+    }
+    hashes[threads == 1 ? 0 : 1] = w.stateHash();
+  }
+  EXPECT_EQ(hashes[0], hashes[1]);
+}

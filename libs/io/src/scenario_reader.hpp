@@ -82,6 +82,13 @@ class ScenarioReader {
   void readSmokeList(const Json& root, sim::ScenarioDesc& desc);
   /// "transports" (scenario_walls_parser.cpp): lifts and escalators between points (after indexPoints).
   void readTransportList(const Json& root, sim::ScenarioDesc& desc);
+  /// A transport's "kind"; true for an elevator (whose default speed it sets).
+  bool readTransportKind(const Json& v, const std::string& ptr, sim::TransportDesc& t);
+  /// Its "stops": resolved, different, interest points; false when not.
+  bool readTransportStops(const Json& v, const std::string& ptr, bool elevator, const sim::ScenarioDesc& desc,
+                          sim::TransportDesc& t);
+  /// Its speed and the keys of its kind (a key of the other kind is an error).
+  void readTransportNumbers(const Json& v, const std::string& ptr, bool elevator, sim::TransportDesc& t);
   /// The point ids and heights that goals and spawns resolve against (run and runCrowd).
   void indexPoints(const sim::ScenarioDesc& desc);
   void readPopulationList(const Json& root, ParsedScenario& out);

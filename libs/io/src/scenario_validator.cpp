@@ -550,9 +550,13 @@ class Validator {
     for (std::size_t g = 0; g < pop.goals.size(); ++g) {
       fromAt[g] = from;
       out.push_back({pop.goals[g], ptr + "/goals/" + std::to_string(g), from});
-      for (const sim::TransportDesc& t : desc_.transports) {  // ridden from there to the other stop
-        if (t.stops[0] == pop.goals[g]) from = t.stops[1];
-        if (t.kind == sim::TransportKind::Elevator && t.stops[1] == pop.goals[g]) from = t.stops[0];
+      for (const sim::TransportDesc& t : desc_.transports) {  // ridden from there to the stop rideTo says
+        const std::size_t boarding = t.kind == sim::TransportKind::Elevator ? t.stops.size() : 1;
+        for (std::size_t k = 0; k < boarding; ++k) {
+          if (t.stops[k] != pop.goals[g]) continue;
+          const std::uint32_t next = g + 1 < pop.goals.size() ? pop.goals[g + 1] : 0xffffffffu;  // none
+          from = t.stops[sim::rideTo(desc_, t, k, next)];
+        }
       }
     }
     for (const sim::GoalChoiceDesc& c : pop.goalChoices) {

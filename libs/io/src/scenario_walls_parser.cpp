@@ -202,7 +202,7 @@ void ScenarioReader::readTransportList(const Json& root, sim::ScenarioDesc& desc
   const Json* x = optional(root, "transports");
   if (x == nullptr) return;
   const std::string expected =
-      "an array of lifts and escalators {\"id\", \"kind\": \"elevator\" or \"escalator\", \"stops\": [point id, point id], ...}";
+      "an array of lifts and escalators {\"id\", \"kind\": \"elevator\" or \"escalator\", \"stops\": [point id, ...], ...}";
   if (!x->is_array()) {
     error("/transports", "wrong type: " + describeType(*x), expected);
     return;
@@ -233,68 +233,93 @@ void ScenarioReader::readTransportList(const Json& root, sim::ScenarioDesc& desc
         }
       }
     }
-    bool elevator = false;
-    if (auto* k = require(v, ptr, "kind", "\"elevator\" or \"escalator\"")) {
-      std::string kind;
-      if (readString(*k, ptr + "/kind", "\"elevator\" or \"escalator\"", kind)) {
-        if (kind == "elevator") {
-          t.kind = sim::TransportKind::Elevator;
-          elevator = true;
-          t.speed = 1.0f;  // a lift's default rated speed (sim::TransportDesc::speed)
-        } else if (kind == "escalator") {
-          t.kind = sim::TransportKind::Escalator;
-        } else {
-          error(ptr + "/kind", "unknown transport kind " + quote(kind), "\"elevator\" or \"escalator\"",
-                core::closestMatch(kind, {"elevator", "escalator"}).empty() ? ""
-                                                                            : "did you mean " + quote(core::closestMatch(kind, {"elevator", "escalator"})) + "?");
+    const bool elevator = readTransportKind(v, ptr, t);
+    if (readTransportStops(v, ptr, elevator, desc, t)) {
+      for (std::size_t k = 0; k < t.stops.size(); ++k) {
+        if (auto [it, fresh] = stopOf.emplace(t.stops[k], i); !fresh && it->second != i) {
+          error(ptr + "/stops/" + std::to_string(k), "point " + quote(desc.points[t.stops[k]].id) +
+                " is already a stop of /transports/" + std::to_string(it->second), "each point the stop of one transport at most");
         }
       }
     }
-    const std::string stopsExpected = "two different point ids [from, to] from /points (an escalator carries from the first to the second)";
-    if (auto* st = require(v, ptr, "stops", stopsExpected)) {
-      if (!st->is_array() || st->size() != 2) {
-        error(ptr + "/stops", st->is_array() ? std::to_string(st->size()) + " stops" : "wrong type: " + describeType(*st), stopsExpected);
-      } else {
-        bool ok = resolvePoint((*st)[0], ptr + "/stops/0", t.stops[0]);
-        ok = resolvePoint((*st)[1], ptr + "/stops/1", t.stops[1]) && ok;
-        if (ok && t.stops[0] == t.stops[1]) error(ptr + "/stops/1", "the same point as the first stop", stopsExpected);
-        for (int k = 0; ok && k < 2; ++k) {
-          if (desc.points[t.stops[k]].kind != sim::PointKind::Interest) {
-            error(ptr + "/stops/" + std::to_string(k), "point " + quote(desc.points[t.stops[k]].id) + " is no interest point",
-                  "a point of kind \"interest\" (where people board and alight)");
-            ok = false;
-          }
-        }
-        for (int k = 0; ok && k < 2; ++k) {
-          if (auto [it, fresh] = stopOf.emplace(t.stops[k], i); !fresh && it->second != i) {
-            error(ptr + "/stops/" + std::to_string(k), "point " + quote(desc.points[t.stops[k]].id) + " is already a stop of /transports/" +
-                  std::to_string(it->second), "each point the stop of one transport at most");
-          }
-        }
-      }
-    }
-    if (auto* y = optional(v, "speed")) {
-      readFloat(*y, ptr + "/speed", elevator ? Range{0.1, 10, false, "m/s"} : Range{0.1, 2, false, "m/s"}, t.speed);
-    }
-    const auto only = [&](const char* key, bool forElevator) -> const Json* {
-      const Json* y = optional(v, key);
-      if (y != nullptr && forElevator != elevator) {
-        error(ptr + "/" + key, std::string("\"") + key + "\" is for " + (forElevator ? "an elevator" : "an escalator"),
-              forElevator ? "no \"" + std::string(key) + "\" on an escalator" : "no \"" + std::string(key) + "\" on an elevator", "", true);
-        return nullptr;
-      }
-      return y;
-    };
-    if (auto* y = only("headway", false)) readFloat(*y, ptr + "/headway", {0.2, 60, false, "s"}, t.headway);
-    if (auto* y = only("capacity", true)) {
-      double c = 0;
-      if (readInteger(*y, ptr + "/capacity", 1, 100, "persons", c)) t.capacity = static_cast<std::uint32_t>(c);
-    }
-    if (auto* y = only("acceleration", true)) readFloat(*y, ptr + "/acceleration", {0.1, 5, false, "m/s²"}, t.acceleration);
-    if (auto* y = only("doorOpenTime", true)) readFloat(*y, ptr + "/doorOpenTime", {0, 60, false, "s"}, t.doorOpenTime);
-    if (auto* y = only("doorCloseTime", true)) readFloat(*y, ptr + "/doorCloseTime", {0, 60, false, "s"}, t.doorCloseTime);
-    if (auto* y = only("transferTime", true)) readFloat(*y, ptr + "/transferTime", {0, 60, false, "s"}, t.transferTime);
+    readTransportNumbers(v, ptr, elevator, t);
   }
+}
+
+bool ScenarioReader::readTransportKind(const Json& v, const std::string& ptr, sim::TransportDesc& t) {
+  const Json* k = require(v, ptr, "kind", "\"elevator\" or \"escalator\"");
+  std::string kind;
+  if (k == nullptr || !readString(*k, ptr + "/kind", "\"elevator\" or \"escalator\"", kind)) return false;
+  if (kind == "elevator") {
+    t.kind = sim::TransportKind::Elevator;
+    t.speed = 1.0f;  // a lift's default rated speed (sim::TransportDesc::speed)
+    return true;
+  }
+  if (kind == "escalator") {
+    t.kind = sim::TransportKind::Escalator;
+    return false;
+  }
+  const std::string match = core::closestMatch(kind, {"elevator", "escalator"});
+  error(ptr + "/kind", "unknown transport kind " + quote(kind), "\"elevator\" or \"escalator\"",
+        match.empty() ? "" : "did you mean " + quote(match) + "?");
+  return false;
+}
+
+bool ScenarioReader::readTransportStops(const Json& v, const std::string& ptr, bool elevator, const sim::ScenarioDesc& desc,
+                                        sim::TransportDesc& t) {
+  const std::string expected =
+      elevator ? "2 to " + std::to_string(sim::kMaxElevatorStops) + " different point ids from /points (the floors it serves)"
+               : "two different point ids [from, to] from /points (an escalator carries from the first to the second)";
+  const Json* st = require(v, ptr, "stops", expected);
+  if (st == nullptr) return false;
+  const std::size_t most = elevator ? sim::kMaxElevatorStops : 2;
+  if (!st->is_array() || st->size() < 2 || st->size() > most) {
+    error(ptr + "/stops", st->is_array() ? std::to_string(st->size()) + " stops" : "wrong type: " + describeType(*st), expected);
+    return false;
+  }
+  t.stops.assign(st->size(), 0);
+  bool ok = true;
+  for (std::size_t k = 0; k < st->size(); ++k) ok = resolvePoint((*st)[k], ptr + "/stops/" + std::to_string(k), t.stops[k]) && ok;
+  for (std::size_t k = 1; ok && k < t.stops.size(); ++k) {
+    const auto earlier = t.stops.begin() + static_cast<std::ptrdiff_t>(k);
+    if (std::find(t.stops.begin(), earlier, t.stops[k]) != earlier) {
+      error(ptr + "/stops/" + std::to_string(k), "the same point as an earlier stop", expected);
+      ok = false;
+    }
+  }
+  for (std::size_t k = 0; ok && k < t.stops.size(); ++k) {
+    if (desc.points[t.stops[k]].kind != sim::PointKind::Interest) {
+      error(ptr + "/stops/" + std::to_string(k), "point " + quote(desc.points[t.stops[k]].id) + " is no interest point",
+            "a point of kind \"interest\" (where people board and alight)");
+      ok = false;
+    }
+  }
+  return ok;
+}
+
+void ScenarioReader::readTransportNumbers(const Json& v, const std::string& ptr, bool elevator, sim::TransportDesc& t) {
+  if (auto* y = optional(v, "speed")) {
+    readFloat(*y, ptr + "/speed", elevator ? Range{0.1, 10, false, "m/s"} : Range{0.1, 2, false, "m/s"}, t.speed);
+  }
+  // A key of the other kind is an error at the key.
+  const auto only = [&](const char* key, bool forElevator) -> const Json* {
+    const Json* y = optional(v, key);
+    if (y != nullptr && forElevator != elevator) {
+      error(ptr + "/" + key, std::string("\"") + key + "\" is for " + (forElevator ? "an elevator" : "an escalator"),
+            "no \"" + std::string(key) + "\" on an " + (forElevator ? "escalator" : "elevator"), "", true);
+      return nullptr;
+    }
+    return y;
+  };
+  if (auto* y = only("headway", false)) readFloat(*y, ptr + "/headway", {0.2, 60, false, "s"}, t.headway);
+  if (auto* y = only("capacity", true)) {
+    double c = 0;
+    if (readInteger(*y, ptr + "/capacity", 1, 100, "persons", c)) t.capacity = static_cast<std::uint32_t>(c);
+  }
+  if (auto* y = only("acceleration", true)) readFloat(*y, ptr + "/acceleration", {0.1, 5, false, "m/s²"}, t.acceleration);
+  if (auto* y = only("doorOpenTime", true)) readFloat(*y, ptr + "/doorOpenTime", {0, 60, false, "s"}, t.doorOpenTime);
+  if (auto* y = only("doorCloseTime", true)) readFloat(*y, ptr + "/doorCloseTime", {0, 60, false, "s"}, t.doorCloseTime);
+  if (auto* y = only("transferTime", true)) readFloat(*y, ptr + "/transferTime", {0, 60, false, "s"}, t.transferTime);
 }
 
 void ScenarioReader::readMeasurementList(const Json& root, ParsedScenario& out) {

@@ -3,6 +3,8 @@
 #include "throng/sim/scenario.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace throng::sim {
 
@@ -54,6 +56,23 @@ nav::NavMeshConfig ScenarioDesc::navMeshConfig() const {
     }
   }
   return config;
+}
+
+std::size_t rideTo(const ScenarioDesc& desc, const TransportDesc& t, std::size_t from, std::uint32_t next) {
+  if (t.kind == TransportKind::Escalator) return 1;
+  std::size_t best = from == 0 ? 1 : 0;
+  if (next >= desc.points.size()) return best;
+  float bestGap = std::numeric_limits<float>::max();
+  for (std::size_t i = 0; i < t.stops.size(); ++i) {
+    if (i == from) continue;
+    if (t.stops[i] == next) return i;
+    const float gap = std::abs(desc.points[t.stops[i]].height - desc.points[next].height);
+    if (gap < bestGap) {
+      bestGap = gap;
+      best = i;
+    }
+  }
+  return best;
 }
 
 }  // namespace throng::sim

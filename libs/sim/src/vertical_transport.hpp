@@ -11,6 +11,7 @@
 #pragma once
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <vector>
 
 #include "agent_store.hpp"
@@ -35,17 +36,23 @@ class VerticalTransports {
 
  private:
   enum class Phase : std::uint8_t { Idle, Opening, Transfer, Closing, Moving };
+  /// Someone queuing or carried: its id, the stop it rides to (rideTo), when it stepped on.
+  struct Rider {
+    std::uint32_t id;
+    std::uint32_t dest;
+    std::uint64_t boarded = 0;  ///< escalator: the tick it stepped on
+  };
   struct State {
-    std::deque<std::uint32_t> queue[2];  ///< ids waiting at each stop, in the order they came
-    std::vector<std::uint32_t> aboard;   ///< ids carried, in boarding order
-    std::vector<std::uint64_t> boarded;  ///< escalator: the tick each of `aboard` stepped on
-    std::uint64_t nextBoard = 0;         ///< escalator: the first tick the next may step on
-    int at = 0;                          ///< elevator: the stop the car is at (or travels to)
-    Phase phase = Phase::Idle;           ///< elevator
-    std::uint64_t until = 0;             ///< elevator: the tick the phase's current step ends
-    std::uint64_t moveStart = 0;         ///< elevator: the tick the car left
-    std::uint64_t moveTicks = 1;         ///< elevator: how long this trip takes
-    std::uint32_t toLetOff = 0;          ///< elevator: of `aboard`, the first this many get off here
+    std::vector<std::deque<Rider>> queue;  ///< per stop: those waiting there, in the order they came
+    std::vector<Rider> aboard;             ///< those carried, in boarding order
+    std::uint64_t nextBoard = 0;           ///< escalator: the first tick the next may step on
+    std::uint32_t at = 0;                  ///< elevator: the stop the car is at (or travels to)
+    std::uint32_t from = 0;                ///< elevator: the stop it left (while Moving)
+    int dir = 0;                           ///< elevator: +1 going up, -1 down (the stops by height), 0 idle
+    Phase phase = Phase::Idle;             ///< elevator
+    std::uint64_t until = 0;               ///< elevator: the tick the phase's current step ends
+    std::uint64_t moveStart = 0;           ///< elevator: the tick the car left
+    std::uint64_t moveTicks = 1;           ///< elevator: how long this trip takes
   };
   struct Place {
     core::Vec2 p;
@@ -54,17 +61,28 @@ class VerticalTransports {
 
   void runEscalator(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick);
   void runElevator(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick);
-  void startMove(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick);
-  /// Of `queue`, the index of the person nearest p (ties: the first to come).
-  [[nodiscard]] std::size_t nearest(const std::deque<std::uint32_t>& queue, core::Vec2 p) const;
+  /// Sends the car from its stop to stop `to`.
+  void startMove(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick, std::uint32_t to);
+  /// The stop the car goes to next, from what those aboard and those waiting elsewhere want: the
+  /// nearest such stop in its direction (by height, then list order), else the nearest the other
+  /// way; kNoIndex when nobody wants anything.
+  [[nodiscard]] static std::uint32_t nextStop(const ScenarioDesc& desc, const TransportDesc& t, State& s);
+  /// Of `queue` (those `eligible`, when given), the index of the person nearest p (ties: the first to
+  /// come).
+  [[nodiscard]] std::size_t nearest(const std::deque<Rider>& queue, core::Vec2 p,
+                                    const std::function<bool(const Rider&)>& eligible = {}) const;
+  /// The way the car goes on from its stop (+1 up, -1 down): its direction while someone aboard rides,
+  /// or someone waits, further that way; else 0 (it may turn).
+  [[nodiscard]] static int servingDirection(const ScenarioDesc& desc, const TransportDesc& t, const State& s);
   /// Puts `id` off at stop `stop` of t (the k-th let off there this tick).
-  void alight(const ScenarioDesc& desc, const TransportDesc& t, int stop, std::uint32_t id, int k);
-  [[nodiscard]] static Place stopPlace(const ScenarioDesc& desc, const TransportDesc& t, int stop);
+  void alight(const ScenarioDesc& desc, const TransportDesc& t, std::uint32_t stop, std::uint32_t id, int k);
+  [[nodiscard]] static Place stopPlace(const ScenarioDesc& desc, const TransportDesc& t, std::uint32_t stop);
 
   std::vector<State> states_;
   // Valid during step():
   std::vector<std::uint32_t> rowOfId_;  ///< riders' rows by id (kNoRow for others), this tick
   std::vector<std::uint32_t> riders_;   ///< riders' ids this tick, ascending
+  std::vector<std::uint8_t> known_;     ///< by id: 1 while in a queue or a car
   struct Off {
     std::uint32_t row;
     std::uint32_t point;

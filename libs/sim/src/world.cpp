@@ -38,21 +38,25 @@ World::~World() = default;
 
 core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
                                                     std::shared_ptr<const nav::NavMesh> navmesh) {
-  // Lifts and escalators: two different points, neither the stop of another transport (io
-  // reports these with the file's location; a host building a ScenarioDesc gets this).
+  // Lifts and escalators: different points (an escalator two, an elevator 2 to kMaxElevatorStops),
+  // none the stop of another transport (io reports these with the file's location; a host building
+  // a ScenarioDesc gets this).
+  std::vector<std::uint8_t> isStop(desc.points.size(), 0);
   for (std::size_t t = 0; t < desc.transports.size(); ++t) {
     const TransportDesc& d = desc.transports[t];
-    const std::string at = "/transports/" + std::to_string(t);
-    if (d.stops[0] >= desc.points.size() || d.stops[1] >= desc.points.size() || d.stops[0] == d.stops[1]) {
-      return core::Diagnostic{"", 0, 0, at + "/stops", "not two different points", "indices into /points", ""};
+    const std::string at = "/transports/" + std::to_string(t) + "/stops";
+    const std::size_t most = d.kind == TransportKind::Elevator ? kMaxElevatorStops : 2;
+    if (d.stops.size() < 2 || d.stops.size() > most) {
+      return core::Diagnostic{"", 0, 0, at, std::to_string(d.stops.size()) + " stops",
+                              d.kind == TransportKind::Elevator ? "2 to " + std::to_string(kMaxElevatorStops) : "2", ""};
     }
-    for (std::size_t u = 0; u < t; ++u) {
-      for (const std::uint32_t p : d.stops) {
-        if (p == desc.transports[u].stops[0] || p == desc.transports[u].stops[1]) {
-          return core::Diagnostic{"", 0, 0, at + "/stops", "point \"" + desc.points[p].id + "\" is a stop of another transport",
-                                  "each point the stop of one transport at most", ""};
-        }
+    for (const std::uint32_t p : d.stops) {
+      if (p >= desc.points.size()) return core::Diagnostic{"", 0, 0, at, "no point " + std::to_string(p), "indices into /points", ""};
+      if (isStop[p] != 0) {
+        return core::Diagnostic{"", 0, 0, at, "point \"" + desc.points[p].id + "\" is a stop twice, or of another transport",
+                                "each point the stop of one transport at most, once", ""};
       }
+      isStop[p] = 1;
     }
   }
   if (!navmesh) {

@@ -399,10 +399,10 @@ enum class TransportKind : std::uint8_t {
   /// A moving stair from stops[0] to stops[1], one way: one person steps on every `headway` seconds
   /// and rides the straight line between the two points at `speed`, standing.
   Escalator = 0,
-  /// A lift car between stops[0] and stops[1]: it takes up to `capacity` people waiting at one
-  /// stop to the other (doors open, each boards in `transferTime`, doors close, it travels at
-  /// `speed` with `acceleration`, doors open, each alights in `transferTime`), and goes where
-  /// people wait.
+  /// A lift car serving its stops (2 to kMaxElevatorStops): it takes up to `capacity` people
+  /// waiting at a stop to the stops they ride to (doors open, each alights and then each boards in
+  /// `transferTime`, doors close, it travels at `speed` with `acceleration`), going on in its
+  /// direction while someone aboard or waiting is that way, then turning.
   Elevator = 1,
 };
 
@@ -411,9 +411,10 @@ enum class TransportKind : std::uint8_t {
 struct TransportDesc {
   std::string id;
   TransportKind kind = TransportKind::Escalator;
-  /// Indices into ScenarioDesc::points: where people board and alight (an escalator boards at the
-  /// first only); two different points, each the stop of no other transport.
-  std::uint32_t stops[2] = {0, 0};
+  /// Indices into ScenarioDesc::points: where people board and alight (an escalator: two, boarding
+  /// at the first only; an elevator: 2 to kMaxElevatorStops, boarding at each); different points,
+  /// each the stop of no other transport.
+  std::vector<std::uint32_t> stops{0, 0};
   /// Escalator: the belt's speed [m/s] [Limit: 0.1 .. 2]; 0.5 by default (EN 115-1: at most 0.75
   /// m/s up to 30°; 0.5 is the usual rate). Elevator: the car's rated speed [m/s] [Limit: 0.1 ..
   /// 10]; 1.0 by default (the usual rate of low-rise passenger lifts, CIBSE Guide D).
@@ -434,6 +435,16 @@ struct TransportDesc {
   /// passenger transfer time).
   float transferTime = 1.2f;
 };
+
+/// The most stops one elevator serves.
+inline constexpr std::size_t kMaxElevatorStops = 64;
+
+struct ScenarioDesc;
+/// Where someone boarding transport `t` at its stop `from` (an index into t.stops) rides to, as an
+/// index into t.stops: an escalator's top; for an elevator, its next goal `next` (a point index,
+/// 0xffffffff when none) when that is one of its stops, else the stop whose floor is nearest in height
+/// to that goal's (ties: the first listed), else the first stop that is not `from`.
+[[nodiscard]] std::size_t rideTo(const ScenarioDesc& desc, const TransportDesc& t, std::size_t from, std::uint32_t next);
 
 /// The longest scenario "description" [bytes].
 inline constexpr std::size_t kMaxDescription = 1000;
