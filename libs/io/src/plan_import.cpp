@@ -178,7 +178,9 @@ class Assembler {
                     "lines, polylines, circles or arcs in the ENTITIES section (DXF), or POLYGON / LINESTRING geometries (WKT)");
       return;
     }
-    if (hi_[0] - lo_[0] < 1e-3 || hi_[1] - lo_[1] < 1e-3) {
+    // At least a centimetre each way: the corners are written to the millimetre, and a rectangle of
+    // a millimetre or two came out of that rounding with an area the loader calls none (fuzz_dxf).
+    if (hi_[0] - lo_[0] < 1e-2 || hi_[1] - lo_[1] < 1e-2) {
       report_.error(0, 0, "the plan has no walkable outline and its bounding rectangle has no area",
                     "a closed walkable outline (a layer named ...floor..., ...room... or ...walk..., or a WKT POLYGON)");
       return;
