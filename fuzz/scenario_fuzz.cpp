@@ -51,6 +51,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (const auto& poly : structural->desc.walkable) {
     for (const auto p : poly) box.extend(p);
   }
+  // A multi-level world's area is that of its terrain's vertices (walkable or obstacle).
+  const auto& vertices = structural->desc.terrain.vertices;
+  for (std::size_t v = 0; v + 2 < vertices.size(); v += 3) box.extend({vertices[v], vertices[v + 1]});
   const float extent = std::max(box.max.x - box.min.x, box.max.y - box.min.y);
   if (size <= 4096 && extent <= 60.0f) {
     auto full = throng::io::parseScenario(text, "fuzz.json", throng::io::LoadOptions{true});
