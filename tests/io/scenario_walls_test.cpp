@@ -398,4 +398,27 @@ TEST(ScenarioTransports, BadTransportsAreLocated) {
   EXPECT_TRUE(contains(at(errorsOf(liftThree), "/transports/0/stops/2").what, "no interest point"));
 }
 
+// People ride of their own accord (useTransports, on by default): a goal that only a lift joins to
+// the spawn is reachable though no goal names the lift's stop; with useTransports false it is not,
+// and the check says so; a non-boolean is located.
+TEST(ScenarioTransports, GoalsBeyondALiftAreReachableForPeopleWhoRideOfTheirOwnAccord) {
+  const std::string lift = fileText("verification/nist/2.7-elevators.json");
+  const std::string direct = edit(lift, R"("goals": [
+    "lift-high",
+    "exit"
+   ],)", R"("goals": ["exit"],)");
+  ASSERT_NE(direct, lift);
+  auto r = load(direct, true);
+  ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
+  EXPECT_TRUE(r->desc.populations[0].useTransports);
+  const std::string walkers = edit(direct, R"("goals": ["exit"],)", R"("goals": ["exit"], "useTransports": false,)");
+  EXPECT_FALSE(load(walkers)->desc.populations[0].useTransports);
+  const auto unreachable = at(errorsOf(walkers, true), "/populations/0/goals/0");
+  EXPECT_TRUE(contains(unreachable.what, "cannot be reached")) << unreachable.format();
+  const std::string number = edit(direct, R"("goals": ["exit"],)", R"("goals": ["exit"], "useTransports": 1,)");
+  const auto d = at(errorsOf(number), "/populations/0/useTransports");
+  expectAt(d, number, "1,\n   \"speed\"");
+  EXPECT_TRUE(contains(d.what, "wrong type")) << d.format();
+}
+
 }  // namespace throng::io::test

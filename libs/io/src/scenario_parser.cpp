@@ -391,7 +391,7 @@ bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::
   checkKeys(v, ptr,
             {"id", "groups", "size", "spawn", "start", "goals", "speed", "radius", "wander", "paths", "autoNearDistance",
              "flocking", "waitTimeout", "groupSpacing", "follow", "guide", "sociological", "interests", "interestsPerAgent", "preferences",
-             "model", "preMovement", "stairs", "exits", "exitChoice", "incapacitationDose"},
+             "model", "preMovement", "stairs", "exits", "exitChoice", "incapacitationDose", "useTransports"},
             "a population");
   bool ok = true;
   p.id = "population" + std::to_string(index);
@@ -451,6 +451,7 @@ bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::
   }
   if (auto* x = optional(v, "speed")) ok = readSpeed(*x, ptr + "/speed", p) && ok;
   if (auto* x = optional(v, "stairs")) ok = readStairs(*x, ptr + "/stairs", p) && ok;
+  if (auto* x = optional(v, "useTransports")) ok = readBool(*x, ptr + "/useTransports", p.useTransports) && ok;
   if (auto* x = optional(v, "incapacitationDose")) {
     ok = readFloat(*x, ptr + "/incapacitationDose", {0, 10, true, ""}, p.incapacitationDose) && ok;
   }

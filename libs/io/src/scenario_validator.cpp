@@ -517,18 +517,56 @@ class Validator {
           const sim::PointDesc& stop = desc_.points[from];
           source = snapAt(query, goalTarget(stop), stop.height, regionReach(stop) + 1.0f);
         }
-        if (!target || !source || !query.reachable(source->p, source->height, target->p, target->height)) {
+        const auto locate = [&](std::uint32_t p) {
+          return snapAt(query, goalTarget(desc_.points[p]), desc_.points[p].height, regionReach(desc_.points[p]) + 1.0f);
+        };
+        const auto walk = [&](const nav::MeshPoint& a, const nav::MeshPoint& b) { return query.reachable(a.p, a.height, b.p, b.height); };
+        if (!target || !source || !reachableRiding(pop, *source, *target, locate, walk)) {
           error(pointer,
                 "point \"" + goal.id + "\" cannot be reached from " +
                     (from == kFromSpawn ? "the spawn area of population \"" + pop.id + "\""
                                         : "transport stop \"" + desc_.points[from].id + "\" (population \"" + pop.id + "\")"),
-                "a goal connected to the spawn by floors, stairs or ramps at least " + num(width) +
+                "a goal connected to the spawn" + std::string(ridesAny(pop) ? " (or to a lift's or escalator's stop)" : "") +
+                    " by floors, stairs or ramps at least " + num(width) +
                     " m wide" + clearanceText(width) + ", steps at most " + num(config.maxClimb) + " m high, slopes at most " +
                     num(config.maxSlopeDeg) + "°",
                 "check /terrain/walkable for a missing stair or ramp, and /terrain/obstacles for walls closing the way");
         }
       }
     }
+  }
+
+  /// Whether population `pop` may ride lifts and escalators of its own accord (useTransports).
+  [[nodiscard]] bool ridesAny(const sim::PopulationDesc& pop) const { return pop.useTransports && !desc_.transports.empty(); }
+
+  /// Whether `walk(a, b)` links `source` to `target`, or, for a population that rides of its own
+  /// accord (ridesAny; sim::TransportRoutes), a chain of walks and rides does: from a place, to a
+  /// boarding stop reachable on foot, carried to any other stop of a lift or to an escalator's head,
+  /// and on from there. `locate(point)` is where a stop is on the navmesh (empty: nowhere).
+  template <class Place, class Locate, class Walk>
+  bool reachableRiding(const sim::PopulationDesc& pop, const Place& source, const Place& target, Locate locate, Walk walk) const {
+    if (walk(source, target)) return true;
+    if (!ridesAny(pop)) return false;
+    std::vector<Place> places{source};
+    std::vector<std::uint8_t> reached(desc_.points.size(), 0);
+    for (std::size_t i = 0; i < places.size(); ++i) {
+      for (const sim::TransportDesc& t : desc_.transports) {
+        const bool lift = t.kind == sim::TransportKind::Elevator;
+        for (std::size_t k = 0; k < (lift ? t.stops.size() : 1); ++k) {
+          const auto board = locate(t.stops[k]);
+          if (!board || !walk(places[i], *board)) continue;
+          for (std::size_t m = lift ? 0 : 1; m < t.stops.size(); ++m) {
+            if (m == k || reached[t.stops[m]] != 0) continue;
+            reached[t.stops[m]] = 1;
+            const auto off = locate(t.stops[m]);
+            if (!off) continue;
+            if (walk(*off, target)) return true;
+            places.push_back(*off);
+          }
+        }
+      }
+    }
+    return false;
   }
 
   /// The points population i walks to, with their JSON pointers: its goals (every option of a
@@ -752,12 +790,15 @@ class Validator {
         const auto target = query.nearest(goalTarget(goal), reach + 1.0f);
         auto source = start;
         if (from != kFromSpawn) source = query.nearest(goalTarget(desc_.points[from]), regionReach(desc_.points[from]) + 1.0f);
-        if (!target || !source || !query.reachable(source->first, target->first)) {
+        const auto locate = [&](std::uint32_t p) { return query.nearest(goalTarget(desc_.points[p]), regionReach(desc_.points[p]) + 1.0f); };
+        const auto walk = [&](const auto& a, const auto& b) { return query.reachable(a.first, b.first); };
+        if (!target || !source || !reachableRiding(pop, *source, *target, locate, walk)) {
           error(gptr,
                 "point \"" + goal.id + "\" cannot be reached from " +
                     (from == kFromSpawn ? "the spawn area of population \"" + pop.id + "\""
                                         : "transport stop \"" + desc_.points[from].id + "\" (population \"" + pop.id + "\")"),
-                "a goal connected to the spawn by walkable area at least " + num(width) + " m wide" + clearanceText(width),
+                "a goal connected to the spawn" + std::string(ridesAny(pop) ? " (or to a lift's or escalator's stop)" : "") +
+                    " by walkable area at least " + num(width) + " m wide" + clearanceText(width),
                 "check /obstacles for walls closing the way");
         }
       }

@@ -15,6 +15,8 @@
 #include "throng/crowd/path_reconstruction.hpp"
 #include "throng/crowd/walkable.hpp"
 #include "goals.hpp"
+#include "transport_choice.hpp"
+#include "vertical_transport.hpp"
 #include "world_impl.hpp"
 
 namespace throng::sim {
@@ -111,6 +113,10 @@ void GoalWriter::setGoal(std::size_t row, std::uint32_t cursor) {
   if (agents.goalState[row] == GoalState::Incapacitated) return;  // stays where it fell (decide.cpp)
   const GroupState& g = groups[agents.group[row]];
   const PopulationDesc& pop = desc.populations[g.population];
+  if (routes != nullptr && cursor < view().activeGoals(g).size()) {
+    chooseWaypoint(row, cursor);  // the goal first, then the way there
+    routeByTransport(row, cursor);
+  }
   const std::vector<std::uint32_t>& goals = view().activeGoals(g);
   agents.goalCursor[row] = cursor;
   agents.ticket[row] = 0;  // a path still queued for the old goal expires unread
@@ -159,6 +165,45 @@ void GoalWriter::setGoal(std::size_t row, std::uint32_t cursor) {
     agents.mode[row] = AgentMode::Waiting;
     agents.targetSelf(row);
   }
+}
+
+void GoalWriter::routeByTransport(std::size_t row, std::uint32_t cursor) {
+  const std::uint32_t gid = agents.group[row];
+  GroupState& g = groups[gid];
+  const PopulationDesc& pop = desc.populations[g.population];
+  if (!pop.useTransports || !routes->active()) return;
+  const std::uint32_t listIndex = view().activeList(g);
+  if (listIndex != g.goalList) return;  // following another group: its list is not this group's to change
+  if (!routes->claim(gid, cursor)) return;
+  const std::uint32_t goal = goalLists[listIndex][cursor];
+  for (const TransportDesc& t : desc.transports) {
+    if (std::find(t.stops.begin(), t.stops.end(), goal) != t.stops.end()) return;  // a stop: the scenario's own way
+  }
+  const auto heading = [&](std::uint32_t point) {
+    std::uint32_t n = 0;
+    for (std::uint32_t k = regions.subOffset[point]; k < regions.subOffset[point + 1]; ++k) n += regions.occupancy[k];
+    return n;
+  };
+  const std::uint32_t board = routes->boardingFor(desc, agents, row, goal, *transports, heading);
+  if (board == kNoIndex) return;
+  std::uint32_t& own = routes->ownList(gid);
+  if (own != listIndex + 1) {  // a list of its own (the population's may be shared, exit choice's is kept)
+    own = static_cast<std::uint32_t>(goalLists.size()) + 1;
+    goalLists.push_back(goalLists[listIndex]);
+    if (listIndex < choices.lists.size() && choices.lists[listIndex].group == gid && !choices.lists[listIndex].choiceAt.empty()) {
+      choices.lists.resize(std::max<std::size_t>(choices.lists.size(), own));
+      choices.lists[own - 1] = choices.lists[listIndex];
+      choices.lists[listIndex].choiceAt.clear();
+    }
+    g.goalList = own - 1;
+  }
+  std::vector<std::uint32_t>& list = goalLists[g.goalList];
+  list.insert(list.begin() + cursor, board);
+  if (g.goalList < choices.lists.size() && !choices.lists[g.goalList].choiceAt.empty()) {
+    auto& at = choices.lists[g.goalList].choiceAt;
+    at.insert(at.begin() + std::min<std::size_t>(cursor, at.size()), 0);
+  }
+  events.push_back({tick, agents.id[row], EventKind::WaypointChosen, board, cursor});
 }
 
 void GoalWriter::applyPendingGoals(std::span<ChunkOutput> chunks) {

@@ -20,6 +20,9 @@
 
 namespace throng::sim {
 
+class VerticalTransports;
+class TransportRoutes;
+
 /// Every point's bounds and sub-regions (Musse et al. §3.1.3), flattened: point p owns
 /// [subOffset[p], subOffset[p + 1]); occupancy = agents whose current target lies in it.
 struct PointRegions {
@@ -60,6 +63,9 @@ struct GoalWriter {
   const nav::NavQuery& query; ///< the main (serial) navmesh query
   std::uint64_t tick;
   std::vector<Event>& events; ///< PathFallback, ExitChosen, WaypointChosen
+  /// Choosing lifts and escalators (transport_choice.hpp): null where the world has none.
+  TransportRoutes* routes = nullptr;
+  const VerticalTransports* transports = nullptr;
 
   [[nodiscard]] GoalView view() const { return {groups, goalLists, agents.group, agents.goalCursor}; }
   /// Chooses a target inside the point's region (on the navmesh) for agent `row`: in a sub-region
@@ -69,6 +75,11 @@ struct GoalWriter {
   void releaseTarget(std::size_t row);
   /// Points `row` at goal `cursor` of its group's active goal list (or wandering / Done past it).
   void setGoal(std::size_t row, std::uint32_t cursor);
+  /// When `row`'s group has not decided yet how to reach the goal at `cursor` (no transport's stop)
+  /// and riding a lift or escalator is quicker than walking (TransportRoutes::boardingFor), puts the
+  /// boarding stop before that goal in the group's own goal list (a copy of its list, the first
+  /// time); a WaypointChosen event names the stop.
+  void routeByTransport(std::size_t row, std::uint32_t cursor);
   /// Moves `row` on to its next goal (or wandering, or Done).
   void advanceGoal(std::size_t row) { setGoal(row, agents.goalCursor[row] + 1); }
   /// Replaces the navmesh request of `row` by a Bézier path when one fits (PathFallback otherwise).

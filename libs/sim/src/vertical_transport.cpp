@@ -207,14 +207,43 @@ void VerticalTransports::runEscalator(const ScenarioDesc& desc, const TransportD
   }
 }
 
-void VerticalTransports::startMove(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick,
-                                   std::uint32_t to) {
-  const Place here = stopPlace(desc, t, s.at), there = stopPlace(desc, t, to);
+float VerticalTransports::tripTime(const ScenarioDesc& desc, const TransportDesc& t, std::size_t from, std::size_t to) {
+  const Place here = stopPlace(desc, t, static_cast<std::uint32_t>(from)), there = stopPlace(desc, t, static_cast<std::uint32_t>(to));
   const float dz = there.z - here.z;
   const float distance = std::sqrt(core::lengthSq(there.p - here.p) + dz * dz);
   // Trapezoidal profile: accelerate to `speed`, cruise, brake; too short a trip never reaches it.
   const float v = t.speed, acc = t.acceleration;
-  const float seconds = distance >= v * v / acc ? distance / v + v / acc : 2.0f * std::sqrt(distance / acc);
+  return distance >= v * v / acc ? distance / v + v / acc : 2.0f * std::sqrt(distance / acc);
+}
+
+float VerticalTransports::rideTime(const ScenarioDesc& desc, const TransportDesc& t, std::size_t from, std::size_t to) {
+  if (t.kind == TransportKind::Escalator) {
+    const Place a = stopPlace(desc, t, static_cast<std::uint32_t>(from)), b = stopPlace(desc, t, static_cast<std::uint32_t>(to));
+    const float dz = b.z - a.z;
+    return std::sqrt(core::lengthSq(b.p - a.p) + dz * dz) / t.speed;
+  }
+  return t.doorCloseTime + tripTime(desc, t, from, to) + t.doorOpenTime + t.transferTime;
+}
+
+float VerticalTransports::expectedWait(const ScenarioDesc& desc, std::size_t t, std::size_t stop, std::size_t to,
+                                       std::uint32_t heading) const {
+  const TransportDesc& d = desc.transports[t];
+  const State& s = states_[t];
+  // Those carried still target the stop they boarded at until they step off: not ahead of anyone.
+  const std::size_t ahead = std::max(s.queue[stop].size(), heading > s.aboard.size() ? heading - s.aboard.size() : 0);
+  const auto queuing = static_cast<float>(ahead);
+  if (d.kind == TransportKind::Escalator) return queuing * d.headway;
+  // The car comes (from the stop it travels to, or stands at) and opens; each full car ahead of
+  // one's own goes to `to` and back first.
+  const float come = s.at == stop ? 0.0f : tripTime(desc, d, s.at, stop) + d.doorOpenTime;
+  const float load = static_cast<float>(d.capacity) * d.transferTime;
+  const float roundTrip = 2.0f * (d.doorCloseTime + tripTime(desc, d, stop, to) + d.doorOpenTime + load);
+  return come + std::floor(queuing / static_cast<float>(d.capacity)) * roundTrip;
+}
+
+void VerticalTransports::startMove(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick,
+                                   std::uint32_t to) {
+  const float seconds = tripTime(desc, t, s.at, to);
   s.moveTicks = std::max<std::uint64_t>(1, ticksOf(seconds, dt_));
   s.moveStart = tick;
   s.until = tick + s.moveTicks;

@@ -34,6 +34,19 @@ class VerticalTransports {
   /// The transport whose boarding stop point `point` is, or kNoIndex.
   [[nodiscard]] static std::uint32_t boardingAt(const ScenarioDesc& desc, std::uint32_t point);
 
+  // What choosing a transport (transport_choice.hpp) asks, in seconds.
+  /// How long someone who sets off for stop `stop` of transport `t` now waits there before stepping
+  /// on, `heading` people queuing there or on their way (carried ones included): for an escalator one
+  /// headway for each of them not carried yet; for a lift the car's way to the stop and its doors,
+  /// and a round trip to `to` and back for every full car of those ahead.
+  [[nodiscard]] float expectedWait(const ScenarioDesc& desc, std::size_t t, std::size_t stop, std::size_t to,
+                                   std::uint32_t heading) const;
+  /// From stepping on at stop `from` of t to stepping off at stop `to`: an escalator's length over
+  /// its speed; for a lift its doors closing, the trip, its doors opening and one person's transfer.
+  [[nodiscard]] static float rideTime(const ScenarioDesc& desc, const TransportDesc& t, std::size_t from, std::size_t to);
+  /// A lift's trip between two of its stops (trapezoidal: accelerating to its speed, braking) [s].
+  [[nodiscard]] static float tripTime(const ScenarioDesc& desc, const TransportDesc& t, std::size_t from, std::size_t to);
+
  private:
   enum class Phase : std::uint8_t { Idle, Opening, Transfer, Closing, Moving };
   /// Someone queuing or carried: its id, the stop it rides to (rideTo), when it stepped on.

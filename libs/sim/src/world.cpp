@@ -98,6 +98,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   w.insertion.navRadius = desc.navRadius();
   w.configureModels();
   w.transports.configure(desc);
+  w.transportRoutes.prepare(desc, *navmesh, *w.mainQuery);
   w.initTimeline();
   w.applyCommands();  // populations starting at t = 0 are present in the first frame
   return world;

@@ -39,6 +39,7 @@
 #include "group_pass.hpp"
 #include "group_table.hpp"
 #include "spawner.hpp"
+#include "transport_choice.hpp"
 #include "vertical_transport.hpp"
 #include "throng/core/assert.hpp"
 #include "throng/sim/spatial_grid.hpp"
@@ -185,6 +186,7 @@ struct World::Impl {
   void separate(const core::TaskSystem& tasks);
   std::vector<float> sepX, sepY;  ///< separate's displacements of the current pass [m]
   VerticalTransports transports;          ///< lifts and escalators (vertical_transport.hpp): after separate
+  TransportRoutes transportRoutes;        ///< choosing them (transport_choice.hpp): in setGoal
   int separationPasses = 0;       ///< the most passes any population asks for (configureModels)
   void emit();
 
@@ -192,7 +194,9 @@ struct World::Impl {
   void ensureScratch(const core::TaskSystem& tasks);
   /// What writing goals needs (goals.hpp): setGoal, drawTarget, releaseTarget, … (serial code).
   [[nodiscard]] GoalWriter goalWriter() {
-    return {desc, groups, goalLists, pointRegions, openChoices, agents, *mainQuery, tick, pendingEvents};
+    const bool routes = transportRoutes.active();
+    return {desc,   groups, goalLists, pointRegions, openChoices, agents, *mainQuery, tick, pendingEvents,
+            routes ? &transportRoutes : nullptr, routes ? &transports : nullptr};
   }
   /// What the phases may ask about goals (phases.hpp, goals.cpp); the two below (the API's) use it.
   [[nodiscard]] GoalView goalView() const { return {groups, goalLists, agents.group, agents.goalCursor}; }

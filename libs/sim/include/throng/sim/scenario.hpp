@@ -233,6 +233,11 @@ struct PopulationDesc {
   /// Route choice prices stairs at the mean of 1/up and 1/down per metre. [Limit: (0, 1]]
   float stairUp = 0.53f;
   float stairDown = 0.60f;
+  /// Lifts and escalators chosen by oneself (docs/crowd-model.md, "Choosing a lift, an escalator or
+  /// the stairs"): on the way to a goal that is no transport's stop, a group rides whichever of the
+  /// scenario's transports makes the way there quickest (walking, waiting and riding), if that beats
+  /// walking; false: its people walk unless their goals name a stop.
+  bool useTransports = true;
   /// The fractional effective dose (smoke's carbon monoxide, coDosePerSecond) at which its people
   /// are incapacitated: they stop where they are and stay, an obstacle to the others. ISO 13571:2012
   /// takes FED 1 for the median person and 0.3 to protect susceptible people. [Limit: (0, 10]]

@@ -1,0 +1,137 @@
+// transport_choice (transport_choice.hpp): the fields of the stops and goals, and weighing walking
+// against riding.
+#include "transport_choice.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "vertical_transport.hpp"
+
+namespace throng::sim {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+/// How far from a stop's or goal's centre the navmesh is looked for [m] (as goal targets are snapped).
+constexpr float kSnap = 3.0f;
+/// The slowest walking speed the times are reckoned at [m/s] (someone standing still still chooses).
+constexpr float kSlowest = 0.1f;
+/// More stops than this: a ride's way on from the stop it reaches is walking only (no search over
+/// further transports; the search costs stops² per decision).
+constexpr std::size_t kMaxSearchStops = 128;
+
+}  // namespace
+
+void TransportRoutes::prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, const nav::NavQuery& query) {
+  fields_.clear();
+  stops_.clear();
+  fieldOfPoint_.assign(desc.points.size(), -1);
+  if (desc.transports.empty()) return;
+  const PopulationDesc* first = nullptr;
+  std::vector<std::uint32_t> points;
+  for (const PopulationDesc& pop : desc.populations) {
+    if (!pop.useTransports) continue;
+    if (first == nullptr) first = &pop;
+    points.insert(points.end(), pop.goals.begin(), pop.goals.end());
+    for (const GoalChoiceDesc& c : pop.goalChoices) points.insert(points.end(), c.options.begin(), c.options.end());
+    points.insert(points.end(), pop.exits.begin(), pop.exits.end());
+  }
+  if (first == nullptr) return;
+  for (std::uint32_t t = 0; t < desc.transports.size(); ++t) {
+    const TransportDesc& d = desc.transports[t];
+    for (std::uint32_t k = 0; k < d.stops.size(); ++k) {
+      Stop s;
+      s.point = d.stops[k];
+      s.transport = t;
+      s.index = k;
+      s.boards = d.kind == TransportKind::Elevator || k == 0;
+      const PointDesc& p = desc.points[s.point];
+      const auto snapped = query.snap(p.position, p.height, kSnap);
+      s.p = snapped ? snapped->p : p.position;
+      s.ref = snapped ? snapped->ref : 0;
+      stops_.push_back(s);
+      points.push_back(s.point);
+    }
+  }
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  nav::DistanceFieldConfig config;
+  config.stairCost = std::max(1.0f, 0.5f * (1.0f / first->stairUp + 1.0f / first->stairDown));  // as exit choice
+  for (const std::uint32_t point : points) {
+    fieldOfPoint_[point] = static_cast<std::int32_t>(fields_.size());
+    fields_.push_back(nav::DistanceField::build(mesh, cutRegion(desc.points[point]), config));
+  }
+  const std::size_t n = stops_.size();
+  between_.assign(n * n, kInf);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) between_[i * n + j] = fieldOf(stops_[j].point)->at(stops_[i].p, stops_[i].ref);
+  }
+}
+
+bool TransportRoutes::claim(std::uint32_t gid, std::uint32_t cursor) {
+  if (decided_.size() <= gid) decided_.resize(gid + 1, 0);
+  if (cursor < decided_[gid]) return false;
+  decided_[gid] = cursor + 1;
+  return true;
+}
+
+std::uint32_t& TransportRoutes::ownList(std::uint32_t gid) {
+  if (ownList_.size() <= gid) ownList_.resize(gid + 1, 0);
+  return ownList_[gid];
+}
+
+std::uint32_t TransportRoutes::boardingFor(const ScenarioDesc& desc, const AgentStore& a, std::size_t row, std::uint32_t goal,
+                                           const VerticalTransports& transports,
+                                           const std::function<std::uint32_t(std::uint32_t)>& heading) const {
+  const nav::DistanceField* toGoal = fieldOf(goal);
+  if (toGoal == nullptr) return kNoIndex;
+  const float v = std::max(kSlowest, a.speed[row]);
+  const core::Vec2 pos{a.posX[row], a.posY[row]};
+  const nav::PolyRef ref = a.polyRef[row];
+  const std::size_t n = stops_.size();
+  // Per boarding stop: where it takes one to (rideTo, for this goal), and waiting plus riding there.
+  std::vector<std::size_t> dest(n, n);
+  std::vector<float> leg(n, kInf);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Stop& s = stops_[i];
+    if (!s.boards) continue;
+    const TransportDesc& t = desc.transports[s.transport];
+    const std::size_t to = rideTo(desc, t, s.index, goal);
+    if (to == s.index) continue;
+    dest[i] = i - s.index + to;  // a transport's stops are consecutive in stops_
+    leg[i] = transports.expectedWait(desc, s.transport, s.index, to, heading(s.point)) + VerticalTransports::rideTime(desc, t, s.index, to);
+  }
+  // From stepping off at each stop to the goal: walking on, or a further ride (shortest times,
+  // Bellman-Ford over the stops; every leg takes time, so it settles within n rounds).
+  std::vector<float> onward(n);
+  for (std::size_t i = 0; i < n; ++i) onward[i] = toGoal->at(stops_[i].p, stops_[i].ref) / v;
+  if (n <= kMaxSearchStops) {
+    for (std::size_t round = 0; round < n; ++round) {
+      bool changed = false;
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t b = 0; b < n; ++b) {
+          if (dest[b] == n) continue;
+          const float c = between_[i * n + b] / v + leg[b] + onward[dest[b]];
+          if (c < onward[i]) {
+            onward[i] = c;
+            changed = true;
+          }
+        }
+      }
+      if (!changed) break;
+    }
+  }
+  float best = toGoal->at(pos, ref) / v;
+  std::uint32_t board = kNoIndex;
+  for (std::size_t b = 0; b < n; ++b) {
+    if (dest[b] == n) continue;
+    const float c = fieldOf(stops_[b].point)->at(pos, ref) / v + leg[b] + onward[dest[b]];
+    if (c < best) {
+      best = c;
+      board = stops_[b].point;
+    }
+  }
+  return board;
+}
+
+}  // namespace throng::sim

@@ -1,0 +1,70 @@
+// TransportRoutes — people choosing a lift, an escalator or their own feet (docs/crowd-model.md,
+// "Choosing a lift, an escalator or the stairs"). When a group of a population with
+// PopulationDesc::useTransports sets off for a goal that is no transport's stop, its first member
+// to do so weighs walking there against every way by the scenario's lifts and escalators, in
+// seconds: walking to a boarding stop, the wait there as things stand (VerticalTransports::
+// expectedWait), the ride (rideTime), and from the stop it rides to, walking on to the goal or
+// taking a further transport (a shortest-time search over the stops). When riding is quicker, the
+// boarding stop goes into the group's own goal list before the goal (GoalWriter::routeByTransport),
+// so the rest — queuing, being carried, going on to the goal — is VerticalTransports' as for a stop a
+// scenario names. Distances are walking distances on the navmesh (nav::DistanceField per stop and
+// per goal of such a population, built at creation; stairs priced as in exit choice); each group
+// decides each of its goals once. Serial (setGoal's callers): the same for any thread or rank count.
+// Crowds inserted at run time bring no fields: their people walk unless their goals name a stop.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "agent_store.hpp"
+#include "throng/nav/distance_field.hpp"
+#include "throng/nav/navmesh.hpp"
+#include "throng/sim/scenario.hpp"
+
+namespace throng::sim {
+
+class VerticalTransports;
+
+class TransportRoutes {
+ public:
+  /// The fields of every transport stop and of every goal (and waypoint choice, and exit) of the
+  /// populations that use transports, when the scenario has transports and such a population; the
+  /// walking distances between the stops. Nothing otherwise.
+  void prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, const nav::NavQuery& query);
+  [[nodiscard]] bool active() const { return !stops_.empty(); }
+
+  /// Whether group `gid` has not decided how to reach the goal at `cursor` of its list yet; marks it
+  /// decided (the first member to set off for it decides for the group).
+  bool claim(std::uint32_t gid, std::uint32_t cursor);
+
+  /// The boarding stop (a point index) agent `row` should walk to on its way to point `goal`, or
+  /// kNoIndex when walking is as quick (or nothing is known about `goal`). `heading(point)`: how many
+  /// people target that point now (queuing, on their way or carried from it).
+  [[nodiscard]] std::uint32_t boardingFor(const ScenarioDesc& desc, const AgentStore& a, std::size_t row, std::uint32_t goal,
+                                          const VerticalTransports& transports,
+                                          const std::function<std::uint32_t(std::uint32_t)>& heading) const;
+
+  /// The goal list group `gid` owns for its rides (index + 1 into the world's goal lists; 0: none yet).
+  std::uint32_t& ownList(std::uint32_t gid);
+
+ private:
+  /// A stop of a transport, and where it is on the navmesh.
+  struct Stop {
+    std::uint32_t point = 0, transport = 0, index = 0;  ///< its point, transport, index in that transport's stops
+    core::Vec2 p;
+    nav::PolyRef ref = 0;
+    bool boards = false;  ///< people step on here (an escalator's foot, any stop of a lift)
+  };
+  [[nodiscard]] const nav::DistanceField* fieldOf(std::uint32_t point) const {
+    return point < fieldOfPoint_.size() && fieldOfPoint_[point] >= 0 ? &fields_[static_cast<std::size_t>(fieldOfPoint_[point])] : nullptr;
+  }
+
+  std::vector<nav::DistanceField> fields_;
+  std::vector<std::int32_t> fieldOfPoint_;  ///< point → index into fields_, -1: none
+  std::vector<Stop> stops_;
+  std::vector<float> between_;  ///< walking distance from stop i to stop j: between_[i * stops + j] [m]
+  std::vector<std::uint32_t> decided_;  ///< per group: 1 + the last goal cursor decided
+  std::vector<std::uint32_t> ownList_;  ///< per group: see ownList()
+};
+
+}  // namespace throng::sim

@@ -1,0 +1,145 @@
+// Tests for choosing a lift, an escalator or the stairs (PopulationDesc::useTransports,
+// libs/sim/src/transport_choice.cpp): people whose goal is on another floor ride when that is
+// quicker than walking, counting the queue they would join, and walk otherwise; the same on any
+// thread count.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "terrain_quads.hpp"
+#include "throng/sim/world.hpp"
+
+using namespace throng;
+
+namespace {
+
+using test::quad;
+
+sim::PointDesc region(std::string id, sim::PointKind kind, float x0, float x1, float y0, float y1, float height) {
+  sim::PointDesc p;
+  p.id = std::move(id);
+  p.kind = kind;
+  p.polygon = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  p.position = {(x0 + x1) / 2, (y0 + y1) / 2};
+  p.height = height;
+  return p;
+}
+
+sim::TransportDesc transport(std::string id, sim::TransportKind kind, std::uint32_t from, std::uint32_t to, float speed) {
+  sim::TransportDesc t;
+  t.id = std::move(id);
+  t.kind = kind;
+  t.stops = {from, to};
+  t.speed = speed;
+  return t;
+}
+
+/// A split-level world: a 12 × 10 m ground floor (z 0), a 3 m wide stair up the side (x 12–20, 26.6°)
+/// and a 12 × 10 m upper floor beyond it (x 20–32, z 4). Points: 0 the escalator's foot (ground,
+/// x 9–11), 1 its head (upper floor, x 21–23), 2 the exit at the upper floor's far end. Population:
+/// `people` on the ground floor (x 2–6) whose only goal is the exit; no goal names a stop.
+sim::ScenarioDesc splitLevel(float escalatorSpeed, std::uint32_t people, bool stairs = true) {
+  sim::ScenarioDesc d;
+  d.name = "split level";
+  d.seed = 5;
+  d.duration = 300;
+  quad(d.terrain, {{0, 0, 0}, {12, 0, 0}, {12, 10, 0}, {0, 10, 0}});
+  if (stairs) quad(d.terrain, {{12, 0, 0}, {20, 0, 4}, {20, 3, 4}, {12, 3, 0}});
+  quad(d.terrain, {{20, 0, 4}, {32, 0, 4}, {32, 10, 4}, {20, 10, 4}});
+  d.points.push_back(region("foot", sim::PointKind::Interest, 9.0f, 11.0f, 6.0f, 8.0f, 0.0f));
+  d.points.push_back(region("head", sim::PointKind::Interest, 21.0f, 23.0f, 6.0f, 8.0f, 4.0f));
+  d.points.push_back(region("exit", sim::PointKind::Exit, 30.5f, 32.0f, 3.0f, 7.0f, 4.0f));
+  d.transports.push_back(transport("escalator", sim::TransportKind::Escalator, 0, 1, escalatorSpeed));
+  sim::PopulationDesc p;
+  p.id = "people";
+  p.groups = people;
+  p.radius = 0.2f;
+  p.spawn.kind = sim::SpawnKind::Polygon;
+  p.spawn.polygon = {{2, 3}, {6, 3}, {6, 7}, {2, 7}};
+  p.goals = {2};
+  d.populations.push_back(p);
+  return d;
+}
+
+struct Outcome {
+  std::map<std::uint32_t, std::uint32_t> boardings;  ///< boarding stop point → groups that chose it
+  std::uint32_t exited = 0;
+  double lastExit = 0.0;
+  std::uint64_t hash = 0;
+};
+
+Outcome simulate(const sim::ScenarioDesc& d, int threads = 1) {
+  auto created = sim::World::create(d);
+  EXPECT_TRUE(created.ok()) << (created.ok() ? "" : core::formatAll(created.errors()));
+  Outcome out;
+  if (!created.ok()) return out;
+  sim::World& w = *created.value();
+  core::TaskSystem tasks(threads);
+  while (!w.finished() && w.stats().time < d.duration) {
+    w.step(tasks);
+    const auto f = w.takeFrame();
+    for (const sim::Event& e : f->events) {
+      if (e.kind == sim::EventKind::WaypointChosen) ++out.boardings[e.a];
+      if (e.kind == sim::EventKind::Exit) {
+        ++out.exited;
+        out.lastExit = w.stats().time;
+      }
+    }
+  }
+  out.hash = w.stateHash();
+  return out;
+}
+
+}  // namespace
+
+// Only an escalator joins the floors: everyone rides it of their own accord and leaves upstairs;
+// with useTransports off nobody finds a way up.
+TEST(TransportChoice, PeopleRideTheOnlyWayToAnotherFloor) {
+  sim::ScenarioDesc d = splitLevel(0.5f, 12, false);
+  const Outcome ride = simulate(d);
+  EXPECT_EQ(ride.boardings.size(), 1u);
+  EXPECT_EQ(ride.boardings.count(0), 1u);
+  EXPECT_EQ(ride.boardings.at(0), 12u);
+  EXPECT_EQ(ride.exited, 12u);
+  d.populations[0].useTransports = false;
+  d.duration = 60;
+  const Outcome walk = simulate(d);
+  EXPECT_TRUE(walk.boardings.empty());
+  EXPECT_EQ(walk.exited, 0u);
+}
+
+// Stairs and an escalator: at 0.5 m/s the escalator (25 s of riding) is slower than the stairs, and
+// everyone climbs; at 2 m/s it is quicker for the first to choose, until the queue they form makes
+// the stairs as quick — some ride, the rest walk, and all leave.
+TEST(TransportChoice, PeopleRideOnlyWhenThatIsQuickerCountingTheQueue) {
+  const Outcome slow = simulate(splitLevel(0.5f, 20));
+  EXPECT_TRUE(slow.boardings.empty());
+  EXPECT_EQ(slow.exited, 20u);
+  const Outcome fast = simulate(splitLevel(2.0f, 20));
+  ASSERT_EQ(fast.boardings.count(0), 1u);
+  EXPECT_GE(fast.boardings.at(0), 3u);
+  EXPECT_LE(fast.boardings.at(0), 17u);
+  EXPECT_EQ(fast.exited, 20u);
+}
+
+// An escalator and a lift side by side: people spread over both by the waits they expect (each
+// escalator rider adds a headway, each full car a round trip), and everyone is out sooner than when
+// the escalator is the only way; the same on one thread and on three.
+TEST(TransportChoice, PeopleSpreadOverALiftAndAnEscalatorByTheWaitTheyExpect) {
+  sim::ScenarioDesc only = splitLevel(0.5f, 40, false);
+  const Outcome escalatorOnly = simulate(only);
+  ASSERT_EQ(escalatorOnly.exited, 40u);
+  sim::ScenarioDesc both = only;
+  both.points.push_back(region("lift-low", sim::PointKind::Interest, 9.0f, 11.0f, 1.0f, 3.0f, 0.0f));   // 3
+  both.points.push_back(region("lift-high", sim::PointKind::Interest, 21.0f, 23.0f, 1.0f, 3.0f, 4.0f));  // 4
+  both.transports.push_back(transport("lift", sim::TransportKind::Elevator, 3, 4, 1.0f));
+  const Outcome spread = simulate(both);
+  EXPECT_EQ(spread.exited, 40u);
+  ASSERT_EQ(spread.boardings.size(), 2u);
+  EXPECT_GE(spread.boardings.at(3), 4u);   // the lift
+  EXPECT_GE(spread.boardings.at(0), 20u);  // the escalator
+  EXPECT_LT(spread.lastExit, escalatorOnly.lastExit - 5.0);
+  EXPECT_EQ(simulate(both, 3).hash, spread.hash);
+}
