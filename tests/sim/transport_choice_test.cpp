@@ -143,3 +143,36 @@ TEST(TransportChoice, PeopleSpreadOverALiftAndAnEscalatorByTheWaitTheyExpect) {
   EXPECT_LT(spread.lastExit, escalatorOnly.lastExit - 5.0);
   EXPECT_EQ(simulate(both, 3).hash, spread.hash);
 }
+
+// A crowd inserted at run time with a goal of its own upstairs rides too: its goal's field is built
+// when its first group weighs the way there.
+TEST(TransportChoice, ACrowdInsertedAtRunTimeRidesToItsOwnGoalUpstairs) {
+  const sim::ScenarioDesc d = splitLevel(0.5f, 4, false);
+  auto created = sim::World::create(d);
+  ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
+  sim::World& w = *created.value();
+  core::TaskSystem tasks(1);
+  sim::CrowdDesc crowd;
+  crowd.id = "late";
+  crowd.basePoints = static_cast<std::uint32_t>(d.points.size());
+  crowd.basePopulations = static_cast<std::uint32_t>(d.populations.size());
+  crowd.points.push_back(region("lounge", sim::PointKind::Interest, 26.0f, 28.0f, 6.0f, 8.0f, 4.0f));  // point 3
+  sim::PopulationDesc p = d.populations[0];
+  p.id = "late-people";
+  p.groups = 6;
+  p.goals = {3};
+  crowd.populations.push_back(p);
+  for (int i = 0; i < 100; ++i) w.step(tasks);
+  ASSERT_TRUE(w.insertCrowd(crowd).ok());
+  std::map<std::uint32_t, std::uint32_t> boardings, reached;
+  while (w.stats().time < 150.0) {
+    w.step(tasks);
+    const auto f = w.takeFrame();
+    for (const sim::Event& e : f->events) {
+      if (e.kind == sim::EventKind::WaypointChosen) ++boardings[e.a];
+      if (e.kind == sim::EventKind::GoalReached) ++reached[e.a];
+    }
+  }
+  EXPECT_EQ(boardings[0], 4u + 6u);  // the scenario's four (their events wait for the first frame taken) and the crowd's six
+  EXPECT_EQ(reached[3], 6u);
+}

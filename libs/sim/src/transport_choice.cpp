@@ -25,18 +25,14 @@ constexpr std::size_t kMaxSearchStops = 128;
 void TransportRoutes::prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, const nav::NavQuery& query) {
   fields_.clear();
   stops_.clear();
+  between_.clear();
   fieldOfPoint_.assign(desc.points.size(), -1);
+  mesh_ = &mesh;
   if (desc.transports.empty()) return;
-  const PopulationDesc* first = nullptr;
-  std::vector<std::uint32_t> points;
-  for (const PopulationDesc& pop : desc.populations) {
-    if (!pop.useTransports) continue;
-    if (first == nullptr) first = &pop;
-    points.insert(points.end(), pop.goals.begin(), pop.goals.end());
-    for (const GoalChoiceDesc& c : pop.goalChoices) points.insert(points.end(), c.options.begin(), c.options.end());
-    points.insert(points.end(), pop.exits.begin(), pop.exits.end());
-  }
-  if (first == nullptr) return;
+  const auto first = std::find_if(desc.populations.begin(), desc.populations.end(), [](const PopulationDesc& p) { return p.useTransports; });
+  if (first == desc.populations.end()) return;
+  config_ = {};
+  config_.stairCost = std::max(1.0f, 0.5f * (1.0f / first->stairUp + 1.0f / first->stairDown));  // as exit choice
   for (std::uint32_t t = 0; t < desc.transports.size(); ++t) {
     const TransportDesc& d = desc.transports[t];
     for (std::uint32_t k = 0; k < d.stops.size(); ++k) {
@@ -50,22 +46,25 @@ void TransportRoutes::prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh
       s.p = snapped ? snapped->p : p.position;
       s.ref = snapped ? snapped->ref : 0;
       stops_.push_back(s);
-      points.push_back(s.point);
     }
   }
-  std::sort(points.begin(), points.end());
-  points.erase(std::unique(points.begin(), points.end()), points.end());
-  nav::DistanceFieldConfig config;
-  config.stairCost = std::max(1.0f, 0.5f * (1.0f / first->stairUp + 1.0f / first->stairDown));  // as exit choice
-  for (const std::uint32_t point : points) {
-    fieldOfPoint_[point] = static_cast<std::int32_t>(fields_.size());
-    fields_.push_back(nav::DistanceField::build(mesh, cutRegion(desc.points[point]), config));
-  }
+  for (const Stop& s : stops_) fieldOf(desc, s.point);
   const std::size_t n = stops_.size();
+  if (n > kMaxSearchStops) return;
   between_.assign(n * n, kInf);
   for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = 0; j < n; ++j) between_[i * n + j] = fieldOf(stops_[j].point)->at(stops_[i].p, stops_[i].ref);
+    for (std::size_t j = 0; j < n; ++j) between_[i * n + j] = fieldOf(desc, stops_[j].point)->at(stops_[i].p, stops_[i].ref);
   }
+}
+
+const nav::DistanceField* TransportRoutes::fieldOf(const ScenarioDesc& desc, std::uint32_t point) {
+  if (point >= desc.points.size()) return nullptr;
+  if (point >= fieldOfPoint_.size()) fieldOfPoint_.resize(desc.points.size(), -1);  // a crowd's points, inserted since
+  if (fieldOfPoint_[point] < 0) {
+    fieldOfPoint_[point] = static_cast<std::int32_t>(fields_.size());
+    fields_.push_back(nav::DistanceField::build(*mesh_, cutRegion(desc.points[point]), config_));
+  }
+  return &fields_[static_cast<std::size_t>(fieldOfPoint_[point])];
 }
 
 bool TransportRoutes::claim(std::uint32_t gid, std::uint32_t cursor) {
@@ -82,8 +81,8 @@ std::uint32_t& TransportRoutes::ownList(std::uint32_t gid) {
 
 std::uint32_t TransportRoutes::boardingFor(const ScenarioDesc& desc, const AgentStore& a, std::size_t row, std::uint32_t goal,
                                            const VerticalTransports& transports,
-                                           const std::function<std::uint32_t(std::uint32_t)>& heading) const {
-  const nav::DistanceField* toGoal = fieldOf(goal);
+                                           const std::function<std::uint32_t(std::uint32_t)>& heading) {
+  const nav::DistanceField* toGoal = fieldOf(desc, goal);
   if (toGoal == nullptr) return kNoIndex;
   const float v = std::max(kSlowest, a.speed[row]);
   const core::Vec2 pos{a.posX[row], a.posY[row]};
@@ -105,7 +104,7 @@ std::uint32_t TransportRoutes::boardingFor(const ScenarioDesc& desc, const Agent
   // Bellman-Ford over the stops; every leg takes time, so it settles within n rounds).
   std::vector<float> onward(n);
   for (std::size_t i = 0; i < n; ++i) onward[i] = toGoal->at(stops_[i].p, stops_[i].ref) / v;
-  if (n <= kMaxSearchStops) {
+  if (!between_.empty()) {
     for (std::size_t round = 0; round < n; ++round) {
       bool changed = false;
       for (std::size_t i = 0; i < n; ++i) {
@@ -125,7 +124,7 @@ std::uint32_t TransportRoutes::boardingFor(const ScenarioDesc& desc, const Agent
   std::uint32_t board = kNoIndex;
   for (std::size_t b = 0; b < n; ++b) {
     if (dest[b] == n) continue;
-    const float c = fieldOf(stops_[b].point)->at(pos, ref) / v + leg[b] + onward[dest[b]];
+    const float c = fieldOf(desc, stops_[b].point)->at(pos, ref) / v + leg[b] + onward[dest[b]];
     if (c < best) {
       best = c;
       board = stops_[b].point;

@@ -7,12 +7,13 @@
 // taking a further transport (a shortest-time search over the stops). When riding is quicker, the
 // boarding stop goes into the group's own goal list before the goal (GoalWriter::routeByTransport),
 // so the rest — queuing, being carried, going on to the goal — is VerticalTransports' as for a stop a
-// scenario names. Distances are walking distances on the navmesh (nav::DistanceField per stop and
-// per goal of such a population, built at creation; stairs priced as in exit choice); each group
+// scenario names. Distances are walking distances on the navmesh (nav::DistanceField per stop, built
+// at creation, and per goal, built when first weighed; stairs priced as in exit choice); each group
 // decides each of its goals once. Serial (setGoal's callers): the same for any thread or rank count.
-// Crowds inserted at run time bring no fields: their people walk unless their goals name a stop.
+// The fields are not rebuilt when doors close or open.
 #pragma once
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <vector>
 
@@ -27,9 +28,10 @@ class VerticalTransports;
 
 class TransportRoutes {
  public:
-  /// The fields of every transport stop and of every goal (and waypoint choice, and exit) of the
-  /// populations that use transports, when the scenario has transports and such a population; the
-  /// walking distances between the stops. Nothing otherwise.
+  /// The fields of every transport stop and the walking distances between the stops, when the
+  /// scenario has transports and a population that uses them; nothing otherwise. A goal's field is
+  /// built when a group first weighs the way there (boardingFor), so creation costs what the stops
+  /// cost, whatever the number of points. `mesh` must outlive this.
   void prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, const nav::NavQuery& query);
   [[nodiscard]] bool active() const { return !stops_.empty(); }
 
@@ -38,11 +40,11 @@ class TransportRoutes {
   bool claim(std::uint32_t gid, std::uint32_t cursor);
 
   /// The boarding stop (a point index) agent `row` should walk to on its way to point `goal`, or
-  /// kNoIndex when walking is as quick (or nothing is known about `goal`). `heading(point)`: how many
-  /// people target that point now (queuing, on their way or carried from it).
+  /// kNoIndex when walking is as quick. `heading(point)`: how many people target that point now
+  /// (queuing, on their way or carried from it). Builds `goal`'s field the first time.
   [[nodiscard]] std::uint32_t boardingFor(const ScenarioDesc& desc, const AgentStore& a, std::size_t row, std::uint32_t goal,
                                           const VerticalTransports& transports,
-                                          const std::function<std::uint32_t(std::uint32_t)>& heading) const;
+                                          const std::function<std::uint32_t(std::uint32_t)>& heading);
 
   /// The goal list group `gid` owns for its rides (index + 1 into the world's goal lists; 0: none yet).
   std::uint32_t& ownList(std::uint32_t gid);
@@ -55,11 +57,12 @@ class TransportRoutes {
     nav::PolyRef ref = 0;
     bool boards = false;  ///< people step on here (an escalator's foot, any stop of a lift)
   };
-  [[nodiscard]] const nav::DistanceField* fieldOf(std::uint32_t point) const {
-    return point < fieldOfPoint_.size() && fieldOfPoint_[point] >= 0 ? &fields_[static_cast<std::size_t>(fieldOfPoint_[point])] : nullptr;
-  }
+  /// The field of `point`, built now if it was not (null: no such point).
+  const nav::DistanceField* fieldOf(const ScenarioDesc& desc, std::uint32_t point);
 
-  std::vector<nav::DistanceField> fields_;
+  const nav::NavMesh* mesh_ = nullptr;
+  nav::DistanceFieldConfig config_;
+  std::deque<nav::DistanceField> fields_;  ///< a deque: built on demand, earlier ones stay where they are
   std::vector<std::int32_t> fieldOfPoint_;  ///< point → index into fields_, -1: none
   std::vector<Stop> stops_;
   std::vector<float> between_;  ///< walking distance from stop i to stop j: between_[i * stops + j] [m]
