@@ -61,6 +61,7 @@
 // radii, neighbours and walls; writes newVel of the rows it is given. Deterministic: one row's result depends only on the
 // neighbours sense found, in their order.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 #if defined(__SSE2__)
@@ -193,6 +194,22 @@ constexpr float kSlipSpeed = 0.4f;
 constexpr int kSlipSteps = 6;                   ///< candidates each side of e0 (15° apart: ±90°)
 constexpr float kSidestepSpeed = 0.05f;         ///< the slowest sideways step worth taking [m/s]
 constexpr float kSlipStep = 0.2617994f;         ///< 15° between candidates [rad]
+
+/// cos and sin of k · kSlipStep for k = −kSlipSteps … kSlipSteps (index k + kSlipSteps), worked out
+/// once with the expressions the look ahead and the slip used per walker: the same values without
+/// two dozen calls for every walker held up (a tenth of avm's time at 100k agents).
+struct SlipAngles {
+  std::array<float, 2 * kSlipSteps + 1> cos{}, sin{};
+  SlipAngles() {
+    for (int k = -kSlipSteps; k <= kSlipSteps; ++k) {
+      cos[static_cast<std::size_t>(k + kSlipSteps)] = std::cos(static_cast<float>(k) * kSlipStep);
+      sin[static_cast<std::size_t>(k + kSlipSteps)] = std::sin(static_cast<float>(k) * kSlipStep);
+    }
+  }
+  [[nodiscard]] float c(int k) const { return cos[static_cast<std::size_t>(k + kSlipSteps)]; }
+  [[nodiscard]] float s(int k) const { return sin[static_cast<std::size_t>(k + kSlipSteps)]; }
+};
+const SlipAngles kSlipAngles;
 
 /// Seeing the crowd ahead (the cognitive heuristic of Moussaïd, Helbing, Theraulaz 2011, "How simple
 /// rules determine pedestrian behavior and crowd disasters", PNAS 108): a walker looks H =
@@ -541,11 +558,10 @@ class AnticipationVelocityModel final : public OperationalModel {
     for (int k = 1; k <= kSlipSteps; ++k) {
       // Along α the destination gets no nearer than H·sin α (seen clear to H·cos α), which only grows
       // with α up to 90°: once that cannot beat the best, no wider direction can.
-      const float widest = std::sin(static_cast<float>(k) * kSlipStep);
+      const float widest = kSlipAngles.s(k);
       if (h * h * widest * widest >= best - 1e-4f) break;
       for (const int side : {1, -1}) {  // nearer angles first, the right before the left
-        const float angle = static_cast<float>(side * k) * kSlipStep;
-        const float c = std::cos(angle), sn = std::sin(angle);
+        const float c = kSlipAngles.c(side * k), sn = kSlipAngles.s(side * k);
         const core::Vec2 ec{e0.x * c - e0.y * sn, e0.x * sn + e0.y * c};
         const float crowd = crowd_.clearAhead(pos, z, ec, e0, range);
         const float f = std::min(crowd, roomAlong(in, ws, pos, ec, crowd, onWall));
@@ -754,7 +770,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     }
     for (int k = -kSlipSteps; k <= kSlipSteps; ++k) {
       if (k == 0) continue;
-      const float c = std::cos(static_cast<float>(k) * kSlipStep), s = std::sin(static_cast<float>(k) * kSlipStep);
+      const float c = kSlipAngles.c(k), s = kSlipAngles.s(k);
       const core::Vec2 ec{e0.x * c - e0.y * s, e0.x * s + e0.y * c};
       const float g = std::min(gapAhead(ws.near, ec, limit, p.passageRatio),
                                room(in, ws, pos, ec, limit, p.noPressing ? kOnWall : 0.0f));
