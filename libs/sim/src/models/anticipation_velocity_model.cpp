@@ -771,11 +771,19 @@ class AnticipationVelocityModel final : public OperationalModel {
     for (int k = -kSlipSteps; k <= kSlipSteps; ++k) {
       if (k == 0) continue;
       const float c = kSlipAngles.c(k), s = kSlipAngles.s(k);
+      // Whether speed v along this direction beats the best so far. It only gets likelier as v
+      // grows, so a direction that would not win at a bound of its speed (v0, then the gap to the
+      // bodies before the walls are looked at) is passed over: the same choice, fewer reads.
+      const auto wins = [&](float v) {
+        return v * c > progress + 1e-4f || (progress < 1e-3f && v * c > -1e-3f && v > kSidestepSpeed && v > core::length(best) + 1e-4f);
+      };
+      if (!wins(v0)) continue;
       const core::Vec2 ec{e0.x * c - e0.y * s, e0.x * s + e0.y * c};
-      const float g = std::min(gapAhead(ws.near, ec, limit, p.passageRatio),
-                               room(in, ws, pos, ec, limit, p.noPressing ? kOnWall : 0.0f));
+      const float bodies = gapAhead(ws.near, ec, limit, p.passageRatio);
+      if (!wins(std::min(v0, bodies / p.timeGap))) continue;
+      const float g = std::min(bodies, room(in, ws, pos, ec, limit, p.noPressing ? kOnWall : 0.0f));
       const float v = std::min(v0, g / p.timeGap);
-      if (v * c > progress + 1e-4f || (progress < 1e-3f && v * c > -1e-3f && v > kSidestepSpeed && v > core::length(best) + 1e-4f)) {
+      if (wins(v)) {
         progress = v * c;
         best = ec * v;
       }
