@@ -10,6 +10,8 @@
 // is drawn from its triangles instead — walkable ones as the floor, obstacle ones as walls, stair
 // risers where a step drops to the one below, railings where a floor, gallery or stair ends — with
 // world (x, y, z) → scene (x, z, −y); points stand at their height (`position[2]`, or `height`).
+// Lifts and escalators (`scenario.transports`) are drawn between their stops: a belt with handrails,
+// a glass shaft.
 // Floors and obstacles carry userData.flat: a glTF world's own meshes, with their materials, replace
 // them (gltf_materials.js).
 import * as THREE from 'three';
@@ -271,6 +273,67 @@ export function pointLabels(scenario) {
   });
 }
 
+/** The scenario's lifts and escalators (`scenario.transports`) with their stops as world points:
+ * [{id, kind, stops: [[x, y, z], …]}] (a stop's place: its polygon's centroid or its position, at
+ * its height); stops naming no point are left out, and transports with fewer than two stops. */
+export function transportShapes(scenario) {
+  const byId = new Map((scenario.points || []).map((p) => [p.id, p]));
+  const out = [];
+  for (const t of scenario.transports || []) {
+    const stops = [];
+    for (const id of t.stops || []) {
+      const p = byId.get(id);
+      if (!p || !(p.polygon || p.position)) continue;
+      const at = p.polygon ? centroid(p.polygon) : p.position;
+      stops.push([at[0], at[1], pointHeight(p)]);
+    }
+    if (stops.length >= 2) out.push({ id: String(t.id ?? ''), kind: t.kind === 'elevator' ? 'elevator' : 'escalator', stops });
+  }
+  return out;
+}
+
+const kEscalatorWidth = 1.0;   // [m] a 1 m step band (EN 115-1's widest)
+const kHandrailHeight = 0.9;   // [m]
+const kShaftSide = 1.8;        // [m] a lift shaft round a car for 8 (EN 81-20: 1.1 × 1.4 m inside)
+const kStoreyClearance = 2.6;  // [m] the shaft goes this far above the highest stop
+
+/** Escalators as a belt with two handrails from foot to head; lifts as a glass shaft over the first
+ * stop, from the lowest floor to above the highest (named transport-escalator / transport-lift,
+ * userData.transport = the id). */
+function addTransports(root, scenario) {
+  const steel = new THREE.MeshLambertMaterial({ color: 0x8a9098 });
+  const rail = new THREE.MeshLambertMaterial({ color: 0x303438 });
+  const glass = new THREE.MeshLambertMaterial({ color: 0x7fb0d0, transparent: true, opacity: 0.22, depthWrite: false });
+  for (const t of transportShapes(scenario)) {
+    if (t.kind === 'escalator') {
+      const [a, b] = t.stops;
+      const from = new THREE.Vector3(a[0], a[2], -a[1]), to = new THREE.Vector3(b[0], b[2], -b[1]);
+      const length = from.distanceTo(to);
+      if (length < 1e-6) continue;
+      const belt = new THREE.Mesh(new THREE.BoxGeometry(kEscalatorWidth, 0.12, length), steel);
+      belt.position.copy(from).add(to).multiplyScalar(0.5);
+      belt.position.y -= 0.06;  // its top is the line people stand on
+      belt.lookAt(to.x, to.y - 0.06, to.z);
+      for (const side of [-1, 1]) {
+        const r = new THREE.Mesh(new THREE.BoxGeometry(0.06, 0.06, length), rail);
+        r.position.set(side * (kEscalatorWidth / 2 + 0.05), kHandrailHeight, 0);
+        belt.add(r);
+      }
+      belt.name = 'transport-escalator';
+      belt.userData.transport = t.id;
+      root.add(belt);
+    } else {
+      const zs = t.stops.map((s) => s[2]);
+      const low = Math.min(...zs), high = Math.max(...zs) + kStoreyClearance;
+      const shaft = new THREE.Mesh(new THREE.BoxGeometry(kShaftSide, high - low, kShaftSide), glass);
+      shaft.position.set(t.stops[0][0], (low + high) / 2, -t.stops[0][1]);
+      shaft.name = 'transport-lift';
+      shaft.userData.transport = t.id;
+      root.add(shaft);
+    }
+  }
+}
+
 export function buildWorld(scenario) {
   const root = new THREE.Group();
   root.name = 'world';
@@ -302,6 +365,7 @@ export function buildWorld(scenario) {
   const exhibits = exhibitsOnWalls(scenario.points, [...walls, ...polygonEdges(solids)]);
   if (exhibits.length) root.add(exhibitObject(exhibits));
   if (scenario.terrain) addTerrain(root, scenario.terrain, 0xd8d4cc, wallMat);
+  addTransports(root, scenario);
 
   const mats = {
     interest: new THREE.MeshBasicMaterial({ color: 0x3070d0, transparent: true, opacity: 0.45, side: THREE.DoubleSide, depthWrite: false }),
