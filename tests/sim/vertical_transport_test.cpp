@@ -289,3 +289,27 @@ TEST(VerticalTransport, ALiftServesThreeFloorsEachRiderOneWayToTheFloorOfItsNext
   }
   EXPECT_EQ(hashes[0], hashes[1]);
 }
+
+// Groups ride a lift together: six groups of three come down by a lift for four. Those who come
+// first wait for the rest of their group, a group that does not fit waits for the next car, and
+// one of a group aboard brings the others next: each group's three step off within one stop's
+// transfers (without these rules two groups were split over cars 33 and 60 s apart).
+TEST(VerticalTransport, GroupsRideTogether) {
+  sim::ScenarioDesc d = twoFloors(false);
+  d.populations[0].groups = 6;
+  d.populations[0].sizeMin = d.populations[0].sizeMax = 3;
+  d.transports[0].capacity = 4;
+  const RideRun run = simulate(d, 1, 4.0f, 0.0f, 0);
+  ASSERT_EQ(run.rides.size(), 18u);
+  // Ids are given group by group: 3k, 3k + 1, 3k + 2 form group k.
+  for (std::uint32_t g = 0; g < 6; ++g) {
+    std::uint64_t first = UINT64_MAX, last = 0;
+    for (std::uint32_t id = 3 * g; id < 3 * g + 3; ++id) {
+      const Ride& r = run.rides.at(id);
+      ASSERT_GT(r.alight, 0u) << "agent " << id;
+      first = std::min(first, r.alight);
+      last = std::max(last, r.alight);
+    }
+    EXPECT_LE(last - first, ticks(3 * 1.2f)) << "group " << g << " stepped off over " << (last - first) * 0.05 << " s";
+  }
+}

@@ -21,6 +21,8 @@ namespace {
 constexpr float kBoardReach = 0.5f;
 /// ... or, this long after the step came with nobody there, the nearest [s].
 constexpr float kBoardPatience = 5.0f;
+/// At a lift, people wait this long at most for the rest of their group before riding without them [s].
+constexpr float kGroupPatience = 30.0f;
 
 std::uint64_t ticksOf(float seconds, float dt) {
   return static_cast<std::uint64_t>(std::max(0L, std::lround(seconds / dt)));
@@ -107,7 +109,7 @@ void VerticalTransports::step(const ScenarioDesc& desc, std::uint64_t tick, cons
     const std::vector<std::uint32_t>& list = view.activeGoals(goals.groups[a.group[row]]);
     const std::size_t cursor = a.goalCursor[row];
     const std::uint32_t next = cursor + 1 < list.size() ? list[cursor + 1] : kNoPoint;
-    states_[t].queue[from].push_back({id, static_cast<std::uint32_t>(rideTo(desc, d, from, next))});
+    states_[t].queue[from].push_back({id, static_cast<std::uint32_t>(rideTo(desc, d, from, next)), tick});
     known_[id] = 1;
   }
   off_.clear();
@@ -297,10 +299,25 @@ void VerticalTransports::runElevator(const ScenarioDesc& desc, const TransportDe
   // Who may step on here: anyone, unless the car goes on its way (someone aboard or waiting
   // further), when only those riding that way (the up and down buttons of a landing).
   const auto key = [&](std::uint32_t i) { return std::make_pair(desc.points[t.stops[i]].height, i); };
+  // Groups ride together: someone waits until the rest of its group has come too (those aboard
+  // count; at most kGroupPatience), then until the car has room for all of them waiting here (unless
+  // they could never fit); once one of a group is aboard, the others waiting here step on first.
+  const auto groupOf = [&](const Rider& r) { return agents_->group[rowOfId_[r.id]]; };
+  const auto fits = [&](const Rider& r) {
+    const std::deque<Rider>& q = s.queue[s.at];
+    const std::uint32_t g = groupOf(r);
+    const auto same = [&](const Rider& o) { return groupOf(o) == g; };
+    const auto waiting = static_cast<std::size_t>(std::count_if(q.begin(), q.end(), same));
+    const auto aboard = static_cast<std::size_t>(std::count_if(s.aboard.begin(), s.aboard.end(), same));
+    const std::uint32_t size = agents_->groupSize[rowOfId_[r.id]];
+    if (waiting + aboard < size && tick < r.boarded + ticksOf(kGroupPatience, dt_)) return false;
+    return waiting > t.capacity || waiting <= t.capacity - s.aboard.size();
+  };
   const auto boards = [&](const Rider& r) {
     const int way = servingDirection(desc, t, s);
-    return way == 0 || (way > 0 ? key(s.at) < key(r.dest) : key(r.dest) < key(s.at));
+    return (way == 0 || (way > 0 ? key(s.at) < key(r.dest) : key(r.dest) < key(s.at))) && fits(r);
   };
+  const auto joins = [&](const Rider& r) { return !s.aboard.empty() && groupOf(r) == groupOf(s.aboard.back()) && boards(r); };
   const auto anyBoards = [&](const std::deque<Rider>& q) { return room() && std::any_of(q.begin(), q.end(), boards); };
   // Steps whose time has come, as many as end by this tick (zero-length steps follow at once).
   for (int guard = 0; guard < 4096 && tick >= s.until; ++guard) {
@@ -325,8 +342,9 @@ void VerticalTransports::runElevator(const ScenarioDesc& desc, const TransportDe
         alight(desc, t, s.at, off->id, offHere++);
         s.aboard.erase(off);
         s.until = tick + transfer;
-      } else if (anyBoards(here)) {  // then on, the nearest the car first
-        const std::size_t k = nearest(here, stopPlace(desc, t, s.at).p, boards);
+      } else if (anyBoards(here)) {  // then on: the rest of the group of the one before, else the nearest the car
+        const bool together = std::any_of(here.begin(), here.end(), joins);
+        const std::size_t k = together ? nearest(here, stopPlace(desc, t, s.at).p, joins) : nearest(here, stopPlace(desc, t, s.at).p, boards);
         s.aboard.push_back(here[k]);
         here.erase(here.begin() + static_cast<std::ptrdiff_t>(k));
         s.until = tick + transfer;

@@ -53,7 +53,7 @@ class VerticalTransports {
   struct Rider {
     std::uint32_t id;
     std::uint32_t dest;
-    std::uint64_t boarded = 0;  ///< escalator: the tick it stepped on
+    std::uint64_t boarded = 0;  ///< escalator: the tick it stepped on; elevator: the tick it came to the stop
   };
   struct State {
     std::vector<std::deque<Rider>> queue;  ///< per stop: those waiting there, in the order they came
