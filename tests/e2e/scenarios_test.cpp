@@ -222,6 +222,24 @@ TEST(Scenarios, AtriumPeopleChangeFloorsOnlyByEscalatorsAndTheLift) {
   EXPECT_EQ(between[0][0], 316.0);
 }
 
+TEST(Scenarios, DepartmentStoreShoppersChooseTheEscalatorsAndTheLiftThemselves) {
+  // scenarios/department_store.json (scripts/make_department_store.py): two floors joined only by an
+  // escalator each way and a lift; no population names a stop, so every ride is the shoppers' own
+  // choice (docs/crowd-model.md, "Choosing a lift, an escalator or the stairs").
+  ScratchDir dir("department_store");
+  const fs::path db = dir / "department_store.sqlite";
+  const auto s = runScenario("department_store", db);
+  ASSERT_FALSE(s.is_null());
+  EXPECT_EQ(s["agents_exited"], s["agents_spawned"]) << "everyone shops on both floors and leaves";
+  EXPECT_TRUE(s["stalled_agents"].empty());
+  const auto chosen = query(db, "SELECT COUNT(DISTINCT p.id), SUM(p.id LIKE 'lift-%'), SUM(p.id NOT LIKE 'lift-%') "
+                                "FROM throng_events e JOIN throng_points p ON p.idx = e.a WHERE e.kind = 'waypoint_chosen'");
+  ASSERT_EQ(chosen.size(), 1u);
+  EXPECT_EQ(chosen[0][0], 4.0) << "both escalators, and the lift from both floors";
+  EXPECT_GT(chosen[0][2], 3 * chosen[0][1]) << "the escalators carry most; the lift takes those its queue suits";
+  EXPECT_GT(chosen[0][1], 10.0) << "groups that chose the lift";
+}
+
 TEST(Scenarios, PlazaFlagshipRuns) {
   ScratchDir dir("plaza");
   const fs::path db = dir / "plaza.sqlite";
