@@ -200,3 +200,34 @@ TEST(Levels, AGuideOnTheUpperFloorLeadsItsGroupUpTheRamp) {
 }
 
 }  // namespace
+
+/// Two avm walkers head on along y = 5 on the ground of a 20 × 10 m hall, with or without a gallery
+/// 3 m above them (y 0 … 5.25, joined to nothing): its edge runs just north of their line.
+LevelRun headOnUnderGallery(bool gallery) {
+  sim::ScenarioDesc d;
+  d.seed = 7;
+  d.dt = 0.1f;
+  quad(d.terrain, {{0, 0, 0}, {20, 0, 0}, {20, 10, 0}, {0, 10, 0}});
+  if (gallery) quad(d.terrain, {{0, 0, 3}, {20, 0, 3}, {20, 5.25f, 3}, {0, 5.25f, 3}});
+  d.points = {exitAt("east", 18, 20, 4.9f, 5.1f, 0.0f), exitAt("west", 0, 2, 4.9f, 5.1f, 0.0f)};
+  d.populations = {walkers("first", 1, {{2.5f, 4.9f}, {3.0f, 4.9f}, {3.0f, 5.1f}, {2.5f, 5.1f}}, 0.0f, 0),
+                   walkers("second", 1, {{17.0f, 4.9f}, {17.5f, 4.9f}, {17.5f, 5.1f}, {17.0f, 5.1f}}, 0.0f, 1)};
+  return simulate(d, 1, 60.0);
+}
+
+TEST(Levels, AnotherFloorsEdgesAreNoWallsToWalkersBelow) {
+  // The walker going west keeps right, north, out from under the gallery: its edge, 3 m up, must not
+  // take the room to step aside (avm's room to pass, its look ahead, its slip), so both sidestep as
+  // in the same hall without the gallery. Before, the edge was a wall to them.
+  const LevelRun under = headOnUnderGallery(true);
+  const LevelRun open = headOnUnderGallery(false);
+  ASSERT_EQ(under.tracks.size(), 2u);
+  ASSERT_EQ(open.tracks.size(), 2u);
+  for (std::uint32_t id = 0; id < 2; ++id) {
+    SCOPED_TRACE("agent " + std::to_string(id));
+    EXPECT_TRUE(under.tracks.at(id).exited);
+    EXPECT_GT(open.tracks.at(id).maxLateral, 0.1f) << "they do step aside for each other";
+    EXPECT_NEAR(under.tracks.at(id).maxLateral, open.tracks.at(id).maxLateral, 0.02f);
+  }
+  EXPECT_NEAR(under.time, open.time, 0.3);
+}

@@ -551,7 +551,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     const core::Vec2 toTarget{a.targetX[row] - pos.x, a.targetY[row] - pos.y};
     if (core::length(toTarget) < f0 + kVisionBeyond) return e0;  // the crowd is where i is going
     // Walls matter only nearer than the crowd along a ray: those in the cells the ray crosses that far.
-    f0 = std::min(f0, roomAlong(in, ws, pos, e0, f0, onWall));
+    f0 = std::min(f0, roomAlong(in, ws, pos, z, e0, f0, onWall));
     const float h = range;
     float best = h * h + f0 * f0 - 2.0f * h * f0;
     core::Vec2 out = e0;
@@ -564,7 +564,7 @@ class AnticipationVelocityModel final : public OperationalModel {
         const float c = kSlipAngles.c(side * k), sn = kSlipAngles.s(side * k);
         const core::Vec2 ec{e0.x * c - e0.y * sn, e0.x * sn + e0.y * c};
         const float crowd = crowd_.clearAhead(pos, z, ec, e0, range);
-        const float f = std::min(crowd, roomAlong(in, ws, pos, ec, crowd, onWall));
+        const float f = std::min(crowd, roomAlong(in, ws, pos, z, ec, crowd, onWall));
         const float d2 = h * h + f * f - 2.0f * h * f * c;
         if (d2 < best - 1e-4f) {
           best = d2;
@@ -577,9 +577,12 @@ class AnticipationVelocityModel final : public OperationalModel {
 
   /// room() against the walls in the cells along the ray (Walls::queryRay): the same as against every
   /// wall within `reach`, as a wall the ray does not cross within reach leaves room() unchanged.
-  static float roomAlong(const ModelInput& in, AvmScratch& ws, core::Vec2 pos, core::Vec2 dir, float reach, float onWall) {
+  static float roomAlong(const ModelInput& in, AvmScratch& ws, core::Vec2 pos, float z, core::Vec2 dir, float reach, float onWall) {
     ws.visionWalls.clear();
     in.walls.queryRay(pos, dir, reach, ws.visionWalls);
+    if (in.agents.levels) {  // another floor's edges, above or below, are no walls here
+      std::erase_if(ws.visionWalls, [&](std::uint32_t w) { return !in.walls.onLevel(w, pos, z); });
+    }
     return room(in, ws.visionWalls, pos, dir, reach, onWall);
   }
 

@@ -102,16 +102,19 @@ class OperationalModel {
 /// The walls' push of the collision-free speed model (Tordeux et al. 2016), shared by the first-order
 /// models: Σ strength · exp(−s / range) · n over the boundary edges within `reach` of the row's
 /// centre on its own floor (s its distance to the edge, n the unit vector away from it). Leaves the
-/// edges found in `wallIds`.
+/// edges found in `wallIds`: those of the row's own floor (on a multi-level world another floor's
+/// edges, above or below, are no walls to it).
 inline core::Vec2 exponentialWallPush(const ModelInput& in, std::size_t row, float reach, float strength, float range,
                                       std::vector<std::uint32_t>& wallIds) {
   const AgentStore& a = in.agents;
   const core::Vec2 pos{a.posX[row], a.posY[row]};
   wallIds.clear();
   in.walls.query(pos.x, pos.y, reach, wallIds);
+  if (a.levels) {
+    std::erase_if(wallIds, [&](std::uint32_t w) { return !in.walls.onLevel(w, pos, a.posZ[row]); });
+  }
   core::Vec2 push;
   for (std::uint32_t w : wallIds) {
-    if (a.levels && !in.walls.onLevel(w, pos, a.posZ[row])) continue;  // another floor's edge
     const core::Segment& seg = in.walls.segments()[w];
     const core::Vec2 away = pos - core::closestPointOnSegment(pos, seg.a, seg.b);
     const float s = core::length(away);
