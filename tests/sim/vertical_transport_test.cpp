@@ -16,16 +16,7 @@ using namespace throng;
 namespace {
 
 using test::quad;
-
-sim::PointDesc region(std::string id, sim::PointKind kind, float x0, float x1, float y0, float y1, float height) {
-  sim::PointDesc p;
-  p.id = std::move(id);
-  p.kind = kind;
-  p.polygon = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  p.position = {(x0 + x1) / 2, (y0 + y1) / 2};
-  p.height = height;
-  return p;
-}
+using test::region;
 
 /// Two 12 × 10 m floors, z 0 and z 4, joined by nothing walkable. Points: 0 "low" stop (ground,
 /// x 0.5–2), 1 "high" stop (upper floor; over "low" for a lift, at the far end for an escalator),
