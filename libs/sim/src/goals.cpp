@@ -189,7 +189,8 @@ void GoalWriter::routeByTransport(std::size_t row, std::uint32_t cursor) {
   std::uint32_t& own = routes->ownList(gid);
   if (own != listIndex + 1) {  // a list of its own (the population's may be shared, exit choice's is kept)
     own = static_cast<std::uint32_t>(goalLists.size()) + 1;
-    goalLists.push_back(goalLists[listIndex]);
+    std::vector<std::uint32_t> copy = goalLists[listIndex];  // copied first: pushing may move the lists
+    goalLists.push_back(std::move(copy));
     if (listIndex < choices.lists.size() && choices.lists[listIndex].group == gid && !choices.lists[listIndex].choiceAt.empty()) {
       choices.lists.resize(std::max<std::size_t>(choices.lists.size(), own));
       choices.lists[own - 1] = choices.lists[listIndex];
