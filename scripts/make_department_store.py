@@ -112,9 +112,11 @@ def build():
 
 def main(argv):
     out = argv[1] if len(argv) > 1 else os.path.join(HERE, "..", "scenarios", "department_store.json")
-    with open(out, "w") as f:
-        json.dump(build(), f, indent=1)
-        f.write("\n")
+    text = json.dumps(build(), indent=1) + "\n"
+    tmp = out + ".tmp"
+    with open(tmp, "w") as f:  # then renamed: the scenario is written whole or not at all
+        f.write(text)
+    os.replace(tmp, out)
     print(f"wrote {os.path.relpath(out)}")
 
 

@@ -113,9 +113,9 @@ void GoalWriter::setGoal(std::size_t row, std::uint32_t cursor) {
   if (agents.goalState[row] == GoalState::Incapacitated) return;  // stays where it fell (decide.cpp)
   const GroupState& g = groups[agents.group[row]];
   const PopulationDesc& pop = desc.populations[g.population];
-  if (routes != nullptr && cursor < view().activeGoals(g).size()) {
+  if (cursor < view().activeGoals(g).size()) {
     chooseWaypoint(row, cursor);  // the goal first, then the way there
-    routeByTransport(row, cursor);
+    if (routes != nullptr) routeByTransport(row, cursor);
   }
   const std::vector<std::uint32_t>& goals = view().activeGoals(g);
   agents.goalCursor[row] = cursor;
@@ -124,7 +124,6 @@ void GoalWriter::setGoal(std::size_t row, std::uint32_t cursor) {
   agents.corners[row].clear();
   agents.progressDistance[row] = 1e30f;
   if (cursor < goals.size()) {
-    chooseWaypoint(row, cursor);
     const core::Vec2 t = drawTarget(row, desc.points[goals[cursor]]);
     agents.targetX[row] = t.x;
     agents.targetY[row] = t.y;

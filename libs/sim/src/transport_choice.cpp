@@ -89,8 +89,12 @@ std::uint32_t TransportRoutes::boardingFor(const ScenarioDesc& desc, const Agent
   const nav::PolyRef ref = a.polyRef[row];
   const std::size_t n = stops_.size();
   // Per boarding stop: where it takes one to (rideTo, for this goal), and waiting plus riding there.
-  std::vector<std::size_t> dest(n, n);
-  std::vector<float> leg(n, kInf);
+  std::vector<std::size_t>& dest = dest_;
+  std::vector<float>& leg = leg_;
+  std::vector<float>& onward = onward_;
+  dest.assign(n, n);
+  leg.assign(n, kInf);
+  onward.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Stop& s = stops_[i];
     if (!s.boards) continue;
@@ -102,7 +106,6 @@ std::uint32_t TransportRoutes::boardingFor(const ScenarioDesc& desc, const Agent
   }
   // From stepping off at each stop to the goal: walking on, or a further ride (shortest times,
   // Bellman-Ford over the stops; every leg takes time, so it settles within n rounds).
-  std::vector<float> onward(n);
   for (std::size_t i = 0; i < n; ++i) onward[i] = toGoal->at(stops_[i].p, stops_[i].ref) / v;
   if (!between_.empty()) {
     for (std::size_t round = 0; round < n; ++round) {

@@ -67,6 +67,10 @@ class TransportRoutes {
   std::vector<Stop> stops_;
   std::vector<float> between_;  ///< walking distance from stop i to stop j: between_[i * stops + j] [m]
   std::vector<std::uint32_t> decided_;  ///< per group: 1 + the last goal cursor decided
+  // boardingFor's working space, per stop (kept between calls: no allocation per decision).
+  std::vector<std::size_t> dest_;  ///< where boarding there takes one (index into stops_; stops_.size(): nowhere)
+  std::vector<float> leg_;         ///< waiting and riding from there [s]
+  std::vector<float> onward_;      ///< from stepping off there to the goal [s]
   std::vector<std::uint32_t> ownList_;  ///< per group: see ownList()
 };
 

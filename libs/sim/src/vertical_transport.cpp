@@ -65,7 +65,6 @@ void VerticalTransports::step(const ScenarioDesc& desc, std::uint64_t tick, cons
   if (states_.empty()) return;
   AgentStore& a = goals.agents;
   agents_ = &a;
-  write_ = &a;
   dt_ = desc.dt;
   // This tick's riders, by id.
   riders_.clear();
@@ -168,11 +167,9 @@ void VerticalTransports::alight(const ScenarioDesc& desc, const TransportDesc& t
 }
 
 void VerticalTransports::runEscalator(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick) {
-  AgentStore& a = *write_;
+  AgentStore& a = *agents_;
   const Place from = stopPlace(desc, t, 0), to = stopPlace(desc, t, 1);
-  const float dz = to.z - from.z;
-  const float length = std::sqrt(core::lengthSq(to.p - from.p) + dz * dz);
-  const std::uint64_t ride = std::max<std::uint64_t>(1, ticksOf(length / t.speed, dt_));
+  const std::uint64_t ride = std::max<std::uint64_t>(1, ticksOf(rideTime(desc, t, 0, 1), dt_));
   const std::uint64_t headway = std::max<std::uint64_t>(1, ticksOf(t.headway, dt_));
   // Off at the top: those who have ridden the whole length (in boarding order).
   std::size_t done = 0;
@@ -204,7 +201,7 @@ void VerticalTransports::runEscalator(const ScenarioDesc& desc, const TransportD
     a.velY[row] = (p.y - a.posY[row]) / dt_;
     a.posX[row] = p.x;
     a.posY[row] = p.y;
-    if (a.levels) a.posZ[row] = from.z + dz * f;
+    if (a.levels) a.posZ[row] = from.z + (to.z - from.z) * f;
     a.mode[row] = AgentMode::Acting;  // carried: standing on a step (sense, integrate: not on the floor)
   }
 }
@@ -291,7 +288,7 @@ int VerticalTransports::servingDirection(const ScenarioDesc& desc, const Transpo
 }
 
 void VerticalTransports::runElevator(const ScenarioDesc& desc, const TransportDesc& t, State& s, std::uint64_t tick) {
-  AgentStore& a = *write_;
+  AgentStore& a = *agents_;
   const std::uint64_t open = ticksOf(t.doorOpenTime, dt_), close = ticksOf(t.doorCloseTime, dt_);
   const std::uint64_t transfer = ticksOf(t.transferTime, dt_);
   int offHere = 0;

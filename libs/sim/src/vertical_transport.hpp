@@ -102,8 +102,7 @@ class VerticalTransports {
     Place place;
   };
   std::vector<Off> off_;  ///< let off this tick: placed and sent on after every transport ran
-  const AgentStore* agents_ = nullptr;
-  AgentStore* write_ = nullptr;
+  AgentStore* agents_ = nullptr;
   float dt_ = 0.05f;
 };
 
