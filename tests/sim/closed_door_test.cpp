@@ -102,11 +102,13 @@ Crossings walk(sim::World& w, double seconds, double closedFrom, double closedUn
 }
 
 TEST(ClosedDoor, EveryoneWalksThroughTheOtherDoorAndNobodyStandsInTheClosedOne) {
-  // Both doors open, the south one is the way of most (32 of 40); closed from the start, of none.
+  // Both doors open, the south one is the way of most (24-29 of 40 as the model changed; the
+  // exit's targets span the east wall, so those drawn in its north part go by the north door);
+  // closed from the start, of none.
   auto open = sim::World::create(twoRooms(40));
   ASSERT_TRUE(open.ok()) << core::formatAll(open.errors());
   const Crossings o = walk(*open.value(), 200.0, 0.0, 0.0);
-  EXPECT_GT(o.south, 25);
+  EXPECT_GT(o.south, 20) << "most of the 40 take the nearer door";
   EXPECT_EQ(o.left, 40);
   auto d = twoRooms(40);
   d.timeline = {test::doorAt(0, sim::TimelineAction::CloseExit, 0)};

@@ -317,3 +317,27 @@ TEST(Goals, WaypointChosenEventsAreTheSameForAnyThreadCount) {
   EXPECT_EQ(one.size(), 200u);
   EXPECT_EQ(one, events(4));
 }
+
+// A target drawn where the navmesh's erosion has no floor is put 3 cm inside the mesh, not on its
+// edge: on the edge, a sight line along it held from one spot and not the next, and a walker 6 cm
+// short of an exit turned back and forth between its target and the corner before it for ever
+// (NIST 2.9 in session 41). Red without kTargetInset (the target then lies on the edge).
+TEST(Goals, ATargetInTheNavmeshMarginLiesJustInsideTheMeshNotOnItsEdge) {
+  GoalWorld w(1);
+  w.desc.points[0].position = {5.0f, 0.1f};
+  w.desc.points[0].radius = 0.08f;  // wholly inside the eroded margin along y = 0
+  w.regions = PointRegions{};
+  for (const PointDesc& p : w.desc.points) w.regions.add(p);
+  GoalWriter goals = w.writer();
+  goals.setGoal(0, 0);
+  const core::Vec2 t{w.agents.targetX[0], w.agents.targetY[0]};
+  const auto on = w.query->nearest(t, 0.1f);
+  ASSERT_TRUE(on.has_value());
+  EXPECT_LT(core::length(on->first - t), 1e-4f) << "the target is on the mesh: " << t.x << ", " << t.y;
+  const auto below = w.query->nearest({t.x, t.y - 0.02f}, 0.1f);
+  ASSERT_TRUE(below.has_value());
+  EXPECT_LT(core::length(below->first - core::Vec2{t.x, t.y - 0.02f}), 1e-4f) << "2 cm nearer the wall is still floor";
+  const auto edge = w.query->nearest({t.x, t.y - 0.05f}, 0.1f);
+  ASSERT_TRUE(edge.has_value());
+  EXPECT_GT(core::length(edge->first - core::Vec2{t.x, t.y - 0.05f}), 1e-3f) << "5 cm nearer is past the edge";
+}

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "throng/crowd/bezier_path.hpp"
 #include "throng/crowd/path_reconstruction.hpp"
@@ -70,6 +71,31 @@ crowd::PickParams pickParams(PointKind kind) {
   return whole;
 }
 
+namespace {
+
+/// How far inside the walkable surface a target drawn in the navmesh's eroded margin is put [m].
+/// Snapped onto the nearest point of the mesh it lay exactly on the mesh's edge, where a sight
+/// line along the edge holds from one spot and not from the next: a walker 6 cm short of an exit
+/// alternated for ever between its target and the corner before it (steer.cpp's turn back to a
+/// corner it can see; NIST 2.9, session 41).
+constexpr float kTargetInset = 0.03f;
+
+/// The mesh point nearest `target` within `radius`, kTargetInset inside the edge when `target`
+/// lies off the mesh (and the point that far in is on it), else the nearest point itself.
+std::optional<core::Vec2> nearestInside(const nav::NavQuery& query, core::Vec2 target, float radius) {
+  const auto hit = query.nearest(target, radius);
+  if (!hit) return std::nullopt;
+  const core::Vec2 edge = hit->first;
+  const core::Vec2 off = edge - target;
+  const float d = core::length(off);
+  if (d < 1e-4f) return edge;  // on the mesh already
+  const core::Vec2 in = edge + off * (kTargetInset / d);
+  const auto again = query.nearest(in, 2.0f * kTargetInset);
+  return again && core::lengthSq(again->first - in) < 1e-8f ? in : edge;
+}
+
+}  // namespace
+
 void GoalWriter::releaseTarget(std::size_t row) {
   if (agents.targetSub[row] >= 0) {
     --regions.occupancy[static_cast<std::size_t>(agents.targetSub[row])];
@@ -104,8 +130,8 @@ core::Vec2 GoalWriter::drawTarget(std::size_t row, const PointDesc& point) {
     agents.setTargetHeight(row, hit ? hit->height : point.height);
     return hit ? hit->p : target;
   }
-  if (auto hit = query.nearest(target, 3.0f)) return hit->first;
-  if (auto hit = query.nearest(point.position, 10.0f)) return hit->first;
+  if (auto hit = nearestInside(query, target, 3.0f)) return *hit;
+  if (auto hit = nearestInside(query, point.position, 10.0f)) return *hit;
   return target;
 }
 
