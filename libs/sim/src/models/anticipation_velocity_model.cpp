@@ -45,7 +45,10 @@
 // blocks the other only within passageRatio · ℓ of its walking line; a walker held below
 // kSlipSpeed · v0 by someone whose desired direction is more than 60° off (or who stands at a spot)
 // takes, of the directions within ±90° of e0, the one that makes the most progress (or, making
-// none, steps sideways into the widest gap); and a walker
+// none, steps sideways into the widest gap). Overtaking: a walker held below 0.9 v0 by someone
+// walking its way at 0.9 or more of their own desired speed takes the same way a lane with a free
+// walk of v0 · T, while the crowd within 1.2 m of it is thinner than overtakeDensity (Fruin 1971's
+// levels of service). And a walker
 // within kSqueezeIn of its own target squeezes in beside people standing there. Neighbours' desired
 // directions are those of the previous tick (beginStep), so the result does not depend on the
 // thread or rank that steers them.
@@ -63,6 +66,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <vector>
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -103,6 +107,10 @@ constexpr ModelParameter kParameters[] = {
      "on turn their shoulders); 0: off. Dense crowds stay within a few centimetres, crowds crossing every way knot more",
      "measured on the dense room, the bottlenecks and the bundled plaza (docs/crowd-model.md, No step into a body): "
      "deepest overlap 0.110 -> 0.044 m, agents over 1 cm 180 -> 33; plaza 952-1091 of 1592 out against 1017-1227"},
+    {"overtakeDensity", "1/m²", 0.0, false, 10.0, false, 1.3f,
+     "a walker held up by someone slower ahead overtakes by a free lane while the crowd within 1.2 m of it is thinner than this (0: never)",
+     "Fruin 1971 (levels of service D/E: passing slower people gets difficult from about 0.7 and impossible above about "
+     "1.1-2.2 /m²); 1.3 measured on the ring against Weidmann and on the Juelich corridor (docs/crowd-model.md, Overtaking)"},
 };
 enum Parameter : std::size_t {
   kTimeGap,
@@ -115,7 +123,8 @@ enum Parameter : std::size_t {
   kPassageRatio,
   kVisionRange,
   kSeparationPasses,
-  kNoPressing
+  kNoPressing,
+  kOvertakeDensity
 };
 
 struct AvmParams {
@@ -130,6 +139,7 @@ struct AvmParams {
   float visionRange = 20.0f;       ///< H of seeAhead [m]; 0: off
   int separationPasses = 0;        ///< position corrections after the move (separation); 0: off
   bool noPressing = false;         ///< clampToBodies and turnDeepens (and kOnWall in pushes); false: off
+  float overtakeDensity = 1.3f;    ///< local density [1/m²] below which a walker overtakes (overtaking); 0: never
 };
 
 class AvmScratch final : public ModelScratch {
@@ -191,6 +201,16 @@ constexpr float kSqueezeIn = 0.6f;
 /// chosen on the harness and the verification suite, docs/validation.md; 0.5-0.6 raise the 0.5 m
 /// door's and the dense room's flows past their bands).
 constexpr float kSlipSpeed = 0.4f;
+/// Overtaking (docs/crowd-model.md, "Overtaking"): a walker held below kOvertakeShare · v0 by
+/// someone walking its way at kOvertakeShare or more of their own desired speed (slower by nature,
+/// not held up in turn) looks, among the slip's directions, for a lane it can walk at its own speed
+/// (a gap of v0 · T) and takes the one that makes the most progress, as long as fewer people than
+/// overtakeDensity per m² stand within kOvertakeRadius of it (Fruin 1971: passing slower people
+/// gets difficult at levels of service D and E). Without it, fast walkers followed slow ones at the
+/// time gap for ever: the ring at 0.25 and 0.5 /m² walked 1.20 and 1.09 m/s against Weidmann's 1.34
+/// and 1.30, and the Jülich corridor about 0.09 m/s below the experiment in every density class.
+constexpr float kOvertakeShare = 0.9f;
+constexpr float kOvertakeRadius = 1.2f;  ///< [m] the circle the local density is counted in
 constexpr int kSlipSteps = 6;                   ///< candidates each side of e0 (15° apart: ±90°)
 constexpr float kSidestepSpeed = 0.05f;         ///< the slowest sideways step worth taking [m/s]
 constexpr float kSlipStep = 0.2617994f;         ///< 15° between candidates [rad]
@@ -508,7 +528,7 @@ class AnticipationVelocityModel final : public OperationalModel {
         const auto& v = pop.model.values;
         p = {v[kTimeGap],        v[kAnticipationTime], v[kReactionTime], v[kNeighbourStrength],
              v[kNeighbourRange], v[kWallStrength],     v[kWallRange],    v[kPassageRatio], v[kVisionRange],
-             static_cast<int>(v[kSeparationPasses]), v[kNoPressing] != 0.0f};
+             static_cast<int>(v[kSeparationPasses]), v[kNoPressing] != 0.0f, v[kOvertakeDensity]};
       } else {
         p.passageRatio = 1.0f;  // another model's bodies are discs (contact)
       }
@@ -743,18 +763,34 @@ class AnticipationVelocityModel final : public OperationalModel {
     return n > 1e-9f && core::dot(pi, po) < cosLimit * n;
   }
 
-  /// Held up by cross traffic: of e (making `progress` along e0) and the directions within
-  /// ±kSlipSteps · kSlipStep of e0, the velocity that makes the most progress along e0.
-  core::Vec2 slip(const ModelInput& in, std::size_t row, core::Vec2 e0, float v0, const AvmParams& p,
-                  AvmScratch& ws, core::Vec2 e, float speed) const {
+  /// Whether i, walking `speed` of its v0 with o the first body ahead, overtakes o (kOvertakeShare):
+  /// o walks i's way (not opposed) at nearly its own desired speed, i is held well below its own,
+  /// and the crowd around i is thinner than p.overtakeDensity.
+  bool overtaking(const ModelInput& in, std::size_t row, std::uint32_t o, float speed, float v0, const AvmParams& p) const {
+    const AgentStore& a = in.agents;
+    if (speed >= kOvertakeShare * v0 || a.mode[o] != AgentMode::Walking || opposed(a, row, o, kSlipCos)) return false;
+    const float vo2 = a.velX[o] * a.velX[o] + a.velY[o] * a.velY[o];
+    const float want2 = lastDesiredX_[o] * lastDesiredX_[o] + lastDesiredY_[o] * lastDesiredY_[o];
+    if (vo2 < kOvertakeShare * kOvertakeShare * want2) return false;  // o is held up in turn
+    // Fewer than `most` people (i included) within kOvertakeRadius; counted until that many are found.
+    const float most = p.overtakeDensity * std::numbers::pi_v<float> * kOvertakeRadius * kOvertakeRadius;
+    const core::Vec2 pos{a.posX[row], a.posY[row]};
+    const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];
+    float around = 1.0f;  // i itself
+    for (std::size_t n = 0; n < a.neighbourCount[row] && around < most; ++n) {
+      const core::Vec2 d = core::Vec2{a.posX[nb[n]], a.posY[nb[n]]} - pos;
+      around += core::dot(d, d) < kOvertakeRadius * kOvertakeRadius ? 1.0f : 0.0f;
+    }
+    return around < most;
+  }
+
+  /// Slip's and overtake's near neighbours (AvmScratch::near). Only neighbours nearer than limit + ℓ
+  /// + s0 (with a centimetre to spare) ahead can shorten a gap below `limit` in any direction (a body
+  /// further ahead leaves a gap of at least that), so the directions are tried against those alone:
+  /// the same result for fewer reads.
+  void collectNear(const ModelInput& in, std::size_t row, float limit, AvmScratch& ws) const {
     const AgentStore& a = in.agents;
     const core::Vec2 pos{a.posX[row], a.posY[row]};
-    core::Vec2 best = e * speed;
-    float progress = speed * core::dot(e, e0);
-    const float limit = v0 * p.timeGap;
-    // Only neighbours nearer than limit + ℓ + s0 (with a centimetre to spare) ahead can shorten a gap
-    // below `limit` in any direction (a body further ahead leaves a gap of at least that), so the
-    // twelve directions are tried against those alone: the same result for fewer reads.
     ws.near.clear();
     const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];
     const float tx = a.targetX[row] - pos.x, ty = a.targetY[row] - pos.y;
@@ -771,12 +807,24 @@ class AnticipationVelocityModel final : public OperationalModel {
       const core::Vec2 eo = walkingDirection(a, o);
       ws.near.push_back({d, eo, l, -core::dot(d, eo), opposed(a, row, o, kRotateCos), walking, a.id[row] < a.id[o]});
     }
+  }
+
+  /// Held up by cross traffic: of e (making `progress` along e0) and the directions within
+  /// ±kSlipSteps · kSlipStep of e0, the velocity that makes the most progress along e0.
+  core::Vec2 slip(const ModelInput& in, std::size_t row, core::Vec2 e0, float v0, const AvmParams& p,
+                  AvmScratch& ws, core::Vec2 e, float speed) const {
+    const AgentStore& a = in.agents;
+    const core::Vec2 pos{a.posX[row], a.posY[row]};
+    core::Vec2 best = e * speed;
+    float progress = speed * core::dot(e, e0);
+    const float limit = v0 * p.timeGap;
+    collectNear(in, row, limit, ws);
     for (int k = -kSlipSteps; k <= kSlipSteps; ++k) {
       if (k == 0) continue;
       const float c = kSlipAngles.c(k), s = kSlipAngles.s(k);
       // Whether speed v along this direction beats the best so far. It only gets likelier as v
       // grows, so a direction that would not win at a bound of its speed (v0, then the gap to the
-      // bodies before the walls are looked at) is passed over: the same choice, fewer reads.
+      // bodies) is passed over: the same choice, fewer reads.
       const auto wins = [&](float v) {
         return v * c > progress + 1e-4f || (progress < 1e-3f && v * c > -1e-3f && v > kSidestepSpeed && v > core::length(best) + 1e-4f);
       };
@@ -792,6 +840,32 @@ class AnticipationVelocityModel final : public OperationalModel {
       }
     }
     return best;
+  }
+
+  /// Overtaking (overtaking() said so): the lane nearest e0 — 15°, then 30° … to either side, the
+  /// left first — with a free walk of v0 · T past bodies and walls, walked at v0; e · speed when no
+  /// lane that makes more progress is free. (Every free lane is walked at v0, so the nearest wins.)
+  core::Vec2 overtake(const ModelInput& in, std::size_t row, core::Vec2 e0, float v0, const AvmParams& p,
+                      AvmScratch& ws, core::Vec2 e, float speed) const {
+    const AgentStore& a = in.agents;
+    const core::Vec2 pos{a.posX[row], a.posY[row]};
+    const float progress = speed * core::dot(e, e0);
+    const float limit = v0 * p.timeGap;
+    collectNear(in, row, limit, ws);
+    for (int k = 1; k <= kSlipSteps; ++k) {
+      const float c = kSlipAngles.c(k);
+      if (!(v0 * c > progress + 1e-4f || (progress < 1e-3f && v0 * c > -1e-3f && v0 > kSidestepSpeed && v0 > speed + 1e-4f))) {
+        break;  // this lane and every wider one make no more progress than walking on
+      }
+      for (const int side : {-1, 1}) {
+        const float sn = kSlipAngles.s(side * k);
+        const core::Vec2 ec{e0.x * c - e0.y * sn, e0.x * sn + e0.y * c};
+        if (gapAhead(ws.near, ec, limit, p.passageRatio) < limit) continue;
+        if (room(in, ws, pos, ec, limit, p.noPressing ? kOnWall : 0.0f) < limit) continue;  // a wall closes this lane
+        return ec * v0;
+      }
+    }
+    return e * speed;
   }
 
   /// Calls f(o, d) for each of i's neighbours o (the rows sense found), d the vector from i to o.
@@ -931,8 +1005,11 @@ class AnticipationVelocityModel final : public OperationalModel {
     const float gap = gapAhead(in, row, e, v0 * p.timeGap, p.passageRatio, &blocker);
     const float speed = std::min(v0, gap / p.timeGap);
     const auto bo = static_cast<std::uint32_t>(blocker);
-    const bool slips = blocker >= 0 && speed < kSlipSpeed * v0 && (opposed(a, row, bo, kSlipCos) || a.mode[bo] != AgentMode::Walking);
-    const core::Vec2 walk = slips ? slip(in, row, e0, v0, p, ws, e, speed) : e * speed;
+    const bool crossSlip = blocker >= 0 && speed < kSlipSpeed * v0 && (opposed(a, row, bo, kSlipCos) || a.mode[bo] != AgentMode::Walking);
+    const bool overtakes = !crossSlip && blocker >= 0 && overtaking(in, row, bo, speed, v0, p);
+    const core::Vec2 walk = crossSlip ? slip(in, row, e0, v0, p, ws, e, speed)
+                            : overtakes ? overtake(in, row, e0, v0, p, ws, e, speed)
+                                        : e * speed;
     const core::Vec2 v = walk + contact(in, row, p);
     return p.noPressing ? clampToBodies(in, row, v, p, ws) : v;
   }
