@@ -61,7 +61,12 @@ CORRIDOR_RUNS = {
     "uo-180-180-070": ("uo-180-180-070.txt", 0.01, 16.0, (500, 1399)),
 }
 DENSITY_BIN = 0.5             # width of the density classes [1/m^2]
-MIN_FRAMES_PER_BIN_S = 2.0    # a class needs this much steady-state time to be shown [s]
+# A class is compared when it holds this much steady-state time [s]: in the experiment's one run,
+# or pooled over the simulation's seeds (the class mean's precision depends on the frames it pools).
+# Until session 41 each seed had to give 2 s (10 s over 5 seeds): the experiment itself has 3.2 s in
+# the 0.5-1.0 /m² class and 2.25 s in the 2.0-2.5 one, so a simulation with the experiment's own
+# share of sparse frames could not be compared there. The notes say how many seconds each class has.
+MIN_FRAMES_PER_BIN_S = 2.0
 # Issue 17's targets: the experiment's steady-state classes (class -> speed) and Js.
 CORRIDOR_TARGETS = [((0.5, 1.0), 0.82, 1.12), ((1.0, 1.5), 1.31, 1.05), ((1.5, 2.0), 1.77, 0.97),
                     ((2.0, 2.5), 2.22, 0.91)]
@@ -87,15 +92,16 @@ def corridor_measures(traj, frames):
 
 
 def pool_classes(series, fps):
-    """Density classes 0.5 /m^2 wide of several runs' (rho, v) frame series, pooled (frame-weighted)."""
+    """Density classes 0.5 /m^2 wide of several runs' (rho, v) frame series, pooled (frame-weighted);
+    a class with under MIN_FRAMES_PER_BIN_S seconds of frames in the pool is left out."""
     edges = np.arange(0.0, 8.0 + DENSITY_BIN, DENSITY_BIN)
     rs = np.concatenate([s[0] for s in series])
     vs = np.concatenate([s[1] for s in series])
     out = []
     for lo, hi in zip(edges[:-1], edges[1:]):
         sel = (rs >= lo) & (rs < hi)
-        if sel.sum() >= MIN_FRAMES_PER_BIN_S * fps * len(series):
-            out.append({"class": [float(lo), float(hi)], "density": float(rs[sel].mean()),
+        if sel.sum() >= MIN_FRAMES_PER_BIN_S * fps:
+            out.append({"class": [float(lo), float(hi)], "density": float(rs[sel].mean()), "seconds": float(sel.sum() / fps),
                         "speed": float(vs[sel].mean()), "speed_sd": float(vs[sel].std()), "frames": int(sel.sum()),
                         "weidmann": float(M.weidmann(rs[sel].mean()))})
     return out
@@ -132,9 +138,12 @@ def corridor(ctx):
     runs = [r for r in out["runs"] if "error" not in r]
     for (lo, hi), rho, v in CORRIDOR_TARGETS:
         cls = next((c for c in out["classes"] if c["class"][0] == lo), None)
+        exp = next((c for c in out["experiment"]["classes"] if c["class"][0] == lo), None)
+        exp_s = f"experiment {exp['seconds']:.1f} s" if exp else "experiment none"
         ctx.targets.add("corridor", f"speed, density class {lo:.1f}-{hi:.1f} (exp. {rho:.2f} /m²)",
                         cls and cls["speed"], v - CORRIDOR_SPEED_TOL, v + CORRIDOR_SPEED_TOL, "m/s",
-                        "no steady-state frames in this class" if cls is None else f"ρ̄ = {cls['density']:.2f}")
+                        f"under {MIN_FRAMES_PER_BIN_S:g} s of steady-state frames in this class ({exp_s})" if cls is None
+                        else f"ρ̄ = {cls['density']:.2f}, {cls['seconds']:.1f} s of frames over {len(runs)} runs ({exp_s})")
     js = _mean([r["specific_flow_rho_v"] for r in runs])
     ctx.targets.add("corridor", "specific flow Js = ρv", js, CORRIDOR_JS * (1 - CORRIDOR_JS_TOL),
                     CORRIDOR_JS * (1 + CORRIDOR_JS_TOL), "1/(m·s)")

@@ -3,14 +3,14 @@
 
 Runs scripts/validate.py --quick --model avm (one seed; deterministic) on the experiments that need
 no external data and asserts the bands of issue 17 that avm meets (docs/validation.md, "Results:
-the pedestrian model avm"): the ring's fundamental diagram from 1 to 5 /m² against Weidmann,
+the pedestrian model avm"): the ring's fundamental diagram from 0.5 to 5 /m² against Weidmann,
 every bottleneck width 0.5-1.2 m accepted by `throng check` for the default body, its flow within
 ±25 % of the trend and no gap between passings over 5 s in this seed, the 1 m door's flow, and
 lanes in counter-flow without deadlock, no more than 2 % of the ring's speed samples backward up to
 3 /m² and of the single file's at every density, and nobody in the dense room's queue more than
 0.5 m back from the door. Not asserted, because avm does not meet them yet or only on average (the
-same page says why): the ring at 0.5 /m², its backward samples at 4-5 /m² (five seeds: 1.8-1.9 %,
-this one-seed short run: 2.0-2.2 %), the single file's speed at 1 /m, the dense room's overlaps; and
+same page says why): the ring's backward samples at 4-5 /m² (five seeds: 1.8-2.1 %,
+this one-seed short run: 2.0-2.3 %), the single file's speed at 1 /m, the dense room's overlaps; and
 the 0.6 m flow, which this one-seed run may put just above its band (five seeds: 1.41 /s, band
 0.86-1.42).
 With `--model orca` this test fails (the 0.5 m door is refused; speed does not fall with density).
@@ -25,7 +25,7 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCRIPT = os.path.join(HERE, "..", "..", "scripts", "validate.py")
 ASSERTED = (
-    [f"speed at {d} /m²" for d in ("1", "1.5", "2", "3", "4", "5")]
+    [f"speed at {d} /m²" for d in ("0.5", "1", "1.5", "2", "3", "4", "5")]
     + [f"{w} m accepted by throng check" for w in ("0.5", "0.6", "0.7", "0.8", "1.0", "1.2")]
     + [f"{w} m flow" for w in ("0.5", "0.7", "0.8", "1.0", "1.2")]
     + [f"{w} m longest gap" for w in ("0.5", "0.6", "0.7", "0.8", "1.0", "1.2")]
