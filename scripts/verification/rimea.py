@@ -29,9 +29,6 @@ def _first_cross(traj, line, direction):
 # cfsm is JuPedSim's collision-free speed model with its defaults, not calibrated: with no rule for
 # who goes first, head-on walkers in the 2 m corridor wedge each other (session 33: since exits are
 # cut out of the navmesh, issue 18, trajectories changed and 2 of the 4 runs deadlock).
-CFSM_COUNTER_XFAIL = ("cfsm (not calibrated) deadlocks head-on: with 25 walking against, not everybody arrives "
-                      "(1 of 4 runs; 2 of 4 before session 34)")
-
 
 # --- 1 ---------------------------------------------------------------------------------------------
 def measure_corridor(results, ctx, lo=26.0, hi=34.0):
@@ -363,8 +360,6 @@ def tests():
              "RiMEA 4.1.1 test 4", _doc("04-fundamental-diagram"),
              [Run(f"rho{r:g}", f"rimea/04-ring-{r:g}.json") for r in RING_DENSITIES], measure_ring,
              xfail={"orca": "ORCA keeps walking near its free speed in a crowd: no headway term (issue 17)",
-                    "avm": "at 0.5 /m² the ring's mean speed (1.12 m/s) stays below Weidmann's 1.30: slow walkers "
-                           "lead platoons that the others cannot pass in a 2 m ring (docs/validation.md)",
                     "cfsm": "cfsm is not calibrated: 0.87 m/s at 0.5 /m² and too slow at 2 … 3 /m² (issue 17)"},
              plot=P.ring),
         Test("rimea-5", "rimea", "Pre-movement time", "each of 10 persons leaves at its time, waiting in the room",
@@ -399,8 +394,7 @@ def tests():
              "RiMEA 4.1.1 test 12", _doc("12-bottlenecks"), one("rimea/12-bottlenecks.json"), measure_bottlenecks,
              plot=P.bottlenecks,
              xfail={"orca": "ORCA's 1 m door passes fewer persons than the 1 m corridor feeds it (clogging at the "
-                            "door, issue 17): a second queue of about 30 s",
-                    "cfsm": "cfsm (not calibrated): a second queue of about 11 s at the door"}),
+                            "door, issue 17): a second queue of about 30 s"}),
         Test("rimea-13", "rimea", "Jam in front of a staircase", "a jam forms at the foot of the stairs",
              "RiMEA 4.1.1 test 13", _doc("13-stair-jam"),
              [Run("run", "rimea/13-stair-jam.json"), Run("flat", "rimea/13-stair-jam.json", _flat_stairs, "flat")],
@@ -417,6 +411,6 @@ def tests():
         Test("rimea-16", "rimea", "Counter-flow", "travel time grows with the counter-flow, no deadlock",
              "RiMEA 4.1.1 test 16", _doc("16-counterflow"),
              [Run(f"k{k}", f"rimea/16-counterflow-{k}.json") for k in G.COUNTER["against"]], measure_counter,
-             xfail={"cfsm": CFSM_COUNTER_XFAIL}, plot=P.counter),
+             plot=P.counter),
     ]
     return t
