@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "terrain_quads.hpp"
+#include "timeline.hpp"
 #include "throng/sim/world.hpp"
 
 using namespace throng;
@@ -166,4 +167,30 @@ TEST(TransportChoice, ACrowdInsertedAtRunTimeRidesToItsOwnGoalUpstairs) {
   }
   EXPECT_EQ(boardings[0], 4u + 6u);  // the scenario's four (their events wait for the first frame taken) and the crowd's six
   EXPECT_EQ(reached[3], 6u);
+}
+
+// A door closes at the stair's foot (an exit point cut into the floor there, nobody's goal) at 20 s,
+// after six people have climbed the stair (the escalator, 25 s of riding, is slower) and before
+// twelve more set off at 25 s: the walking distances, measured when the first six chose, are
+// measured anew on the mesh with the door closed, so the twelve ride. Red when the fields are not
+// rebuilt on a door change (TransportRoutes::meshChanged): the twelve then head for the closed
+// stair, and nobody rides.
+TEST(TransportChoice, ADoorClosedOnTheStairsSendsLaterPeopleToTheEscalator) {
+  sim::ScenarioDesc d = splitLevel(0.5f, 6);
+  d.duration = 200;
+  d.points.push_back(region("gate", sim::PointKind::Exit, 11.0f, 12.0f, 0.0f, 3.5f, 0.0f));
+  sim::PopulationDesc late = d.populations[0];
+  late.id = "late";
+  late.groups = 12;
+  late.start = 25.0f;
+  d.populations.push_back(late);
+  d.timeline = {test::doorAt(20.0f, sim::TimelineAction::CloseExit, 3)};
+  const Outcome closed = simulate(d);
+  ASSERT_EQ(closed.boardings.count(0), 1u) << "nobody rode";
+  EXPECT_EQ(closed.boardings.at(0), 12u) << "the twelve who set off after the door closed";
+  EXPECT_EQ(closed.exited, 18u);
+  d.timeline.clear();  // the gate open: everyone climbs, as in PeopleRideOnlyWhenThatIsQuickerCountingTheQueue
+  const Outcome open = simulate(d);
+  EXPECT_TRUE(open.boardings.empty());
+  EXPECT_EQ(open.exited, 18u);
 }

@@ -261,6 +261,7 @@ void World::Impl::closeDoorFloor(std::uint32_t point, bool closed) {
   }
   pathQueue->restart();
   exitChoice.meshChanged();  // exit choice measures round the closed doors (ExitChoice::refresh)
+  transportRoutes.meshChanged();  // so does the choice of a lift, an escalator or the stairs
   const bool levels = agents.levels;
   for (std::size_t row = 0; row < agents.size(); ++row) {
     const core::Vec2 pos{agents.posX[row], agents.posY[row]};

@@ -24,8 +24,10 @@ constexpr std::size_t kMaxSearchStops = 128;
 
 void TransportRoutes::prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, const nav::NavQuery& query) {
   fields_.clear();
+  fieldVersion_.clear();
   stops_.clear();
   between_.clear();
+  meshVersion_ = stopsVersion_ = 0;
   fieldOfPoint_.assign(desc.points.size(), -1);
   mesh_ = &mesh;
   if (desc.transports.empty()) return;
@@ -48,7 +50,12 @@ void TransportRoutes::prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh
       stops_.push_back(s);
     }
   }
+  measureStops(desc);
+}
+
+void TransportRoutes::measureStops(const ScenarioDesc& desc) {
   for (const Stop& s : stops_) fieldOf(desc, s.point);
+  stopsVersion_ = meshVersion_;
   const std::size_t n = stops_.size();
   if (n > kMaxSearchStops) return;
   between_.assign(n * n, kInf);
@@ -57,14 +64,24 @@ void TransportRoutes::prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh
   }
 }
 
+void TransportRoutes::meshChanged() {
+  if (active()) ++meshVersion_;
+}
+
 const nav::DistanceField* TransportRoutes::fieldOf(const ScenarioDesc& desc, std::uint32_t point) {
   if (point >= desc.points.size()) return nullptr;
   if (point >= fieldOfPoint_.size()) fieldOfPoint_.resize(desc.points.size(), -1);  // a crowd's points, inserted since
   if (fieldOfPoint_[point] < 0) {
     fieldOfPoint_[point] = static_cast<std::int32_t>(fields_.size());
     fields_.push_back(nav::DistanceField::build(*mesh_, cutRegion(desc.points[point]), config_));
+    fieldVersion_.push_back(meshVersion_);
   }
-  return &fields_[static_cast<std::size_t>(fieldOfPoint_[point])];
+  const auto k = static_cast<std::size_t>(fieldOfPoint_[point]);
+  if (fieldVersion_[k] != meshVersion_) {  // doors closed or opened since it was built: measured anew
+    fields_[k] = nav::DistanceField::build(*mesh_, cutRegion(desc.points[point]), config_);
+    fieldVersion_[k] = meshVersion_;
+  }
+  return &fields_[k];
 }
 
 bool TransportRoutes::claim(std::uint32_t gid, std::uint32_t cursor) {
@@ -82,6 +99,7 @@ std::uint32_t& TransportRoutes::ownList(std::uint32_t gid) {
 std::uint32_t TransportRoutes::boardingFor(const ScenarioDesc& desc, const AgentStore& a, std::size_t row, std::uint32_t goal,
                                            const VerticalTransports& transports,
                                            const std::function<std::uint32_t(std::uint32_t)>& heading) {
+  if (stopsVersion_ != meshVersion_) measureStops(desc);  // a door closed or opened since
   const nav::DistanceField* toGoal = fieldOf(desc, goal);
   if (toGoal == nullptr) return kNoIndex;
   const float v = std::max(kSlowest, a.speed[row]);

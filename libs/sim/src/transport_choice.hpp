@@ -10,7 +10,8 @@
 // scenario names. Distances are walking distances on the navmesh (nav::DistanceField per stop, built
 // at creation, and per goal, built when first weighed; stairs priced as in exit choice); each group
 // decides each of its goals once. Serial (setGoal's callers): the same for any thread or rank count.
-// The fields are not rebuilt when doors close or open.
+// When a door closes or opens (meshChanged), a field is measured anew the next time a decision
+// reads it: the stops' at the next decision, a goal's when a group next weighs the way there.
 #pragma once
 #include <cstdint>
 #include <deque>
@@ -34,6 +35,9 @@ class TransportRoutes {
   /// cost, whatever the number of points. `mesh` must outlive this.
   void prepare(const ScenarioDesc& desc, const nav::NavMesh& mesh, const nav::NavQuery& query);
   [[nodiscard]] bool active() const { return !stops_.empty(); }
+  /// A door's polygons closed or opened on the mesh prepare() was given (World::closeDoorFloor):
+  /// every field is stale, and rebuilt when next read (fieldOf, measureStops).
+  void meshChanged();
 
   /// Whether group `gid` has not decided how to reach the goal at `cursor` of its list yet; marks it
   /// decided (the first member to set off for it decides for the group).
@@ -57,13 +61,18 @@ class TransportRoutes {
     nav::PolyRef ref = 0;
     bool boards = false;  ///< people step on here (an escalator's foot, any stop of a lift)
   };
-  /// The field of `point`, built now if it was not (null: no such point).
+  /// The field of `point`, built now if it was not or the mesh changed since (null: no such point).
   const nav::DistanceField* fieldOf(const ScenarioDesc& desc, std::uint32_t point);
+  /// The stops' fields and the walking distances between the stops, on the mesh as it is now.
+  void measureStops(const ScenarioDesc& desc);
 
   const nav::NavMesh* mesh_ = nullptr;
   nav::DistanceFieldConfig config_;
   std::deque<nav::DistanceField> fields_;  ///< a deque: built on demand, earlier ones stay where they are
   std::vector<std::int32_t> fieldOfPoint_;  ///< point → index into fields_, -1: none
+  std::vector<std::uint64_t> fieldVersion_;  ///< per field: meshVersion_ when it was built
+  std::uint64_t meshVersion_ = 0;   ///< doors closed or opened so far (meshChanged)
+  std::uint64_t stopsVersion_ = 0;  ///< meshVersion_ when the stops were measured (measureStops)
   std::vector<Stop> stops_;
   std::vector<float> between_;  ///< walking distance from stop i to stop j: between_[i * stops + j] [m]
   std::vector<std::uint32_t> decided_;  ///< per group: 1 + the last goal cursor decided
