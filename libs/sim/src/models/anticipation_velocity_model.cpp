@@ -46,8 +46,8 @@
 // kSlipSpeed · v0 by someone whose desired direction is more than 60° off (or who stands at a spot)
 // takes, of the directions within ±90° of e0, the one that makes the most progress (or, making
 // none, steps sideways into the widest gap). Overtaking: a walker held below 0.9 v0 by someone
-// walking its way at 0.9 or more of their own desired speed takes the same way a lane with a free
-// walk of v0 · T, while the crowd within 1.2 m of it is thinner than overtakeDensity (Fruin 1971's
+// walking its way at 0.9 or more of their own desired speed takes the nearest of those directions
+// with a free walk of v0 · T (a lane to overtake in), while the crowd within 1.2 m of it is thinner than overtakeDensity (Fruin 1971's
 // levels of service). And a walker
 // within kSqueezeIn of its own target squeezes in beside people standing there. Neighbours' desired
 // directions are those of the previous tick (beginStep), so the result does not depend on the
