@@ -809,6 +809,12 @@ class AnticipationVelocityModel final : public OperationalModel {
     }
   }
 
+  /// Whether walking v along a direction at cosine c to e0 beats making `progress` along e0 at
+  /// `bestSpeed`: more progress, or, when none is made, a sideways step faster than the best so far.
+  static bool beats(float v, float c, float progress, float bestSpeed) {
+    return v * c > progress + 1e-4f || (progress < 1e-3f && v * c > -1e-3f && v > kSidestepSpeed && v > bestSpeed + 1e-4f);
+  }
+
   /// Held up by cross traffic: of e (making `progress` along e0) and the directions within
   /// ±kSlipSteps · kSlipStep of e0, the velocity that makes the most progress along e0.
   core::Vec2 slip(const ModelInput& in, std::size_t row, core::Vec2 e0, float v0, const AvmParams& p,
@@ -825,9 +831,7 @@ class AnticipationVelocityModel final : public OperationalModel {
       // Whether speed v along this direction beats the best so far. It only gets likelier as v
       // grows, so a direction that would not win at a bound of its speed (v0, then the gap to the
       // bodies) is passed over: the same choice, fewer reads.
-      const auto wins = [&](float v) {
-        return v * c > progress + 1e-4f || (progress < 1e-3f && v * c > -1e-3f && v > kSidestepSpeed && v > core::length(best) + 1e-4f);
-      };
+      const auto wins = [&](float v) { return beats(v, c, progress, core::length(best)); };
       if (!wins(v0)) continue;
       const core::Vec2 ec{e0.x * c - e0.y * s, e0.x * s + e0.y * c};
       const float bodies = gapAhead(ws.near, ec, limit, p.passageRatio);
@@ -854,9 +858,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     collectNear(in, row, limit, ws);
     for (int k = 1; k <= kSlipSteps; ++k) {
       const float c = kSlipAngles.c(k);
-      if (!(v0 * c > progress + 1e-4f || (progress < 1e-3f && v0 * c > -1e-3f && v0 > kSidestepSpeed && v0 > speed + 1e-4f))) {
-        break;  // this lane and every wider one make no more progress than walking on
-      }
+      if (!beats(v0, c, progress, speed)) break;  // this lane and every wider one make no more progress than walking on
       for (const int side : {-1, 1}) {
         const float sn = kSlipAngles.s(side * k);
         const core::Vec2 ec{e0.x * c - e0.y * sn, e0.x * sn + e0.y * c};
