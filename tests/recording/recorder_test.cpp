@@ -207,7 +207,7 @@ TEST(Recorder, MetadataNamesEachPopulationsModelWithItsValues) {
   EXPECT_EQ(db.one("SELECT value FROM metadata WHERE key = 'throng_models'"),
             "{\"left\": {\"name\": \"avm\", \"timeGap\": 0.9, \"anticipationTime\": 0.5, \"reactionTime\": 0.1, "
             "\"neighbourStrength\": 4, \"neighbourRange\": 0.1, \"wallStrength\": 5, \"wallRange\": 0.02, \"passageRatio\": 0.65, \"visionRange\": 20, "
-            "\"separationPasses\": 0, \"noPressing\": 0, \"overtakeDensity\": 1.3}, "
+            "\"separationPasses\": 2, \"noPressing\": 1, \"overtakeDensity\": 1.3}, "
             "\"late \\\"quoted\\\"\": {\"name\": \"orca\", \"yieldResponsibility\": 0.6, \"lodNeighbours\": 4, \"wallMargin\": 0.01}}");
 }
 

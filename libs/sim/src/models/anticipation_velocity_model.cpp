@@ -97,16 +97,16 @@ constexpr ModelParameter kParameters[] = {
      "how far a walker looks ahead to go round a knot of people between it and its target (0: off)",
      "the heuristic of Moussaid, Helbing, Theraulaz 2011 (PNAS 108), who use 10 m; 20 m measured on the bundled "
      "square and plaza, where 10 m still lets knots of people crossing every way grow (docs/crowd-model.md)"},
-    {"separationPasses", "", 0.0, false, 4.0, true, 0.0f,
-     "position correction after each move: bodies still overlapping are pushed apart this many times (0: off); 2 keeps a "
-     "dense crowd's overlaps to about 3-4 cm for about 8 % more computation",
-     "measured on the dense room of scripts/validate.py (docs/crowd-model.md, Overlaps): 0.089 m deepest overlap and "
-     "175-186 agents over 1 cm with 0, 0.030-0.041 m and 12-51 with 2"},
-    {"noPressing", "", 0.0, false, 1.0, true, 0.0f,
+    {"separationPasses", "", 0.0, false, 4.0, true, 2.0f,
+     "position correction after each move: bodies still overlapping are pushed apart this many times (0: off; of two "
+     "merging, the one behind yields)",
+     "measured on the dense room of scripts/validate.py with noPressing 1 (docs/crowd-model.md, Overlaps): deepest "
+     "overlap after 1 s 0.021 m on seeds 1-5 with 2 (band 0.03), 0.071 m with 0; 3 passes walk people back from the door"},
+    {"noPressing", "", 0.0, false, 1.0, true, 1.0f,
      "1: no step and no turn takes a body deeper into another (a merging walker squeezes by, slowly; two passing head "
-     "on turn their shoulders); 0: off. Dense crowds stay within a few centimetres, crowds crossing every way knot more",
-     "measured on the dense room, the bottlenecks and the bundled plaza (docs/crowd-model.md, No step into a body): "
-     "deepest overlap 0.110 -> 0.044 m, agents over 1 cm 180 -> 33; plaza 952-1091 of 1592 out against 1017-1227"},
+     "on turn their shoulders); 0: off",
+     "measured on the dense room, the bottlenecks and the bundled plaza (docs/crowd-model.md, No step into a body): with "
+     "separationPasses 2 the dense room's deepest overlap 0.021 m and 0-9 agents over 1 cm, against 0.050 m and 19-43 without"},
     {"overtakeDensity", "1/m²", 0.0, false, 10.0, false, 1.3f,
      "a walker held up by someone slower ahead overtakes by a free lane while the crowd within 1.2 m of it is thinner than this (0: never)",
      "Fruin 1971 (levels of service D/E: passing slower people gets difficult from about 0.7 and impossible above about "
@@ -137,8 +137,8 @@ struct AvmParams {
   float wallRange = 0.02f;         ///< D_w [m]
   float passageRatio = 0.65f;      ///< body depth / shoulder breadth [1]
   float visionRange = 20.0f;       ///< H of seeAhead [m]; 0: off
-  int separationPasses = 0;        ///< position corrections after the move (separation); 0: off
-  bool noPressing = false;         ///< clampToBodies and turnDeepens (and kOnWall in pushes); false: off
+  int separationPasses = 2;        ///< position corrections after the move (separation); 0: off
+  bool noPressing = true;          ///< clampToBodies and turnDeepens (and kOnWall in pushes); false: off
   float overtakeDensity = 1.3f;    ///< local density [1/m²] below which a walker overtakes (overtaking); 0: never
 };
 
@@ -568,8 +568,12 @@ class AnticipationVelocityModel final : public OperationalModel {
     const float z = a.height(row);
     float f0 = crowd_.clearAhead(pos, z, e0, e0, range);
     if (f0 >= range) return e0;
+    // The crowd is where i is going: at its target, or at the path's corner it walks to (a door's
+    // jamb: the crowd in the doorway is passed through, not walked round — turned away by it, people
+    // at a door's mouth walked back from it along the wall, the dense room's walk-back).
     const core::Vec2 toTarget{a.targetX[row] - pos.x, a.targetY[row] - pos.y};
-    if (core::length(toTarget) < f0 + kVisionBeyond) return e0;  // the crowd is where i is going
+    if (core::length(toTarget) < f0 + kVisionBeyond) return e0;
+    if (const CornerPath& c = a.corners[row]; c.index < c.size() && core::length(c[c.index] - pos) < f0 + kVisionBeyond) return e0;
     // Walls matter only nearer than the crowd along a ray: those in the cells the ray crosses that far.
     f0 = std::min(f0, roomAlong(in, ws, pos, z, e0, f0, onWall));
     const float h = range;
@@ -1031,8 +1035,9 @@ class AnticipationVelocityModel final : public OperationalModel {
     const core::Vec2 planned = move;
     // How deep the step may take i into o's body: a body not touched closes at most half the gap
     // (o, seeing the same, the other half); one already overlapping gets no deeper. Except when i
-    // squeezes by o (kSqueezeDepth): of two merging walkers the one further along goes first (ties:
-    // the lower id; `leads`, also capped at kSqueezeSpeed), and two coming head on (desired
+    // squeezes by o (kSqueezeDepth): of two merging walkers (less than 120° apart) the one further
+    // along goes first (ties: the lower id; `leads`, also capped at kSqueezeSpeed), two crossing
+    // (more than 60° apart) may both squeeze, and two coming head on (desired
     // directions and bodies more than 120° apart) pass each other when they would be offset enough
     // to pass with shoulders turned, as the gap law lets them (gapAhead).
     // First the step loses what presses (the part along the line of centres towards o; a leader is
@@ -1047,13 +1052,16 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float squeeze = std::max(strict, kSqueezeDepth);
       const core::Vec2 ei{a.prefVelX[row], a.prefVelY[row]}, eo{lastDesiredX_[o], lastDesiredY_[o]};
       const float lead = -core::dot(d, core::normalize(ei) + core::normalize(eo));
-      const bool leads = core::dot(ei, eo) > 0.0f && (lead > 1e-4f || (lead > -1e-4f && a.id[row] < a.id[o]));
+      const bool leads = core::dot(ei, eo) > kGiveWayCos * core::length(ei) * core::length(eo) && (lead > 1e-4f || (lead > -1e-4f && a.id[row] < a.id[o]));
       const core::Vec2 w = eo - ei;  // how o moves relative to i, both walking as they want
       const float ww = core::lengthSq(w);
       const float t = ww > 1e-8f ? std::max(0.0f, -core::dot(d, w) / ww) : 0.0f;
       const bool passing = opposed(a, row, o, kGiveWayCos) && core::dot(oi, core::Vec2{a.oriX[o], a.oriY[o]}) < kGiveWayCos &&
                            core::length(d + w * t) >= p.passageRatio * l;
-      ws.nearBodies.push_back({o, d, passing ? squeeze : strict, leads || passing ? squeeze : strict, leads});
+      // Two crossing (desired directions more than 60° apart) may both squeeze by: strict, a crowd
+      // crossing every way knotted (the plaza's first waves 84 % out against 92 %; docs/crowd-model.md).
+      const bool crossing = opposed(a, row, o, kRotateCos);
+      ws.nearBodies.push_back({o, d, passing ? squeeze : strict, leads || passing || crossing ? squeeze : strict, leads});
     });
     // First: no step towards a body it would press into (the part along the line of centres goes).
     bool pressed = false;
@@ -1145,6 +1153,29 @@ class AnticipationVelocityModel final : public OperationalModel {
       const Overlap ov = overlap(a, row, o, d, oi, q);
       if (ov.depth <= 0.0f) return;
       const core::Vec2 u = ov.u, oo{a.oriX[o], a.oriY[o]};
+      // Merging (desired directions less than 90° apart): the one further along takes half with
+      // nothing against its own way, the other the whole correction — the zipper at a narrow door,
+      // where the two halves wedged two people side by side in its mouth for 5 s (docs/crowd-model.md).
+      const core::Vec2 ei{a.prefVelX[row], a.prefVelY[row]}, eo{a.prefVelX[o], a.prefVelY[o]};
+      if (core::dot(ei, eo) > 0.0f) {
+        const float lead = -core::dot(d, core::normalize(ei) + core::normalize(eo));
+        const bool leads = lead > 1e-4f || (lead > -1e-4f && a.id[row] < a.id[o]);
+        const core::Vec2 want = core::normalize(ei);
+        if (!leads) {
+          core::Vec2 mine = -u * ov.depth;
+          // Its step back is dropped as far as the leader is straight ahead (cos² of the angle between
+          // the line of centres and its desired direction): a queue does not walk backwards; side by
+          // side in a door's mouth, it makes way.
+          const float ahead = core::dot(u, want);
+          if (const float back = core::dot(mine, want); back < 0.0f) mine -= want * (back * ahead * ahead);
+          out += mine;
+          return;
+        }
+        core::Vec2 mine = -u * (kSeparationShare * ov.depth);
+        if (const float back = core::dot(mine, want); back < 0.0f) mine -= want * back;
+        out += mine;
+        return;
+      }
       const float share = kSeparationShare * ov.depth;
       core::Vec2 mine = -u * share;
       if (const float back = core::dot(mine, oi); back < 0.0f) mine -= oi * back;         // i behind o: not back
