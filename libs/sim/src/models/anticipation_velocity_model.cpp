@@ -173,6 +173,15 @@ class AvmScratch final : public ModelScratch {
 /// (givesWay); nearer head on, both slow down and step aside.
 constexpr float kGiveWayCos = -0.5f;
 
+/// Of two walkers merging (i and o, d from i to o, desired directions ei and eo), whether i is the
+/// one further along their common way: o stands behind i along the sum of their unit desired
+/// directions (within 0.1 mm: the lower id goes first). noPressing lets the leader squeeze on; the
+/// position correction has the other one yield.
+bool furtherAlong(core::Vec2 d, core::Vec2 ei, core::Vec2 eo, std::uint32_t idI, std::uint32_t idO) {
+  const float lead = -core::dot(d, core::normalize(ei) + core::normalize(eo));
+  return lead > 1e-4f || (lead > -1e-4f && idI < idO);
+}
+
 /// A standing agent pressed by others steps away at most this fast [m/s], kMakeRoomGain [m/s] per
 /// unit of push (a push of 1 is a neighbour's disc overlapping by about 0.14 m at the defaults).
 constexpr float kMakeRoomSpeed = 0.3f;
@@ -1051,8 +1060,8 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float strict = before < 0.0f ? 0.5f * before : before;
       const float squeeze = std::max(strict, kSqueezeDepth);
       const core::Vec2 ei{a.prefVelX[row], a.prefVelY[row]}, eo{lastDesiredX_[o], lastDesiredY_[o]};
-      const float lead = -core::dot(d, core::normalize(ei) + core::normalize(eo));
-      const bool leads = core::dot(ei, eo) > kGiveWayCos * core::length(ei) * core::length(eo) && (lead > 1e-4f || (lead > -1e-4f && a.id[row] < a.id[o]));
+      const bool leads = core::dot(ei, eo) > kGiveWayCos * core::length(ei) * core::length(eo) &&
+                         furtherAlong(d, ei, eo, a.id[row], a.id[o]);
       const core::Vec2 w = eo - ei;  // how o moves relative to i, both walking as they want
       const float ww = core::lengthSq(w);
       const float t = ww > 1e-8f ? std::max(0.0f, -core::dot(d, w) / ww) : 0.0f;
@@ -1158,8 +1167,7 @@ class AnticipationVelocityModel final : public OperationalModel {
       // where the two halves wedged two people side by side in its mouth for 5 s (docs/crowd-model.md).
       const core::Vec2 ei{a.prefVelX[row], a.prefVelY[row]}, eo{a.prefVelX[o], a.prefVelY[o]};
       if (core::dot(ei, eo) > 0.0f) {
-        const float lead = -core::dot(d, core::normalize(ei) + core::normalize(eo));
-        const bool leads = lead > 1e-4f || (lead > -1e-4f && a.id[row] < a.id[o]);
+        const bool leads = furtherAlong(d, ei, eo, a.id[row], a.id[o]);
         const core::Vec2 want = core::normalize(ei);
         if (!leads) {
           core::Vec2 mine = -u * ov.depth;
