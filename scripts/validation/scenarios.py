@@ -25,7 +25,7 @@ def ring_area(r_in, r_out):
     return math.pi * (r_out * r_out - r_in * r_in)
 
 
-def ring(r_in, r_out, agents, duration, slabs=12, name="ring", vertices=96, pad=0.3):
+def ring(r_in, r_out, agents, duration, slabs=12, name="ring", vertices=96, pad=0.3, aim="lane"):
     """Annulus r_in..r_out around (0, 0); agents walk counter-clockwise forever: `slabs` radial
     interest points span the width, `pad` metres short of the walls (every target on the navmesh:
     targets in its eroded margin stall agents for seconds), and each of the `slabs` populations (one
@@ -40,7 +40,8 @@ def ring(r_in, r_out, agents, duration, slabs=12, name="ring", vertices=96, pad=
         inner = (r_in + pad, r_out - pad)
         poly = [[r * c - t * s, r * s + t * c] for r, t in ((inner[0], -half), (inner[1], -half),
                                                             (inner[1], half), (inner[0], half))]
-        points.append({"id": f"slab{k}", "kind": "interest", "polygon": [[round(x, 6), round(y, 6)] for x, y in poly]})
+        points.append({"id": f"slab{k}", "kind": "interest", "aim": aim,
+                       "polygon": [[round(x, 6), round(y, 6)] for x, y in poly]})
     lap = 2 * math.pi * (r_in + r_out) / 2
     laps = int(math.ceil(SPEED_MAX * duration / lap)) + 2
     pops = []

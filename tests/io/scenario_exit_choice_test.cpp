@@ -1,4 +1,4 @@
-// Tests for exit choice in scenarios (libs/io: scenario_crowd_parser.cpp readExits /
+// Tests for exit choice in scenarios and a point's "aim" (libs/io: scenario_crowd_parser.cpp readExits /
 // readExitChoice, a point's "width", the timeline's "close" / "open", and the validator's
 // reachability of exits): good keys load into sim::PopulationDesc / PointDesc / TimelineEntry, and
 // each class of bad value gives one located diagnostic (JSON pointer, what was expected).
@@ -146,4 +146,23 @@ TEST(ScenarioExitChoice, AnUnreachableExitIsNamed) {
   text = edit(text, R"("obstacles": [)", R"("obstacles": [ [[18,7.5],[20,7.5],[20,7.7],[18,7.7]], [[18,7.5],[18.2,7.5],[18.2,10],[18,10]],)");
   const auto d = at(errorsOf(text, true), kPop + "/exits/1");
   EXPECT_EQ(d.what, "point \"east\" cannot be reached from the spawn area of population \"crowd\"");
+}
+
+TEST(ScenarioExitChoice, APointsAimLoadsOnInterestAndExitPointsOnly) {
+  // "aim": "lane" on an interest and an exit point loads; the default is spread.
+  auto r = load(edit(edit(kBottleneck, R"("radius": 0.5})", R"("radius": 0.5, "aim": "lane"})"),
+                     R"([[19,4],[20,4],[20,6],[19,6]]})", R"([[19,4],[20,4],[20,6],[19,6]], "aim": "spread"})"));
+  ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
+  EXPECT_EQ(r.value().desc.points[0].aim, sim::PointAim::Lane);
+  EXPECT_EQ(r.value().desc.points[1].aim, sim::PointAim::Spread);
+  EXPECT_EQ(load(kBottleneck).value().desc.points[0].aim, sim::PointAim::Spread);
+  // A misspelt aim is named with the expected values and a suggestion; an action point has none.
+  const auto d = at(errorsOf(edit(kBottleneck, R"("radius": 0.5})", R"("radius": 0.5, "aim": "lanes"})")), "/points/0/aim");
+  EXPECT_EQ(d.what, "unknown aim \"lanes\"");
+  EXPECT_NE(d.expected.find("\"spread\""), std::string::npos) << d.expected;
+  EXPECT_NE(d.hint.find("did you mean \"lane\"?"), std::string::npos) << d.hint;
+  const std::string action = edit(kBottleneck, R"("kind": "interest", "position": [9.5, 5], "radius": 0.5})",
+                                  R"("kind": "action", "position": [9.5, 5], "radius": 0.5, "aim": "lane"})");
+  EXPECT_EQ(at(errorsOf(action), "/points/0/aim").what, "\"aim\" only applies to interest and exit points");
+  EXPECT_FALSE(at(errorsOf(edit(kBottleneck, R"("radius": 0.5})", R"("radius": 0.5, "aim": 3})")), "/points/0/aim").what.empty());
 }

@@ -341,3 +341,74 @@ TEST(Goals, ATargetInTheNavmeshMarginLiesJustInsideTheMeshNotOnItsEdge) {
   ASSERT_TRUE(edge.has_value());
   EXPECT_GT(core::length(edge->first - core::Vec2{t.x, t.y - 0.05f}), 1e-3f) << "5 cm nearer is past the edge";
 }
+
+namespace {
+
+/// 12 walkers cross five checkpoints set across a 40 × 6 m corridor (full width, 6 m apart) aiming
+/// by `aim`, then leave by its east end. Per walker, how far across the way (y) it strayed from
+/// where it stood after the first second, the largest over its walk between the checkpoints.
+std::vector<float> strayAcrossCheckpoints(PointAim aim) {
+  ScenarioDesc d;
+  d.seed = 5;
+  d.walkable = {test::rect(0, 0, 40, 6)};
+  for (int k = 0; k < 5; ++k) {
+    PointDesc gate;
+    gate.id = "gate" + std::to_string(k);
+    const float x = 8.0f + 6.0f * static_cast<float>(k);
+    gate.polygon = test::rect(x, 0, x + 0.4f, 6);
+    gate.position = {x + 0.2f, 3};
+    gate.aim = aim;
+    d.points.push_back(gate);
+  }
+  PointDesc exit;
+  exit.id = "exit";
+  exit.kind = PointKind::Exit;
+  exit.polygon = test::rect(39.5f, 0, 40, 6);
+  exit.position = {39.75f, 3};
+  d.points.push_back(exit);
+  PopulationDesc p;
+  p.id = "walkers";
+  p.groups = 12;
+  p.spawn.polygon = test::rect(0.5f, 0.5f, 4, 5.5f);
+  p.goals = {0, 1, 2, 3, 4, 5};
+  d.populations = {p};
+  auto created = World::create(d);
+  EXPECT_TRUE(created.ok()) << core::formatAll(created.errors());
+  World& w = *created.value();
+  const core::TaskSystem tasks(1);
+  std::map<std::uint32_t, float> start, stray;
+  while (!w.finished() && w.stats().time < 60.0) {
+    w.step(tasks);
+    const FramePtr f = w.takeFrame();
+    for (std::size_t i = 0; i < f->size(); ++i) {
+      const std::uint32_t id = f->ids[i];
+      if (w.stats().time <= 1.0) start[id] = f->posY[i];
+      if (f->posX[i] > 8.0f && f->posX[i] < 32.4f) stray[id] = std::max(stray[id], std::abs(f->posY[i] - start.at(id)));
+    }
+  }
+  EXPECT_TRUE(w.finished()) << "everyone out within a minute";
+  std::vector<float> out;
+  for (const auto& [id, s] : stray) out.push_back(s);
+  return out;
+}
+
+float mean(const std::vector<float>& v) {
+  float s = 0.0f;
+  for (const float x : v) s += x;
+  return v.empty() ? 0.0f : s / static_cast<float>(v.size());
+}
+
+}  // namespace
+
+TEST(Goals, WalkersAimingAtCheckpointsByLaneKeepTheirPlaceAcrossTheWay) {
+  // "aim": "lane" — each checkpoint is aimed at where the way from the previous one, moved across to
+  // the walker, crosses it, so nobody crosses the corridor between them. The default spread draws
+  // a spot anywhere across each (Musse et al.'s sub-regions): walkers weave from side to side.
+  const std::vector<float> lane = strayAcrossCheckpoints(PointAim::Lane);
+  const std::vector<float> spread = strayAcrossCheckpoints(PointAim::Spread);
+  ASSERT_EQ(lane.size(), 12u);
+  ASSERT_EQ(spread.size(), 12u);
+  EXPECT_LT(mean(lane), 0.3f);
+  EXPECT_LT(*std::max_element(lane.begin(), lane.end()), 0.8f);
+  EXPECT_GT(mean(spread), 1.0f) << "the contrast: spread spots make them cross the way";
+}

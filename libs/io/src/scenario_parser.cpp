@@ -140,7 +140,7 @@ bool ScenarioReader::readPoint(const Json& v, const std::string& ptr, sim::Point
   if (!isObject(v, ptr, "a point object {\"id\", \"kind\", \"position\"+\"radius\" or \"polygon\"}")) return false;
   checkKeys(v, ptr,
             {"id", "kind", "position", "radius", "polygon", "height", "stop", "orientation", "action", "duration", "clip",
-             "category", "width"},
+             "category", "width", "aim"},
             "a point");
   bool ok = true;
   if (auto* id = require(v, ptr, "id", "a unique non-empty string id")) {
@@ -192,6 +192,24 @@ bool ScenarioReader::readPoint(const Json& v, const std::string& ptr, sim::Point
       ok = false;
     } else {
       ok = readFloat(*x, ptr + "/width", {0.1, 100, false, "m"}, p.width) && ok;
+    }
+  }
+  if (auto* x = optional(v, "aim")) {
+    const char* expected = "\"spread\" (a spot spread over the region) or \"lane\" (where the way from the previous goal crosses it)";
+    std::string aim;
+    if (p.kind == sim::PointKind::Action) {
+      error(ptr + "/aim", "\"aim\" only applies to interest and exit points", "\"kind\": \"interest\" or \"exit\", or no \"aim\"", "", true);
+      ok = false;
+    } else if (readString(*x, ptr + "/aim", expected, aim)) {
+      if (aim == "spread") p.aim = sim::PointAim::Spread;
+      else if (aim == "lane") p.aim = sim::PointAim::Lane;
+      else {
+        const std::string match = core::closestMatch(aim, {"spread", "lane"});
+        error(ptr + "/aim", "unknown aim " + quote(aim), expected, match.empty() ? "" : "did you mean " + quote(match) + "?");
+        ok = false;
+      }
+    } else {
+      ok = false;
     }
   }
   // Action-only keys: stop, orientation, action, duration, clip (loaded by scenario_clips).

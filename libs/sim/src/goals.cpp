@@ -103,7 +103,66 @@ void GoalWriter::releaseTarget(std::size_t row) {
   }
 }
 
-core::Vec2 GoalWriter::drawTarget(std::size_t row, const PointDesc& point) {
+namespace {
+
+/// Where the line through p along the unit vector u crosses `point`'s region: the middle of the
+/// first stretch of it inside the region that does not lie wholly behind p (even-odd along the
+/// line; the last one when all do), or, when the line misses the region, the region's point nearest
+/// the line (a polygon's vertex nearest it; for a disc the point of its rim towards the line).
+core::Vec2 laneCrossing(const PointDesc& point, core::Vec2 p, core::Vec2 u) {
+  if (point.polygon.empty()) {
+    const core::Vec2 foot = p + u * core::dot(point.position - p, u);
+    const core::Vec2 off = foot - point.position;
+    const float len = core::length(off);
+    return len <= point.radius ? foot : point.position + off * (point.radius / len);
+  }
+  std::vector<float> ts;
+  const std::size_t n = point.polygon.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const core::Vec2 a = point.polygon[k], b = point.polygon[(k + 1) % n];
+    const float sa = core::cross(u, a - p), sb = core::cross(u, b - p);  // sides of the line
+    if ((sa < 0.0f) == (sb < 0.0f)) continue;
+    const float f = sa / (sa - sb);
+    ts.push_back(core::dot(a + (b - a) * f - p, u));
+  }
+  if (ts.size() >= 2) {
+    std::sort(ts.begin(), ts.end());
+    std::size_t pick = ts.size() / 2 * 2 - 2;  // the last stretch, unless one ends ahead of p
+    for (std::size_t k = 0; k + 1 < ts.size(); k += 2) {
+      if (ts[k + 1] >= 0.0f) {
+        pick = k;
+        break;
+      }
+    }
+    return p + u * (0.5f * (ts[pick] + ts[pick + 1]));
+  }
+  core::Vec2 best = point.polygon[0];
+  for (const core::Vec2 v : point.polygon) {
+    if (std::abs(core::cross(u, v - p)) < std::abs(core::cross(u, best - p))) best = v;
+  }
+  return best;
+}
+
+/// The point of `point`'s region nearest p (p itself inside it).
+core::Vec2 nearestInRegion(const PointDesc& point, core::Vec2 p) {
+  if (point.polygon.empty()) {
+    const core::Vec2 off = p - point.position;
+    const float len = core::length(off);
+    return len <= point.radius ? p : point.position + off * (point.radius / len);
+  }
+  if (core::pointInPolygon(point.polygon, p)) return p;
+  core::Vec2 best = point.polygon[0];
+  const std::size_t n = point.polygon.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const core::Vec2 c = core::closestPointOnSegment(p, point.polygon[k], point.polygon[(k + 1) % n]);
+    if (core::lengthSq(c - p) < core::lengthSq(best - p)) best = c;
+  }
+  return best;
+}
+
+}  // namespace
+
+core::Vec2 GoalWriter::drawTarget(std::size_t row, const PointDesc& point, const PointDesc* from) {
   // Sub-regions (Musse et al. §3.1.3): the target lies in a sub-region of the goal's region picked
   // by proximity and by how many agents already target it, so group members take similar but never
   // identical paths and spread over the region (an exit: over its near side, pickParams).
@@ -114,7 +173,15 @@ core::Vec2 GoalWriter::drawTarget(std::size_t row, const PointDesc& point) {
   const auto p = static_cast<std::size_t>(&point - desc.points.data());
   const std::uint32_t first = regions.subOffset[p], last = regions.subOffset[p + 1];
   core::Vec2 target = point.position;
-  if (last > first) {
+  if (point.aim == PointAim::Lane) {
+    // Its lane: the way from the goal it reached last, moved across to where the walker stands (the
+    // region's nearest point for a first goal). Between checkpoints set across a corridor or a
+    // ring, people keep their place across the way; a spot spread over each one made every walker
+    // cross the way anew at each (docs/validation.md, "Fundamental diagram in a ring").
+    const core::Vec2 here{agents.posX[row], agents.posY[row]};
+    const core::Vec2 way = from != nullptr ? point.position - from->position : core::Vec2{};
+    target = core::lengthSq(way) > 1e-12f ? laneCrossing(point, here, core::normalize(way)) : nearestInRegion(point, here);
+  } else if (last > first) {
     const std::span<const crowd::Subregion> subs(regions.subregions.data() + first, last - first);
     const std::span<const std::uint32_t> occupancy(regions.occupancy.data() + first, last - first);
     const std::size_t k = crowd::pickSubregion(subs, core::Vec2{agents.posX[row], agents.posY[row]}, occupancy, rng,
@@ -150,7 +217,7 @@ void GoalWriter::setGoal(std::size_t row, std::uint32_t cursor) {
   agents.corners[row].clear();
   agents.progressDistance[row] = 1e30f;
   if (cursor < goals.size()) {
-    const core::Vec2 t = drawTarget(row, desc.points[goals[cursor]]);
+    const core::Vec2 t = drawTarget(row, desc.points[goals[cursor]], cursor > 0 ? &desc.points[goals[cursor - 1]] : nullptr);
     agents.targetX[row] = t.x;
     agents.targetY[row] = t.y;
     agents.needPath[row] = 1;

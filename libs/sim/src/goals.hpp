@@ -70,7 +70,9 @@ struct GoalWriter {
   [[nodiscard]] GoalView view() const { return {groups, goalLists, agents.group, agents.goalCursor}; }
   /// Chooses a target inside the point's region (on the navmesh) for agent `row`: in a sub-region
   /// picked by proximity and occupancy (pickParams), which it then occupies (the old one is released).
-  core::Vec2 drawTarget(std::size_t row, const PointDesc& point);
+  /// i's target spot in `point`'s region (sub-regions, or its lane: PointDesc::aim), snapped onto
+  /// the mesh. `from`: the goal i reached last (a lane runs from its centre), null for none.
+  core::Vec2 drawTarget(std::size_t row, const PointDesc& point, const PointDesc* from = nullptr);
   /// Releases the sub-region `row` was targeting (its occupancy drops).
   void releaseTarget(std::size_t row);
   /// Points `row` at goal `cursor` of its group's active goal list (or wandering / Done past it).

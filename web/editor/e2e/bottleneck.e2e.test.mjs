@@ -57,6 +57,11 @@ test('the bottleneck from an empty page, saved and run; an invalid save only whe
     await page.press('[data-field="preMovement.min"]', 'Enter');
     await page.fill('[data-field="preMovement.max"]', '2');
     await page.press('[data-field="preMovement.max"]', 'Enter');
+    // The waypoint in the gap as a checkpoint: each walker aims at it along its own lane.
+    await page.keyboard.press('Escape');
+    await click(page, [9.5, 5]);
+    assert.deepEqual(await page.evaluate(() => window.throngEditor.sel), { layer: 'points', index: 0 });
+    await page.selectOption('[data-field=aim]', 'lane');
     // A floor plan image to trace over, 20 m wide.
     page.once('dialog', (d) => d.accept('20'));
     await page.setInputFiles('#background-file', path.join(path.dirname(new URL(import.meta.url).pathname), '../../../docs/img/museum.png'));
@@ -68,6 +73,7 @@ test('the bottleneck from an empty page, saved and run; an invalid save only whe
     assert.deepEqual(doc.obstacles, [[[9, 0], [10, 0], [10, 4.5], [9, 4.5]], [[9, 5.5], [10, 5.5], [10, 10], [9, 10]]]);
     assert.deepEqual(doc.points.map((p) => [p.id, p.kind]), [['waypoint1', 'interest'], ['exit1', 'exit']]);
     assert.deepEqual(doc.points[1].polygon, [[19, 4], [20, 4], [20, 6], [19, 6]]);
+    assert.equal(doc.points[0].aim, 'lane');
     const crowd = doc.populations[0];
     assert.deepEqual(crowd.spawn.polygon, [[1, 1], [8, 1], [8, 9], [1, 9]]);
     assert.deepEqual(crowd.goals, ['waypoint1', 'exit1']);

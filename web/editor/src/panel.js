@@ -109,6 +109,7 @@ export class Panel {
     const keys = ['kind'];
     if (Array.isArray(point.position)) keys.push('radius');
     if (point.kind === 'exit') keys.push('width');
+    if (point.kind !== 'action') keys.push('aim');
     if (point.kind === 'action') keys.push('stop', 'duration', 'action', 'clip');
     keys.push('category');
     for (const f of objectFields(this.schema, defs.point, keys)) {
@@ -133,6 +134,7 @@ export class Panel {
     point.kind = kind;
     if (kind !== 'action') for (const k of ['stop', 'orientation', 'action', 'duration', 'clip']) delete point[k];
     if (kind !== 'exit') delete point.width;
+    if (kind === 'action') delete point.aim;
     if (kind === 'action' && !point.orientation) point.orientation = [1, 0];
     this.app.commit('kind changed');
   }

@@ -26,6 +26,9 @@ enum class PointKind : std::uint8_t {
   Exit,      ///< an agent reaching its region leaves the simulation
 };
 
+/// How a walker picks its target spot inside a goal's region (PointDesc::aim).
+enum class PointAim : std::uint8_t { Spread, Lane };
+
 /// A named place in the world. Its region is a disc (`radius` around `position`) or a polygon.
 struct PointDesc {
   std::string id;
@@ -45,6 +48,11 @@ struct PointDesc {
   float width = 1.0f;
   std::string clip;        ///< Action only: motion clip (BVH) path as written in the scenario,
                            ///< relative to its directory; empty for none. io loads the clip.
+  /// How a walker aims at the region (`"aim"`): Spread (a spot spread over the region by sub-region
+  /// occupancy, Musse et al. §3.1.3) or Lane (where its line along the way from its previous goal
+  /// crosses the region: a checkpoint in a corridor or a ring, crossed where one walks). Interest
+  /// and exit points.
+  PointAim aim = PointAim::Spread;
   /// What the place is for the goal generator of the social model ("restroom", "shoes", "meeting");
   /// empty for none. Letters, digits, '_' and '-'.
   std::string category;
