@@ -231,3 +231,39 @@ TEST(Levels, AnotherFloorsEdgesAreNoWallsToWalkersBelow) {
   }
   EXPECT_NEAR(under.time, open.time, 0.3);
 }
+
+// A target drawn where the navmesh's erosion has no floor, on the upper floor of a multi-level
+// world, is put 3 cm inside the mesh on that floor, not on its edge (as on flat worlds: goals.cpp
+// kTargetInset; Goals.ATargetInTheNavmeshMarginLiesJustInsideTheMeshNotOnItsEdge). Red when the
+// multi-level branch snaps to the nearest point only (the target then lies on the edge).
+TEST(Levels, ATargetInTheNavmeshMarginOfAnUpperFloorLiesJustInsideTheMesh) {
+  sim::ScenarioDesc d;
+  d.seed = 3;
+  d.dt = 0.1f;
+  d.terrain = twoFloors();
+  sim::PointDesc edge = exitAt("edge", 9.5f, 10.5f, 0.0f, 0.06f, 3.0f);  // wholly in the margin along y = 0
+  edge.kind = sim::PointKind::Interest;
+  d.points = {edge};
+  d.populations = {walkers("upstairs", 1, {{9, 4}, {11, 4}, {11, 6}, {9, 6}}, 3.0f, 0)};
+  auto created = sim::World::create(d);
+  ASSERT_TRUE(created.ok()) << core::formatAll(created.errors());
+  sim::World& w = *created.value();
+  core::TaskSystem tasks(1);
+  w.step(tasks);
+  const auto info = w.agentInfo(0);
+  ASSERT_TRUE(info.has_value());
+  EXPECT_NEAR(info->targetHeight, 3.0f, 0.05f) << "on the upper floor";
+  const nav::NavQuery query(std::shared_ptr<const nav::NavMesh>(std::shared_ptr<const void>{}, &w.navMesh()));
+  const core::Vec2 t = info->target;
+  const auto on = query.snap(t, 3.0f, 0.1f);
+  ASSERT_TRUE(on.has_value());
+  EXPECT_LT(core::length(on->p - t), 1e-4f) << "the target is on the mesh: " << t.x << ", " << t.y;
+  EXPECT_NEAR(on->height, 3.0f, 0.05f);
+  const core::Vec2 nearer{t.x, t.y - 0.02f}, past{t.x, t.y - 0.05f};
+  const auto below = query.snap(nearer, 3.0f, 0.1f);
+  ASSERT_TRUE(below.has_value());
+  EXPECT_LT(core::length(below->p - nearer), 1e-4f) << "2 cm nearer the wall is still floor";
+  const auto edgeHit = query.snap(past, 3.0f, 0.1f);
+  ASSERT_TRUE(edgeHit.has_value());
+  EXPECT_GT(core::length(edgeHit->p - past), 1e-3f) << "5 cm nearer is past the edge";
+}

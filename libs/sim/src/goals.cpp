@@ -94,6 +94,19 @@ std::optional<core::Vec2> nearestInside(const nav::NavQuery& query, core::Vec2 t
   return again && core::lengthSq(again->first - in) < 1e-8f ? in : edge;
 }
 
+/// The same on a multi-level mesh: the point nearest `target` at about `height` (NavQuery::snap),
+/// kTargetInset inside the edge on the same floor when `target` lies off the mesh.
+std::optional<nav::MeshPoint> snapInside(const nav::NavQuery& query, core::Vec2 target, float height, float radius) {
+  const auto hit = query.snap(target, height, radius);
+  if (!hit) return std::nullopt;
+  const core::Vec2 off = hit->p - target;
+  const float d = core::length(off);
+  if (d < 1e-4f) return hit;
+  const core::Vec2 in = hit->p + off * (kTargetInset / d);
+  const auto again = query.snap(in, hit->height, 2.0f * kTargetInset);
+  return again && core::lengthSq(again->p - in) < 1e-8f ? again : hit;
+}
+
 }  // namespace
 
 void GoalWriter::releaseTarget(std::size_t row) {
@@ -192,8 +205,8 @@ core::Vec2 GoalWriter::drawTarget(std::size_t row, const PointDesc& point, const
   }
   if (agents.levels) {
     // Multi-level world: the point's height picks the floor the target is snapped onto.
-    auto hit = query.snap(target, point.height, 3.0f);
-    if (!hit) hit = query.snap(point.position, point.height, 10.0f);
+    auto hit = snapInside(query, target, point.height, 3.0f);
+    if (!hit) hit = snapInside(query, point.position, point.height, 10.0f);
     agents.setTargetHeight(row, hit ? hit->height : point.height);
     return hit ? hit->p : target;
   }
