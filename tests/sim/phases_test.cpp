@@ -288,6 +288,49 @@ TEST(Phases, DecideExitsActsAndChecksProgressRowByRow) {
   EXPECT_TRUE(chunk.pendingRows.empty());
 }
 
+TEST(Phases, DecideReplansAWalkerOffTheFloorItsPathIsOn) {
+  // A multi-level world's corners carry their floors' heights. Rows 0-2 walk the leg from a corner
+  // at (6, 5) on the ground (z 0) to one at (12, 5) on the floor above (z 3), a ramp, standing
+  // half-way (x 9): there the path is at z 1.5. Row 0 is on the ramp (z 1.5), row 1 on the ground
+  // beneath it (z 0: pushed off), row 2 beneath it too but its corners came without heights. Rows 3
+  // and 4 walk to their first corner, (9, 5) at z 3, from the ground: row 3 stands under it, row 4
+  // is still 3 m short. Those off their path's floor re-plan: rows 1 and 3.
+  ScenarioDesc desc;
+  desc.dt = 0.05f;
+  desc.populations.emplace_back();
+  PointDesc goal;
+  goal.position = {18, 5};
+  goal.radius = 1.0f;
+  desc.points = {goal};
+  const std::vector<std::vector<std::uint32_t>> goalLists{{0}};
+  AgentStore a;
+  a.levels = true;
+  const float xs[] = {9.0f, 9.0f, 9.0f, 9.1f, 6.0f}, zs[] = {1.5f, 0.0f, 0.0f, 0.0f, 0.0f};
+  for (std::uint32_t r = 0; r < 5; ++r) {
+    a.addRow();
+    a.id[r] = 5 * r;  // (tick + id) a multiple of the 5-tick sight period, of the 80-tick progress period never
+    a.posX[r] = xs[r];
+    a.posY[r] = 5.0f;
+    a.posZ[r] = zs[r];
+    a.targetX[r] = 18.0f;
+    a.targetY[r] = 5.0f;
+    a.targetZ[r] = 3.0f;
+    a.radius[r] = 0.25f;
+    a.progressDistance[r] = 1e30f;
+    const bool ramp = r < 3;
+    a.corners[r].assign(ramp ? std::vector<core::Vec2>{{6, 5}, {12, 5}} : std::vector<core::Vec2>{{9, 5}});
+    a.corners[r].index = ramp ? 1 : 0;
+    a.cornerZ[r] = ramp ? std::vector<float>{0.0f, 3.0f} : std::vector<float>{3.0f};
+  }
+  a.cornerZ[2].clear();
+  decideOnce(desc, a, goalLists, 100);
+  EXPECT_EQ(a.needPath[0], 0u) << "on the ramp, where its path is";
+  EXPECT_EQ(a.needPath[1], 1u) << "1.5 m below its path: re-plans";
+  EXPECT_EQ(a.needPath[2], 0u) << "corners without heights are not checked";
+  EXPECT_EQ(a.needPath[3], 1u) << "at its first corner, a floor below it";
+  EXPECT_EQ(a.needPath[4], 0u) << "short of its first corner: not judged yet";
+}
+
 TEST(Phases, DecideLetsAWalkerHeldUpNextToAnActionPointWatchFromThere) {
   // An action point of radius 0.5 m at (10, 8) whose spots are taken: row 0 is held up (stuck for
   // 2 s) 1.2 m from its centre, within the point's area + 1 m, and starts the action where it

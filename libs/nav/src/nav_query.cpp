@@ -83,8 +83,10 @@ bool rayStaysOnMesh(const dtNavMeshQuery& query, const dtQueryFilter& filter, dt
 }
 
 PathStatus straighten(const dtNavMeshQuery& query, const float start[3], const float end[3],
-                      const dtPolyRef* path, int pathCount, bool partial, std::vector<Vec2>& corners) {
+                      const dtPolyRef* path, int pathCount, bool partial, std::vector<Vec2>& corners,
+                      std::vector<float>* heights) {
   corners.clear();
+  if (heights != nullptr) heights->clear();
   if (pathCount <= 0) return PathStatus::Failed;
   float target[3];
   dtVcopy(target, end);
@@ -100,7 +102,13 @@ PathStatus straighten(const dtNavMeshQuery& query, const float start[3], const f
   if (dtStatusFailed(status) || count == 0) return PathStatus::Failed;
   corners.reserve(static_cast<std::size_t>(count));
   for (int i = 1; i < count; ++i) corners.push_back(fromRecast(&straight[i * 3]));
-  if (corners.empty()) corners.push_back(fromRecast(target));  // start and target coincide
+  if (heights != nullptr) {
+    for (int i = 1; i < count; ++i) heights->push_back(straight[i * 3 + 1]);
+  }
+  if (corners.empty()) {  // start and target coincide
+    corners.push_back(fromRecast(target));
+    if (heights != nullptr) heights->push_back(target[1]);
+  }
   return (partial || dtStatusDetail(status, DT_BUFFER_TOO_SMALL)) ? PathStatus::Partial : PathStatus::Complete;
 }
 

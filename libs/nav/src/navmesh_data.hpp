@@ -82,8 +82,10 @@ dtPolyRef snap(const dtNavMeshQuery& query, const dtQueryFilter& filter, Vec2 p,
                const float extents[3], float snapped[3]);
 
 /// String-pulls a polygon corridor from `start` (on path[0]) toward `end` into corners (start
-/// excluded). `partial` is whether the corridor failed to reach the target polygon.
+/// excluded). `partial` is whether the corridor failed to reach the target polygon. `heights`, when
+/// given, gets each corner's height [m] (the floor it is on, on a layered mesh).
 PathStatus straighten(const dtNavMeshQuery& query, const float start[3], const float end[3],
-                      const dtPolyRef* path, int pathCount, bool partial, std::vector<Vec2>& corners);
+                      const dtPolyRef* path, int pathCount, bool partial, std::vector<Vec2>& corners,
+                      std::vector<float>* heights = nullptr);
 
 }  // namespace throng::nav::detail

@@ -95,7 +95,7 @@ struct Searcher {
     const dtStatus status = query->finalizeSlicedFindPath(polys.data(), &count, detail::kMaxPathPolys);
     if (dtStatusFailed(searchStatus) || dtStatusFailed(status) || count == 0) return result;
     const bool partial = dtStatusDetail(status, DT_PARTIAL_RESULT) || polys[count - 1] != endRef;
-    result.status = detail::straighten(*query, start, end, polys.data(), count, partial, result.corners);
+    result.status = detail::straighten(*query, start, end, polys.data(), count, partial, result.corners, &result.heights);
     return result;
   }
 };

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <span>
 #include <type_traits>
@@ -117,6 +118,9 @@ struct AgentStore {
   bool levels = false;
   std::vector<float> posZ;     ///< height of the floor under the agent [m] (from its navmesh polygon)
   std::vector<float> targetZ;  ///< height of the floor the target is on [m]: picks the level for paths
+  /// Height of the floor each of `corners` is on [m], as plan found the path (empty when the corners
+  /// came from elsewhere: a Bézier path, a guide); a corner is reached only on its floor (steer.cpp).
+  std::vector<std::vector<float>> cornerZ;
   // Formation (only when some population has flocking groups of two or more).
   bool formation = false;
   std::vector<float> formVelX, formVelY;  ///< formation correction from the group pass [m/s]
@@ -171,6 +175,13 @@ struct AgentStore {
   /// Height difference [m] below which two things are on the same level (a step is 0.35 m at most;
   /// floors are 2 m or more apart).
   static constexpr float kSameLevel = 1.2f;
+  /// The height of the floor corner k of the row's path is on [m]; NaN when not known (a flat world,
+  /// or corners that did not come from plan).
+  [[nodiscard]] float cornerHeight(std::size_t row, std::uint32_t k) const {
+    if (!levels) return std::numeric_limits<float>::quiet_NaN();
+    const std::vector<float>& z = cornerZ[row];
+    return z.size() == corners[row].size() && k < z.size() ? z[k] : std::numeric_limits<float>::quiet_NaN();
+  }
   [[nodiscard]] std::uint32_t followedAgent(std::size_t row) const { return sociological ? followAgent[row] : kNoAgent; }
   [[nodiscard]] std::uint32_t coordinationOf(std::size_t row) const { return commonGround ? coordination[row] : kNoIndex; }
   [[nodiscard]] bool scriptWalking(std::size_t row) const { return commonGround && scriptWalk[row] != 0; }
@@ -185,7 +196,7 @@ struct AgentStore {
     f(goalState); f(goalCursor); f(targetX); f(targetY); f(targetDraws); f(needPath); f(ticket); f(polyRef);
     f(corners); f(actionEndTick); f(progressDistance); f(stuckTime);
     f(animClip); f(animPhase); f(goalPending); f(targetSub); f(dynamicTarget);
-    if (levels) { f(posZ); f(targetZ); }
+    if (levels) { f(posZ); f(targetZ); f(cornerZ); }
     if (toxic) f(dose);
     if (formation) { f(formVelX); f(formVelY); }
     if (sociological) { f(followAgent); f(followUntil); f(sociologicalEffect); f(sociologicalOther); }

@@ -73,6 +73,7 @@ struct RowDecision {
   void reachGoal(const GroupState& g);
   void checkProgress(float minDistance);
   void checkSight();
+  void checkFloor();
   void meetOthers(const SociologicalDesc& social);
 };
 
@@ -192,6 +193,36 @@ void RowDecision::checkSight() {
   if (!onCourse({a.velX[row], a.velY[row]}, aim - pos) && !query.visible(pos, aim)) out.needPath[row] = 1;
 }
 
+void RowDecision::checkFloor() {
+  // Multi-level worlds: corners are followed in the plane, so a walker pushed off a stair onto the
+  // floor it runs over walked on the wrong floor to the point under the stair's top and on, until
+  // it stood and was found stuck (docs/crowd-model.md, the department store). The path's corners
+  // carry their floors' heights (plan): an agent more than kSameLevel off the height its path has
+  // where it stands — between the corner passed and the one it walks to, or at the first corner
+  // that corner's — re-plans from where it is, every kSightCheckPeriod.
+  const AgentStore& a = in.agents;
+  if (!a.levels || a.ticket[row] != 0 || out.needPath[row] != 0) return;
+  if ((in.tick + a.id[row]) % sightEvery != 0) return;
+  const CornerPath& corners = a.corners[row];
+  const std::uint32_t ci = corners.index;
+  if (ci >= corners.size()) return;
+  const float at = a.cornerHeight(row, ci);
+  if (std::isnan(at)) return;
+  const core::Vec2 pos{a.posX[row], a.posY[row]};
+  float expected = at;
+  if (ci > 0) {
+    const core::Vec2 from = corners[ci - 1], leg = corners[ci] - from;
+    const float len2 = core::lengthSq(leg);
+    const float t = len2 > 1e-8f ? std::clamp(core::dot(pos - from, leg) / len2, 0.0f, 1.0f) : 1.0f;
+    const float before = a.cornerHeight(row, ci - 1);
+    expected = before + (at - before) * t;
+  } else {
+    const float reach = in.desc.steering.cornerReach;
+    if (core::lengthSq(corners[0] - pos) >= reach * reach) return;  // the first leg: at its corner only
+  }
+  if (std::abs(a.posZ[row] - expected) >= AgentStore::kSameLevel) out.needPath[row] = 1;
+}
+
 void RowDecision::seekWanderTarget(const GroupState& g) {
   const PopulationDesc& pop = in.desc.populations[g.population];
   // A flocking group wanders to one shared point: close enough is within the group's width.
@@ -224,6 +255,7 @@ void RowDecision::seekGoal(const GroupState& g) {
   }
   if (!arrived) {
     checkSight();
+    checkFloor();
     checkProgress(-1e30f);
     return;
   }

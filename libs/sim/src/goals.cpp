@@ -432,6 +432,7 @@ void GoalWriter::bezierPath(std::size_t row) {
   crowd::sample(curve->points, 0.1f, points);
   if (!points.empty() && core::lengthSq(points.front() - from) < 1e-6f) points.erase(points.begin());
   agents.corners[row].assign(points);
+  if (agents.levels) agents.cornerZ[row].clear();  // not plan's: no heights
   agents.needPath[row] = 0;
 }
 

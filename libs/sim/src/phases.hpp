@@ -244,6 +244,7 @@ struct PlanOutput {
   std::span<CornerPath> corners;        ///< the corners of a path that arrived
   nav::PathQueue& pathQueue;            ///< requests in, kPathIterationsPerTick node expansions spent
   std::vector<Event>& events;           ///< PathPartial
+  std::span<std::vector<float>> cornerZ = {};  ///< the corners' floor heights; empty on a flat world
 };
 
 /// Detour node expansions the plan phase may spend per tick (time-slicing, as dtPathQueue).

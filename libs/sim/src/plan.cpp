@@ -46,6 +46,7 @@ void plan(const PlanInput& in, const PlanOutput& out) {
       out.events.push_back({in.tick, in.id[row], EventKind::PathPartial, in.goals.currentGoalPoint(row), 0});
     }
     out.corners[row].assign(result.corners);
+    if (!out.cornerZ.empty()) out.cornerZ[row] = std::move(result.heights);
   }
 }
 

@@ -200,7 +200,7 @@ void World::Impl::plan(const core::TaskSystem& tasks) {
   }
   sim::plan(PlanInput{tick, agents.id, agents.population, agents.posX, agents.posY, agents.targetX, agents.targetY, agents.posZ,
                       agents.targetZ, goalView(), &tasks},
-            PlanOutput{agents.needPath, agents.ticket, agents.corners, *pathQueue, pendingEvents});
+            PlanOutput{agents.needPath, agents.ticket, agents.corners, *pathQueue, pendingEvents, agents.cornerZ});
 }
 
 void World::Impl::steer(const core::TaskSystem& tasks) {

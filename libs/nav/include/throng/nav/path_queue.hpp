@@ -25,6 +25,7 @@ enum class TicketState : std::uint8_t { Unknown, Pending, Done };
 struct PathResult {
   PathStatus status = PathStatus::Failed;
   std::vector<Vec2> corners;
+  std::vector<float> heights;  ///< each corner's height [m]: the floor it is on (0 on a flat mesh)
 };
 
 class PathQueue {
