@@ -161,6 +161,16 @@ TEST(Goals, AgentsInFrontOfOneEndOfALongExitStripLeaveNearStraightAhead) {
 
 namespace {
 
+/// An exit point "exit" over the rectangle x0..x1 × y0..y1.
+PointDesc exitOver(float x0, float y0, float x1, float y1) {
+  PointDesc exit;
+  exit.id = "exit";
+  exit.kind = PointKind::Exit;
+  exit.polygon = test::rect(x0, y0, x1, y1);
+  exit.position = {(x0 + x1) / 2, (y0 + y1) / 2};
+  return exit;
+}
+
 /// A 30 × 20 m hall: three interest stands (discs at x = 15) and the east wall as exit; `groups`
 /// groups of `size` pick a stand by `choice` (options: the stands, slot 0), then leave.
 ScenarioDesc standsHall(std::uint32_t groups, std::uint32_t size, GoalSplit split, std::vector<float> shares) {
@@ -174,12 +184,7 @@ ScenarioDesc standsHall(std::uint32_t groups, std::uint32_t size, GoalSplit spli
     stand.radius = 1.5f;
     d.points.push_back(stand);
   }
-  PointDesc exit;
-  exit.id = "exit";
-  exit.kind = PointKind::Exit;
-  exit.polygon = test::rect(29.5f, 0, 30, 20);
-  exit.position = {29.75f, 10};
-  d.points.push_back(exit);
+  d.points.push_back(exitOver(29.5f, 0, 30, 20));
   PopulationDesc p;
   p.id = "visitors";
   p.groups = groups;
@@ -360,12 +365,7 @@ std::vector<float> strayAcrossCheckpoints(PointAim aim) {
     gate.aim = aim;
     d.points.push_back(gate);
   }
-  PointDesc exit;
-  exit.id = "exit";
-  exit.kind = PointKind::Exit;
-  exit.polygon = test::rect(39.5f, 0, 40, 6);
-  exit.position = {39.75f, 3};
-  d.points.push_back(exit);
+  d.points.push_back(exitOver(39.5f, 0, 40, 6));
   PopulationDesc p;
   p.id = "walkers";
   p.groups = 12;
