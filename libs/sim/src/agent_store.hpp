@@ -119,7 +119,8 @@ struct AgentStore {
   std::vector<float> posZ;     ///< height of the floor under the agent [m] (from its navmesh polygon)
   std::vector<float> targetZ;  ///< height of the floor the target is on [m]: picks the level for paths
   /// Height of the floor each of `corners` is on [m], as plan found the path (empty when the corners
-  /// came from elsewhere: a Bézier path, a guide); a corner is reached only on its floor (steer.cpp).
+  /// came from elsewhere: a Bézier path); a walker off the height its path has where it stands
+  /// re-plans (decide.cpp, checkFloor).
   std::vector<std::vector<float>> cornerZ;
   // Formation (only when some population has flocking groups of two or more).
   bool formation = false;
