@@ -80,22 +80,9 @@ namespace {
 /// corner it can see; NIST 2.9, session 41).
 constexpr float kTargetInset = 0.03f;
 
-/// The mesh point nearest `target` within `radius`, kTargetInset inside the edge when `target`
-/// lies off the mesh (and the point that far in is on it), else the nearest point itself.
-std::optional<core::Vec2> nearestInside(const nav::NavQuery& query, core::Vec2 target, float radius) {
-  const auto hit = query.nearest(target, radius);
-  if (!hit) return std::nullopt;
-  const core::Vec2 edge = hit->first;
-  const core::Vec2 off = edge - target;
-  const float d = core::length(off);
-  if (d < 1e-4f) return edge;  // on the mesh already
-  const core::Vec2 in = edge + off * (kTargetInset / d);
-  const auto again = query.nearest(in, 2.0f * kTargetInset);
-  return again && core::lengthSq(again->first - in) < 1e-8f ? in : edge;
-}
-
-/// The same on a multi-level mesh: the point nearest `target` at about `height` (NavQuery::snap),
-/// kTargetInset inside the edge on the same floor when `target` lies off the mesh.
+/// The mesh point nearest `target` within `radius` at about `height` (NavQuery::snap: the floor on a
+/// multi-level mesh, the nearest point on a flat one), kTargetInset inside the edge on the same
+/// floor when `target` lies off the mesh (and the point that far in is on it).
 std::optional<nav::MeshPoint> snapInside(const nav::NavQuery& query, core::Vec2 target, float height, float radius) {
   const auto hit = query.snap(target, height, radius);
   if (!hit) return std::nullopt;
@@ -104,7 +91,8 @@ std::optional<nav::MeshPoint> snapInside(const nav::NavQuery& query, core::Vec2 
   if (d < 1e-4f) return hit;
   const core::Vec2 in = hit->p + off * (kTargetInset / d);
   const auto again = query.snap(in, hit->height, 2.0f * kTargetInset);
-  return again && core::lengthSq(again->p - in) < 1e-8f ? again : hit;
+  if (!again || core::lengthSq(again->p - in) >= 1e-8f) return hit;
+  return nav::MeshPoint{in, again->height, again->ref};
 }
 
 }  // namespace
@@ -203,16 +191,11 @@ core::Vec2 GoalWriter::drawTarget(std::size_t row, const PointDesc& point, const
     agents.targetSub[row] = static_cast<std::int32_t>(first + k);
     ++regions.occupancy[first + k];
   }
-  if (agents.levels) {
-    // Multi-level world: the point's height picks the floor the target is snapped onto.
-    auto hit = snapInside(query, target, point.height, 3.0f);
-    if (!hit) hit = snapInside(query, point.position, point.height, 10.0f);
-    agents.setTargetHeight(row, hit ? hit->height : point.height);
-    return hit ? hit->p : target;
-  }
-  if (auto hit = nearestInside(query, target, 3.0f)) return *hit;
-  if (auto hit = nearestInside(query, point.position, 10.0f)) return *hit;
-  return target;
+  // On a multi-level world the point's height picks the floor the target is snapped onto.
+  auto hit = snapInside(query, target, point.height, 3.0f);
+  if (!hit) hit = snapInside(query, point.position, point.height, 10.0f);
+  if (agents.levels) agents.setTargetHeight(row, hit ? hit->height : point.height);
+  return hit ? hit->p : target;
 }
 
 void GoalWriter::setGoal(std::size_t row, std::uint32_t cursor) {
