@@ -110,7 +110,7 @@ TEST(RowOrder, AgentsRemovedByIdFromSortedRowsAreTheOnesNamed) {
   EXPECT_EQ(exits, gone.size());
 }
 
-TEST(RowOrder, AutoSortsFromTwentyThousandAgents) {
+TEST(RowOrder, AutoSortsFromFiveThousandAgents) {
   // A plain crowd a little over the threshold, and the same crowd a little under it.
   for (const std::uint32_t people : {static_cast<std::uint32_t>(kSpatialRowsMinAgents + 500),
                                      static_cast<std::uint32_t>(kSpatialRowsMinAgents - 500)}) {

@@ -86,6 +86,9 @@ struct AgentStore {
   std::vector<float> prefVelX, prefVelY;  ///< written by steer: the preferred (desired) velocity, not yet relaxed
   std::vector<float> newVelX, newVelY;    ///< written by steer (ORCA result), committed by integrate
   std::vector<std::uint8_t> holdHeading;  ///< written by steer (the model): 1 keeps the heading this tick
+  /// written by steer (avm): the look ahead's last choice, a turn of that many 15° steps from the
+  /// desired direction, kept between looks (anticipation_velocity_model.cpp, kLookPeriod)
+  std::vector<std::int8_t> lookTurn;
   std::vector<float> oriX, oriY;          ///< unit heading
   std::vector<float> radius;              ///< body radius [m]
   std::vector<float> speed;               ///< desired walking speed [m/s]
@@ -192,7 +195,7 @@ struct AgentStore {
   template <class F>
   void forEachColumn(F&& f) {
     f(id); f(group); f(population); f(groupSize);
-    f(posX); f(posY); f(velX); f(velY); f(prefVelX); f(prefVelY); f(newVelX); f(newVelY); f(holdHeading);
+    f(posX); f(posY); f(velX); f(velY); f(prefVelX); f(prefVelY); f(newVelX); f(newVelY); f(holdHeading); f(lookTurn);
     f(oriX); f(oriY); f(radius); f(speed); f(mode);
     f(goalState); f(goalCursor); f(targetX); f(targetY); f(targetDraws); f(needPath); f(ticket); f(polyRef);
     f(corners); f(actionEndTick); f(progressDistance); f(stuckTime);

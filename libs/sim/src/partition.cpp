@@ -1,6 +1,6 @@
 // partition — the steer phase shared between copies of one world (partition.hpp). Reads the
 // agents' positions and the previous owners; writes the strip cuts, this tick's owner of every
-// row, and, after the exchange, the steer outputs (prefVel, newVel, corner index, holdHeading) of the rows
+// row, and, after the exchange, the steer outputs (prefVel, newVel, corner index, holdHeading, lookTurn) of the rows
 // other ranks own. Every rank computes the same owners from the same replicated state, so the
 // blocks carry no ids: rank q's block holds the records of q's rows in ascending row order.
 #include <algorithm>
@@ -69,7 +69,7 @@ void World::Impl::assignOwners() {
 void World::Impl::exchangeSteer() {
   const std::uint32_t ranks = partition.exchange->ranks();
   const std::uint32_t me = partition.exchange->rank();
-  // Pack: prefVelX, prefVelY, newVelX, newVelY, corner index, holdHeading, per owned row in row order.
+  // Pack: prefVelX, prefVelY, newVelX, newVelY, corner index, holdHeading, lookTurn, per owned row in row order.
   partition.steerSend.resize(partition.ownedRows.size() * kSteerRecordBytes);
   std::byte* out = partition.steerSend.data();
   for (const std::uint32_t row : partition.ownedRows) {
@@ -77,6 +77,7 @@ void World::Impl::exchangeSteer() {
     std::memcpy(out, v, sizeof v);
     std::memcpy(out + sizeof v, &agents.corners[row].index, sizeof(std::uint32_t));
     out[sizeof v + sizeof(std::uint32_t)] = static_cast<std::byte>(agents.holdHeading[row]);
+    out[sizeof v + sizeof(std::uint32_t) + 1] = static_cast<std::byte>(agents.lookTurn[row]);
     out += kSteerRecordBytes;
   }
   partition.steerSizes.assign(ranks, 0);
@@ -109,6 +110,7 @@ void World::Impl::exchangeSteer() {
     agents.newVelY[row] = v[3];
     std::memcpy(&agents.corners[row].index, in + sizeof v, sizeof(std::uint32_t));
     agents.holdHeading[row] = static_cast<std::uint8_t>(in[sizeof v + sizeof(std::uint32_t)]);
+    agents.lookTurn[row] = static_cast<std::int8_t>(in[sizeof v + sizeof(std::uint32_t) + 1]);
     cursor[owner] = in + kSteerRecordBytes;
   }
   for (std::uint32_t r = 0; r < ranks; ++r) THRONG_ASSERT(r == me || cursor[r] == blockEnd[r]);

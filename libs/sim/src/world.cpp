@@ -211,7 +211,7 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
   const std::size_t n = partitioned ? partition.ownedRows.size() : agents.size();
   std::array<const OperationalModel*, kModelCount> inUse{};
   for (std::size_t m = 0; m < kModelCount; ++m) inUse[m] = models[m].get();
-  const ModelInput model{agents, walls, desc, viewers};
+  const ModelInput model{agents, walls, desc, viewers, tick};
   for (auto& m : models) {
     if (m) m->beginStep(model);
   }
@@ -219,7 +219,7 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
                       agents.posX, agents.posY, agents.posZ, agents.polyRef, agents.speed, agents.targetX, agents.targetY,
                       agents.goalState, agents.scriptWalk, agents.dynamicTarget, agents.formVelX, agents.formVelY,
                       agents.stuckTime, goalView(), RowRange{list, 0, n}, inUse, model};
-  const SteerOutput out{agents.prefVelX, agents.prefVelY, agents.corners, {agents.newVelX, agents.newVelY, agents.holdHeading}, scratch};
+  const SteerOutput out{agents.prefVelX, agents.prefVelY, agents.corners, {agents.newVelX, agents.newVelY, agents.holdHeading, agents.lookTurn}, scratch};
   sim::steer(in, out, tasks);
 }
 
@@ -259,15 +259,31 @@ void World::Impl::separate(const core::TaskSystem& tasks) {
   const std::size_t n = agents.size();
   sepX.assign(n, 0.0f);
   sepY.assign(n, 0.0f);
-  const ModelInput model{agents, walls, desc, viewers};
+  const ModelInput model{agents, walls, desc, viewers, tick};
   const std::size_t grain = phaseGrain(n, tasks);
   const auto modelOf = [&](std::size_t row) {
     return models[static_cast<std::size_t>(desc.populations[agents.population[row]].model.kind)].get();
+  };
+  sepMoved.assign(n, 1);
+  const std::size_t k = desc.steering.maxNeighbours;
+  // Whether a pass after the first may give row another correction than the last: only when the
+  // last moved it or one of the neighbours its correction reads (else it reads the same positions).
+  const auto stirred = [&](std::size_t row) {
+    if (sepMoved[row] != 0) return true;
+    const std::uint32_t* nb = &agents.neighbours[row * k];
+    unsigned any = 0;
+    for (std::size_t j = 0; j < agents.neighbourCount[row]; ++j) any |= sepMoved[nb[j]];
+    return any != 0;
   };
   for (int pass = 0; pass < separationPasses; ++pass) {
     // Every row's share from the same positions (Jacobi): the same for any thread or rank count.
     tasks.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
       for (std::size_t row = begin; row < end; ++row) {
+        if (pass > 0 && !stirred(row)) {  // the last pass's correction again: too small to apply
+          sepX[row] = 0.0f;
+          sepY[row] = 0.0f;
+          continue;
+        }
         const OperationalModel* m = modelOf(row);
         const bool carried = agents.goalState[row] == GoalState::Riding && agents.mode[row] == AgentMode::Acting;
         const bool corrects = agents.goalState[row] != GoalState::Exited && !carried &&
@@ -281,7 +297,8 @@ void World::Impl::separate(const core::TaskSystem& tasks) {
       const nav::NavQuery& query = *scratch[static_cast<std::size_t>(tasks.workerIndex())].query;
       for (std::size_t row = begin; row < end; ++row) {
         const core::Vec2 d{sepX[row], sepY[row]};
-        if (core::lengthSq(d) < 1e-12f) continue;
+        sepMoved[row] = core::lengthSq(d) < 1e-12f ? 0 : 1;
+        if (sepMoved[row] == 0) continue;
         const core::Vec2 pos{agents.posX[row], agents.posY[row]};
         nav::PolyRef ref = agents.polyRef[row];
         const core::Vec2 next = query.moveAlongSurface(pos, pos + d, ref);  // nobody through a wall

@@ -185,6 +185,7 @@ struct World::Impl {
   /// separationPasses): that many Jacobi passes, each row's step apart slid along the navmesh.
   void separate(const core::TaskSystem& tasks);
   std::vector<float> sepX, sepY;  ///< separate's displacements of the current pass [m]
+  std::vector<std::uint8_t> sepMoved;  ///< separate: 1 for a row the last pass moved
   VerticalTransports transports;          ///< lifts and escalators (vertical_transport.hpp): after separate
   TransportRoutes transportRoutes;        ///< choosing them (transport_choice.hpp): in setGoal
   int separationPasses = 0;       ///< the most passes any population asks for (configureModels)

@@ -7,7 +7,8 @@
 // Looking ahead (visionRange, 20 m by default; 0 turns it off). First the desired direction
 // (the steer phase's preferred velocity) turns round a knot of people within the vision range that
 // stands between the walker and its target (Moussaïd, Helbing, Theraulaz 2011; seeAhead and
-// CrowdGrid below): that is e0 from here on.
+// CrowdGrid below), looked at every kLookPeriod and kept in between (AgentStore::lookTurn): that
+// is e0 from here on.
 //
 // Direction. The desired direction e0 is turned aside by
 // every neighbour j in front (not those of i's own group, whose formation steer keeps), at the point
@@ -61,7 +62,7 @@
 // their shoulders to pass a narrow door, so the default body passes 0.5 m.
 //
 // Reads the steer phase's preferred velocities, positions, velocities, headings, modes, stuck times,
-// radii, neighbours and walls; writes newVel of the rows it is given. Deterministic: one row's result depends only on the
+// radii, look turns, neighbours and walls; writes newVel, holdHeading and lookTurn of the rows it is given. Deterministic: one row's result depends only on the
 // neighbours sense found, in their order.
 #include <algorithm>
 #include <array>
@@ -158,6 +159,8 @@ class AvmScratch final : public ModelScratch {
     bool lowerId;      ///< i's id is below o's (givesWay's tie)
   };
   std::vector<NearBlocker> near;
+  std::vector<std::uint32_t> nearLane;  ///< the near ones in one direction's lane (gapAhead)
+  std::vector<std::uint32_t> lane;  ///< the neighbours a pass looks at further (pushes, gapAhead)
   /// clampToBodies: a neighbour the step may reach, and how deep it may press into it [m] while the
   /// step loses what presses (`first`) and while it is shortened (`then`).
   struct NearBody {
@@ -223,6 +226,15 @@ constexpr float kOvertakeRadius = 1.2f;  ///< [m] the circle the local density i
 constexpr int kSlipSteps = 6;                   ///< candidates each side of e0 (15° apart: ±90°)
 constexpr float kSidestepSpeed = 0.05f;         ///< the slowest sideways step worth taking [m/s]
 constexpr float kSlipStep = 0.2617994f;         ///< 15° between candidates [rad]
+
+/// Looking ahead (seeAhead) is done every kLookPeriod seconds [s], the agents taking turns by id; in
+/// between, a walker keeps the turn it chose (AgentStore::lookTurn) from its desired direction as
+/// that changes. People take in a scene about three times a second (gaze fixations in natural tasks
+/// last 0.2-0.4 s: Land and Tatler 2009, "Looking and Acting", Oxford UP), and looking every tick
+/// was a sixth of avm's time at 10,000 agents (docs/performance.md).
+constexpr float kLookPeriod = 0.3f;
+/// lookTurn's "look now".
+constexpr int kLookAgain = 127;
 
 /// cos and sin of k · kSlipStep for k = −kSlipSteps … kSlipSteps (index k + kSlipSteps), worked out
 /// once with the expressions the look ahead and the slip used per walker: the same values without
@@ -544,6 +556,7 @@ class AnticipationVelocityModel final : public OperationalModel {
       params_.push_back(p);
       vision_ = std::max(vision_, p.visionRange);
     }
+    lookPeriod_ = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::floor(kLookPeriod / desc.dt + 1e-4f)));
   }
 
   [[nodiscard]] std::unique_ptr<ModelScratch> makeScratch() const override { return std::make_unique<AvmScratch>(); }
@@ -559,53 +572,80 @@ class AnticipationVelocityModel final : public OperationalModel {
     for (std::size_t i = rows.begin; i < rows.end; ++i) {
       const std::size_t row = rows.row(i);
       const AvmParams& p = params_[in.agents.population[row]];
-      const core::Vec2 v = velocity(in, row, p, ws);
+      // The look ahead's turn: worked out anew on the row's look ticks (every row when there is no
+      // column to keep it in), else the one it chose last.
+      const bool kept = !out.lookTurn.empty() && !looksNow(in, row);
+      int turn = kept ? in.agents.lookTurn[row] : kLookAgain;
+      const core::Vec2 v = velocity(in, row, p, ws, turn);
       out.x[row] = v.x;
       out.y[row] = v.y;
+      if (!out.lookTurn.empty()) out.lookTurn[row] = static_cast<std::int8_t>(turn);
       if (!out.holdHeading.empty()) out.holdHeading[row] = p.noPressing && turnDeepens(in, row, v, p) ? 1 : 0;
     }
   }
 
  private:
-  /// The desired direction after looking ahead (visionRange, CrowdGrid): e0 itself unless a crowd
-  /// closer than the vision range stands between i and its target, else the direction within ±90°
-  /// that brings i nearest its destination, walls and crowded cells limiting the view.
-  core::Vec2 seeAhead(const ModelInput& in, std::size_t row, core::Vec2 e0, float range, float onWall, AvmScratch& ws) const {
+  /// The look ahead (visionRange, CrowdGrid): 0 (e0 itself) unless a crowd closer than the vision
+  /// range stands between i and its target, else the turn k (e0 turned by k · kSlipStep, k within
+  /// ±kSlipSteps: turned(e0, k)) that brings i nearest its destination, walls and crowded cells
+  /// limiting the view.
+  int seeAhead(const ModelInput& in, std::size_t row, core::Vec2 e0, float range, float onWall, AvmScratch& ws) const {
     const AgentStore& a = in.agents;
-    if (range <= 0.0f || crowd_.empty()) return e0;
+    float f0 = 0.0f;
+    if (!crowdBetween(in, row, e0, range, f0)) return 0;
     const core::Vec2 pos{a.posX[row], a.posY[row]};
     const float z = a.height(row);
-    float f0 = crowd_.clearAhead(pos, z, e0, e0, range);
-    if (f0 >= range) return e0;
-    // The crowd is where i is going: at its target, or at the path's corner it walks to (a door's
-    // jamb: the crowd in the doorway is passed through, not walked round — turned away by it, people
-    // at a door's mouth walked back from it along the wall, the dense room's walk-back).
-    const core::Vec2 toTarget{a.targetX[row] - pos.x, a.targetY[row] - pos.y};
-    if (core::length(toTarget) < f0 + kVisionBeyond) return e0;
-    if (const CornerPath& c = a.corners[row]; c.index < c.size() && core::length(c[c.index] - pos) < f0 + kVisionBeyond) return e0;
     // Walls matter only nearer than the crowd along a ray: those in the cells the ray crosses that far.
     f0 = std::min(f0, roomAlong(in, ws, pos, z, e0, f0, onWall));
     const float h = range;
     float best = h * h + f0 * f0 - 2.0f * h * f0;
-    core::Vec2 out = e0;
+    int out = 0;
     for (int k = 1; k <= kSlipSteps; ++k) {
       // Along α the destination gets no nearer than H·sin α (seen clear to H·cos α), which only grows
       // with α up to 90°: once that cannot beat the best, no wider direction can.
       const float widest = kSlipAngles.s(k);
       if (h * h * widest * widest >= best - 1e-4f) break;
       for (const int side : {1, -1}) {  // nearer angles first, the right before the left
-        const float c = kSlipAngles.c(side * k), sn = kSlipAngles.s(side * k);
-        const core::Vec2 ec{e0.x * c - e0.y * sn, e0.x * sn + e0.y * c};
+        const core::Vec2 ec = turned(e0, side * k);
         const float crowd = crowd_.clearAhead(pos, z, ec, e0, range);
         const float f = std::min(crowd, roomAlong(in, ws, pos, z, ec, crowd, onWall));
-        const float d2 = h * h + f * f - 2.0f * h * f * c;
+        const float d2 = h * h + f * f - 2.0f * h * f * kSlipAngles.c(side * k);
         if (d2 < best - 1e-4f) {
           best = d2;
-          out = ec;
+          out = side * k;
         }
       }
     }
     return out;
+  }
+
+  /// Whether a crowd closer than `range` along e0 stands between i and its target (f0: how far i
+  /// sees along e0 before it), seeAhead's first question. Not when the crowd is where i is going:
+  /// at its target, or at the path's corner it walks to (a door's jamb: the crowd in the doorway is
+  /// passed through, not walked round — turned away by it, people at a door's mouth walked back from
+  /// it along the wall, the dense room's walk-back).
+  bool crowdBetween(const ModelInput& in, std::size_t row, core::Vec2 e0, float range, float& f0) const {
+    const AgentStore& a = in.agents;
+    if (range <= 0.0f || crowd_.empty()) return false;
+    const core::Vec2 pos{a.posX[row], a.posY[row]};
+    f0 = crowd_.clearAhead(pos, a.height(row), e0, e0, range);
+    if (f0 >= range) return false;
+    const core::Vec2 toTarget{a.targetX[row] - pos.x, a.targetY[row] - pos.y};
+    if (core::length(toTarget) < f0 + kVisionBeyond) return false;
+    if (const CornerPath& c = a.corners[row]; c.index < c.size() && core::length(c[c.index] - pos) < f0 + kVisionBeyond) return false;
+    return true;
+  }
+
+  /// e turned by k · kSlipStep (k within ±kSlipSteps; positive: to the left).
+  static core::Vec2 turned(core::Vec2 e, int k) {
+    if (k == 0) return e;
+    const float c = kSlipAngles.c(k), sn = kSlipAngles.s(k);
+    return {e.x * c - e.y * sn, e.x * sn + e.y * c};
+  }
+
+  /// Whether row looks ahead this tick: once every lookPeriod_ ticks, the rows taking turns by id.
+  [[nodiscard]] bool looksNow(const ModelInput& in, std::size_t row) const {
+    return lookPeriod_ <= 1 || (static_cast<std::uint64_t>(in.agents.id[row]) + in.tick) % lookPeriod_ == 0;
   }
 
   /// room() against the walls in the cells along the ray (Walls::queryRay): the same as against every
@@ -637,11 +677,14 @@ class AnticipationVelocityModel final : public OperationalModel {
     const float roomRight = room(in, ws.wallIds, pos, side, reach, onWall) / reach;
     const float roomLeft = room(in, ws.wallIds, pos, -side, reach, onWall) / reach;
     const core::Vec2 u = e0 * v0;
-    const std::size_t k = in.desc.steering.maxNeighbours;
-    const std::uint32_t* nb = &a.neighbours[row * k];
+    // The neighbours that push: those in front and those whose discs (nearly) overlap i's; the rest
+    // is dropped first, without a branch (half of them are behind).
+    pick(in, row, ws.lane, [&](std::uint32_t o, core::Vec2 d) {
+      const float l = a.radius[row] + a.radius[o];
+      return static_cast<int>(core::dot(e0, d) > 0.0f) | static_cast<int>(core::lengthSq(d) < 1.01f * l * l);
+    });
     float sideways = 0.0f;  // the neighbours' push along side
-    for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
-      const std::uint32_t o = nb[n];
+    for (const std::uint32_t o : ws.lane) {
       const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
       const float dist = core::length(d);
       if (dist < 1e-6f) continue;
@@ -674,8 +717,12 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float threshold = oncoming ? l : 0.0f;
       const bool toLeft = lateral > threshold;
       float push = strength * (toLeft ? -roomLeft : roomRight);
-      if (std::abs(push) > 1e-3f) push *= roomToPass(in, ws, o, toLeft ? -side : side, a.radius[row], onWall);
-      sideways += push;
+      // Room to pass o (none but the wall-free figure in the open; chosen without a branch there).
+      const bool felt = std::abs(push) > 1e-3f;
+      const float pass = ws.wallIds.empty() ? roomToPass(in, ws, o, side, a.radius[row], onWall)
+                         : felt            ? roomToPass(in, ws, o, toLeft ? -side : side, a.radius[row], onWall)
+                                           : 1.0f;
+      sideways += felt ? push * pass : push;
     }
     return dir + side * sideways;
   }
@@ -687,7 +734,8 @@ class AnticipationVelocityModel final : public OperationalModel {
   static float roomToPass(const ModelInput& in, const AvmScratch& ws, std::uint32_t o, core::Vec2 dir, float radius, float onWall) {
     const AgentStore& a = in.agents;
     const float need = kPassWidths * 2.0f * radius;
-    const float beside = room(in, ws.wallIds, core::Vec2{a.posX[o], a.posY[o]}, dir, a.radius[o] + need + kPassRamp, onWall) - a.radius[o];
+    const float reach = a.radius[o] + need + kPassRamp;
+    const float beside = (ws.wallIds.empty() ? reach : room(in, ws.wallIds, core::Vec2{a.posX[o], a.posY[o]}, dir, reach, onWall)) - a.radius[o];
     return std::clamp((beside - need) / kPassRamp, 0.0f, 1.0f);
   }
 
@@ -805,15 +853,15 @@ class AnticipationVelocityModel final : public OperationalModel {
     const AgentStore& a = in.agents;
     const core::Vec2 pos{a.posX[row], a.posY[row]};
     ws.near.clear();
-    const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];
     const float tx = a.targetX[row] - pos.x, ty = a.targetY[row] - pos.y;
     const bool nearTarget = tx * tx + ty * ty < kSqueezeIn * kSqueezeIn;
-    for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
-      const std::uint32_t o = nb[n];
+    pick(in, row, ws.lane, [&](std::uint32_t o, core::Vec2 d) {
       const float l = a.radius[row] + a.radius[o];
       const float reach = limit + l + kStandingGap + 0.01f;
-      const float dx = a.posX[o] - pos.x, dy = a.posY[o] - pos.y;
-      if (dx * dx + dy * dy >= reach * reach + l * l) continue;
+      return static_cast<int>(d.x * d.x + d.y * d.y < reach * reach + l * l);
+    });
+    for (const std::uint32_t o : ws.lane) {
+      const float l = a.radius[row] + a.radius[o];
       const bool walking = a.mode[o] == AgentMode::Walking;
       if (!walking && nearTarget) continue;  // squeezing in beside someone standing at one's spot
       const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
@@ -847,7 +895,7 @@ class AnticipationVelocityModel final : public OperationalModel {
       const auto wins = [&](float v) { return beats(v, c, progress, core::length(best)); };
       if (!wins(v0)) continue;
       const core::Vec2 ec{e0.x * c - e0.y * s, e0.x * s + e0.y * c};
-      const float bodies = gapAhead(ws.near, ec, limit, p.passageRatio);
+      const float bodies = gapAhead(ws, ec, limit, p.passageRatio);
       if (!wins(std::min(v0, bodies / p.timeGap))) continue;
       const float g = std::min(bodies, room(in, ws, pos, ec, limit, p.noPressing ? kOnWall : 0.0f));
       const float v = std::min(v0, g / p.timeGap);
@@ -875,7 +923,7 @@ class AnticipationVelocityModel final : public OperationalModel {
       for (const int side : {-1, 1}) {
         const float sn = kSlipAngles.s(side * k);
         const core::Vec2 ec{e0.x * c - e0.y * sn, e0.x * sn + e0.y * c};
-        if (gapAhead(ws.near, ec, limit, p.passageRatio) < limit) continue;
+        if (gapAhead(ws, ec, limit, p.passageRatio) < limit) continue;
         if (room(in, ws, pos, ec, limit, p.noPressing ? kOnWall : 0.0f) < limit) continue;  // a wall closes this lane
         return ec * v0;
       }
@@ -893,6 +941,26 @@ class AnticipationVelocityModel final : public OperationalModel {
       const std::uint32_t o = nb[n];
       f(o, core::Vec2{a.posX[o], a.posY[o]} - pos);
     }
+  }
+
+  /// Picks out the neighbours o of i (d from i to o) for which keep(o, d) is non-zero into `into`, in
+  /// their order. The test is made for every neighbour without a branch: the passes drop half their
+  /// neighbours or more (those behind, those out of reach) at random, and branching on that was
+  /// mispredicted about as often (a tenth of avm's time at 10,000 agents).
+  template <class Keep>
+  static void pick(const ModelInput& in, std::size_t row, std::vector<std::uint32_t>& into, Keep&& keep) {
+    const AgentStore& a = in.agents;
+    const core::Vec2 pos{a.posX[row], a.posY[row]};
+    const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];
+    const std::size_t count = a.neighbourCount[row];
+    into.resize(count);
+    std::size_t kept = 0;
+    for (std::size_t n = 0; n < count; ++n) {
+      const std::uint32_t o = nb[n];
+      into[kept] = o;
+      kept += static_cast<std::size_t>(keep(o, core::Vec2{a.posX[o], a.posY[o]} - pos) != 0);
+    }
+    into.resize(kept);
   }
 
   /// A standing agent (waiting, acting, arrived) is no wall: pressed by someone whose disc overlaps
@@ -914,28 +982,22 @@ class AnticipationVelocityModel final : public OperationalModel {
 
   /// The gap i can walk along e before touching the first body ahead [m], as the gap to someone
   /// straight ahead that asks the same speed (kStaggerExponent, kStandingGap), at most `limit` (v0·T).
-  float gapAhead(const ModelInput& in, std::size_t row, core::Vec2 e, float limit, float depthRatio,
-                 std::int64_t* blocker = nullptr) const {
-    const AgentStore& a = in.agents;
-    return gapAhead(in, row, &a.neighbours[row * in.desc.steering.maxNeighbours], a.neighbourCount[row], e, limit,
-                    depthRatio, blocker);
-  }
-  /// The same against the neighbours nb[0..count).
-  float gapAhead(const ModelInput& in, std::size_t row, const std::uint32_t* nb, std::size_t count, core::Vec2 e,
-                 float limit, float depthRatio, std::int64_t* blocker = nullptr) const {
+  float gapAhead(const ModelInput& in, std::size_t row, core::Vec2 e, float limit, float depthRatio, AvmScratch& ws,
+                 std::int64_t* blocker) const {
     const AgentStore& a = in.agents;
     const core::Vec2 pos{a.posX[row], a.posY[row]};
+    // First the neighbours in i's lane ahead: in front, less than ℓ aside.
+    pick(in, row, ws.lane, [&](std::uint32_t o, core::Vec2 d) {
+      return static_cast<int>(core::dot(d, e) > 0.0f) & static_cast<int>(std::abs(core::cross(e, d)) < a.radius[row] + a.radius[o]);
+    });
     float gap = limit;
     const float tx = a.targetX[row] - pos.x, ty = a.targetY[row] - pos.y;
     const bool nearTarget = tx * tx + ty * ty < kSqueezeIn * kSqueezeIn;
-    for (std::size_t n = 0; n < count; ++n) {
-      const std::uint32_t o = nb[n];
+    for (const std::uint32_t o : ws.lane) {
       const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
       const float ahead = core::dot(d, e);
-      if (ahead <= 0.0f) continue;
       const float l = a.radius[row] + a.radius[o];
       const float lateral = core::cross(e, d);
-      if (std::abs(lateral) >= l) continue;
       if (std::abs(lateral) >= depthRatio * l && opposed(a, row, o, kRotateCos)) continue;  // shoulders turned
       if (givesWay(a, row, o, d, ahead, e)) continue;
       if (a.mode[o] != AgentMode::Walking && nearTarget) continue;  // squeezing in beside someone standing at one's spot
@@ -950,7 +1012,7 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float g = std::max(0.0f, ahead - depthRatio * l * std::sqrt(across) - kStandingGap * f);
       if (g < gap * f) {  // g / f < gap, without dividing for every neighbour
         gap = g / f;
-        if (blocker != nullptr) *blocker = o;
+        *blocker = o;
       }
     }
     return gap;
@@ -958,13 +1020,21 @@ class AnticipationVelocityModel final : public OperationalModel {
 
   /// The same against slip's near neighbours (AvmScratch::near), whose direction-free parts are
   /// worked out: the same arithmetic as above, so the same gap.
-  static float gapAhead(const std::vector<AvmScratch::NearBlocker>& near, core::Vec2 e, float limit, float depthRatio) {
+  /// The lane is picked out first without a branch per neighbour (pick).
+  static float gapAhead(AvmScratch& ws, core::Vec2 e, float limit, float depthRatio) {
+    const std::vector<AvmScratch::NearBlocker>& near = ws.near;
+    ws.nearLane.resize(near.size());
+    std::size_t inLane = 0;
+    for (std::size_t n = 0; n < near.size(); ++n) {
+      const AvmScratch::NearBlocker& b = near[n];
+      ws.nearLane[inLane] = static_cast<std::uint32_t>(n);
+      inLane += static_cast<std::size_t>(static_cast<int>(core::dot(b.d, e) > 0.0f) & static_cast<int>(std::abs(core::cross(e, b.d)) < b.l));
+    }
     float gap = limit;
-    for (const AvmScratch::NearBlocker& b : near) {
+    for (std::size_t n = 0; n < inLane; ++n) {
+      const AvmScratch::NearBlocker& b = near[ws.nearLane[n]];
       const float ahead = core::dot(b.d, e);
-      if (ahead <= 0.0f) continue;
       const float lateral = core::cross(e, b.d);
-      if (std::abs(lateral) >= b.l) continue;
       if (std::abs(lateral) >= depthRatio * b.l && b.turned) continue;  // shoulders turned
       if (b.walking && core::dot(e, b.eo) > kGiveWayCos && b.aheadOfO > 0.0f &&
           (b.aheadOfO > ahead || (b.aheadOfO == ahead && b.lowerId))) {
@@ -980,14 +1050,18 @@ class AnticipationVelocityModel final : public OperationalModel {
     return gap;
   }
 
-  core::Vec2 velocity(const ModelInput& in, std::size_t row, const AvmParams& p, AvmScratch& ws) const {
+  /// i's new velocity. `turn`: the look ahead's turn to walk by, or kLookAgain to look now; it is
+  /// left what was walked by (0 for someone standing).
+  core::Vec2 velocity(const ModelInput& in, std::size_t row, const AvmParams& p, AvmScratch& ws, int& turn) const {
     const AgentStore& a = in.agents;
     const core::Vec2 pref{a.prefVelX[row], a.prefVelY[row]};
     const float v0 = core::length(pref);
     if (v0 < 1e-6f) {  // nowhere to go: stand, but let others by — unless incapacitated (it cannot)
+      turn = 0;
       return a.goalState[row] == GoalState::Incapacitated ? core::Vec2{} : makeRoom(in, row, p);
     }
-    const core::Vec2 e0 = seeAhead(in, row, pref / v0, p.visionRange, p.noPressing ? kOnWall : 0.0f, ws);
+    if (turn == kLookAgain) turn = seeAhead(in, row, pref / v0, p.visionRange, p.noPressing ? kOnWall : 0.0f, ws);
+    const core::Vec2 e0 = turned(pref / v0, turn);
     core::Vec2 target = pushes(in, row, e0, v0, p, ws);
     const float len = core::length(target);
     if (len < 1e-6f) return {};
@@ -1017,7 +1091,7 @@ class AnticipationVelocityModel final : public OperationalModel {
       e = m > 1e-3f ? across / m : e0;
     }
     std::int64_t blocker = -1;
-    const float gap = gapAhead(in, row, e, v0 * p.timeGap, p.passageRatio, &blocker);
+    const float gap = gapAhead(in, row, e, v0 * p.timeGap, p.passageRatio, ws, &blocker);
     const float speed = std::min(v0, gap / p.timeGap);
     const auto bo = static_cast<std::uint32_t>(blocker);
     const bool crossSlip = blocker >= 0 && speed < kSlipSpeed * v0 && (opposed(a, row, bo, kSlipCos) || a.mode[bo] != AgentMode::Walking);
@@ -1158,9 +1232,8 @@ class AnticipationVelocityModel final : public OperationalModel {
     const float q = params_[a.population[row]].passageRatio;
     core::Vec2 out;
     forEachNeighbour(in, row, [&](std::uint32_t o, core::Vec2 d) {
-      if (a.goalState[o] == GoalState::Exited) return;
       const Overlap ov = overlap(a, row, o, d, oi, q);
-      if (ov.depth <= 0.0f) return;
+      if (ov.depth <= 0.0f || a.goalState[o] == GoalState::Exited) return;
       const core::Vec2 u = ov.u, oo{a.oriX[o], a.oriY[o]};
       // Merging (desired directions less than 90° apart): the one further along takes half with
       // nothing against its own way, the other the whole correction — the zipper at a narrow door,
@@ -1240,6 +1313,7 @@ class AnticipationVelocityModel final : public OperationalModel {
   float dt_ = 0.05f;
   CrowdGrid crowd_;  ///< what walkers see of the crowd ahead (beginStep), when a population looks ahead
   float vision_ = 0.0f;  ///< the longest visionRange of the populations [m]
+  std::uint64_t lookPeriod_ = 1;  ///< ticks between a walker's looks ahead (kLookPeriod)
 };
 
 }  // namespace

@@ -30,6 +30,7 @@ struct ModelInput {
   const Walls& walls;         ///< the walkable area's boundary
   const ScenarioDesc& desc;   ///< dt, steering, populations (each with its ModelDesc)
   std::span<const core::Vec2> viewers;  ///< for the level of detail (World::setViewers)
+  std::uint64_t tick = 0;               ///< the tick being steered (time-sliced work: avm's look ahead)
 
   /// Multiresolution (Musse et al. §3.2.4): an agent farther than steering.lodDistance from every
   /// viewer may be steered more cheaply (what "cheaper" means is the model's choice).
@@ -66,6 +67,9 @@ struct VelocityOutput {
   /// 1: the body keeps its heading this tick (integrate does not turn it); a model that never
   /// holds headings leaves the column alone (0).
   std::span<std::uint8_t> holdHeading;
+  /// What the model keeps of a row between ticks (AgentStore::lookTurn); a model without such
+  /// state leaves it alone.
+  std::span<std::int8_t> lookTurn;
 };
 
 /// A model's per-thread working memory (half-planes, wall ids, …), made by the model.

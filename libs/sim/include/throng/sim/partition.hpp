@@ -50,7 +50,7 @@ struct PartitionStats {
 };
 
 /// Bytes a rank sends per agent it owns and per tick: the preferred and ORCA velocities (4 floats)
-/// and the path corner index, everything steer writes.
-inline constexpr std::size_t kSteerRecordBytes = 4 * sizeof(float) + sizeof(std::uint32_t) + sizeof(std::uint8_t);
+/// the path corner index, the heading hold and the look ahead's turn: everything steer writes.
+inline constexpr std::size_t kSteerRecordBytes = 4 * sizeof(float) + sizeof(std::uint32_t) + 2 * sizeof(std::uint8_t);
 
 }  // namespace throng::sim

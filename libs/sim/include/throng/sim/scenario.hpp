@@ -480,7 +480,7 @@ inline constexpr std::size_t kMaxDescription = 1000;
 /// as they are.
 enum class RowOrder : std::uint8_t { Auto = 0, Id = 1, Spatial = 2 };
 /// RowOrder::Auto sorts rows spatially from this many agents present.
-inline constexpr std::size_t kSpatialRowsMinAgents = 20000;
+inline constexpr std::size_t kSpatialRowsMinAgents = 5000;
 /// Simulated time between two spatial sorts of the rows [s] (walkers move about 2.7 m).
 inline constexpr float kRowSortPeriod = 2.0f;
 
