@@ -717,11 +717,9 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float threshold = oncoming ? l : 0.0f;
       const bool toLeft = lateral > threshold;
       float push = strength * (toLeft ? -roomLeft : roomRight);
-      // Room to pass o (none but the wall-free figure in the open; chosen without a branch there).
+      // Room to pass o (in the open its wall-free figure, worked out for every o: no branch there).
       const bool felt = std::abs(push) > 1e-3f;
-      const float pass = ws.wallIds.empty() ? roomToPass(in, ws, o, side, a.radius[row], onWall)
-                         : felt            ? roomToPass(in, ws, o, toLeft ? -side : side, a.radius[row], onWall)
-                                           : 1.0f;
+      const float pass = felt || ws.wallIds.empty() ? roomToPass(in, ws, o, toLeft ? -side : side, a.radius[row], onWall) : 1.0f;
       sideways += felt ? push * pass : push;
     }
     return dir + side * sideways;
@@ -952,13 +950,19 @@ class AnticipationVelocityModel final : public OperationalModel {
     const AgentStore& a = in.agents;
     const core::Vec2 pos{a.posX[row], a.posY[row]};
     const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];
-    const std::size_t count = a.neighbourCount[row];
+    compact(a.neighbourCount[row], into, [&](std::size_t n) { return nb[n]; },
+            [&](std::size_t n) { return keep(nb[n], core::Vec2{a.posX[nb[n]], a.posY[nb[n]]} - pos); });
+  }
+
+  /// value(n) for the n < count for which keep(n) is non-zero, in order, into `into`: every n is
+  /// written and the end advanced by the test's result, so there is no branch per n (pick).
+  template <class Value, class Keep>
+  static void compact(std::size_t count, std::vector<std::uint32_t>& into, Value&& value, Keep&& keep) {
     into.resize(count);
     std::size_t kept = 0;
     for (std::size_t n = 0; n < count; ++n) {
-      const std::uint32_t o = nb[n];
-      into[kept] = o;
-      kept += static_cast<std::size_t>(keep(o, core::Vec2{a.posX[o], a.posY[o]} - pos) != 0);
+      into[kept] = value(n);
+      kept += static_cast<std::size_t>(keep(n) != 0);
     }
     into.resize(kept);
   }
@@ -1023,16 +1027,12 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// The lane is picked out first without a branch per neighbour (pick).
   static float gapAhead(AvmScratch& ws, core::Vec2 e, float limit, float depthRatio) {
     const std::vector<AvmScratch::NearBlocker>& near = ws.near;
-    ws.nearLane.resize(near.size());
-    std::size_t inLane = 0;
-    for (std::size_t n = 0; n < near.size(); ++n) {
-      const AvmScratch::NearBlocker& b = near[n];
-      ws.nearLane[inLane] = static_cast<std::uint32_t>(n);
-      inLane += static_cast<std::size_t>(static_cast<int>(core::dot(b.d, e) > 0.0f) & static_cast<int>(std::abs(core::cross(e, b.d)) < b.l));
-    }
+    compact(near.size(), ws.nearLane, [](std::size_t n) { return static_cast<std::uint32_t>(n); }, [&](std::size_t n) {
+      return static_cast<int>(core::dot(near[n].d, e) > 0.0f) & static_cast<int>(std::abs(core::cross(e, near[n].d)) < near[n].l);
+    });
     float gap = limit;
-    for (std::size_t n = 0; n < inLane; ++n) {
-      const AvmScratch::NearBlocker& b = near[ws.nearLane[n]];
+    for (const std::uint32_t n : ws.nearLane) {
+      const AvmScratch::NearBlocker& b = near[n];
       const float ahead = core::dot(b.d, e);
       const float lateral = core::cross(e, b.d);
       if (std::abs(lateral) >= depthRatio * b.l && b.turned) continue;  // shoulders turned
