@@ -151,5 +151,36 @@ TEST(AgentStore, RetiringMovesEveryPublishedColumnTogether) {
   EXPECT_EQ(a.radius.size(), a.size()) << "the other columns grow as usual";
 }
 
+TEST(AgentStore, PermuteMovesEveryByteOfEveryColumnToItsNewRow) {
+  AgentStore a;
+  a.commonGround = true;  // 8-byte interests and the visited lists (moved in place) too
+  constexpr std::uint32_t kRows = 7;
+  for (std::uint32_t i = 0; i < kRows; ++i) {
+    const std::size_t row = a.addRow();
+    a.id[row] = 100 + i;                                                  // 4 bytes
+    a.groupSize[row] = static_cast<std::uint16_t>(0x1100 + i);           // 2 bytes
+    a.lookTurn[row] = static_cast<std::int8_t>(-static_cast<int>(i));    // 1 byte
+    a.posX[row] = 0.25f * static_cast<float>(i);
+    a.ticket[row] = (std::uint64_t{0xabc0 + i} << 32) | (7 * i);           // 8 bytes: both halves differ
+    a.interests[row] = ~std::uint64_t{0} << i;
+    a.visited[row] = std::vector<std::uint32_t>(i, i);                   // not trivially copyable
+  }
+  const std::vector<std::uint32_t> from = {3, 0, 6, 1, 5, 2, 4};  // new row r is old row from[r]
+  std::vector<std::uint64_t> keys;
+  for (std::uint32_t r = 0; r < kRows; ++r) keys.push_back(std::uint64_t{r} << 32 | from[r]);  // key's low half: the row
+  std::vector<std::byte> scratch(4 * kRows);
+  a.permute(keys, scratch);
+  for (std::uint32_t r = 0; r < kRows; ++r) {
+    const std::uint32_t i = from[r];
+    EXPECT_EQ(a.id[r], 100 + i);
+    EXPECT_EQ(a.groupSize[r], 0x1100 + i);
+    EXPECT_EQ(a.lookTurn[r], -static_cast<int>(i));
+    EXPECT_EQ(a.posX[r], 0.25f * static_cast<float>(i));
+    EXPECT_EQ(a.ticket[r], (std::uint64_t{0xabc0 + i} << 32) | (7 * i)) << "row " << r;
+    EXPECT_EQ(a.interests[r], ~std::uint64_t{0} << i);
+    EXPECT_EQ(a.visited[r], std::vector<std::uint32_t>(i, i));
+  }
+}
+
 }  // namespace
 }  // namespace throng::sim

@@ -460,7 +460,7 @@ TEST(Phases, SteerWalksToTheTargetSlowsBeforeAStopAndLeavesOtherRowsAlone) {
   std::vector<WorkerScratch> workers(1);
   workers[0].query = std::make_unique<nav::NavQuery>(mesh.value());
   workers[0].modelScratch[static_cast<std::size_t>(ModelKind::Orca)] = orca->makeScratch();
-  const ModelInput model{a, walls, desc, {}};
+  const ModelInput model{a, walls, desc, {}, 0, {}, {}};
   core::TaskSystem tasks(1);
   const auto steerRows = [&](RowRange rows) {
     const SteerInput in{desc.steering, desc.seed, desc.populations, desc.points, a.id, a.population, a.posX, a.posY, {},

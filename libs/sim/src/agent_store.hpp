@@ -7,6 +7,7 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "compact_lists.hpp"
+#include "throng/core/assert.hpp"
 #include "throng/core/vec2.hpp"
 #include "throng/nav/navmesh.hpp"
 #include "throng/nav/path_queue.hpp"
@@ -249,32 +251,40 @@ struct AgentStore {
     });
   }
 
-  /// Puts the rows in the order `order` gives (new row i is old row order[i]; a permutation of
-  /// [0, size())). Every column keeps its buffer (the published ones too). Columns of plain values
-  /// of up to 8 bytes are copied into `scratch` (at least size() entries) and gathered back; the
-  /// others (paths, visited lists) are moved in place, one cycle of the permutation at a time.
-  void permute(std::span<const std::uint32_t> order, std::span<std::uint64_t> scratch) {
-    const std::size_t n = order.size();
-    auto* bytes = reinterpret_cast<unsigned char*>(scratch.data());
+  /// Puts the rows in the order `keys` gives: new row i is old row (the low 32 bits of) keys[i],
+  /// a permutation of [0, size()). Every column keeps its buffer (the published ones too). Columns
+  /// of plain values of up to 8 bytes go through `scratch` (at least 4 · size() bytes) four bytes
+  /// of each value at a time and are gathered back; the others (paths, visited lists) are moved in
+  /// place, one cycle of the permutation at a time.
+  void permute(std::span<const std::uint64_t> keys, std::span<std::byte> scratch) {
+    const std::size_t n = keys.size();
+    THRONG_ASSERT(scratch.size() >= 4 * n);
+    const auto from = [&](std::size_t i) { return static_cast<std::uint32_t>(keys[i]); };
     std::vector<bool> done;
     forEachColumn([&](auto& column) {
       using T = typename std::decay_t<decltype(column)>::value_type;
-      if constexpr (std::is_trivially_copyable_v<T> && sizeof(T) <= sizeof(std::uint64_t)) {
-        std::memcpy(bytes, column.data(), n * sizeof(T));
-        for (std::size_t i = 0; i < n; ++i) std::memcpy(&column[i], bytes + order[i] * sizeof(T), sizeof(T));
+      if constexpr (std::is_trivially_copyable_v<T> && sizeof(T) <= 8) {
+        constexpr std::size_t lane = std::min<std::size_t>(sizeof(T), 4);
+        static_assert(sizeof(T) % lane == 0);
+        auto* bytes = reinterpret_cast<unsigned char*>(column.data());
+        auto* held = reinterpret_cast<unsigned char*>(scratch.data());
+        for (std::size_t at = 0; at < sizeof(T); at += lane) {  // a lane: bytes [at, at + lane) of each value
+          for (std::size_t i = 0; i < n; ++i) std::memcpy(held + i * lane, bytes + i * sizeof(T) + at, lane);
+          for (std::size_t i = 0; i < n; ++i) std::memcpy(bytes + i * sizeof(T) + at, held + from(i) * lane, lane);
+        }
       } else {
         done.assign(n, false);
         for (std::size_t start = 0; start < n; ++start) {
           if (done[start]) continue;
-          // The cycle start ← order[start] ← order[order[start]] ← …: each row takes its source's value.
+          // The cycle start ← from(start) ← from(from(start)) ← …: each row takes its source's value.
           T held = std::move(column[start]);
           std::size_t i = start;
           for (;;) {
             done[i] = true;
-            const std::size_t from = order[i];
-            if (from == start) break;
-            column[i] = std::move(column[from]);
-            i = from;
+            const std::size_t source = from(i);
+            if (source == start) break;
+            column[i] = std::move(column[source]);
+            i = source;
           }
           column[i] = std::move(held);
         }

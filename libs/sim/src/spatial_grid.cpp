@@ -25,20 +25,18 @@ void SpatialGrid::configure(const core::Aabb& bounds, float cellSize) {
 
 void SpatialGrid::rebuild(std::span<const float> posX, std::span<const float> posY, const core::TaskSystem& tasks) {
   const std::size_t n = posX.size();
-  cellOfRow_.resize(n);
   size_ = n;
   rows_.assign(n + kPad, 0);
-  tasks.parallelFor(n, tasks.grain(4096), [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      cellOfRow_[i] = static_cast<std::uint32_t>(cellY(posY[i]) * nx_ + cellX(posX[i]));
-    }
-  });
-  // Counting sort, stable in row order (serial: a few ns per agent).
+  // Counting sort, stable in row order (serial: a few ns per agent). Each row's cell is worked out
+  // twice rather than kept: 4 bytes an agent less at a million agents.
+  const auto cellOf = [&](std::size_t i) {
+    return static_cast<std::size_t>(cellY(posY[i])) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(cellX(posX[i]));
+  };
   std::fill(cellStart_.begin(), cellStart_.end(), 0u);
-  for (std::size_t i = 0; i < n; ++i) ++cellStart_[cellOfRow_[i] + 1];
+  for (std::size_t i = 0; i < n; ++i) ++cellStart_[cellOf(i) + 1];
   for (std::size_t c = 1; c < cellStart_.size(); ++c) cellStart_[c] += cellStart_[c - 1];
   cursor_.assign(cellStart_.begin(), cellStart_.end() - 1);
-  for (std::size_t i = 0; i < n; ++i) rows_[cursor_[cellOfRow_[i]]++] = static_cast<std::uint32_t>(i);
+  for (std::size_t i = 0; i < n; ++i) rows_[cursor_[cellOf(i)]++] = static_cast<std::uint32_t>(i);
   cellX_.assign(n + kPad, 0.0f);
   cellY_.assign(n + kPad, 0.0f);
   tasks.parallelFor(n, tasks.grain(4096), [&](std::size_t begin, std::size_t end) {

@@ -211,7 +211,18 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
   const std::size_t n = partitioned ? partition.ownedRows.size() : agents.size();
   std::array<const OperationalModel*, kModelCount> inUse{};
   for (std::size_t m = 0; m < kModelCount; ++m) inUse[m] = models[m].get();
-  const ModelInput model{agents, walls, desc, viewers, tick};
+  // The preferred velocities of the last tick become the models' priorDesired; steer writes every
+  // row's anew (the rows other ranks own through exchangeSteer) over what separate left.
+  std::span<const float> priorX, priorY;
+  if (std::ranges::any_of(models, [](const auto& m) { return m && m->readsPriorDesired(); })) {
+    std::swap(agents.prefVelX, spareX);
+    std::swap(agents.prefVelY, spareY);
+    agents.prefVelX.resize(agents.size());
+    agents.prefVelY.resize(agents.size());
+    priorX = spareX;
+    priorY = spareY;
+  }
+  const ModelInput model{agents, walls, desc, viewers, tick, priorX, priorY};
   for (auto& m : models) {
     if (m) m->beginStep(model);
   }
@@ -257,9 +268,11 @@ void World::Impl::integrate(const core::TaskSystem& tasks) {
 void World::Impl::separate(const core::TaskSystem& tasks) {
   if (separationPasses <= 0) return;
   const std::size_t n = agents.size();
-  sepX.assign(n, 0.0f);
-  sepY.assign(n, 0.0f);
-  const ModelInput model{agents, walls, desc, viewers, tick};
+  std::vector<float>& sepX = spareX;  // every row's is written in each pass before any is read
+  std::vector<float>& sepY = spareY;
+  sepX.resize(n);
+  sepY.resize(n);
+  const ModelInput model{agents, walls, desc, viewers, tick, {}, {}};  // no priorDesired: spare holds the displacements
   const std::size_t grain = phaseGrain(n, tasks);
   const auto modelOf = [&](std::size_t row) {
     return models[static_cast<std::size_t>(desc.populations[agents.population[row]].model.kind)].get();

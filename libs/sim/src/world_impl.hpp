@@ -184,7 +184,11 @@ struct World::Impl {
   /// After integrate, for the populations whose model corrects positions (OperationalModel::
   /// separationPasses): that many Jacobi passes, each row's step apart slid along the navmesh.
   void separate(const core::TaskSystem& tasks);
-  std::vector<float> sepX, sepY;  ///< separate's displacements of the current pass [m]
+  /// Two floats a row whose use changes over the tick, so that no phase keeps its own: from the
+  /// start of steer to its end, every row's preferred velocity of the previous tick
+  /// (ModelInput::priorDesiredX/Y; swapped with AgentStore::prefVel, nothing copied); in separate,
+  /// the displacements of the current pass [m]. Nothing of them outlives the phase.
+  std::vector<float> spareX, spareY;
   std::vector<std::uint8_t> sepMoved;  ///< separate: 1 for a row the last pass moved
   VerticalTransports transports;          ///< lifts and escalators (vertical_transport.hpp): after separate
   TransportRoutes transportRoutes;        ///< choosing them (transport_choice.hpp): in setGoal

@@ -51,7 +51,7 @@
 // with a free walk of v0 · T (a lane to overtake in), while the crowd within 1.2 m of it is thinner than overtakeDensity (Fruin 1971's
 // levels of service). And a walker
 // within kSqueezeIn of its own target squeezes in beside people standing there. Neighbours' desired
-// directions are those of the previous tick (beginStep), so the result does not depend on the
+// directions are those of the previous tick (ModelInput::priorDesiredX/Y), so the result does not depend on the
 // thread or rank that steers them.
 // Contact: bodies overlapping deeper than 1 cm step apart along their line of centres, each half the
 // excess within the tick (contact), and the walking direction relaxes from the one meant a tick ago
@@ -317,7 +317,8 @@ constexpr float kCrowdStorey = 2.5f;
 /// the positions at its start, so the same for any thread or rank count.
 class CrowdGrid {
  public:
-  void build(const AgentStore& a, float range) {
+  void build(const ModelInput& in, float range) {
+    const AgentStore& a = in.agents;
     range_ = range;
     cells_.clear();
     const std::size_t n = a.posX.size();
@@ -373,7 +374,7 @@ class CrowdGrid {
       Cell& c = cells_[static_cast<std::size_t>(v)];
       if (c.count == 0xffff) continue;
       ++c.count;
-      const core::Vec2 want{a.prefVelX[i], a.prefVelY[i]};
+      const core::Vec2 want{in.priorDesiredX[i], in.priorDesiredY[i]};
       const float len = core::length(want);
       if (len > 1e-6f) {
         c.sumX += fixedPoint(want.x / len);
@@ -561,10 +562,10 @@ class AnticipationVelocityModel final : public OperationalModel {
 
   [[nodiscard]] std::unique_ptr<ModelScratch> makeScratch() const override { return std::make_unique<AvmScratch>(); }
 
+  [[nodiscard]] bool readsPriorDesired() const override { return true; }
+
   void beginStep(const ModelInput& in) override {
-    lastDesiredX_.assign(in.agents.prefVelX.begin(), in.agents.prefVelX.end());
-    lastDesiredY_.assign(in.agents.prefVelY.begin(), in.agents.prefVelY.end());
-    if (vision_ > 0.0f) crowd_.build(in.agents, vision_);
+    if (vision_ > 0.0f) crowd_.build(in, vision_);
   }
 
   void computeVelocities(const ModelInput& in, RowRange rows, ModelScratch& scratch, VelocityOutput out) const override {
@@ -813,11 +814,11 @@ class AnticipationVelocityModel final : public OperationalModel {
     return aheadOfO > ahead || (aheadOfO == ahead && a.id[row] < a.id[o]);
   }
 
-  /// Whether i's desired direction (its preferred velocity) and o's (as it was a tick ago, from
-  /// beginStep: the same for any thread or rank count) are further apart than acos(cosLimit); false
+  /// Whether i's desired direction (its preferred velocity) and o's (as it was a tick ago,
+  /// ModelInput::priorDesiredX/Y: the same for any thread or rank count) are further apart than acos(cosLimit); false
   /// when either stands.
-  bool opposed(const AgentStore& a, std::size_t row, std::uint32_t o, float cosLimit) const {
-    const core::Vec2 pi{a.prefVelX[row], a.prefVelY[row]}, po{lastDesiredX_[o], lastDesiredY_[o]};
+  static bool opposed(const ModelInput& in, std::size_t row, std::uint32_t o, float cosLimit) {
+    const core::Vec2 pi{in.agents.prefVelX[row], in.agents.prefVelY[row]}, po{in.priorDesiredX[o], in.priorDesiredY[o]};
     const float n = core::length(pi) * core::length(po);
     return n > 1e-9f && core::dot(pi, po) < cosLimit * n;
   }
@@ -827,9 +828,9 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// and the crowd around i is thinner than p.overtakeDensity.
   bool overtaking(const ModelInput& in, std::size_t row, std::uint32_t o, float speed, float v0, const AvmParams& p) const {
     const AgentStore& a = in.agents;
-    if (speed >= kOvertakeShare * v0 || a.mode[o] != AgentMode::Walking || opposed(a, row, o, kSlipCos)) return false;
+    if (speed >= kOvertakeShare * v0 || a.mode[o] != AgentMode::Walking || opposed(in, row, o, kSlipCos)) return false;
     const float vo2 = a.velX[o] * a.velX[o] + a.velY[o] * a.velY[o];
-    const float want2 = lastDesiredX_[o] * lastDesiredX_[o] + lastDesiredY_[o] * lastDesiredY_[o];
+    const float want2 = in.priorDesiredX[o] * in.priorDesiredX[o] + in.priorDesiredY[o] * in.priorDesiredY[o];
     if (vo2 < kOvertakeShare * kOvertakeShare * want2) return false;  // o is held up in turn
     // Fewer than `most` people (i included) within kOvertakeRadius; counted until that many are found.
     const float most = p.overtakeDensity * std::numbers::pi_v<float> * kOvertakeRadius * kOvertakeRadius;
@@ -864,7 +865,7 @@ class AnticipationVelocityModel final : public OperationalModel {
       if (!walking && nearTarget) continue;  // squeezing in beside someone standing at one's spot
       const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
       const core::Vec2 eo = walkingDirection(a, o);
-      ws.near.push_back({d, eo, l, -core::dot(d, eo), opposed(a, row, o, kRotateCos), walking, a.id[row] < a.id[o]});
+      ws.near.push_back({d, eo, l, -core::dot(d, eo), opposed(in, row, o, kRotateCos), walking, a.id[row] < a.id[o]});
     }
   }
 
@@ -1002,7 +1003,7 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float ahead = core::dot(d, e);
       const float l = a.radius[row] + a.radius[o];
       const float lateral = core::cross(e, d);
-      if (std::abs(lateral) >= depthRatio * l && opposed(a, row, o, kRotateCos)) continue;  // shoulders turned
+      if (std::abs(lateral) >= depthRatio * l && opposed(in, row, o, kRotateCos)) continue;  // shoulders turned
       if (givesWay(a, row, o, d, ahead, e)) continue;
       if (a.mode[o] != AgentMode::Walking && nearTarget) continue;  // squeezing in beside someone standing at one's spot
       // Bodies are ellipses, shoulders across the walking direction (semi-axis r) and chest to back
@@ -1094,7 +1095,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     const float gap = gapAhead(in, row, e, v0 * p.timeGap, p.passageRatio, ws, &blocker);
     const float speed = std::min(v0, gap / p.timeGap);
     const auto bo = static_cast<std::uint32_t>(blocker);
-    const bool crossSlip = blocker >= 0 && speed < kSlipSpeed * v0 && (opposed(a, row, bo, kSlipCos) || a.mode[bo] != AgentMode::Walking);
+    const bool crossSlip = blocker >= 0 && speed < kSlipSpeed * v0 && (opposed(in, row, bo, kSlipCos) || a.mode[bo] != AgentMode::Walking);
     const bool overtakes = !crossSlip && blocker >= 0 && overtaking(in, row, bo, speed, v0, p);
     const core::Vec2 walk = crossSlip ? slip(in, row, e0, v0, p, ws, e, speed)
                             : overtakes ? overtake(in, row, e0, v0, p, ws, e, speed)
@@ -1133,17 +1134,17 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float before = depthAt(a, row, o, d, oi, p.passageRatio);
       const float strict = before < 0.0f ? 0.5f * before : before;
       const float squeeze = std::max(strict, kSqueezeDepth);
-      const core::Vec2 ei{a.prefVelX[row], a.prefVelY[row]}, eo{lastDesiredX_[o], lastDesiredY_[o]};
+      const core::Vec2 ei{a.prefVelX[row], a.prefVelY[row]}, eo{in.priorDesiredX[o], in.priorDesiredY[o]};
       const bool leads = core::dot(ei, eo) > kGiveWayCos * core::length(ei) * core::length(eo) &&
                          furtherAlong(d, ei, eo, a.id[row], a.id[o]);
       const core::Vec2 w = eo - ei;  // how o moves relative to i, both walking as they want
       const float ww = core::lengthSq(w);
       const float t = ww > 1e-8f ? std::max(0.0f, -core::dot(d, w) / ww) : 0.0f;
-      const bool passing = opposed(a, row, o, kGiveWayCos) && core::dot(oi, core::Vec2{a.oriX[o], a.oriY[o]}) < kGiveWayCos &&
+      const bool passing = opposed(in, row, o, kGiveWayCos) && core::dot(oi, core::Vec2{a.oriX[o], a.oriY[o]}) < kGiveWayCos &&
                            core::length(d + w * t) >= p.passageRatio * l;
       // Two crossing (desired directions more than 60° apart) may both squeeze by: strict, a crowd
       // crossing every way knotted (the plaza's first waves 84 % out against 92 %; docs/crowd-model.md).
-      const bool crossing = opposed(a, row, o, kRotateCos);
+      const bool crossing = opposed(in, row, o, kRotateCos);
       ws.nearBodies.push_back({o, d, passing ? squeeze : strict, leads || passing || crossing ? squeeze : strict, leads});
     });
     // First: no step towards a body it would press into (the part along the line of centres goes).
@@ -1309,7 +1310,6 @@ class AnticipationVelocityModel final : public OperationalModel {
   }
 
   std::vector<AvmParams> params_;  ///< per population
-  std::vector<float> lastDesiredX_, lastDesiredY_;  ///< every row's preferred velocity a tick ago [m/s]
   float dt_ = 0.05f;
   CrowdGrid crowd_;  ///< what walkers see of the crowd ahead (beginStep), when a population looks ahead
   float vision_ = 0.0f;  ///< the longest visionRange of the populations [m]

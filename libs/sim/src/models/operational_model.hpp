@@ -31,6 +31,11 @@ struct ModelInput {
   const ScenarioDesc& desc;   ///< dt, steering, populations (each with its ModelDesc)
   std::span<const core::Vec2> viewers;  ///< for the level of detail (World::setViewers)
   std::uint64_t tick = 0;               ///< the tick being steered (time-sliced work: avm's look ahead)
+  /// During steer, when a model in use asks for them (OperationalModel::readsPriorDesired): every
+  /// row's preferred velocity of the previous tick [m/s]. Steer rewrites prefVelX/Y row by row in
+  /// parallel, so a model that reads what its neighbours wanted reads it here: the same for any
+  /// thread or rank count. Else empty.
+  std::span<const float> priorDesiredX, priorDesiredY;
 
   /// Multiresolution (Musse et al. §3.2.4): an agent farther than steering.lodDistance from every
   /// viewer may be steered more cheaply (what "cheaper" means is the model's choice).
@@ -86,9 +91,11 @@ class OperationalModel {
   /// populations at run time).
   virtual void configure(const ScenarioDesc& desc) = 0;
   [[nodiscard]] virtual std::unique_ptr<ModelScratch> makeScratch() const = 0;
-  /// Called once per tick before steer (serially): a model that reads what its neighbours wanted
-  /// keeps it here, since steer rewrites the preferred velocities row by row in parallel. Then it
-  /// holds the previous tick's preferred velocities of every row, the same on every rank.
+  /// Whether the model reads the previous tick's preferred velocities (ModelInput::priorDesiredX/Y);
+  /// they are there during steer only when some model in use does.
+  [[nodiscard]] virtual bool readsPriorDesired() const { return false; }
+  /// Called once per tick before steer (serially), with in.priorDesiredX/Y set: per-tick
+  /// structures built from every row (the avm's crowd grid).
   virtual void beginStep(const ModelInput& in) {}
   /// New velocities of the given rows from their preferred velocities (prefVelX/Y), positions,
   /// velocities, bodies, neighbours and the walls. Writes out.x/out.y of those rows only.

@@ -94,7 +94,6 @@ class SpatialGrid {
   std::size_t size_ = 0;
   std::vector<std::uint32_t> rows_;
   std::vector<float> cellX_, cellY_;
-  std::vector<std::uint32_t> cellOfRow_;
   std::vector<std::uint32_t> cursor_;
 };
 
