@@ -159,8 +159,8 @@ class AvmScratch final : public ModelScratch {
     bool lowerId;      ///< i's id is below o's (givesWay's tie)
   };
   std::vector<NearBlocker> near;
-  std::vector<std::uint32_t> nearLane;  ///< the near ones in one direction's lane (gapAhead)
-  std::vector<std::uint32_t> lane;  ///< the neighbours a pass looks at further (pushes, gapAhead)
+  std::vector<std::uint32_t> nearLane;  ///< compact's buffer for the near ones in one direction's lane (gapAhead)
+  std::vector<std::uint32_t> lane;  ///< pick's buffer for the neighbours a pass looks at further (pushes, gapAhead)
   /// clampToBodies: a neighbour the step may reach, and how deep it may press into it [m] while the
   /// step loses what presses (`first`) and while it is shortened (`then`).
   struct NearBody {
@@ -680,12 +680,12 @@ class AnticipationVelocityModel final : public OperationalModel {
     const core::Vec2 u = e0 * v0;
     // The neighbours that push: those in front and those whose discs (nearly) overlap i's; the rest
     // is dropped first, without a branch (half of them are behind).
-    pick(in, row, ws.lane, [&](std::uint32_t o, core::Vec2 d) {
+    const std::span<const std::uint32_t> lane = pick(in, row, ws.lane, [&](std::uint32_t o, core::Vec2 d) {
       const float l = a.radius[row] + a.radius[o];
       return static_cast<int>(core::dot(e0, d) > 0.0f) | static_cast<int>(core::lengthSq(d) < 1.01f * l * l);
     });
     float sideways = 0.0f;  // the neighbours' push along side
-    for (const std::uint32_t o : ws.lane) {
+    for (const std::uint32_t o : lane) {
       const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
       const float dist = core::length(d);
       if (dist < 1e-6f) continue;
@@ -854,12 +854,12 @@ class AnticipationVelocityModel final : public OperationalModel {
     ws.near.clear();
     const float tx = a.targetX[row] - pos.x, ty = a.targetY[row] - pos.y;
     const bool nearTarget = tx * tx + ty * ty < kSqueezeIn * kSqueezeIn;
-    pick(in, row, ws.lane, [&](std::uint32_t o, core::Vec2 d) {
+    const std::span<const std::uint32_t> lane = pick(in, row, ws.lane, [&](std::uint32_t o, core::Vec2 d) {
       const float l = a.radius[row] + a.radius[o];
       const float reach = limit + l + kStandingGap + 0.01f;
       return static_cast<int>(d.x * d.x + d.y * d.y < reach * reach + l * l);
     });
-    for (const std::uint32_t o : ws.lane) {
+    for (const std::uint32_t o : lane) {
       const float l = a.radius[row] + a.radius[o];
       const bool walking = a.mode[o] == AgentMode::Walking;
       if (!walking && nearTarget) continue;  // squeezing in beside someone standing at one's spot
@@ -947,25 +947,28 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// neighbours or more (those behind, those out of reach) at random, and branching on that was
   /// mispredicted about as often (a tenth of avm's time at 10,000 agents).
   template <class Keep>
-  static void pick(const ModelInput& in, std::size_t row, std::vector<std::uint32_t>& into, Keep&& keep) {
+  static std::span<const std::uint32_t> pick(const ModelInput& in, std::size_t row, std::vector<std::uint32_t>& into, Keep&& keep) {
     const AgentStore& a = in.agents;
     const core::Vec2 pos{a.posX[row], a.posY[row]};
     const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];
-    compact(a.neighbourCount[row], into, [&](std::size_t n) { return nb[n]; },
-            [&](std::size_t n) { return keep(nb[n], core::Vec2{a.posX[nb[n]], a.posY[nb[n]]} - pos); });
+    return compact(a.neighbourCount[row], into, [&](std::size_t n) { return nb[n]; },
+                   [&](std::size_t n) { return keep(nb[n], core::Vec2{a.posX[nb[n]], a.posY[nb[n]]} - pos); });
   }
 
-  /// value(n) for the n < count for which keep(n) is non-zero, in order, into `into`: every n is
-  /// written and the end advanced by the test's result, so there is no branch per n (pick).
+  /// value(n) for the n < count for which keep(n) is non-zero, in order: every n is written to
+  /// `buffer` and the end advanced by the test's result, so there is no branch per n (pick). The
+  /// buffer only grows (resizing it for every pass cleared it twice an agent: 2 % of the avm's
+  /// instructions); the span returned holds those kept.
   template <class Value, class Keep>
-  static void compact(std::size_t count, std::vector<std::uint32_t>& into, Value&& value, Keep&& keep) {
-    into.resize(count);
+  static std::span<const std::uint32_t> compact(std::size_t count, std::vector<std::uint32_t>& buffer, Value&& value, Keep&& keep) {
+    if (buffer.size() < count) buffer.resize(count);
+    std::uint32_t* out = buffer.data();
     std::size_t kept = 0;
     for (std::size_t n = 0; n < count; ++n) {
-      into[kept] = value(n);
+      out[kept] = value(n);
       kept += static_cast<std::size_t>(keep(n) != 0);
     }
-    into.resize(kept);
+    return {out, kept};
   }
 
   /// A standing agent (waiting, acting, arrived) is no wall: pressed by someone whose disc overlaps
@@ -992,13 +995,13 @@ class AnticipationVelocityModel final : public OperationalModel {
     const AgentStore& a = in.agents;
     const core::Vec2 pos{a.posX[row], a.posY[row]};
     // First the neighbours in i's lane ahead: in front, less than ℓ aside.
-    pick(in, row, ws.lane, [&](std::uint32_t o, core::Vec2 d) {
+    const std::span<const std::uint32_t> lane = pick(in, row, ws.lane, [&](std::uint32_t o, core::Vec2 d) {
       return static_cast<int>(core::dot(d, e) > 0.0f) & static_cast<int>(std::abs(core::cross(e, d)) < a.radius[row] + a.radius[o]);
     });
     float gap = limit;
     const float tx = a.targetX[row] - pos.x, ty = a.targetY[row] - pos.y;
     const bool nearTarget = tx * tx + ty * ty < kSqueezeIn * kSqueezeIn;
-    for (const std::uint32_t o : ws.lane) {
+    for (const std::uint32_t o : lane) {
       const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
       const float ahead = core::dot(d, e);
       const float l = a.radius[row] + a.radius[o];
@@ -1028,11 +1031,12 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// The lane is picked out first without a branch per neighbour (pick).
   static float gapAhead(AvmScratch& ws, core::Vec2 e, float limit, float depthRatio) {
     const std::vector<AvmScratch::NearBlocker>& near = ws.near;
-    compact(near.size(), ws.nearLane, [](std::size_t n) { return static_cast<std::uint32_t>(n); }, [&](std::size_t n) {
+    const auto index = [](std::size_t n) { return static_cast<std::uint32_t>(n); };
+    const std::span<const std::uint32_t> lane = compact(near.size(), ws.nearLane, index, [&](std::size_t n) {
       return static_cast<int>(core::dot(near[n].d, e) > 0.0f) & static_cast<int>(std::abs(core::cross(e, near[n].d)) < near[n].l);
     });
     float gap = limit;
-    for (const std::uint32_t n : ws.nearLane) {
+    for (const std::uint32_t n : lane) {
       const AvmScratch::NearBlocker& b = near[n];
       const float ahead = core::dot(b.d, e);
       const float lateral = core::cross(e, b.d);
