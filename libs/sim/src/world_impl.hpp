@@ -187,7 +187,8 @@ struct World::Impl {
   /// Two floats a row whose use changes over the tick, so that no phase keeps its own: from the
   /// start of steer to its end, every row's preferred velocity of the previous tick
   /// (ModelInput::priorDesiredX/Y; swapped with AgentStore::prefVel, nothing copied); in separate,
-  /// the displacements of the current pass [m]. Nothing of them outlives the phase.
+  /// the displacements of the current pass [m]; in sortRows, the columns' scratch (spareX's bytes).
+  /// Nothing of them outlives the phase.
   std::vector<float> spareX, spareY;
   std::vector<std::uint8_t> sepMoved;  ///< separate: 1 for a row the last pass moved
   VerticalTransports transports;          ///< lifts and escalators (vertical_transport.hpp): after separate
