@@ -68,6 +68,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <vector>
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -565,6 +566,8 @@ class AnticipationVelocityModel final : public OperationalModel {
   [[nodiscard]] bool readsPriorDesired() const override { return true; }
 
   void beginStep(const ModelInput& in) override {
+    maxRadius_ = 0.0f;
+    for (const float r : in.agents.radius) maxRadius_ = std::max(maxRadius_, r);
     if (vision_ > 0.0f) crowd_.build(in, vision_);
   }
 
@@ -942,6 +945,24 @@ class AnticipationVelocityModel final : public OperationalModel {
     }
   }
 
+  /// forEachNeighbour for the neighbours nearer than i's radius + the largest radius + `beyond`
+  /// [m]: the only ones i's body can touch within `beyond`. During steer nobody has moved since
+  /// sense, whose lists are nearest first (SpatialGrid::nearest, with the same arithmetic), so the
+  /// first neighbour that far ends the list.
+  template <class F>
+  void forEachTouchable(const ModelInput& in, std::size_t row, float beyond, F&& f) const {
+    const AgentStore& a = in.agents;
+    const core::Vec2 pos{a.posX[row], a.posY[row]};
+    const float reach = a.radius[row] + maxRadius_ + beyond;
+    const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];
+    for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
+      const std::uint32_t o = nb[n];
+      const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
+      if (core::lengthSq(d) >= reach * reach) break;
+      f(o, d);
+    }
+  }
+
   /// Picks out the neighbours o of i (d from i to o) for which keep(o, d) is non-zero into `into`, in
   /// their order. The test is made for every neighbour without a branch: the passes drop half their
   /// neighbours or more (those behind, those out of reach) at random, and branching on that was
@@ -974,10 +995,10 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// A standing agent (waiting, acting, arrived) is no wall: pressed by someone whose disc overlaps
   /// its own it steps away, at most kMakeRoomSpeed, so people waiting for their group at a busy
   /// spot do not block everyone else's way.
-  static core::Vec2 makeRoom(const ModelInput& in, std::size_t row, const AvmParams& p) {
+  core::Vec2 makeRoom(const ModelInput& in, std::size_t row, const AvmParams& p) const {
     const AgentStore& a = in.agents;
     core::Vec2 push;
-    forEachNeighbour(in, row, [&](std::uint32_t o, core::Vec2 d) {
+    forEachTouchable(in, row, 0.0f, [&](std::uint32_t o, core::Vec2 d) {
       const float dist = core::length(d);
       const float l = a.radius[row] + a.radius[o];
       if (dist < 1e-6f || dist >= l) return;
@@ -1132,7 +1153,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     // slowed to kSqueezeSpeed) unless it passes o head on; then it is shortened until it presses no
     // body beyond its limit, squeezing by allowed to leaders and passers alike.
     ws.nearBodies.clear();
-    forEachNeighbour(in, row, [&](std::uint32_t o, core::Vec2 d) {
+    forEachTouchable(in, row, step, [&](std::uint32_t o, core::Vec2 d) {
       const float l = a.radius[row] + a.radius[o];
       if (core::lengthSq(d) >= (l + step) * (l + step)) return;
       const float before = depthAt(a, row, o, d, oi, p.passageRatio);
@@ -1196,7 +1217,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     const core::Vec2 oi{a.oriX[row], a.oriY[row]};
     const core::Vec2 next = core::normalize(oi + (core::normalize(pref) - oi) * std::min(1.0f, dt_ / kTurnTime));
     bool deepens = false;
-    forEachNeighbour(in, row, [&](std::uint32_t o, core::Vec2 d) {
+    forEachTouchable(in, row, 0.0f, [&](std::uint32_t o, core::Vec2 d) {
       if (deepens) return;
       const float l = a.radius[row] + a.radius[o];
       if (core::lengthSq(d) >= l * l) return;
@@ -1305,7 +1326,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     const AgentStore& a = in.agents;
     const core::Vec2 oi{a.oriX[row], a.oriY[row]};
     core::Vec2 out;
-    forEachNeighbour(in, row, [&](std::uint32_t o, core::Vec2 d) {
+    forEachTouchable(in, row, 0.0f, [&](std::uint32_t o, core::Vec2 d) {
       const Overlap ov = overlap(a, row, o, d, oi, p.passageRatio);
       if (ov.depth > kContactSlack) out -= ov.u * (kContactShare * (ov.depth - kContactSlack) / dt_);
     });
@@ -1317,6 +1338,7 @@ class AnticipationVelocityModel final : public OperationalModel {
   float dt_ = 0.05f;
   CrowdGrid crowd_;  ///< what walkers see of the crowd ahead (beginStep), when a population looks ahead
   float vision_ = 0.0f;  ///< the longest visionRange of the populations [m]
+  float maxRadius_ = 0.0f;  ///< the largest body radius this tick [m] (beginStep; forEachTouchable)
   std::uint64_t lookPeriod_ = 1;  ///< ticks between a walker's looks ahead (kLookPeriod)
 };
 
