@@ -170,7 +170,7 @@ TEST(Partition, CrossingRebalancedEveryTickMatchesOneProcess) {
 }
 
 TEST(Partition, CrossingWithTheAnticipationModelMatchesOneProcess) {
-  // The anticipation model reads what its neighbours wanted a tick ago (beginStep): the same on
+  // The anticipation model reads what its neighbours wanted a tick ago (ModelInput::priorDesiredX/Y): the same on
   // every rank, whichever rank steers them.
   expectSame("crossing", 300, 3, 2, 1, "avm");
 }
