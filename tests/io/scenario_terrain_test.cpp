@@ -82,20 +82,24 @@ TEST(ScenarioTerrain, ObstacleTrianglesAreRead) {
 }
 
 TEST(ScenarioTerrain, StairFactorsPerPopulation) {
-  const std::string text = change(kLevels, R"("goals": ["hall"]},)", R"("goals": ["hall"], "stairs": {"up": 0.4, "down": 0.9}},)");
+  const std::string text = change(kLevels, R"("goals": ["hall"]},)", R"("goals": ["hall"], "stairs": {"up": 0.4, "down": 0.9, "climb": {"up": 1, "down": 0}}},)");
   auto r = load(text);
   ASSERT_TRUE(r.ok()) << core::formatAll(r.errors());
   const sim::PopulationDesc& down = r.value().desc.populations[1];
   EXPECT_FLOAT_EQ(down.stairUp, 0.4f);
   EXPECT_FLOAT_EQ(down.stairDown, 0.9f);
-  // Without the key: the defaults (Weidmann 1993 along a 30° stair).
+  EXPECT_FLOAT_EQ(down.stairClimbUp, 1.0f);
+  EXPECT_FLOAT_EQ(down.stairClimbDown, 0.0f);
+  // Without the key: the defaults (Weidmann 1993 along a 30° stair; Zacharias & Ling 2014's shares).
   const sim::PopulationDesc& up = r.value().desc.populations[0];
   EXPECT_FLOAT_EQ(up.stairUp, 0.53f);
   EXPECT_FLOAT_EQ(up.stairDown, 0.60f);
+  EXPECT_FLOAT_EQ(up.stairClimbUp, 0.203f);
+  EXPECT_FLOAT_EQ(up.stairClimbDown, 0.311f);
 }
 
 TEST(ScenarioTerrain, BadStairFactorsAreLocated) {
-  std::string text = change(kLevels, R"("goals": ["top", "hall"]},)", R"("goals": ["top", "hall"], "stairs": {"up": 0, "down": 1.5, "sideways": 1}},)");
+  std::string text = change(kLevels, R"("goals": ["top", "hall"]},)", R"("goals": ["top", "hall"], "stairs": {"up": 0, "down": 1.5, "sideways": 1, "climb": {"up": -0.1, "along": 1}}},)");
   text = change(text, R"("goals": ["hall"]},)", R"("goals": ["hall"], "stairs": 0.5},)");
   const auto ds = errorsOf(text);
   const auto up = at(ds, "/populations/0/stairs/up");
@@ -105,8 +109,13 @@ TEST(ScenarioTerrain, BadStairFactorsAreLocated) {
   EXPECT_EQ(at(ds, "/populations/0/stairs/down").what, "value 1.5 is out of range");
   EXPECT_TRUE(contains(at(ds, "/populations/0/stairs/sideways").what, "unknown key \"sideways\""));
   const auto shape = at(ds, "/populations/1/stairs");
-  EXPECT_EQ(shape.expected, "{\"up\", \"down\"}: factors of the desired speed on stairs, each > 0 and <= 1");
-  EXPECT_EQ(ds.size(), 4u) << core::formatAll(ds);
+  EXPECT_EQ(shape.expected, "{\"up\", \"down\", \"climb\"}: factors of the desired speed on stairs, each > 0 and <= 1");
+  const auto climb = at(ds, "/populations/0/stairs/climb/up");
+  EXPECT_EQ(climb.what, "value -0.1 is out of range");
+  EXPECT_EQ(climb.expected, "a number from 0 to 1");
+  expectAt(climb, text, "-0.1, \"along\"");
+  EXPECT_TRUE(contains(at(ds, "/populations/0/stairs/climb/along").what, "unknown key \"along\""));
+  EXPECT_EQ(ds.size(), 6u) << core::formatAll(ds);
 }
 
 TEST(ScenarioTerrain, IndexOutOfRange) {

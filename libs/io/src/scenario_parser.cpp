@@ -398,10 +398,18 @@ bool ScenarioReader::readDemographics(const Json& v, const std::string& ptr, sim
 }
 
 bool ScenarioReader::readStairs(const Json& v, const std::string& ptr, sim::PopulationDesc& p) {
-  if (!isObject(v, ptr, "{\"up\", \"down\"}: factors of the desired speed on stairs, each > 0 and <= 1")) return false;
-  checkKeys(v, ptr, {"up", "down"}, "the stair speed factors");
+  if (!isObject(v, ptr, "{\"up\", \"down\", \"climb\"}: factors of the desired speed on stairs, each > 0 and <= 1")) return false;
+  checkKeys(v, ptr, {"up", "down", "climb"}, "the stair speed factors and \"climb\"");
   const Range factor{0, 1, true, ""};
-  return readFloatKeys(v, ptr, {{"up", factor, &p.stairUp}, {"down", factor, &p.stairDown}});
+  bool ok = readFloatKeys(v, ptr, {{"up", factor, &p.stairUp}, {"down", factor, &p.stairDown}});
+  if (const Json* climb = optional(v, "climb")) {
+    const std::string at = ptr + "/climb";
+    if (!isObject(*climb, at, "{\"up\", \"down\"}: the shares of groups who take the stairs over a lift or escalator when quicker, each 0 to 1")) return false;
+    checkKeys(*climb, at, {"up", "down"}, "the shares who take the stairs");
+    const Range share{0, 1, false, ""};
+    ok = readFloatKeys(*climb, at, {{"up", share, &p.stairClimbUp}, {"down", share, &p.stairClimbDown}}) && ok;
+  }
+  return ok;
 }
 
 bool ScenarioReader::readPopulation(const Json& v, const std::string& ptr, std::size_t index, sim::PopulationDesc& p) {

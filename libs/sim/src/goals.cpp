@@ -272,7 +272,18 @@ void GoalWriter::routeByTransport(std::size_t row, std::uint32_t cursor) {
     for (std::uint32_t k = regions.subOffset[point]; k < regions.subOffset[point + 1]; ++k) n += regions.occupancy[k];
     return n;
   };
-  const std::uint32_t board = routes->boardingFor(desc, agents, row, goal, *transports, heading);
+  // Changing floors, most people ride whenever a lift or escalator goes there; a share of them
+  // (drawn per group and goal) weigh the stairs by time and climb when that is quicker.
+  bool rideIfAny = false;
+  if (agents.levels) {
+    const float dz = desc.points[goal].height - agents.posZ[row];
+    if (std::abs(dz) > nav::kLevelSearch) {
+      const float climbs = dz > 0.0f ? pop.stairClimbUp : pop.stairClimbDown;
+      core::Rng rng(desc.seed, (static_cast<std::uint64_t>(gid) << 20) ^ cursor, core::RngPurpose::StairClimb);
+      rideIfAny = !(rng.uniform() < static_cast<double>(climbs));
+    }
+  }
+  const std::uint32_t board = routes->boardingFor(desc, agents, row, goal, *transports, heading, rideIfAny);
   if (board == kNoIndex) return;
   std::uint32_t& own = routes->ownList(gid);
   if (own != listIndex + 1) {  // a list of its own (the population's may be shared, exit choice's is kept)

@@ -98,7 +98,7 @@ std::uint32_t& TransportRoutes::ownList(std::uint32_t gid) {
 
 std::uint32_t TransportRoutes::boardingFor(const ScenarioDesc& desc, const AgentStore& a, std::size_t row, std::uint32_t goal,
                                            const VerticalTransports& transports,
-                                           const std::function<std::uint32_t(std::uint32_t)>& heading) {
+                                           const std::function<std::uint32_t(std::uint32_t)>& heading, bool rideIfAny) {
   if (stopsVersion_ != meshVersion_) measureStops(desc);  // a door closed or opened since
   const nav::DistanceField* toGoal = fieldOf(desc, goal);
   if (toGoal == nullptr) return kNoIndex;
@@ -141,7 +141,7 @@ std::uint32_t TransportRoutes::boardingFor(const ScenarioDesc& desc, const Agent
       if (!changed) break;
     }
   }
-  float best = toGoal->at(pos, ref) / v;
+  float best = rideIfAny ? kInf : toGoal->at(pos, ref) / v;
   std::uint32_t board = kNoIndex;
   for (std::size_t b = 0; b < n; ++b) {
     if (dest[b] == n) continue;

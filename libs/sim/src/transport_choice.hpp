@@ -45,10 +45,12 @@ class TransportRoutes {
 
   /// The boarding stop (a point index) agent `row` should walk to on its way to point `goal`, or
   /// kNoIndex when walking is as quick. `heading(point)`: how many people target that point now
-  /// (queuing, on their way or carried from it). Builds `goal`'s field the first time.
+  /// (queuing, on their way or carried from it). `rideIfAny`: the quickest ride whatever walking
+  /// takes (someone who does not take the stairs: PopulationDesc::stairClimbUp), kNoIndex only when
+  /// no ride reaches the goal. Builds `goal`'s field the first time.
   [[nodiscard]] std::uint32_t boardingFor(const ScenarioDesc& desc, const AgentStore& a, std::size_t row, std::uint32_t goal,
                                           const VerticalTransports& transports,
-                                          const std::function<std::uint32_t(std::uint32_t)>& heading);
+                                          const std::function<std::uint32_t(std::uint32_t)>& heading, bool rideIfAny = false);
 
   /// The goal list group `gid` owns for its rides (index + 1 into the world's goal lists; 0: none yet).
   std::uint32_t& ownList(std::uint32_t gid);

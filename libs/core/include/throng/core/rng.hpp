@@ -20,6 +20,7 @@ enum class RngPurpose : std::uint32_t {
   PreMovement = 9,  ///< an agent's pre-movement time (PopulationDesc::preMovement)
   ExitChoice = 10,  ///< a group's exit drawn by shares (ExitRule::Allocation)
   GoalChoice = 11,  ///< a group's waypoint drawn by shares (GoalSplit::Shares)
+  StairClimb = 12,  ///< whether a group takes the stairs over a ride (PopulationDesc::stairClimbUp/Down)
 };
 
 /// SplitMix64 finaliser: a well-mixed 64-bit hash of x.

@@ -241,6 +241,15 @@ struct PopulationDesc {
   /// Route choice prices stairs at the mean of 1/up and 1/down per metre. [Limit: (0, 1]]
   float stairUp = 0.53f;
   float stairDown = 0.60f;
+  /// Of the groups for whom a lift or escalator reaches a goal on another floor, the share that
+  /// weighs the stairs by time like any other way and climbs (or descends) them when that is quicker;
+  /// the rest ride, however long it takes, unless no ride reaches the goal (transport_choice.cpp).
+  /// Drawn per group and goal. Defaults: the shares of people who took the stairs rather than the
+  /// escalator beside them in Montreal's shopping centres, 20.3 % going up and 31.1 % going down
+  /// (Zacharias & Ling 2014, Environment and Behavior 47(6); 33,793 people counted; Beijing: 25.4 %
+  /// and 32.8 %, Zacharias & Ling 2015, Preventive Medicine Reports 2). [Limit: [0, 1]]
+  float stairClimbUp = 0.203f;
+  float stairClimbDown = 0.311f;
   /// Lifts and escalators chosen by oneself (docs/crowd-model.md, "Choosing a lift, an escalator or
   /// the stairs"): on the way to a goal that is no transport's stop, a group rides whichever of the
   /// scenario's transports makes the way there quickest (walking, waiting and riding), if that beats
