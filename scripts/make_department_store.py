@@ -1,14 +1,16 @@
 #!/usr/bin/env python3
 """Writes scenarios/department_store.json: a two-storey store where shoppers choose by themselves
-between the escalators and the lift (docs/crowd-model.md, "Choosing a lift, an escalator or the
-stairs").
+between the escalators, the lift and the stairs (docs/crowd-model.md, "Choosing a lift, an
+escalator or the stairs").
 
 The ground floor and the upper floor are 40 x 30 m, 4.5 m apart; the upper floor has a 12 x 10 m
-void in its middle, which two escalators cross (one up, one down, 25 degrees); the lift stands in
-the north-west corner and serves both floors. Nothing else joins the floors. Four
-shops on each floor, the street door on the south side. No population names a stop among its goals:
-each group rides or climbs as it finds quickest (walking, waiting and riding time), and families
-ride the lift together.
+void in its middle, which two escalators cross (one up, one down, 25 degrees) beside a 3 m wide
+stair (29 degrees, its foot on the ground floor to the east, its head on the upper floor to the
+west); the lift stands in the north-west corner and serves both floors. Four shops on each floor,
+the street door on the south side. No population names a stop among its goals: most groups ride,
+each by what it finds quickest (walking, waiting and riding time), and families ride the lift
+together; the populations' default share of climbers (stairs.climb) take the stairs when those
+are quicker.
 
 Run: python3 scripts/make_department_store.py [OUT] (default scenarios/department_store.json).
 """
@@ -18,6 +20,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 UP = 4.5  # storey height [m]
+STAIR_RUN = UP / 0.5543  # a 29 degree stair (tan 29 = 0.5543): 8.1 m long on the plan
 
 
 def rect(x0, y0, x1, y1):
@@ -26,7 +29,7 @@ def rect(x0, y0, x1, y1):
 
 class Terrain:
     def __init__(self):
-        self.vertices, self.walkable = [], []
+        self.vertices, self.walkable, self.obstacles = [], [], []
 
     def quad(self, corners):
         """A walkable quad: four [x, y, z] corners in order, as two triangles."""
@@ -36,6 +39,16 @@ class Terrain:
 
     def floor(self, x0, y0, x1, y1, z):
         self.quad([(x0, y0, z), (x1, y0, z), (x1, y1, z), (x0, y1, z)])
+
+    def rail(self, xa, za, xb, zb, y0, y1, height):
+        """A solid railing from (xa, za) to (xb, zb) along x, between y0 and y1, `height` tall: a
+        sloped box of 12 obstacle triangles."""
+        base = len(self.vertices)
+        for x, z in ((xa, za), (xb, zb)):
+            self.vertices += [[x, y0, z], [x, y1, z], [x, y1, z + height], [x, y0, z + height]]
+        faces = [(0, 1, 2, 3), (4, 7, 6, 5), (0, 4, 5, 1), (3, 2, 6, 7), (0, 3, 7, 4), (1, 5, 6, 2)]
+        for a, b, c, d in faces:
+            self.obstacles += [[base + a, base + b, base + c], [base + a, base + c, base + d]]
 
 
 def point(pid, kind, polygon, height, **extra):
@@ -52,6 +65,14 @@ def build():
     t.floor(0, 20, 40, 30, UP)
     t.floor(0, 10, 14, 20, UP)
     t.floor(26, 10, 40, 20, UP)
+    # The stair across the void's south side (y 10.5-13.5): its foot on the ground at x 22.1, its
+    # head on the upper floor's west part at x 14.
+    t.quad([(14 + STAIR_RUN, 10.5, 0.0), (14 + STAIR_RUN, 13.5, 0.0), (14, 13.5, UP), (14, 10.5, UP)])
+    # Its railings, 1 m tall: the stair is entered at its foot, not from the side where its first
+    # steps are low enough to step onto (there, people going up cut the corner into those coming
+    # down, and two stood 60 s face to face).
+    for y0, y1 in ((10.4, 10.5), (13.5, 13.6)):
+        t.rail(14 + STAIR_RUN, 0.0, 14, UP, y0, y1, 1.0)
 
     points = [
         point("street", "exit", rect(18, 0, 22, 1), 0.0),
@@ -95,15 +116,15 @@ def build():
     ]
     return {
         "format": "throng/1",
-        "name": "Department store: escalators and a lift, chosen by the shoppers",
-        "description": ("Two 40 x 30 m floors 4.5 m apart, joined by two escalators across the void in "
-                        "the middle and a lift for 8 in the north-west corner. No one is told how to "
-                        "change floors: each group takes what it finds quickest, counting the queues, "
-                        "and families ride the lift together. Watch the queues at the escalators and "
-                        "the lift's batches."),
+        "name": "Department store: escalators, a lift and the stairs, chosen by the shoppers",
+        "description": ("Two 40 x 30 m floors 4.5 m apart, joined by two escalators and a stair across "
+                        "the void in the middle and a lift for 8 in the north-west corner. No one is "
+                        "told how to change floors: most groups ride what they find quickest, counting "
+                        "the queues, families ride the lift together, and about a quarter take the "
+                        "stairs. Watch the queues at the escalators and the lift's batches."),
         "seed": 1,
         "duration": 600,
-        "terrain": {"vertices": t.vertices, "walkable": t.walkable, "obstacles": []},
+        "terrain": {"vertices": t.vertices, "walkable": t.walkable, "obstacles": t.obstacles},
         "points": points,
         "transports": transports,
         "populations": populations,

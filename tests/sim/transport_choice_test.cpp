@@ -229,3 +229,21 @@ TEST(TransportChoice, MostPeopleRideEvenWhenTheStairsBesideAreQuicker) {
   EXPECT_TRUE(climb.boardings.empty());
   EXPECT_EQ(climb.exited, 60u);
 }
+
+// Someone who does not take the stairs boards on its own floor: with a down escalator beside the up
+// one and a long queue at the up one, walking up the stairs to ride down (and then riding up, or
+// walking on) is a way, and it was the one non-climbers took once the queue grew when every ride
+// from anywhere was weighed (in the department store a third of the walkers up the stairs had not
+// chosen to climb). Red without the floor check in TransportRoutes::boardingFor.
+TEST(TransportChoice, PeopleWhoDoNotClimbBoardOnTheirOwnFloor) {
+  sim::ScenarioDesc d = splitLevel(0.5f, 60, true, 0.0f);
+  d.duration = 400;
+  d.points.push_back(region("down-head", sim::PointKind::Interest, 21.0f, 23.0f, 1.0f, 3.0f, 4.0f));  // 3
+  d.points.push_back(region("down-foot", sim::PointKind::Interest, 9.0f, 11.0f, 1.0f, 3.0f, 0.0f));   // 4
+  d.transports.push_back(transport("escalator-down", sim::TransportKind::Escalator, 3, 4, 0.5f));
+  const Outcome o = simulate(d);
+  EXPECT_EQ(o.boardings.count(3), 0u) << "boarded the down escalator upstairs";
+  ASSERT_EQ(o.boardings.count(0), 1u);
+  EXPECT_EQ(o.boardings.at(0), 60u);
+  EXPECT_EQ(o.exited, 60u);
+}

@@ -145,6 +145,10 @@ std::uint32_t TransportRoutes::boardingFor(const ScenarioDesc& desc, const Agent
   std::uint32_t board = kNoIndex;
   for (std::size_t b = 0; b < n; ++b) {
     if (dest[b] == n) continue;
+    // Someone who does not take the stairs boards on the floor it stands on (walking up the stairs
+    // to ride a down escalator and then the up one is a way, and the only one left were walking not
+    // weighed at all).
+    if (rideIfAny && a.levels && std::abs(desc.points[stops_[b].point].height - a.posZ[row]) > nav::kLevelSearch) continue;
     const float c = fieldOf(desc, stops_[b].point)->at(pos, ref) / v + leg[b] + onward[dest[b]];
     if (c < best) {
       best = c;
