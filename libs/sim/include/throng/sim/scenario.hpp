@@ -253,7 +253,8 @@ struct PopulationDesc {
   /// Lifts and escalators chosen by oneself (docs/crowd-model.md, "Choosing a lift, an escalator or
   /// the stairs"): on the way to a goal that is no transport's stop, a group rides whichever of the
   /// scenario's transports makes the way there quickest (walking, waiting and riding), if that beats
-  /// walking; false: its people walk unless their goals name a stop.
+  /// walking (to a goal on another floor, whenever a ride goes there unless the group is one of the
+  /// climbers: stairClimbUp/Down); false: its people walk unless their goals name a stop.
   bool useTransports = true;
   /// The fractional effective dose (smoke's carbon monoxide, coDosePerSecond) at which its people
   /// are incapacitated: they stop where they are and stay, an obstacle to the others. ISO 13571:2012
