@@ -1069,7 +1069,7 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// near bodies: each body is tested against the twelve lanes together (a loop the compiler
   /// vectorises), and only the lanes it stands in are worked on. Per direction the same bodies are
   /// taken in the same order with the same arithmetic, so the gaps are gapAhead's to the bit; the
-  /// twelve compactions it cost were a third of the slip (docs/performance.md).
+  /// twelve compactions were about a fifth of the slip's time (docs/performance.md, session 46).
   static void slipGaps(const AvmScratch& ws, float limit, float depthRatio, SlipLanes& lanes) {
     lanes.gap.fill(limit);
     for (const AvmScratch::NearBlocker& b : ws.near) {
