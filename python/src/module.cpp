@@ -165,9 +165,9 @@ void bindSimulation(py::module_& m) {
            "closed exit, groups choosing among exits re-route, a fixed goal waits at the door. KeyError if `id` "
            "is no exit.")
       .def("exit_is_wall", &Simulation::exitIsWall, py::arg("id"),
-           "Whether closing the exit `id` makes its floor a wall (the scenario's exits and those of crowds the "
-           "timeline inserts); False for an exit a crowd inserted at run time brought (closing it only stops people "
-           "leaving by it), and for an id that is no exit.")
+           "Whether closing the exit `id` makes its floor a wall: True for every exit with floor in its region "
+           "(an exit a crowd inserted at run time brought is cut into the navmesh when it first closes); False for "
+           "an exit with no floor in its region, and for an id that is no exit.")
       .def("remove_agents", &Simulation::removeAgents, py::arg("ids"),
            "These agents (stable ids: an int, a list, a numpy array) leave at the next tick, each with an exit event "
            "(a = b = 4294967295); their groups go on with the others (a removed leader hands over to the lowest id "

@@ -396,6 +396,44 @@ std::vector<PolyRef> NavMesh::cutPolygons(const CutRegion& region) const {
   return out;
 }
 
+bool NavMesh::floorIn(const CutRegion& region) const {
+  const dtNavMesh& mesh = *mesh_;
+  std::vector<Vec2> outline;
+  for (int i = 0; i < mesh.getMaxTiles(); ++i) {
+    const dtMeshTile* tile = mesh.getTile(i);
+    if (tile == nullptr || tile->header == nullptr) continue;
+    for (int p = 0; p < tile->header->polyCount; ++p) {
+      const dtPoly& poly = tile->polys[p];
+      if (poly.getType() != DT_POLYTYPE_GROUND) continue;
+      outline.clear();
+      double height = 0.0;
+      for (int k = 0; k < poly.vertCount; ++k) {
+        const float* v = &tile->verts[poly.verts[k] * 3];
+        outline.push_back({v[0], v[2]});
+        height += v[1];
+      }
+      if (layered_ && std::abs(static_cast<float>(height / poly.vertCount) - region.height) > kLevelSearch) continue;
+      // Two convex-or-simple outlines overlap when a vertex of one lies in the other or edges cross;
+      // a disc overlaps a polygon holding its centre or an edge within its radius.
+      if (core::pointInPolygon(outline, region.centre) && region.polygon.empty()) return true;
+      bool overlap = false;
+      for (std::size_t k = 0, j = outline.size() - 1; k < outline.size() && !overlap; j = k++) {
+        if (region.polygon.empty()) {
+          overlap = core::distanceToSegmentSq(region.centre, outline[j], outline[k]) <= region.radius * region.radius;
+          continue;
+        }
+        overlap = region.contains(outline[k]);
+        const core::Polygon& r = region.polygon;
+        for (std::size_t m = 0, n = r.size() - 1; m < r.size() && !overlap; n = m++) {
+          overlap = core::segmentsIntersect(outline[j], outline[k], r[n], r[m]) || core::pointInPolygon(outline, r[m]);
+        }
+      }
+      if (overlap) return true;
+    }
+  }
+  return false;
+}
+
 void NavMesh::setClosed(std::span<const PolyRef> polys, bool closed) {
   for (const PolyRef ref : polys) {
     (void)mesh_->setPolyFlags(static_cast<dtPolyRef>(ref), closed ? kCutFlag : (kWalkFlag | kCutFlag));

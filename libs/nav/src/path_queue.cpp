@@ -307,6 +307,16 @@ void PathQueue::restart() {
   }
 }
 
+void PathQueue::setMesh(std::shared_ptr<const NavMesh> mesh) {
+  Impl& q = *impl_;
+  restart();
+  // Layered and flat meshes queue heights differently: a rebuilt mesh is the same kind.
+  THRONG_ASSERT(mesh->layered() == q.mesh->layered());
+  q.mesh = std::move(mesh);
+  q.serial = std::make_unique<Searcher>(*q.mesh, q.maxNodes);
+  q.workers.clear();  // made again on the new mesh by the next parallel update
+}
+
 std::size_t PathQueue::costClasses() const { return impl_->costClasses; }
 
 int PathQueue::update(int iterationBudget, const core::TaskSystem* tasks) {

@@ -71,6 +71,15 @@ void ExitChoice::meshChanged() {
   stale_ = true;
 }
 
+void ExitChoice::setMesh(const nav::NavMesh& mesh) {
+  mesh_ = &mesh;
+  ++meshVersion_;
+  // A field answers polygon references of the mesh it was built on: none is read again before
+  // it is rebuilt on this one.
+  for (Exit& e : exits_) e.field = {};
+  stale_ = !exits_.empty();
+}
+
 void ExitChoice::refresh(const GoalWriter& goals, const core::TaskSystem* tasks) {
   if (!stale_) return;
   stale_ = false;

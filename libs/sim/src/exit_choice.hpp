@@ -43,6 +43,10 @@ class ExitChoice {
   /// A door's polygons closed or opened on the mesh prepare() was given (World: closeDoorFloor):
   /// the open exits' fields are stale until refresh().
   void meshChanged();
+  /// Measures on `mesh` from now on (the world's mesh rebuilt with more cut regions): every field
+  /// is rebuilt by the next refresh() (a closed exit's when it opens; until then it answers
+  /// unreachable, as a closed exit costs anyway).
+  void setMesh(const nav::NavMesh& mesh);
   /// Whether refresh() has fields to rebuild.
   [[nodiscard]] bool stale() const { return stale_; }
   /// After meshChanged(): rebuilds the field of every open exit built before the change (a closed

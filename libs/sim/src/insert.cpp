@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <system_error>
 
 #include "throng/sim/animation.hpp"
 #include "world_impl.hpp"
@@ -246,12 +247,112 @@ bool segmentTouches(const nav::CutRegion& region, core::Vec2 a, core::Vec2 b) {
 
 }  // namespace
 
+namespace {
+
+bool sameRegion(const nav::CutRegion& a, const nav::CutRegion& b) {
+  return a.centre.x == b.centre.x && a.centre.y == b.centre.y && a.radius == b.radius && a.height == b.height &&
+         a.polygon.size() == b.polygon.size() &&
+         std::equal(a.polygon.begin(), a.polygon.end(), b.polygon.begin(), [](core::Vec2 p, core::Vec2 q) { return p.x == q.x && p.y == q.y; });
+}
+
+}  // namespace
+
+bool World::Impl::exitCut(std::uint32_t point) const {
+  const nav::CutRegion region = cutRegion(desc.points[point]);
+  const std::vector<nav::CutRegion>& cuts = navmesh->config().cuts;
+  return std::any_of(cuts.begin(), cuts.end(), [&](const nav::CutRegion& c) { return sameRegion(c, region); });
+}
+
+nav::NavMeshConfig World::Impl::configWithEveryExit() const {
+  nav::NavMeshConfig config = navmesh->config();
+  config.cancel = nullptr;
+  for (std::uint32_t p = 0; p < desc.points.size(); ++p) {
+    if (desc.points[p].kind == PointKind::Exit && !exitCut(p)) config.cuts.push_back(cutRegion(desc.points[p]));
+  }
+  return config;
+}
+
+namespace {
+
+/// The same build as the world's first (World::create), so the same mesh on every rank and run,
+/// whichever thread builds it and whenever.
+core::Result<std::shared_ptr<const nav::NavMesh>> buildMesh(const std::vector<core::Polygon>& walkable,
+                                                            const std::vector<core::Polygon>& obstacles,
+                                                            const nav::TerrainMesh& terrain, const nav::NavMeshConfig& config) {
+  return terrain.empty() ? nav::NavMesh::build(walkable, obstacles, config) : nav::NavMesh::buildFromTerrain(terrain, config);
+}
+
+bool sameRegions(const std::vector<nav::CutRegion>& a, const std::vector<nav::CutRegion>& b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), sameRegion);
+}
+
+}  // namespace
+
+void World::Impl::startCutBuild() {
+  if (!meshRebuildable()) return;
+  nav::NavMeshConfig config = configWithEveryExit();
+  if (config.cuts.size() == navmesh->config().cuts.size()) return;
+  if (cutBuild.mesh.valid()) cutBuild.mesh.wait();  // an earlier crowd's: superseded
+  cutBuild.cuts = config.cuts;
+  try {
+    // The build reads copies: the world's description changes while it runs (more crowds).
+    cutBuild.mesh = std::async(std::launch::async, [walkable = desc.walkable, obstacles = desc.obstacles,
+                                                    terrain = desc.terrain, config = std::move(config)] {
+      return buildMesh(walkable, obstacles, terrain, config);
+    });
+  } catch (const std::system_error&) {
+    cutBuild = {};  // no thread to spare: cutExitsIntoMesh builds it when a door closes
+  }
+}
+
+bool World::Impl::cutExitsIntoMesh() {
+  if (!meshRebuildable()) return false;
+  const nav::NavMeshConfig config = configWithEveryExit();
+  if (config.cuts.size() == navmesh->config().cuts.size()) return false;
+  // Built in the background since the crowd came, when it was built for these very exits.
+  const bool ready = cutBuild.mesh.valid() && sameRegions(cutBuild.cuts, config.cuts);
+  auto built = ready ? cutBuild.mesh.get() : buildMesh(desc.walkable, desc.obstacles, desc.terrain, config);
+  if (cutBuild.mesh.valid()) cutBuild.mesh.wait();
+  cutBuild = {};
+  if (!built) return false;
+  std::shared_ptr<nav::NavMesh> mesh = built.value()->clone();
+  if (mesh->layered() != navmesh->layered()) return false;
+  retiredMeshes.push_back(navmesh);
+  ownMesh = mesh;
+  navmesh = mesh;
+  mainQuery = std::make_unique<nav::NavQuery>(navmesh);
+  for (WorkerScratch& ws : scratch) ws.query = std::make_unique<nav::NavQuery>(navmesh);
+  pathQueue->setMesh(navmesh);
+  buildWalls();
+  // Doors closed so far close again on the new polygons.
+  doorPolys.clear();
+  for (std::uint32_t p = 0; p < closedExits.size(); ++p) {
+    if (closedExits[p] == 0) continue;
+    auto& polys = doorPolys.emplace(p, ownMesh->cutPolygons(cutRegion(desc.points[p]))).first->second;
+    ownMesh->setClosed(polys, true);
+  }
+  exitChoice.setMesh(*navmesh);
+  transportRoutes.prepare(desc, *navmesh, *mainQuery);
+  // Every polygon reference agents hold is of the old mesh (a fresh build reuses reference values
+  // for other polygons): each agent finds its polygon again where it stands, on its floor.
+  const bool levels = agents.levels;
+  for (std::size_t row = 0; row < agents.size(); ++row) {
+    const core::Vec2 pos{agents.posX[row], agents.posY[row]};
+    const auto at = mainQuery->snap(pos, levels ? agents.posZ[row] : 0.0f, 2.0f);
+    agents.polyRef[row] = at ? static_cast<std::uint32_t>(at->ref) : 0;
+  }
+  return true;
+}
+
 void World::Impl::closeDoorFloor(std::uint32_t point, bool closed) {
-  if (!ownMesh || point >= desc.points.size()) return;
+  if (point >= desc.points.size()) return;
+  // An exit of a crowd World::insertCrowd brought is cut into the mesh when it first closes.
+  if (closed && !exitCut(point)) cutExitsIntoMesh();
+  if (!ownMesh) return;
   const nav::CutRegion region = cutRegion(desc.points[point]);
   auto it = doorPolys.find(point);
   if (it == doorPolys.end()) it = doorPolys.emplace(point, ownMesh->cutPolygons(region)).first;
-  if (it->second.empty()) return;  // not cut into the mesh (an exit World::insertCrowd brought: exitIsWall)
+  if (it->second.empty()) return;  // no floor in its region (or a mesh that could not be rebuilt: exitIsWall)
   ownMesh->setClosed(it->second, closed);
   if (!closed) {
     // Polygons shared with another exit that is still closed stay closed.
@@ -325,6 +426,8 @@ void World::Impl::insertCrowdNow(CrowdState& c) {
   commonGround.addPoints(desc.points, firstPoint);
 
   addCrowdPopulations(cd, firstPoint, firstPopulation, now);
+  // Its exits are cut into the mesh when the first of them closes: the mesh for that is built now.
+  if (std::any_of(cd.points.begin(), cd.points.end(), [](const PointDesc& p) { return p.kind == PointKind::Exit; })) startCutBuild();
   exitChoice.prepare(desc, *navmesh, firstPopulation);
   configureModels();  // a crowd may walk with a model the world had no use for
   if (desc.social.enabled) commonGround.refreshInterests(desc);
@@ -438,9 +541,13 @@ bool World::removeCrowd(std::string_view id) {
 
 bool World::exitIsWall(std::string_view pointId) const {
   const Impl& w = *impl_;
-  if (!w.ownMesh) return false;
-  for (const PointDesc& p : w.desc.points) {
-    if (p.id == pointId && p.kind == PointKind::Exit) return !w.ownMesh->cutPolygons(cutRegion(p)).empty();
+  for (std::uint32_t p = 0; p < w.desc.points.size(); ++p) {
+    const PointDesc& point = w.desc.points[p];
+    if (point.id != pointId || point.kind != PointKind::Exit) continue;
+    if (w.exitCut(p)) return w.ownMesh && !w.ownMesh->cutPolygons(cutRegion(point)).empty();
+    // Not cut yet (a crowd World::insertCrowd brought): it is when it first closes, when the mesh
+    // can be built again and some floor lies in its region.
+    return w.meshRebuildable() && w.floorIn(cutRegion(point));
   }
   return false;
 }

@@ -80,8 +80,7 @@ core::Result<std::unique_ptr<World>> World::create(const ScenarioDesc& desc,
   w.mainQuery = std::make_unique<nav::NavQuery>(navmesh);
   w.agents.levels = navmesh->layered();  // heights per agent: before any row exists
   const SteeringDesc& s = desc.steering;
-  const float wallCell = std::max(2.0f, s.timeHorizonObstacle * 2.5f + 0.5f);
-  w.walls.build(*navmesh, wallCell);
+  w.buildWalls();
   core::Aabb gridBounds = navmesh->bounds();
   // ~1 m cells searched ring by ring (SpatialGrid::nearest): a handful of agents per cell at
   // pedestrian densities, and the search stops at the k-th neighbour.
@@ -322,6 +321,10 @@ void World::Impl::separate(const core::TaskSystem& tasks) {
       }
     });
   }
+}
+
+void World::Impl::buildWalls() {
+  walls.build(*navmesh, std::max(2.0f, desc.steering.timeHorizonObstacle * 2.5f + 0.5f));
 }
 
 void World::Impl::ensureScratch(const core::TaskSystem& tasks) {

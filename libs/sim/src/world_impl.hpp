@@ -26,6 +26,7 @@
 //   world.cpp      creation, the tick, the phases' contexts, the models in use, the World API
 #pragma once
 #include <array>
+#include <future>
 #include <map>
 #include <memory>
 #include <optional>
@@ -120,6 +121,39 @@ struct World::Impl {
   std::shared_ptr<nav::NavMesh> ownMesh;
   /// Per exit point: the navmesh polygons of its region (found when it first closes).
   std::map<std::uint32_t, std::vector<nav::PolyRef>> doorPolys;
+  /// Meshes this world planned on before a rebuild (cutExitsIntoMesh), kept so that references
+  /// World::navMesh() handed out stay valid for the world's lifetime (one per rebuild).
+  std::vector<std::shared_ptr<const nav::NavMesh>> retiredMeshes;
+  /// Whether the world's mesh can be built again from its description (walkable polygons or
+  /// terrain triangles; a host may hand World::create a mesh built from elsewhere).
+  [[nodiscard]] bool meshRebuildable() const { return !desc.walkable.empty() || !desc.terrain.empty(); }
+  /// Whether exit `point`'s region is one the mesh was cut for (NavMeshConfig::cuts).
+  [[nodiscard]] bool exitCut(std::uint32_t point) const;
+  /// Whether floor of the mesh lies in `region` (World::exitIsWall of an exit not cut yet).
+  [[nodiscard]] bool floorIn(const nav::CutRegion& region) const { return navmesh->floorIn(region); }
+  /// Rebuilds the navmesh with every exit's region cut that is not yet (exits of crowds
+  /// World::insertCrowd brought), and moves everything that plans on it to the new mesh: queries,
+  /// path searches, walls, exit choice and transport fields, the doors closed so far, every
+  /// agent's polygon. False (nothing changed) when every exit is cut, when the mesh cannot be
+  /// rebuilt, or when the build fails.
+  bool cutExitsIntoMesh();
+  /// The mesh cut for every exit, built in the background from when a crowd brings exits the mesh
+  /// is not cut for (startCutBuild) until one of them closes (cutExitsIntoMesh takes it, or builds
+  /// anew when more exits came since): the same mesh, built without holding up the tick that
+  /// closes the door when the close comes later than the build takes.
+  struct CutBuild {
+    std::vector<nav::CutRegion> cuts;
+    std::future<core::Result<std::shared_ptr<const nav::NavMesh>>> mesh;
+  };
+  CutBuild cutBuild;
+  /// The regions the mesh would be cut for with every exit's: its config's cuts, then the exits'
+  /// not among them in point order; as many as it has when every exit is cut.
+  [[nodiscard]] nav::NavMeshConfig configWithEveryExit() const;
+  /// Starts building the mesh of configWithEveryExit() in the background (cutBuild) when it cuts
+  /// more than the mesh does and the mesh can be rebuilt.
+  void startCutBuild();
+  /// The wall grid of the navmesh's boundary (creation and cutExitsIntoMesh).
+  void buildWalls();
   /// The exit's floor closes or opens: path searches start again on the mesh as it is, agents
   /// whose way ran through it (closing) or who walk a path (opening) re-plan, and anyone standing
   /// in a closing door steps out to the nearest open floor (insert.cpp).

@@ -290,10 +290,10 @@ THRONG_API throng_status throng_world_remove_crowd(throng_world* world, const ch
  * THRONG_ERROR_NOT_FOUND when no point of kind exit has that id. One thread at a time. */
 THRONG_API throng_status throng_world_set_exit_open(throng_world* world, const char* id, int32_t open);
 
-/* *out_is_wall receives 1 when closing the exit `id` makes its floor a wall (the scenario's exits
- * and those of crowds its timeline inserts), 0 for an exit a crowd throng_world_insert_crowd
- * brought (closing it only stops people leaving by it: the navmesh is cut once, when it is built)
- * and for an id that is no exit. */
+/* *out_is_wall receives 1 when closing the exit `id` makes its floor a wall: every exit with floor
+ * in its region (an exit a crowd throng_world_insert_crowd brought is cut into the navmesh when it
+ * first closes, which builds the mesh again); 0 for an exit with no floor in its region and for an
+ * id that is no exit. */
 THRONG_API throng_status throng_world_exit_is_wall(throng_world* world, const char* id, int32_t* out_is_wall);
 
 /* ---------------------------------------------------------------------------------------------

@@ -144,6 +144,9 @@ class NavMesh {
   /// cells of it (on a layered mesh:
   /// whose height at the centroid is within kLevelSearch of region.height), in reference order.
   [[nodiscard]] std::vector<PolyRef> cutPolygons(const CutRegion& region) const;
+  /// Whether some ground polygon overlaps `region` (on a layered mesh: one whose mean height is
+  /// within kLevelSearch of region.height): cutting the region would give it polygons of its own.
+  [[nodiscard]] bool floorIn(const CutRegion& region) const;
   /// Closes (kCutFlag only: nothing enters them) or opens (kWalkFlag | kCutFlag) polygons of
   /// cutPolygons(). Not thread-safe: call between queries (queries of other threads must not run).
   void setClosed(std::span<const PolyRef> polys, bool closed);

@@ -49,6 +49,10 @@ class PathQueue {
   /// the same way on any number of threads (the budget already spent stays spent). Tickets keep
   /// their places in the queue.
   void restart();
+  /// Plans on `mesh` from now on (a mesh rebuilt with more cut regions, World::insertCrowd's exits):
+  /// as restart(), every request not finished is searched on it when its turn comes; finished
+  /// results stay. The cost classes are kept.
+  void setMesh(std::shared_ptr<const NavMesh> mesh);
   /// How many cost classes setStairCosts has set (0 before any call).
   [[nodiscard]] std::size_t costClasses() const;
   /// Runs queued searches until `iterationBudget` Detour node expansions are spent (at least one

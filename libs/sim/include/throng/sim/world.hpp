@@ -198,12 +198,13 @@ class World {
   /// no point of kind exit has that id (a queued crowd's points count once it is applied).
   bool setExitOpen(std::string_view pointId, bool open);
   /// Whether closing exit `pointId` makes its floor a wall (docs/crowd-model.md "A closed exit is a
-  /// wall"): true for the exits the navmesh was cut for when it was built — the scenario's and
-  /// those of the crowds its timeline inserts. False for an exit of a crowd insertCrowd brought
-  /// (the mesh is built once: cutting a new region would rebuild its tiles, and with them every
-  /// polygon reference agents, paths, walls and distance fields hold), which closing only stops
-  /// people leaving through, its floor stays walkable; false too when no point of kind exit has
-  /// that id. To make such an exit closable as a wall, put its crowd in the scenario's timeline.
+  /// wall"): true for every exit with floor in its region. The navmesh is cut for the scenario's
+  /// exits and those of the crowds its timeline inserts when it is built; an exit of a crowd
+  /// insertCrowd brought is cut when the first such exit closes, on a mesh built again from the
+  /// description in the background from when the crowd was applied (the tick that closes it waits
+  /// for that build when it is not done yet). False for an exit with no floor
+  /// in its region, for one not cut yet when the description holds no geometry to build the mesh
+  /// again from (a mesh handed to create), and when no point of kind exit has that id.
   [[nodiscard]] bool exitIsWall(std::string_view pointId) const;
   /// Every crowd inserted or queued, in insertion order (timeline crowds included).
   [[nodiscard]] std::vector<CrowdInfo> crowds() const;
