@@ -75,8 +75,10 @@ bool Walls::onLevel(std::uint32_t s, core::Vec2 p, float z) const {
 
 void Walls::query(float x, float y, float r, std::vector<std::uint32_t>& out) const {
   const std::size_t first = out.size();
-  auto cx = [&](float v) { return std::clamp(static_cast<int>(std::floor((v - originX_) * invCell_)), 0, nx_ - 1); };
-  auto cy = [&](float v) { return std::clamp(static_cast<int>(std::floor((v - originY_) * invCell_)), 0, ny_ - 1); };
+  // Clamped to the grid before truncating: the same cells as floor-then-clamp (truncation and floor
+  // differ only below 0, which clamps to 0 either way), without a call to floorf per bound.
+  auto cx = [&](float v) { return static_cast<int>(std::clamp((v - originX_) * invCell_, 0.0f, static_cast<float>(nx_ - 1))); };
+  auto cy = [&](float v) { return static_cast<int>(std::clamp((v - originY_) * invCell_, 0.0f, static_cast<float>(ny_ - 1))); };
   const int x0 = cx(x - r), x1 = cx(x + r), y0 = cy(y - r), y1 = cy(y + r);
   if (boxEmpty(x0, y0, x1, y1)) return;  // most of an open crowd: no cell visited
   for (int yy = y0; yy <= y1; ++yy) {

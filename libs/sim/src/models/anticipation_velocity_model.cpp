@@ -892,9 +892,9 @@ class AnticipationVelocityModel final : public OperationalModel {
     SlipLanes lanes;
     for (int k = -kSlipSteps; k <= kSlipSteps; ++k) {
       if (k == 0) continue;
-      const float c = kSlipAngles.c(k), s = kSlipAngles.s(k);
-      lanes.x[SlipLanes::index(k)] = e0.x * c - e0.y * s;
-      lanes.y[SlipLanes::index(k)] = e0.x * s + e0.y * c;
+      const core::Vec2 ek = turned(e0, k);
+      lanes.x[SlipLanes::index(k)] = ek.x;
+      lanes.y[SlipLanes::index(k)] = ek.y;
     }
     slipGaps(ws, limit, p.passageRatio, lanes);
     for (int k = -kSlipSteps; k <= kSlipSteps; ++k) {
