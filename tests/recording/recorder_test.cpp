@@ -534,6 +534,8 @@ TEST(Recorder, KilledWriterLeavesEverythingUpToTheLastCommittedBatch) {
   Db db(path, /*writable=*/true);
   EXPECT_EQ(db.one("SELECT count(DISTINCT frame) FROM trajectory_data"), std::to_string(summary->frames));
   EXPECT_EQ(db.one("PRAGMA integrity_check"), "ok");
+  // The frame indexes are kept row by row from the start: a killed run has them too.
+  EXPECT_EQ(db.one("SELECT count(*) FROM sqlite_master WHERE type = 'index' AND name IN ('frame_id_idx', 'throng_animation_idx')"), "2");
 }
 
 }  // namespace

@@ -187,10 +187,13 @@ bool Recorder::Impl::writeScenario(const sim::ScenarioDesc& scenario) {
   geometryHash = recording::geometryHash(area.wkt);
   for (const auto& pop : scenario.populations) populationIds.push_back(pop.id);
 
-  if (!exec("BEGIN") || !exec(kCreateJuPedSim) || !exec(kCreateThrong) || !prepareAll()) return false;
+  if (!exec("BEGIN") || !exec(kCreateJuPedSim) || !exec(kCreateThrong) || !exec(kCreateFrameIndexes) || !prepareAll()) return false;
   if (!scenario.terrain.empty()) {
     hasHeights = true;
-    if (!exec(kCreateHeights) || !prepare(insertHeight, "INSERT INTO throng_heights VALUES(?, ?, ?)")) return false;
+    if (!exec(kCreateHeights) || !exec(kCreateHeightsIndex) ||
+        !prepare(insertHeight, "INSERT INTO throng_heights VALUES(?, ?, ?)")) {
+      return false;
+    }
   }
 
   // metadata: JuPedSim's keys (values as Python's str() writes them), then throng's.
@@ -491,8 +494,6 @@ core::Status Recorder::close(bool completed) {
     impl.inTransaction = false;
   }
   impl.writeFinal(completed);
-  impl.exec(recording::kCreateFrameIndexes);
-  if (impl.hasHeights) impl.exec(recording::kCreateHeightsIndex);
   // Fold the WAL into the main file and leave rollback-journal mode: one self-contained file.
   impl.exec("PRAGMA wal_checkpoint(TRUNCATE)");
   impl.exec("PRAGMA journal_mode=DELETE");
