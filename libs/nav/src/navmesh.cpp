@@ -413,22 +413,20 @@ bool NavMesh::floorIn(const CutRegion& region) const {
         height += v[1];
       }
       if (layered_ && std::abs(static_cast<float>(height / poly.vertCount) - region.height) > kLevelSearch) continue;
-      // Two convex-or-simple outlines overlap when a vertex of one lies in the other or edges cross;
-      // a disc overlaps a polygon holding its centre or an edge within its radius.
-      if (core::pointInPolygon(outline, region.centre) && region.polygon.empty()) return true;
-      bool overlap = false;
-      for (std::size_t k = 0, j = outline.size() - 1; k < outline.size() && !overlap; j = k++) {
-        if (region.polygon.empty()) {
-          overlap = core::distanceToSegmentSq(region.centre, outline[j], outline[k]) <= region.radius * region.radius;
-          continue;
+      // A disc overlaps a polygon holding its centre or an edge within its radius; two simple
+      // outlines overlap when a vertex of one lies in the other or two edges cross.
+      const core::Polygon& r = region.polygon;
+      const bool disc = r.empty();
+      if (disc ? core::pointInPolygon(outline, region.centre) : core::pointInPolygon(outline, r[0])) return true;
+      for (std::size_t k = 0, j = outline.size() - 1; k < outline.size(); j = k++) {
+        if (disc ? core::distanceToSegmentSq(region.centre, outline[j], outline[k]) <= region.radius * region.radius
+                 : region.contains(outline[k])) {
+          return true;
         }
-        overlap = region.contains(outline[k]);
-        const core::Polygon& r = region.polygon;
-        for (std::size_t m = 0, n = r.size() - 1; m < r.size() && !overlap; n = m++) {
-          overlap = core::segmentsIntersect(outline[j], outline[k], r[n], r[m]) || core::pointInPolygon(outline, r[m]);
+        for (std::size_t m = 0, n = r.size() - 1; m < r.size(); n = m++) {
+          if (core::segmentsIntersect(outline[j], outline[k], r[n], r[m])) return true;
         }
       }
-      if (overlap) return true;
     }
   }
   return false;

@@ -312,8 +312,7 @@ bool World::Impl::cutExitsIntoMesh() {
   // Built in the background since the crowd came, when it was built for these very exits.
   const bool ready = cutBuild.mesh.valid() && sameRegions(cutBuild.cuts, config.cuts);
   auto built = ready ? cutBuild.mesh.get() : buildMesh(desc.walkable, desc.obstacles, desc.terrain, config);
-  if (cutBuild.mesh.valid()) cutBuild.mesh.wait();
-  cutBuild = {};
+  cutBuild = {};  // a superseded build is waited for here
   if (!built) return false;
   std::shared_ptr<nav::NavMesh> mesh = built.value()->clone();
   if (mesh->layered() != navmesh->layered()) return false;
@@ -547,7 +546,7 @@ bool World::exitIsWall(std::string_view pointId) const {
     if (w.exitCut(p)) return w.ownMesh && !w.ownMesh->cutPolygons(cutRegion(point)).empty();
     // Not cut yet (a crowd World::insertCrowd brought): it is when it first closes, when the mesh
     // can be built again and some floor lies in its region.
-    return w.meshRebuildable() && w.floorIn(cutRegion(point));
+    return w.meshRebuildable() && w.navmesh->floorIn(cutRegion(point));
   }
   return false;
 }

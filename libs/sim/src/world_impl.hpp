@@ -129,8 +129,6 @@ struct World::Impl {
   [[nodiscard]] bool meshRebuildable() const { return !desc.walkable.empty() || !desc.terrain.empty(); }
   /// Whether exit `point`'s region is one the mesh was cut for (NavMeshConfig::cuts).
   [[nodiscard]] bool exitCut(std::uint32_t point) const;
-  /// Whether floor of the mesh lies in `region` (World::exitIsWall of an exit not cut yet).
-  [[nodiscard]] bool floorIn(const nav::CutRegion& region) const { return navmesh->floorIn(region); }
   /// Rebuilds the navmesh with every exit's region cut that is not yet (exits of crowds
   /// World::insertCrowd brought), and moves everything that plans on it to the new mesh: queries,
   /// path searches, walls, exit choice and transport fields, the doors closed so far, every
