@@ -36,6 +36,7 @@
 #include "throng/bench/detour_crowd_baseline.hpp"
 #include "throng/bench/scenarios.hpp"
 #include "throng/core/parallel.hpp"
+#include "throng/core/simd.hpp"
 #include "throng/recording/recorder.hpp"
 #include "throng/io/scenario_loader.hpp"
 #include "throng/sim/world.hpp"
@@ -356,6 +357,7 @@ void BenchRunner::print(const Measurement& m) {
     if (fileMode_) line["scenario_file"] = filePath_;
     if (m.engine != kDetourCrowdEngine) line["model"] = options_.model.empty() ? (fileMode_ ? "scenario" : "orca") : options_.model;
     if (m.engine != kDetourCrowdEngine) line["row_order"] = options_.rowOrder;
+    if (m.engine != kDetourCrowdEngine) line["simd"] = std::string(core::simdPathName(core::simdPath()));
     if (m.recordedFps) {
       line["recording"] = {{"fps", *m.recordedFps}, {"frames", m.frames}, {"close_s", m.closeSeconds}};
     }
@@ -417,6 +419,9 @@ void BenchRunner::printFootnotes() const {
                                   fileMode_ ? ", its wall time and x real also closing the file (flush, checkpoint)"
                                             : "; closing the file is not timed"));
   }
+  printLine(stdout, fmt::format("simd: {} (the vector path of throng's hot loops; THRONG_SIMD=portable or avx2 picks one, "
+                                "with the same trajectories)",
+                                core::simdPathName(core::simdPath())));
   for (const auto& note : notes_) printLine(stdout, "note: " + note);
 }
 

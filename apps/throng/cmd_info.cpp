@@ -15,8 +15,9 @@ CLI::App* addInfoCommand(CLI::App& app, InfoOptions& options) {
   CLI::App* cmd = app.add_subcommand("info", "Show what a recording holds");
   cmd->footer(
       "Show what a recording holds: scenario name, seed, agents, frames, frame rate, duration,\n"
-      "whether the run completed (false when interrupted or killed), populations, Common Ground (on or off,\n"
-      "and how many coordinations were recorded) and format version.");
+      "whether the run completed (false when interrupted or killed), populations, avoidance models, the SIMD\n"
+      "path that wrote it, Common Ground (on or off, and how many coordinations were recorded) and format\n"
+      "version.");
   cmd->add_option("recording", options.recording, "Recording written by 'throng run'")
       ->required()
       ->type_name("FILE.sqlite");
@@ -58,6 +59,7 @@ int runInfo(const InfoOptions& options) {
     // or the text is not JSON (a hand-edited file).
     out["models"] = s.models.empty() ? nlohmann::json(nullptr) : nlohmann::json::parse(s.models, nullptr, false);
     if (out["models"].is_discarded()) out["models"] = nullptr;
+    out["simd"] = s.simd.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.simd);
     out["heights_m"] = s.heights ? nlohmann::json{s.heights->first, s.heights->second} : nlohmann::json(nullptr);
     printLine(stdout, dumpJson(out));
     return kExitOk;
@@ -81,6 +83,10 @@ int runInfo(const InfoOptions& options) {
                                   s.heights->second));
   }
   if (!s.models.empty()) printLine(stdout, fmt::format("models       {}", displayText(s.models, 400)));
+  if (!s.simd.empty()) {
+    printLine(stdout, fmt::format("simd         {} (the vector path of the hot loops; every path gives the same trajectories)",
+                                  displayText(s.simd, 40)));
+  }
   if (!s.commonGround.empty()) {
     printLine(stdout, fmt::format("common ground {}: {} coordinations (throng script / throng metrics read them)", s.commonGround,
                                   s.coordinations));

@@ -13,6 +13,7 @@
 
 #include "commands.hpp"
 #include "throng/core/diagnostic.hpp"
+#include "throng/core/simd.hpp"
 
 namespace {
 
@@ -40,7 +41,9 @@ int dispatch(int argc, char** argv) {
   app.set_version_flag("--version", THRONG_VERSION, "Print the version and exit");
   app.require_subcommand(1);
   app.footer("Run 'throng COMMAND --help' for the flags of a command.\n"
-             "Exit codes: 0 ok, 1 bad input or failure, 2 bad flags, 130 interrupted.");
+             "Exit codes: 0 ok, 1 bad input or failure, 2 bad flags, 130 interrupted.\n"
+             "Environment: THRONG_SIMD=auto|portable|avx2 picks the vector path of the hot loops (default auto: the\n"
+             "widest this CPU runs); every path gives the same trajectories.");
 
   RunOptions runOptions;
   CheckOptions checkOptions;
@@ -79,6 +82,9 @@ int dispatch(int argc, char** argv) {
     // --help and --version are "errors" with exit code 0; every real parse error exits 2.
     const int code = app.exit(e);
     return code == 0 ? kExitOk : kExitUsage;
+  }
+  if (const std::string problem = throng::core::simdRequestProblem(); !problem.empty()) {
+    std::fputs(fmt::format("throng: warning: {}\n", problem).c_str(), stderr);
   }
 
   if (run->parsed()) return runRun(runOptions);

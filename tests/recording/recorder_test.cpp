@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "temp_dir.hpp"
+#include "throng/core/simd.hpp"
 #include "throng/recording/recorder.hpp"
 
 namespace throng::recording {
@@ -209,6 +210,25 @@ TEST(Recorder, MetadataNamesEachPopulationsModelWithItsValues) {
             "\"neighbourStrength\": 4, \"neighbourRange\": 0.1, \"wallStrength\": 5, \"wallRange\": 0.02, \"passageRatio\": 0.65, \"visionRange\": 20, "
             "\"separationPasses\": 2, \"noPressing\": 1, \"overtakeDensity\": 1.3}, "
             "\"late \\\"quoted\\\"\": {\"name\": \"orca\", \"yieldResponsibility\": 0.6, \"lodNeighbours\": 4, \"wallMargin\": 0.01}}");
+}
+
+// Issue 22: the recording names the SIMD path that wrote it (throng_simd), and the summary reads it.
+TEST(Recorder, MetadataNamesTheSimdPath) {
+  TempDir dir;
+  const core::SimdPath before = core::simdPath();
+  for (core::SimdPath path : {core::SimdPath::Portable, core::SimdPath::Avx2}) {
+    if (!core::setSimdPath(path)) continue;  // a CPU without AVX2 runs only the portable path
+    const std::string file = dir.file(std::string(core::simdPathName(path)) + ".sqlite");
+    auto rec = openOk(bottleneck(), optionsFor(file));
+    ASSERT_NE(rec, nullptr);
+    ASSERT_TRUE(rec->close(true).ok());
+    Db db(file);
+    EXPECT_EQ(db.one("SELECT value FROM metadata WHERE key = 'throng_simd'"), core::simdPathName(path));
+    const auto summary = readRecordingSummary(file);
+    ASSERT_TRUE(summary.ok()) << core::formatAll(summary.errors());
+    EXPECT_EQ(summary->simd, core::simdPathName(path));
+  }
+  core::setSimdPath(before);
 }
 
 // Issue 20: a world read from a glTF file is named in the recording (a replay serves its materials

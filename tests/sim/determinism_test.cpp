@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "throng/core/simd.hpp"
 #include "throng/io/scenario_loader.hpp"
 #include "throng/sim/world.hpp"
 
@@ -176,6 +177,32 @@ TEST(Determinism, RowsSortedSpatiallyGiveTheSameTrajectoriesAsRowsInIdOrder) {
     const Trace spatial = run(s, 1, 256, 1200, hook, RowOrder::Spatial);
     EXPECT_EQ(firstDifference(byId, spatial), byId.hashes.size()) << name;
     EXPECT_EQ(byId.events.size(), spatial.events.size()) << name;
+  }
+}
+
+TEST(Determinism, EverySimdPathGivesTheSameTrajectories) {
+  // The neighbour search and ORCA's half-planes run four or eight lanes at a time
+  // (core::simdPath()); both give the same bits, so the same trajectories: ORCA and the avm at a
+  // door (bottleneck, both models), crossing flows (crossing, ORCA), 30 s each on 2 threads.
+  std::vector<core::SimdPath> paths{core::SimdPath::Portable};
+  if (core::simdSupported(core::SimdPath::Avx2)) paths.push_back(core::SimdPath::Avx2);
+  const core::SimdPath before = core::simdPath();
+  for (const char* name : {"bottleneck", "crossing"}) {
+    for (ModelKind model : {ModelKind::Orca, ModelKind::AnticipationVelocity}) {
+      io::LoadedScenario s = load(name);
+      for (PopulationDesc& pop : s.desc.populations) pop.model = ModelDesc(model);
+      std::vector<Trace> traces;
+      for (core::SimdPath path : paths) {
+        ASSERT_TRUE(core::setSimdPath(path));
+        traces.push_back(run(s, 2, 64, 600));
+      }
+      core::setSimdPath(before);
+      ASSERT_GT(traces[0].mostAgents, 50u) << name;
+      for (std::size_t p = 1; p < traces.size(); ++p) {
+        EXPECT_EQ(firstDifference(traces[0], traces[p]), traces[0].hashes.size())
+            << name << " (" << static_cast<int>(model) << "): " << core::simdPathName(paths[p]) << " differs from portable";
+      }
+    }
   }
 }
 

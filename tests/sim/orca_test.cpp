@@ -5,6 +5,11 @@
 #include <rapidcheck/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "throng/core/rng.hpp"
+#include "throng/core/simd.hpp"
 
 using throng::core::Vec2;
 using namespace throng::sim;
@@ -93,4 +98,60 @@ RC_GTEST_PROP(OrcaProperty, ResultMeetsAllLinesAndSpeed, ()) {
   if (zeroFeasible) {
     for (const OrcaLine& l : lines) RC_ASSERT(satisfies(l, v));
   }
+}
+
+namespace {
+
+/// Every SIMD path this CPU runs (the portable one always).
+std::vector<throng::core::SimdPath> runnablePaths() {
+  std::vector<throng::core::SimdPath> paths{throng::core::SimdPath::Portable};
+  if (throng::core::simdSupported(throng::core::SimdPath::Avx2)) paths.push_back(throng::core::SimdPath::Avx2);
+  return paths;
+}
+
+bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+}  // namespace
+
+TEST(Orca, BatchedLinesEqualOneAtATimeBitForBitOnEverySimdPath) {
+  // Neighbours in all three of agentOrcaLine's cases — apart with the cut-off circle closest,
+  // apart with a leg (left and right), overlapping (moving and at rest relative to each other) —
+  // in counts that leave every tail length of a four- and an eight-lane block.
+  throng::core::Rng rng(7, 0, throng::core::RngPurpose::Bench);
+  const throng::core::SimdPath before = throng::core::simdPath();
+  int cases[3] = {0, 0, 0};
+  for (throng::core::SimdPath path : runnablePaths()) {
+    ASSERT_TRUE(throng::core::setSimdPath(path));
+    for (int trial = 0; trial < 400; ++trial) {
+      const std::size_t n = static_cast<std::size_t>(trial % 23);
+      std::vector<float> px(n), py(n), vx(n), vy(n), cr(n), resp(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const float scale = (i % 3 == 0) ? 0.3f : 4.0f;  // a third of them overlapping, most apart
+        px[i] = static_cast<float>(rng.uniform(-scale, scale));
+        py[i] = static_cast<float>(rng.uniform(-scale, scale));
+        vx[i] = (i % 7 == 0) ? px[i] / 0.05f : static_cast<float>(rng.uniform(-2.5, 2.5));  // at rest relative to the push
+        vy[i] = (i % 7 == 0) ? py[i] / 0.05f : static_cast<float>(rng.uniform(-2.5, 2.5));
+        cr[i] = static_cast<float>(rng.uniform(0.3, 0.6));
+        resp[i] = (i % 2 == 0) ? 0.5f : static_cast<float>(rng.uniform(0.2, 0.8));
+      }
+      const Vec2 self{static_cast<float>(rng.uniform(-1.3, 1.3)), static_cast<float>(rng.uniform(-1.3, 1.3))};
+      std::vector<OrcaLine> batch(n);
+      agentOrcaLines({px.data(), py.data(), vx.data(), vy.data(), cr.data(), resp.data(), n}, self, 2.0f, 0.05f, batch.data());
+      for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 rel{px[i], py[i]};
+        const float distSq = throng::core::lengthSq(rel);
+        const Vec2 w = Vec2{vx[i], vy[i]} - 0.5f * rel;
+        const float d = throng::core::dot(w, rel);
+        ++cases[distSq <= cr[i] * cr[i] ? 2 : (d < 0.0f && d * d > cr[i] * cr[i] * throng::core::lengthSq(w)) ? 0 : 1];
+        const OrcaLine one = agentOrcaLine(rel, Vec2{vx[i], vy[i]}, self, cr[i], 2.0f, 0.05f, resp[i]);
+        ASSERT_TRUE(sameBits(batch[i].point.x, one.point.x) && sameBits(batch[i].point.y, one.point.y) &&
+                    sameBits(batch[i].direction.x, one.direction.x) && sameBits(batch[i].direction.y, one.direction.y))
+            << throng::core::simdPathName(path) << " neighbour " << i << " of " << n << ": (" << batch[i].point.x << ", "
+            << batch[i].point.y << ") / (" << batch[i].direction.x << ", " << batch[i].direction.y << ") against ("
+            << one.point.x << ", " << one.point.y << ") / (" << one.direction.x << ", " << one.direction.y << ")";
+      }
+    }
+  }
+  throng::core::setSimdPath(before);
+  for (int c : cases) EXPECT_GT(c, 100) << "every case of agentOrcaLine is exercised";
 }

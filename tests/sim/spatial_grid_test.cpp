@@ -7,6 +7,7 @@
 #include <set>
 
 #include "throng/core/rng.hpp"
+#include "throng/core/simd.hpp"
 
 using namespace throng;
 
@@ -63,6 +64,56 @@ TEST(SpatialGrid, NearestMatchesBruteForce) {
       }
     }
   }
+}
+
+TEST(SpatialGrid, NearestIsTheSameOnEverySimdPathAndMatchesBruteForce) {
+  // Dense clusters (up to ~20 candidates a cell, so the narrowing and the ranking run on long
+  // lists), exact duplicates (ties settled by row), k up to 70 (past the stack buffer), on every
+  // SIMD path this CPU runs.
+  std::vector<float> xs, ys;
+  core::Rng rng(3, 0, core::RngPurpose::Bench);
+  for (int i = 0; i < 1500; ++i) {
+    const bool dense = i % 3 != 0;
+    xs.push_back(static_cast<float>(rng.uniform(dense ? 10 : 0, dense ? 16 : 30)));
+    ys.push_back(static_cast<float>(rng.uniform(dense ? 10 : 0, dense ? 16 : 30)));
+  }
+  for (int i = 0; i < 100; ++i) {  // duplicates of earlier agents
+    xs.push_back(xs[static_cast<std::size_t>(i * 7)]);
+    ys.push_back(ys[static_cast<std::size_t>(i * 7)]);
+  }
+  std::vector<core::SimdPath> paths{core::SimdPath::Portable};
+  if (core::simdSupported(core::SimdPath::Avx2)) paths.push_back(core::SimdPath::Avx2);
+  const core::SimdPath before = core::simdPath();
+  core::TaskSystem tasks(1);
+  std::size_t compared = 0;
+  for (core::SimdPath path : paths) {
+    ASSERT_TRUE(core::setSimdPath(path));
+    sim::SpatialGrid grid;
+    grid.configure(core::Aabb{{0, 0}, {30, 30}}, 1.0f);
+    grid.rebuild(xs, ys, tasks);
+    for (std::uint32_t self = 0; self < xs.size(); self += 5) {
+      for (std::size_t k : {1u, 4u, 10u, 17u, 70u}) {
+        for (float range : {0.5f, 2.0f, 3.0f, 7.0f}) {
+          std::vector<std::uint32_t> out(k);
+          const std::size_t n = grid.nearest(xs[self], ys[self], range, k, self, out.data());
+          std::vector<std::pair<float, std::uint32_t>> all;
+          for (std::uint32_t i = 0; i < xs.size(); ++i) {
+            if (i == self) continue;
+            const float dx = xs[i] - xs[self], dy = ys[i] - ys[self];
+            if (dx * dx + dy * dy < range * range) all.push_back({dx * dx + dy * dy, i});
+          }
+          std::sort(all.begin(), all.end());
+          ASSERT_EQ(n, std::min(k, all.size())) << core::simdPathName(path) << " self " << self << " k " << k;
+          for (std::size_t i = 0; i < n; ++i) {
+            ASSERT_EQ(out[i], all[i].second) << core::simdPathName(path) << " self " << self << " k " << k << " range " << range;
+          }
+          compared += n;
+        }
+      }
+    }
+  }
+  core::setSimdPath(before);
+  EXPECT_GT(compared, 100000u);
 }
 
 TEST(SpatialGrid, DensityCountsAgentsPerSquareMetreAround) {

@@ -27,6 +27,7 @@
 
 #include "recorder_impl.hpp"
 #include "throng/core/footprint.hpp"
+#include "throng/core/simd.hpp"
 #include "recording_scenario.hpp"
 #include "recording_schema.hpp"
 #include "recording_text.hpp"
@@ -206,7 +207,8 @@ bool Recorder::Impl::writeScenario(const sim::ScenarioDesc& scenario) {
             putMeta(kKeySeed, std::to_string(options.seed)) &&
             putMeta(kKeyDt, pythonFloatText(floatAsDecimal(scenario.dt))) &&
             putMeta(kKeyCompleted, "0") && putMeta(kKeyFrames, "0") && putMeta(kKeyDuration, "0.0") &&
-            putMeta(kKeyAgents, "0") && putMeta(kKeyModels, modelsJson(scenario));
+            putMeta(kKeyAgents, "0") && putMeta(kKeyModels, modelsJson(scenario)) &&
+            putMeta(kKeySimd, std::string(core::simdPathName(core::simdPath())));
   if (ok && scenario.social.enabled) ok = putMeta(kKeyCommonGround, scenario.social.commonGround ? "on" : "off");
   if (ok && !options.worldFile.empty()) ok = putMeta(kKeyWorldFile, options.worldFile);
   if (!ok) return false;

@@ -136,6 +136,7 @@ class SummaryReader {
     sum_.throngVersion = meta(recording::kKeyThrongVersion).text;
     sum_.commonGround = meta(recording::kKeyCommonGround).text;
     sum_.models = meta(recording::kKeyModels).text;
+    sum_.simd = meta(recording::kKeySimd).text;
     sum_.scenarioName = meta(recording::kKeyScenarioName).text;
     if (const auto seed = recording::parseInt(meta(recording::kKeySeed).text)) {
       sum_.seed = static_cast<std::uint64_t>(*seed);

@@ -43,6 +43,9 @@ inline constexpr const char* kKeyCommonGround = "throng_common_ground";
 /// (the scenario's choice with the model's defaults filled in, so a recording says which model
 /// and values produced it even when the scenario named none).
 inline constexpr const char* kKeyModels = "throng_models";
+/// The SIMD path of the hot loops that wrote the recording ("avx2" or "portable", core::simdPath()):
+/// every path gives the same trajectories, so this says how, not what; absent in older recordings.
+inline constexpr const char* kKeySimd = "throng_simd";
 /// The glTF / GLB world file's name (no directory) when the scenario was read from one; absent else.
 inline constexpr const char* kKeyWorldFile = "throng_world_file";
 

@@ -3,10 +3,17 @@
 #include "throng/sim/orca.hpp"
 
 #include "throng/core/geometry.hpp"
+#include "throng/core/simd.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 namespace throng::sim {
 namespace {
@@ -149,6 +156,119 @@ OrcaLine agentOrcaLine(Vec2 relPos, Vec2 relVel, Vec2 selfVel, float combinedRad
   }
   line.point = selfVel + responsibility * u;
   return line;
+}
+
+namespace {
+
+#define THRONG_KERNEL [[gnu::always_inline]] inline
+
+/// One block of W neighbours (every array holds W entries): agentOrcaLine's three cases are all
+/// computed, in its order of operations, and the right one chosen per lane.
+/// out = √v lane by lane (exactly rounded, as std::sqrt): SSE2's sqrtps four lanes at a time.
+template <int W, class F>
+THRONG_KERNEL void sqrtLanes(F& out, const F& v) {
+#if defined(__SSE2__)
+  for (int h = 0; h < W; h += 4) {
+    __m128 q;
+    std::memcpy(&q, reinterpret_cast<const float*>(&v) + h, sizeof q);
+    q = _mm_sqrt_ps(q);
+    std::memcpy(reinterpret_cast<float*>(&out) + h, &q, sizeof q);
+  }
+#else
+  for (int l = 0; l < W; ++l) out[l] = std::sqrt(v[l]);
+#endif
+}
+
+template <int W>
+THRONG_KERNEL void orcaLineBlock(const float* px, const float* py, const float* pvx, const float* pvy, const float* pcr,
+                                 const float* presp, Vec2 selfVel, float invTimeHorizon, float invTimeStep, OrcaLine* out) {
+  using F = float __attribute__((vector_size(4 * W)));
+  using I = std::int32_t __attribute__((vector_size(4 * W)));
+  F x, y, vx, vy, cr, resp, zero, one, invTH, invTS;
+  std::memcpy(&x, px, sizeof x);
+  std::memcpy(&y, py, sizeof y);
+  std::memcpy(&vx, pvx, sizeof vx);
+  std::memcpy(&vy, pvy, sizeof vy);
+  std::memcpy(&cr, pcr, sizeof cr);
+  std::memcpy(&resp, presp, sizeof resp);
+  for (int l = 0; l < W; ++l) zero[l] = 0.0f, one[l] = 1.0f, invTH[l] = invTimeHorizon, invTS[l] = invTimeStep;
+  const F distSq = x * x + y * y;
+  const F crSq = cr * cr;
+  // Apart: the cut-off circle or a leg of the cone.
+  const F wx = vx - x * invTH, wy = vy - y * invTH;
+  const F wLengthSq = wx * wx + wy * wy;
+  const F dp = wx * x + wy * y;
+  const I onCircle = (dp < zero) & (dp * dp > crSq * wLengthSq);
+  F wLength, leg, oLength;
+  sqrtLanes<W>(wLength, wLengthSq);
+  const F circleX = wx / wLength, circleY = wy / wLength;
+  const F circleS = cr * invTH - wLength;
+  sqrtLanes<W>(leg, distSq - crSq);
+  const I leftLeg = (x * wy - y * wx) > zero;
+  const F lx = (x * leg - y * cr) / distSq, ly = (x * cr + y * leg) / distSq;
+  const F rx = (-(x * leg + y * cr)) / distSq, ry = (-(-x * cr + y * leg)) / distSq;
+  const F legX = leftLeg ? lx : rx, legY = leftLeg ? ly : ry;
+  const F legDot = vx * legX + vy * legY;
+  // Overlapping: push apart within one step.
+  const F ox = vx - x * invTS, oy = vy - y * invTS;
+  sqrtLanes<W>(oLength, ox * ox + oy * oy);
+  const I moving = oLength > zero;
+  const F oux = moving ? ox / oLength : one, ouy = moving ? oy / oLength : zero;
+  const F overlapS = cr * invTS - oLength;
+
+  const I apart = distSq > crSq;
+  const I circle = apart & onCircle, cone = apart & ~onCircle;
+  const F dirX = circle ? circleY : cone ? legX : ouy;
+  const F dirY = circle ? -circleX : cone ? legY : -oux;
+  const F ux = circle ? circleX * circleS : cone ? legX * legDot - vx : oux * overlapS;
+  const F uy = circle ? circleY * circleS : cone ? legY * legDot - vy : ouy * overlapS;
+  const F pointX = ux * resp, pointY = uy * resp;
+  for (int l = 0; l < W; ++l) {
+    out[l].point = Vec2{selfVel.x + pointX[l], selfVel.y + pointY[l]};
+    out[l].direction = Vec2{dirX[l], dirY[l]};
+  }
+}
+
+template <int W>
+THRONG_KERNEL void agentOrcaLinesIn(const OrcaNeighbours& nb, Vec2 selfVel, float timeHorizon, float dt, OrcaLine* out) {
+  const float invTimeHorizon = 1.0f / timeHorizon, invTimeStep = 1.0f / dt;
+  std::size_t i = 0;
+  for (; i + W <= nb.count; i += W) {
+    orcaLineBlock<W>(nb.relPosX + i, nb.relPosY + i, nb.relVelX + i, nb.relVelY + i, nb.combinedRadius + i,
+                     nb.responsibility + i, selfVel, invTimeHorizon, invTimeStep, out + i);
+  }
+  if (i == nb.count) return;
+  // The last few: copied into full blocks, the empty lanes a harmless neighbour 1 m away.
+  float x[W], y[W], vx[W], vy[W], cr[W], resp[W];
+  OrcaLine lines[W];
+  const std::size_t left = nb.count - i;
+  for (std::size_t l = 0; l < static_cast<std::size_t>(W); ++l) {
+    const bool real = l < left;
+    x[l] = real ? nb.relPosX[i + l] : 1.0f;
+    y[l] = real ? nb.relPosY[i + l] : 0.0f;
+    vx[l] = real ? nb.relVelX[i + l] : 0.0f;
+    vy[l] = real ? nb.relVelY[i + l] : 0.0f;
+    cr[l] = real ? nb.combinedRadius[i + l] : 0.5f;
+    resp[l] = real ? nb.responsibility[i + l] : 0.5f;
+  }
+  orcaLineBlock<W>(x, y, vx, vy, cr, resp, selfVel, invTimeHorizon, invTimeStep, lines);
+  std::copy(lines, lines + left, out + i);
+}
+
+#if defined(__x86_64__)
+[[gnu::target("avx2")]] void agentOrcaLinesAvx2(const OrcaNeighbours& nb, Vec2 selfVel, float timeHorizon, float dt,
+                                                OrcaLine* out) {
+  agentOrcaLinesIn<8>(nb, selfVel, timeHorizon, dt, out);
+}
+#endif
+
+}  // namespace
+
+void agentOrcaLines(const OrcaNeighbours& nb, Vec2 selfVel, float timeHorizon, float dt, OrcaLine* out) {
+#if defined(__x86_64__)
+  if (core::simdPath() == core::SimdPath::Avx2) return agentOrcaLinesAvx2(nb, selfVel, timeHorizon, dt, out);
+#endif
+  agentOrcaLinesIn<4>(nb, selfVel, timeHorizon, dt, out);
 }
 
 bool segmentOrcaLine(Vec2 a, Vec2 b, Vec2 selfVel, float radius, float timeHorizon, float maxSpeed, OrcaLine& out) {

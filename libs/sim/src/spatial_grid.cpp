@@ -3,12 +3,18 @@
 #include "throng/sim/spatial_grid.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
 
 #include "throng/core/assert.hpp"
+#include "throng/core/simd.hpp"
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 namespace throng::sim {
 
@@ -26,6 +32,7 @@ void SpatialGrid::configure(const core::Aabb& bounds, float cellSize) {
 void SpatialGrid::rebuild(std::span<const float> posX, std::span<const float> posY, const core::TaskSystem& tasks) {
   const std::size_t n = posX.size();
   size_ = n;
+  avx2_ = core::simdPath() == core::SimdPath::Avx2;
   rows_.assign(n + kPad, 0);
   // Counting sort, stable in row order (serial: a few ns per agent). Each row's cell is worked out
   // twice rather than kept: 4 bytes an agent less at a million agents.
@@ -49,7 +56,7 @@ void SpatialGrid::rebuild(std::span<const float> posX, std::span<const float> po
 
 namespace {
 
-/// Candidates buffered on the stack (a multiple of 4); k <= kStackCandidates / 4 needs no heap.
+/// Candidates buffered on the stack (a multiple of 8); k <= kStackCandidates / 4 needs no heap.
 constexpr std::size_t kStackCandidates = 256;
 /// Rings gathered before the first stop test: at ~1 agent per cell and k = 10 the 10th neighbour
 /// lies in ring 2 nearly always, so the 5 × 5 block is read as five spans.
@@ -57,9 +64,30 @@ constexpr int kFirstRings = 2;
 /// Above this many candidates the final ranking (quadratic) is preceded by a selection pass.
 constexpr std::size_t kRankMax = 64;
 
-// Four-lane vectors (GCC/Clang vector extensions: SSE2 on x86-64, NEON on ARM).
-using F4 = float __attribute__((vector_size(16)));
-using I4 = std::int32_t __attribute__((vector_size(16)));
+// The kernels below are written once for vectors of W lanes (GCC/Clang vector extensions) and
+// inlined into two entry points: W = 4 (the portable path: SSE2 on x86-64, NEON on ARM) and W = 8
+// compiled for AVX2. They use comparisons, integer sums, permutes and the exactly rounded float
+// subtraction, multiplication and addition in the same order, so both give the same bits.
+#define THRONG_KERNEL [[gnu::always_inline]] inline
+
+template <int W>
+struct Lanes {
+  // Vectors go in and out by reference only: a 32-byte vector by value would change the calling
+  // convention between the AVX2 entry point and baseline code.
+  using F = float __attribute__((vector_size(4 * W)));
+  using I = std::int32_t __attribute__((vector_size(4 * W)));
+  THRONG_KERNEL static void fill(F& out, float v) {
+    for (int l = 0; l < W; ++l) out[l] = v;
+  }
+  THRONG_KERNEL static void fill(I& out, std::int32_t v) {
+    for (int l = 0; l < W; ++l) out[l] = v;
+  }
+  THRONG_KERNEL static std::int32_t sum(const I& v) {
+    std::int32_t s = 0;
+    for (int l = 0; l < W; ++l) s += v[l];
+    return s;
+  }
+};
 
 /// A candidate as one integer: the bits of its distance² (a non-negative float, whose bit patterns
 /// order like its values) above its row, so comparing keys compares (distance², row).
@@ -71,7 +99,7 @@ inline std::uint64_t packKey(float d2, std::uint32_t row) {
 struct Candidates {
   float* d2;
   std::uint32_t* row;
-  std::size_t capacity;  // a multiple of 4, > 2k
+  std::size_t capacity;  // a multiple of 8, > 2k
   std::size_t n = 0;
 };
 
@@ -86,50 +114,148 @@ void keepSmallest(Candidates& c, std::size_t k, std::uint64_t* scratch) {
   c.n = k;
 }
 
-/// Drops candidates that cannot be among the k smallest: four trial limits around `expectedSq`
-/// (the k-th distance² the local density predicts) are counted in one pass, and the candidates
-/// below the smallest limit with at least k below it are kept — exact for any trial limits. With
-/// no such limit, those below `admitted` are kept (this also drops the scan's +inf fillers).
-void narrow(Candidates& c, std::size_t k, float expectedSq, float admitted) {
-  const F4 limits = {0.8f * expectedSq, expectedSq, 1.25f * expectedSq, 1.6f * expectedSq};
-  I4 below = {0, 0, 0, 0};
-  for (std::size_t j = 0; j < c.n; ++j) {
-    const F4 d = {c.d2[j], c.d2[j], c.d2[j], c.d2[j]};
-    below -= static_cast<I4>(d < limits);
+/// Fills the entries from c.n up to the next multiple of W with +inf (never below a limit, never
+/// before anyone in the ranking) and returns that multiple; the capacity is a multiple of 8.
+template <int W>
+THRONG_KERNEL std::size_t padCandidates(Candidates& c) {
+  const std::size_t m = (c.n + (W - 1)) & ~static_cast<std::size_t>(W - 1);
+  for (std::size_t i = c.n; i < m; ++i) {
+    c.d2[i] = std::numeric_limits<float>::infinity();
+    c.row[i] = 0;
   }
-  const auto kk = static_cast<std::int32_t>(k);
-  const int lane = below[0] >= kk ? 0 : below[1] >= kk ? 1 : below[2] >= kk ? 2 : below[3] >= kk ? 3 : 4;
-  const float limit = lane == 4 ? admitted : std::min(admitted, limits[lane]);
+  return m;
+}
+
+/// For each 4-bit mask, the lanes whose bit is set, in order, one per byte (the rest 0).
+constexpr std::array<std::uint32_t, 16> kPack4 = [] {
+  std::array<std::uint32_t, 16> t{};
+  for (std::uint32_t mask = 0; mask < 16; ++mask) {
+    std::uint32_t out = 0, at = 0;
+    for (std::uint32_t lane = 0; lane < 4; ++lane) {
+      if ((mask >> lane) & 1u) out |= lane << (8 * at++);
+    }
+    t[mask] = out;
+  }
+  return t;
+}();
+
+/// Keeps, in order, the candidates with distance² < limit (entries up to the next multiple of W
+/// padded with +inf), four at a time: each group of four is written whole at the output cursor in
+/// the order kPack4 gives for its mask, and the cursor moves by the count kept (no branch on the
+/// data, no per-candidate dependency). Writes never pass the group being read.
+template <int W>
+THRONG_KERNEL void keepBelow(Candidates& c, float limit) {
+  const std::size_t end = padCandidates<W>(c);
   std::size_t m = 0;
-  for (std::size_t j = 0; j < c.n; ++j) {
-    c.d2[m] = c.d2[j];
-    c.row[m] = c.row[j];
-    m += static_cast<std::size_t>(c.d2[j] < limit);
+  for (std::size_t j = 0; j < end; j += 4) {
+    const float* d = c.d2 + j;
+    const std::uint32_t* r = c.row + j;
+#if defined(__x86_64__)
+    const auto mask = static_cast<unsigned>(_mm_movemask_ps(_mm_cmplt_ps(_mm_loadu_ps(d), _mm_set1_ps(limit))));  // SSE2
+#else
+    const unsigned mask = static_cast<unsigned>(d[0] < limit) | static_cast<unsigned>(d[1] < limit) << 1 |
+                          static_cast<unsigned>(d[2] < limit) << 2 | static_cast<unsigned>(d[3] < limit) << 3;
+#endif
+    const std::uint32_t pick = kPack4[mask];
+    const unsigned l0 = pick & 3u, l1 = (pick >> 8) & 3u, l2 = (pick >> 16) & 3u, l3 = (pick >> 24) & 3u;
+    const float d0 = d[l0], d1 = d[l1], d2 = d[l2], d3 = d[l3];
+    const std::uint32_t r0 = r[l0], r1 = r[l1], r2 = r[l2], r3 = r[l3];
+    c.d2[m] = d0, c.d2[m + 1] = d1, c.d2[m + 2] = d2, c.d2[m + 3] = d3;
+    c.row[m] = r0, c.row[m + 1] = r1, c.row[m + 2] = r2, c.row[m + 3] = r3;
+    m += static_cast<std::size_t>(std::popcount(mask));
   }
   c.n = m;
 }
 
-/// Writes the rows of the min(k, n) smallest candidates to out in (distance², row) order: each
-/// candidate's rank is the number of candidates before it in that order (four at a time; the row
-/// comparison runs only for the rare exact distance ties). `ranked` holds n rows.
-std::size_t writeRanked(Candidates& c, std::size_t k, std::uint32_t* ranked, std::uint32_t* out) {
-  const std::size_t m = (c.n + 3) & ~std::size_t{3};
-  for (std::size_t i = c.n; i < m; ++i) {  // padding: never before anyone, never tied
-    c.d2[i] = std::numeric_limits<float>::infinity();
-    c.row[i] = 0;
+
+#if defined(__x86_64__)
+/// For each 8-bit mask, the lanes whose bit is set, in order, one per byte (the rest 0).
+constexpr std::array<std::uint64_t, 256> kPack8 = [] {
+  std::array<std::uint64_t, 256> t{};
+  for (std::uint64_t mask = 0; mask < 256; ++mask) {
+    std::uint64_t out = 0, at = 0;
+    for (std::uint64_t lane = 0; lane < 8; ++lane) {
+      if ((mask >> lane) & 1u) out |= lane << (8 * at++);
+    }
+    t[mask] = out;
   }
+  return t;
+}();
+
+/// keepBelow with eight lanes and AVX2's lane permute: one compare, one mask, two permutes per
+/// group of eight. Not inlined (its instructions need the AVX2 target, which inlining checks
+/// against the template that calls it).
+[[gnu::target("avx2"), gnu::noinline]] void keepBelowAvx2(Candidates& c, float limit) {
+  const std::size_t end = (c.n + 7) & ~std::size_t{7};  // padded by padCandidates<8>
+  const __m256 lim = _mm256_set1_ps(limit);
+  std::size_t m = 0;
+  for (std::size_t j = 0; j < end; j += 8) {
+    const __m256 d = _mm256_loadu_ps(c.d2 + j);
+    const __m256i r = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(c.row + j));
+    const auto mask = static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(d, lim, _CMP_LT_OQ)));
+    const __m256i perm = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(kPack8[mask])));
+    _mm256_storeu_ps(c.d2 + m, _mm256_permutevar8x32_ps(d, perm));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(c.row + m), _mm256_permutevar8x32_epi32(r, perm));
+    m += static_cast<std::size_t>(std::popcount(mask));
+  }
+  c.n = m;
+}
+#endif
+
+/// Drops candidates that cannot be among the k smallest: four trial limits around `expectedSq`
+/// (the k-th distance² the local density predicts) are counted in one pass, and the candidates
+/// below the smallest limit with at least k below it are kept — exact for any trial limits. With
+/// no such limit, those below `admitted` are kept (this also drops the scan's +inf fillers).
+template <int W>
+THRONG_KERNEL void narrow(Candidates& c, std::size_t k, float expectedSq, float admitted) {
+  using L = Lanes<W>;
+  const float limits[4] = {0.8f * expectedSq, expectedSq, 1.25f * expectedSq, 1.6f * expectedSq};
+  typename L::F lim0, lim1, lim2, lim3;
+  L::fill(lim0, limits[0]), L::fill(lim1, limits[1]), L::fill(lim2, limits[2]), L::fill(lim3, limits[3]);
+  typename L::I below0, below1, below2, below3;
+  L::fill(below0, 0), L::fill(below1, 0), L::fill(below2, 0), L::fill(below3, 0);
+  const std::size_t end = padCandidates<W>(c);
+  for (std::size_t j = 0; j < end; j += W) {
+    typename L::F d;
+    std::memcpy(&d, c.d2 + j, sizeof d);
+    below0 -= static_cast<typename L::I>(d < lim0);  // masks are -1 where true
+    below1 -= static_cast<typename L::I>(d < lim1);
+    below2 -= static_cast<typename L::I>(d < lim2);
+    below3 -= static_cast<typename L::I>(d < lim3);
+  }
+  const auto kk = static_cast<std::int32_t>(k);
+  const int lane = L::sum(below0) >= kk ? 0 : L::sum(below1) >= kk ? 1 : L::sum(below2) >= kk ? 2 : L::sum(below3) >= kk ? 3 : 4;
+  const float keep = lane == 4 ? admitted : std::min(admitted, limits[lane]);
+#if defined(__x86_64__)
+  if constexpr (W == 8) {
+    keepBelowAvx2(c, keep);  // already padded to a multiple of 8 above
+    return;
+  }
+#endif
+  keepBelow<W>(c, keep);
+}
+
+/// Writes the rows of the min(k, n) smallest candidates to out in (distance², row) order: each
+/// candidate's rank is the number of candidates before it in that order (W at a time; the row
+/// comparison runs only for the rare exact distance ties). `ranked` holds n rows.
+template <int W>
+THRONG_KERNEL std::size_t writeRanked(Candidates& c, std::size_t k, std::uint32_t* ranked, std::uint32_t* out) {
+  using L = Lanes<W>;
+  const std::size_t m = padCandidates<W>(c);
   for (std::size_t i = 0; i < c.n; ++i) {
     const float di = c.d2[i];
-    const F4 d4 = {di, di, di, di};
-    I4 less = {0, 0, 0, 0}, equal = {0, 0, 0, 0};
-    for (std::size_t j = 0; j < m; j += 4) {
-      F4 dj;
+    typename L::F dv;
+    L::fill(dv, di);
+    typename L::I less, equal;
+    L::fill(less, 0), L::fill(equal, 0);
+    for (std::size_t j = 0; j < m; j += W) {
+      typename L::F dj;
       std::memcpy(&dj, c.d2 + j, sizeof dj);
-      less -= static_cast<I4>(dj < d4);  // masks are -1 where true
-      equal -= static_cast<I4>(dj == d4);
+      less -= static_cast<typename L::I>(dj < dv);  // masks are -1 where true
+      equal -= static_cast<typename L::I>(dj == dv);
     }
-    std::size_t rank = static_cast<std::size_t>(less[0] + less[1] + less[2] + less[3]);
-    if (equal[0] + equal[1] + equal[2] + equal[3] > 1) {
+    auto rank = static_cast<std::size_t>(L::sum(less));
+    if (L::sum(equal) > 1) {
       for (std::size_t j = 0; j < c.n; ++j) rank += static_cast<std::size_t>(c.d2[j] == di && c.row[j] < c.row[i]);
     }
     ranked[rank] = c.row[i];
@@ -139,13 +265,9 @@ std::size_t writeRanked(Candidates& c, std::size_t k, std::uint32_t* ranked, std
   return count;
 }
 
-}  // namespace
-
-namespace {
-
 /// Scratch for one query: the candidate arrays (on the stack for small k, per-thread heap for large).
 struct QueryScratch {
-  alignas(16) float stackD2[kStackCandidates];
+  alignas(32) float stackD2[kStackCandidates];
   std::uint32_t stackRow[kStackCandidates];
   std::uint64_t stackKeys[kStackCandidates];
   std::uint32_t stackRanked[kStackCandidates];
@@ -159,7 +281,7 @@ struct QueryScratch {
     thread_local std::vector<std::uint32_t> heapRow;
     thread_local std::vector<std::uint64_t> heapKeys;
     thread_local std::vector<std::uint32_t> heapRanked;
-    const std::size_t capacity = 4 * k;
+    const std::size_t capacity = (4 * k + 7) & ~std::size_t{7};
     if (heapD2.size() < capacity) {
       heapD2.resize(capacity);
       heapRow.resize(capacity);
@@ -175,7 +297,9 @@ struct QueryScratch {
 /// Gathers candidates around (x, y). Admission: distance² < limit (range² at first; after a
 /// selection pass, just above the k-th smallest distance², so ties with it are kept and settled by
 /// row at the end). Self is the only candidate with its row.
+template <int W>
 struct Gather {
+  using L = Lanes<W>;
   Candidates& c;
   std::size_t k;
   std::uint64_t* keys;
@@ -184,40 +308,47 @@ struct Gather {
   const float* ex;
   const float* ey;
   const std::uint32_t* er;
-  F4 qx, qy;
-  I4 selfRow;
+  float qx, qy;
+  std::uint32_t self;
 
-  /// Entries [first, last) (cells of one grid row are contiguous: one span per grid row), four at
-  /// a time and without branches: every entry is stored, those that cannot be neighbours (self,
-  /// out of range or past the limit, lanes beyond the span) with distance² = +inf; narrow() drops
-  /// them. The arrays' slack makes the last group of four readable.
-  inline void operator()(std::uint32_t first, std::uint32_t last) {
-    const I4 lane = {0, 1, 2, 3};
-    const I4 infBits = {0x7f800000, 0x7f800000, 0x7f800000, 0x7f800000};
+  /// Entries [first, last) (cells of one grid row are contiguous: one span per grid row), W at a
+  /// time and without branches: every entry is stored, those that cannot be neighbours (self, out
+  /// of range or past the limit, lanes beyond the span) with distance² = +inf; narrow() drops
+  /// them. The arrays' slack (kPad) makes the last group of W readable.
+  THRONG_KERNEL void operator()(std::uint32_t first, std::uint32_t last) {
+    typename L::I lane, infBits, selfRow;
+    for (int l = 0; l < W; ++l) lane[l] = l;
+    L::fill(infBits, 0x7f800000);
+    L::fill(selfRow, static_cast<std::int32_t>(self));
+    typename L::F vx, vy;
+    L::fill(vx, qx), L::fill(vy, qy);
     while (first < last) {
-      if (c.n + 4 > c.capacity) {
+      if (c.n + W > c.capacity) {
         keepSmallest(c, k, keys);
         limit = std::min(rangeSq, std::nextafter(*std::max_element(c.d2, c.d2 + k), std::numeric_limits<float>::infinity()));
       }
-      const std::size_t room = (c.capacity - c.n) & ~std::size_t{3};
+      const std::size_t room = (c.capacity - c.n) & ~static_cast<std::size_t>(W - 1);
       const std::uint32_t stop = first + static_cast<std::uint32_t>(std::min<std::size_t>(last - first, room));
-      const F4 lim = {limit, limit, limit, limit};
+      typename L::F lim;
+      L::fill(lim, limit);
       std::size_t n = c.n;
-      for (std::uint32_t i = first; i < stop; i += 4) {
-        F4 px, py;
-        I4 rows;
+      for (std::uint32_t i = first; i < stop; i += W) {
+        typename L::F px, py;
+        typename L::I rows;
         std::memcpy(&px, ex + i, sizeof px);
         std::memcpy(&py, ey + i, sizeof py);
         std::memcpy(&rows, er + i, sizeof rows);
-        const F4 dx = px - qx, dy = py - qy;
-        const F4 d2 = dx * dx + dy * dy;
-        const I4 remaining = {static_cast<std::int32_t>(stop - i), static_cast<std::int32_t>(stop - i),
-                              static_cast<std::int32_t>(stop - i), static_cast<std::int32_t>(stop - i)};
-        const I4 valid = static_cast<I4>(d2 < lim) & (rows != selfRow) & (lane < remaining);
-        const I4 bits = (std::bit_cast<I4>(d2) & valid) | (infBits & ~valid);
+        const typename L::F dx = px - vx, dy = py - vy;
+        const typename L::F d2 = dx * dx + dy * dy;
+        typename L::I remaining;
+        L::fill(remaining, static_cast<std::int32_t>(stop - i));
+        const typename L::I valid = static_cast<typename L::I>(d2 < lim) & (rows != selfRow) & (lane < remaining);
+        typename L::I d2Bits;
+        std::memcpy(&d2Bits, &d2, sizeof d2Bits);
+        const typename L::I bits = (d2Bits & valid) | (infBits & ~valid);
         std::memcpy(c.d2 + n, &bits, sizeof bits);
         std::memcpy(c.row + n, &rows, sizeof rows);
-        n += std::min<std::size_t>(4, stop - i);
+        n += std::min<std::size_t>(W, stop - i);
       }
       c.n = n;
       first = stop;
@@ -225,7 +356,7 @@ struct Gather {
   }
 
   /// Are there at least k candidates with distance² < limitSq (then no farther cell matters)?
-  [[nodiscard]] bool haveK(float limitSq) const {
+  [[nodiscard]] THRONG_KERNEL bool haveK(float limitSq) const {
     if (c.n < k) return false;
     std::size_t below = 0;
     for (std::size_t i = 0; i < c.n; ++i) below += static_cast<std::size_t>(c.d2[i] < limitSq);
@@ -235,24 +366,8 @@ struct Gather {
 
 }  // namespace
 
-std::size_t SpatialGrid::nearest(float x, float y, float range, std::size_t k, std::uint32_t self,
-                                 std::uint32_t* out) const {
-  if (k == 0) return 0;
-  QueryScratch scratch(k);
-  const auto s = static_cast<std::int32_t>(self);
-  Gather gather{scratch.c, k, scratch.keys, range * range, range * range, cellX_.data(), cellY_.data(), rows_.data(),
-                F4{x, x, x, x}, F4{y, y, y, y}, I4{s, s, s, s}};
-  const int blockCells = gatherRings(x, y, range, gather);
-  // Uniform density over the block read first: the k-th neighbour is expected at π r² ρ = k.
-  Candidates& c = scratch.c;
-  const float area = static_cast<float>(blockCells) * cellSize_ * cellSize_;
-  narrow(c, k, static_cast<float>(k) * area / (3.14159265f * static_cast<float>(std::max<std::size_t>(c.n, 1))), gather.limit);
-  if (c.n > kRankMax && c.n > k) keepSmallest(c, k, scratch.keys);
-  return writeRanked(c, k, scratch.ranked, out);
-}
-
 template <class G>
-int SpatialGrid::gatherRings(float x, float y, float range, G& gather) const {
+THRONG_KERNEL int SpatialGrid::gatherRings(float x, float y, float range, G& gather) const {
   auto cellIndex = [&](int gx, int gy) {
     return static_cast<std::size_t>(gy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(gx);
   };
@@ -287,5 +402,42 @@ int SpatialGrid::gatherRings(float x, float y, float range, G& gather) const {
   }
   return blockCells;
 }
+
+
+template <int W>
+THRONG_KERNEL std::size_t SpatialGrid::nearestIn(float x, float y, float range, std::size_t k, std::uint32_t self,
+                                                 std::uint32_t* out) const {
+  if (k == 0) return 0;
+  QueryScratch scratch(k);
+  Gather<W> gather{scratch.c, k, scratch.keys, range * range, range * range, cellX_.data(), cellY_.data(), rows_.data(),
+                   x, y, self};
+  const int blockCells = gatherRings(x, y, range, gather);
+  // Uniform density over the block read first: the k-th neighbour is expected at π r² ρ = k.
+  Candidates& c = scratch.c;
+  const float area = static_cast<float>(blockCells) * cellSize_ * cellSize_;
+  narrow<W>(c, k, static_cast<float>(k) * area / (3.14159265f * static_cast<float>(std::max<std::size_t>(c.n, 1))), gather.limit);
+  if (c.n > kRankMax && c.n > k) keepSmallest(c, k, scratch.keys);
+  return writeRanked<W>(c, k, scratch.ranked, out);
+}
+
+std::size_t SpatialGrid::nearest(float x, float y, float range, std::size_t k, std::uint32_t self,
+                                 std::uint32_t* out) const {
+#if defined(__x86_64__)
+  if (avx2_) return nearestAvx2(x, y, range, k, self, out);
+#endif
+  return nearestIn<4>(x, y, range, k, self, out);
+}
+
+#if defined(__x86_64__)
+[[gnu::target("avx2")]] std::size_t SpatialGrid::nearestAvx2(float x, float y, float range, std::size_t k,
+                                                            std::uint32_t self, std::uint32_t* out) const {
+  return nearestIn<8>(x, y, range, k, self, out);
+}
+#else
+std::size_t SpatialGrid::nearestAvx2(float x, float y, float range, std::size_t k, std::uint32_t self,
+                                     std::uint32_t* out) const {
+  return nearestIn<4>(x, y, range, k, self, out);
+}
+#endif
 
 }  // namespace throng::sim

@@ -43,6 +43,12 @@ class OrcaScratch final : public ModelScratch {
  public:
   std::vector<OrcaLine> lines, projected;
   std::vector<std::uint32_t> wallIds;
+  /// The neighbours of the agent being solved, as agentOrcaLines reads them.
+  std::vector<float> relPosX, relPosY, relVelX, relVelY, combinedRadius, responsibility;
+  void resizeColumns(std::size_t n) {
+    if (relPosX.size() >= n) return;
+    for (auto* column : {&relPosX, &relPosY, &relVelX, &relVelY, &combinedRadius, &responsibility}) column->resize(n);
+  }
 };
 
 /// Two centres in the same spot give ORCA no direction to push apart; pick one from the pair's ids
@@ -111,15 +117,23 @@ class OrcaModel final : public OperationalModel {
     const std::size_t k = in.desc.steering.maxNeighbours;
     const std::uint32_t* nb = &agents.neighbours[row * k];
     const std::size_t count = cheap ? std::min<std::size_t>(agents.neighbourCount[row], p.lodNeighbours) : agents.neighbourCount[row];
+    ws.resizeColumns(count);
     for (std::size_t i = 0; i < count; ++i) {
       const std::uint32_t o = nb[i];
       core::Vec2 relPos{agents.posX[o] - pos.x, agents.posY[o] - pos.y};
       if (core::lengthSq(relPos) < 1e-10f) relPos = separationAxis(agents.id[row], agents.id[o]);
       const core::Vec2 otherVel{agents.velX[o], agents.velY[o]};
-      const core::Vec2 relVel = vel - otherVel;
-      lines.push_back(agentOrcaLine(relPos, relVel, vel, agents.radius[row] + agents.radius[o], p.timeHorizon, in.desc.dt,
-                                    responsibility(agents, row, o, vel, otherVel, p)));
+      ws.relPosX[i] = relPos.x;
+      ws.relPosY[i] = relPos.y;
+      ws.relVelX[i] = vel.x - otherVel.x;
+      ws.relVelY[i] = vel.y - otherVel.y;
+      ws.combinedRadius[i] = agents.radius[row] + agents.radius[o];
+      ws.responsibility[i] = responsibility(agents, row, o, vel, otherVel, p);
     }
+    lines.resize(numWallLines + count);
+    agentOrcaLines({ws.relPosX.data(), ws.relPosY.data(), ws.relVelX.data(), ws.relVelY.data(), ws.combinedRadius.data(),
+                    ws.responsibility.data(), count},
+                   vel, p.timeHorizon, in.desc.dt, lines.data() + numWallLines);
     // ORCA's preferred velocity: the desired one reached over steering.accelerationTime.
     const SteeringDesc& s = in.desc.steering;
     const float relax = std::min(1.0f, in.desc.dt / std::max(in.desc.dt, s.accelerationTime));

@@ -89,6 +89,7 @@ struct RecordingSummary {
   std::uint64_t events = 0;
   std::string commonGround;       ///< "on" / "off"; empty when the scenario had no social section
   std::string models;             ///< metadata throng_models: JSON, population id → model and parameters; empty in older recordings
+  std::string simd;               ///< metadata throng_simd: the hot loops' SIMD path ("avx2", "portable"); empty in older recordings
   std::uint64_t coordinations = 0;///< Common Ground interactions recorded (throng_coordinations rows)
   /// Multi-level worlds (a throng_heights table): lowest and highest agent height recorded [m].
   std::optional<std::pair<double, double>> heights;

@@ -28,6 +28,23 @@ struct OrcaLine {
 OrcaLine agentOrcaLine(Vec2 relPos, Vec2 relVel, Vec2 selfVel, float combinedRadius, float timeHorizon, float dt,
                        float responsibility = 0.5f);
 
+/// Neighbours as columns for agentOrcaLines: relative position and velocity, combined radius and
+/// responsibility, as agentOrcaLine takes them.
+struct OrcaNeighbours {
+  const float* relPosX;
+  const float* relPosY;
+  const float* relVelX;
+  const float* relVelY;
+  const float* combinedRadius;
+  const float* responsibility;
+  std::size_t count;
+};
+
+/// agentOrcaLine for `nb.count` neighbours at once, written to out[0, count): the same lines bit
+/// for bit, computed four or eight neighbours at a time (core::simdPath()) with every branch
+/// evaluated and blended.
+void agentOrcaLines(const OrcaNeighbours& nb, Vec2 selfVel, float timeHorizon, float dt, OrcaLine* out);
+
 /// Half-plane for a static wall segment [a, b] given relative to the agent (a - pos, b - pos),
 /// inflated by `radius`. The agent takes full responsibility. Returns false when the segment is
 /// too far to matter within `timeHorizon` at `maxSpeed` (no line written).

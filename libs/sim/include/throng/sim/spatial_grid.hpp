@@ -42,6 +42,8 @@ class SpatialGrid {
   /// as five contiguous spans, then ring by ring outward — until no unvisited cell can hold
   /// anything closer than the current k-th neighbour; the k smallest keys are then selected and
   /// sorted. Returns the count written to `out` (at most k). No allocation for k <= 64.
+  /// Runs on the SIMD path core::simdPath() named at the last rebuild(); every path gives the same
+  /// rows in the same order.
   std::size_t nearest(float x, float y, float range, std::size_t k, std::uint32_t self, std::uint32_t* out) const;
 
   /// Number of rows sorted into cells by the last rebuild().
@@ -77,6 +79,10 @@ class SpatialGrid {
   /// Returns the number of cells in the first block (for the density estimate).
   template <class G>
   int gatherRings(float x, float y, float range, G& gather) const;
+  /// nearest() with vectors of `Lanes` floats (4: the portable path; 8: AVX2).
+  template <int Lanes>
+  std::size_t nearestIn(float x, float y, float range, std::size_t k, std::uint32_t self, std::uint32_t* out) const;
+  std::size_t nearestAvx2(float x, float y, float range, std::size_t k, std::uint32_t self, std::uint32_t* out) const;
   /// floor(v) clamped to [0, n): truncation equals floor on [0, n), and everything below 0 (NaN
   /// too) clamps to 0 either way — without a call to floorf (no SSE4.1 in the baseline ISA).
   static int toCell(float v, int n) {
@@ -88,9 +94,10 @@ class SpatialGrid {
   int nx_ = 1, ny_ = 1;
   std::vector<std::uint32_t> cellStart_;  // size nx*ny + 1
   // Rows sorted by cell and their positions in that order (nearest() reads these four at a time);
-  // each array has kPad slack entries after size_ so that a span's last group of four may be read
+  // each array has kPad slack entries after size_ so that a span's last group of eight may be read
   // whole.
-  static constexpr std::size_t kPad = 4;
+  static constexpr std::size_t kPad = 8;
+  bool avx2_ = false;  // core::simdPath() at the last rebuild()
   std::size_t size_ = 0;
   std::vector<std::uint32_t> rows_;
   std::vector<float> cellX_, cellY_;
