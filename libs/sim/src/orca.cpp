@@ -4,6 +4,7 @@
 
 #include "throng/core/geometry.hpp"
 #include "throng/core/simd.hpp"
+#include "lanes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -160,8 +161,6 @@ OrcaLine agentOrcaLine(Vec2 relPos, Vec2 relVel, Vec2 selfVel, float combinedRad
 
 namespace {
 
-#define THRONG_KERNEL [[gnu::always_inline]] inline
-
 /// One block of W neighbours (every array holds W entries): agentOrcaLine's three cases are all
 /// computed, in its order of operations, and the right one chosen per lane.
 /// out = √v lane by lane (exactly rounded, as std::sqrt): SSE2's sqrtps four lanes at a time.
@@ -182,8 +181,8 @@ THRONG_KERNEL void sqrtLanes(F& out, const F& v) {
 template <int W>
 THRONG_KERNEL void orcaLineBlock(const float* px, const float* py, const float* pvx, const float* pvy, const float* pcr,
                                  const float* presp, Vec2 selfVel, float invTimeHorizon, float invTimeStep, OrcaLine* out) {
-  using F = float __attribute__((vector_size(4 * W)));
-  using I = std::int32_t __attribute__((vector_size(4 * W)));
+  using F = typename simd::Lanes<W>::F;
+  using I = typename simd::Lanes<W>::I;
   F x, y, vx, vy, cr, resp, zero, one, invTH, invTS;
   std::memcpy(&x, px, sizeof x);
   std::memcpy(&y, py, sizeof y);

@@ -11,6 +11,7 @@
 
 #include "throng/core/assert.hpp"
 #include "throng/core/simd.hpp"
+#include "lanes.hpp"
 
 #if defined(__x86_64__)
 #include <immintrin.h>
@@ -68,26 +69,7 @@ constexpr std::size_t kRankMax = 64;
 // inlined into two entry points: W = 4 (the portable path: SSE2 on x86-64, NEON on ARM) and W = 8
 // compiled for AVX2. They use comparisons, integer sums, permutes and the exactly rounded float
 // subtraction, multiplication and addition in the same order, so both give the same bits.
-#define THRONG_KERNEL [[gnu::always_inline]] inline
-
-template <int W>
-struct Lanes {
-  // Vectors go in and out by reference only: a 32-byte vector by value would change the calling
-  // convention between the AVX2 entry point and baseline code.
-  using F = float __attribute__((vector_size(4 * W)));
-  using I = std::int32_t __attribute__((vector_size(4 * W)));
-  THRONG_KERNEL static void fill(F& out, float v) {
-    for (int l = 0; l < W; ++l) out[l] = v;
-  }
-  THRONG_KERNEL static void fill(I& out, std::int32_t v) {
-    for (int l = 0; l < W; ++l) out[l] = v;
-  }
-  THRONG_KERNEL static std::int32_t sum(const I& v) {
-    std::int32_t s = 0;
-    for (int l = 0; l < W; ++l) s += v[l];
-    return s;
-  }
-};
+using simd::Lanes;
 
 /// A candidate as one integer: the bits of its distance² (a non-negative float, whose bit patterns
 /// order like its values) above its row, so comparing keys compares (distance², row).

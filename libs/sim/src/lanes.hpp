@@ -1,0 +1,44 @@
+// Vectors of W floats / int32s for the SIMD kernels (GCC/Clang vector extensions), W = 4 (the
+// portable path) or 8 (the AVX2 path); docs/architecture.md, "SIMD paths". Spelled out per width
+// because GCC ignores a vector_size that depends on a template parameter.
+#pragma once
+#include <cstdint>
+
+/// Kernels are inlined into each path's entry point, so they compile for that path's target.
+#define THRONG_KERNEL [[gnu::always_inline]] inline
+
+namespace throng::sim::simd {
+
+template <int W>
+struct LaneTypes;
+template <>
+struct LaneTypes<4> {
+  using F = float __attribute__((vector_size(16)));
+  using I = std::int32_t __attribute__((vector_size(16)));
+};
+template <>
+struct LaneTypes<8> {
+  using F = float __attribute__((vector_size(32)));
+  using I = std::int32_t __attribute__((vector_size(32)));
+};
+
+/// Vectors go in and out by reference only: a 32-byte vector by value would change the calling
+/// convention between the AVX2 entry point and baseline code.
+template <int W>
+struct Lanes : LaneTypes<W> {
+  using F = typename LaneTypes<W>::F;
+  using I = typename LaneTypes<W>::I;
+  THRONG_KERNEL static void fill(F& out, float v) {
+    for (int l = 0; l < W; ++l) out[l] = v;
+  }
+  THRONG_KERNEL static void fill(I& out, std::int32_t v) {
+    for (int l = 0; l < W; ++l) out[l] = v;
+  }
+  THRONG_KERNEL static std::int32_t sum(const I& v) {
+    std::int32_t s = 0;
+    for (int l = 0; l < W; ++l) s += v[l];
+    return s;
+  }
+};
+
+}  // namespace throng::sim::simd
