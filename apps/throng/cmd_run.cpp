@@ -25,6 +25,7 @@
 #include "stall_tracker.hpp"
 #include "validators.hpp"
 #include "throng/core/parallel.hpp"
+#include "throng/core/simd.hpp"
 #include "throng/recording/recorder.hpp"
 #include "throng/io/scenario_loader.hpp"
 #include "throng/sim/world.hpp"
@@ -252,7 +253,8 @@ void printSummaryJson(const RunSummary& r) {
                      {"overlap_share_pct", overlapShare(r.stats)},
                      {"agent_steps_per_s", agentStepsPerSecond(r)},
                      {"recording", {{"path", r.recording}, {"frames", r.frames}, {"fps", r.fps}}},
-                     {"state_hash", fmt::format("{:016x}", r.stateHash)}};
+                     {"state_hash", fmt::format("{:016x}", r.stateHash)},
+                     {"simd", std::string(core::simdPathName(core::simdPath()))}};
   nlohmann::json stalled = nlohmann::json::array();
   for (const StallSpan& span : r.stalls) {
     stalled.push_back({{"agent", span.agent}, {"from_s", span.from}, {"to_s", span.to}, {"state", span.state}});

@@ -17,6 +17,7 @@
 
 #include "agent_views.hpp"
 #include "simulation.hpp"
+#include "throng/core/simd.hpp"
 #include "throng/sim/models.hpp"
 
 namespace py = pybind11;
@@ -198,6 +199,10 @@ PYBIND11_MODULE(_throng, m) {
       "throng.StaleViewError", "An AgentView (sim.view()) was used after the simulation stepped, ran or closed; take a new one.",
       PyExc_RuntimeError, nullptr);
   m.attr("StaleViewError") = py::handle(throng::python::gStaleViewError);
+  m.def(
+      "simd_path", [] { return std::string(throng::core::simdPathName(throng::core::simdPath())); },
+      "The vector path of the engine's hot loops in this process: 'avx2' or 'portable' (the environment variable "
+      "THRONG_SIMD picks one before the module is imported; every path gives the same trajectories).");
   throng::python::bindScenario(m);
   throng::python::bindAgentState(m);
   throng::python::bindAgentView(m);

@@ -16,13 +16,13 @@ Units are SI throughout: metres, seconds, metres per second.
 import json as _json
 import os as _os
 
-from ._throng import AgentState, AgentView, Scenario, ScenarioError, Simulation, StaleViewError  # noqa: F401
+from ._throng import AgentState, AgentView, Scenario, ScenarioError, Simulation, StaleViewError, simd_path  # noqa: F401
 from .build import ScenarioBuilder  # noqa: F401
 from .recording import Recording, read_recording  # noqa: F401
 from . import analysis  # noqa: F401
 
 __all__ = ["AgentState", "AgentView", "Scenario", "ScenarioError", "Simulation", "StaleViewError", "ScenarioBuilder", "Recording",
-           "read_recording", "analysis", "scenario"]
+           "read_recording", "analysis", "scenario", "simd_path"]
 
 
 def _from_dict(d, source="<dict>"):

@@ -350,6 +350,7 @@ TEST(CliBench, TinyBenchPrintsJsonLines) {
       EXPECT_GT(m.at("agent_steps_per_s").get<double>(), 0.0);
       EXPECT_LE(m.at("ms_per_tick_median").get<double>(), m.at("ms_per_tick_p99").get<double>());
       for (const char* key : {"agents", "threads", "bytes_per_agent", "peak_rss_bytes"}) EXPECT_TRUE(m.contains(key));
+      EXPECT_TRUE(m.at("simd") == "avx2" || m.at("simd") == "portable") << m.dump();
     }
     EXPECT_EQ(json::parse(rows[0]).at("agents").get<int>(), 40);
     EXPECT_EQ(json::parse(rows[3]).at("agents").get<int>(), 60);

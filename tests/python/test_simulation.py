@@ -3,6 +3,7 @@ import json
 import os
 import sqlite3
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -200,3 +201,13 @@ def test_agents_added_at_positions_walk_to_their_goal():
     sim.run()
     assert sim.stats["exited"] == 4
     assert crowd.startswith("python-agents")
+
+
+def test_simd_path_names_the_vector_path_and_THRONG_SIMD_picks_it():
+    # Every path gives the same trajectories (docs/architecture.md, "SIMD paths"); the module says
+    # which one runs, and THRONG_SIMD=portable forces the portable one in a fresh interpreter.
+    assert throng.simd_path() in ("avx2", "portable")
+    env = dict(os.environ, THRONG_SIMD="portable")
+    out = subprocess.run([sys.executable, "-c", "import throng; print(throng.simd_path())"], env=env,
+                         capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "portable", out.stderr
