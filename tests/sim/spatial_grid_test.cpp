@@ -11,6 +11,26 @@
 
 using namespace throng;
 
+namespace {
+
+/// The (at most k) rows within `range` of row `self`, nearest first, ties by row: what
+/// SpatialGrid::nearest must give.
+std::vector<std::uint32_t> bruteForceNearest(const std::vector<float>& xs, const std::vector<float>& ys, std::uint32_t self,
+                                             std::size_t k, float range) {
+  std::vector<std::pair<float, std::uint32_t>> all;
+  for (std::uint32_t i = 0; i < xs.size(); ++i) {
+    if (i == self) continue;
+    const float dx = xs[i] - xs[self], dy = ys[i] - ys[self];
+    if (dx * dx + dy * dy < range * range) all.push_back({dx * dx + dy * dy, i});
+  }
+  std::sort(all.begin(), all.end());
+  std::vector<std::uint32_t> rows;
+  for (std::size_t i = 0; i < std::min(k, all.size()); ++i) rows.push_back(all[i].second);
+  return rows;
+}
+
+}  // namespace
+
 TEST(SpatialGrid, FindsEveryAgentWithinRangeAndClampsOutsiders) {
   sim::SpatialGrid grid;
   grid.configure(core::Aabb{{0, 0}, {20, 20}}, 2.0f);
@@ -52,15 +72,9 @@ TEST(SpatialGrid, NearestMatchesBruteForce) {
       for (float range : {0.5f, 2.0f, 3.0f}) {
         std::vector<std::uint32_t> out(k);
         const std::size_t n = grid.nearest(xs[self], ys[self], range, k, self, out.data());
-        std::vector<std::pair<float, std::uint32_t>> all;
-        for (std::uint32_t i = 0; i < xs.size(); ++i) {
-          if (i == self) continue;
-          const float dx = xs[i] - xs[self], dy = ys[i] - ys[self];
-          if (dx * dx + dy * dy < range * range) all.push_back({dx * dx + dy * dy, i});
-        }
-        std::sort(all.begin(), all.end());
-        ASSERT_EQ(n, std::min(k, all.size()));
-        for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(out[i], all[i].second) << "self " << self << " k " << k;
+        const std::vector<std::uint32_t> expected = bruteForceNearest(xs, ys, self, k, range);
+        ASSERT_EQ(n, expected.size());
+        for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(out[i], expected[i]) << "self " << self << " k " << k;
       }
     }
   }
@@ -96,16 +110,10 @@ TEST(SpatialGrid, NearestIsTheSameOnEverySimdPathAndMatchesBruteForce) {
         for (float range : {0.5f, 2.0f, 3.0f, 7.0f}) {
           std::vector<std::uint32_t> out(k);
           const std::size_t n = grid.nearest(xs[self], ys[self], range, k, self, out.data());
-          std::vector<std::pair<float, std::uint32_t>> all;
-          for (std::uint32_t i = 0; i < xs.size(); ++i) {
-            if (i == self) continue;
-            const float dx = xs[i] - xs[self], dy = ys[i] - ys[self];
-            if (dx * dx + dy * dy < range * range) all.push_back({dx * dx + dy * dy, i});
-          }
-          std::sort(all.begin(), all.end());
-          ASSERT_EQ(n, std::min(k, all.size())) << core::simdPathName(path) << " self " << self << " k " << k;
+          const std::vector<std::uint32_t> expected = bruteForceNearest(xs, ys, self, k, range);
+          ASSERT_EQ(n, expected.size()) << core::simdPathName(path) << " self " << self << " k " << k;
           for (std::size_t i = 0; i < n; ++i) {
-            ASSERT_EQ(out[i], all[i].second) << core::simdPathName(path) << " self " << self << " k " << k << " range " << range;
+            ASSERT_EQ(out[i], expected[i]) << core::simdPathName(path) << " self " << self << " k " << k << " range " << range;
           }
           compared += n;
         }

@@ -108,18 +108,21 @@ THRONG_KERNEL std::size_t padCandidates(Candidates& c) {
   return m;
 }
 
-/// For each 4-bit mask, the lanes whose bit is set, in order, one per byte (the rest 0).
-constexpr std::array<std::uint32_t, 16> kPack4 = [] {
-  std::array<std::uint32_t, 16> t{};
-  for (std::uint32_t mask = 0; mask < 16; ++mask) {
-    std::uint32_t out = 0, at = 0;
-    for (std::uint32_t lane = 0; lane < 4; ++lane) {
+/// For each mask of `Lanes` bits, the lanes whose bit is set, in order, one per byte (the rest 0):
+/// the lane order that packs a block's kept candidates to its front.
+template <class Word, unsigned Lanes>
+constexpr std::array<Word, (1u << Lanes)> packTable() {
+  std::array<Word, (1u << Lanes)> t{};
+  for (Word mask = 0; mask < t.size(); ++mask) {
+    Word out = 0, at = 0;
+    for (Word lane = 0; lane < Lanes; ++lane) {
       if ((mask >> lane) & 1u) out |= lane << (8 * at++);
     }
     t[mask] = out;
   }
   return t;
-}();
+}
+constexpr auto kPack4 = packTable<std::uint32_t, 4>();
 
 /// Keeps, in order, the candidates with distance² < limit (entries up to the next multiple of W
 /// padded with +inf), four at a time: each group of four is written whole at the output cursor in
@@ -151,18 +154,7 @@ THRONG_KERNEL void keepBelow(Candidates& c, float limit) {
 
 
 #if defined(__x86_64__)
-/// For each 8-bit mask, the lanes whose bit is set, in order, one per byte (the rest 0).
-constexpr std::array<std::uint64_t, 256> kPack8 = [] {
-  std::array<std::uint64_t, 256> t{};
-  for (std::uint64_t mask = 0; mask < 256; ++mask) {
-    std::uint64_t out = 0, at = 0;
-    for (std::uint64_t lane = 0; lane < 8; ++lane) {
-      if ((mask >> lane) & 1u) out |= lane << (8 * at++);
-    }
-    t[mask] = out;
-  }
-  return t;
-}();
+constexpr auto kPack8 = packTable<std::uint64_t, 8>();
 
 /// keepBelow with eight lanes and AVX2's lane permute: one compare, one mask, two permutes per
 /// group of eight. Not inlined (its instructions need the AVX2 target, which inlining checks
