@@ -152,7 +152,6 @@ THRONG_KERNEL void keepBelow(Candidates& c, float limit) {
   c.n = m;
 }
 
-
 #if defined(__x86_64__)
 constexpr auto kPack8 = packTable<std::uint64_t, 8>();
 
