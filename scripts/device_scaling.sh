@@ -7,7 +7,7 @@
 # (throng's libraries and every dependency but glibc's), DEV/mpi.tar.xz when OpenMPI is installed
 # (Debian's OpenMPI files, unpacked into / there without replacing any file already there). Then,
 # on the many-core machine:
-#   scripts/device_scaling.sh DEV OUT [parts: threads rvo2 avm mpi]
+#   scripts/device_scaling.sh DEV OUT [parts: threads rvo2 avm simd mpi]
 # Writes OUT/*.jsonl (one JSON object per run) and OUT/log.txt; prints a summary table last.
 set -uo pipefail
 if [[ ${1:-} == pack ]]; then
@@ -31,7 +31,7 @@ if [[ ${1:-} == pack ]]; then
   exit 0
 fi
 dev="$(cd "$1" && pwd)"; out="$2"; shift 2
-parts="${*:-threads rvo2 avm mpi}"
+parts="${*:-threads rvo2 avm simd mpi}"
 # QUICK=1: tiny sizes, to check the script itself on the build machine.
 K=1; [[ ${QUICK:-0} == 1 ]] && K=100
 mkdir -p "$out"
@@ -61,6 +61,13 @@ if [[ $parts == *avm* ]]; then
   log "== throng avm, random, 100k: threads 1 4 16"
   timeout 120 "$T" bench --agents $((100000 / K)) --threads 1,4,16 --ticks 20 --model avm --no-baseline --phase-times --json \
     >>"$out/throng.jsonl" 2>>"$out/log.txt"
+fi
+if [[ $parts == *simd* ]]; then
+  log "== throng ORCA and avm, random, 100k, the portable SIMD path (the runs above take the widest the CPU has)"
+  for model in orca avm; do
+    THRONG_SIMD=portable timeout 120 "$T" bench --agents $((100000 / K)) --threads 1,16 --ticks 20 --model $model --no-baseline \
+      --json >>"$out/throng.jsonl" 2>>"$out/log.txt"
+  done
 fi
 if [[ $parts == *mpi* && -f $dev/mpi.tar.xz ]]; then
   log "== MPI (replicated control, shared steer): strong 100k and weak 50k per rank"
@@ -94,9 +101,10 @@ out = sys.argv[1]
 def rows(name):
     p = os.path.join(out, name)
     return [json.loads(l) for l in open(p) if l.startswith("{")] if os.path.exists(p) else []
-print("engine model agents threads Msteps/s ms/tick")
+print("engine model simd agents threads Msteps/s ms/tick")
 for r in rows("throng.jsonl") + rows("rvo2.jsonl"):
-    print(r["engine"], r.get("model", "-"), r["agents"], r["threads"], round(r["agent_steps_per_s"] / 1e6, 3), round(r["ms_per_tick_median"], 1))
+    print(r["engine"], r.get("model", "-"), r.get("simd", "-"), r["agents"], r["threads"],
+          round(r["agent_steps_per_s"] / 1e6, 3), round(r["ms_per_tick_median"], 1))
 for r in rows("mpi.jsonl"):
     s = r["summary"] or {}
     print("mpi ranks", r["ranks"], "agents", r["agents"], "wall", r["wall_total_ms"], "hash", s.get("state_hash"))
