@@ -272,7 +272,10 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
     for (let k = 0; k < 5; ++k) {
       const m = await page.evaluate(() => globalThis.__throng.crowd.colourMode);
       await sleep(250);
-      const seen = await page.evaluate(() => {
+      // Sampled in an animation frame right after the viewer's own: the discs are drawn from the
+      // state as that frame advanced it, and no server message can change the state (speeds, under
+      // speed colouring) between the drawing and the colours wanted (a race seen on a busy machine).
+      const seen = await page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => {
         const { state, crowd, toScreen, rgbAt, legend } = globalThis.__throng;
         const out = [];
         for (let i = 0; i < state.count && out.length < 6; ++i) {
@@ -281,8 +284,8 @@ test('plan view, fit, follow and picking from every angle', { timeout: 120000 },
           const want = crowd.colourAt(i, state).getHex();
           out.push({ want, got: [[0, 0], [2, 0], [-2, 0], [0, 2], [0, -2]].map(([dx, dy]) => rgbAt(p.x + dx, p.y + dy)) });
         }
-        return { out, legend: legend.labels(), select: document.querySelector('#colour-by').value };
-      });
+        resolve({ out, legend: legend.labels(), select: document.querySelector('#colour-by').value });
+      })));
       modes.push(m);
       palettes[m] = seen.out.map((o) => o.want);
       assert.equal(seen.select, m, 'the legend\'s menu shows the mode');
