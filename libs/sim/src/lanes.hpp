@@ -25,7 +25,7 @@ struct LaneTypes<8> {
 /// Vectors go in and out by reference only: a 32-byte vector by value would change the calling
 /// convention between the AVX2 entry point and baseline code.
 template <int W>
-struct Lanes : LaneTypes<W> {
+struct Lanes {
   using F = typename LaneTypes<W>::F;
   using I = typename LaneTypes<W>::I;
   THRONG_KERNEL static void fill(F& out, float v) {

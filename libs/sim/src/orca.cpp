@@ -161,8 +161,6 @@ OrcaLine agentOrcaLine(Vec2 relPos, Vec2 relVel, Vec2 selfVel, float combinedRad
 
 namespace {
 
-/// One block of W neighbours (every array holds W entries): agentOrcaLine's three cases are all
-/// computed, in its order of operations, and the right one chosen per lane.
 /// out = √v lane by lane (exactly rounded, as std::sqrt): SSE2's sqrtps four lanes at a time.
 template <int W, class F>
 THRONG_KERNEL void sqrtLanes(F& out, const F& v) {
@@ -178,11 +176,14 @@ THRONG_KERNEL void sqrtLanes(F& out, const F& v) {
 #endif
 }
 
+/// One block of W neighbours (every array holds W entries): agentOrcaLine's three cases are all
+/// computed, in its order of operations, and the right one chosen per lane.
 template <int W>
 THRONG_KERNEL void orcaLineBlock(const float* px, const float* py, const float* pvx, const float* pvy, const float* pcr,
                                  const float* presp, Vec2 selfVel, float invTimeHorizon, float invTimeStep, OrcaLine* out) {
-  using F = typename simd::Lanes<W>::F;
-  using I = typename simd::Lanes<W>::I;
+  using L = simd::Lanes<W>;
+  using F = typename L::F;
+  using I = typename L::I;
   F x, y, vx, vy, cr, resp, zero, one, invTH, invTS;
   std::memcpy(&x, px, sizeof x);
   std::memcpy(&y, py, sizeof y);
@@ -190,7 +191,7 @@ THRONG_KERNEL void orcaLineBlock(const float* px, const float* py, const float* 
   std::memcpy(&vy, pvy, sizeof vy);
   std::memcpy(&cr, pcr, sizeof cr);
   std::memcpy(&resp, presp, sizeof resp);
-  for (int l = 0; l < W; ++l) zero[l] = 0.0f, one[l] = 1.0f, invTH[l] = invTimeHorizon, invTS[l] = invTimeStep;
+  L::fill(zero, 0.0f), L::fill(one, 1.0f), L::fill(invTH, invTimeHorizon), L::fill(invTS, invTimeStep);
   const F distSq = x * x + y * y;
   const F crSq = cr * cr;
   // Apart: the cut-off circle or a leg of the cone.
