@@ -74,8 +74,12 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 #include "operational_model.hpp"
+#include "throng/core/simd.hpp"
 
 namespace throng::sim {
 namespace {
@@ -314,6 +318,37 @@ constexpr float kPassRamp = 0.1f;  ///< [m]
 /// Floors of a multi-level world are told apart in bins of this height [m] (a storey is 2.5–4 m).
 constexpr float kCrowdStorey = 2.5f;
 
+#if defined(__x86_64__)
+/// CrowdGrid::clearAhead's scan on the AVX2 path, eight points t, t + 0.5, … at a time (the same
+/// IEEE operations as the scan's, so the same cells): from `t` on, skips every block of eight points
+/// whose cells hold no crowd, and stops at the first block with one — `t` left at its first point,
+/// the index entries of its eight cells in `entries`, the lanes holding a crowd returned as a mask —
+/// or, returning 0, at the first block that reaches past `last`. The points must lie on the dense
+/// index's grid, whose entries fit 32-bit offsets. Not inlined: its instructions need the AVX2 target.
+[[gnu::target("avx2"), gnu::noinline]] unsigned nextCrowdedAvx2(const std::int32_t* dense, std::int32_t layer, std::int32_t nx,
+                                                                core::Vec2 pos, core::Vec2 dir, core::Vec2 origin, float& t,
+                                                                float last, std::int32_t* entries) {
+  constexpr float kStep = 0.5f;  // clearAhead's, for cells of 1 m
+  const __m256 px = _mm256_set1_ps(pos.x), py = _mm256_set1_ps(pos.y), dx = _mm256_set1_ps(dir.x), dy = _mm256_set1_ps(dir.y);
+  const __m256 ox = _mm256_set1_ps(origin.x), oy = _mm256_set1_ps(origin.y);
+  const __m256 lanes = _mm256_setr_ps(0.0f, kStep, 2.0f * kStep, 3.0f * kStep, 4.0f * kStep, 5.0f * kStep, 6.0f * kStep, 7.0f * kStep);
+  const __m256i row = _mm256_set1_epi32(nx), base = _mm256_set1_epi32(layer);
+  for (; t + 7.0f * kStep <= last; t += 8.0f * kStep) {
+    const __m256 tv = _mm256_add_ps(_mm256_set1_ps(t), lanes);
+    const __m256i cx = _mm256_cvttps_epi32(_mm256_sub_ps(_mm256_add_ps(px, _mm256_mul_ps(dx, tv)), ox));
+    const __m256i cy = _mm256_cvttps_epi32(_mm256_sub_ps(_mm256_add_ps(py, _mm256_mul_ps(dy, tv)), oy));
+    const __m256i cell = _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(base, cy), row), cx);
+    const __m256i entry = _mm256_i32gather_epi32(dense, cell, 4);
+    const auto crowded = ~static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(entry))) & 0xffu;  // entries >= 0
+    if (crowded != 0) {
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(entries), entry);
+      return crowded;
+    }
+  }
+  return 0;
+}
+#endif
+
 /// Agents per cell of kCrowdCell metres (and storey bins of kCrowdStorey on multi-level worlds) over
 /// the box round every agent: what walkers see of the crowd ahead. Built serially once a tick from
 /// the positions at its start, so the same for any thread or rank count.
@@ -350,8 +385,10 @@ class CrowdGrid {
     slots_.clear();
     cells_.clear();
     const auto boxCells = static_cast<double>(nx_) * static_cast<double>(ny_) * nz_;
+    avx2_ = false;
     if (boxCells <= kDenseCellsPerAgent * static_cast<double>(n) + kDenseCellsMin) {
       dense_.assign(static_cast<std::size_t>(boxCells), -1);
+      avx2_ = core::simdPath() == core::SimdPath::Avx2 && boxCells < 2147483647.0;
     } else {
       std::size_t size = 64;
       while (size < 4 * n) size *= 2;
@@ -406,6 +443,20 @@ class CrowdGrid {
       const std::int64_t layer = static_cast<std::int64_t>(floor) * ny_;
       const std::int32_t* dense = dense_.data();
       float t = kCrowdCell;
+#if defined(__x86_64__)
+      static_assert(kCrowdCell == 1.0f, "nextCrowdedAvx2 leaves out the division by the cell size");
+      if (avx2_) {  // eight points at a time, only blocks with a crowded cell looked at point by point
+        alignas(32) std::int32_t entries[8];
+        const auto l32 = static_cast<std::int32_t>(layer), nx32 = static_cast<std::int32_t>(nx_);
+        while (unsigned crowded = nextCrowdedAvx2(dense, l32, nx32, pos, dir, {x0_, y0_}, t, last, entries)) {
+          for (; crowded != 0; crowded &= crowded - 1) {
+            const int j = std::countr_zero(crowded);
+            if (blocks(cells_[static_cast<std::size_t>(entries[j])], e0)) return t + kStep * static_cast<float>(j);
+          }
+          t += 8.0f * kStep;
+        }
+      }
+#endif
 #if defined(__SSE2__)
       // Four points at a time: the same IEEE operations on four lanes (exact as one at a time), then
       // the look-ups in order.
@@ -533,6 +584,7 @@ class CrowdGrid {
   float x0_ = 0, y0_ = 0, z0_ = 0, range_ = 0;
   std::int64_t nx_ = 0, ny_ = 0;
   int nz_ = 1;
+  bool avx2_ = false;  ///< clearAhead scans with nextCrowdedAvx2 (the AVX2 path, and a dense index of 32-bit offsets)
 };
 
 /// The perpendicular of e pointing to its right.
@@ -722,9 +774,10 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float threshold = oncoming ? l : 0.0f;
       const bool toLeft = lateral > threshold;
       float push = strength * (toLeft ? -roomLeft : roomRight);
-      // Room to pass o (in the open its wall-free figure, worked out for every o: no branch there).
+      // Room to pass o (in the open its wall-free figure, worked out for every o: the open is tested
+      // first, as felt is a coin toss for the branch predictor).
       const bool felt = std::abs(push) > 1e-3f;
-      const float pass = felt || ws.wallIds.empty() ? roomToPass(in, ws, o, toLeft ? -side : side, a.radius[row], onWall) : 1.0f;
+      const float pass = ws.wallIds.empty() || felt ? roomToPass(in, ws, o, toLeft ? -side : side, a.radius[row], onWall) : 1.0f;
       sideways += felt ? push * pass : push;
     }
     return dir + side * sideways;
@@ -943,22 +996,12 @@ class AnticipationVelocityModel final : public OperationalModel {
     return e * speed;
   }
 
-  /// Calls f(o, d) for each of i's neighbours o (the rows sense found), d the vector from i to o.
-  template <class F>
-  static void forEachNeighbour(const ModelInput& in, std::size_t row, F&& f) {
-    const AgentStore& a = in.agents;
-    const core::Vec2 pos{a.posX[row], a.posY[row]};
-    const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];
-    for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
-      const std::uint32_t o = nb[n];
-      f(o, core::Vec2{a.posX[o], a.posY[o]} - pos);
-    }
-  }
-
-  /// forEachNeighbour for the neighbours nearer than i's radius + the largest radius + `beyond`
-  /// [m]: the only ones i's body can touch within `beyond`. During steer nobody has moved since
+  /// Calls f(o, d) for each of i's neighbours o (the rows sense found; d the vector from i to o)
+  /// nearer than i's radius + the largest radius + `beyond` [m]: the only ones i's body can touch
+  /// within `beyond`. During steer nobody has moved since
   /// sense, whose lists are nearest first (SpatialGrid::nearest, with the same arithmetic), so the
-  /// first neighbour that far ends the list.
+  /// first neighbour that far ends the list. After the move, `beyond` must hold four times
+  /// ModelInput::movedSinceSense (separation).
   template <class F>
   void forEachTouchable(const ModelInput& in, std::size_t row, float beyond, F&& f) const {
     const AgentStore& a = in.agents;
@@ -1306,7 +1349,10 @@ class AnticipationVelocityModel final : public OperationalModel {
     const core::Vec2 oi{a.oriX[row], a.oriY[row]};
     const float q = params_[a.population[row]].passageRatio;
     core::Vec2 out;
-    forEachNeighbour(in, row, [&](std::uint32_t o, core::Vec2 d) {
+    // A neighbour n of the list (nearest first at sense) with |d_n| at least reach + 4·moved, and
+    // every one after it, is still further than reach: the two lines of centres have changed by at
+    // most 2·moved each (a millimetre to spare for rounding).
+    forEachTouchable(in, row, 4.0f * in.movedSinceSense + 1e-3f, [&](std::uint32_t o, core::Vec2 d) {
       const Overlap ov = overlap(a, row, o, d, oi, q);
       if (ov.depth <= 0.0f || a.goalState[o] == GoalState::Exited) return;
       const core::Vec2 u = ov.u, oo{a.oriX[o], a.oriY[o]};
