@@ -68,6 +68,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <span>
 #include <vector>
@@ -78,11 +79,32 @@
 #include <immintrin.h>
 #endif
 
+#include "../lanes.hpp"
 #include "operational_model.hpp"
 #include "throng/core/simd.hpp"
 
 namespace throng::sim {
 namespace {
+
+using Lanes4 = simd::Lanes<4>;
+
+/// For each mask of four lanes, the lanes set in it in ascending order (the rest: anything), and
+/// how many are set (no popcnt instruction in the baseline x86-64), for pick's compaction.
+struct PickOrder {
+  alignas(16) std::int32_t lanes[16][4];
+  std::uint8_t count[16];
+};
+constexpr PickOrder kPickOrder = [] {
+  PickOrder t{};
+  for (std::uint32_t mask = 0; mask < 16; ++mask) {
+    std::uint8_t at = 0;
+    for (std::int32_t lane = 0; lane < 4; ++lane) {
+      if ((mask >> lane) & 1u) t.lanes[mask][at++] = lane;
+    }
+    t.count[mask] = at;
+  }
+  return t;
+}();
 
 constexpr std::string_view kCalibrated =
     "calibrated on the Juelich corridor uo-145-180-180, its jam uo-180-180-070 and the Wuppertal 0.5 m bottleneck "
@@ -167,6 +189,9 @@ class AvmScratch final : public ModelScratch {
   std::vector<NearBlocker> near;
   std::vector<std::uint32_t> nearLane;  ///< compact's buffer for the near ones in one direction's lane (gapAhead)
   std::vector<std::uint32_t> lane;  ///< pick's buffer for the neighbours a pass looks at further (pushes, gapAhead)
+  /// The walker's neighbours as seen from it (lookAround): offset d = x_o − x_i and ℓ = r_i + r_o,
+  /// in the order sense listed them, padded with zeros to a multiple of four.
+  std::vector<float> aroundX, aroundY, aroundL;
   /// clampToBodies: a neighbour the step may reach, and how deep it may press into it [m] while the
   /// step loses what presses (`first`) and while it is shortened (`then`).
   struct NearBody {
@@ -396,8 +421,9 @@ class CrowdGrid {
       slots_.assign(size, Slot{});
     }
     const auto cellOf = [&](std::size_t i) {
+      // fx, fy >= 0 (the box reaches `range` beyond everyone): truncation is floor.
       const float fx = (a.posX[i] - x0_) / kCrowdCell, fy = (a.posY[i] - y0_) / kCrowdCell;
-      return key(static_cast<std::int64_t>(std::floor(fx)), static_cast<std::int64_t>(std::floor(fy)), storey(a.height(i)));
+      return key(static_cast<std::int64_t>(fx), static_cast<std::int64_t>(fy), storey(a.height(i)));
     };
     for (std::size_t i = 0; i < n; ++i) {  // count
       std::int32_t& v = indexOf(cellOf(i));
@@ -736,16 +762,17 @@ class AnticipationVelocityModel final : public OperationalModel {
     const core::Vec2 u = e0 * v0;
     // The neighbours that push: those in front and those whose discs (nearly) overlap i's; the rest
     // is dropped first, without a branch (half of them are behind).
-    const std::span<const std::uint32_t> lane = pick(in, row, ws.lane, [&](std::uint32_t o, core::Vec2 d) {
-      const float l = a.radius[row] + a.radius[o];
-      return static_cast<int>(core::dot(e0, d) > 0.0f) | static_cast<int>(core::lengthSq(d) < 1.01f * l * l);
+    const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];  // lane holds places in this list
+    const std::span<const std::uint32_t> lane = pick(in, row, ws, ws.lane, [e0](const Lanes4::F& x, const Lanes4::F& y, const Lanes4::F& l) {
+      return (e0.x * x + e0.y * y > 0.0f) | (x * x + y * y < 1.01f * l * l);  // dot(e0, d) > 0 or |d|² < 1.01 ℓ²
     });
     float sideways = 0.0f;  // the neighbours' push along side
-    for (const std::uint32_t o : lane) {
-      const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
+    for (const std::uint32_t n : lane) {
+      const std::uint32_t o = nb[n];
+      const core::Vec2 d{ws.aroundX[n], ws.aroundY[n]};
       const float dist = core::length(d);
       if (dist < 1e-6f) continue;
-      const float l = a.radius[row] + a.radius[o];
+      const float l = ws.aroundL[n];
       if (dist < l) {  // overlapping discs: step apart along the line of centres, ...
         core::Vec2 push = -d * (p.neighbourStrength * std::exp((l - dist) / p.neighbourRange) / dist);
         // ... but backwards only when the bodies (ellipses, aligned with e0) really interpenetrate:
@@ -911,16 +938,17 @@ class AnticipationVelocityModel final : public OperationalModel {
     ws.near.clear();
     const float tx = a.targetX[row] - pos.x, ty = a.targetY[row] - pos.y;
     const bool nearTarget = tx * tx + ty * ty < kSqueezeIn * kSqueezeIn;
-    const std::span<const std::uint32_t> lane = pick(in, row, ws.lane, [&](std::uint32_t o, core::Vec2 d) {
-      const float l = a.radius[row] + a.radius[o];
-      const float reach = limit + l + kStandingGap + 0.01f;
-      return static_cast<int>(d.x * d.x + d.y * d.y < reach * reach + l * l);
+    const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];  // lane holds places in this list
+    const std::span<const std::uint32_t> lane = pick(in, row, ws, ws.lane, [limit](const Lanes4::F& x, const Lanes4::F& y, const Lanes4::F& l) {
+      const Lanes4::F reach = limit + l + kStandingGap + 0.01f;
+      return x * x + y * y < reach * reach + l * l;
     });
-    for (const std::uint32_t o : lane) {
-      const float l = a.radius[row] + a.radius[o];
+    for (const std::uint32_t n : lane) {
+      const std::uint32_t o = nb[n];
+      const float l = ws.aroundL[n];
       const bool walking = a.mode[o] == AgentMode::Walking;
       if (!walking && nearTarget) continue;  // squeezing in beside someone standing at one's spot
-      const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
+      const core::Vec2 d{ws.aroundX[n], ws.aroundY[n]};
       const core::Vec2 eo = walkingDirection(a, o);
       ws.near.push_back({d, eo, l, -core::dot(d, eo), opposed(in, row, o, kRotateCos), walking, a.id[row] < a.id[o]});
     }
@@ -1016,17 +1044,66 @@ class AnticipationVelocityModel final : public OperationalModel {
     }
   }
 
-  /// Picks out the neighbours o of i (d from i to o) for which keep(o, d) is non-zero into `into`, in
-  /// their order. The test is made for every neighbour without a branch: the passes drop half their
-  /// neighbours or more (those behind, those out of reach) at random, and branching on that was
-  /// mispredicted about as often (a tenth of avm's time at 10,000 agents).
-  template <class Keep>
-  static std::span<const std::uint32_t> pick(const ModelInput& in, std::size_t row, std::vector<std::uint32_t>& into, Keep&& keep) {
+  /// Fills ws.aroundX/Y/L with i's neighbours as seen from i (pick reads them): the offsets and
+  /// ℓ = r_i + r_o, with the arithmetic of every pass (so the same values); zeros up to the next
+  /// multiple of four.
+  static void lookAround(const ModelInput& in, std::size_t row, AvmScratch& ws) {
     const AgentStore& a = in.agents;
+    const std::size_t count = a.neighbourCount[row];
+    const std::size_t padded = (count + 3) & ~std::size_t{3};
+    if (ws.aroundX.size() < padded) ws.aroundX.resize(padded), ws.aroundY.resize(padded), ws.aroundL.resize(padded);
     const core::Vec2 pos{a.posX[row], a.posY[row]};
     const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];
-    return compact(a.neighbourCount[row], into, [&](std::size_t n) { return nb[n]; },
-                   [&](std::size_t n) { return keep(nb[n], core::Vec2{a.posX[nb[n]], a.posY[nb[n]]} - pos); });
+    for (std::size_t n = 0; n < count; ++n) {
+      const std::uint32_t o = nb[n];
+      ws.aroundX[n] = a.posX[o] - pos.x;
+      ws.aroundY[n] = a.posY[o] - pos.y;
+      ws.aroundL[n] = a.radius[row] + a.radius[o];
+    }
+    for (std::size_t n = count; n < padded; ++n) ws.aroundX[n] = ws.aroundY[n] = ws.aroundL[n] = 0.0f;
+  }
+
+  /// Picks out the places n in i's neighbour list (lookAround: d = (x, y) from i to its n-th
+  /// neighbour, ℓ = r_i + r_o) for which keep(x, y, ℓ) holds into `into`, in their order. keep
+  /// takes four neighbours at once (simd::Lanes<4>, -1 where kept) and the places kept of each four
+  /// are written together at the output's end in the order kPickOrder gives for the lanes' mask:
+  /// no branch on the data (the passes drop half their neighbours or more, those behind, those out
+  /// of reach, at random, and branching on that was mispredicted about as often: a tenth of avm's
+  /// time at 10,000 agents), no dependency from one neighbour to the next.
+  template <class Keep>
+  static std::span<const std::uint32_t> pick(const ModelInput& in, std::size_t row, AvmScratch& ws, std::vector<std::uint32_t>& into,
+                                             Keep&& keep) {
+    using L = simd::Lanes<4>;
+    const std::size_t count = in.agents.neighbourCount[row];
+    const std::size_t padded = (count + 3) & ~std::size_t{3};
+    if (into.size() < padded) into.resize(padded);
+    std::uint32_t* out = into.data();
+    std::size_t kept = 0;
+    for (std::size_t j = 0; j < count; j += 4) {
+      L::F x, y, l;
+      std::memcpy(&x, ws.aroundX.data() + j, sizeof x);
+      std::memcpy(&y, ws.aroundY.data() + j, sizeof y);
+      std::memcpy(&l, ws.aroundL.data() + j, sizeof l);
+      const L::I k = keep(x, y, l);
+      const unsigned valid = count - j >= 4 ? 0xfu : (1u << (count - j)) - 1u;
+      const unsigned mask = laneMask(k) & valid;
+      Lanes4::I order;
+      std::memcpy(&order, kPickOrder.lanes[mask], sizeof order);
+      order += static_cast<std::int32_t>(j);
+      std::memcpy(out + kept, &order, sizeof order);  // all four: those past the kept ones are overwritten or unused
+      kept += kPickOrder.count[mask];
+    }
+    return {out, kept};
+  }
+
+  /// Bit q set where lane q of a comparison's result is true (-1).
+  static unsigned laneMask(const simd::Lanes<4>::I& k) {
+#if defined(__SSE2__)
+    return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(reinterpret_cast<const __m128i&>(k))));
+#else
+    return static_cast<unsigned>(k[0] != 0) | static_cast<unsigned>(k[1] != 0) << 1 | static_cast<unsigned>(k[2] != 0) << 2 |
+           static_cast<unsigned>(k[3] != 0) << 3;
+#endif
   }
 
   /// value(n) for the n < count for which keep(n) is non-zero, in order: every n is written to
@@ -1069,16 +1146,19 @@ class AnticipationVelocityModel final : public OperationalModel {
     const AgentStore& a = in.agents;
     const core::Vec2 pos{a.posX[row], a.posY[row]};
     // First the neighbours in i's lane ahead: in front, less than ℓ aside.
-    const std::span<const std::uint32_t> lane = pick(in, row, ws.lane, [&](std::uint32_t o, core::Vec2 d) {
-      return static_cast<int>(core::dot(d, e) > 0.0f) & static_cast<int>(std::abs(core::cross(e, d)) < a.radius[row] + a.radius[o]);
+    const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];  // lane holds places in this list
+    const std::span<const std::uint32_t> lane = pick(in, row, ws, ws.lane, [e](const Lanes4::F& x, const Lanes4::F& y, const Lanes4::F& l) {
+      const Lanes4::F lateral = e.x * y - e.y * x;  // cross(e, d); |lateral| < ℓ as two comparisons
+      return (x * e.x + y * e.y > 0.0f) & (lateral < l) & (-lateral < l);  // dot(d, e) > 0
     });
     float gap = limit;
     const float tx = a.targetX[row] - pos.x, ty = a.targetY[row] - pos.y;
     const bool nearTarget = tx * tx + ty * ty < kSqueezeIn * kSqueezeIn;
-    for (const std::uint32_t o : lane) {
-      const core::Vec2 d = core::Vec2{a.posX[o], a.posY[o]} - pos;
+    for (const std::uint32_t n : lane) {
+      const std::uint32_t o = nb[n];
+      const core::Vec2 d{ws.aroundX[n], ws.aroundY[n]};
       const float ahead = core::dot(d, e);
-      const float l = a.radius[row] + a.radius[o];
+      const float l = ws.aroundL[n];
       const float lateral = core::cross(e, d);
       if (std::abs(lateral) >= depthRatio * l && opposed(in, row, o, kRotateCos)) continue;  // shoulders turned
       if (givesWay(a, row, o, d, ahead, e)) continue;
@@ -1180,6 +1260,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     }
     if (turn == kLookAgain) turn = seeAhead(in, row, pref / v0, p.visionRange, p.noPressing ? kOnWall : 0.0f, ws);
     const core::Vec2 e0 = turned(pref / v0, turn);
+    lookAround(in, row, ws);  // for pick, in pushes, gapAhead and collectNear
     core::Vec2 target = pushes(in, row, e0, v0, p, ws);
     const float len = core::length(target);
     if (len < 1e-6f) return {};
