@@ -2,7 +2,12 @@
 // portable path) or 8 (the AVX2 path); docs/architecture.md, "SIMD paths". Spelled out per width
 // because GCC ignores a vector_size that depends on a template parameter.
 #pragma once
+#include <cmath>
 #include <cstdint>
+#include <cstring>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 /// Kernels are inlined into each path's entry point, so they compile for that path's target.
 #define THRONG_KERNEL [[gnu::always_inline]] inline
@@ -40,5 +45,20 @@ struct Lanes {
     return s;
   }
 };
+
+/// out = √v lane by lane (exactly rounded, as std::sqrt): SSE2's sqrtps four lanes at a time.
+template <int W, class F>
+THRONG_KERNEL void sqrtLanes(F& out, const F& v) {
+#if defined(__SSE2__)
+  for (int h = 0; h < W; h += 4) {
+    __m128 q;
+    std::memcpy(&q, reinterpret_cast<const float*>(&v) + h, sizeof q);
+    q = _mm_sqrt_ps(q);
+    std::memcpy(reinterpret_cast<float*>(&out) + h, &q, sizeof q);
+  }
+#else
+  for (int l = 0; l < W; ++l) out[l] = std::sqrt(v[l]);
+#endif
+}
 
 }  // namespace throng::sim::simd

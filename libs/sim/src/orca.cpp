@@ -161,21 +161,6 @@ OrcaLine agentOrcaLine(Vec2 relPos, Vec2 relVel, Vec2 selfVel, float combinedRad
 
 namespace {
 
-/// out = √v lane by lane (exactly rounded, as std::sqrt): SSE2's sqrtps four lanes at a time.
-template <int W, class F>
-THRONG_KERNEL void sqrtLanes(F& out, const F& v) {
-#if defined(__SSE2__)
-  for (int h = 0; h < W; h += 4) {
-    __m128 q;
-    std::memcpy(&q, reinterpret_cast<const float*>(&v) + h, sizeof q);
-    q = _mm_sqrt_ps(q);
-    std::memcpy(reinterpret_cast<float*>(&out) + h, &q, sizeof q);
-  }
-#else
-  for (int l = 0; l < W; ++l) out[l] = std::sqrt(v[l]);
-#endif
-}
-
 /// One block of W neighbours (every array holds W entries): agentOrcaLine's three cases are all
 /// computed, in its order of operations, and the right one chosen per lane.
 template <int W>
@@ -200,10 +185,10 @@ THRONG_KERNEL void orcaLineBlock(const float* px, const float* py, const float* 
   const F dp = wx * x + wy * y;
   const I onCircle = (dp < zero) & (dp * dp > crSq * wLengthSq);
   F wLength, leg, oLength;
-  sqrtLanes<W>(wLength, wLengthSq);
+  simd::sqrtLanes<W>(wLength, wLengthSq);
   const F circleX = wx / wLength, circleY = wy / wLength;
   const F circleS = cr * invTH - wLength;
-  sqrtLanes<W>(leg, distSq - crSq);
+  simd::sqrtLanes<W>(leg, distSq - crSq);
   const I leftLeg = (x * wy - y * wx) > zero;
   const F lx = (x * leg - y * cr) / distSq, ly = (x * cr + y * leg) / distSq;
   const F rx = (-(x * leg + y * cr)) / distSq, ry = (-(-x * cr + y * leg)) / distSq;
@@ -211,7 +196,7 @@ THRONG_KERNEL void orcaLineBlock(const float* px, const float* py, const float* 
   const F legDot = vx * legX + vy * legY;
   // Overlapping: push apart within one step.
   const F ox = vx - x * invTS, oy = vy - y * invTS;
-  sqrtLanes<W>(oLength, ox * ox + oy * oy);
+  simd::sqrtLanes<W>(oLength, ox * ox + oy * oy);
   const I moving = oLength > zero;
   const F oux = moving ? ox / oLength : one, ouy = moving ? oy / oLength : zero;
   const F overlapS = cr * invTS - oLength;

@@ -81,6 +81,7 @@
 
 #include "../lanes.hpp"
 #include "operational_model.hpp"
+#include "throng/core/exp.hpp"
 #include "throng/core/simd.hpp"
 
 namespace throng::sim {
@@ -742,6 +743,88 @@ class AnticipationVelocityModel final : public OperationalModel {
     return room(in, ws.visionWalls, pos, dir, reach, onWall);
   }
 
+  /// What the sideways push of a neighbour depends on besides the neighbour (pushes).
+  struct SideRule {
+    core::Vec2 e0, side, u;  ///< i's desired direction, its right, its desired velocity
+    float roomLeft, roomRight;  ///< room to step aside, as a share of a body width
+    float need;  ///< kPassWidths · 2 r_i: the room needed beside a neighbour to pass it
+    const AvmParams& p;
+  };
+  /// Four neighbours' sideways pushes (sidePushes): bit q of a mask for the q-th.
+  struct SideLanes {
+    alignas(16) float push[4];      ///< the push along side, before the room to pass
+    alignas(16) float passOpen[4];  ///< the room to pass where no wall is near (roomToPass in the open)
+    unsigned overlap = 0;  ///< the discs (nearly) overlap: overlapPush acts instead
+    unsigned seen = 0;     ///< in front, not of i's group, not overlapping: it pushes
+    unsigned felt = 0;     ///< the push is over 1e-3 (the room to pass is looked at)
+    unsigned toLeft = 0;   ///< i passes it on its left
+  };
+
+  /// Up to four neighbours of pushes' lane at once (simd::Lanes<4>): the closest approach within the
+  /// anticipation time and the push it gives, with the one-at-a-time rule's operations in its order
+  /// (core::exp's four-lane form gives core::exp's bits), so the same values.
+  static void sidePushes(const ModelInput& in, std::size_t row, const AvmScratch& ws, const std::uint32_t* nb,
+                         std::span<const std::uint32_t> places, const SideRule& r, SideLanes& out) {
+    using F = Lanes4::F;
+    using I = Lanes4::I;
+    const AgentStore& a = in.agents;
+    F dx, dy, l, vx, vy, ro;
+    I valid, same;
+    Lanes4::fill(dx, 1.0f), Lanes4::fill(dy, 0.0f), Lanes4::fill(l, 0.0f), Lanes4::fill(vx, 0.0f), Lanes4::fill(vy, 0.0f);
+    Lanes4::fill(ro, 0.0f), Lanes4::fill(valid, 0), Lanes4::fill(same, 0);
+    for (std::size_t q = 0; q < places.size(); ++q) {
+      const std::uint32_t n = places[q], o = nb[n];
+      dx[q] = ws.aroundX[n], dy[q] = ws.aroundY[n], l[q] = ws.aroundL[n];
+      vx[q] = a.velX[o], vy[q] = a.velY[o], ro[q] = a.radius[o];
+      valid[q] = -1, same[q] = a.group[o] == a.group[row] ? -1 : 0;
+    }
+    F dist;
+    simd::sqrtLanes<4>(dist, dx * dx + dy * dy);
+    const I apart = valid & (dist >= 1e-6f);
+    const I overlap = apart & (dist < l);
+    const F cosPhi = (r.e0.x * dx + r.e0.y * dy) / dist;
+    const I seen = apart & ~overlap & (cosPhi > 0.0f) & ~same;  // behind: not seen; i's group keeps its formation
+    // Closest approach within the anticipation time, both walking on.
+    const F wx = vx - r.u.x, wy = vy - r.u.y;
+    const F ww = wx * wx + wy * wy;
+    const F tq = -(dx * wx + dy * wy) / ww;
+    const F clamped = tq < 0.0f ? F{} : r.p.anticipationTime < tq ? F{} + r.p.anticipationTime : tq;  // std::clamp
+    const F t = ww > 1e-8f ? clamped : F{};
+    const F cx = dx + wx * t, cy = dy + wy * t;
+    const F lateral = cx * r.side.x + cy * r.side.y;  // > 0: j passes on i's right
+    F reachC;
+    simd::sqrtLanes<4>(reachC, cx * cx + cy * cy);
+    const F strength = r.p.neighbourStrength * core::exp((l - reachC) / r.p.neighbourRange) * 0.5f * (1.0f + cosPhi);
+    // Keep right: someone coming the other way is passed on one's right side (one steps right)
+    // unless they are already well to the right; that is how counter-flows form lanes.
+    const I oncoming = vx * r.e0.x + vy * r.e0.y < 0.0f;
+    const F threshold = oncoming ? l : F{};
+    const I toLeft = lateral > threshold;
+    const F push = strength * (toLeft ? F{} - r.roomLeft : F{} + r.roomRight);
+    const I felt = (push > 1e-3f) | (-push > 1e-3f);
+    const F beside = ro + r.need + kPassRamp - ro;
+    const F passQ = (beside - r.need) / kPassRamp;
+    const F pass = passQ < 0.0f ? F{} : 1.0f < passQ ? F{} + 1.0f : passQ;
+    std::memcpy(out.push, &push, sizeof push);
+    std::memcpy(out.passOpen, &pass, sizeof pass);
+    out.overlap = laneMask(overlap), out.seen = laneMask(seen), out.felt = laneMask(felt), out.toLeft = laneMask(toLeft);
+  }
+
+  /// The push of a neighbour whose disc overlaps i's (d from i to it, ℓ = r_i + r_o): apart along
+  /// the line of centres, but backwards only when the bodies (ellipses, aligned with e0) really
+  /// interpenetrate — standing close behind someone is what people do in a queue, not a reason to
+  /// back off — or i has been wedged for half the deadlock patience.
+  static core::Vec2 overlapPush(const ModelInput& in, std::size_t row, core::Vec2 d, float l, core::Vec2 e0, const AvmParams& p) {
+    const float dist = core::length(d);
+    core::Vec2 push = -d * (p.neighbourStrength * core::exp((l - dist) / p.neighbourRange) / dist);
+    const float along = core::dot(e0, d) / dist, across = core::cross(e0, d) / dist;
+    const float q = p.passageRatio;
+    const float touch = l * q / std::sqrt(along * along + q * q * across * across);
+    const bool stuck = in.agents.stuckTime[row] > 0.5f * in.desc.steering.stuckPatience;  // wedged: may back off
+    if (const float back = core::dot(push, e0); back < 0.0f && dist >= touch && !stuck) push -= e0 * back;
+    return push;
+  }
+
   /// The desired direction turned aside by the neighbours in front and pushed off the walls.
   core::Vec2 pushes(const ModelInput& in, std::size_t row, core::Vec2 e0, float v0, const AvmParams& p,
                     AvmScratch& ws) const {
@@ -766,46 +849,25 @@ class AnticipationVelocityModel final : public OperationalModel {
     const std::span<const std::uint32_t> lane = pick(in, row, ws, ws.lane, [e0](const Lanes4::F& x, const Lanes4::F& y, const Lanes4::F& l) {
       return (e0.x * x + e0.y * y > 0.0f) | (x * x + y * y < 1.01f * l * l);  // dot(e0, d) > 0 or |d|² < 1.01 ℓ²
     });
+    const SideRule rule{e0, side, u, roomLeft, roomRight, kPassWidths * 2.0f * a.radius[row], p};
     float sideways = 0.0f;  // the neighbours' push along side
-    for (const std::uint32_t n : lane) {
-      const std::uint32_t o = nb[n];
-      const core::Vec2 d{ws.aroundX[n], ws.aroundY[n]};
-      const float dist = core::length(d);
-      if (dist < 1e-6f) continue;
-      const float l = ws.aroundL[n];
-      if (dist < l) {  // overlapping discs: step apart along the line of centres, ...
-        core::Vec2 push = -d * (p.neighbourStrength * std::exp((l - dist) / p.neighbourRange) / dist);
-        // ... but backwards only when the bodies (ellipses, aligned with e0) really interpenetrate:
-        // standing close behind someone is what people do in a queue, not a reason to back off.
-        const float along = core::dot(e0, d) / dist, across = core::cross(e0, d) / dist;
-        const float q = p.passageRatio;
-        const float touch = l * q / std::sqrt(along * along + q * q * across * across);
-        const bool stuck = a.stuckTime[row] > 0.5f * in.desc.steering.stuckPatience;  // wedged: may back off
-        if (const float back = core::dot(push, e0); back < 0.0f && dist >= touch && !stuck) push -= e0 * back;
-        dir += push;
-        continue;
+    for (std::size_t j = 0; j < lane.size(); j += 4) {
+      SideLanes s;
+      sidePushes(in, row, ws, nb, lane.subspan(j, std::min<std::size_t>(4, lane.size() - j)), rule, s);
+      for (std::size_t q = 0; q < 4 && j + q < lane.size(); ++q) {  // in the neighbours' order, as one at a time
+        const std::uint32_t n = lane[j + q];
+        if ((s.overlap >> q) & 1u) {
+          dir += overlapPush(in, row, {ws.aroundX[n], ws.aroundY[n]}, ws.aroundL[n], e0, p);
+        } else if ((s.seen >> q) & 1u) {
+          // Room to pass o: in the open its wall-free figure (worked out in the lanes), by the walls
+          // beside o when the push is felt.
+          const bool felt = (s.felt >> q) & 1u, toLeft = (s.toLeft >> q) & 1u;
+          const float pass = !felt ? 1.0f
+                             : ws.wallIds.empty() ? s.passOpen[q]
+                                                  : roomToPass(in, ws, nb[n], toLeft ? -side : side, a.radius[row], onWall);
+          sideways += felt ? s.push[q] * pass : s.push[q];
+        }
       }
-      const float cosPhi = core::dot(e0, d) / dist;
-      if (cosPhi <= 0.0f) continue;  // behind: not seen
-      if (a.group[o] == a.group[row]) continue;  // one's own group keeps its formation (steer), no swerving
-      // Closest approach within the anticipation time, both walking on.
-      const core::Vec2 w = core::Vec2{a.velX[o], a.velY[o]} - u;
-      const float ww = core::lengthSq(w);
-      const float t = ww > 1e-8f ? std::clamp(-core::dot(d, w) / ww, 0.0f, p.anticipationTime) : 0.0f;
-      const core::Vec2 c = d + w * t;
-      const float lateral = core::dot(c, side);  // > 0: j passes on i's right
-      const float strength = p.neighbourStrength * std::exp((l - core::length(c)) / p.neighbourRange) * 0.5f * (1.0f + cosPhi);
-      // Keep right: someone coming the other way is passed on one's right side (one steps right)
-      // unless they are already well to the right; that is how counter-flows form lanes.
-      const bool oncoming = core::dot(core::Vec2{a.velX[o], a.velY[o]}, e0) < 0.0f;
-      const float threshold = oncoming ? l : 0.0f;
-      const bool toLeft = lateral > threshold;
-      float push = strength * (toLeft ? -roomLeft : roomRight);
-      // Room to pass o (in the open its wall-free figure, worked out for every o: the open is tested
-      // first, as felt is a coin toss for the branch predictor).
-      const bool felt = std::abs(push) > 1e-3f;
-      const float pass = ws.wallIds.empty() || felt ? roomToPass(in, ws, o, toLeft ? -side : side, a.radius[row], onWall) : 1.0f;
-      sideways += felt ? push * pass : push;
     }
     return dir + side * sideways;
   }
@@ -1132,7 +1194,7 @@ class AnticipationVelocityModel final : public OperationalModel {
       const float dist = core::length(d);
       const float l = a.radius[row] + a.radius[o];
       if (dist < 1e-6f || dist >= l) return;
-      push -= d * (p.neighbourStrength * std::exp((l - dist) / p.neighbourRange) / dist);
+      push -= d * (p.neighbourStrength * core::exp((l - dist) / p.neighbourRange) / dist);
     });
     const float len = core::length(push);
     if (len < 1e-6f) return {};

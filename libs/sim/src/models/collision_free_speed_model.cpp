@@ -86,7 +86,7 @@ class CollisionFreeSpeedModel final : public OperationalModel {
       const core::Vec2 away = pos - core::Vec2{a.posX[o], a.posY[o]};
       const float s = core::length(away);
       if (s < 1e-6f) continue;
-      dir += away * (p.neighbourStrength * std::exp((a.radius[row] + a.radius[o] - s) / p.neighbourRange) / s);
+      dir += away * (p.neighbourStrength * core::exp((a.radius[row] + a.radius[o] - s) / p.neighbourRange) / s);
     }
     dir += exponentialWallPush(in, row, a.radius[row] + 30.0f * p.wallRange, p.wallStrength, p.wallRange, ws.wallIds);
     const float len = core::length(dir);

@@ -19,6 +19,7 @@
 
 #include "../agent_store.hpp"
 #include "../walls.hpp"
+#include "throng/core/exp.hpp"
 #include "throng/core/vec2.hpp"
 #include "throng/sim/models.hpp"
 #include "throng/sim/scenario.hpp"
@@ -136,7 +137,7 @@ inline core::Vec2 exponentialWallPush(const ModelInput& in, std::size_t row, flo
     const core::Vec2 away = pos - core::closestPointOnSegment(pos, seg.a, seg.b);
     const float s = core::length(away);
     if (s < 1e-6f) continue;
-    push += away * (strength * std::exp(-s / range) / s);
+    push += away * (strength * core::exp(-s / range) / s);
   }
   return push;
 }
