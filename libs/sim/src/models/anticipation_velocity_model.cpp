@@ -1088,10 +1088,10 @@ class AnticipationVelocityModel final : public OperationalModel {
 
   /// Calls f(o, d) for each of i's neighbours o (the rows sense found; d the vector from i to o)
   /// nearer than i's radius + the largest radius + `beyond` [m]: the only ones i's body can touch
-  /// within `beyond`. During steer nobody has moved since
-  /// sense, whose lists are nearest first (SpatialGrid::nearest, with the same arithmetic), so the
-  /// first neighbour that far ends the list. After the move, `beyond` must hold four times
-  /// ModelInput::movedSinceSense (separation).
+  /// within `beyond`. During steer nobody has moved since sense, whose lists are nearest first
+  /// (SpatialGrid::nearest, with the same arithmetic), so the first neighbour that far ends the
+  /// list. After the move, `beyond` must also hold four times ModelInput::movedSinceSense
+  /// (separation).
   template <class F>
   void forEachTouchable(const ModelInput& in, std::size_t row, float beyond, F&& f) const {
     const AgentStore& a = in.agents;
