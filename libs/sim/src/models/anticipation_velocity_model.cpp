@@ -754,6 +754,7 @@ class AnticipationVelocityModel final : public OperationalModel {
   struct SideLanes {
     alignas(16) float push[4];      ///< the push along side, before the room to pass
     alignas(16) float passOpen[4];  ///< the room to pass where no wall is near (roomToPass in the open)
+    alignas(16) float share[4];     ///< what it adds to the push along side where no wall is near (0: none)
     unsigned overlap = 0;  ///< the discs (nearly) overlap: overlapPush acts instead
     unsigned seen = 0;     ///< in front, not of i's group, not overlapping: it pushes
     unsigned felt = 0;     ///< the push is over 1e-3 (the room to pass is looked at)
@@ -768,16 +769,22 @@ class AnticipationVelocityModel final : public OperationalModel {
     using F = Lanes4::F;
     using I = Lanes4::I;
     const AgentStore& a = in.agents;
-    F dx, dy, l, vx, vy, ro;
-    I valid, same;
-    Lanes4::fill(dx, 1.0f), Lanes4::fill(dy, 0.0f), Lanes4::fill(l, 0.0f), Lanes4::fill(vx, 0.0f), Lanes4::fill(vy, 0.0f);
-    Lanes4::fill(ro, 0.0f), Lanes4::fill(valid, 0), Lanes4::fill(same, 0);
-    for (std::size_t q = 0; q < places.size(); ++q) {
-      const std::uint32_t n = places[q], o = nb[n];
-      dx[q] = ws.aroundX[n], dy[q] = ws.aroundY[n], l[q] = ws.aroundL[n];
-      vx[q] = a.velX[o], vy[q] = a.velY[o], ro[q] = a.radius[o];
-      valid[q] = -1, same[q] = a.group[o] == a.group[row] ? -1 : 0;
-    }
+    // The lanes are built from scalars (no lane written through memory: a vector stored, one lane
+    // overwritten and the vector loaded again stalls store forwarding, which cost this function
+    // four fifths of its time). Lanes past places.size() repeat the first neighbour; every mask
+    // read below excludes them (valid).
+    const std::size_t m = places.size();  // 1 to 4
+    const std::uint32_t n0 = places[0], n1 = places[m > 1 ? 1 : 0], n2 = places[m > 2 ? 2 : 0], n3 = places[m > 3 ? 3 : 0];
+    const std::uint32_t o0 = nb[n0], o1 = nb[n1], o2 = nb[n2], o3 = nb[n3];
+    const F dx{ws.aroundX[n0], ws.aroundX[n1], ws.aroundX[n2], ws.aroundX[n3]};
+    const F dy{ws.aroundY[n0], ws.aroundY[n1], ws.aroundY[n2], ws.aroundY[n3]};
+    const F l{ws.aroundL[n0], ws.aroundL[n1], ws.aroundL[n2], ws.aroundL[n3]};
+    const F vx{a.velX[o0], a.velX[o1], a.velX[o2], a.velX[o3]};
+    const F vy{a.velY[o0], a.velY[o1], a.velY[o2], a.velY[o3]};
+    const F ro{a.radius[o0], a.radius[o1], a.radius[o2], a.radius[o3]};
+    const auto g = a.group[row];
+    const I same{a.group[o0] == g ? -1 : 0, a.group[o1] == g ? -1 : 0, a.group[o2] == g ? -1 : 0, a.group[o3] == g ? -1 : 0};
+    const I valid = I{0, 1, 2, 3} < static_cast<std::int32_t>(m);
     F dist;
     simd::sqrtLanes<4>(dist, dx * dx + dy * dy);
     const I apart = valid & (dist >= 1e-6f);
@@ -805,8 +812,10 @@ class AnticipationVelocityModel final : public OperationalModel {
     const F beside = ro + r.need + kPassRamp - ro;
     const F passQ = (beside - r.need) / kPassRamp;
     const F pass = passQ < 0.0f ? F{} : 1.0f < passQ ? F{} + 1.0f : passQ;
+    const F share = seen ? (felt ? push * pass : push) : F{};
     std::memcpy(out.push, &push, sizeof push);
     std::memcpy(out.passOpen, &pass, sizeof pass);
+    std::memcpy(out.share, &share, sizeof share);
     out.overlap = laneMask(overlap), out.seen = laneMask(seen), out.felt = laneMask(felt), out.toLeft = laneMask(toLeft);
   }
 
@@ -854,6 +863,17 @@ class AnticipationVelocityModel final : public OperationalModel {
     for (std::size_t j = 0; j < lane.size(); j += 4) {
       SideLanes s;
       sidePushes(in, row, ws, nb, lane.subspan(j, std::min<std::size_t>(4, lane.size() - j)), rule, s);
+      if (ws.wallIds.empty()) {
+        // In the open (most walkers): the overlapping ones push `dir`, the seen ones add to
+        // `sideways` in their order, each lane's share selected without a branch (0 for a lane
+        // that does not push: sideways starts at +0 and so is never −0, and x + 0 is x).
+        for (unsigned m = s.overlap; m != 0; m &= m - 1) {
+          const std::uint32_t n = lane[j + static_cast<std::size_t>(std::countr_zero(m))];
+          dir += overlapPush(in, row, {ws.aroundX[n], ws.aroundY[n]}, ws.aroundL[n], e0, p);
+        }
+        sideways = ((sideways + s.share[0]) + s.share[1]) + s.share[2] + s.share[3];
+        continue;
+      }
       for (std::size_t q = 0; q < 4 && j + q < lane.size(); ++q) {  // in the neighbours' order, as one at a time
         const std::uint32_t n = lane[j + q];
         if ((s.overlap >> q) & 1u) {
@@ -1201,6 +1221,78 @@ class AnticipationVelocityModel final : public OperationalModel {
     return push * (std::min(kMakeRoomSpeed, kMakeRoomGain * len) / len);
   }
 
+  /// Four neighbours in i's lane (gapAhead): bit q of `blocks` set where the q-th blocks e, and the
+  /// gap it leaves as g / f (the stagger weight f: kStaggerExponent, kStandingGap).
+  struct GapLanes {
+    alignas(16) float g[4];
+    alignas(16) float f[4];
+    unsigned blocks = 0;
+  };
+  /// Up to four of gapAhead's neighbours at once (simd::Lanes<4>): which block e — not when the two
+  /// turn their shoulders to pass, nor when o gives way (givesWay), nor when i squeezes in beside
+  /// someone standing at its spot, nor at the lane's very edge — with the one-at-a-time rule's
+  /// operations in its order, so the same values; every test a mask, no branch on the data (gapAhead
+  /// one neighbour at a time mispredicted a tenth of the avm's branches). Lanes past places.size()
+  /// repeat the first neighbour and are masked out.
+  static void gapLanes(const ModelInput& in, std::size_t row, const AvmScratch& ws, const std::uint32_t* nb,
+                       std::span<const std::uint32_t> places, core::Vec2 e, float depthRatio, bool nearTarget, GapLanes& out) {
+    using F = Lanes4::F;
+    using I = Lanes4::I;
+    const AgentStore& a = in.agents;
+    const std::size_t m = places.size();  // 1 to 4
+    const std::uint32_t n0 = places[0], n1 = places[m > 1 ? 1 : 0], n2 = places[m > 2 ? 2 : 0], n3 = places[m > 3 ? 3 : 0];
+    const std::uint32_t o0 = nb[n0], o1 = nb[n1], o2 = nb[n2], o3 = nb[n3];
+    const F dx{ws.aroundX[n0], ws.aroundX[n1], ws.aroundX[n2], ws.aroundX[n3]};
+    const F dy{ws.aroundY[n0], ws.aroundY[n1], ws.aroundY[n2], ws.aroundY[n3]};
+    const F l{ws.aroundL[n0], ws.aroundL[n1], ws.aroundL[n2], ws.aroundL[n3]};
+    const F px{in.priorDesiredX[o0], in.priorDesiredX[o1], in.priorDesiredX[o2], in.priorDesiredX[o3]};
+    const F py{in.priorDesiredY[o0], in.priorDesiredY[o1], in.priorDesiredY[o2], in.priorDesiredY[o3]};
+    const F vx{a.velX[o0], a.velX[o1], a.velX[o2], a.velX[o3]};
+    const F vy{a.velY[o0], a.velY[o1], a.velY[o2], a.velY[o3]};
+    const F ox{a.oriX[o0], a.oriX[o1], a.oriX[o2], a.oriX[o3]};
+    const F oy{a.oriY[o0], a.oriY[o1], a.oriY[o2], a.oriY[o3]};
+    constexpr auto walks = [](AgentMode mode) { return mode == AgentMode::Walking ? -1 : 0; };
+    const I walking{walks(a.mode[o0]), walks(a.mode[o1]), walks(a.mode[o2]), walks(a.mode[o3])};
+    const std::uint32_t id = a.id[row];
+    const I lowerId{id < a.id[o0] ? -1 : 0, id < a.id[o1] ? -1 : 0, id < a.id[o2] ? -1 : 0, id < a.id[o3] ? -1 : 0};
+    const I valid = I{0, 1, 2, 3} < static_cast<std::int32_t>(m);
+    const F ahead = dx * e.x + dy * e.y;        // dot(d, e)
+    const F lateral = e.x * dy - e.y * dx;      // cross(e, d)
+    const F absLateral = lateral < 0.0f ? F{} - lateral : lateral;
+    // Shoulders turned: |lateral| ≥ depthRatio · ℓ and opposed(in, row, o, kRotateCos).
+    const float pix = a.prefVelX[row], piy = a.prefVelY[row];
+    const float lengthI = std::sqrt(pix * pix + piy * piy);
+    F lengthO;
+    simd::sqrtLanes<4>(lengthO, px * px + py * py);
+    const F norms = lengthI * lengthO;
+    const I opposedRot = (norms > 1e-9f) & (pix * px + piy * py < kRotateCos * norms);
+    const I shoulders = (absLateral >= depthRatio * l) & opposedRot;
+    // o gives way (givesWay), o's walking direction eo as walkingDirection has it.
+    F speedO;
+    simd::sqrtLanes<4>(speedO, vx * vx + vy * vy);
+    const I moving = speedO > 0.05f;
+    const F eox = moving ? vx / speedO : ox, eoy = moving ? vy / speedO : oy;
+    const F aheadOfO = F{} - (dx * eox + dy * eoy);  // -dot(d, eo)
+    const I gives = walking & (e.x * eox + e.y * eoy > kGiveWayCos) & (aheadOfO > 0.0f) &
+                    ((aheadOfO > ahead) | ((aheadOfO == ahead) & lowerId));
+    const I squeezes = nearTarget ? ~walking : I{};  // beside someone standing at one's spot
+    // Bodies are ellipses, shoulders across the walking direction (semi-axis r) and chest to back
+    // along it (depthRatio · r): two touch at this distance along e. As a gap at the time gap of
+    // someone straight ahead: (s − s0·f) / f, f the stagger weight.
+    const F y = lateral / l;
+    const F across = 1.0f - y * y;
+    static_assert(kStaggerExponent == 2.0f, "f below is (1 - y^2)^2");
+    const F f = across * across;
+    F root;
+    simd::sqrtLanes<4>(root, across);
+    const F reach = ahead - depthRatio * l * root - kStandingGap * f;
+    const F g = 0.0f < reach ? reach : F{};  // std::max(0, reach)
+    const I blocks = valid & ~shoulders & ~gives & ~squeezes & (f >= 1e-6f);
+    std::memcpy(out.g, &g, sizeof g);
+    std::memcpy(out.f, &f, sizeof f);
+    out.blocks = laneMask(blocks);
+  }
+
   /// The gap i can walk along e before touching the first body ahead [m], as the gap to someone
   /// straight ahead that asks the same speed (kStaggerExponent, kStandingGap), at most `limit` (v0·T).
   float gapAhead(const ModelInput& in, std::size_t row, core::Vec2 e, float limit, float depthRatio, AvmScratch& ws,
@@ -1216,27 +1308,15 @@ class AnticipationVelocityModel final : public OperationalModel {
     float gap = limit;
     const float tx = a.targetX[row] - pos.x, ty = a.targetY[row] - pos.y;
     const bool nearTarget = tx * tx + ty * ty < kSqueezeIn * kSqueezeIn;
-    for (const std::uint32_t n : lane) {
-      const std::uint32_t o = nb[n];
-      const core::Vec2 d{ws.aroundX[n], ws.aroundY[n]};
-      const float ahead = core::dot(d, e);
-      const float l = ws.aroundL[n];
-      const float lateral = core::cross(e, d);
-      if (std::abs(lateral) >= depthRatio * l && opposed(in, row, o, kRotateCos)) continue;  // shoulders turned
-      if (givesWay(a, row, o, d, ahead, e)) continue;
-      if (a.mode[o] != AgentMode::Walking && nearTarget) continue;  // squeezing in beside someone standing at one's spot
-      // Bodies are ellipses, shoulders across the walking direction (semi-axis r) and chest to back
-      // along it (depthRatio · r): two touch at this distance along e.
-      // As a gap at the time gap of someone straight ahead: (s − s0·f) / f, f the stagger weight.
-      const float y = lateral / l;
-      const float across = 1.0f - y * y;
-      static_assert(kStaggerExponent == 2.0f, "f below is (1 - y^2)^2");
-      const float f = across * across;
-      if (f < 1e-6f) continue;
-      const float g = std::max(0.0f, ahead - depthRatio * l * std::sqrt(across) - kStandingGap * f);
-      if (g < gap * f) {  // g / f < gap, without dividing for every neighbour
-        gap = g / f;
-        *blocker = o;
+    for (std::size_t j = 0; j < lane.size(); j += 4) {
+      GapLanes s;
+      gapLanes(in, row, ws, nb, lane.subspan(j, std::min<std::size_t>(4, lane.size() - j)), e, depthRatio, nearTarget, s);
+      for (unsigned m = s.blocks; m != 0; m &= m - 1) {  // in the neighbours' order, as one at a time
+        const auto q = static_cast<std::size_t>(std::countr_zero(m));
+        if (s.g[q] < gap * s.f[q]) {  // g / f < gap, without dividing for every neighbour
+          gap = s.g[q] / s.f[q];
+          *blocker = nb[lane[j + q]];
+        }
       }
     }
     return gap;
@@ -1251,28 +1331,48 @@ class AnticipationVelocityModel final : public OperationalModel {
   };
 
   /// gapAhead(ws, direction, limit, depthRatio) for each of slip's directions, in one pass over the
-  /// near bodies: each body is tested against the twelve lanes together (a loop the compiler
-  /// vectorises), and only the lanes it stands in are worked on. Per direction the same bodies are
-  /// taken in the same order with the same arithmetic, so the gaps are gapAhead's to the bit; the
-  /// twelve compactions were about a fifth of the slip's time (docs/performance.md, session 46).
+  /// near bodies: each body against four directions at once (simd::Lanes<4>, three times), every
+  /// test of blocks() a mask and the gap kept or replaced by a select, so no branch on the data
+  /// (testing lane by lane which directions a body stands in mispredicted a tenth of the avm's
+  /// branches: slip took 8 % of a 10,000-agent tick for 3 % of its instructions). Per direction
+  /// the same bodies are taken in the same order with the same arithmetic, so the gaps are
+  /// gapAhead's to the bit (lanes a body is not in may compute NaN; they are never selected).
   static void slipGaps(const AvmScratch& ws, float limit, float depthRatio, SlipLanes& lanes) {
-    lanes.gap.fill(limit);
+    using F = Lanes4::F;
+    using I = Lanes4::I;
+    static_assert(SlipLanes::kCount % 4 == 0);
+    constexpr std::size_t kGroups = SlipLanes::kCount / 4;
+    F ex[kGroups], ey[kGroups], gap[kGroups];
+    for (std::size_t k = 0; k < kGroups; ++k) {
+      std::memcpy(&ex[k], lanes.x.data() + 4 * k, sizeof(F));
+      std::memcpy(&ey[k], lanes.y.data() + 4 * k, sizeof(F));
+      Lanes4::fill(gap[k], limit);
+    }
     for (const AvmScratch::NearBlocker& b : ws.near) {
-      std::array<float, SlipLanes::kCount> ahead, lateral;
-      std::uint32_t in = 0;
-      for (std::size_t j = 0; j < SlipLanes::kCount; ++j) {
-        ahead[j] = b.d.x * lanes.x[j] + b.d.y * lanes.y[j];      // dot(d, e)
-        lateral[j] = lanes.x[j] * b.d.y - lanes.y[j] * b.d.x;    // cross(e, d)
-      }
-      for (std::size_t j = 0; j < SlipLanes::kCount; ++j) {
-        in |= static_cast<std::uint32_t>(static_cast<int>(ahead[j] > 0.0f) & static_cast<int>(std::abs(lateral[j]) < b.l)) << j;
-      }
-      for (; in != 0; in &= in - 1) {
-        const auto j = static_cast<std::size_t>(std::countr_zero(in));
-        float g = 0.0f, f = 0.0f;
-        if (blocks(b, {lanes.x[j], lanes.y[j]}, ahead[j], lateral[j], depthRatio, g, f) && g < lanes.gap[j] * f) lanes.gap[j] = g / f;
+      const float reachDepth = depthRatio * b.l;
+      const I turned = b.turned ? I{} - 1 : I{};
+      const I mayGive = b.walking && b.aheadOfO > 0.0f ? I{} - 1 : I{};
+      const I tie = b.lowerId ? I{} - 1 : I{};
+      for (std::size_t k = 0; k < kGroups; ++k) {
+        const F ahead = b.d.x * ex[k] + b.d.y * ey[k];    // dot(d, e)
+        const F lateral = ex[k] * b.d.y - ey[k] * b.d.x;  // cross(e, d)
+        const F absLateral = lateral < 0.0f ? F{} - lateral : lateral;
+        const I inLane = (ahead > 0.0f) & (absLateral < b.l);
+        const I shoulders = (absLateral >= reachDepth) & turned;  // shoulders turned
+        const I gives = mayGive & (ex[k] * b.eo.x + ey[k] * b.eo.y > kGiveWayCos) &
+                        ((b.aheadOfO > ahead) | ((b.aheadOfO == ahead) & tie));  // o gives way (givesWay)
+        const F y = lateral / b.l;
+        const F across = 1.0f - y * y;
+        const F f = across * across;
+        F root;
+        simd::sqrtLanes<4>(root, across);
+        const F reach = ahead - reachDepth * root - kStandingGap * f;
+        const F g = 0.0f < reach ? reach : F{};  // std::max(0, reach)
+        const I take = inLane & ~shoulders & ~gives & (f >= 1e-6f) & (g < gap[k] * f);
+        gap[k] = take ? g / f : gap[k];
       }
     }
+    for (std::size_t k = 0; k < kGroups; ++k) std::memcpy(lanes.gap.data() + 4 * k, &gap[k], sizeof(F));
   }
 
   /// The same against slip's near neighbours (AvmScratch::near), whose direction-free parts are
