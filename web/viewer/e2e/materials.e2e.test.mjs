@@ -135,6 +135,9 @@ test('a recording of a glTF world replays with its materials; a recording of a s
     const page = await openViewer(browser, server.url, errors);
     await page.waitForFunction(() => globalThis.__throng && globalThis.__throng.state.count > 0, null, { timeout: 30000 });
     await page.waitForFunction(() => globalThis.__throng.worldModel !== null, null, { timeout: 20000 });
+    // A served recording says it is one in its first ReplayStatus, sent once a second: waited for
+    // (asserting at once lost the race in two of four runs on the 2-core machine).
+    await page.waitForFunction(() => globalThis.__throng.source.kind === 'replay', null, { timeout: 10000 });
     assert.equal(await page.evaluate(() => globalThis.__throng.source.kind), 'replay');
     assert.deepEqual(await page.evaluate(() => globalThis.__throng.worldModel.userData.summary),
       { textured: 1, coloured: 4, plain: 0, any: true });
