@@ -356,10 +356,11 @@ int PathQueue::update(int iterationBudget, const core::TaskSystem* tasks) {
 
 TicketState PathQueue::state(PathTicket ticket) const {
   const Impl& q = *impl_;
-  if (q.finished.count(ticket)) return TicketState::Done;
-  if ((q.active && q.current == ticket) || (q.replaying && q.replayTicket == ticket)) return TicketState::Pending;
+  // The cheap tests first: most tickets asked about wait in the queue (at 100,000 wandering agents
+  // tens of thousands do). A waiting or searched ticket is never among the finished ones.
   if (ticket >= q.frontTicket() && ticket < q.nextTicket) return TicketState::Pending;  // waiting
-  return TicketState::Unknown;
+  if ((q.active && q.current == ticket) || (q.replaying && q.replayTicket == ticket)) return TicketState::Pending;
+  return q.finished.count(ticket) != 0 ? TicketState::Done : TicketState::Unknown;
 }
 
 PathResult PathQueue::take(PathTicket ticket) {

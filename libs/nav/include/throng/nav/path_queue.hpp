@@ -62,6 +62,7 @@ class PathQueue {
   /// spent it, so which requests complete in which update, and their results, never depend on
   /// the thread count.
   int update(int iterationBudget, const core::TaskSystem* tasks = nullptr);
+  /// Only reads the queue: may be called from several threads at once (not during update or take).
   [[nodiscard]] TicketState state(PathTicket ticket) const;
   /// Takes a finished result (the ticket is then forgotten). Precondition: state == Done.
   PathResult take(PathTicket ticket);
