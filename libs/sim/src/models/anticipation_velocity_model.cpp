@@ -743,6 +743,31 @@ class AnticipationVelocityModel final : public OperationalModel {
     return room(in, ws.visionWalls, pos, dir, reach, onWall);
   }
 
+  /// Up to four of a pass's picked places (pick) and their neighbours' rows, as lanes
+  /// (simd::Lanes<4>) built from scalars: no lane is written through memory (a vector stored, one
+  /// lane overwritten and the vector loaded again stalls store forwarding, which had cost
+  /// sidePushes four fifths of its time). Lanes past places.size() repeat the first place; `valid`
+  /// masks them out.
+  struct Four {
+    std::array<std::uint32_t, 4> n{}, o{};  ///< the places in the neighbour list and the neighbours' rows
+    Lanes4::I valid{};
+    Four(const std::uint32_t* nb, std::span<const std::uint32_t> places) {
+      const std::size_t m = places.size();  // 1 to 4
+      n = {places[0], places[m > 1 ? 1 : 0], places[m > 2 ? 2 : 0], places[m > 3 ? 3 : 0]};
+      o = {nb[n[0]], nb[n[1]], nb[n[2]], nb[n[3]]};
+      valid = Lanes4::I{0, 1, 2, 3} < static_cast<std::int32_t>(m);
+    }
+    /// The places' entries of lookAround's array v.
+    [[nodiscard]] Lanes4::F around(const std::vector<float>& v) const { return {v[n[0]], v[n[1]], v[n[2]], v[n[3]]}; }
+    /// The neighbours' values of a column.
+    [[nodiscard]] Lanes4::F of(std::span<const float> c) const { return {c[o[0]], c[o[1]], c[o[2]], c[o[3]]}; }
+    /// -1 where test(neighbour's row) holds, else 0.
+    template <class Test>
+    [[nodiscard]] Lanes4::I test(Test&& t) const {
+      return {t(o[0]) ? -1 : 0, t(o[1]) ? -1 : 0, t(o[2]) ? -1 : 0, t(o[3]) ? -1 : 0};
+    }
+  };
+
   /// What the sideways push of a neighbour depends on besides the neighbour (pushes).
   struct SideRule {
     core::Vec2 e0, side, u;  ///< i's desired direction, its right, its desired velocity
@@ -769,22 +794,11 @@ class AnticipationVelocityModel final : public OperationalModel {
     using F = Lanes4::F;
     using I = Lanes4::I;
     const AgentStore& a = in.agents;
-    // The lanes are built from scalars (no lane written through memory: a vector stored, one lane
-    // overwritten and the vector loaded again stalls store forwarding, which cost this function
-    // four fifths of its time). Lanes past places.size() repeat the first neighbour; every mask
-    // read below excludes them (valid).
-    const std::size_t m = places.size();  // 1 to 4
-    const std::uint32_t n0 = places[0], n1 = places[m > 1 ? 1 : 0], n2 = places[m > 2 ? 2 : 0], n3 = places[m > 3 ? 3 : 0];
-    const std::uint32_t o0 = nb[n0], o1 = nb[n1], o2 = nb[n2], o3 = nb[n3];
-    const F dx{ws.aroundX[n0], ws.aroundX[n1], ws.aroundX[n2], ws.aroundX[n3]};
-    const F dy{ws.aroundY[n0], ws.aroundY[n1], ws.aroundY[n2], ws.aroundY[n3]};
-    const F l{ws.aroundL[n0], ws.aroundL[n1], ws.aroundL[n2], ws.aroundL[n3]};
-    const F vx{a.velX[o0], a.velX[o1], a.velX[o2], a.velX[o3]};
-    const F vy{a.velY[o0], a.velY[o1], a.velY[o2], a.velY[o3]};
-    const F ro{a.radius[o0], a.radius[o1], a.radius[o2], a.radius[o3]};
-    const auto g = a.group[row];
-    const I same{a.group[o0] == g ? -1 : 0, a.group[o1] == g ? -1 : 0, a.group[o2] == g ? -1 : 0, a.group[o3] == g ? -1 : 0};
-    const I valid = I{0, 1, 2, 3} < static_cast<std::int32_t>(m);
+    const Four four(nb, places);
+    const I valid = four.valid;  // every mask read below excludes the repeated lanes
+    const F dx = four.around(ws.aroundX), dy = four.around(ws.aroundY), l = four.around(ws.aroundL);
+    const F vx = four.of(a.velX), vy = four.of(a.velY), ro = four.of(a.radius);
+    const I same = four.test([&a, g = a.group[row]](std::uint32_t o) { return a.group[o] == g; });
     F dist;
     simd::sqrtLanes<4>(dist, dx * dx + dy * dy);
     const I apart = valid & (dist >= 1e-6f);
@@ -1239,23 +1253,13 @@ class AnticipationVelocityModel final : public OperationalModel {
     using F = Lanes4::F;
     using I = Lanes4::I;
     const AgentStore& a = in.agents;
-    const std::size_t m = places.size();  // 1 to 4
-    const std::uint32_t n0 = places[0], n1 = places[m > 1 ? 1 : 0], n2 = places[m > 2 ? 2 : 0], n3 = places[m > 3 ? 3 : 0];
-    const std::uint32_t o0 = nb[n0], o1 = nb[n1], o2 = nb[n2], o3 = nb[n3];
-    const F dx{ws.aroundX[n0], ws.aroundX[n1], ws.aroundX[n2], ws.aroundX[n3]};
-    const F dy{ws.aroundY[n0], ws.aroundY[n1], ws.aroundY[n2], ws.aroundY[n3]};
-    const F l{ws.aroundL[n0], ws.aroundL[n1], ws.aroundL[n2], ws.aroundL[n3]};
-    const F px{in.priorDesiredX[o0], in.priorDesiredX[o1], in.priorDesiredX[o2], in.priorDesiredX[o3]};
-    const F py{in.priorDesiredY[o0], in.priorDesiredY[o1], in.priorDesiredY[o2], in.priorDesiredY[o3]};
-    const F vx{a.velX[o0], a.velX[o1], a.velX[o2], a.velX[o3]};
-    const F vy{a.velY[o0], a.velY[o1], a.velY[o2], a.velY[o3]};
-    const F ox{a.oriX[o0], a.oriX[o1], a.oriX[o2], a.oriX[o3]};
-    const F oy{a.oriY[o0], a.oriY[o1], a.oriY[o2], a.oriY[o3]};
-    constexpr auto walks = [](AgentMode mode) { return mode == AgentMode::Walking ? -1 : 0; };
-    const I walking{walks(a.mode[o0]), walks(a.mode[o1]), walks(a.mode[o2]), walks(a.mode[o3])};
-    const std::uint32_t id = a.id[row];
-    const I lowerId{id < a.id[o0] ? -1 : 0, id < a.id[o1] ? -1 : 0, id < a.id[o2] ? -1 : 0, id < a.id[o3] ? -1 : 0};
-    const I valid = I{0, 1, 2, 3} < static_cast<std::int32_t>(m);
+    const Four four(nb, places);
+    const F dx = four.around(ws.aroundX), dy = four.around(ws.aroundY), l = four.around(ws.aroundL);
+    const F px = four.of(in.priorDesiredX), py = four.of(in.priorDesiredY);
+    const F vx = four.of(a.velX), vy = four.of(a.velY), ox = four.of(a.oriX), oy = four.of(a.oriY);
+    const I walking = four.test([&a](std::uint32_t o) { return a.mode[o] == AgentMode::Walking; });
+    const I lowerId = four.test([&a, id = a.id[row]](std::uint32_t o) { return id < a.id[o]; });
+    const I valid = four.valid;
     const F ahead = dx * e.x + dy * e.y;        // dot(d, e)
     const F lateral = e.x * dy - e.y * dx;      // cross(e, d)
     const F absLateral = lateral < 0.0f ? F{} - lateral : lateral;
