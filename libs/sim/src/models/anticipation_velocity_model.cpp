@@ -745,9 +745,9 @@ class AnticipationVelocityModel final : public OperationalModel {
 
   /// Up to four of a pass's picked places (pick) and their neighbours' rows, as lanes
   /// (simd::Lanes<4>) built from scalars: no lane is written through memory (a vector stored, one
-  /// lane overwritten and the vector loaded again stalls store forwarding, which had cost
-  /// sidePushes four fifths of its time). Lanes past places.size() repeat the first place; `valid`
-  /// masks them out.
+  /// lane overwritten and the vector loaded again stalls store forwarding: four fifths of
+  /// sidePushes' time in a profile with it not inlined; inlined, the compiler had kept the lanes
+  /// in registers). Lanes past places.size() repeat the first place; `valid` masks them out.
   struct Four {
     std::array<std::uint32_t, 4> n{}, o{};  ///< the places in the neighbour list and the neighbours' rows
     Lanes4::I valid{};
