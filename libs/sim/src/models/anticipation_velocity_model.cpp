@@ -57,7 +57,7 @@
 // excess within the tick (contact), and the walking direction relaxes from the one meant a tick ago
 // when the navmesh slid the walker along a wall away from its goal.
 // Merging (two people converging less than 90° apart) the one nearer the shared space goes first,
-// the other yields (givesWay); without that both see the other ahead and both stop, which clogs
+// the other yields (the merge rule, gapLanes); without that both see the other ahead and both stop, which clogs
 // every door. The navmesh keeps centres q·r from walls (ScenarioDesc::navRadius): people turn
 // their shoulders to pass a narrow door, so the default body passes 0.5 m.
 //
@@ -180,15 +180,14 @@ class AvmScratch final : public ModelScratch {
   /// does not depend on the direction tried (worked out once for the twelve).
   struct NearBlocker {
     core::Vec2 d;      ///< from i to o
-    core::Vec2 eo;     ///< o's walking direction (givesWay)
+    core::Vec2 eo;     ///< o's walking direction (the merge rule, gapLanes)
     float l;           ///< r_i + r_o
     float aheadOfO;    ///< how far i is ahead of o along eo
     bool turned;       ///< the two turn their shoulders to pass (opposed beyond kRotateCos)
-    bool walking;      ///< o walks (givesWay; otherwise an obstacle)
-    bool lowerId;      ///< i's id is below o's (givesWay's tie)
+    bool walking;      ///< o walks (the merge rule; otherwise an obstacle)
+    bool lowerId;      ///< i's id is below o's (the merge rule's tie)
   };
   std::vector<NearBlocker> near;
-  std::vector<std::uint32_t> nearLane;  ///< compact's buffer for the near ones in one direction's lane (gapAhead)
   std::vector<std::uint32_t> lane;  ///< pick's buffer for the neighbours a pass looks at further (pushes, gapAhead)
   /// The walker's neighbours as seen from it (lookAround): offset d = x_o − x_i and ℓ = r_i + r_o,
   /// in the order sense listed them, padded with zeros to a multiple of four.
@@ -205,7 +204,7 @@ class AvmScratch final : public ModelScratch {
 };
 
 /// Two walkers whose directions are less than this far apart (cos 120°) settle who goes first
-/// (givesWay); nearer head on, both slow down and step aside.
+/// (the merge rule, gapLanes); nearer head on, both slow down and step aside.
 constexpr float kGiveWayCos = -0.5f;
 
 /// Of two walkers merging (i and o, d from i to o, desired directions ei and eo), whether i is the
@@ -981,19 +980,6 @@ class AnticipationVelocityModel final : public OperationalModel {
     return so > 0.05f ? vo / so : core::Vec2{a.oriX[o], a.oriY[o]};
   }
 
-  /// Merging (two people walking into the same space from the side, less than 90° apart): the one
-  /// nearer that space goes first — j does not block i when i is further ahead of j, along j's
-  /// walking direction, than j is of i along i's (ties: the lower id goes). Without this rule both
-  /// see the other ahead and both stop, which clogs every door and corridor mouth.
-  static bool givesWay(const AgentStore& a, std::size_t row, std::uint32_t o, core::Vec2 d, float ahead, core::Vec2 e) {
-    if (a.mode[o] != AgentMode::Walking) return false;  // waiting, acting, talking: an obstacle
-    const core::Vec2 eo = walkingDirection(a, o);
-    if (core::dot(e, eo) <= kGiveWayCos) return false;  // head on: both slow (and step aside)
-    const float aheadOfO = -core::dot(d, eo);    // how far i is ahead of o, along o's direction
-    if (aheadOfO <= 0.0f) return false;          // o does not see i ahead: o leads
-    return aheadOfO > ahead || (aheadOfO == ahead && a.id[row] < a.id[o]);
-  }
-
   /// Whether i's desired direction (its preferred velocity) and o's (as it was a tick ago,
   /// ModelInput::priorDesiredX/Y: the same for any thread or rank count) are further apart than acos(cosLimit); false
   /// when either stands.
@@ -1065,15 +1051,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     core::Vec2 best = e * speed;
     float progress = speed * core::dot(e, e0);
     const float limit = v0 * p.timeGap;
-    collectNear(in, row, limit, ws);
-    SlipLanes lanes;
-    for (int k = -kSlipSteps; k <= kSlipSteps; ++k) {
-      if (k == 0) continue;
-      const core::Vec2 ek = turned(e0, k);
-      lanes.x[SlipLanes::index(k)] = ek.x;
-      lanes.y[SlipLanes::index(k)] = ek.y;
-    }
-    slipGaps(ws, limit, p.passageRatio, lanes);
+    const SlipLanes lanes = slipLanes(in, row, e0, limit, p.passageRatio, ws);
     for (int k = -kSlipSteps; k <= kSlipSteps; ++k) {
       if (k == 0) continue;
       const float c = kSlipAngles.c(k);
@@ -1105,14 +1083,13 @@ class AnticipationVelocityModel final : public OperationalModel {
     const core::Vec2 pos{a.posX[row], a.posY[row]};
     const float progress = speed * core::dot(e, e0);
     const float limit = v0 * p.timeGap;
-    collectNear(in, row, limit, ws);
+    const SlipLanes lanes = slipLanes(in, row, e0, limit, p.passageRatio, ws);
     for (int k = 1; k <= kSlipSteps; ++k) {
-      const float c = kSlipAngles.c(k);
-      if (!beats(v0, c, progress, speed)) break;  // this lane and every wider one make no more progress than walking on
+      if (!beats(v0, kSlipAngles.c(k), progress, speed)) break;  // this lane and every wider one make no more progress than walking on
       for (const int side : {-1, 1}) {
-        const float sn = kSlipAngles.s(side * k);
-        const core::Vec2 ec{e0.x * c - e0.y * sn, e0.x * sn + e0.y * c};
-        if (gapAhead(ws, ec, limit, p.passageRatio) < limit) continue;
+        const std::size_t j = SlipLanes::index(side * k);
+        const core::Vec2 ec{lanes.x[j], lanes.y[j]};
+        if (lanes.gap[j] < limit) continue;
         if (room(in, ws, pos, ec, limit, p.noPressing ? kOnWall : 0.0f) < limit) continue;  // a wall closes this lane
         return ec * v0;
       }
@@ -1202,22 +1179,6 @@ class AnticipationVelocityModel final : public OperationalModel {
 #endif
   }
 
-  /// value(n) for the n < count for which keep(n) is non-zero, in order: every n is written to
-  /// `buffer` and the end advanced by the test's result, so there is no branch per n (pick). The
-  /// buffer only grows (resizing it for every pass cleared it twice an agent: 2 % of the avm's
-  /// instructions); the span returned holds those kept.
-  template <class Value, class Keep>
-  static std::span<const std::uint32_t> compact(std::size_t count, std::vector<std::uint32_t>& buffer, Value&& value, Keep&& keep) {
-    if (buffer.size() < count) buffer.resize(count);
-    std::uint32_t* out = buffer.data();
-    std::size_t kept = 0;
-    for (std::size_t n = 0; n < count; ++n) {
-      out[kept] = value(n);
-      kept += static_cast<std::size_t>(keep(n) != 0);
-    }
-    return {out, kept};
-  }
-
   /// A standing agent (waiting, acting, arrived) is no wall: pressed by someone whose disc overlaps
   /// its own it steps away, at most kMakeRoomSpeed, so people waiting for their group at a busy
   /// spot do not block everyone else's way.
@@ -1243,7 +1204,7 @@ class AnticipationVelocityModel final : public OperationalModel {
     unsigned blocks = 0;
   };
   /// Up to four of gapAhead's neighbours at once (simd::Lanes<4>): which block e — not when the two
-  /// turn their shoulders to pass, nor when o gives way (givesWay), nor when i squeezes in beside
+  /// turn their shoulders to pass, nor when o gives way (the merge rule, below), nor when i squeezes in beside
   /// someone standing at its spot, nor at the lane's very edge — with the one-at-a-time rule's
   /// operations in its order, so the same values; every test a mask, no branch on the data (gapAhead
   /// one neighbour at a time mispredicted a tenth of the avm's branches). Lanes past places.size()
@@ -1271,7 +1232,11 @@ class AnticipationVelocityModel final : public OperationalModel {
     const F norms = lengthI * lengthO;
     const I opposedRot = (norms > 1e-9f) & (pix * px + piy * py < kRotateCos * norms);
     const I shoulders = (absLateral >= depthRatio * l) & opposedRot;
-    // o gives way (givesWay), o's walking direction eo as walkingDirection has it.
+    // The merge rule (two people walking into the same space from the side, less than 90° apart:
+    // the one nearer that space goes first): o does not block i when i is further ahead of o, along
+    // o's walking direction eo (as walkingDirection has it), than o is of i along e (ties: the lower
+    // id goes). Without it both see the other ahead and both stop, which clogs every door and
+    // corridor mouth.
     F speedO;
     simd::sqrtLanes<4>(speedO, vx * vx + vy * vy);
     const I moving = speedO > 0.05f;
@@ -1334,9 +1299,24 @@ class AnticipationVelocityModel final : public OperationalModel {
     static std::size_t index(int k) { return static_cast<std::size_t>(k < 0 ? k + kSlipSteps : k + kSlipSteps - 1); }
   };
 
-  /// gapAhead(ws, direction, limit, depthRatio) for each of slip's directions, in one pass over the
+  /// Slip's and overtake's twelve directions round e0 and the gap to the near bodies (collectNear)
+  /// along each, at most `limit`.
+  SlipLanes slipLanes(const ModelInput& in, std::size_t row, core::Vec2 e0, float limit, float depthRatio, AvmScratch& ws) const {
+    collectNear(in, row, limit, ws);
+    SlipLanes lanes;
+    for (int k = -kSlipSteps; k <= kSlipSteps; ++k) {
+      if (k == 0) continue;
+      const core::Vec2 ek = turned(e0, k);
+      lanes.x[SlipLanes::index(k)] = ek.x;
+      lanes.y[SlipLanes::index(k)] = ek.y;
+    }
+    slipGaps(ws, limit, depthRatio, lanes);
+    return lanes;
+  }
+
+  /// The gap along each of slip's directions (gapAhead's rule against the near bodies), in one pass over the
   /// near bodies: each body against four directions at once (simd::Lanes<4>, three times), every
-  /// test of blocks() a mask and the gap kept or replaced by a select, so no branch on the data
+  /// test of the gap law a mask and the gap kept or replaced by a select, so no branch on the data
   /// (testing lane by lane which directions a body stands in mispredicted a tenth of the avm's
   /// branches: slip took 8 % of a 10,000-agent tick for 3 % of its instructions). Per direction
   /// the same bodies are taken in the same order with the same arithmetic, so the gaps are
@@ -1364,7 +1344,7 @@ class AnticipationVelocityModel final : public OperationalModel {
         const I inLane = (ahead > 0.0f) & (absLateral < b.l);
         const I shoulders = (absLateral >= reachDepth) & turned;  // shoulders turned
         const I gives = mayGive & (ex[k] * b.eo.x + ey[k] * b.eo.y > kGiveWayCos) &
-                        ((b.aheadOfO > ahead) | ((b.aheadOfO == ahead) & tie));  // o gives way (givesWay)
+                        ((b.aheadOfO > ahead) | ((b.aheadOfO == ahead) & tie));  // o gives way (the merge rule)
         const F y = lateral / b.l;
         const F across = 1.0f - y * y;
         const F f = across * across;
@@ -1377,41 +1357,6 @@ class AnticipationVelocityModel final : public OperationalModel {
       }
     }
     for (std::size_t k = 0; k < kGroups; ++k) std::memcpy(lanes.gap.data() + 4 * k, &gap[k], sizeof(F));
-  }
-
-  /// The same against slip's near neighbours (AvmScratch::near), whose direction-free parts are
-  /// worked out: the same arithmetic as above, so the same gap.
-  /// The lane is picked out first without a branch per neighbour (pick).
-  static float gapAhead(AvmScratch& ws, core::Vec2 e, float limit, float depthRatio) {
-    const std::vector<AvmScratch::NearBlocker>& near = ws.near;
-    const auto index = [](std::size_t n) { return static_cast<std::uint32_t>(n); };
-    const std::span<const std::uint32_t> lane = compact(near.size(), ws.nearLane, index, [&](std::size_t n) {
-      return static_cast<int>(core::dot(near[n].d, e) > 0.0f) & static_cast<int>(std::abs(core::cross(e, near[n].d)) < near[n].l);
-    });
-    float gap = limit;
-    for (const std::uint32_t n : lane) {
-      const AvmScratch::NearBlocker& b = near[n];
-      float g = 0.0f, f = 0.0f;
-      if (blocks(b, e, core::dot(b.d, e), core::cross(e, b.d), depthRatio, g, f) && g < gap * f) gap = g / f;
-    }
-    return gap;
-  }
-
-  /// Whether near body b, `ahead` along e and `lateral` across it, in e's lane, blocks e: not when the
-  /// two turn their shoulders to pass, nor when it gives way (givesWay), nor at the lane's very edge.
-  /// If it does, the gap it leaves is g / f (gapAhead's arithmetic).
-  static bool blocks(const AvmScratch::NearBlocker& b, core::Vec2 e, float ahead, float lateral, float depthRatio, float& g,
-                     float& f) {
-    if (std::abs(lateral) >= depthRatio * b.l && b.turned) return false;  // shoulders turned
-    if (b.walking && core::dot(e, b.eo) > kGiveWayCos && b.aheadOfO > 0.0f && (b.aheadOfO > ahead || (b.aheadOfO == ahead && b.lowerId))) {
-      return false;  // o gives way (givesWay)
-    }
-    const float y = lateral / b.l;
-    const float across = 1.0f - y * y;
-    f = across * across;
-    if (f < 1e-6f) return false;
-    g = std::max(0.0f, ahead - depthRatio * b.l * std::sqrt(across) - kStandingGap * f);
-    return true;
   }
 
   /// i's new velocity. `turn`: the look ahead's turn to walk by, or kLookAgain to look now; it is
@@ -1471,7 +1416,7 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// v, changed so that i's step this tick takes its body no deeper into any neighbour's (ellipses
   /// along their headings, as the overlaps are measured; docs/crowd-model.md, "No step into a
   /// body"). The time-gap law checks the walking direction only; the contact step, the slip's
-  /// sideways steps, the merge rule (givesWay) and the navmesh sliding a walker along a wall all
+  /// sideways steps, the merge rule (gapLanes) and the navmesh sliding a walker along a wall all
   /// moved people into bodies beside them, which put the dense room's deepest overlap at 0.11 m.
   core::Vec2 clampToBodies(const ModelInput& in, std::size_t row, core::Vec2 v, const AvmParams& p, AvmScratch& ws) const {
     const AgentStore& a = in.agents;
