@@ -272,7 +272,7 @@ void World::Impl::separate(const core::TaskSystem& tasks) {
   std::vector<float>& sepY = spareY;
   sepX.resize(n);
   sepY.resize(n);
-  ModelInput model{agents, walls, desc, viewers, tick, {}, {}};  // no priorDesired: spare holds the displacements
+  const ModelInput model{agents, walls, desc, viewers, tick, {}, {}};  // no priorDesired: spare holds the displacements
   const std::size_t grain = phaseGrain(n, tasks);
   const auto modelOf = [&](std::size_t row) {
     return models[static_cast<std::size_t>(desc.populations[agents.population[row]].model.kind)].get();
@@ -289,7 +289,6 @@ void World::Impl::separate(const core::TaskSystem& tasks) {
     return any != 0;
   };
   for (int pass = 0; pass < separationPasses; ++pass) {
-    model.movedSinceSense = movedSinceSense(tasks);
     // Every row's share from the same positions (Jacobi): the same for any thread or rank count.
     tasks.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
       for (std::size_t row = begin; row < end; ++row) {
@@ -323,25 +322,6 @@ void World::Impl::separate(const core::TaskSystem& tasks) {
       }
     });
   }
-}
-
-float World::Impl::movedSinceSense(const core::TaskSystem& tasks) const {
-  const std::size_t n = grid.size();
-  if (n != agents.size()) return std::numeric_limits<float>::infinity();  // rows came or went since
-  const std::size_t grain = phaseGrain(n, tasks);
-  std::vector<float> most(core::TaskSystem::chunkCount(n, grain), 0.0f);  // each chunk's largest move²
-  tasks.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
-    float m = 0.0f;
-    for (std::size_t i = begin; i < end; ++i) {  // grid entry i: a row and where it stood at sense
-      const std::uint32_t row = grid.rowAt(i);
-      const float dx = agents.posX[row] - grid.xAt(i), dy = agents.posY[row] - grid.yAt(i);
-      m = std::max(m, dx * dx + dy * dy);
-    }
-    most[begin / grain] = m;
-  });
-  float m = 0.0f;
-  for (const float v : most) m = std::max(m, v);
-  return std::sqrt(m);
 }
 
 void World::Impl::buildWalls() {

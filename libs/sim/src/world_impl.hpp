@@ -216,9 +216,6 @@ struct World::Impl {
   /// After integrate, for the populations whose model corrects positions (OperationalModel::
   /// separationPasses): that many Jacobi passes, each row's step apart slid along the navmesh.
   void separate(const core::TaskSystem& tasks);
-  /// The furthest any agent has moved since sense sorted them into the grid [m] (ModelInput::movedSinceSense);
-  /// +inf when rows came or went since.
-  [[nodiscard]] float movedSinceSense(const core::TaskSystem& tasks) const;
   /// Two floats a row whose use changes over the tick, so that no phase keeps its own: from the
   /// start of steer to its end, every row's preferred velocity of the previous tick
   /// (ModelInput::priorDesiredX/Y; swapped with AgentStore::prefVel, nothing copied); in separate,

@@ -1099,10 +1099,9 @@ class AnticipationVelocityModel final : public OperationalModel {
 
   /// Calls f(o, d) for each of i's neighbours o (the rows sense found; d the vector from i to o)
   /// nearer than i's radius + the largest radius + `beyond` [m]: the only ones i's body can touch
-  /// within `beyond`. During steer nobody has moved since sense, whose lists are nearest first
-  /// (SpatialGrid::nearest, with the same arithmetic), so the first neighbour that far ends the
-  /// list. After the move, `beyond` must also hold four times ModelInput::movedSinceSense
-  /// (separation).
+  /// within `beyond`. Only during steer: nobody has moved since sense, whose lists are nearest
+  /// first (SpatialGrid::nearest, with the same arithmetic), so the first neighbour that far ends
+  /// the list.
   template <class F>
   void forEachTouchable(const ModelInput& in, std::size_t row, float beyond, F&& f) const {
     const AgentStore& a = in.agents;
@@ -1115,6 +1114,32 @@ class AnticipationVelocityModel final : public OperationalModel {
       if (core::lengthSq(d) >= reach * reach) break;
       f(o, d);
     }
+  }
+
+  /// Calls f(o, d) for every one of i's neighbours o (d from i to o), in the list's order.
+  template <class F>
+  static void forEachListed(const ModelInput& in, std::size_t row, F&& f) {
+    const AgentStore& a = in.agents;
+    const core::Vec2 pos{a.posX[row], a.posY[row]};
+    const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];
+    for (std::size_t n = 0; n < a.neighbourCount[row]; ++n) {
+      const std::uint32_t o = nb[n];
+      f(o, core::Vec2{a.posX[o], a.posY[o]} - pos);
+    }
+  }
+
+  /// Whether any neighbour's disc overlaps i's (|d| < r_i + r_o, the test `overlap` starts with),
+  /// without a branch on the data: in the open about one walker in a hundred touches anyone
+  /// (`throng bench`'s random square), and separation is done with the rest at once.
+  static bool touchesAny(const ModelInput& in, std::size_t row) {
+    const AgentStore& a = in.agents;
+    const float ri = a.radius[row];
+    unsigned any = 0;
+    forEachListed(in, row, [&](std::uint32_t o, core::Vec2 d) {
+      const float l = ri + a.radius[o];
+      any |= core::lengthSq(d) < l * l ? 1u : 0u;
+    });
+    return any != 0;
   }
 
   /// Fills ws.aroundX/Y/L with i's neighbours as seen from i (pick reads them): the offsets and
@@ -1538,13 +1563,13 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// walk back from the door; docs/crowd-model.md, Overlaps).
   core::Vec2 separation(const ModelInput& in, std::size_t row) const override {
     const AgentStore& a = in.agents;
+    if (!touchesAny(in, row)) return {};  // most walkers
     const core::Vec2 oi{a.oriX[row], a.oriY[row]};
     const float q = params_[a.population[row]].passageRatio;
     core::Vec2 out;
-    // A neighbour n of the list (nearest first at sense) with |d_n| at least reach + 4·moved, and
-    // every one after it, is still further than reach: the two lines of centres have changed by at
-    // most 2·moved each (a millimetre to spare for rounding).
-    forEachTouchable(in, row, 4.0f * in.movedSinceSense + 1e-3f, [&](std::uint32_t o, core::Vec2 d) {
+    // The whole list: everyone has moved since sense sorted it, so the nearest first order no longer
+    // ends it (overlap: depth 0 for the discs that do not touch).
+    forEachListed(in, row, [&](std::uint32_t o, core::Vec2 d) {
       const Overlap ov = overlap(a, row, o, d, oi, q);
       if (ov.depth <= 0.0f || a.goalState[o] == GoalState::Exited) return;
       const core::Vec2 u = ov.u, oo{a.oriX[o], a.oriY[o]};

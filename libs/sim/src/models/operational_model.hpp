@@ -12,7 +12,6 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
@@ -38,11 +37,6 @@ struct ModelInput {
   /// parallel, so a model that reads what its neighbours wanted reads it here: the same for any
   /// thread or rank count. Else empty.
   std::span<const float> priorDesiredX, priorDesiredY;
-  /// During separation: how far any agent has moved since `sense` made the neighbour lists [m]
-  /// (+inf: not known). Those lists are nearest first at sense, so a neighbour further than a body's
-  /// reach plus four times this (both ends of two lines of centres moved) cannot touch, nor can any
-  /// after it (AnticipationVelocityModel::separation).
-  float movedSinceSense = std::numeric_limits<float>::infinity();
 
   /// Multiresolution (Musse et al. §3.2.4): an agent farther than steering.lodDistance from every
   /// viewer may be steered more cheaply (what "cheaper" means is the model's choice).
