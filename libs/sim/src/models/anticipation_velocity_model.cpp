@@ -1359,9 +1359,12 @@ class AnticipationVelocityModel final : public OperationalModel {
     }
     for (const AvmScratch::NearBlocker& b : ws.near) {
       const float reachDepth = depthRatio * b.l;
-      const I turned = b.turned ? I{} - 1 : I{};
-      const I mayGive = b.walking && b.aheadOfO > 0.0f ? I{} - 1 : I{};
-      const I tie = b.lowerId ? I{} - 1 : I{};
+      // The body's flags as all-lane masks by arithmetic (0 − 1 = −1): written as selects, the
+      // compiler tested each flag again for every four directions, a branch on the data mispredicted
+      // about twenty times a slip.
+      const I turned = I{} - static_cast<std::int32_t>(b.turned);
+      const I mayGive = I{} - static_cast<std::int32_t>(b.walking & (b.aheadOfO > 0.0f));
+      const I tie = I{} - static_cast<std::int32_t>(b.lowerId);
       for (std::size_t k = 0; k < kGroups; ++k) {
         const F ahead = b.d.x * ex[k] + b.d.y * ey[k];    // dot(d, e)
         const F lateral = ex[k] * b.d.y - ey[k] * b.d.x;  // cross(e, d)
