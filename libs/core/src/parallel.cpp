@@ -5,6 +5,7 @@
 #include <oneapi/tbb/global_control.h>
 #include <oneapi/tbb/info.h>
 #include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/parallel_invoke.h>
 #include <oneapi/tbb/partitioner.h>
 #include <oneapi/tbb/task_arena.h>
 
@@ -50,6 +51,15 @@ void TaskSystem::parallelFor(std::size_t n, std::size_t grain,
         },
         tbb::simple_partitioner());
   });
+}
+
+void TaskSystem::invoke(const std::function<void()>& first, const std::function<void()>& second) const {
+  if (!impl_) {
+    first();
+    second();
+    return;
+  }
+  impl_->arena.execute([&] { tbb::parallel_invoke(first, second); });
 }
 
 int TaskSystem::workerIndex() const {

@@ -175,10 +175,24 @@ void World::Impl::chooseExits(const core::TaskSystem& tasks) {
 
 void World::Impl::sense(const core::TaskSystem& tasks) {
   const bool carrying = !transports.empty();
-  sim::sense(SenseInput{agents.posX, agents.posY, agents.posZ, desc.steering,
-                        carrying ? std::span<const GoalState>(agents.goalState) : std::span<const GoalState>(),
-                        carrying ? std::span<const AgentMode>(agents.mode) : std::span<const AgentMode>()},
-             SenseOutput{grid, agents.neighbours, agents.neighbourCount}, tasks);
+  // The models' per-tick preparation (OperationalModel::beginStep: the avm's crowd grid, serial)
+  // beside the neighbour search: it reads the positions and last tick's preferred velocities,
+  // which nothing changes before steer, and not the neighbour lists.
+  tasks.invoke(
+      [&] {
+        sim::sense(SenseInput{agents.posX, agents.posY, agents.posZ, desc.steering,
+                              carrying ? std::span<const GoalState>(agents.goalState) : std::span<const GoalState>(),
+                              carrying ? std::span<const AgentMode>(agents.mode) : std::span<const AgentMode>()},
+                   SenseOutput{grid, agents.neighbours, agents.neighbourCount}, tasks);
+      },
+      [&] {
+        const bool prior = std::ranges::any_of(models, [](const auto& m) { return m && m->readsPriorDesired(); });
+        const ModelInput model{agents, walls, desc, viewers, tick, prior ? std::span<const float>(agents.prefVelX) : std::span<const float>(),
+                               prior ? std::span<const float>(agents.prefVelY) : std::span<const float>()};
+        for (auto& m : models) {
+          if (m) m->beginStep(model);
+        }
+      });
 }
 
 void World::Impl::decide(const core::TaskSystem& tasks) {
@@ -222,10 +236,7 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
     priorX = spareX;
     priorY = spareY;
   }
-  const ModelInput model{agents, walls, desc, viewers, tick, priorX, priorY};
-  for (auto& m : models) {
-    if (m) m->beginStep(model);
-  }
+  const ModelInput model{agents, walls, desc, viewers, tick, priorX, priorY};  // beginStep ran in sense
   const SteerInput in{desc.steering, desc.seed, desc.populations, desc.points, agents.id, agents.population,
                       agents.posX, agents.posY, agents.posZ, agents.polyRef, agents.speed, agents.targetX, agents.targetY,
                       agents.goalState, agents.scriptWalk, agents.dynamicTarget, agents.formVelX, agents.formVelY,

@@ -95,8 +95,10 @@ class OperationalModel {
   /// Whether the model reads the previous tick's preferred velocities (ModelInput::priorDesiredX/Y);
   /// they are there during steer only when some model in use does.
   [[nodiscard]] virtual bool readsPriorDesired() const { return false; }
-  /// Called once per tick before steer (serially), with in.priorDesiredX/Y set: per-tick
-  /// structures built from every row (the avm's crowd grid).
+  /// Called once per tick, on one thread beside sense's neighbour search (World::Impl::sense), with
+  /// in.priorDesiredX/Y set: per-tick structures built from every row (the avm's crowd grid). It
+  /// may read the positions, bodies and priorDesired, which nothing changes before steer, but not
+  /// the neighbour lists, which sense is writing.
   virtual void beginStep(const ModelInput& in) {}
   /// New velocities of the given rows from their preferred velocities (prefVelX/Y), positions,
   /// velocities, bodies, neighbours and the walls. Writes out.x/out.y of those rows only.

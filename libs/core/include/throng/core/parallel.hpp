@@ -23,12 +23,17 @@ class TaskSystem {
   void parallelFor(std::size_t n, std::size_t grain,
                    const std::function<void(std::size_t begin, std::size_t end)>& body) const;
 
-  /// Number of fixed chunks parallelFor(n, grain) uses; reductions keep one slot per chunk and
-  /// combine them in chunk order, so sums are identical for any thread count.
+  /// Runs `first` and `second` side by side when there is more than one thread (`first` may call
+  /// parallelFor: the thread that finishes `second` joins in), one after the other otherwise;
+  /// returns when both have. The two must not write what the other reads.
+  void invoke(const std::function<void()>& first, const std::function<void()>& second) const;
+
   /// Index of the calling worker in [0, threads()), for per-thread scratch (query objects,
   /// buffers). Scratch must never change results, only where they are computed.
   [[nodiscard]] int workerIndex() const;
 
+  /// Number of fixed chunks parallelFor(n, grain) uses; reductions keep one slot per chunk and
+  /// combine them in chunk order, so sums are identical for any thread count.
   static std::size_t chunkCount(std::size_t n, std::size_t grain) { return grain == 0 ? 0 : (n + grain - 1) / grain; }
 
   /// Caps the chunk size callers ask for through grain(): 0 (the default) leaves their grains as
