@@ -645,6 +645,7 @@ class AnticipationVelocityModel final : public OperationalModel {
   [[nodiscard]] bool readsPriorDesired() const override { return true; }
 
   void beginStep(const ModelInput& in) override {
+    avx2_ = core::simdPath() == core::SimdPath::Avx2;
     maxRadius_ = 0.0f;
     for (const float r : in.agents.radius) maxRadius_ = std::max(maxRadius_, r);
     if (vision_ > 0.0f) crowd_.build(in, vision_);
@@ -788,8 +789,11 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// Up to four neighbours of pushes' lane at once (simd::Lanes<4>): the closest approach within the
   /// anticipation time and the push it gives, with the one-at-a-time rule's operations in its order
   /// (core::exp's four-lane form gives core::exp's bits), so the same values.
-  static void sidePushes(const ModelInput& in, std::size_t row, const AvmScratch& ws, const std::uint32_t* nb,
-                         std::span<const std::uint32_t> places, const SideRule& r, SideLanes& out) {
+  /// (The kernel, inlined into each entry point below and so compiled for its target; kWide: the
+  /// exponential's doubles in one 32-byte vector, core::expWide.)
+  template <bool kWide>
+  [[gnu::always_inline]] static void sidePushesKernel(const ModelInput& in, std::size_t row, const AvmScratch& ws, const std::uint32_t* nb,
+                                                      std::span<const std::uint32_t> places, const SideRule& r, SideLanes& out) {
     using F = Lanes4::F;
     using I = Lanes4::I;
     const AgentStore& a = in.agents;
@@ -814,7 +818,14 @@ class AnticipationVelocityModel final : public OperationalModel {
     const F lateral = cx * r.side.x + cy * r.side.y;  // > 0: j passes on i's right
     F reachC;
     simd::sqrtLanes<4>(reachC, cx * cx + cy * cy);
-    const F strength = r.p.neighbourStrength * core::exp((l - reachC) / r.p.neighbourRange) * 0.5f * (1.0f + cosPhi);
+    const F scaled = (l - reachC) / r.p.neighbourRange;
+    F e;
+    if constexpr (kWide) {
+      e = core::expWide(scaled);
+    } else {
+      e = core::exp(scaled);
+    }
+    const F strength = r.p.neighbourStrength * e * 0.5f * (1.0f + cosPhi);
     // Keep right: someone coming the other way is passed on one's right side (one steps right)
     // unless they are already well to the right; that is how counter-flows form lanes.
     const I oncoming = vx * r.e0.x + vy * r.e0.y < 0.0f;
@@ -831,6 +842,20 @@ class AnticipationVelocityModel final : public OperationalModel {
     std::memcpy(out.share, &share, sizeof share);
     out.overlap = laneMask(overlap), out.seen = laneMask(seen), out.felt = laneMask(felt), out.toLeft = laneMask(toLeft);
   }
+  static void sidePushes(const ModelInput& in, std::size_t row, const AvmScratch& ws, const std::uint32_t* nb,
+                         std::span<const std::uint32_t> places, const SideRule& r, SideLanes& out) {
+    sidePushesKernel<false>(in, row, ws, nb, places, r, out);
+  }
+#if defined(__x86_64__)
+  /// sidePushes on the AVX2 path (core::simdPath): the same operations in the same order, so the
+  /// same bits, in VEX encoding (three operands) with the exponential's four doubles in one vector:
+  /// the block was a quarter of velocity's instructions. Not inlined: the target differs.
+  [[gnu::target("avx2"), gnu::noinline]] static void sidePushesAvx2(const ModelInput& in, std::size_t row, const AvmScratch& ws,
+                                                                  const std::uint32_t* nb, std::span<const std::uint32_t> places,
+                                                                  const SideRule& r, SideLanes& out) {
+    sidePushesKernel<true>(in, row, ws, nb, places, r, out);
+  }
+#endif
 
   /// The push of a neighbour whose disc overlaps i's (d from i to it, ℓ = r_i + r_o): apart along
   /// the line of centres, but backwards only when the bodies (ellipses, aligned with e0) really
@@ -875,7 +900,16 @@ class AnticipationVelocityModel final : public OperationalModel {
     float sideways = 0.0f;  // the neighbours' push along side
     for (std::size_t j = 0; j < lane.size(); j += 4) {
       SideLanes s;
-      sidePushes(in, row, ws, nb, lane.subspan(j, std::min<std::size_t>(4, lane.size() - j)), rule, s);
+      const std::span<const std::uint32_t> four = lane.subspan(j, std::min<std::size_t>(4, lane.size() - j));
+#if defined(__x86_64__)
+      if (avx2_) {
+        sidePushesAvx2(in, row, ws, nb, four, rule, s);
+      } else {
+        sidePushes(in, row, ws, nb, four, rule, s);
+      }
+#else
+      sidePushes(in, row, ws, nb, four, rule, s);
+#endif
       if (ws.wallIds.empty()) {
         // In the open (most walkers): the overlapping ones push `dir`, the seen ones add to
         // `sideways` in their order, each lane's share selected without a branch (0 for a lane
@@ -1653,6 +1687,7 @@ class AnticipationVelocityModel final : public OperationalModel {
   float dt_ = 0.05f;
   CrowdGrid crowd_;  ///< what walkers see of the crowd ahead (beginStep), when a population looks ahead
   float vision_ = 0.0f;  ///< the longest visionRange of the populations [m]
+  bool avx2_ = false;  ///< sidePushes on the AVX2 path (core::simdPath, read in beginStep)
   float maxRadius_ = 0.0f;  ///< the largest body radius this tick [m] (beginStep; forEachTouchable)
   std::uint64_t lookPeriod_ = 1;  ///< ticks between a walker's looks ahead (kLookPeriod)
 };
