@@ -652,6 +652,27 @@ class AnticipationVelocityModel final : public OperationalModel {
   }
 
   void computeVelocities(const ModelInput& in, RowRange rows, ModelScratch& scratch, VelocityOutput out) const override {
+#if defined(__x86_64__)
+    if (avx2_) {
+      computeVelocitiesAvx2(in, rows, scratch, out);
+      return;
+    }
+#endif
+    computeRows(in, rows, scratch, out);
+  }
+
+ private:
+#if defined(__x86_64__)
+  /// computeVelocities on the AVX2 path (core::simdPath): the same operations in the same order, so
+  /// the same bits, compiled for AVX2 with velocity and what it inlines (VEX encoding: three
+  /// operands, fewer register copies). Not inlined: the target differs.
+  [[gnu::target("avx2"), gnu::noinline]] void computeVelocitiesAvx2(const ModelInput& in, RowRange rows, ModelScratch& scratch,
+                                                                    VelocityOutput out) const {
+    computeRows(in, rows, scratch, out);
+  }
+#endif
+
+  [[gnu::always_inline]] void computeRows(const ModelInput& in, RowRange rows, ModelScratch& scratch, VelocityOutput out) const {
     auto& ws = static_cast<AvmScratch&>(scratch);
     for (std::size_t i = rows.begin; i < rows.end; ++i) {
       const std::size_t row = rows.row(i);
@@ -668,7 +689,6 @@ class AnticipationVelocityModel final : public OperationalModel {
     }
   }
 
- private:
   /// The look ahead (visionRange, CrowdGrid): 0 (e0 itself) unless a crowd closer than the vision
   /// range stands between i and its target, else the turn k (e0 turned by k · kSlipStep, k within
   /// ±kSlipSteps: turned(e0, k)) that brings i nearest its destination, walls and crowded cells
@@ -1165,7 +1185,31 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// Whether any neighbour's disc overlaps i's (|d| < r_i + r_o, the test `overlap` starts with),
   /// without a branch on the data: in the open about one walker in a hundred touches anyone
   /// (`throng bench`'s random square), and separation is done with the rest at once.
-  static bool touchesAny(const ModelInput& in, std::size_t row) {
+#if defined(__x86_64__)
+  /// touchesAny on the AVX2 path: eight neighbours at a time (their positions and radii gathered,
+  /// lanes past the list masked off and never read), the same IEEE operations as the one-at-a-time
+  /// test, so the same answer. Not inlined: the target differs.
+  [[gnu::target("avx2"), gnu::noinline]] static bool touchesAnyAvx2(const ModelInput& in, std::size_t row) {
+    const AgentStore& a = in.agents;
+    const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];
+    const auto count = static_cast<std::int32_t>(a.neighbourCount[row]);
+    const __m256 px = _mm256_set1_ps(a.posX[row]), py = _mm256_set1_ps(a.posY[row]), ri = _mm256_set1_ps(a.radius[row]);
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    __m256 any = _mm256_setzero_ps();
+    for (std::int32_t j = 0; j < count; j += 8) {
+      const __m256i valid = _mm256_cmpgt_epi32(_mm256_set1_epi32(count - j), lane);
+      const __m256 on = _mm256_castsi256_ps(valid);
+      const __m256i o = _mm256_maskload_epi32(reinterpret_cast<const int*>(nb + j), valid);
+      const __m256 dx = _mm256_sub_ps(_mm256_mask_i32gather_ps(_mm256_setzero_ps(), a.posX.data(), o, on, 4), px);
+      const __m256 dy = _mm256_sub_ps(_mm256_mask_i32gather_ps(_mm256_setzero_ps(), a.posY.data(), o, on, 4), py);
+      const __m256 l = _mm256_add_ps(ri, _mm256_mask_i32gather_ps(_mm256_setzero_ps(), a.radius.data(), o, on, 4));
+      const __m256 d2 = _mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy));
+      any = _mm256_or_ps(any, _mm256_and_ps(on, _mm256_cmp_ps(d2, _mm256_mul_ps(l, l), _CMP_LT_OQ)));
+    }
+    return _mm256_movemask_ps(any) != 0;
+  }
+#endif
+  [[gnu::always_inline]] static bool touchesAny(const ModelInput& in, std::size_t row) {
     const AgentStore& a = in.agents;
     const float ri = a.radius[row];
     unsigned any = 0;
@@ -1360,7 +1404,7 @@ class AnticipationVelocityModel final : public OperationalModel {
 
   /// Slip's and overtake's twelve directions round e0 and the gap to the near bodies (collectNear)
   /// along each, at most `limit`.
-  SlipLanes slipLanes(const ModelInput& in, std::size_t row, core::Vec2 e0, float limit, float depthRatio, AvmScratch& ws) const {
+  [[gnu::always_inline]] SlipLanes slipLanes(const ModelInput& in, std::size_t row, core::Vec2 e0, float limit, float depthRatio, AvmScratch& ws) const {
     collectNear(in, row, limit, ws);
     SlipLanes lanes;
     for (int k = -kSlipSteps; k <= kSlipSteps; ++k) {
@@ -1423,7 +1467,7 @@ class AnticipationVelocityModel final : public OperationalModel {
 
   /// i's new velocity. `turn`: the look ahead's turn to walk by, or kLookAgain to look now; it is
   /// left what was walked by (0 for someone standing).
-  core::Vec2 velocity(const ModelInput& in, std::size_t row, const AvmParams& p, AvmScratch& ws, int& turn) const {
+  [[gnu::always_inline]] core::Vec2 velocity(const ModelInput& in, std::size_t row, const AvmParams& p, AvmScratch& ws, int& turn) const {
     const AgentStore& a = in.agents;
     const core::Vec2 pref{a.prefVelX[row], a.prefVelY[row]};
     const float v0 = core::length(pref);
@@ -1599,8 +1643,13 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// heading (pushing walkers back made the dense rings walk backwards and the dense room's queue
   /// walk back from the door; docs/crowd-model.md, Overlaps).
   core::Vec2 separation(const ModelInput& in, std::size_t row) const override {
-    const AgentStore& a = in.agents;
+#if defined(__x86_64__)
+    if (avx2_ && !touchesAnyAvx2(in, row)) return {};  // most walkers
+    if (!avx2_ && !touchesAny(in, row)) return {};
+#else
     if (!touchesAny(in, row)) return {};  // most walkers
+#endif
+    const AgentStore& a = in.agents;
     const core::Vec2 oi{a.oriX[row], a.oriY[row]};
     const float q = params_[a.population[row]].passageRatio;
     core::Vec2 out;
@@ -1687,7 +1736,7 @@ class AnticipationVelocityModel final : public OperationalModel {
   float dt_ = 0.05f;
   CrowdGrid crowd_;  ///< what walkers see of the crowd ahead (beginStep), when a population looks ahead
   float vision_ = 0.0f;  ///< the longest visionRange of the populations [m]
-  bool avx2_ = false;  ///< sidePushes on the AVX2 path (core::simdPath, read in beginStep)
+  bool avx2_ = false;  ///< velocities on the AVX2 path (core::simdPath, read in beginStep)
   float maxRadius_ = 0.0f;  ///< the largest body radius this tick [m] (beginStep; forEachTouchable)
   std::uint64_t lookPeriod_ = 1;  ///< ticks between a walker's looks ahead (kLookPeriod)
 };
