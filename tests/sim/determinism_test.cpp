@@ -181,8 +181,8 @@ TEST(Determinism, RowsSortedSpatiallyGiveTheSameTrajectoriesAsRowsInIdOrder) {
 }
 
 TEST(Determinism, EverySimdPathGivesTheSameTrajectories) {
-  // The neighbour search and ORCA's half-planes run four or eight lanes at a time
-  // (core::simdPath()); both give the same bits, so the same trajectories: ORCA and the avm at a
+  // The neighbour search, ORCA's half-planes and the avm's velocities have an AVX2 path beside the
+  // portable one (core::simdPath()); both give the same bits, so the same trajectories: ORCA and the avm at a
   // door (bottleneck, both models), crossing flows (crossing, ORCA), 30 s each on 2 threads.
   std::vector<core::SimdPath> paths{core::SimdPath::Portable};
   if (core::simdSupported(core::SimdPath::Avx2)) paths.push_back(core::SimdPath::Avx2);

@@ -1184,32 +1184,10 @@ class AnticipationVelocityModel final : public OperationalModel {
 
   /// Whether any neighbour's disc overlaps i's (|d| < r_i + r_o, the test `overlap` starts with),
   /// without a branch on the data: in the open about one walker in a hundred touches anyone
-  /// (`throng bench`'s random square), and separation is done with the rest at once.
-#if defined(__x86_64__)
-  /// touchesAny on the AVX2 path: eight neighbours at a time (their positions and radii gathered,
-  /// lanes past the list masked off and never read), the same IEEE operations as the one-at-a-time
-  /// test, so the same answer. Not inlined: the target differs.
-  [[gnu::target("avx2"), gnu::noinline]] static bool touchesAnyAvx2(const ModelInput& in, std::size_t row) {
-    const AgentStore& a = in.agents;
-    const std::uint32_t* nb = &a.neighbours[row * in.desc.steering.maxNeighbours];
-    const auto count = static_cast<std::int32_t>(a.neighbourCount[row]);
-    const __m256 px = _mm256_set1_ps(a.posX[row]), py = _mm256_set1_ps(a.posY[row]), ri = _mm256_set1_ps(a.radius[row]);
-    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-    __m256 any = _mm256_setzero_ps();
-    for (std::int32_t j = 0; j < count; j += 8) {
-      const __m256i valid = _mm256_cmpgt_epi32(_mm256_set1_epi32(count - j), lane);
-      const __m256 on = _mm256_castsi256_ps(valid);
-      const __m256i o = _mm256_maskload_epi32(reinterpret_cast<const int*>(nb + j), valid);
-      const __m256 dx = _mm256_sub_ps(_mm256_mask_i32gather_ps(_mm256_setzero_ps(), a.posX.data(), o, on, 4), px);
-      const __m256 dy = _mm256_sub_ps(_mm256_mask_i32gather_ps(_mm256_setzero_ps(), a.posY.data(), o, on, 4), py);
-      const __m256 l = _mm256_add_ps(ri, _mm256_mask_i32gather_ps(_mm256_setzero_ps(), a.radius.data(), o, on, 4));
-      const __m256 d2 = _mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy));
-      any = _mm256_or_ps(any, _mm256_and_ps(on, _mm256_cmp_ps(d2, _mm256_mul_ps(l, l), _CMP_LT_OQ)));
-    }
-    return _mm256_movemask_ps(any) != 0;
-  }
-#endif
-  [[gnu::always_inline]] static bool touchesAny(const ModelInput& in, std::size_t row) {
+  /// (`throng bench`'s random square), and separation is done with the rest at once. (Eight at a
+  /// time with AVX2 gathers it took fewer instructions but more time: the separation passes 1.17 →
+  /// 1.31–1.44 ms a tick at 10,000 agents: `integrate` in `--phase-times`.)
+  static bool touchesAny(const ModelInput& in, std::size_t row) {
     const AgentStore& a = in.agents;
     const float ri = a.radius[row];
     unsigned any = 0;
@@ -1643,12 +1621,7 @@ class AnticipationVelocityModel final : public OperationalModel {
   /// heading (pushing walkers back made the dense rings walk backwards and the dense room's queue
   /// walk back from the door; docs/crowd-model.md, Overlaps).
   core::Vec2 separation(const ModelInput& in, std::size_t row) const override {
-#if defined(__x86_64__)
-    if (avx2_ && !touchesAnyAvx2(in, row)) return {};  // most walkers
-    if (!avx2_ && !touchesAny(in, row)) return {};
-#else
     if (!touchesAny(in, row)) return {};  // most walkers
-#endif
     const AgentStore& a = in.agents;
     const core::Vec2 oi{a.oriX[row], a.oriY[row]};
     const float q = params_[a.population[row]].passageRatio;
