@@ -186,7 +186,7 @@ void World::Impl::sense(const core::TaskSystem& tasks) {
                    SenseOutput{grid, agents.neighbours, agents.neighbourCount}, tasks);
       },
       [&] {
-        const bool prior = std::ranges::any_of(models, [](const auto& m) { return m && m->readsPriorDesired(); });
+        const bool prior = modelsReadPrior();
         const ModelInput model{agents, walls, desc, viewers, tick, prior ? std::span<const float>(agents.prefVelX) : std::span<const float>(),
                                prior ? std::span<const float>(agents.prefVelY) : std::span<const float>()};
         for (auto& m : models) {
@@ -228,7 +228,7 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
   // The preferred velocities of the last tick become the models' priorDesired; steer writes every
   // row's anew (the rows other ranks own through exchangeSteer) over what separate left.
   std::span<const float> priorX, priorY;
-  if (std::ranges::any_of(models, [](const auto& m) { return m && m->readsPriorDesired(); })) {
+  if (modelsReadPrior()) {
     std::swap(agents.prefVelX, spareX);
     std::swap(agents.prefVelY, spareY);
     agents.prefVelX.resize(agents.size());
@@ -243,6 +243,10 @@ void World::Impl::steer(const core::TaskSystem& tasks) {
                       agents.stuckTime, goalView(), RowRange{list, 0, n}, inUse, model};
   const SteerOutput out{agents.prefVelX, agents.prefVelY, agents.corners, {agents.newVelX, agents.newVelY, agents.holdHeading, agents.lookTurn}, scratch};
   sim::steer(in, out, tasks);
+}
+
+bool World::Impl::modelsReadPrior() const {
+  return std::ranges::any_of(models, [](const auto& m) { return m && m->readsPriorDesired(); });
 }
 
 void World::Impl::configureModels() {

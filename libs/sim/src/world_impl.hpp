@@ -260,6 +260,8 @@ struct World::Impl {
   std::array<std::unique_ptr<OperationalModel>, kModelCount> models;
   /// Creates the models the populations need and (re)reads their parameters (creation, insertion; world.cpp).
   void configureModels();
+  /// Whether a model in use reads the previous tick's preferred velocities (ModelInput::priorDesiredX/Y).
+  [[nodiscard]] bool modelsReadPrior() const;
   /// Gives a worker the scratch of every model in use (world.cpp).
   void addModelScratch(WorkerScratch& ws) const;
 };
